@@ -1,0 +1,25 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The three-phase pipeline behind `brume render`.
+#ifndef BrumeRender_h
+#define BrumeRender_h
+
+#include <cstdint>
+#include <string>
+
+struct RenderOptions
+{
+  std::string Scene;  // empty: the built-in default scene
+  std::string Output; // .png or .vti
+  long long Particles = 1000000;
+  std::uint64_t Seed = 0;
+  int Width = 512;
+  int Height = 512;
+  double Exposure = 1.0;
+  double Threshold = 32.0;
+  bool Timings = false;
+};
+
+/// Runs the pipeline and writes the image; returns the process exit code.
+int RunRender(const RenderOptions& options);
+
+#endif

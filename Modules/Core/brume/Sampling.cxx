@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "brume/Sampling.h"
+
+#include <cmath>
+
+namespace brume
+{
+
+Vec3 SampleCosineHemisphere(float u1, float u2)
+{
+  // Malley's method: uniform disk point lifted to the hemisphere.
+  const float r = std::sqrt(u1);
+  const float phi = 2.f * Pi * u2;
+  const float z = std::sqrt(std::max(0.f, 1.f - u1));
+  return { r * std::cos(phi), r * std::sin(phi), z };
+}
+
+float CosineHemispherePdf(float cosTheta)
+{
+  return cosTheta > 0.f ? cosTheta * InvPi : 0.f;
+}
+
+Vec3 SampleUniformSphere(float u1, float u2)
+{
+  const float z = 1.f - 2.f * u1;
+  const float r = std::sqrt(std::max(0.f, 1.f - z * z));
+  const float phi = 2.f * Pi * u2;
+  return { r * std::cos(phi), r * std::sin(phi), z };
+}
+
+float HenyeyGreenstein::Evaluate(float cosTheta) const
+{
+  const float g = this->G;
+  const float denom = 1.f + g * g - 2.f * g * cosTheta;
+  return Inv4Pi * (1.f - g * g) / (denom * std::sqrt(denom));
+}
+
+float HenyeyGreenstein::SampleCosTheta(float u) const
+{
+  const float g = this->G;
+  if (std::abs(g) < 1e-3f)
+  {
+    return 1.f - 2.f * u;
+  }
+  // Inverse CDF of HG in cos(theta), written so that g > 0 is forward.
+  const float sq = (1.f - g * g) / (1.f - g + 2.f * g * u);
+  const float c = (1.f + g * g - sq * sq) / (2.f * g);
+  return std::min(1.f, std::max(-1.f, c));
+}
+
+Vec3 HenyeyGreenstein::Sample(const Vec3& wi, float u1, float u2) const
+{
+  const float cosTheta = this->SampleCosTheta(u1);
+  const float sinTheta = std::sqrt(std::max(0.f, 1.f - cosTheta * cosTheta));
+  const float phi = 2.f * Pi * u2;
+  const Frame frame(wi);
+  return Normalize(
+    frame.ToWorld({ sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta }));
+}
+
+} // namespace brume

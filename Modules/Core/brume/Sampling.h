@@ -1,0 +1,49 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Direction sampling routines with their densities (solid-angle measure).
+#ifndef brume_Sampling_h
+#define brume_Sampling_h
+
+#include "brume/Vec3.h"
+
+namespace brume
+{
+
+constexpr float Pi = 3.14159265358979323846f;
+constexpr float InvPi = 1.f / Pi;
+constexpr float Inv4Pi = 1.f / (4.f * Pi);
+
+/// Cosine-weighted direction about +z from two uniform numbers; pdf = cos(theta)/pi.
+Vec3 SampleCosineHemisphere(float u1, float u2);
+float CosineHemispherePdf(float cosTheta);
+
+/// Uniform direction on the unit sphere; pdf = 1/(4 pi).
+Vec3 SampleUniformSphere(float u1, float u2);
+
+/**
+ * Henyey-Greenstein phase function.
+ *
+ * cosTheta is the cosine between the direction of travel before and after the
+ * scattering event, so g > 0 scatters forward:
+ *   p(cosTheta) = (1 - g^2) / (4 pi (1 + g^2 - 2 g cosTheta)^{3/2}).
+ */
+class HenyeyGreenstein
+{
+public:
+  /// Requires -1 < g < 1 (checked by the scene validation, not here).
+  explicit HenyeyGreenstein(float g)
+    : G(g)
+  {
+  }
+
+  float G;
+
+  float Evaluate(float cosTheta) const;
+  /// Cosine of the scattering angle for a uniform number u (inverse CDF).
+  float SampleCosTheta(float u) const;
+  /// New direction of travel for a particle travelling along wi.
+  Vec3 Sample(const Vec3& wi, float u1, float u2) const;
+};
+
+} // namespace brume
+
+#endif

@@ -1,0 +1,105 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkBrumeRadianceReconstruction
+ * @brief   phase 2: per-object radiance textures toward a viewpoint
+ *
+ * Jimenez & Pueyo (2003), section 3. For every object of the scene, the hits
+ * stored by vtkBrumeLightTracer are binned into a histogram finer than the
+ * texture, a summed-area table is built, and every texel's value is the
+ * adaptive nearest-neighbour density estimate of its region: the region
+ * starts as the texel's own histogram cells and grows until the flux it holds
+ * reaches the threshold (the paper's Figure 1), then its sum is divided by
+ * its own area or volume. The normalizations are documented in
+ * brume/Reconstruction.h:
+ *
+ * - surfaces (Lambertian): L_o = rho/pi * E + L_e, view independent;
+ * - media: source radiance S = J / sigma_t with
+ *   J = (sigma_s/sigma_t) * sum(p(w_p, w_o) Phi_p) / V, w_o toward the eye
+ *   (view dependent unless g = 0).
+ *
+ * Input port 0: the scene collection. Input port 1: the particle hits.
+ * Output: a vtkPartitionedDataSetCollection with one partitioned dataset per
+ * object, named as in the scene:
+ *
+ * - surfaces: partition 0 is a 2D vtkImageData in texture space ([0,1]^2,
+ *   point data `Radiance`, float[3], W m^-2 sr^-1) whose field data
+ *   `BrumeTextureOrigin`, `BrumeTextureU`, `BrumeTextureV` place it in the
+ *   world (x = Origin + s U + t V); partition 1 is the surface with texture
+ *   coordinates `TextureCoordinates` that map the image with a vtkTexture;
+ * - media: partition 0 is a 3D vtkImageData over the medium's box with cell
+ *   data `SourceRadiance` (float[3], W m^-2 sr^-1) and `Extinction`
+ *   (float[3], sigma_t in m^-1), ready for vtkBrumeSliceVolumeMapper.
+ *
+ * Every partition's field data holds `BrumeObjectKind` ("surface" or
+ * "medium").
+ *
+ * @sa vtkBrumeLightTracer vtkBrumeSliceVolumeMapper
+ */
+#ifndef vtkBrumeRadianceReconstruction_h
+#define vtkBrumeRadianceReconstruction_h
+
+#include "vtkBrumeReconstructionModule.h" // For export macro
+#include "vtkPartitionedDataSetCollectionAlgorithm.h"
+
+class VTKBRUMERECONSTRUCTION_EXPORT vtkBrumeRadianceReconstruction
+  : public vtkPartitionedDataSetCollectionAlgorithm
+{
+public:
+  static vtkBrumeRadianceReconstruction* New();
+  vtkTypeMacro(vtkBrumeRadianceReconstruction, vtkPartitionedDataSetCollectionAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// The viewpoint the media radiate toward (default (0, 0, 4)).
+  vtkSetVector3Macro(EyePosition, double);
+  vtkGetVector3Macro(EyePosition, double);
+  ///@}
+
+  ///@{
+  /**
+   * Radiosity threshold of the adaptive regions, in units of one emitted
+   * particle's flux (default 32): a texel's region grows until it holds the
+   * incident flux of this many particles leaving the lights. Must be > 0.
+   */
+  vtkSetMacro(RadiosityThreshold, double);
+  vtkGetMacro(RadiosityThreshold, double);
+  ///@}
+
+  ///@{
+  /**
+   * Texels along each axis of surface textures and voxels along each axis of
+   * medium textures. 0 (the default) chooses them from the object's size and
+   * hit count so that a texel holds about RadiosityThreshold hits; otherwise
+   * at most 4096 (surfaces) or 512 (media).
+   */
+  vtkSetMacro(SurfaceResolution, int);
+  vtkGetMacro(SurfaceResolution, int);
+  vtkSetMacro(MediumResolution, int);
+  vtkGetMacro(MediumResolution, int);
+  ///@}
+
+  ///@{
+  /// Histogram cells per texel along each axis (default 2, in [1, 16]).
+  vtkSetMacro(HistogramRefinement, int);
+  vtkGetMacro(HistogramRefinement, int);
+  ///@}
+
+protected:
+  vtkBrumeRadianceReconstruction();
+  ~vtkBrumeRadianceReconstruction() override = default;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  double EyePosition[3] = { 0.0, 0.0, 4.0 };
+  double RadiosityThreshold = 32.0;
+  int SurfaceResolution = 0;
+  int MediumResolution = 0;
+  int HistogramRefinement = 2;
+
+private:
+  vtkBrumeRadianceReconstruction(const vtkBrumeRadianceReconstruction&) = delete;
+  void operator=(const vtkBrumeRadianceReconstruction&) = delete;
+};
+
+#endif

@@ -1,0 +1,77 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkBrumeFloatImageCapture.h"
+
+#include "vtkFloatArray.h"
+#include "vtkFramebufferPass.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPixelBufferObject.h"
+#include "vtkPointData.h"
+#include "vtkRenderStepsPass.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkTextureObject.h"
+
+vtkStandardNewMacro(vtkBrumeFloatImageCapture);
+
+vtkBrumeFloatImageCapture::vtkBrumeFloatImageCapture() = default;
+vtkBrumeFloatImageCapture::~vtkBrumeFloatImageCapture() = default;
+
+void vtkBrumeFloatImageCapture::Attach(vtkRenderer* renderer)
+{
+  this->Renderer = renderer;
+  vtkNew<vtkRenderStepsPass> steps;
+  this->Pass = vtkSmartPointer<vtkFramebufferPass>::New();
+  this->Pass->SetColorFormat(vtkTextureObject::Float32);
+  this->Pass->SetDelegatePass(steps);
+  renderer->SetPass(this->Pass);
+}
+
+vtkSmartPointer<vtkImageData> vtkBrumeFloatImageCapture::Capture()
+{
+  vtkTextureObject* color = this->Pass ? this->Pass->GetColorTexture() : nullptr;
+  if (!this->Renderer || !color || !color->GetHandle())
+  {
+    vtkErrorMacro("Nothing to capture: Attach() a renderer and render first.");
+    return nullptr;
+  }
+  this->Renderer->GetRenderWindow()->MakeCurrent();
+  const int width = static_cast<int>(color->GetWidth());
+  const int height = static_cast<int>(color->GetHeight());
+  const int components = color->GetComponents();
+  vtkPixelBufferObject* pbo = color->Download();
+  if (!pbo || components < 3)
+  {
+    vtkErrorMacro("Could not read the float colour buffer back.");
+    if (pbo)
+    {
+      pbo->Delete();
+    }
+    return nullptr;
+  }
+  const auto* data = static_cast<const float*>(pbo->MapPackedBuffer());
+  vtkNew<vtkFloatArray> radiance;
+  radiance->SetName("Radiance");
+  radiance->SetNumberOfComponents(3);
+  radiance->SetNumberOfTuples(static_cast<vtkIdType>(width) * height);
+  float* out = radiance->GetPointer(0);
+  for (vtkIdType i = 0; i < static_cast<vtkIdType>(width) * height; ++i)
+  {
+    out[3 * i + 0] = data[components * i + 0];
+    out[3 * i + 1] = data[components * i + 1];
+    out[3 * i + 2] = data[components * i + 2];
+  }
+  pbo->UnmapPackedBuffer();
+  pbo->Delete();
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(width, height, 1);
+  image->GetPointData()->SetScalars(radiance);
+  return image;
+}
+
+void vtkBrumeFloatImageCapture::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Renderer: " << this->Renderer << "\n";
+}

@@ -1,0 +1,55 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkBrumeFloatImageCapture
+ * @brief   renders a renderer into a float framebuffer and reads it back
+ *
+ * Installs on a renderer a vtkFramebufferPass with a 32-bit float colour
+ * buffer around the standard render steps, so that radiance above 1 is kept,
+ * and after a render reads the linear RGB radiance back into a vtkImageData
+ * (point data `Radiance`, float[3], one point per pixel, row 0 at the
+ * bottom). No tone mapping is applied.
+ *
+ * @code
+ * vtkNew<vtkBrumeFloatImageCapture> capture;
+ * capture->Attach(renderer);
+ * renderWindow->Render();
+ * vtkSmartPointer<vtkImageData> radiance = capture->Capture();
+ * @endcode
+ */
+#ifndef vtkBrumeFloatImageCapture_h
+#define vtkBrumeFloatImageCapture_h
+
+#include "vtkBrumeRenderingModule.h" // For export macro
+#include "vtkObject.h"
+#include "vtkSmartPointer.h" // For return value
+
+class vtkFramebufferPass;
+class vtkImageData;
+class vtkRenderer;
+
+class VTKBRUMERENDERING_EXPORT vtkBrumeFloatImageCapture : public vtkObject
+{
+public:
+  static vtkBrumeFloatImageCapture* New();
+  vtkTypeMacro(vtkBrumeFloatImageCapture, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Makes `renderer` draw into a float framebuffer.
+  void Attach(vtkRenderer* renderer);
+
+  /// The last frame's radiance, or nullptr (with an error) before a render.
+  vtkSmartPointer<vtkImageData> Capture();
+
+protected:
+  vtkBrumeFloatImageCapture();
+  ~vtkBrumeFloatImageCapture() override;
+
+  vtkSmartPointer<vtkFramebufferPass> Pass;
+  vtkRenderer* Renderer = nullptr;
+
+private:
+  vtkBrumeFloatImageCapture(const vtkBrumeFloatImageCapture&) = delete;
+  void operator=(const vtkBrumeFloatImageCapture&) = delete;
+};
+
+#endif

@@ -1,0 +1,74 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkBrumeSceneActors
+ * @brief   turns reconstructed radiance textures into actors and volumes
+ *
+ * Scene assembly for phase 3. For every object of the output of
+ * vtkBrumeRadianceReconstruction it makes a prop: surfaces become unlit
+ * textured actors (a vtkTexture of the float `Radiance` image on the surface's
+ * texture coordinates, so the framebuffer receives radiance), media become
+ * vtkVolume props drawn by vtkBrumeSliceVolumeMapper. Opaque surfaces are
+ * drawn first with the z-buffer, then the volumes.
+ *
+ * @code
+ * vtkNew<vtkBrumeSceneActors> actors;
+ * actors->SetInputData(reconstruction->GetOutput());
+ * actors->AddToRenderer(renderer);
+ * @endcode
+ *
+ * @sa vtkBrumeRadianceReconstruction vtkBrumeSliceVolumeMapper
+ */
+#ifndef vtkBrumeSceneActors_h
+#define vtkBrumeSceneActors_h
+
+#include "vtkBrumeRenderingModule.h" // For export macro
+#include "vtkObject.h"
+#include "vtkSmartPointer.h" // For members
+
+class vtkPartitionedDataSetCollection;
+class vtkPropCollection;
+class vtkRenderer;
+
+class VTKBRUMERENDERING_EXPORT vtkBrumeSceneActors : public vtkObject
+{
+public:
+  static vtkBrumeSceneActors* New();
+  vtkTypeMacro(vtkBrumeSceneActors, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// The reconstruction output to show.
+  void SetInputData(vtkPartitionedDataSetCollection* textures);
+  vtkPartitionedDataSetCollection* GetInputData();
+  ///@}
+
+  ///@{
+  /// Show the media (default on).
+  vtkSetMacro(ShowMedia, bool);
+  vtkGetMacro(ShowMedia, bool);
+  vtkBooleanMacro(ShowMedia, bool);
+  ///@}
+
+  /**
+   * Builds the props and adds them to the renderer. Returns false, with an
+   * error, when an object of the input is not a reconstructed texture.
+   */
+  bool AddToRenderer(vtkRenderer* renderer);
+
+  /// The props made by the last AddToRenderer().
+  vtkPropCollection* GetProps();
+
+protected:
+  vtkBrumeSceneActors();
+  ~vtkBrumeSceneActors() override;
+
+  vtkSmartPointer<vtkPartitionedDataSetCollection> Input;
+  vtkSmartPointer<vtkPropCollection> Props;
+  bool ShowMedia = true;
+
+private:
+  vtkBrumeSceneActors(const vtkBrumeSceneActors&) = delete;
+  void operator=(const vtkBrumeSceneActors&) = delete;
+};
+
+#endif

@@ -1,0 +1,113 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkBrumeDefaultSceneSource.h"
+
+#include "vtkCellArray.h"
+#include "vtkCompositeDataSet.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPartitionedDataSet.h"
+#include "vtkPartitionedDataSetCollection.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+
+#include "brume/Scene.h"
+
+vtkStandardNewMacro(vtkBrumeDefaultSceneSource);
+
+namespace
+{
+void AddVec3(vtkFieldData* fd, const char* name, double x, double y, double z)
+{
+  vtkNew<vtkDoubleArray> a;
+  a->SetName(name);
+  a->SetNumberOfComponents(3);
+  a->InsertNextTuple3(x, y, z);
+  fd->AddArray(a);
+}
+
+void AddScalar(vtkFieldData* fd, const char* name, double v)
+{
+  vtkNew<vtkDoubleArray> a;
+  a->SetName(name);
+  a->InsertNextValue(v);
+  fd->AddArray(a);
+}
+
+void AddObject(vtkPartitionedDataSetCollection* out, vtkDataObject* data, const std::string& name)
+{
+  const unsigned int index = out->GetNumberOfPartitionedDataSets();
+  out->SetNumberOfPartitionedDataSets(index + 1);
+  vtkNew<vtkPartitionedDataSet> pds;
+  pds->SetNumberOfPartitions(1);
+  pds->SetPartition(0, data);
+  out->SetPartitionedDataSet(index, pds);
+  out->GetMetaData(index)->Set(vtkCompositeDataSet::NAME(), name.c_str());
+}
+}
+
+vtkBrumeDefaultSceneSource::vtkBrumeDefaultSceneSource()
+{
+  this->SetNumberOfInputPorts(0);
+}
+
+int vtkBrumeDefaultSceneSource::RequestData(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  auto* output = vtkPartitionedDataSetCollection::GetData(outputVector, 0);
+  // The specification lives in the core so that every front end shares it.
+  const brume::Scene scene = brume::MakeDefaultScene();
+  for (const brume::Surface& s : scene.Surfaces)
+  {
+    vtkNew<vtkPoints> points;
+    for (const brume::Vec3& v : s.Vertices)
+    {
+      points->InsertNextPoint(v.x, v.y, v.z);
+    }
+    // Every default surface is one quad: keep it a single polygon.
+    vtkNew<vtkCellArray> polys;
+    polys->InsertNextCell(4);
+    const vtkIdType quad[4] = { 0, 1, 2, 3 };
+    for (vtkIdType id : quad)
+    {
+      polys->InsertCellPoint(id);
+    }
+    vtkNew<vtkPolyData> pd;
+    pd->SetPoints(points);
+    pd->SetPolys(polys);
+    AddVec3(pd->GetFieldData(), "BrumeReflectance", s.Reflectance.x, s.Reflectance.y, s.Reflectance.z);
+    AddVec3(pd->GetFieldData(), "BrumeEmission", s.Emission.x, s.Emission.y, s.Emission.z);
+    AddObject(output, pd, s.Name);
+  }
+  if (this->IncludeMedium)
+  {
+    for (const brume::Medium& m : scene.Media)
+    {
+      vtkNew<vtkImageData> box;
+      box->SetOrigin(m.Bounds.lower.x, m.Bounds.lower.y, m.Bounds.lower.z);
+      const brume::Vec3 e = m.Bounds.Extent();
+      box->SetSpacing(e.x, e.y, e.z);
+      box->SetDimensions(2, 2, 2);
+      AddVec3(box->GetFieldData(), "BrumeSigmaA", m.SigmaA.x, m.SigmaA.y, m.SigmaA.z);
+      AddVec3(box->GetFieldData(), "BrumeSigmaS", m.SigmaS.x, m.SigmaS.y, m.SigmaS.z);
+      AddScalar(box->GetFieldData(), "BrumeG", m.G);
+      AddObject(output, box, m.Name);
+    }
+  }
+  vtkFieldData* fd = output->GetFieldData();
+  AddVec3(fd, "BrumeCameraPosition", 0, 0, 4);
+  AddVec3(fd, "BrumeCameraFocalPoint", 0, 0, 0);
+  AddVec3(fd, "BrumeCameraViewUp", 0, 1, 0);
+  AddScalar(fd, "BrumeCameraViewAngle", 40);
+  return 1;
+}
+
+void vtkBrumeDefaultSceneSource::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "IncludeMedium: " << this->IncludeMedium << "\n";
+}

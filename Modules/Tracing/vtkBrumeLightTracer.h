@@ -1,0 +1,92 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkBrumeLightTracer
+ * @brief   phase 1: Monte Carlo light tracing from the scene's emitters
+ *
+ * Jimenez & Pueyo (2003), section 2. Particles leave the emissive surfaces in
+ * proportion to their power, are reflected by Lambertian surfaces (Embree ray
+ * casting) and scattered by homogeneous media (exact free-flight sampling,
+ * Henyey-Greenstein phase sampling), with Russian roulette. Every interaction
+ * is stored: the output vtkPolyData holds one point per hit with the arrays
+ * documented in vtkBrumeSceneConversion (44 bytes per hit internally).
+ *
+ * Input: a scene collection (vtkBrumeSceneConversion). Output: the hits.
+ *
+ * Particles are traced in fixed blocks with vtkSMPTools; each particle's
+ * random stream depends only on (Seed, particle index), so the output is
+ * identical whatever the number of threads.
+ *
+ * @sa vtkBrumeDefaultSceneSource vtkBrumeRadianceReconstruction
+ */
+#ifndef vtkBrumeLightTracer_h
+#define vtkBrumeLightTracer_h
+
+#include "vtkBrumeTracingModule.h" // For export macro
+#include "vtkPolyDataAlgorithm.h"
+
+class VTKBRUMETRACING_EXPORT vtkBrumeLightTracer : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkBrumeLightTracer* New();
+  vtkTypeMacro(vtkBrumeLightTracer, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * Number of particles emitted (default 1,000,000). Must be in
+   * [1, 10^10]; the expected memory of the hits is checked before tracing.
+   */
+  vtkSetMacro(NumberOfParticles, vtkTypeInt64);
+  vtkGetMacro(NumberOfParticles, vtkTypeInt64);
+  ///@}
+
+  ///@{
+  /// Seed of the particles' random streams (default 0).
+  vtkSetMacro(Seed, vtkTypeUInt64);
+  vtkGetMacro(Seed, vtkTypeUInt64);
+  ///@}
+
+  ///@{
+  /// Interactions after which a particle is stopped (default 64, in [1, 255]).
+  vtkSetClampMacro(MaximumDepth, int, 1, 255);
+  vtkGetMacro(MaximumDepth, int);
+  ///@}
+
+  ///@{
+  /// Interactions after which Russian roulette may end a particle (default 3).
+  vtkSetClampMacro(RouletteDepth, int, 0, 255);
+  vtkGetMacro(RouletteDepth, int);
+  ///@}
+
+  ///@{
+  /**
+   * Memory the stored hits may take, in bytes (default 8 GiB). The tracer
+   * refuses particle counts whose expected hits would not fit.
+   */
+  vtkSetMacro(MemoryLimit, vtkTypeInt64);
+  vtkGetMacro(MemoryLimit, vtkTypeInt64);
+  ///@}
+
+  /// Rays cast by the last execution (for benchmarks).
+  vtkGetMacro(LastRayCount, vtkTypeInt64);
+
+protected:
+  vtkBrumeLightTracer();
+  ~vtkBrumeLightTracer() override = default;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  vtkTypeInt64 NumberOfParticles = 1000000;
+  vtkTypeUInt64 Seed = 0;
+  int MaximumDepth = 64;
+  int RouletteDepth = 3;
+  vtkTypeInt64 MemoryLimit = vtkTypeInt64(8) << 30;
+  vtkTypeInt64 LastRayCount = 0;
+
+private:
+  vtkBrumeLightTracer(const vtkBrumeLightTracer&) = delete;
+  void operator=(const vtkBrumeLightTracer&) = delete;
+};
+
+#endif

@@ -1,0 +1,76 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkBrumeSceneConversion
+ * @brief   converts between VTK data and the Brume physics core's types
+ *
+ * A Brume scene is a vtkPartitionedDataSetCollection with one partitioned
+ * dataset per object, named through its vtkCompositeDataSet::NAME() metadata:
+ *
+ * - a **surface** is a vtkPolyData (polygons and triangle strips are
+ *   triangulated); its field data may hold `BrumeReflectance` (3 components,
+ *   Lambertian reflectance in [0, 1], default 0.75) and `BrumeEmission`
+ *   (3 components, emitted radiance in W m^-2 sr^-1 on the side the polygon
+ *   winding's normal points to, default 0);
+ * - a **medium** is a vtkImageData whose bounds are the medium's box and whose
+ *   field data holds `BrumeSigmaA` and `BrumeSigmaS` (3 components, m^-1) and
+ *   `BrumeG` (Henyey-Greenstein asymmetry, -1 < g < 1, default 0). The medium
+ *   is homogeneous.
+ *
+ * Object ids number the surfaces first, then the media, each in collection
+ * order. The scene's camera may be given in the collection's field data:
+ * `BrumeCameraPosition`, `BrumeCameraFocalPoint`, `BrumeCameraViewUp` (3
+ * components) and `BrumeCameraViewAngle` (degrees).
+ *
+ * Particle hits travel as a vtkPolyData whose points are the hit positions,
+ * with point data `Direction` (float[3], direction of travel on arrival),
+ * `Flux` (float[3], W), `ObjectId` and `EmitterId` (unsigned short) and
+ * `Depth` (unsigned char), and field data `TotalPower` (double[3], W) and
+ * `NumberOfParticles`.
+ *
+ * @sa vtkBrumeLightTracer vtkBrumeDefaultSceneSource
+ */
+#ifndef vtkBrumeSceneConversion_h
+#define vtkBrumeSceneConversion_h
+
+#include "vtkBrumeTracingModule.h" // For export macro
+#include "vtkSmartPointer.h"      // For return values
+
+#include "brume/LightTracer.h" // For brume::Hit
+#include "brume/Scene.h"       // For brume::Scene
+
+#include <string>
+#include <vector>
+
+class vtkDataObject;
+class vtkPolyData;
+
+class VTKBRUMETRACING_EXPORT vtkBrumeSceneConversion
+{
+public:
+  /// Where each core object came from in the collection.
+  struct ObjectSource
+  {
+    unsigned int CollectionIndex;
+    std::string Name;
+  };
+
+  /**
+   * Builds the core scene from a scene collection. Returns an empty string on
+   * success, otherwise a message saying what is wrong with the input.
+   */
+  static std::string ToScene(
+    vtkDataObject* input, brume::Scene& scene, std::vector<ObjectSource>* sources = nullptr);
+
+  /// Stores hits in a vtkPolyData with the documented arrays.
+  static vtkSmartPointer<vtkPolyData> HitsToPolyData(
+    const std::vector<brume::Hit>& hits, const brume::Vec3& totalPower, long long particles);
+
+  /// Reads hits back; empty string on success, otherwise what is missing.
+  static std::string HitsFromPolyData(vtkPolyData* data, std::vector<brume::Hit>& hits);
+
+  /// The scene's camera, if the collection's field data names one.
+  static bool GetCamera(vtkDataObject* input, double position[3], double focalPoint[3],
+    double viewUp[3], double& viewAngle);
+};
+
+#endif
