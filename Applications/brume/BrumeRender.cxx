@@ -41,29 +41,6 @@ bool EndsWith(const std::string& s, const std::string& suffix)
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-// The PNG's tone mapping: exposure, clamp to [0, 1], sRGB transfer curve.
-unsigned char ToneMap(float radiance, double exposure)
-{
-  double x = std::min(1.0, std::max(0.0, exposure * radiance));
-  x = x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1.0 / 2.4) - 0.055;
-  return static_cast<unsigned char>(std::lround(255.0 * x));
-}
-
-vtkSmartPointer<vtkImageData> ToneMapped(vtkImageData* radiance, double exposure)
-{
-  auto* in = vtkFloatArray::SafeDownCast(radiance->GetPointData()->GetArray("Radiance"));
-  vtkNew<vtkUnsignedCharArray> rgb;
-  rgb->SetNumberOfComponents(3);
-  rgb->SetNumberOfTuples(in->GetNumberOfTuples());
-  for (vtkIdType i = 0; i < 3 * in->GetNumberOfTuples(); ++i)
-  {
-    rgb->SetValue(i, ToneMap(in->GetValue(i), exposure));
-  }
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetDimensions(radiance->GetDimensions());
-  image->GetPointData()->SetScalars(rgb);
-  return image;
-}
 }
 
 int RunRender(const RenderOptions& options)
@@ -160,7 +137,7 @@ int RunRender(const RenderOptions& options)
   {
     vtkNew<vtkPNGWriter> writer;
     writer->SetFileName(options.Output.c_str());
-    writer->SetInputData(ToneMapped(radiance, options.Exposure));
+    writer->SetInputData(vtkBrumeFloatImageCapture::ToneMap(radiance, options.Exposure));
     writer->Write();
     if (writer->GetErrorCode() != 0)
     {

@@ -15,7 +15,7 @@ struct RenderOptions
   int Width = 512;
   int Height = 512;
   double Exposure = 1.0;
-  double Threshold = 32.0;
+  double Threshold = 128.0;
   bool Timings = false;
 };
 

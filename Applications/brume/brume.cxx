@@ -23,7 +23,7 @@ default scene (a Cornell box around a cube of forward-scattering fog).
   --size WxH          image size in pixels (default 512x512)
   --exposure E        PNG exposure multiplier (default 1)
   --threshold T       radiosity threshold of the density estimation, in
-                      particles (default 32)
+                      particles (default 128)
   --timings           print the time of each phase (as the paper's Table 1)
   -h, --help          show this help
 )";

@@ -134,8 +134,8 @@ int vtkBrumeRadianceReconstruction::RequestData(
     return 0;
   }
   vtkFieldData* hitFields = hitData->GetFieldData();
-  vtkDataArray* powerArray = hitFields->GetArray("TotalPower");
-  vtkDataArray* countArray = hitFields->GetArray("NumberOfParticles");
+  vtkDataArray* powerArray = hitFields ? hitFields->GetArray("TotalPower") : nullptr;
+  vtkDataArray* countArray = hitFields ? hitFields->GetArray("NumberOfParticles") : nullptr;
   if (!powerArray || !countArray || powerArray->GetNumberOfComponents() != 3 ||
     powerArray->GetNumberOfTuples() < 1 || countArray->GetNumberOfTuples() < 1 ||
     !(countArray->GetTuple1(0) >= 1.0))

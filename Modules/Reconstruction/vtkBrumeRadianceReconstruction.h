@@ -58,7 +58,7 @@ public:
   ///@{
   /**
    * Radiosity threshold of the adaptive regions, in units of one emitted
-   * particle's flux (default 32): a texel's region grows until it holds the
+   * particle's flux (default 128): a texel's region grows until it holds the
    * incident flux of this many particles leaving the lights. Must be > 0.
    */
   vtkSetMacro(RadiosityThreshold, double);
@@ -92,7 +92,7 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   double EyePosition[3] = { 0.0, 0.0, 4.0 };
-  double RadiosityThreshold = 32.0;
+  double RadiosityThreshold = 128.0;
   int SurfaceResolution = 0;
   int MediumResolution = 0;
   int HistogramRefinement = 2;

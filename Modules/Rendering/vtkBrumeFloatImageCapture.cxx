@@ -12,6 +12,10 @@
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkTextureObject.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <algorithm>
+#include <cmath>
 
 vtkStandardNewMacro(vtkBrumeFloatImageCapture);
 
@@ -67,6 +71,31 @@ vtkSmartPointer<vtkImageData> vtkBrumeFloatImageCapture::Capture()
   auto image = vtkSmartPointer<vtkImageData>::New();
   image->SetDimensions(width, height, 1);
   image->GetPointData()->SetScalars(radiance);
+  return image;
+}
+
+vtkSmartPointer<vtkImageData> vtkBrumeFloatImageCapture::ToneMap(
+  vtkImageData* radiance, double exposure)
+{
+  auto* in = radiance
+    ? vtkFloatArray::SafeDownCast(radiance->GetPointData()->GetArray("Radiance"))
+    : nullptr;
+  if (!in || in->GetNumberOfComponents() != 3)
+  {
+    return nullptr;
+  }
+  vtkNew<vtkUnsignedCharArray> rgb;
+  rgb->SetNumberOfComponents(3);
+  rgb->SetNumberOfTuples(in->GetNumberOfTuples());
+  for (vtkIdType i = 0; i < 3 * in->GetNumberOfTuples(); ++i)
+  {
+    double x = std::min(1.0, std::max(0.0, exposure * in->GetValue(i)));
+    x = x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1.0 / 2.4) - 0.055;
+    rgb->SetValue(i, static_cast<unsigned char>(std::lround(255.0 * x)));
+  }
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(radiance->GetDimensions());
+  image->GetPointData()->SetScalars(rgb);
   return image;
 }
 

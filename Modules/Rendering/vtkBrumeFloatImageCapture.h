@@ -40,6 +40,13 @@ public:
   /// The last frame's radiance, or nullptr (with an error) before a render.
   vtkSmartPointer<vtkImageData> Capture();
 
+  /**
+   * Brume's display transform of a radiance image (point array `Radiance`):
+   * multiply by `exposure`, clamp to [0, 1], apply the sRGB transfer curve,
+   * quantize to 8 bits. Returns an unsigned char RGB image of the same size.
+   */
+  static vtkSmartPointer<vtkImageData> ToneMap(vtkImageData* radiance, double exposure);
+
 protected:
   vtkBrumeFloatImageCapture();
   ~vtkBrumeFloatImageCapture() override;

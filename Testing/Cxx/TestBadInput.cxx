@@ -1,0 +1,192 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Bad input gets a clear error and a failed RequestData, never a crash.
+#include "vtkBrumeDefaultSceneSource.h"
+#include "vtkBrumeLightTracer.h"
+#include "vtkBrumeRadianceReconstruction.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCompositeDataSet.h"
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkExecutive.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkNew.h"
+#include "vtkPartitionedDataSet.h"
+#include "vtkPartitionedDataSetCollection.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <functional>
+#include <iostream>
+#include <limits>
+#include <string>
+
+namespace
+{
+struct ErrorCatcher
+{
+  std::string Last;
+  static void Callback(vtkObject*, unsigned long, void* clientData, void* callData)
+  {
+    static_cast<ErrorCatcher*>(clientData)->Last = static_cast<const char*>(callData);
+  }
+};
+
+vtkSmartPointer<vtkPartitionedDataSetCollection> DefaultScene()
+{
+  vtkNew<vtkBrumeDefaultSceneSource> source;
+  source->Update();
+  auto scene = vtkSmartPointer<vtkPartitionedDataSetCollection>::New();
+  scene->DeepCopy(source->GetOutput());
+  return scene;
+}
+
+vtkDataObject* Object(vtkPartitionedDataSetCollection* scene, const std::string& name)
+{
+  for (unsigned int i = 0; i < scene->GetNumberOfPartitionedDataSets(); ++i)
+  {
+    if (name == scene->GetMetaData(i)->Get(vtkCompositeDataSet::NAME()))
+    {
+      return scene->GetPartitionedDataSet(i)->GetPartition(0);
+    }
+  }
+  return nullptr;
+}
+
+void SetField(vtkDataObject* object, const char* name, double x, double y, double z)
+{
+  vtkDataArray* a = object->GetFieldData()->GetArray(name);
+  a->SetTuple3(0, x, y, z);
+}
+
+// Runs `algorithm` and checks that it fails with an error mentioning `expected`.
+bool ExpectFailure(const std::string& what, vtkAlgorithm* algorithm, const std::string& expected)
+{
+  ErrorCatcher catcher;
+  vtkNew<vtkCallbackCommand> command;
+  command->SetCallback(ErrorCatcher::Callback);
+  command->SetClientData(&catcher);
+  const unsigned long tag = algorithm->AddObserver(vtkCommand::ErrorEvent, command);
+  const int ok = algorithm->GetExecutive()->Update();
+  algorithm->RemoveObserver(tag);
+  if (ok || catcher.Last.find(expected) == std::string::npos)
+  {
+    std::cerr << what << ": expected a failure mentioning '" << expected << "', got "
+              << (ok ? "success" : "failure") << " with error '" << catcher.Last << "'\n";
+    return false;
+  }
+  std::cout << what << ": " << catcher.Last.substr(catcher.Last.find('\n') + 1);
+  return true;
+}
+
+bool TracerFails(const std::string& what, vtkPartitionedDataSetCollection* scene,
+  const std::string& expected, const std::function<void(vtkBrumeLightTracer*)>& configure = {})
+{
+  vtkNew<vtkBrumeLightTracer> tracer;
+  tracer->SetInputData(scene);
+  tracer->SetNumberOfParticles(1000);
+  if (configure)
+  {
+    configure(tracer);
+  }
+  return ExpectFailure(what, tracer, expected);
+}
+}
+
+int TestBadInput(int, char*[])
+{
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  bool ok = true;
+
+  auto scene = DefaultScene();
+  SetField(Object(scene, "fog"), "BrumeSigmaS", nan, 1, 1);
+  ok &= TracerFails("NaN sigma_s", scene, "non-finite");
+
+  scene = DefaultScene();
+  SetField(Object(scene, "fog"), "BrumeSigmaA", -0.1, -0.1, -0.1);
+  ok &= TracerFails("negative sigma_a", scene, "negative");
+
+  scene = DefaultScene();
+  Object(scene, "fog")->GetFieldData()->GetArray("BrumeG")->SetTuple1(0, 1.0);
+  ok &= TracerFails("g = 1", scene, "|g| >= 1");
+
+  scene = DefaultScene();
+  SetField(Object(scene, "light"), "BrumeEmission", 0, 0, 0);
+  ok &= TracerFails("no light", scene, "no light");
+
+  scene = DefaultScene();
+  SetField(Object(scene, "light"), "BrumeEmission", 15, nan, 15);
+  ok &= TracerFails("NaN emission", scene, "emission");
+
+  scene = vtkSmartPointer<vtkPartitionedDataSetCollection>::New();
+  ok &= TracerFails("empty scene", scene, "empty");
+
+  scene = DefaultScene();
+  {
+    auto* floor = vtkPolyData::SafeDownCast(Object(scene, "floor"));
+    vtkNew<vtkPoints> collapsed;
+    for (int i = 0; i < 4; ++i)
+    {
+      collapsed->InsertNextPoint(0, -1, 0);
+    }
+    floor->SetPoints(collapsed);
+  }
+  ok &= TracerFails("degenerate floor", scene, "degenerate");
+
+  scene = DefaultScene();
+  {
+    vtkNew<vtkFloatArray> density;
+    density->SetName("density");
+    density->SetNumberOfTuples(8);
+    density->Fill(1.0);
+    vtkImageData::SafeDownCast(Object(scene, "fog"))->GetPointData()->AddArray(density);
+  }
+  ok &= TracerFails("medium with a density array", scene, "heterogeneous");
+
+  scene = DefaultScene();
+  ok &= TracerFails("absurd particle count", scene, "NumberOfParticles",
+    [](vtkBrumeLightTracer* t) { t->SetNumberOfParticles(100000000000LL); });
+  ok &= TracerFails("particles beyond the memory limit", scene, "MemoryLimit",
+    [](vtkBrumeLightTracer* t) {
+      t->SetNumberOfParticles(1000000);
+      t->SetMemoryLimit(1 << 20);
+    });
+
+  // Reconstruction.
+  scene = DefaultScene();
+  vtkNew<vtkBrumeLightTracer> tracer;
+  tracer->SetInputData(scene);
+  tracer->SetNumberOfParticles(2000);
+  tracer->Update();
+  auto reconstruct = [&](vtkDataObject* hits, const std::string& what, const std::string& expected,
+                       const std::function<void(vtkBrumeRadianceReconstruction*)>& configure) {
+    vtkNew<vtkBrumeRadianceReconstruction> r;
+    r->SetInputDataObject(0, scene);
+    r->SetInputDataObject(1, hits);
+    if (configure)
+    {
+      configure(r);
+    }
+    return ExpectFailure(what, r, expected);
+  };
+  vtkNew<vtkPolyData> bare;
+  bare->ShallowCopy(tracer->GetOutput());
+  bare->GetPointData()->RemoveArray("Flux");
+  ok &= reconstruct(bare, "hits without Flux", "lack", {});
+  ok &= reconstruct(tracer->GetOutput(), "zero threshold", "RadiosityThreshold",
+    [](vtkBrumeRadianceReconstruction* r) { r->SetRadiosityThreshold(0.0); });
+  ok &= reconstruct(tracer->GetOutput(), "absurd resolution", "Resolution",
+    [](vtkBrumeRadianceReconstruction* r) { r->SetMediumResolution(100000); });
+  vtkNew<vtkPolyData> noPower;
+  noPower->ShallowCopy(tracer->GetOutput());
+  noPower->SetFieldData(nullptr);
+  ok &= reconstruct(noPower, "hits without TotalPower", "TotalPower", {});
+
+  return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+}
