@@ -89,7 +89,8 @@ int main(int argc, char* argv[])
   for (int i = 2; i < argc; ++i)
   {
     const std::string arg = argv[i];
-    auto value = [&](std::string& out) {
+    auto value = [&](std::string& out)
+    {
       if (i + 1 >= argc)
       {
         return false;

@@ -94,20 +94,21 @@ int vtkBrumeRadianceReconstruction::RequestData(
 
   if (!(this->RadiosityThreshold > 0.0) || !std::isfinite(this->RadiosityThreshold))
   {
-    vtkErrorMacro("RadiosityThreshold must be positive and finite, not " << this->RadiosityThreshold << ".");
+    vtkErrorMacro(
+      "RadiosityThreshold must be positive and finite, not " << this->RadiosityThreshold << ".");
     return 0;
   }
   if (this->SurfaceResolution < 0 || this->SurfaceResolution > MaxSurfaceResolution ||
     this->MediumResolution < 0 || this->MediumResolution > MaxMediumResolution)
   {
-    vtkErrorMacro("SurfaceResolution must be in [0, " << MaxSurfaceResolution
-                                                       << "] and MediumResolution in [0, "
-                                                       << MaxMediumResolution << "].");
+    vtkErrorMacro("SurfaceResolution must be in [0, "
+      << MaxSurfaceResolution << "] and MediumResolution in [0, " << MaxMediumResolution << "].");
     return 0;
   }
   if (this->HistogramRefinement < 1 || this->HistogramRefinement > 16)
   {
-    vtkErrorMacro("HistogramRefinement must be in [1, 16], not " << this->HistogramRefinement << ".");
+    vtkErrorMacro(
+      "HistogramRefinement must be in [1, 16], not " << this->HistogramRefinement << ".");
     return 0;
   }
   const brume::Vec3 eye(static_cast<float>(this->EyePosition[0]),
@@ -201,10 +202,12 @@ int vtkBrumeRadianceReconstruction::RequestData(
       const vtkIdType texels = static_cast<vtkIdType>(res[0]) * res[1];
       auto values = NewRGB("Radiance", texels);
       float* out = values->GetPointer(0);
-      vtkSMPTools::For(0, res[1], [&](vtkIdType begin, vtkIdType end) {
-        radiance.Estimate(static_cast<std::size_t>(begin) * res[0],
-          static_cast<std::size_t>(end) * res[0], threshold, out + 3 * begin * res[0]);
-      });
+      vtkSMPTools::For(0, res[1],
+        [&](vtkIdType begin, vtkIdType end)
+        {
+          radiance.Estimate(static_cast<std::size_t>(begin) * res[0],
+            static_cast<std::size_t>(end) * res[0], threshold, out + 3 * begin * res[0]);
+        });
       vtkNew<vtkImageData> texture;
       texture->SetDimensions(res[0], res[1], 1);
       texture->SetSpacing(1.0 / res[0], 1.0 / res[1], 1.0);
@@ -230,7 +233,8 @@ int vtkBrumeRadianceReconstruction::RequestData(
         double p[3];
         mapped->GetPoint(i, p);
         const brume::Vec3 d = brume::Vec3(static_cast<float>(p[0]), static_cast<float>(p[1]),
-                                static_cast<float>(p[2])) - frame.Origin;
+                                static_cast<float>(p[2])) -
+          frame.Origin;
         tcoords->SetTuple2(i, Dot(d, frame.U) / uu, Dot(d, frame.V) / vv);
       }
       mapped->GetPointData()->SetTCoords(tcoords);
@@ -253,10 +257,12 @@ int vtkBrumeRadianceReconstruction::RequestData(
       const vtkIdType voxels = slice * res[2];
       auto values = NewRGB("SourceRadiance", voxels);
       float* out = values->GetPointer(0);
-      vtkSMPTools::For(0, res[2], [&](vtkIdType begin, vtkIdType end) {
-        radiance.Estimate(static_cast<std::size_t>(begin * slice),
-          static_cast<std::size_t>(end * slice), threshold, out + 3 * begin * slice);
-      });
+      vtkSMPTools::For(0, res[2],
+        [&](vtkIdType begin, vtkIdType end)
+        {
+          radiance.Estimate(static_cast<std::size_t>(begin * slice),
+            static_cast<std::size_t>(end * slice), threshold, out + 3 * begin * slice);
+        });
       auto extinction = NewRGB("Extinction", voxels);
       const brume::Vec3 sigmaT = medium.SigmaT();
       extinction->FillComponent(0, sigmaT.x);

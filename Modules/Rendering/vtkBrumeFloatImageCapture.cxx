@@ -77,9 +77,8 @@ vtkSmartPointer<vtkImageData> vtkBrumeFloatImageCapture::Capture()
 vtkSmartPointer<vtkImageData> vtkBrumeFloatImageCapture::ToneMap(
   vtkImageData* radiance, double exposure)
 {
-  auto* in = radiance
-    ? vtkFloatArray::SafeDownCast(radiance->GetPointData()->GetArray("Radiance"))
-    : nullptr;
+  auto* in = radiance ? vtkFloatArray::SafeDownCast(radiance->GetPointData()->GetArray("Radiance"))
+                      : nullptr;
   if (!in || in->GetNumberOfComponents() != 3)
   {
     return nullptr;

@@ -23,9 +23,9 @@ namespace
 {
 std::string KindOf(vtkDataObject* data)
 {
-  auto* kind = data ? vtkStringArray::SafeDownCast(
-                        data->GetFieldData()->GetAbstractArray("BrumeObjectKind"))
-                    : nullptr;
+  auto* kind = data
+    ? vtkStringArray::SafeDownCast(data->GetFieldData()->GetAbstractArray("BrumeObjectKind"))
+    : nullptr;
   return kind && kind->GetNumberOfValues() > 0 ? kind->GetValue(0) : std::string();
 }
 }

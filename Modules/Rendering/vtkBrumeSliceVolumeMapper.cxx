@@ -148,7 +148,8 @@ void vtkBrumeSliceVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       extinction->GetTuple(i, e);
       const double sigmaT = e[0];
       if (ne == 3 &&
-        (std::abs(e[1] - e[0]) > 1e-6 * std::abs(e[0]) || std::abs(e[2] - e[0]) > 1e-6 * std::abs(e[0])))
+        (std::abs(e[1] - e[0]) > 1e-6 * std::abs(e[0]) ||
+          std::abs(e[2] - e[0]) > 1e-6 * std::abs(e[0])))
       {
         vtkErrorMacro("Colour-dependent extinction is not supported yet: nothing drawn.");
         return;
@@ -196,9 +197,8 @@ void vtkBrumeSliceVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     corners[c] = { bounds[(c & 1) ? 1 : 0], bounds[(c & 2) ? 3 : 2], bounds[(c & 4) ? 5 : 4] };
     cornersWC[c] = Transform(model, corners[c]);
-    const double d = Dot({ cornersWC[c][0] - eye[0], cornersWC[c][1] - eye[1],
-                           cornersWC[c][2] - eye[2] },
-      dop);
+    const double d =
+      Dot({ cornersWC[c][0] - eye[0], cornersWC[c][1] - eye[1], cornersWC[c][2] - eye[2] }, dop);
     dmin = std::min(dmin, d);
     dmax = std::max(dmax, d);
   }
@@ -245,8 +245,9 @@ void vtkBrumeSliceVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     double f[8];
     for (int c = 0; c < 8; ++c)
     {
-      f[c] = Dot({ cornersWC[c][0] - eye[0], cornersWC[c][1] - eye[1], cornersWC[c][2] - eye[2] },
-               dop) - d;
+      f[c] =
+        Dot({ cornersWC[c][0] - eye[0], cornersWC[c][1] - eye[1], cornersWC[c][2] - eye[2] }, dop) -
+        d;
     }
     struct Point
     {
@@ -289,7 +290,8 @@ void vtkBrumeSliceVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     }
     std::sort(polygon.begin(), polygon.end(),
       [](const Point& a, const Point& b) { return a.Angle < b.Angle; });
-    auto emit = [&](const Point& p) {
+    auto emit = [&](const Point& p)
+    {
       for (int a = 0; a < 3; ++a)
       {
         impl.Vertices.push_back(static_cast<float>(p.World[a]));
@@ -312,8 +314,8 @@ void vtkBrumeSliceVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     return;
   }
 
-  vtkShaderProgram* program = renWin->GetShaderCache()->ReadyShaderProgram(
-    vtkBrumeSliceVolumeVS, vtkBrumeSliceVolumeFS, "");
+  vtkShaderProgram* program =
+    renWin->GetShaderCache()->ReadyShaderProgram(vtkBrumeSliceVolumeVS, vtkBrumeSliceVolumeFS, "");
   if (!program)
   {
     vtkErrorMacro("Could not build the slice shaders: nothing drawn.");

@@ -79,7 +79,8 @@ int vtkBrumeDefaultSceneSource::RequestData(
     vtkNew<vtkPolyData> pd;
     pd->SetPoints(points);
     pd->SetPolys(polys);
-    AddVec3(pd->GetFieldData(), "BrumeReflectance", s.Reflectance.x, s.Reflectance.y, s.Reflectance.z);
+    AddVec3(
+      pd->GetFieldData(), "BrumeReflectance", s.Reflectance.x, s.Reflectance.y, s.Reflectance.z);
     AddVec3(pd->GetFieldData(), "BrumeEmission", s.Emission.x, s.Emission.y, s.Emission.z);
     AddObject(output, pd, s.Name);
   }

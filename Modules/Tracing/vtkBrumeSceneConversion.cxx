@@ -67,7 +67,8 @@ std::string ConvertSurface(vtkPolyData* pd, brume::Surface& s)
   {
     double p[3];
     points->GetPoint(i, p);
-    s.Vertices[i] = { static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2]) };
+    s.Vertices[i] = { static_cast<float>(p[0]), static_cast<float>(p[1]),
+      static_cast<float>(p[2]) };
   }
   // Polygons as triangle fans, strips with alternating winding.
   vtkIdType npts = 0;
@@ -109,7 +110,8 @@ std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
 {
   std::string error;
   vtkFieldData* fd = image->GetFieldData();
-  if (!ReadVec3(fd, "BrumeSigmaA", m.SigmaA, error) || !ReadVec3(fd, "BrumeSigmaS", m.SigmaS, error))
+  if (!ReadVec3(fd, "BrumeSigmaA", m.SigmaA, error) ||
+    !ReadVec3(fd, "BrumeSigmaS", m.SigmaS, error))
   {
     return error.empty() ? "lacks the BrumeSigmaA or BrumeSigmaS field array" : error;
   }
@@ -122,7 +124,8 @@ std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
   {
     return error;
   }
-  if (image->GetPointData()->GetNumberOfArrays() > 0 || image->GetCellData()->GetNumberOfArrays() > 0)
+  if (image->GetPointData()->GetNumberOfArrays() > 0 ||
+    image->GetCellData()->GetNumberOfArrays() > 0)
   {
     return "carries density arrays: heterogeneous media are not supported yet (the medium "
            "must be homogeneous, given by its bounds and field data)";
@@ -255,7 +258,8 @@ vtkSmartPointer<vtkPolyData> vtkBrumeSceneConversion::HitsToPolyData(
   return output;
 }
 
-std::string vtkBrumeSceneConversion::HitsFromPolyData(vtkPolyData* data, std::vector<brume::Hit>& hits)
+std::string vtkBrumeSceneConversion::HitsFromPolyData(
+  vtkPolyData* data, std::vector<brume::Hit>& hits)
 {
   hits.clear();
   if (!data)

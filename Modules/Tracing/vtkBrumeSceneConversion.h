@@ -33,7 +33,7 @@
 #define vtkBrumeSceneConversion_h
 
 #include "vtkBrumeTracingModule.h" // For export macro
-#include "vtkSmartPointer.h"      // For return values
+#include "vtkSmartPointer.h"       // For return values
 
 #include "brume/LightTracer.h" // For brume::Hit
 #include "brume/Scene.h"       // For brume::Scene

@@ -153,7 +153,8 @@ int TestBadInput(int, char*[])
   ok &= TracerFails("absurd particle count", scene, "NumberOfParticles",
     [](vtkBrumeLightTracer* t) { t->SetNumberOfParticles(100000000000LL); });
   ok &= TracerFails("particles beyond the memory limit", scene, "MemoryLimit",
-    [](vtkBrumeLightTracer* t) {
+    [](vtkBrumeLightTracer* t)
+    {
       t->SetNumberOfParticles(1000000);
       t->SetMemoryLimit(1 << 20);
     });
@@ -165,7 +166,8 @@ int TestBadInput(int, char*[])
   tracer->SetNumberOfParticles(2000);
   tracer->Update();
   auto reconstruct = [&](vtkDataObject* hits, const std::string& what, const std::string& expected,
-                       const std::function<void(vtkBrumeRadianceReconstruction*)>& configure) {
+                       const std::function<void(vtkBrumeRadianceReconstruction*)>& configure)
+  {
     vtkNew<vtkBrumeRadianceReconstruction> r;
     r->SetInputDataObject(0, scene);
     r->SetInputDataObject(1, hits);

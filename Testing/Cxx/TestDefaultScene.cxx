@@ -162,7 +162,8 @@ int TestDefaultScene(int argc, char* argv[])
   std::cout << "strict image error " << error << " (limit " << StrictThreshold << ")\n";
   if (!(error <= StrictThreshold))
   {
-    std::cerr << "Failed Image Test: strict image error " << error << " > " << StrictThreshold << "\n";
+    std::cerr << "Failed Image Test: strict image error " << error << " > " << StrictThreshold
+              << "\n";
     return EXIT_FAILURE;
   }
   // The mistakes the comparison must catch.

@@ -32,7 +32,8 @@ TEST(DensityEstimation, UniformParticlesGiveAFlatTexture)
     for (int i = 0; i < 16; ++i)
     {
       double perCell = 0.0;
-      const RegionEstimate r = EstimateTexel(sat, h.GetDimensions(), { i, j, 0 }, settings, &perCell);
+      const RegionEstimate r =
+        EstimateTexel(sat, h.GetDimensions(), { i, j, 0 }, settings, &perCell);
       // Poisson counts: the region's total has standard deviation sqrt(total).
       const double total = perCell * r.Cells;
       const double z = (total - expectedPerCell * r.Cells) / std::sqrt(expectedPerCell * r.Cells);

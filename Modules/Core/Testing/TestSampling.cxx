@@ -21,8 +21,8 @@ struct ChiSquare
   int DegreesOfFreedom = -1;
 };
 
-ChiSquare Pearson(const std::vector<double>& observed, const std::vector<double>& probability,
-  double samples)
+ChiSquare Pearson(
+  const std::vector<double>& observed, const std::vector<double>& probability, double samples)
 {
   ChiSquare r;
   double pooledObs = 0.0, pooledExp = 0.0;

@@ -43,8 +43,8 @@ void CheckRegions(const std::array<int, 3>& dims, int channels, std::uint64_t se
     sat.RegionSum(lo, hi, got.data());
     for (int c = 0; c < channels; ++c)
     {
-      ASSERT_EQ(got[c], expected[c]) << "region [" << lo[0] << "," << hi[0] << ")x[" << lo[1]
-                                     << "," << hi[1] << ")x[" << lo[2] << "," << hi[2] << ")";
+      ASSERT_EQ(got[c], expected[c]) << "region [" << lo[0] << "," << hi[0] << ")x[" << lo[1] << ","
+                                     << hi[1] << ")x[" << lo[2] << "," << hi[2] << ")";
     }
   }
 }

@@ -61,8 +61,8 @@ float OffsetEpsilon(const Vec3& p)
 }
 }
 
-void LightTracer::TraceParticle(std::uint64_t index, std::uint64_t count, std::vector<Hit>& hits,
-  TraceCounters& counters) const
+void LightTracer::TraceParticle(
+  std::uint64_t index, std::uint64_t count, std::vector<Hit>& hits, TraceCounters& counters) const
 {
   if (this->Emitters.empty() || count == 0)
   {
@@ -78,8 +78,7 @@ void LightTracer::TraceParticle(std::uint64_t index, std::uint64_t count, std::v
   const std::size_t k =
     std::min<std::size_t>(it - this->EmitterCdf.begin(), this->Emitters.size() - 1);
   const EmitterTriangle& emitter = this->Emitters[k];
-  const double pdfTriangle =
-    this->EmitterCdf[k] - (k > 0 ? this->EmitterCdf[k - 1] : 0.0);
+  const double pdfTriangle = this->EmitterCdf[k] - (k > 0 ? this->EmitterCdf[k - 1] : 0.0);
 
   // Uniform point on the triangle.
   const Surface& surface = scene.Surfaces[emitter.Surface];
@@ -98,7 +97,8 @@ void LightTracer::TraceParticle(std::uint64_t index, std::uint64_t count, std::v
   origin += emitter.Normal * OffsetEpsilon(origin);
   const auto emitterId = static_cast<std::uint16_t>(emitter.Surface);
 
-  auto store = [&](const Vec3& p, std::uint16_t object, int depth) {
+  auto store = [&](const Vec3& p, std::uint16_t object, int depth)
+  {
     Hit h;
     h.Position[0] = p.x;
     h.Position[1] = p.y;
@@ -176,8 +176,8 @@ void LightTracer::TraceParticle(std::uint64_t index, std::uint64_t count, std::v
       {
         n = -n;
       }
-      direction = Normalize(
-        Frame(n).ToWorld(SampleCosineHemisphere(rng.NextFloat(), rng.NextFloat())));
+      direction =
+        Normalize(Frame(n).ToWorld(SampleCosineHemisphere(rng.NextFloat(), rng.NextFloat())));
       origin = position + n * OffsetEpsilon(position);
     }
     else

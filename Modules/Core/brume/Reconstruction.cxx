@@ -36,14 +36,15 @@ std::array<int, 3> ChooseResolution(
     if (extent[a] > 0.f)
     {
       const double n = std::round(extent[a] / size);
-      res[a] = static_cast<int>(std::clamp(n, static_cast<double>(minimum), static_cast<double>(maximum)));
+      res[a] =
+        static_cast<int>(std::clamp(n, static_cast<double>(minimum), static_cast<double>(maximum)));
     }
   }
   return res;
 }
 
-SurfaceRadiance::SurfaceRadiance(const Surface& surface, const PlanarFrame& frame,
-  std::array<int, 2> resolution, int refinement)
+SurfaceRadiance::SurfaceRadiance(
+  const Surface& surface, const PlanarFrame& frame, std::array<int, 2> resolution, int refinement)
   : SurfaceRef(surface)
   , Frame(frame)
   , Resolution(resolution)
@@ -61,7 +62,8 @@ void SurfaceRadiance::AddHits(const Hit* hits, std::size_t count)
   {
     const Hit& h = hits[i];
     const Vec3 d = Vec3(h.Position[0], h.Position[1], h.Position[2]) - this->Frame.Origin;
-    const auto cell = this->Cells.CellOf(Dot(d, this->Frame.U) / uu, Dot(d, this->Frame.V) / vv, 0.0);
+    const auto cell =
+      this->Cells.CellOf(Dot(d, this->Frame.U) / uu, Dot(d, this->Frame.V) / vv, 0.0);
     const double values[4] = { h.Flux[0], h.Flux[1], h.Flux[2],
       (static_cast<double>(h.Flux[0]) + h.Flux[1] + h.Flux[2]) / 3.0 };
     this->Cells.Add(this->Cells.Index(cell[0], cell[1], 0), values);
@@ -94,14 +96,12 @@ void SurfaceRadiance::Estimate(
     for (int c = 0; c < 3; ++c)
     {
       // L_o = rho/pi * E + L_e with the irradiance E = flux / area.
-      rgb[3 * (t - begin) + c] =
-        static_cast<float>(rho[c] * InvPi * perCell[c] / cellArea + le[c]);
+      rgb[3 * (t - begin) + c] = static_cast<float>(rho[c] * InvPi * perCell[c] / cellArea + le[c]);
     }
   }
 }
 
-MediumRadiance::MediumRadiance(
-  const Medium& medium, std::array<int, 3> resolution, int refinement)
+MediumRadiance::MediumRadiance(const Medium& medium, std::array<int, 3> resolution, int refinement)
   : MediumRef(medium)
   , Resolution(resolution)
   , Refinement(refinement)

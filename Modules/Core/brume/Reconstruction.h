@@ -42,8 +42,8 @@ class SurfaceRadiance
 public:
   /// resolution: texels along the frame's U and V axes; refinement: histogram
   /// cells per texel along each axis.
-  SurfaceRadiance(const Surface& surface, const PlanarFrame& frame,
-    std::array<int, 2> resolution, int refinement);
+  SurfaceRadiance(const Surface& surface, const PlanarFrame& frame, std::array<int, 2> resolution,
+    int refinement);
 
   /// Bins the hits of this surface (hits of other objects must be filtered out).
   void AddHits(const Hit* hits, std::size_t count);

@@ -54,8 +54,7 @@ Vec3 HenyeyGreenstein::Sample(const Vec3& wi, float u1, float u2) const
   const float sinTheta = std::sqrt(std::max(0.f, 1.f - cosTheta * cosTheta));
   const float phi = 2.f * Pi * u2;
   const Frame frame(wi);
-  return Normalize(
-    frame.ToWorld({ sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta }));
+  return Normalize(frame.ToWorld({ sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta }));
 }
 
 } // namespace brume

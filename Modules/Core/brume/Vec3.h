@@ -127,8 +127,8 @@ struct Box
   }
   bool Contains(const Vec3& p) const
   {
-    return p.x >= lower.x && p.x <= upper.x && p.y >= lower.y && p.y <= upper.y &&
-      p.z >= lower.z && p.z <= upper.z;
+    return p.x >= lower.x && p.x <= upper.x && p.y >= lower.y && p.y <= upper.y && p.z >= lower.z &&
+      p.z <= upper.z;
   }
   /// Parametric interval [t0, t1] of the ray o + t d inside the box; false if none.
   bool Intersect(const Vec3& o, const Vec3& d, float& t0, float& t1) const
