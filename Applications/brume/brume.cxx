@@ -1,20 +1,23 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // `brume`: the command line front end of the Brume toolkit.
+#include "BrumeCommands.h"
 #include "BrumeRender.h"
+#include "BrumeThreads.h"
 
 #include <cerrno>
 #include <cstdlib>
-#include <cstring>
 #include <iostream>
 #include <string>
 
 namespace
 {
 const char* Usage = R"(usage: brume render [SCENE] -o OUTPUT [options]
+       brume validate slab --albedo A --optical-thickness B --g G [--particles N] [--seed S]
+       brume bench [--particles N] [--seed S]
 
-Renders a scene with participating media in three phases (particle tracing,
-radiance reconstruction, slice rendering). Without SCENE, renders the built-in
-default scene (a Cornell box around a cube of forward-scattering fog).
+render: renders a scene with participating media in three phases (particle
+tracing, radiance reconstruction, slice rendering). Without SCENE, renders the
+built-in default scene (a Cornell box around a cube of forward-scattering fog).
 
   -o, --output FILE   out.png (tone-mapped: exposure, clamp, sRGB curve) or
                       out.vti (linear float RGB radiance, point array 'Radiance')
@@ -25,6 +28,18 @@ default scene (a Cornell box around a cube of forward-scattering fog).
   --threshold T       radiosity threshold of the density estimation, in
                       particles (default 128)
   --timings           print the time of each phase (as the paper's Table 1)
+
+validate slab: traces a collimated beam at normal incidence onto a laterally
+infinite, index-matched slab (sigma_t = 1, thickness B, albedo A, Henyey-
+Greenstein g = G) and prints a CSV header and the fractions of the incident
+power reflected after scattering, transmitted after scattering and transmitted
+unscattered, each with its Monte Carlo standard error (default 1000000
+particles).
+
+bench: traces the built-in scene (default 1000000 particles) and casts the
+same rays through Embree alone; prints particles/s, hits/s, the ratio of the
+ray throughputs and the peak memory per stored hit.
+
   -h, --help          show this help
 )";
 
@@ -67,38 +82,72 @@ bool ParseDouble(const std::string& text, double minimum, double maximum, double
   value = v;
   return true;
 }
+
+// Walks the options of a sub-command.
+class Arguments
+{
+public:
+  Arguments(int argc, char* argv[], int first)
+    : Argc(argc)
+    , Argv(argv)
+    , Index(first - 1)
+  {
+  }
+  bool Next(std::string& arg)
+  {
+    if (++this->Index >= this->Argc)
+    {
+      return false;
+    }
+    arg = this->Argv[this->Index];
+    return true;
+  }
+  bool Value(std::string& out)
+  {
+    if (this->Index + 1 >= this->Argc)
+    {
+      return false;
+    }
+    out = this->Argv[++this->Index];
+    return true;
+  }
+
+private:
+  int Argc;
+  char** Argv;
+  int Index;
+};
+
+int ParseSeed(Arguments& args, std::uint64_t& seed)
+{
+  std::string v;
+  long long s = 0;
+  if (!args.Value(v) || !ParseInteger(v, 0, 9223372036854775807LL, s))
+  {
+    return UsageError("--seed needs a non-negative integer");
+  }
+  seed = static_cast<std::uint64_t>(s);
+  return 0;
 }
 
-int main(int argc, char* argv[])
+int ParseParticles(Arguments& args, long long& particles)
 {
-  if (argc < 2)
+  std::string v;
+  if (!args.Value(v) || !ParseInteger(v, 1, 10000000000LL, particles))
   {
-    return UsageError("missing command");
+    return UsageError("--particles needs an integer in [1, 1e10]");
   }
-  const std::string command = argv[1];
-  if (command == "-h" || command == "--help" || command == "help")
-  {
-    std::cout << Usage;
-    return 0;
-  }
-  if (command != "render")
-  {
-    return UsageError("unknown command '" + command + "'");
-  }
+  return 0;
+}
+
+int Render(int argc, char* argv[])
+{
   RenderOptions options;
-  for (int i = 2; i < argc; ++i)
+  Arguments args(argc, argv, 2);
+  std::string arg, v;
+  while (args.Next(arg))
   {
-    const std::string arg = argv[i];
-    auto value = [&](std::string& out)
-    {
-      if (i + 1 >= argc)
-      {
-        return false;
-      }
-      out = argv[++i];
-      return true;
-    };
-    std::string v;
+    int rc = 0;
     if (arg == "-h" || arg == "--help")
     {
       std::cout << Usage;
@@ -106,32 +155,22 @@ int main(int argc, char* argv[])
     }
     else if (arg == "-o" || arg == "--output")
     {
-      if (!value(options.Output) || options.Output.empty())
+      if (!args.Value(options.Output) || options.Output.empty())
       {
         return UsageError(arg + " needs a file name");
       }
     }
     else if (arg == "--particles")
     {
-      long long n = 0;
-      if (!value(v) || !ParseInteger(v, 1, 10000000000LL, n))
-      {
-        return UsageError("--particles needs an integer in [1, 1e10]");
-      }
-      options.Particles = n;
+      rc = ParseParticles(args, options.Particles);
     }
     else if (arg == "--seed")
     {
-      long long s = 0;
-      if (!value(v) || !ParseInteger(v, 0, 9223372036854775807LL, s))
-      {
-        return UsageError("--seed needs a non-negative integer");
-      }
-      options.Seed = static_cast<std::uint64_t>(s);
+      rc = ParseSeed(args, options.Seed);
     }
     else if (arg == "--size")
     {
-      const auto x = value(v) ? v.find('x') : std::string::npos;
+      const auto x = args.Value(v) ? v.find('x') : std::string::npos;
       long long w = 0, h = 0;
       if (x == std::string::npos || !ParseInteger(v.substr(0, x), 1, 16384, w) ||
         !ParseInteger(v.substr(x + 1), 1, 16384, h))
@@ -143,14 +182,14 @@ int main(int argc, char* argv[])
     }
     else if (arg == "--exposure")
     {
-      if (!value(v) || !ParseDouble(v, 0.0, 1e12, options.Exposure))
+      if (!args.Value(v) || !ParseDouble(v, 0.0, 1e12, options.Exposure))
       {
         return UsageError("--exposure needs a non-negative number");
       }
     }
     else if (arg == "--threshold")
     {
-      if (!value(v) || !ParseDouble(v, 1e-6, 1e12, options.Threshold))
+      if (!args.Value(v) || !ParseDouble(v, 1e-6, 1e12, options.Threshold))
       {
         return UsageError("--threshold needs a positive number");
       }
@@ -171,10 +210,136 @@ int main(int argc, char* argv[])
     {
       return UsageError("more than one SCENE given ('" + options.Scene + "', '" + arg + "')");
     }
+    if (rc != 0)
+    {
+      return rc;
+    }
   }
   if (options.Output.empty())
   {
     return UsageError("missing -o OUTPUT");
   }
   return RunRender(options);
+}
+
+int Validate(int argc, char* argv[])
+{
+  if (argc < 3 || std::string(argv[2]) != "slab")
+  {
+    return UsageError("validate needs an experiment: slab");
+  }
+  SlabOptions options;
+  bool albedo = false, thickness = false, g = false;
+  Arguments args(argc, argv, 3);
+  std::string arg, v;
+  while (args.Next(arg))
+  {
+    int rc = 0;
+    if (arg == "--albedo")
+    {
+      albedo = args.Value(v) && ParseDouble(v, 0.0, 1.0, options.Albedo);
+      if (!albedo)
+      {
+        return UsageError("--albedo needs a number in [0, 1]");
+      }
+    }
+    else if (arg == "--optical-thickness")
+    {
+      thickness = args.Value(v) && ParseDouble(v, 1e-9, 1e4, options.OpticalThickness);
+      if (!thickness)
+      {
+        return UsageError("--optical-thickness needs a number in (0, 1e4]");
+      }
+    }
+    else if (arg == "--g")
+    {
+      g = args.Value(v) && ParseDouble(v, -0.999999, 0.999999, options.G);
+      if (!g)
+      {
+        return UsageError("--g needs a number in (-1, 1)");
+      }
+    }
+    else if (arg == "--particles")
+    {
+      rc = ParseParticles(args, options.Particles);
+    }
+    else if (arg == "--seed")
+    {
+      rc = ParseSeed(args, options.Seed);
+    }
+    else
+    {
+      return UsageError("unknown option '" + arg + "'");
+    }
+    if (rc != 0)
+    {
+      return rc;
+    }
+  }
+  if (!albedo || !thickness || !g)
+  {
+    return UsageError("validate slab needs --albedo, --optical-thickness and --g");
+  }
+  if (options.Particles < 2)
+  {
+    return UsageError("validate slab needs at least 2 particles for a standard error");
+  }
+  return RunValidateSlab(options);
+}
+
+int Bench(int argc, char* argv[])
+{
+  BenchOptions options;
+  Arguments args(argc, argv, 2);
+  std::string arg;
+  while (args.Next(arg))
+  {
+    int rc = 0;
+    if (arg == "--particles")
+    {
+      rc = ParseParticles(args, options.Particles);
+    }
+    else if (arg == "--seed")
+    {
+      rc = ParseSeed(args, options.Seed);
+    }
+    else
+    {
+      return UsageError("unknown option '" + arg + "'");
+    }
+    if (rc != 0)
+    {
+      return rc;
+    }
+  }
+  return RunBench(options);
+}
+}
+
+int main(int argc, char* argv[])
+{
+  if (argc < 2)
+  {
+    return UsageError("missing command");
+  }
+  const std::string command = argv[1];
+  BrumeUseAllCores();
+  if (command == "-h" || command == "--help" || command == "help")
+  {
+    std::cout << Usage;
+    return 0;
+  }
+  if (command == "render")
+  {
+    return Render(argc, argv);
+  }
+  if (command == "validate")
+  {
+    return Validate(argc, argv);
+  }
+  if (command == "bench")
+  {
+    return Bench(argc, argv);
+  }
+  return UsageError("unknown command '" + command + "'");
 }

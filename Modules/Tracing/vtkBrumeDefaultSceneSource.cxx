@@ -79,9 +79,10 @@ int vtkBrumeDefaultSceneSource::RequestData(
     vtkNew<vtkPolyData> pd;
     pd->SetPoints(points);
     pd->SetPolys(polys);
+    AddVec3(pd->GetFieldData(), "BrumeReflectance", s.Mat.Reflectance.x, s.Mat.Reflectance.y,
+      s.Mat.Reflectance.z);
     AddVec3(
-      pd->GetFieldData(), "BrumeReflectance", s.Reflectance.x, s.Reflectance.y, s.Reflectance.z);
-    AddVec3(pd->GetFieldData(), "BrumeEmission", s.Emission.x, s.Emission.y, s.Emission.z);
+      pd->GetFieldData(), "BrumeEmission", s.Mat.Emission.x, s.Mat.Emission.y, s.Mat.Emission.z);
     AddObject(output, pd, s.Name);
   }
   if (this->IncludeMedium)

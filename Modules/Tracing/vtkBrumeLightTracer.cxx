@@ -2,16 +2,26 @@
 #include "vtkBrumeLightTracer.h"
 
 #include "vtkBrumeSceneConversion.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
 #include "vtkObjectFactory.h"
 #include "vtkPartitionedDataSetCollection.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkUnsignedShortArray.h"
 
 #include "brume/LightTracer.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <vector>
 
 vtkStandardNewMacro(vtkBrumeLightTracer);
@@ -27,12 +37,13 @@ struct TraceBlocks
   std::vector<std::vector<brume::Hit>>& Hits;
   std::vector<brume::TraceCounters>& Counters;
   vtkTypeInt64 Particles;
+  vtkTypeInt64 FirstBlock;
 
   void operator()(vtkIdType begin, vtkIdType end) const
   {
     for (vtkIdType b = begin; b < end; ++b)
     {
-      const vtkTypeInt64 first = b * ParticlesPerBlock;
+      const vtkTypeInt64 first = (this->FirstBlock + b) * ParticlesPerBlock;
       const vtkTypeInt64 last = std::min(first + ParticlesPerBlock, this->Particles);
       std::vector<brume::Hit>& hits = this->Hits[b];
       hits.reserve(static_cast<std::size_t>(4 * (last - first)));
@@ -44,11 +55,134 @@ struct TraceBlocks
     }
   }
 };
+
+// The output arrays of the hits (41 bytes per hit), grown with realloc: glibc
+// moves large blocks with mremap, without copying, so growth needs no second
+// copy of the hits. VTK takes the buffers over (freed with free()).
+template <typename T>
+struct GrowingBuffer
+{
+  T* Data = nullptr;
+  ~GrowingBuffer() { std::free(this->Data); }
+  bool Resize(std::size_t values)
+  {
+    void* p = std::realloc(this->Data, std::max<std::size_t>(1, values) * sizeof(T));
+    if (!p)
+    {
+      return false;
+    }
+    this->Data = static_cast<T*>(p);
+    return true;
+  }
+  template <typename Array>
+  void HandTo(Array* array, vtkIdType values)
+  {
+    array->SetArray(this->Data, values, 0, vtkAbstractArray::VTK_DATA_ARRAY_FREE);
+    this->Data = nullptr;
+  }
+};
+
+struct HitArrays
+{
+  GrowingBuffer<float> Points, Direction, Flux;
+  GrowingBuffer<unsigned short> Object, Emitter;
+  GrowingBuffer<unsigned char> Depth;
+
+  bool Resize(vtkIdType n)
+  {
+    const auto m = static_cast<std::size_t>(n);
+    return this->Points.Resize(3 * m) && this->Direction.Resize(3 * m) &&
+      this->Flux.Resize(3 * m) && this->Object.Resize(m) && this->Emitter.Resize(m) &&
+      this->Depth.Resize(m);
+  }
+
+  void Write(vtkIdType offset, const std::vector<brume::Hit>& hits)
+  {
+    float* p = this->Points.Data + 3 * offset;
+    float* d = this->Direction.Data + 3 * offset;
+    float* f = this->Flux.Data + 3 * offset;
+    unsigned short* o = this->Object.Data + offset;
+    unsigned short* e = this->Emitter.Data + offset;
+    unsigned char* depth = this->Depth.Data + offset;
+    for (std::size_t i = 0; i < hits.size(); ++i)
+    {
+      const brume::Hit& h = hits[i];
+      std::copy(h.Position, h.Position + 3, p + 3 * i);
+      std::copy(h.Direction, h.Direction + 3, d + 3 * i);
+      std::copy(h.Flux, h.Flux + 3, f + 3 * i);
+      o[i] = h.Object;
+      e[i] = h.Emitter;
+      depth[i] = h.Depth;
+    }
+  }
+
+  void Attach(vtkPolyData* output, vtkIdType n)
+  {
+    this->Resize(n); // shrink to fit
+    auto make = [&](auto array, auto& buffer, const char* name, int components)
+    {
+      array->SetName(name);
+      array->SetNumberOfComponents(components);
+      buffer.HandTo(array.GetPointer(), components * n);
+      return array;
+    };
+    auto points = make(vtkSmartPointer<vtkFloatArray>::New(), this->Points, "Points", 3);
+    vtkNew<vtkPoints> pts;
+    pts->SetData(points);
+    output->SetPoints(pts);
+    vtkPointData* pd = output->GetPointData();
+    pd->AddArray(make(vtkSmartPointer<vtkFloatArray>::New(), this->Direction, "Direction", 3));
+    pd->AddArray(make(vtkSmartPointer<vtkFloatArray>::New(), this->Flux, "Flux", 3));
+    pd->AddArray(make(vtkSmartPointer<vtkUnsignedShortArray>::New(), this->Object, "ObjectId", 1));
+    pd->AddArray(
+      make(vtkSmartPointer<vtkUnsignedShortArray>::New(), this->Emitter, "EmitterId", 1));
+    pd->AddArray(make(vtkSmartPointer<vtkUnsignedCharArray>::New(), this->Depth, "Depth", 1));
+  }
+};
+
+template <typename T>
+void AddTuple(vtkPolyData* output, const char* name, const T& v)
+{
+  vtkNew<vtkDoubleArray> a;
+  a->SetName(name);
+  a->SetNumberOfComponents(3);
+  a->InsertNextTuple3(v[0], v[1], v[2]);
+  output->GetFieldData()->AddArray(a);
+}
 }
 
 vtkBrumeLightTracer::vtkBrumeLightTracer()
+  : Lights(vtkSmartPointer<vtkLightCollection>::New())
 {
   this->SetNumberOfInputPorts(1);
+}
+
+void vtkBrumeLightTracer::AddLight(vtkLight* light)
+{
+  this->Lights->AddItem(light);
+  this->Modified();
+}
+
+void vtkBrumeLightTracer::RemoveAllLights()
+{
+  this->Lights->RemoveAllItems();
+  this->Modified();
+}
+
+vtkLightCollection* vtkBrumeLightTracer::GetLights()
+{
+  return this->Lights;
+}
+
+vtkMTimeType vtkBrumeLightTracer::GetMTime()
+{
+  vtkMTimeType t = this->Superclass::GetMTime();
+  this->Lights->InitTraversal();
+  while (vtkLight* light = this->Lights->GetNextItem())
+  {
+    t = std::max(t, light->GetMTime());
+  }
+  return t;
 }
 
 int vtkBrumeLightTracer::FillInputPortInformation(int, vtkInformation* info)
@@ -81,7 +215,7 @@ int vtkBrumeLightTracer::RequestData(
   }
 
   brume::Scene scene;
-  const std::string error = vtkBrumeSceneConversion::ToScene(input, scene);
+  const std::string error = vtkBrumeSceneConversion::ToScene(input, scene, nullptr, this->Lights);
   if (!error.empty())
   {
     vtkErrorMacro("Invalid scene: " << error << ".");
@@ -99,36 +233,67 @@ int vtkBrumeLightTracer::RequestData(
   settings.RouletteDepth = this->RouletteDepth;
   const brume::LightTracer tracer(scene, caster, settings);
 
+  // Output arrays, grown batch by batch (realloc of large blocks moves pages
+  // without copying), so the hits are never held twice.
+  HitArrays out;
   const vtkTypeInt64 blocks = (particles + ParticlesPerBlock - 1) / ParticlesPerBlock;
-  std::vector<std::vector<brume::Hit>> blockHits(static_cast<std::size_t>(blocks));
-  std::vector<brume::TraceCounters> counters(static_cast<std::size_t>(blocks));
-  TraceBlocks functor{ tracer, blockHits, counters, particles };
-  // Trace in a few batches so that progress reaches the user from this thread.
+  std::vector<std::vector<brume::Hit>> blockHits;
+  std::vector<brume::TraceCounters> counters;
+  brume::TraceCounters sum;
   const vtkTypeInt64 batches = std::min<vtkTypeInt64>(blocks, 20);
+  vtkIdType stored = 0;
   for (vtkTypeInt64 k = 0; k < batches && !this->GetAbortExecute(); ++k)
   {
     const vtkTypeInt64 begin = blocks * k / batches, end = blocks * (k + 1) / batches;
-    vtkSMPTools::For(begin, end, functor);
-    this->UpdateProgress(0.95 * static_cast<double>(k + 1) / static_cast<double>(batches));
-  }
-
-  std::size_t total = 0;
-  brume::TraceCounters sum;
-  for (std::size_t b = 0; b < blockHits.size(); ++b)
-  {
-    total += blockHits[b].size();
-    sum.Add(counters[b]);
-  }
-  std::vector<brume::Hit> hits;
-  hits.reserve(total);
-  for (auto& block : blockHits)
-  {
-    hits.insert(hits.end(), block.begin(), block.end());
-    std::vector<brume::Hit>().swap(block);
+    blockHits.assign(static_cast<std::size_t>(end - begin), {});
+    counters.assign(static_cast<std::size_t>(end - begin), {});
+    TraceBlocks functor{ tracer, blockHits, counters, particles, begin };
+    vtkSMPTools::For(0, end - begin, functor);
+    std::size_t batchHits = 0;
+    for (std::size_t b = 0; b < blockHits.size(); ++b)
+    {
+      batchHits += blockHits[b].size();
+      sum.Add(counters[b]);
+    }
+    if (!out.Resize(stored + static_cast<vtkIdType>(batchHits)))
+    {
+      vtkErrorMacro("Out of memory storing " << stored + batchHits << " particle hits.");
+      return 0;
+    }
+    // Copy the blocks to their places in parallel, freeing each.
+    std::vector<vtkIdType> offsets(blockHits.size() + 1, stored);
+    for (std::size_t b = 0; b < blockHits.size(); ++b)
+    {
+      offsets[b + 1] = offsets[b] + static_cast<vtkIdType>(blockHits[b].size());
+    }
+    vtkSMPTools::For(0, static_cast<vtkIdType>(blockHits.size()),
+      [&](vtkIdType first, vtkIdType last)
+      {
+        for (vtkIdType b = first; b < last; ++b)
+        {
+          out.Write(offsets[b], blockHits[b]);
+          std::vector<brume::Hit>().swap(blockHits[b]);
+        }
+      });
+    stored = offsets.back();
+    this->UpdateProgress(0.99 * static_cast<double>(k + 1) / static_cast<double>(batches));
   }
   this->LastRayCount = static_cast<vtkTypeInt64>(sum.Rays);
-  output->ShallowCopy(
-    vtkBrumeSceneConversion::HitsToPolyData(hits, tracer.GetTotalPower(), particles));
+  out.Attach(output, stored);
+  AddTuple(output, "TotalPower", tracer.GetTotalPower());
+  vtkNew<vtkDoubleArray> count;
+  count->SetName("NumberOfParticles");
+  count->InsertNextValue(static_cast<double>(particles));
+  output->GetFieldData()->AddArray(count);
+  vtkNew<vtkDoubleArray> rays;
+  rays->SetName("NumberOfRays");
+  rays->InsertNextValue(static_cast<double>(sum.Rays));
+  output->GetFieldData()->AddArray(rays);
+  AddTuple(output, "EmittedFlux", sum.Emitted);
+  AddTuple(output, "AbsorbedFlux", sum.Absorbed);
+  AddTuple(output, "EscapedFlux", sum.Escaped);
+  AddTuple(output, "TruncatedFlux", sum.Truncated);
+  AddTuple(output, "EstimatorNetFlux", sum.EstimatorNet);
   this->UpdateProgress(1.0);
   return 1;
 }
@@ -141,4 +306,5 @@ void vtkBrumeLightTracer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumDepth: " << this->MaximumDepth << "\n";
   os << indent << "RouletteDepth: " << this->RouletteDepth << "\n";
   os << indent << "MemoryLimit: " << this->MemoryLimit << "\n";
+  os << indent << "Lights: " << this->Lights->GetNumberOfItems() << "\n";
 }

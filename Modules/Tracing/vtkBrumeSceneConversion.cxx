@@ -11,13 +11,21 @@
 #include "vtkIdList.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkMatrix3x3.h"
 #include "vtkPartitionedDataSet.h"
 #include "vtkPartitionedDataSetCollection.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkUnsignedShortArray.h"
+
+#include "brume/VdbDensity.h"
+
+#include <algorithm>
 
 #include <cmath>
 #include <sstream>
@@ -54,9 +62,126 @@ bool ReadVec3(vtkFieldData* fd, const char* name, brume::Vec3& v, std::string& e
   return true;
 }
 
-std::string ConvertSurface(vtkPolyData* pd, brume::Surface& s)
+bool ReadMaterialType(const std::string& name, brume::MaterialType& type)
+{
+  if (name == "lambertian")
+  {
+    type = brume::MaterialType::Lambertian;
+  }
+  else if (name == "phong")
+  {
+    type = brume::MaterialType::Phong;
+  }
+  else if (name == "mirror")
+  {
+    type = brume::MaterialType::Mirror;
+  }
+  else
+  {
+    return false;
+  }
+  return true;
+}
+
+// The object's material from its field data.
+std::string ReadMaterial(vtkFieldData* fd, brume::Material& m)
 {
   std::string error;
+  if (auto* type =
+        fd ? vtkStringArray::SafeDownCast(fd->GetAbstractArray("BrumeMaterial")) : nullptr)
+  {
+    if (type->GetNumberOfValues() < 1 || !ReadMaterialType(type->GetValue(0), m.Type))
+    {
+      return "has a BrumeMaterial that is not 'lambertian', 'phong' or 'mirror'";
+    }
+  }
+  ReadVec3(fd, "BrumeReflectance", m.Reflectance, error);
+  if (error.empty())
+  {
+    ReadVec3(fd, "BrumeSpecular", m.Specular, error);
+  }
+  if (error.empty())
+  {
+    double e = 0.0;
+    if (ReadField(fd, "BrumeExponent", 1, &e, error))
+    {
+      m.Exponent = static_cast<float>(e);
+    }
+  }
+  if (error.empty())
+  {
+    ReadVec3(fd, "BrumeEmission", m.Emission, error);
+  }
+  return error;
+}
+
+// Per-cell overrides: cell arrays with the field arrays' names (BrumeMaterial
+// as an integer: 0 lambertian, 1 phong, 2 mirror).
+std::string ReadCellMaterials(vtkPolyData* pd, const brume::Material& base,
+  const std::vector<vtkIdType>& triangleCells, std::vector<brume::Material>& materials)
+{
+  vtkCellData* cd = pd->GetCellData();
+  const char* names[] = { "BrumeMaterial", "BrumeReflectance", "BrumeSpecular", "BrumeExponent",
+    "BrumeEmission" };
+  const int components[] = { 1, 3, 3, 1, 3 };
+  vtkDataArray* arrays[5];
+  bool any = false;
+  for (int i = 0; i < 5; ++i)
+  {
+    arrays[i] = cd->GetArray(names[i]);
+    if (arrays[i] && arrays[i]->GetNumberOfComponents() != components[i])
+    {
+      return std::string("has a cell array '") + names[i] + "' with " +
+        std::to_string(arrays[i]->GetNumberOfComponents()) + " components instead of " +
+        std::to_string(components[i]);
+    }
+    any = any || arrays[i];
+  }
+  if (!any)
+  {
+    return {};
+  }
+  materials.assign(triangleCells.size(), base);
+  for (std::size_t t = 0; t < triangleCells.size(); ++t)
+  {
+    brume::Material& m = materials[t];
+    const vtkIdType cell = triangleCells[t];
+    double v[3];
+    if (arrays[0])
+    {
+      const double type = arrays[0]->GetTuple1(cell);
+      if (type != 0.0 && type != 1.0 && type != 2.0)
+      {
+        return "has a BrumeMaterial cell value that is not 0, 1 or 2";
+      }
+      m.Type = static_cast<brume::MaterialType>(static_cast<int>(type));
+    }
+    if (arrays[1])
+    {
+      arrays[1]->GetTuple(cell, v);
+      m.Reflectance = { static_cast<float>(v[0]), static_cast<float>(v[1]),
+        static_cast<float>(v[2]) };
+    }
+    if (arrays[2])
+    {
+      arrays[2]->GetTuple(cell, v);
+      m.Specular = { static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]) };
+    }
+    if (arrays[3])
+    {
+      m.Exponent = static_cast<float>(arrays[3]->GetTuple1(cell));
+    }
+    if (arrays[4])
+    {
+      arrays[4]->GetTuple(cell, v);
+      m.Emission = { static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]) };
+    }
+  }
+  return {};
+}
+
+std::string ConvertSurface(vtkPolyData* pd, brume::Surface& s)
+{
   vtkPoints* points = pd->GetPoints();
   if (!points || points->GetNumberOfPoints() == 0)
   {
@@ -70,20 +195,24 @@ std::string ConvertSurface(vtkPolyData* pd, brume::Surface& s)
     s.Vertices[i] = { static_cast<float>(p[0]), static_cast<float>(p[1]),
       static_cast<float>(p[2]) };
   }
-  // Polygons as triangle fans, strips with alternating winding.
+  // Polygons as triangle fans, strips with alternating winding; cell ids
+  // follow vtkPolyData's order (verts, lines, polys, strips).
+  std::vector<vtkIdType> triangleCells;
+  vtkIdType cellId = pd->GetNumberOfVerts() + pd->GetNumberOfLines();
   vtkIdType npts = 0;
   const vtkIdType* ids = nullptr;
   vtkCellArray* polys = pd->GetPolys();
-  for (polys->InitTraversal(); polys->GetNextCell(npts, ids);)
+  for (polys->InitTraversal(); polys->GetNextCell(npts, ids); ++cellId)
   {
     for (vtkIdType k = 2; k < npts; ++k)
     {
       s.Triangles.push_back({ static_cast<std::uint32_t>(ids[0]),
         static_cast<std::uint32_t>(ids[k - 1]), static_cast<std::uint32_t>(ids[k]) });
+      triangleCells.push_back(cellId);
     }
   }
   vtkCellArray* strips = pd->GetStrips();
-  for (strips->InitTraversal(); strips->GetNextCell(npts, ids);)
+  for (strips->InitTraversal(); strips->GetNextCell(npts, ids); ++cellId)
   {
     for (vtkIdType k = 2; k < npts; ++k)
     {
@@ -91,19 +220,25 @@ std::string ConvertSurface(vtkPolyData* pd, brume::Surface& s)
       s.Triangles.push_back({ static_cast<std::uint32_t>(ids[k - 2]),
         static_cast<std::uint32_t>(even ? ids[k - 1] : ids[k]),
         static_cast<std::uint32_t>(even ? ids[k] : ids[k - 1]) });
+      triangleCells.push_back(cellId);
     }
   }
   if (s.Triangles.empty())
   {
     return "has no polygons";
   }
-  vtkFieldData* fd = pd->GetFieldData();
-  ReadVec3(fd, "BrumeReflectance", s.Reflectance, error);
+  std::string error = ReadMaterial(pd->GetFieldData(), s.Mat);
   if (error.empty())
   {
-    ReadVec3(fd, "BrumeEmission", s.Emission, error);
+    error = ReadCellMaterials(pd, s.Mat, triangleCells, s.TriangleMaterials);
   }
   return error;
+}
+
+std::string ReadString(vtkFieldData* fd, const char* name)
+{
+  auto* a = fd ? vtkStringArray::SafeDownCast(fd->GetAbstractArray(name)) : nullptr;
+  return a && a->GetNumberOfValues() > 0 ? a->GetValue(0) : std::string();
 }
 
 std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
@@ -120,26 +255,186 @@ std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
   {
     m.G = static_cast<float>(g);
   }
+  double scale = 1.0;
+  ReadField(fd, "BrumeDensityScale", 1, &scale, error);
   if (!error.empty())
   {
     return error;
   }
-  if (image->GetPointData()->GetNumberOfArrays() > 0 ||
-    image->GetCellData()->GetNumberOfArrays() > 0)
+  if (!(scale >= 0.0) || !std::isfinite(scale))
   {
-    return "carries density arrays: heterogeneous media are not supported yet (the medium "
-           "must be homogeneous, given by its bounds and field data)";
+    return "has a BrumeDensityScale that is negative or not finite";
   }
+  // Density scales the coefficients.
+  m.SigmaA = m.SigmaA * static_cast<float>(scale);
+  m.SigmaS = m.SigmaS * static_cast<float>(scale);
+
+  // A sparse OpenVDB grid, used in place.
+  const std::string vdbFile = ReadString(fd, "BrumeVDBFile");
+  if (!vdbFile.empty())
+  {
+    auto density = brume::VdbDensity::Load(vdbFile, ReadString(fd, "BrumeVDBGrid"), error);
+    if (!density)
+    {
+      return error;
+    }
+    m.SetDensity(density);
+    return {};
+  }
+
   double b[6];
   image->GetBounds(b);
   m.Bounds = { { static_cast<float>(b[0]), static_cast<float>(b[2]), static_cast<float>(b[4]) },
     { static_cast<float>(b[1]), static_cast<float>(b[3]), static_cast<float>(b[5]) } };
+  // A density array: named by BrumeDensityArray, else the active scalars.
+  const std::string name = ReadString(fd, "BrumeDensityArray");
+  vtkDataArray* density = nullptr;
+  bool cells = false;
+  if (!name.empty())
+  {
+    density = image->GetPointData()->GetArray(name.c_str());
+    if (!density)
+    {
+      density = image->GetCellData()->GetArray(name.c_str());
+      cells = density != nullptr;
+    }
+    if (!density)
+    {
+      return "has no density array '" + name + "' (named by BrumeDensityArray)";
+    }
+  }
+  else if ((density = image->GetPointData()->GetScalars()) == nullptr)
+  {
+    density = image->GetCellData()->GetScalars();
+    cells = density != nullptr;
+  }
+  if (!density)
+  {
+    return {}; // homogeneous
+  }
+  if (density->GetNumberOfComponents() != 1)
+  {
+    return "has a density array with more than one component";
+  }
+  const double* direction = image->GetDirectionMatrix()->GetData();
+  const double identity[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  if (!std::equal(direction, direction + 9, identity))
+  {
+    return "is an oriented image (non-identity direction matrix), which is not supported";
+  }
+  int dims[3];
+  image->GetDimensions(dims);
+  std::array<int, 3> n{ dims[0], dims[1], dims[2] };
+  if (cells)
+  {
+    for (int& d : n)
+    {
+      d = std::max(1, d - 1);
+    }
+  }
+  std::vector<float> values(static_cast<std::size_t>(density->GetNumberOfTuples()));
+  for (vtkIdType i = 0; i < density->GetNumberOfTuples(); ++i)
+  {
+    const double v = density->GetTuple1(i);
+    if (!(v >= 0.0) || !std::isfinite(v))
+    {
+      return "has negative or non-finite densities";
+    }
+    values[i] = static_cast<float>(v);
+  }
+  m.SetDensity(std::make_shared<brume::GridDensity>(m.Bounds, n, std::move(values), cells));
   return {};
 }
 }
 
-std::string vtkBrumeSceneConversion::ToScene(
-  vtkDataObject* input, brume::Scene& scene, std::vector<ObjectSource>* sources)
+namespace
+{
+// Bounds of everything in the scene (for directional beams).
+brume::Box SceneBounds(const brume::Scene& scene)
+{
+  brume::Box box{ brume::Vec3(1e30f), brume::Vec3(-1e30f) };
+  auto grow = [&](const brume::Vec3& p)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      box.lower[a] = std::min(box.lower[a], p[a]);
+      box.upper[a] = std::max(box.upper[a], p[a]);
+    }
+  };
+  for (const auto& s : scene.Surfaces)
+  {
+    for (const auto& v : s.Vertices)
+    {
+      grow(v);
+    }
+  }
+  for (const auto& m : scene.Media)
+  {
+    grow(m.Bounds.lower);
+    grow(m.Bounds.upper);
+  }
+  return box;
+}
+}
+
+std::string vtkBrumeSceneConversion::ConvertLights(vtkLightCollection* lights, brume::Scene& scene)
+{
+  const brume::Box bounds = SceneBounds(scene);
+  const brume::Vec3 centre = (bounds.lower + bounds.upper) * 0.5f;
+  const float radius = 0.5f * Length(bounds.Extent()) * 1.01f;
+  lights->InitTraversal();
+  int index = 0;
+  while (vtkLight* light = lights->GetNextItem())
+  {
+    ++index;
+    if (!light->GetSwitch())
+    {
+      continue;
+    }
+    brume::Light l;
+    l.Name = "vtkLight " + std::to_string(index - 1);
+    double color[3], position[3], focal[3];
+    light->GetDiffuseColor(color);
+    light->GetTransformedPosition(position);
+    light->GetTransformedFocalPoint(focal);
+    const double intensity = light->GetIntensity();
+    l.Intensity = { static_cast<float>(intensity * color[0]),
+      static_cast<float>(intensity * color[1]), static_cast<float>(intensity * color[2]) };
+    l.Position = { static_cast<float>(position[0]), static_cast<float>(position[1]),
+      static_cast<float>(position[2]) };
+    const brume::Vec3 axis(static_cast<float>(focal[0] - position[0]),
+      static_cast<float>(focal[1] - position[1]), static_cast<float>(focal[2] - position[2]));
+    if (!(Length(axis) > 0.f) && (!light->GetPositional() || light->GetConeAngle() < 90.0))
+    {
+      return "light '" + l.Name + "' has its focal point at its position: it has no direction";
+    }
+    if (Length(axis) > 0.f)
+    {
+      l.Direction = Normalize(axis);
+    }
+    if (!light->GetPositional())
+    {
+      // A collimated beam covering the whole scene.
+      l.Type = brume::LightType::Directional;
+      l.BeamRadius = radius;
+      l.BeamCenter = centre - l.Direction * radius;
+    }
+    else if (light->GetConeAngle() >= 90.0)
+    {
+      l.Type = brume::LightType::Point;
+    }
+    else
+    {
+      l.Type = brume::LightType::Spot;
+      l.ConeAngle = static_cast<float>(light->GetConeAngle());
+    }
+    scene.Lights.push_back(l);
+  }
+  return {};
+}
+
+std::string vtkBrumeSceneConversion::ToScene(vtkDataObject* input, brume::Scene& scene,
+  std::vector<ObjectSource>* sources, vtkLightCollection* lights)
 {
   scene = brume::Scene();
   auto* collection = vtkPartitionedDataSetCollection::SafeDownCast(input);
@@ -195,6 +490,14 @@ std::string vtkBrumeSceneConversion::ToScene(
   {
     *sources = surfaceSources;
     sources->insert(sources->end(), mediumSources.begin(), mediumSources.end());
+  }
+  if (lights)
+  {
+    std::string error = ConvertLights(lights, scene);
+    if (!error.empty())
+    {
+      return error;
+    }
   }
   return scene.Validate();
 }

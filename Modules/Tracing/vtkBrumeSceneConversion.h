@@ -7,14 +7,27 @@
  * dataset per object, named through its vtkCompositeDataSet::NAME() metadata:
  *
  * - a **surface** is a vtkPolyData (polygons and triangle strips are
- *   triangulated); its field data may hold `BrumeReflectance` (3 components,
- *   Lambertian reflectance in [0, 1], default 0.75) and `BrumeEmission`
- *   (3 components, emitted radiance in W m^-2 sr^-1 on the side the polygon
- *   winding's normal points to, default 0);
+ *   triangulated). Its material comes from field data (the whole object) and
+ *   cell data of the same names (per cell, overriding):
+ *   - `BrumeMaterial`: "lambertian" (default), "phong" or "mirror" (a string
+ *     in field data; 0, 1, 2 in cell data);
+ *   - `BrumeReflectance` (3 components): diffuse reflectance rho_d, default 0.75;
+ *   - `BrumeSpecular` (3 components): rho_s of the Phong lobe or the mirror,
+ *     default 0; rho_d + rho_s <= 1 per channel;
+ *   - `BrumeExponent` (1 component): Phong exponent, default 32 (see
+ *     brume/Material.h for the energy-conserving normalized Phong BRDF);
+ *   - `BrumeEmission` (3 components): emitted radiance in W m^-2 sr^-1 on the
+ *     side the polygon winding's normal points to, default 0.
  * - a **medium** is a vtkImageData whose bounds are the medium's box and whose
- *   field data holds `BrumeSigmaA` and `BrumeSigmaS` (3 components, m^-1) and
- *   `BrumeG` (Henyey-Greenstein asymmetry, -1 < g < 1, default 0). The medium
- *   is homogeneous.
+ *   field data holds `BrumeSigmaA` and `BrumeSigmaS` (3 components, m^-1),
+ *   `BrumeG` (Henyey-Greenstein asymmetry, -1 < g < 1, default 0) and
+ *   optionally `BrumeDensityScale` (scales both coefficients). Without a
+ *   density it is homogeneous. The density is, in this order: the OpenVDB
+ *   float grid `BrumeVDBGrid` (default: the first float grid) of the file
+ *   `BrumeVDBFile` (strings), used sparsely in place; the point or cell array
+ *   named by the string `BrumeDensityArray`; the active point or cell
+ *   scalars. sigma(x) = density(x) * sigma; point densities are interpolated
+ *   trilinearly, cell densities are constant per cell.
  *
  * Object ids number the surfaces first, then the media, each in collection
  * order. The scene's camera may be given in the collection's field data:
@@ -42,6 +55,7 @@
 #include <vector>
 
 class vtkDataObject;
+class vtkLightCollection;
 class vtkPolyData;
 
 class VTKBRUMETRACING_EXPORT vtkBrumeSceneConversion
@@ -58,8 +72,17 @@ public:
    * Builds the core scene from a scene collection. Returns an empty string on
    * success, otherwise a message saying what is wrong with the input.
    */
-  static std::string ToScene(
-    vtkDataObject* input, brume::Scene& scene, std::vector<ObjectSource>* sources = nullptr);
+  static std::string ToScene(vtkDataObject* input, brume::Scene& scene,
+    std::vector<ObjectSource>* sources = nullptr, vtkLightCollection* lights = nullptr);
+
+  /**
+   * Adds the switched-on lights to the scene. Intensity x DiffuseColor is the
+   * radiant intensity (W/sr) of a positional light: a point light when its
+   * ConeAngle is 90 degrees or more, otherwise a spot light of that half-angle
+   * emitting uniformly in its cone; it is the irradiance (W/m^2) of a
+   * directional light, whose collimated beam covers the scene's bounds.
+   */
+  static std::string ConvertLights(vtkLightCollection* lights, brume::Scene& scene);
 
   /// Stores hits in a vtkPolyData with the documented arrays.
   static vtkSmartPointer<vtkPolyData> HitsToPolyData(

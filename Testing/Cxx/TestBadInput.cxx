@@ -12,6 +12,7 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkLight.h"
 #include "vtkNew.h"
 #include "vtkPartitionedDataSet.h"
 #include "vtkPartitionedDataSetCollection.h"
@@ -19,9 +20,12 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
+#include "vtkStringArray.h"
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <functional>
 #include <iostream>
 #include <limits>
@@ -57,6 +61,19 @@ vtkDataObject* Object(vtkPartitionedDataSetCollection* scene, const std::string&
     }
   }
   return nullptr;
+}
+
+void AddString(vtkDataObject* object, const char* name, const std::string& value)
+{
+  vtkNew<vtkStringArray> a;
+  a->SetName(name);
+  a->InsertNextValue(value);
+  object->GetFieldData()->AddArray(a);
+}
+
+std::string TemporaryPath(const std::string& name)
+{
+  return (std::filesystem::temp_directory_path() / ("brume-test-" + name)).string();
 }
 
 void SetField(vtkDataObject* object, const char* name, double x, double y, double z)
@@ -140,14 +157,56 @@ int TestBadInput(int, char*[])
   ok &= TracerFails("degenerate floor", scene, "degenerate");
 
   scene = DefaultScene();
+  AddString(Object(scene, "fog"), "BrumeDensityArray", "density");
+  ok &= TracerFails("medium naming a missing density array", scene, "no density array");
+
+  scene = DefaultScene();
   {
     vtkNew<vtkFloatArray> density;
     density->SetName("density");
     density->SetNumberOfTuples(8);
     density->Fill(1.0);
-    vtkImageData::SafeDownCast(Object(scene, "fog"))->GetPointData()->AddArray(density);
+    density->SetValue(3, -2.0);
+    vtkImageData::SafeDownCast(Object(scene, "fog"))->GetPointData()->SetScalars(density);
   }
-  ok &= TracerFails("medium with a density array", scene, "heterogeneous");
+  ok &= TracerFails("negative density", scene, "negative or non-finite densities");
+
+  scene = DefaultScene();
+  {
+    const std::string path = TemporaryPath("corrupt.vdb");
+    std::ofstream(path) << "this is not an OpenVDB file";
+    AddString(Object(scene, "fog"), "BrumeVDBFile", path);
+  }
+  ok &= TracerFails("corrupt VDB file", scene, "cannot read OpenVDB file");
+
+  scene = DefaultScene();
+  AddString(Object(scene, "fog"), "BrumeVDBFile", "/nonexistent/fog.vdb");
+  ok &= TracerFails("missing VDB file", scene, "cannot read OpenVDB file");
+
+  scene = DefaultScene();
+  ok &= TracerFails("zero-power light", scene, "zero power",
+    [](vtkBrumeLightTracer* t)
+    {
+      vtkNew<vtkLight> light;
+      light->SetPosition(0, 0.5, 0);
+      light->SetIntensity(0.0);
+      t->AddLight(light);
+    });
+
+  scene = DefaultScene();
+  AddString(Object(scene, "floor"), "BrumeMaterial", "velvet");
+  ok &= TracerFails("unknown material", scene, "BrumeMaterial");
+
+  scene = DefaultScene();
+  SetField(Object(scene, "floor"), "BrumeReflectance", 0.8, 0.8, 0.8);
+  {
+    vtkNew<vtkDoubleArray> specular;
+    specular->SetName("BrumeSpecular");
+    specular->SetNumberOfComponents(3);
+    specular->InsertNextTuple3(0.5, 0.5, 0.5);
+    Object(scene, "floor")->GetFieldData()->AddArray(specular);
+  }
+  ok &= TracerFails("material reflecting more than it receives", scene, "reflects more");
 
   scene = DefaultScene();
   ok &= TracerFails("absurd particle count", scene, "NumberOfParticles",

@@ -44,6 +44,12 @@ bool SameBytes(vtkDataArray* a, vtkDataArray* b)
 
 int TestTracerDeterminism(int, char*[])
 {
+  vtkSMPTools::Initialize(2);
+  if (vtkSMPTools::GetEstimatedNumberOfThreads() != 2)
+  {
+    std::cerr << "The SMP backend " << vtkSMPTools::GetBackend() << " does not run 2 threads.\n";
+    return EXIT_FAILURE;
+  }
   auto one = Trace(1, 7);
   auto two = Trace(2, 7);
   auto otherSeed = Trace(2, 8);

@@ -59,10 +59,10 @@ TEST(LightTracer, ParticlesCarryTheLightsPower)
   // An emitter above a huge black plane: every particle lands on it once.
   Scene scene;
   Surface light = Quad("light", 0.5f, 1.f, true);
-  light.Reflectance = Vec3(0.f);
-  light.Emission = Vec3(2.f, 1.f, 0.5f);
+  light.Mat.Reflectance = Vec3(0.f);
+  light.Mat.Emission = Vec3(2.f, 1.f, 0.5f);
   Surface floor = Quad("floor", 1e4f, 0.f, false);
-  floor.Reflectance = Vec3(0.f);
+  floor.Mat.Reflectance = Vec3(0.f);
   scene.Surfaces = { light, floor };
   ASSERT_EQ(scene.Validate(), "");
   const std::uint64_t n = 20000;
@@ -93,10 +93,10 @@ TEST(LightTracer, UnscatteredPowerThroughAnAbsorbingSlabFollowsBeerLambert)
   // transmitted fraction is E3-like: 2 * int_0^1 mu exp(-tau/mu) dmu.
   Scene scene;
   Surface light = Quad("light", 0.01f, 1.f, true);
-  light.Reflectance = Vec3(0.f);
-  light.Emission = Vec3(1.f);
+  light.Mat.Reflectance = Vec3(0.f);
+  light.Mat.Emission = Vec3(1.f);
   Surface floor = Quad("floor", 1e5f, 0.f, false);
-  floor.Reflectance = Vec3(0.f);
+  floor.Mat.Reflectance = Vec3(0.f);
   scene.Surfaces = { light, floor };
   Medium absorber;
   absorber.Name = "absorber";
@@ -123,4 +123,298 @@ TEST(LightTracer, UnscatteredPowerThroughAnAbsorbingSlabFollowsBeerLambert)
   const double fraction = static_cast<double>(reached) / n;
   const double stderr = std::sqrt(expected * (1.0 - expected) / n);
   EXPECT_NEAR(fraction, expected, 4.0 * stderr);
+}
+
+namespace
+{
+// The six faces of the box [-1, 1]^3 (inward normals), all of material m.
+std::vector<Surface> ClosedBox(const Material& m)
+{
+  const float h = 1.f;
+  const Vec3 c[8] = { { -h, -h, -h }, { h, -h, -h }, { -h, h, -h }, { h, h, -h }, { -h, -h, h },
+    { h, -h, h }, { -h, h, h }, { h, h, h } };
+  // Quads counter-clockwise seen from inside.
+  const int faces[6][4] = { { 0, 4, 5, 1 }, { 2, 3, 7, 6 }, { 0, 1, 3, 2 }, { 4, 6, 7, 5 },
+    { 0, 2, 6, 4 }, { 1, 5, 7, 3 } };
+  std::vector<Surface> walls;
+  for (int f = 0; f < 6; ++f)
+  {
+    Surface s;
+    s.Name = "wall" + std::to_string(f);
+    for (int k = 0; k < 4; ++k)
+    {
+      s.Vertices.push_back(c[faces[f][k]]);
+    }
+    s.Triangles = { { 0, 1, 2 }, { 0, 2, 3 } };
+    s.Mat = m;
+    walls.push_back(s);
+  }
+  return walls;
+}
+
+TraceCounters TraceAll(const Scene& scene, std::uint64_t n, const TraceSettings& settings,
+  std::vector<Hit>& hits, std::vector<ParticleExit>* exits = nullptr)
+{
+  const RayCaster caster(scene);
+  const LightTracer tracer(scene, caster, settings);
+  TraceCounters counters;
+  for (std::uint64_t i = 0; i < n; ++i)
+  {
+    ParticleExit exit;
+    tracer.TraceParticle(i, n, hits, counters, &exit);
+    if (exits)
+    {
+      exits->push_back(exit);
+    }
+  }
+  return counters;
+}
+
+double Relative(double a, double b)
+{
+  return std::abs(a - b) / std::max(std::abs(a), std::abs(b));
+}
+}
+
+TEST(LightTracer, EnergyIsConservedInAClosedScene)
+{
+  // Walls and medium halve the flux at every interaction: without Russian
+  // roulette, every particle's stored flux is the same geometric series.
+  Material half;
+  half.Reflectance = Vec3(0.5f);
+  Scene scene;
+  scene.Surfaces = ClosedBox(half);
+  Surface light = Quad("light", 0.2f, 0.9f, true);
+  light.Mat.Reflectance = Vec3(0.5f);
+  light.Mat.Emission = Vec3(3.f);
+  scene.Surfaces.push_back(light);
+  Medium fog;
+  fog.Name = "fog";
+  fog.Bounds = { Vec3(-0.5f), Vec3(0.5f) };
+  fog.SigmaA = Vec3(0.7f);
+  fog.SigmaS = Vec3(0.7f);
+  fog.G = 0.5f;
+  scene.Media = { fog };
+  ASSERT_EQ(scene.Validate(), "");
+
+  const std::uint64_t n = 20000;
+  const int depth = 30;
+  TraceSettings settings;
+  settings.MaxDepth = depth;
+  settings.RouletteDepth = depth + 1; // off
+  std::vector<Hit> hits;
+  const TraceCounters c = TraceAll(scene, n, settings, hits);
+  const double phi = Pi * 3.0 * 0.4 * 0.4; // pi L_e A
+  double stored = 0.0;
+  for (const Hit& h : hits)
+  {
+    stored += h.Flux[0];
+  }
+  // sum_k<depth 0.5^k of the emitted power; nothing escapes a closed box.
+  EXPECT_LT(Relative(stored, phi * (2.0 - 2.0 * std::pow(0.5, depth))), 1e-6);
+  EXPECT_EQ(hits.size(), n * depth);
+  for (int ch = 0; ch < 3; ++ch)
+  {
+    EXPECT_EQ(c.Escaped[ch], 0.0);
+    EXPECT_LT(Relative(c.Emitted[ch], phi), 1e-6);
+    EXPECT_LT(Relative(c.Emitted[ch],
+                c.Absorbed[ch] + c.Escaped[ch] + c.Truncated[ch] + c.EstimatorNet[ch]),
+      1e-9);
+    EXPECT_LT(Relative(c.Truncated[ch], phi * std::pow(0.5, depth)), 1e-6);
+  }
+
+  // With Russian roulette the balance still closes, and the roulette's net
+  // effect vanishes in expectation (it is small against the emitted power).
+  hits.clear();
+  settings.MaxDepth = 1024;
+  settings.RouletteDepth = 2;
+  const TraceCounters r = TraceAll(scene, n, settings, hits);
+  for (int ch = 0; ch < 3; ++ch)
+  {
+    EXPECT_LT(Relative(r.Emitted[ch],
+                r.Absorbed[ch] + r.Escaped[ch] + r.Truncated[ch] + r.EstimatorNet[ch]),
+      1e-9);
+    EXPECT_LT(std::abs(r.EstimatorNet[ch]) / r.Emitted[ch], 0.02);
+    EXPECT_EQ(r.Escaped[ch], 0.0);
+  }
+}
+
+TEST(LightTracer, PointSpotAndDirectionalLightsCarryTheirPower)
+{
+  Material black;
+  black.Reflectance = Vec3(0.f);
+  struct Case
+  {
+    Light L;
+    double Power;
+  };
+  Light point;
+  point.Type = LightType::Point;
+  point.Intensity = Vec3(2.f);
+  Light spot;
+  spot.Type = LightType::Spot;
+  spot.Intensity = Vec3(2.f);
+  spot.ConeAngle = 30.f;
+  spot.Direction = Normalize(Vec3(1.f, -1.f, 0.f));
+  Light beam;
+  beam.Type = LightType::Directional;
+  beam.Intensity = Vec3(2.f);
+  beam.BeamCenter = Vec3(0.f, 0.5f, 0.f);
+  beam.BeamRadius = 0.3f;
+  beam.Direction = Vec3(0.f, -1.f, 0.f);
+  const double cone = 2 * Pi * (1 - std::cos(30.0 * Pi / 180.0)) * 2.0;
+  for (const Case& c :
+    { Case{ point, 4 * Pi * 2.0 }, Case{ spot, cone }, Case{ beam, Pi * 0.09 * 2.0 } })
+  {
+    Scene scene;
+    scene.Surfaces = ClosedBox(black);
+    scene.Lights = { c.L };
+    ASSERT_EQ(scene.Validate(), "");
+    std::vector<Hit> hits;
+    const std::uint64_t n = 5000;
+    TraceAll(scene, n, TraceSettings(), hits);
+    ASSERT_EQ(hits.size(), n);
+    double total = 0.0;
+    for (const Hit& h : hits)
+    {
+      total += h.Flux[1];
+      EXPECT_EQ(h.Emitter, scene.LightEmitterId(0));
+      const Vec3 d(h.Direction[0], h.Direction[1], h.Direction[2]);
+      if (c.L.Type == LightType::Spot)
+      {
+        EXPECT_GE(Dot(d, c.L.Direction), std::cos(30.f * Pi / 180.f) - 1e-5f);
+      }
+      if (c.L.Type == LightType::Directional)
+      {
+        EXPECT_NEAR(h.Position[1], -1.f, 1e-4f);
+        EXPECT_LE(std::hypot(h.Position[0], h.Position[2]), 0.3f + 1e-4f);
+      }
+    }
+    EXPECT_LT(Relative(total, c.Power), 1e-5);
+  }
+}
+
+namespace
+{
+// Fraction of a collimated beam's power leaving through the bottom of an
+// absorbing medium without interaction, with its binomial standard error.
+void TransmittedFraction(
+  const Medium& medium, float top, double& fraction, double& stderr, std::uint64_t n = 100000)
+{
+  Scene scene;
+  scene.Media = { medium };
+  Light beam;
+  beam.Type = LightType::Directional;
+  beam.Direction = Vec3(0.f, -1.f, 0.f);
+  beam.BeamCenter = Vec3(0.05f, top, -0.03f);
+  beam.BeamRadius = 0.01f;
+  scene.Lights = { beam };
+  ASSERT_EQ(scene.Validate(), "");
+  std::vector<Hit> hits;
+  std::vector<ParticleExit> exits;
+  TraceSettings settings;
+  TraceAll(scene, n, settings, hits, &exits);
+  double through = 0;
+  for (const ParticleExit& e : exits)
+  {
+    through += (e.Escaped && e.Depth == 0) ? 1.0 : 0.0;
+  }
+  fraction = through / n;
+  stderr = std::sqrt(fraction * (1 - fraction) / n);
+}
+}
+
+TEST(LightTracer, BeerLambertThroughAHeterogeneousGrid)
+{
+  // Density ramps linearly 0 -> 2 from y = 0 to y = 1 (point data, 3 x 5 x 3
+  // points): the optical depth of a vertical ray is 1.
+  std::vector<float> values;
+  for (int k = 0; k < 3; ++k)
+    for (int j = 0; j < 5; ++j)
+      for (int i = 0; i < 3; ++i)
+        values.push_back(2.f * j / 4.f);
+  Medium ramp;
+  ramp.Name = "ramp";
+  ramp.SigmaA = Vec3(1.f);
+  ramp.SigmaS = Vec3(0.f);
+  ramp.SetDensity(std::make_shared<GridDensity>(Box{ { -0.5f, 0.f, -0.5f }, { 0.5f, 1.f, 0.5f } },
+    std::array<int, 3>{ 3, 5, 3 }, values, false));
+  double f = 0, se = 0;
+  TransmittedFraction(ramp, 2.f, f, se);
+  EXPECT_NEAR(f, std::exp(-1.0), 4 * se);
+
+  // Cell data, constant per cell: layers of density 0, 1, 3 of thickness 1/3.
+  Medium layers;
+  layers.Name = "layers";
+  layers.SigmaA = Vec3(1.5f);
+  layers.SigmaS = Vec3(0.f);
+  layers.SetDensity(std::make_shared<GridDensity>(Box{ { -0.5f, 0.f, -0.5f }, { 0.5f, 1.f, 0.5f } },
+    std::array<int, 3>{ 1, 3, 1 }, std::vector<float>{ 0.f, 1.f, 3.f }, true));
+  TransmittedFraction(layers, 2.f, f, se);
+  EXPECT_NEAR(f, std::exp(-1.5 * (1.0 + 3.0) / 3.0), 4 * se);
+}
+
+TEST(LightTracer, SparseMajorantsSkipEmptySpace)
+{
+  // A 64^3 grid that is empty but for one 4^3 cube of density 2.
+  const int n = 64;
+  std::vector<float> values(n * n * n, 0.f);
+  for (int k = 32; k < 36; ++k)
+    for (int j = 32; j < 36; ++j)
+      for (int i = 32; i < 36; ++i)
+        values[(k * n + j) * n + i] = 2.f;
+  auto density = std::make_shared<GridDensity>(
+    Box{ Vec3(0.f), Vec3(1.f) }, std::array<int, 3>{ n, n, n }, values, true);
+  // Only the one block holding the cube has a majorant (of 8^3 blocks).
+  EXPECT_EQ(density->NumberOfOccupiedBlocks(), 1u);
+  EXPECT_EQ(density->GetMajorants().GlobalMax(), 2.f);
+  Medium sparse;
+  sparse.Name = "sparse";
+  sparse.SigmaA = Vec3(1.f);
+  sparse.SigmaS = Vec3(0.f);
+  sparse.SetDensity(density);
+  // Beside the cube (the beam at x = 0.05) nothing is in the way: every
+  // particle passes, however many empty blocks it crosses.
+  double f = 0, se = 0;
+  TransmittedFraction(sparse, 2.f, f, se);
+  EXPECT_EQ(f, 1.0);
+}
+
+TEST(LightTracer, SpectralTrackingGivesEachChannelItsTransmittance)
+{
+  // A homogeneous absorber with sigma_t = (1, 2, 4) and thickness 0.5: the
+  // flux leaving the bottom is exp(-sigma_t / 2) of the emitted, per channel.
+  Medium coloured;
+  coloured.Name = "coloured";
+  coloured.Bounds = { { -10.f, 0.f, -10.f }, { 10.f, 0.5f, 10.f } };
+  coloured.SigmaA = Vec3(1.f, 2.f, 4.f);
+  coloured.SigmaS = Vec3(0.f);
+  Scene scene;
+  scene.Media = { coloured };
+  Light beam;
+  beam.Type = LightType::Directional;
+  beam.Direction = Vec3(0.f, -1.f, 0.f);
+  beam.BeamCenter = Vec3(0.f, 1.f, 0.f);
+  beam.BeamRadius = 0.01f;
+  scene.Lights = { beam };
+  ASSERT_EQ(scene.Validate(), "");
+  const std::uint64_t n = 200000;
+  std::vector<Hit> hits;
+  std::vector<ParticleExit> exits;
+  TraceSettings settings;
+  settings.RouletteDepth = 1000; // weights only from spectral tracking
+  const TraceCounters c = TraceAll(scene, n, settings, hits, &exits);
+  for (int ch = 0; ch < 3; ++ch)
+  {
+    double sum = 0, sum2 = 0;
+    const double perParticle = c.Emitted[ch] / n;
+    for (const ParticleExit& e : exits)
+    {
+      const double x = e.Escaped ? e.Flux[ch] / perParticle : 0.0;
+      sum += x;
+      sum2 += x * x;
+    }
+    const double mean = sum / n, se = std::sqrt((sum2 / n - mean * mean) / n);
+    EXPECT_NEAR(mean, std::exp(-coloured.SigmaA[ch] * 0.5), 4 * se) << "channel " << ch;
+  }
 }

@@ -11,44 +11,79 @@
 namespace brume
 {
 
+void TraceCounters::Add(const TraceCounters& o)
+{
+  this->Rays += o.Rays;
+  this->Hits += o.Hits;
+  for (int c = 0; c < 3; ++c)
+  {
+    this->Emitted[c] += o.Emitted[c];
+    this->Absorbed[c] += o.Absorbed[c];
+    this->Escaped[c] += o.Escaped[c];
+    this->Truncated[c] += o.Truncated[c];
+    this->EstimatorNet[c] += o.EstimatorNet[c];
+  }
+}
+
 LightTracer::LightTracer(const Scene& scene, const RayCaster& caster, const TraceSettings& settings)
   : SceneRef(scene)
   , Caster(caster)
   , Settings(settings)
   , TotalPower(0.f)
 {
-  // Emitters are chosen in proportion to their power (mean over channels).
   double total = 0.0;
-  Vec3 power(0.f);
+  auto add = [&](const Emitter& e)
+  {
+    const double weight = Average(e.Power);
+    if (!(weight > 0.0))
+    {
+      return;
+    }
+    this->Emitters.push_back(e);
+    this->TotalPower += e.Power;
+    total += weight;
+    this->EmitterCdf.push_back(total);
+  };
   for (std::uint32_t s = 0; s < scene.Surfaces.size(); ++s)
   {
     const Surface& surface = scene.Surfaces[s];
-    if (!surface.IsEmitter())
-    {
-      continue;
-    }
     for (std::uint32_t t = 0; t < surface.Triangles.size(); ++t)
     {
-      const auto& tri = surface.Triangles[t];
-      const Vec3 n = Cross(surface.Vertices[tri[1]] - surface.Vertices[tri[0]],
-        surface.Vertices[tri[2]] - surface.Vertices[tri[0]]);
-      const double area = 0.5 * Length(n);
-      if (!(area > 0.0))
+      const Material& m = surface.MaterialOf(t);
+      if (!m.IsEmitter())
       {
         continue;
       }
-      this->Emitters.push_back({ s, t, Normalize(n), surface.Emission, area });
+      const auto& tri = surface.Triangles[t];
+      const Vec3 n = Cross(surface.Vertices[tri[1]] - surface.Vertices[tri[0]],
+        surface.Vertices[tri[2]] - surface.Vertices[tri[0]]);
+      const float area = 0.5f * Length(n);
+      if (!(area > 0.f))
+      {
+        continue;
+      }
+      Emitter e;
+      e.Surface = s;
+      e.Triangle = t;
+      e.Normal = Normalize(n);
       // Phi = pi * L_e * A for a one-sided Lambertian emitter.
-      power += surface.Emission * static_cast<float>(Pi * area);
-      total += Pi * area * Average(surface.Emission);
-      this->EmitterCdf.push_back(total);
+      e.Power = m.Emission * (Pi * area);
+      e.Id = static_cast<std::uint16_t>(s);
+      add(e);
     }
+  }
+  for (std::size_t k = 0; k < scene.Lights.size(); ++k)
+  {
+    Emitter e;
+    e.Light = static_cast<int>(k);
+    e.Power = scene.Lights[k].Power();
+    e.Id = static_cast<std::uint16_t>(scene.LightEmitterId(k));
+    add(e);
   }
   for (double& c : this->EmitterCdf)
   {
     c /= total;
   }
-  this->TotalPower = power;
 }
 
 namespace
@@ -59,11 +94,34 @@ float OffsetEpsilon(const Vec3& p)
 {
   return 1e-4f * std::max(1.f, std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z))));
 }
+
+void Tally(double* tally, const Vec3& flux, double sign = 1.0)
+{
+  for (int c = 0; c < 3; ++c)
+  {
+    tally[c] += sign * static_cast<double>(flux[c]);
+  }
 }
 
-void LightTracer::TraceParticle(
-  std::uint64_t index, std::uint64_t count, std::vector<Hit>& hits, TraceCounters& counters) const
+// Flux removed (positive) or added (negative) when `before` becomes `after`.
+void TallyChange(double* tally, const Vec3& before, const Vec3& after)
 {
+  for (int c = 0; c < 3; ++c)
+  {
+    tally[c] += static_cast<double>(before[c]) - static_cast<double>(after[c]);
+  }
+}
+
+constexpr int InlineTrackers = 4;
+}
+
+void LightTracer::TraceParticle(std::uint64_t index, std::uint64_t count, std::vector<Hit>& hits,
+  TraceCounters& counters, ParticleExit* exit, RayLog* rays) const
+{
+  if (exit)
+  {
+    *exit = ParticleExit();
+  }
   if (this->Emitters.empty() || count == 0)
   {
     return;
@@ -72,30 +130,45 @@ void LightTracer::TraceParticle(
   const Scene& scene = this->SceneRef;
   const auto numberOfSurfaces = static_cast<std::uint16_t>(scene.Surfaces.size());
 
-  // Choose an emitter triangle in proportion to its power.
+  // Choose an emitter in proportion to its power.
   const double u = rng.NextDouble();
   const auto it = std::upper_bound(this->EmitterCdf.begin(), this->EmitterCdf.end(), u);
   const std::size_t k =
     std::min<std::size_t>(it - this->EmitterCdf.begin(), this->Emitters.size() - 1);
-  const EmitterTriangle& emitter = this->Emitters[k];
-  const double pdfTriangle = this->EmitterCdf[k] - (k > 0 ? this->EmitterCdf[k - 1] : 0.0);
+  const Emitter& emitter = this->Emitters[k];
+  const double pdfEmitter = this->EmitterCdf[k] - (k > 0 ? this->EmitterCdf[k - 1] : 0.0);
+  // Flux = Phi_emitter / (N p_emitter).
+  Vec3 flux = emitter.Power * static_cast<float>(1.0 / (static_cast<double>(count) * pdfEmitter));
 
-  // Uniform point on the triangle.
-  const Surface& surface = scene.Surfaces[emitter.Surface];
-  const auto& tri = surface.Triangles[emitter.Triangle];
-  const float su = std::sqrt(rng.NextFloat());
-  const float b1 = 1.f - su, b2 = rng.NextFloat() * su;
-  Vec3 origin = surface.Vertices[tri[0]] * b1 + surface.Vertices[tri[1]] * b2 +
-    surface.Vertices[tri[2]] * (1.f - b1 - b2);
-
-  // Cosine-weighted direction: flux = pi L_e A / (N p_triangle).
-  const float r1 = rng.NextFloat(), r2 = rng.NextFloat();
-  Vec3 direction = Normalize(Frame(emitter.Normal).ToWorld(SampleCosineHemisphere(r1, r2)));
-  Vec3 flux = emitter.Radiance *
-    static_cast<float>(Pi * emitter.Area / (static_cast<double>(count) * pdfTriangle));
+  Vec3 origin, direction;
+  if (emitter.Light >= 0)
+  {
+    scene.Lights[emitter.Light].SampleEmission(rng, origin, direction);
+  }
+  else
+  {
+    // Uniform point on the triangle, cosine-weighted direction on its front side.
+    const Surface& surface = scene.Surfaces[emitter.Surface];
+    const auto& tri = surface.Triangles[emitter.Triangle];
+    const float su = std::sqrt(rng.NextFloat());
+    const float b1 = 1.f - su, b2 = rng.NextFloat() * su;
+    origin = surface.Vertices[tri[0]] * b1 + surface.Vertices[tri[1]] * b2 +
+      surface.Vertices[tri[2]] * (1.f - b1 - b2);
+    const float r1 = rng.NextFloat(), r2 = rng.NextFloat();
+    direction = Normalize(Frame(emitter.Normal).ToWorld(SampleCosineHemisphere(r1, r2)));
+    origin += emitter.Normal * OffsetEpsilon(origin);
+  }
+  Tally(counters.Emitted, flux);
   const float initialFlux = MaxComponent(flux);
-  origin += emitter.Normal * OffsetEpsilon(origin);
-  const auto emitterId = static_cast<std::uint16_t>(emitter.Surface);
+
+  MediumTracker inlineTrackers[InlineTrackers];
+  std::vector<MediumTracker> heapTrackers;
+  MediumTracker* trackers = inlineTrackers;
+  if (scene.Media.size() > static_cast<std::size_t>(InlineTrackers))
+  {
+    heapTrackers.resize(scene.Media.size());
+    trackers = heapTrackers.data();
+  }
 
   auto store = [&](const Vec3& p, std::uint16_t object, int depth)
   {
@@ -110,79 +183,147 @@ void LightTracer::TraceParticle(
     h.Flux[1] = flux.y;
     h.Flux[2] = flux.z;
     h.Object = object;
-    h.Emitter = emitterId;
+    h.Emitter = emitter.Id;
     h.Depth = static_cast<std::uint8_t>(std::min(depth, 255));
     h.Padding[0] = h.Padding[1] = h.Padding[2] = 0;
     hits.push_back(h);
     ++counters.Hits;
   };
 
-  for (int depth = 0; depth < this->Settings.MaxDepth; ++depth)
+  for (int depth = 0;; ++depth)
   {
+    if (depth >= this->Settings.MaxDepth)
+    {
+      Tally(counters.Truncated, flux);
+      return;
+    }
     SurfaceHit surfaceHit;
     ++counters.Rays;
+    if (rays)
+    {
+      const float r[6] = { origin.x, origin.y, origin.z, direction.x, direction.y, direction.z };
+      rays->OriginsAndDirections.insert(rays->OriginsAndDirections.end(), r, r + 6);
+    }
     const bool hitSurface = this->Caster.Intersect(
       origin, direction, 0.f, std::numeric_limits<float>::infinity(), surfaceHit);
     const float tSurface = hitSurface ? surfaceHit.T : std::numeric_limits<float>::infinity();
 
-    // Free flight in each medium the segment crosses; the earliest collision
-    // wins (independent exponential races are exact for overlapping media).
-    float tCollision = tSurface;
-    int collided = -1;
+    // Delta tracking in every medium the segment crosses, events taken in
+    // distance order (superposed Poisson processes), spectral-tracking
+    // weights for coloured or heterogeneous extinction.
+    int active = 0;
     for (std::size_t m = 0; m < scene.Media.size(); ++m)
     {
-      const Medium& medium = scene.Media[m];
-      const float sigmaT = medium.SigmaT().x;
-      float t0 = 0.f, t1 = tSurface;
-      if (!(sigmaT > 0.f) || !medium.Bounds.Intersect(origin, direction, t0, t1))
+      MediumTracker& tracker = trackers[active];
+      if (tracker.Begin(scene.Media[m], origin, direction, tSurface) && tracker.Next(rng))
       {
-        continue;
+        ++active;
       }
-      // t ~ sigma_t exp(-sigma_t t) from the entry point.
-      const float t = t0 - std::log1p(-rng.NextFloat()) / sigmaT;
-      if (t < t1 && t < tCollision)
+    }
+    const Medium* collided = nullptr;
+    std::size_t collidedIndex = 0;
+    float tCollision = tSurface;
+    while (active > 0)
+    {
+      int next = 0;
+      for (int i = 1; i < active; ++i)
       {
-        tCollision = t;
-        collided = static_cast<int>(m);
+        if (trackers[i].T < trackers[next].T)
+        {
+          next = i;
+        }
+      }
+      MediumTracker& tracker = trackers[next];
+      const Medium& medium = *tracker.Tracked;
+      const Vec3 sigmaT = medium.SigmaTAt(origin + direction * tracker.T);
+      const float majorant = tracker.Majorant;
+      // Probability of a real collision, weighted by the flux per channel.
+      float realWeight = 0.f, nullWeight = 0.f;
+      for (int c = 0; c < 3; ++c)
+      {
+        realWeight += sigmaT[c] * flux[c];
+        nullWeight += std::max(0.f, majorant - sigmaT[c]) * flux[c];
+      }
+      const float pReal =
+        realWeight + nullWeight > 0.f ? realWeight / (realWeight + nullWeight) : 0.f;
+      const bool real = pReal >= 1.f || (pReal > 0.f && rng.NextFloat() < pReal);
+      if (real)
+      {
+        if (pReal < 1.f)
+        {
+          const Vec3 before = flux;
+          flux = flux * sigmaT / (majorant * pReal);
+          TallyChange(counters.EstimatorNet, before, flux);
+        }
+        collided = &medium;
+        collidedIndex = static_cast<std::size_t>(collided - scene.Media.data());
+        tCollision = tracker.T;
+        break;
+      }
+      const Vec3 before = flux;
+      for (int c = 0; c < 3; ++c)
+      {
+        flux[c] *= std::max(0.f, majorant - sigmaT[c]) / (majorant * (1.f - pReal));
+      }
+      TallyChange(counters.EstimatorNet, before, flux);
+      if (!tracker.Next(rng))
+      {
+        trackers[next] = trackers[--active];
       }
     }
 
-    if (collided >= 0)
+    if (collided)
     {
-      const Medium& medium = scene.Media[collided];
       origin = origin + direction * tCollision;
-      store(origin, static_cast<std::uint16_t>(numberOfSurfaces + collided), depth);
+      store(origin, static_cast<std::uint16_t>(numberOfSurfaces + collidedIndex), depth);
       // Always scatter, weighting by the albedo (less variance than absorbing).
-      flux *= medium.Albedo();
+      const Vec3 before = flux;
+      flux *= collided->Albedo();
+      TallyChange(counters.Absorbed, before, flux);
       if (!(MaxComponent(flux) > 0.f))
       {
         return;
       }
-      direction = HenyeyGreenstein(medium.G).Sample(direction, rng.NextFloat(), rng.NextFloat());
+      direction = HenyeyGreenstein(collided->G).Sample(direction, rng.NextFloat(), rng.NextFloat());
     }
     else if (hitSurface)
     {
       const Surface& hitObject = scene.Surfaces[surfaceHit.Surface];
       const Vec3 position = origin + direction * tSurface;
       store(position, static_cast<std::uint16_t>(surfaceHit.Surface), depth);
-      flux *= hitObject.Reflectance;
-      if (!(MaxComponent(flux) > 0.f))
-      {
-        return;
-      }
-      // Lambertian reflection on the side the particle came from.
+      // Reflection on the side the particle came from.
       Vec3 n = Normalize(surfaceHit.Ng);
       if (Dot(n, direction) > 0.f)
       {
         n = -n;
       }
-      direction =
-        Normalize(Frame(n).ToWorld(SampleCosineHemisphere(rng.NextFloat(), rng.NextFloat())));
+      Vec3 weight;
+      const Vec3 before = flux;
+      if (!SampleBrdf(
+            hitObject.MaterialOf(surfaceHit.Triangle), n, -direction, rng, direction, weight))
+      {
+        Tally(counters.Absorbed, flux);
+        return;
+      }
+      flux *= weight;
+      TallyChange(counters.Absorbed, before, flux);
+      if (!(MaxComponent(flux) > 0.f))
+      {
+        return;
+      }
       origin = position + n * OffsetEpsilon(position);
     }
     else
     {
-      return; // escaped
+      Tally(counters.Escaped, flux);
+      if (exit)
+      {
+        exit->Escaped = true;
+        exit->Flux = flux;
+        exit->Direction = direction;
+        exit->Depth = depth;
+      }
+      return;
     }
 
     // Russian roulette, dividing the survivors' flux by the survival probability.
@@ -191,11 +332,14 @@ void LightTracer::TraceParticle(
       const float q = std::min(1.f, MaxComponent(flux) / initialFlux);
       if (q < 1.f)
       {
+        const Vec3 before = flux;
         if (!(rng.NextFloat() < q))
         {
+          Tally(counters.EstimatorNet, flux);
           return;
         }
         flux = flux / q;
+        TallyChange(counters.EstimatorNet, before, flux);
       }
     }
   }

@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Phase 1 of Jimenez & Pueyo (2003), section 2: Monte Carlo light tracing.
 //
-// Particles leave the emitters with a share of their power, travel through the
-// scene, collide with surfaces (Lambertian BRDF sampling) and media (exact
-// free-flight sampling in homogeneous media, Henyey-Greenstein phase
-// sampling). Every interaction is stored as a Hit carrying the flux that
-// arrived there.
+// Particles leave the emitters (emissive triangles, point, spot and
+// directional lights) in proportion to their power, travel through the scene,
+// reflect on surfaces (BRDF sampling) and collide in media (delta tracking
+// with block majorants and spectral-tracking weights, exact for homogeneous
+// colourless media; Henyey-Greenstein phase sampling). Every interaction is
+// stored as a Hit carrying the flux that arrived there.
 #ifndef brume_LightTracer_h
 #define brume_LightTracer_h
 
@@ -31,9 +32,9 @@ struct Hit
   float Flux[3];
   /// Scene object id (surfaces first, then media).
   std::uint16_t Object;
-  /// Object id of the emitting surface.
+  /// Emitter: the emissive surface's object id, or Scene::LightEmitterId(k).
   std::uint16_t Emitter;
-  /// Number of interactions before this one (0: straight from the light).
+  /// Number of interactions before this one (0: straight from the light), saturating at 255.
   std::uint8_t Depth;
   std::uint8_t Padding[3];
 };
@@ -42,21 +43,44 @@ static_assert(sizeof(Hit) == 44, "Hit layout changed: update the documentation")
 struct TraceSettings
 {
   std::uint64_t Seed = 0;
-  /// Interactions after which a particle is stopped.
-  int MaxDepth = 64;
-  /// Interactions after which Russian roulette may end a particle.
+  /// Interactions after which a particle is stopped (its flux is tallied as truncated).
+  int MaxDepth = 1024;
+  /// Interactions after which Russian roulette may end a particle; a value
+  /// above MaxDepth turns Russian roulette off.
   int RouletteDepth = 3;
 };
 
+/// Per-run tallies, summed over particles in double precision.
 struct TraceCounters
 {
   std::uint64_t Rays = 0;
   std::uint64_t Hits = 0;
-  void Add(const TraceCounters& o)
-  {
-    this->Rays += o.Rays;
-    this->Hits += o.Hits;
-  }
+  /// Flux (W per channel) emitted, absorbed by surfaces and media, escaped to
+  /// infinity, left in particles stopped at MaxDepth, and removed minus added
+  /// by the unbiased estimators (Russian roulette, spectral tracking), which
+  /// is zero in expectation. Emitted = the sum of the others, per run.
+  double Emitted[3] = { 0, 0, 0 };
+  double Absorbed[3] = { 0, 0, 0 };
+  double Escaped[3] = { 0, 0, 0 };
+  double Truncated[3] = { 0, 0, 0 };
+  double EstimatorNet[3] = { 0, 0, 0 };
+
+  void Add(const TraceCounters& o);
+};
+
+/// How a particle left the scene (for validation against transport codes).
+struct ParticleExit
+{
+  bool Escaped = false;
+  Vec3 Flux;
+  Vec3 Direction;
+  int Depth = 0;
+};
+
+/// Optional log of the rays a particle casts (for benchmarks).
+struct RayLog
+{
+  std::vector<float> OriginsAndDirections; // 6 floats per ray
 };
 
 class LightTracer
@@ -65,28 +89,30 @@ public:
   /// The scene must have passed Scene::Validate() and outlive the tracer.
   LightTracer(const Scene& scene, const RayCaster& caster, const TraceSettings& settings);
 
-  /// Total emitted power per channel (W): sum of pi * L_e * A over emitters.
+  /// Total emitted power per channel (W).
   Vec3 GetTotalPower() const { return this->TotalPower; }
 
   /// Traces particle `index` of `count` and appends its hits to `hits`.
   /// Deterministic: depends only on (seed, index, count).
   void TraceParticle(std::uint64_t index, std::uint64_t count, std::vector<Hit>& hits,
-    TraceCounters& counters) const;
+    TraceCounters& counters, ParticleExit* exit = nullptr, RayLog* rays = nullptr) const;
 
 private:
-  struct EmitterTriangle
+  // An emissive triangle or a light, chosen in proportion to its power.
+  struct Emitter
   {
-    std::uint32_t Surface;
-    std::uint32_t Triangle;
-    Vec3 Normal; // unit, front side of emission
-    Vec3 Radiance;
-    double Area;
+    int Light = -1; // index in Scene::Lights, or -1 for a triangle
+    std::uint32_t Surface = 0;
+    std::uint32_t Triangle = 0;
+    Vec3 Normal;
+    Vec3 Power;
+    std::uint16_t Id = 0;
   };
 
   const Scene& SceneRef;
   const RayCaster& Caster;
   TraceSettings Settings;
-  std::vector<EmitterTriangle> Emitters;
+  std::vector<Emitter> Emitters;
   std::vector<double> EmitterCdf;
   Vec3 TotalPower;
 };

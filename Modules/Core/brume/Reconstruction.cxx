@@ -85,8 +85,9 @@ void SurfaceRadiance::Estimate(
   const auto& dims = this->Cells.GetDimensions();
   const double cellArea =
     this->Frame.Area() / (static_cast<double>(dims[0]) * static_cast<double>(dims[1]));
-  const Vec3 rho = this->SurfaceRef.Reflectance;
-  const Vec3 le = this->SurfaceRef.Emission;
+  // The diffuse part; view-dependent lobes are not reconstructed here yet.
+  const Vec3 rho = this->SurfaceRef.Mat.Reflectance;
+  const Vec3 le = this->SurfaceRef.Mat.Emission;
   for (std::size_t t = begin; t < end; ++t)
   {
     const std::array<int, 3> texel{ static_cast<int>(t % this->Resolution[0]),

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "brume/Scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -9,11 +10,6 @@ namespace brume
 
 namespace
 {
-bool NonNegativeFinite(const Vec3& v)
-{
-  return IsFinite(v) && MinComponent(v) >= 0.f;
-}
-
 // A thin quad (two triangles) with corners a, b, c, d in counter-clockwise order
 // seen from the side its normal points to.
 Surface MakeQuad(const std::string& name, const Vec3& a, const Vec3& b, const Vec3& c,
@@ -23,8 +19,8 @@ Surface MakeQuad(const std::string& name, const Vec3& a, const Vec3& b, const Ve
   s.Name = name;
   s.Vertices = { a, b, c, d };
   s.Triangles = { { 0, 1, 2 }, { 0, 2, 3 } };
-  s.Reflectance = reflectance;
-  s.Emission = emission;
+  s.Mat.Reflectance = reflectance;
+  s.Mat.Emission = emission;
   return s;
 }
 }
@@ -89,15 +85,24 @@ bool Surface::ComputePlanarFrame(PlanarFrame& frame, float tolerance) const
   return true;
 }
 
-Vec3 Medium::Albedo() const
+bool Surface::IsEmitter() const
 {
-  const Vec3 st = this->SigmaT();
-  Vec3 a;
-  for (int c = 0; c < 3; ++c)
+  if (this->TriangleMaterials.empty())
   {
-    a[c] = st[c] > 0.f ? this->SigmaS[c] / st[c] : 0.f;
+    return this->Mat.IsEmitter();
   }
-  return a;
+  return std::any_of(this->TriangleMaterials.begin(), this->TriangleMaterials.end(),
+    [](const Material& m) { return m.IsEmitter(); });
+}
+
+bool Surface::IsViewDependent() const
+{
+  if (this->TriangleMaterials.empty())
+  {
+    return this->Mat.IsViewDependent();
+  }
+  return std::any_of(this->TriangleMaterials.begin(), this->TriangleMaterials.end(),
+    [](const Material& m) { return m.IsViewDependent(); });
 }
 
 std::string Scene::Validate() const
@@ -107,9 +112,9 @@ std::string Scene::Validate() const
   {
     return "the scene is empty: it has no surfaces and no media";
   }
-  if (this->NumberOfObjects() > 65535)
+  if (this->NumberOfObjects() + this->Lights.size() > 65535)
   {
-    return "the scene has more than 65535 objects";
+    return "the scene has more than 65535 objects and lights";
   }
   bool hasEmitter = false;
   for (const auto& s : this->Surfaces)
@@ -117,6 +122,12 @@ std::string Scene::Validate() const
     if (s.Triangles.empty())
     {
       err << "surface '" << s.Name << "' has no triangles";
+      return err.str();
+    }
+    if (!s.TriangleMaterials.empty() && s.TriangleMaterials.size() != s.Triangles.size())
+    {
+      err << "surface '" << s.Name << "' has " << s.TriangleMaterials.size()
+          << " per-triangle materials for " << s.Triangles.size() << " triangles";
       return err.str();
     }
     for (const auto& tri : s.Triangles)
@@ -143,48 +154,40 @@ std::string Scene::Validate() const
       err << "surface '" << s.Name << "' is degenerate (zero area)";
       return err.str();
     }
-    if (!NonNegativeFinite(s.Reflectance) || MaxComponent(s.Reflectance) > 1.f)
+    for (std::size_t t = 0; t < (s.TriangleMaterials.empty() ? 1 : s.TriangleMaterials.size()); ++t)
     {
-      err << "surface '" << s.Name << "' has a reflectance outside [0, 1]";
-      return err.str();
-    }
-    if (!NonNegativeFinite(s.Emission))
-    {
-      err << "surface '" << s.Name << "' has a negative or non-finite emission";
-      return err.str();
+      const std::string problem = s.MaterialOf(t).Validate();
+      if (!problem.empty())
+      {
+        err << "surface '" << s.Name << "' " << problem;
+        return err.str();
+      }
     }
     hasEmitter = hasEmitter || s.IsEmitter();
   }
   for (const auto& m : this->Media)
   {
-    if (!NonNegativeFinite(m.SigmaA) || !NonNegativeFinite(m.SigmaS))
+    const std::string problem = m.Validate();
+    if (!problem.empty())
     {
-      err << "medium '" << m.Name << "' has a negative or non-finite sigma_a or sigma_s";
-      return err.str();
-    }
-    if (!(std::abs(m.G) < 1.f))
-    {
-      err << "medium '" << m.Name << "' has |g| >= 1 (g = " << m.G << ")";
-      return err.str();
-    }
-    if (!IsFinite(m.Bounds.lower) || !IsFinite(m.Bounds.upper) ||
-      !(MinComponent(m.Bounds.Extent()) > 0.f))
-    {
-      err << "medium '" << m.Name << "' has an empty or non-finite box";
-      return err.str();
-    }
-    const Vec3 st = m.SigmaT();
-    if (MaxComponent(st) - MinComponent(st) > 1e-6f * MaxComponent(st))
-    {
-      err << "medium '" << m.Name
-          << "' has a colour-dependent extinction sigma_a + sigma_s, which this "
-             "tracer does not support yet (the albedo may be coloured)";
+      err << "medium '" << m.Name << "' " << problem;
       return err.str();
     }
   }
+  for (std::size_t k = 0; k < this->Lights.size(); ++k)
+  {
+    const std::string problem = this->Lights[k].Validate();
+    if (!problem.empty())
+    {
+      err << "light '" << (this->Lights[k].Name.empty() ? std::to_string(k) : this->Lights[k].Name)
+          << "' " << problem;
+      return err.str();
+    }
+    hasEmitter = true;
+  }
   if (!hasEmitter)
   {
-    return "the scene has no light: no surface has a positive emission";
+    return "the scene has no light: no light source and no surface with a positive emission";
   }
   return {};
 }

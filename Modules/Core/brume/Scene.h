@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The scene as the physics core sees it: triangle surfaces with Lambertian
-// materials and optional emission, and homogeneous media in boxes.
+// The scene as the physics core sees it: triangle surfaces with materials
+// and optional emission, homogeneous or heterogeneous media, and lights.
 #ifndef brume_Scene_h
 #define brume_Scene_h
 
+#include "brume/Light.h"
+#include "brume/Material.h"
+#include "brume/Medium.h"
 #include "brume/Vec3.h"
 
 #include <array>
@@ -29,41 +32,36 @@ struct Surface
   std::string Name;
   std::vector<Vec3> Vertices;
   std::vector<std::array<std::uint32_t, 3>> Triangles;
-  /// Lambertian reflectance rho per channel, in [0, 1].
-  Vec3 Reflectance{ 0.75f };
-  /// Emitted radiance L_e (W m^-2 sr^-1) on the front side (the side the
-  /// triangle winding's normal points to). Zero for non-emitters.
-  Vec3 Emission{ 0.f };
+  /// The surface's material (Lambertian of reflectance 0.75 by default).
+  Material Mat;
+  /// Per-triangle materials; empty when every triangle uses Mat.
+  std::vector<Material> TriangleMaterials;
 
-  bool IsEmitter() const { return MaxComponent(this->Emission) > 0.f; }
+  const Material& MaterialOf(std::size_t triangle) const
+  {
+    return this->TriangleMaterials.empty() ? this->Mat : this->TriangleMaterials[triangle];
+  }
+  bool IsEmitter() const;
+  /// True when some triangle's reflected radiance depends on the view.
+  bool IsViewDependent() const;
   double Area() const;
   /// Texture placement of a planar surface; false if the surface is not planar.
   bool ComputePlanarFrame(PlanarFrame& frame, float tolerance = 1e-4f) const;
-};
-
-struct Medium
-{
-  std::string Name;
-  /// Axis-aligned extent of the homogeneous medium (index-matched boundary).
-  Box Bounds;
-  Vec3 SigmaA{ 0.1f };
-  Vec3 SigmaS{ 1.f };
-  /// Henyey-Greenstein asymmetry, -1 < g < 1.
-  float G = 0.f;
-
-  Vec3 SigmaT() const { return this->SigmaA + this->SigmaS; }
-  /// Single-scattering albedo sigma_s / sigma_t per channel (0 where sigma_t is 0).
-  Vec3 Albedo() const;
 };
 
 struct Scene
 {
   std::vector<Surface> Surfaces;
   std::vector<Medium> Media;
+  /// Point, spot and directional lights (emissive surfaces are lights too).
+  std::vector<Light> Lights;
 
   /// Object ids: surfaces first, then media.
   std::size_t NumberOfObjects() const { return this->Surfaces.size() + this->Media.size(); }
   bool IsMedium(std::size_t objectId) const { return objectId >= this->Surfaces.size(); }
+
+  /// Emitter id of light k in Lights (area lights use their surface's object id).
+  std::size_t LightEmitterId(std::size_t k) const { return this->NumberOfObjects() + k; }
 
   /// Empty string when the scene can be traced, otherwise what is wrong with it.
   std::string Validate() const;

@@ -1,0 +1,109 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Heterogeneous media from OpenVDB grids the test writes itself.
+#include "brume/LightTracer.h"
+#include "brume/VdbDensity.h"
+
+#include <gtest/gtest.h>
+#include <openvdb/openvdb.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+
+using namespace brume;
+
+namespace
+{
+std::string WriteSlabGrid(const std::string& name, float value, float voxel)
+{
+  openvdb::initialize();
+  auto grid = openvdb::FloatGrid::create(0.f);
+  grid->setName("density");
+  grid->setTransform(openvdb::math::Transform::createLinearTransform(voxel));
+  // 40 x 10 x 40 active voxels of `value`, indices y in [0, 9].
+  auto accessor = grid->getAccessor();
+  for (int i = -20; i < 20; ++i)
+    for (int j = 0; j < 10; ++j)
+      for (int k = -20; k < 20; ++k)
+        accessor.setValue(openvdb::Coord(i, j, k), value);
+  const std::string path = (std::filesystem::temp_directory_path() / name).string();
+  openvdb::io::File file(path);
+  file.write({ grid });
+  file.close();
+  return path;
+}
+}
+
+TEST(VdbDensity, LoadsTheGridSparselyWithItsTransform)
+{
+  const std::string path = WriteSlabGrid("brume-test-slab.vdb", 1.5f, 0.1f);
+  std::string error;
+  auto density = VdbDensity::Load(path, "", error);
+  ASSERT_TRUE(density) << error;
+  EXPECT_EQ(density->GetNumberOfActiveVoxels(), 40u * 10u * 40u);
+  // Voxel centres at j * 0.1, widened by one voxel for the interpolation.
+  EXPECT_NEAR(density->GetBounds().lower.y, -0.1f, 1e-6f);
+  EXPECT_NEAR(density->GetBounds().upper.y, 1.0f, 1e-6f);
+  EXPECT_NEAR(density->Evaluate({ 0.f, 0.45f, 0.f }), 1.5f, 1e-6f);
+  EXPECT_NEAR(density->Evaluate({ 0.f, -0.05f, 0.f }), 0.75f, 1e-6f);
+  EXPECT_EQ(density->GetMajorants().GlobalMax(), 1.5f);
+  EXPECT_EQ(VdbDensity::Load(path, "temperature", error), nullptr);
+  EXPECT_NE(error.find("no float grid named"), std::string::npos);
+}
+
+TEST(VdbDensity, BeerLambertThroughAVdbSlab)
+{
+  // Vertical optical depth: value * (10 voxels) * 0.1 m = 1.5 (the trilinear
+  // ramps at both faces integrate to exactly one voxel in all).
+  const std::string path = WriteSlabGrid("brume-test-slab2.vdb", 1.5f, 0.1f);
+  std::string error;
+  Medium smoke;
+  smoke.Name = "smoke";
+  smoke.SigmaA = Vec3(1.f);
+  smoke.SigmaS = Vec3(0.f);
+  smoke.SetDensity(VdbDensity::Load(path, "density", error));
+  ASSERT_TRUE(smoke.Density) << error;
+  Scene scene;
+  scene.Media = { smoke };
+  Light beam;
+  beam.Type = LightType::Directional;
+  beam.Direction = Vec3(0.f, -1.f, 0.f);
+  beam.BeamCenter = Vec3(0.013f, 3.f, -0.021f);
+  beam.BeamRadius = 0.5f;
+  scene.Lights = { beam };
+  ASSERT_EQ(scene.Validate(), "");
+  const RayCaster caster(scene);
+  const LightTracer tracer(scene, caster, TraceSettings());
+  const std::uint64_t n = 100000;
+  std::vector<Hit> hits;
+  TraceCounters counters;
+  double through = 0;
+  for (std::uint64_t i = 0; i < n; ++i)
+  {
+    ParticleExit exit;
+    tracer.TraceParticle(i, n, hits, counters, &exit);
+    through += (exit.Escaped && exit.Depth == 0) ? 1.0 : 0.0;
+  }
+  const double f = through / n, se = std::sqrt(f * (1 - f) / n);
+  EXPECT_NEAR(f, std::exp(-1.5), 4 * se);
+}
+
+TEST(VdbDensity, SharedSampleVolumesLoadWhenPresent)
+{
+  const std::filesystem::path dir =
+    std::filesystem::path(BRUME_SOURCE_DIR) / ".." / "shared" / "data" / "vdb";
+  if (!std::filesystem::exists(dir / "smoke.vdb"))
+  {
+    GTEST_SKIP() << "no ../shared/data/vdb here";
+  }
+  for (const char* name : { "smoke.vdb", "box.vdb", "dragon.vdb", "wdas_cloud_sixteenth.vdb" })
+  {
+    std::string error;
+    auto density = VdbDensity::Load((dir / name).string(), "", error);
+    ASSERT_TRUE(density) << name << ": " << error;
+    EXPECT_GT(density->GetNumberOfActiveVoxels(), 0u) << name;
+    EXPECT_GT(density->GetMajorants().GlobalMax(), 0.f) << name;
+    // Sparse media have empty blocks the tracker skips.
+    EXPECT_LE(density->NumberOfOccupiedBlocks(), density->GetMajorants().Max.size()) << name;
+  }
+}

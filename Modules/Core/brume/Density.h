@@ -1,0 +1,74 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Heterogeneous media: density fields and the majorants that make delta
+// tracking cheap where the medium is sparse.
+#ifndef brume_Density_h
+#define brume_Density_h
+
+#include "brume/Vec3.h"
+
+#include <array>
+#include <vector>
+
+namespace brume
+{
+
+/// Upper bounds of a density over a coarse grid of blocks covering a box.
+struct MajorantGrid
+{
+  Box Bounds;
+  std::array<int, 3> Dims{ 1, 1, 1 };
+  std::vector<float> Max{ 0.f };
+
+  float At(int i, int j, int k) const
+  {
+    return this->Max[(static_cast<std::size_t>(k) * this->Dims[1] + j) * this->Dims[0] + i];
+  }
+  /// Maximum over all blocks.
+  float GlobalMax() const;
+};
+
+/// A scalar density over a box; sigma(x) = density(x) * sigma (per channel).
+class DensityField
+{
+public:
+  virtual ~DensityField() = default;
+  /// Density at a world point inside GetBounds(); must be thread safe.
+  virtual float Evaluate(const Vec3& p) const = 0;
+  const Box& GetBounds() const { return this->Bounds; }
+  const MajorantGrid& GetMajorants() const { return this->Majorants; }
+  /// Number of non-empty majorant blocks (for reporting sparsity).
+  std::size_t NumberOfOccupiedBlocks() const;
+
+protected:
+  Box Bounds;
+  MajorantGrid Majorants;
+};
+
+/**
+ * Dense density on a regular grid (a vtkImageData's array): point values are
+ * interpolated trilinearly, cell values are constant per cell. Majorants are
+ * kept per block of BlockSize^3 cells.
+ */
+class GridDensity : public DensityField
+{
+public:
+  static constexpr int BlockSize = 8;
+
+  /// `dims` counts the values along each axis: points (>= 2 each) or cells (>= 1 each).
+  GridDensity(
+    const Box& bounds, std::array<int, 3> dims, std::vector<float> values, bool cellValues);
+  float Evaluate(const Vec3& p) const override;
+
+private:
+  float Value(int i, int j, int k) const
+  {
+    return this->Values[(static_cast<std::size_t>(k) * this->Dims[1] + j) * this->Dims[0] + i];
+  }
+  std::array<int, 3> Dims;
+  std::vector<float> Values;
+  bool CellValues;
+};
+
+} // namespace brume
+
+#endif

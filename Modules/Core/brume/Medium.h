@@ -1,0 +1,89 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Participating media and unbiased free-flight sampling through them.
+#ifndef brume_Medium_h
+#define brume_Medium_h
+
+#include "brume/Density.h"
+#include "brume/Random.h"
+#include "brume/Vec3.h"
+
+#include <memory>
+#include <string>
+
+namespace brume
+{
+
+struct Medium
+{
+  std::string Name;
+  /// Extent of a homogeneous medium; for a heterogeneous one, the density's
+  /// bounds (set by SetDensity). The boundary is index-matched.
+  Box Bounds;
+  /// Coefficients (m^-1) per channel; heterogeneous media scale them by the density.
+  Vec3 SigmaA{ 0.1f };
+  Vec3 SigmaS{ 1.f };
+  /// Henyey-Greenstein asymmetry, -1 < g < 1.
+  float G = 0.f;
+  /// Null for a homogeneous medium.
+  std::shared_ptr<const DensityField> Density;
+
+  void SetDensity(std::shared_ptr<const DensityField> density)
+  {
+    this->Density = std::move(density);
+    if (this->Density)
+    {
+      this->Bounds = this->Density->GetBounds();
+    }
+  }
+  bool IsHomogeneous() const { return !this->Density; }
+  Vec3 SigmaT() const { return this->SigmaA + this->SigmaS; }
+  /// Extinction at a point inside Bounds.
+  Vec3 SigmaTAt(const Vec3& p) const
+  {
+    return this->Density ? this->SigmaT() * this->Density->Evaluate(p) : this->SigmaT();
+  }
+  /// Single-scattering albedo sigma_s / sigma_t per channel (0 where sigma_t is 0).
+  Vec3 Albedo() const;
+  /// Empty when valid, otherwise what is wrong.
+  std::string Validate() const;
+};
+
+/**
+ * Delta tracking of one medium along one ray segment: tentative collisions
+ * are exponential steps with the local majorant, block by block (a 3D DDA
+ * over the density's majorant grid), so empty blocks cost nothing. For a
+ * homogeneous medium the majorant is sigma_t itself and every tentative
+ * collision of a colourless medium is real.
+ */
+class MediumTracker
+{
+public:
+  /// Starts tracking the ray o + t d, t in [0, tMax]; false when it misses the medium.
+  bool Begin(const Medium& medium, const Vec3& o, const Vec3& d, float tMax);
+  /// Moves to the next tentative collision; false when the segment ends first.
+  bool Next(Random& rng);
+
+  // Plain data, set by Begin(): trackers live on the tracer's hot path.
+  /// Distance of the current tentative collision.
+  float T;
+  /// Majorant (max over channels) at T.
+  float Majorant;
+  const Medium* Tracked;
+
+private:
+  bool Advance();
+  float BlockMajorant() const;
+
+  float TEnd;
+  float TBlockEnd;
+  float ScaleMax; // max over channels of sigma_t
+  const MajorantGrid* Grid;
+  int Cell[3];
+  int Step[3];
+  float TNext[3];
+  float TDelta[3];
+};
+
+} // namespace brume
+
+#endif

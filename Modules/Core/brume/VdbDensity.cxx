@@ -1,0 +1,180 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "brume/VdbDensity.h"
+
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/Interpolation.h>
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+
+namespace brume
+{
+
+struct VdbDensity::Internals
+{
+  openvdb::FloatGrid::Ptr Grid;
+  openvdb::Vec3d Origin;    // world position of index (0, 0, 0)
+  openvdb::Vec3d VoxelSize; // world size of a voxel along each axis
+  std::size_t Active = 0;
+};
+
+VdbDensity::VdbDensity()
+  : Impl(new Internals)
+{
+}
+
+VdbDensity::~VdbDensity() = default;
+
+std::size_t VdbDensity::GetNumberOfActiveVoxels() const
+{
+  return this->Impl->Active;
+}
+
+std::shared_ptr<VdbDensity> VdbDensity::Load(
+  const std::string& fileName, const std::string& gridName, std::string& error)
+{
+  static std::once_flag once;
+  std::call_once(once, [] { openvdb::initialize(); });
+  openvdb::FloatGrid::Ptr grid;
+  try
+  {
+    openvdb::io::File file(fileName);
+    file.open();
+    for (auto it = file.beginName(); it != file.endName(); ++it)
+    {
+      if (!gridName.empty() && it.gridName() != gridName)
+      {
+        continue;
+      }
+      openvdb::GridBase::Ptr base = file.readGrid(it.gridName());
+      grid = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
+      if (grid || !gridName.empty())
+      {
+        break;
+      }
+    }
+    file.close();
+  }
+  catch (const std::exception& e)
+  {
+    error = "cannot read OpenVDB file '" + fileName + "': " + e.what();
+    return nullptr;
+  }
+  if (!grid)
+  {
+    error = "OpenVDB file '" + fileName + "' has no float grid" +
+      (gridName.empty() ? std::string() : " named '" + gridName + "'");
+    return nullptr;
+  }
+  const openvdb::math::Transform& transform = grid->transform();
+  const auto map = transform.baseMap();
+  if (!map->isType<openvdb::math::ScaleTranslateMap>() &&
+    !map->isType<openvdb::math::UniformScaleTranslateMap>() &&
+    !map->isType<openvdb::math::ScaleMap>() && !map->isType<openvdb::math::UniformScaleMap>() &&
+    !map->isType<openvdb::math::TranslationMap>())
+  {
+    error = "OpenVDB grid '" + grid->getName() +
+      "' has a transform that is not an axis-aligned scale and translation";
+    return nullptr;
+  }
+  auto density = std::shared_ptr<VdbDensity>(new VdbDensity);
+  Internals& impl = *density->Impl;
+  impl.Origin = transform.indexToWorld(openvdb::Vec3d(0.0));
+  impl.VoxelSize = transform.indexToWorld(openvdb::Vec3d(1.0)) - impl.Origin;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (!(impl.VoxelSize[a] > 0.0))
+    {
+      error = "OpenVDB grid '" + grid->getName() + "' has a non-positive voxel size";
+      return nullptr;
+    }
+  }
+  const openvdb::CoordBBox bbox = grid->evalActiveVoxelBoundingBox();
+  if (bbox.empty() || grid->activeVoxelCount() == 0)
+  {
+    error = "OpenVDB grid '" + grid->getName() + "' has no active voxels";
+    return nullptr;
+  }
+  const float background = grid->background();
+  if (!(background >= 0.f) || !std::isfinite(background))
+  {
+    error = "OpenVDB grid '" + grid->getName() + "' has a negative or non-finite background";
+    return nullptr;
+  }
+  impl.Active = static_cast<std::size_t>(grid->activeVoxelCount());
+
+  // World box of the active voxels (voxel centres sit at integer indices),
+  // widened by one voxel: trilinear interpolation reaches that far.
+  const openvdb::Coord lo = bbox.min(), hi = bbox.max();
+  for (int a = 0; a < 3; ++a)
+  {
+    density->Bounds.lower[a] =
+      static_cast<float>(impl.Origin[a] + (lo[a] - 1.0) * impl.VoxelSize[a]);
+    density->Bounds.upper[a] =
+      static_cast<float>(impl.Origin[a] + (hi[a] + 1.0) * impl.VoxelSize[a]);
+  }
+  // Majorants per 8^3 block of the active box: a voxel's value reaches the
+  // trilinear samples within one voxel of its centre.
+  constexpr int B = 8;
+  MajorantGrid& mg = density->Majorants;
+  mg.Bounds = density->Bounds;
+  const openvdb::Coord dim = bbox.dim();
+  for (int a = 0; a < 3; ++a)
+  {
+    mg.Dims[a] = (dim[a] + 2 + B - 1) / B; // the box spans dim + 2 voxels
+  }
+  // Blocks are B voxels wide: the majorant grid's box is a whole number of blocks.
+  for (int a = 0; a < 3; ++a)
+  {
+    mg.Bounds.upper[a] = static_cast<float>(
+      mg.Bounds.lower[a] + static_cast<double>(mg.Dims[a]) * B * impl.VoxelSize[a]);
+  }
+  mg.Max.assign(static_cast<std::size_t>(mg.Dims[0]) * mg.Dims[1] * mg.Dims[2], background);
+  auto blockOf = [&](int a, double index)
+  {
+    const int b = static_cast<int>(std::floor((index - (lo[a] - 1.0)) / B));
+    return std::min(mg.Dims[a] - 1, std::max(0, b));
+  };
+  for (auto it = grid->cbeginValueOn(); it; ++it)
+  {
+    const float v = *it;
+    if (!(v >= 0.f) || !std::isfinite(v))
+    {
+      error = "OpenVDB grid '" + grid->getName() + "' has negative or non-finite densities";
+      return nullptr;
+    }
+    if (v <= background)
+    {
+      continue;
+    }
+    openvdb::CoordBBox region;
+    it.getBoundingBox(region);
+    int b0[3], b1[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      b0[a] = blockOf(a, region.min()[a] - 1.0);
+      b1[a] = blockOf(a, region.max()[a] + 1.0);
+    }
+    for (int k = b0[2]; k <= b1[2]; ++k)
+      for (int j = b0[1]; j <= b1[1]; ++j)
+        for (int i = b0[0]; i <= b1[0]; ++i)
+        {
+          float& m = mg.Max[(static_cast<std::size_t>(k) * mg.Dims[1] + j) * mg.Dims[0] + i];
+          m = std::max(m, v);
+        }
+  }
+  impl.Grid = grid;
+  return density;
+}
+
+float VdbDensity::Evaluate(const Vec3& p) const
+{
+  const Internals& impl = *this->Impl;
+  const openvdb::Vec3R index((p.x - impl.Origin[0]) / impl.VoxelSize[0],
+    (p.y - impl.Origin[1]) / impl.VoxelSize[1], (p.z - impl.Origin[2]) / impl.VoxelSize[2]);
+  // The tree (not a cached accessor) is safe to share between threads.
+  return openvdb::tools::BoxSampler::sample(impl.Grid->tree(), index);
+}
+
+} // namespace brume

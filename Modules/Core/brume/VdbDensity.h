@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Density from an OpenVDB FloatGrid, used sparsely: no dense copy is made;
+// majorants are kept per 8^3 block of active voxels.
+#ifndef brume_VdbDensity_h
+#define brume_VdbDensity_h
+
+#include "brume/Density.h"
+
+#include <memory>
+#include <string>
+
+namespace brume
+{
+
+class VdbDensity : public DensityField
+{
+public:
+  /**
+   * Loads grid `gridName` (the first float grid when empty) from a .vdb file.
+   * Returns nullptr and sets `error` when the file cannot be read, has no such
+   * float grid, no active voxels, negative or non-finite values, or a
+   * transform that is not an axis-aligned scale and translation.
+   */
+  static std::shared_ptr<VdbDensity> Load(
+    const std::string& fileName, const std::string& gridName, std::string& error);
+
+  ~VdbDensity() override;
+  float Evaluate(const Vec3& p) const override;
+  /// Active voxels of the grid.
+  std::size_t GetNumberOfActiveVoxels() const;
+
+private:
+  VdbDensity();
+  struct Internals;
+  std::unique_ptr<Internals> Impl;
+};
+
+} // namespace brume
+
+#endif
