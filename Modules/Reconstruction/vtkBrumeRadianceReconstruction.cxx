@@ -256,18 +256,16 @@ int vtkBrumeRadianceReconstruction::RequestData(
       const vtkIdType slice = static_cast<vtkIdType>(res[0]) * res[1];
       const vtkIdType voxels = slice * res[2];
       auto values = NewRGB("SourceRadiance", voxels);
+      auto extinction = NewRGB("Extinction", voxels);
       float* out = values->GetPointer(0);
+      float* sigma = extinction->GetPointer(0);
       vtkSMPTools::For(0, res[2],
         [&](vtkIdType begin, vtkIdType end)
         {
           radiance.Estimate(static_cast<std::size_t>(begin * slice),
-            static_cast<std::size_t>(end * slice), threshold, out + 3 * begin * slice);
+            static_cast<std::size_t>(end * slice), threshold, out + 3 * begin * slice,
+            sigma + 3 * begin * slice);
         });
-      auto extinction = NewRGB("Extinction", voxels);
-      const brume::Vec3 sigmaT = medium.SigmaT();
-      extinction->FillComponent(0, sigmaT.x);
-      extinction->FillComponent(1, sigmaT.y);
-      extinction->FillComponent(2, sigmaT.z);
       vtkNew<vtkImageData> texture;
       texture->SetDimensions(res[0] + 1, res[1] + 1, res[2] + 1);
       texture->SetOrigin(medium.Bounds.lower.x, medium.Bounds.lower.y, medium.Bounds.lower.z);

@@ -47,6 +47,7 @@ struct TraceBlocks
       const vtkTypeInt64 last = std::min(first + ParticlesPerBlock, this->Particles);
       std::vector<brume::Hit>& hits = this->Hits[b];
       hits.reserve(static_cast<std::size_t>(4 * (last - first)));
+      hits.clear();
       for (vtkTypeInt64 i = first; i < last; ++i)
       {
         this->Tracer.TraceParticle(static_cast<std::uint64_t>(i),
@@ -245,7 +246,13 @@ int vtkBrumeLightTracer::RequestData(
   for (vtkTypeInt64 k = 0; k < batches && !this->GetAbortExecute(); ++k)
   {
     const vtkTypeInt64 begin = blocks * k / batches, end = blocks * (k + 1) / batches;
-    blockHits.assign(static_cast<std::size_t>(end - begin), {});
+    // Block buffers are reused from batch to batch: their pages are already
+    // mapped, so storing a hit costs no page fault.
+    blockHits.resize(static_cast<std::size_t>(end - begin));
+    for (auto& block : blockHits)
+    {
+      block.clear();
+    }
     counters.assign(static_cast<std::size_t>(end - begin), {});
     TraceBlocks functor{ tracer, blockHits, counters, particles, begin };
     vtkSMPTools::For(0, end - begin, functor);
@@ -260,7 +267,7 @@ int vtkBrumeLightTracer::RequestData(
       vtkErrorMacro("Out of memory storing " << stored + batchHits << " particle hits.");
       return 0;
     }
-    // Copy the blocks to their places in parallel, freeing each.
+    // Copy the blocks to their places in parallel.
     std::vector<vtkIdType> offsets(blockHits.size() + 1, stored);
     for (std::size_t b = 0; b < blockHits.size(); ++b)
     {
@@ -272,7 +279,6 @@ int vtkBrumeLightTracer::RequestData(
         for (vtkIdType b = first; b < last; ++b)
         {
           out.Write(offsets[b], blockHits[b]);
-          std::vector<brume::Hit>().swap(blockHits[b]);
         }
       });
     stored = offsets.back();

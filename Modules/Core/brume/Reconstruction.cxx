@@ -138,7 +138,7 @@ void MediumRadiance::Finalize()
 }
 
 void MediumRadiance::Estimate(
-  std::size_t begin, std::size_t end, double thresholdFlux, float* rgb) const
+  std::size_t begin, std::size_t end, double thresholdFlux, float* rgb, float* extinction) const
 {
   AdaptiveRegionSettings settings;
   settings.Refinement = { this->Refinement, this->Refinement, this->Refinement };
@@ -147,8 +147,11 @@ void MediumRadiance::Estimate(
   const auto& dims = this->Cells.GetDimensions();
   const double cellVolume = static_cast<double>(this->MediumRef.Bounds.Volume()) /
     (static_cast<double>(dims[0]) * dims[1] * dims[2]);
-  const Vec3 sigmaT = this->MediumRef.SigmaT();
   const Vec3 albedo = this->MediumRef.Albedo();
+  const Box& box = this->MediumRef.Bounds;
+  const Vec3 voxelSize = box.Extent() /
+    Vec3(static_cast<float>(this->Resolution[0]), static_cast<float>(this->Resolution[1]),
+      static_cast<float>(this->Resolution[2]));
   const std::size_t nx = this->Resolution[0], nxy = nx * this->Resolution[1];
   for (std::size_t v = begin; v < end; ++v)
   {
@@ -156,11 +159,27 @@ void MediumRadiance::Estimate(
       static_cast<int>(v / nxy) };
     double perCell[4];
     EstimateTexel(this->Table, dims, voxel, settings, perCell);
+    // The voxel's extinction: sigma_t, times the density's mean over 2^3 points.
+    Vec3 sigmaT = this->MediumRef.SigmaT();
+    if (this->MediumRef.Density)
+    {
+      float mean = 0.f;
+      for (int k = 0; k < 8; ++k)
+      {
+        const Vec3 offset(
+          0.25f + 0.5f * (k & 1), 0.25f + 0.5f * ((k >> 1) & 1), 0.25f + 0.5f * (k >> 2));
+        const Vec3 corner(
+          static_cast<float>(voxel[0]), static_cast<float>(voxel[1]), static_cast<float>(voxel[2]));
+        mean += this->MediumRef.Density->Evaluate(box.lower + (corner + offset) * voxelSize) / 8.f;
+      }
+      sigmaT = sigmaT * mean;
+    }
     for (int c = 0; c < 3; ++c)
     {
       // J = albedo * sum(p Phi) / V; S = J / sigma_t.
       const double j = albedo[c] * perCell[c] / cellVolume;
       rgb[3 * (v - begin) + c] = sigmaT[c] > 0.f ? static_cast<float>(j / sigmaT[c]) : 0.f;
+      extinction[3 * (v - begin) + c] = sigmaT[c];
     }
   }
 }

@@ -75,8 +75,10 @@ public:
   void AddHits(const Hit* hits, std::size_t count, const Vec3& eye);
   void Finalize();
 
-  /// Source radiance S (RGB) of voxels [begin, end) in x-fastest order.
-  void Estimate(std::size_t begin, std::size_t end, double thresholdFlux, float* rgb) const;
+  /// Source radiance S (RGB) and extinction sigma_t (RGB, the mean over the
+  /// voxel for heterogeneous media) of voxels [begin, end) in x-fastest order.
+  void Estimate(
+    std::size_t begin, std::size_t end, double thresholdFlux, float* rgb, float* extinction) const;
 
   std::array<int, 3> GetResolution() const { return this->Resolution; }
 
