@@ -16,6 +16,7 @@
 #include "vtkStringArray.h"
 #include "vtkTexture.h"
 #include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
 
 vtkStandardNewMacro(vtkBrumeSceneActors);
 
@@ -111,6 +112,7 @@ bool vtkBrumeSceneActors::AddToRenderer(vtkRenderer* renderer)
       mapper->SetInputData(image);
       vtkNew<vtkVolume> volume;
       volume->SetMapper(mapper);
+      volume->GetProperty()->SetInterpolationTypeToLinear();
       renderer->AddVolume(volume);
       this->Props->AddItem(volume);
     }

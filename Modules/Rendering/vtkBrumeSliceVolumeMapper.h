@@ -7,18 +7,25 @@
  * medium's box is cut by planes perpendicular to the view direction (the
  * slices of a cube of side the medium's diagonal, clipped to the medium),
  * drawn back to front. Each slice is a slab of thickness Delta along the
- * viewing ray that radiates the voxel's source radiance S with opacity
- * alpha = 1 - exp(-sigma_t Delta); premultiplied "over" compositing then
- * gives L = sum T_before S (1 - exp(-sigma_t Delta)) + T_total L_behind.
+ * viewing ray radiating the voxel's source radiance S with, per colour
+ * channel, opacity alpha = 1 - exp(-sigma_t Delta); premultiplied compositing
+ * gives L = sum T_before S (1 - exp(-sigma_t Delta)) + T_total L_behind,
+ * colour by colour (chromatic extinction through dual-source blending).
  * Delta is corrected per fragment for perspective (1/cos of the angle to the
  * view direction). Slices are depth tested against the opaque geometry
  * already drawn, without writing depth, and start at the near plane when the
- * camera is inside the medium.
+ * camera is inside the medium. All the slice volumes of a renderer are
+ * composited together, their slices merged in depth order, so overlapping
+ * media blend correctly.
  *
  * Input: a vtkImageData whose cells are the voxels, with cell data
  * `SourceRadiance` (3 components, W m^-2 sr^-1) and `Extinction` (1 or 3
- * equal components, m^-1), as vtkBrumeRadianceReconstruction produces.
- * The volume's vtkVolumeProperty is not used: the data are physical.
+ * components, m^-1), as vtkBrumeRadianceReconstruction produces. The
+ * volume property's interpolation type (nearest or linear) is honoured; its
+ * transfer functions are not used: the data are physical.
+ *
+ * This class is the interface; New() returns the OpenGL implementation
+ * (vtkBrumeOpenGLSliceVolumeMapper) through VTK's object factory.
  *
  * @sa vtkBrumeRadianceReconstruction vtkBrumeSceneActors
  */
@@ -28,7 +35,9 @@
 #include "vtkBrumeRenderingModule.h" // For export macro
 #include "vtkVolumeMapper.h"
 
-#include <memory> // For std::unique_ptr
+#include <string> // For ValidateInput
+
+class vtkImageData;
 
 class VTKBRUMERENDERING_EXPORT vtkBrumeSliceVolumeMapper : public vtkVolumeMapper
 {
@@ -40,18 +49,22 @@ public:
   ///@{
   /**
    * Distance between slices along the view direction, in world units.
-   * 0 (the default) uses half the smallest voxel spacing. Negative values
-   * are an error.
+   * 0 (the default) uses half the smallest voxel size, which the volume's
+   * resolution sets. Negative values are an error.
    */
   vtkSetMacro(SliceSpacing, double);
   vtkGetMacro(SliceSpacing, double);
   ///@}
 
-  /// Number of slices drawn by the last render.
+  /// Number of slices of this volume drawn by the last render.
   vtkGetMacro(LastNumberOfSlices, int);
 
-  void Render(vtkRenderer* ren, vtkVolume* vol) override;
-  void ReleaseGraphicsResources(vtkWindow* window) override;
+  /**
+   * Empty when `image` has what the mapper draws, otherwise why not (missing
+   * arrays, no cells, non-positive spacing). Values are checked when they
+   * are uploaded (negative or non-finite extinction is an error).
+   */
+  static std::string ValidateInput(vtkImageData* image);
 
 protected:
   vtkBrumeSliceVolumeMapper();
@@ -65,9 +78,6 @@ protected:
 private:
   vtkBrumeSliceVolumeMapper(const vtkBrumeSliceVolumeMapper&) = delete;
   void operator=(const vtkBrumeSliceVolumeMapper&) = delete;
-
-  struct Internals;
-  std::unique_ptr<Internals> Impl;
 };
 
 #endif

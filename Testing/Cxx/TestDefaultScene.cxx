@@ -52,8 +52,17 @@ struct Frame
   vtkSmartPointer<vtkBrumeFloatImageCapture> Capture;
 };
 
+// Where the camera is: the scene's own viewpoint, or inside the medium.
+struct View
+{
+  double Position[3];
+  double FocalPoint[3];
+};
+constexpr View Outside{ { 0, 0, 4 }, { 0, 0, 0 } };
+constexpr View Inside{ { 0.2, -0.3, 0.45 }, { -0.6, 0.7, -1.0 } };
+
 // Renders the default scene, optionally without its medium or one object.
-Frame Render(bool medium, const std::string& dropObject)
+Frame Render(bool medium, const std::string& dropObject, const View& view = Outside)
 {
   vtkNew<vtkBrumeDefaultSceneSource> source;
   source->SetIncludeMedium(medium);
@@ -81,7 +90,7 @@ Frame Render(bool medium, const std::string& dropObject)
   vtkNew<vtkBrumeRadianceReconstruction> reconstruction;
   reconstruction->SetInputDataObject(0, scene);
   reconstruction->SetInputConnection(1, tracer->GetOutputPort());
-  reconstruction->SetEyePosition(0, 0, 4);
+  reconstruction->SetEyePosition(view.Position[0], view.Position[1], view.Position[2]);
   reconstruction->Update();
 
   Frame frame;
@@ -96,8 +105,8 @@ Frame Render(bool medium, const std::string& dropObject)
   frame.Actors->SetInputData(reconstruction->GetOutput());
   frame.Actors->AddToRenderer(renderer);
   vtkCamera* camera = renderer->GetActiveCamera();
-  camera->SetPosition(0, 0, 4);
-  camera->SetFocalPoint(0, 0, 0);
+  camera->SetPosition(view.Position[0], view.Position[1], view.Position[2]);
+  camera->SetFocalPoint(view.FocalPoint[0], view.FocalPoint[1], view.FocalPoint[2]);
   camera->SetViewUp(0, 1, 0);
   camera->SetViewAngle(40);
   renderer->ResetCameraClippingRange();
@@ -146,7 +155,13 @@ double StrictError(const std::string& baseline, const Frame& frame)
 
 int TestDefaultScene(int argc, char* argv[])
 {
-  const Frame frame = Render(true, "");
+  // `inside`: the camera inside the medium (its own baseline).
+  bool inside = false;
+  for (int i = 1; i < argc; ++i)
+  {
+    inside = inside || std::string(argv[i]) == "inside";
+  }
+  const Frame frame = Render(true, "", inside ? Inside : Outside);
   // VTK's regression test: reports, and writes the test image for a new baseline.
   vtkNew<vtkTesting> testing;
   for (int i = 0; i < argc; ++i)
@@ -165,6 +180,10 @@ int TestDefaultScene(int argc, char* argv[])
     std::cerr << "Failed Image Test: strict image error " << error << " > " << StrictThreshold
               << "\n";
     return EXIT_FAILURE;
+  }
+  if (inside)
+  {
+    return EXIT_SUCCESS;
   }
   // The mistakes the comparison must catch.
   const double noMedium = StrictError(baseline, Render(false, ""));

@@ -19,7 +19,7 @@
 #ifndef vtkBrumeFloatImageCapture_h
 #define vtkBrumeFloatImageCapture_h
 
-#include "vtkBrumeRenderingModule.h" // For export macro
+#include "vtkBrumeRenderingOpenGL2Module.h" // For export macro
 #include "vtkObject.h"
 #include "vtkSmartPointer.h" // For return value
 
@@ -27,7 +27,7 @@ class vtkFramebufferPass;
 class vtkImageData;
 class vtkRenderer;
 
-class VTKBRUMERENDERING_EXPORT vtkBrumeFloatImageCapture : public vtkObject
+class VTKBRUMERENDERINGOPENGL2_EXPORT vtkBrumeFloatImageCapture : public vtkObject
 {
 public:
   static vtkBrumeFloatImageCapture* New();

@@ -1,0 +1,38 @@
+//VTK::System::Dec
+#extension GL_ARB_explicit_attrib_location : enable
+#extension GL_ARB_blend_func_extended : enable
+// Slice volume mapper (Jimenez & Pueyo 2003, section 4): each slice is a slab
+// of thickness Delta along the viewing ray that radiates its source radiance
+// S and lets T = exp(-sigma_t Delta) of the light behind through, per colour
+// channel. Dual-source blending (ONE, SRC1_COLOR) composites back to front:
+// C = S (1 - T) + T C_behind.
+in vec3 positionWC;
+in vec3 texcoord;
+
+uniform sampler3D sourceTexture;     // S = J / sigma_t (W m^-2 sr^-1)
+uniform sampler3D extinctionTexture; // sigma_t (m^-1)
+uniform vec3 eyeWC;
+uniform vec3 viewDirectionWC;
+uniform float sliceSpacing;
+uniform int perspective;
+
+layout(location = 0, index = 0) out vec4 fragColor;
+layout(location = 0, index = 1) out vec4 fragTransmittance;
+
+void main()
+{
+  vec3 source = texture(sourceTexture, texcoord).rgb;
+  vec3 sigmaT = texture(extinctionTexture, texcoord).rgb;
+  // Distance between two slice planes along this fragment's viewing ray:
+  // it grows as 1/cos(angle to the view direction) in perspective.
+  float delta = sliceSpacing;
+  if (perspective != 0)
+  {
+    vec3 ray = positionWC - eyeWC;
+    delta = sliceSpacing * length(ray) / max(dot(ray, viewDirectionWC), 1e-6);
+  }
+  vec3 transmittance = exp(-sigmaT * delta);
+  float meanTransmittance = dot(transmittance, vec3(1.0 / 3.0));
+  fragColor = vec4(source * (vec3(1.0) - transmittance), 1.0 - meanTransmittance);
+  fragTransmittance = vec4(transmittance, meanTransmittance);
+}

@@ -1,0 +1,475 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkBrumeOpenGLSliceVolumeMapper.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkCamera.h"
+#include "vtkCellData.h"
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationIntegerKey.h"
+#include "vtkMatrix3x3.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLBufferObject.h"
+#include "vtkOpenGLCamera.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkOpenGLVertexArrayObject.h"
+#include "vtkRenderer.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+#include "vtkVolume.h"
+#include "vtkVolumeCollection.h"
+#include "vtkVolumeProperty.h"
+#include "vtk_glew.h"
+
+#include "vtkBrumeSliceVolumeFS.h"
+#include "vtkBrumeSliceVolumeVS.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkBrumeOpenGLSliceVolumeMapper);
+vtkInformationKeyMacro(vtkBrumeOpenGLSliceVolumeMapper, FRAME, Integer);
+vtkInformationKeyMacro(vtkBrumeOpenGLSliceVolumeMapper, DRAWN_FRAME, Integer);
+
+namespace
+{
+using Vec = std::array<double, 3>;
+
+double Dot(const Vec& a, const Vec& b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+Vec Transform(vtkMatrix4x4* m, const Vec& p)
+{
+  const double in[4] = { p[0], p[1], p[2], 1.0 };
+  double out[4];
+  m->MultiplyPoint(in, out);
+  return { out[0] / out[3], out[1] / out[3], out[2] / out[3] };
+}
+
+// The twelve edges of a box, as pairs of corner indices (bit i: upper on axis i).
+constexpr int BoxEdges[12][2] = { { 0, 1 }, { 2, 3 }, { 4, 5 }, { 6, 7 }, { 0, 2 }, { 1, 3 },
+  { 4, 6 }, { 5, 7 }, { 0, 4 }, { 1, 5 }, { 2, 6 }, { 3, 7 } };
+
+// Counts the renderer's frames in its information (StartEvent).
+void CountFrame(vtkObject* caller, unsigned long, void*, void*)
+{
+  vtkInformation* info = static_cast<vtkRenderer*>(caller)->GetInformation();
+  const int frame = info->Has(vtkBrumeOpenGLSliceVolumeMapper::FRAME())
+    ? info->Get(vtkBrumeOpenGLSliceVolumeMapper::FRAME())
+    : 0;
+  info->Set(vtkBrumeOpenGLSliceVolumeMapper::FRAME(), frame + 1);
+}
+}
+
+struct vtkBrumeOpenGLSliceVolumeMapper::Slice
+{
+  vtkBrumeOpenGLSliceVolumeMapper* Owner;
+  double Depth;
+  float Spacing;
+  std::size_t First; // in floats, into the collected vertices
+  std::size_t Floats;
+};
+
+struct vtkBrumeOpenGLSliceVolumeMapper::Internals
+{
+  vtkNew<vtkTextureObject> Source;
+  vtkNew<vtkTextureObject> Extinction;
+  vtkTimeStamp TextureTime;
+  int Interpolation = -1;
+  vtkOpenGLRenderWindow* Context = nullptr;
+  // The leader's buffers for all volumes of the renderer.
+  vtkNew<vtkOpenGLVertexArrayObject> VAO;
+  vtkNew<vtkOpenGLBufferObject> VBO;
+  std::vector<float> Collected; // x, y, z (world), s, t, r (texture) per vertex
+  std::vector<float> Sorted;
+};
+
+vtkBrumeOpenGLSliceVolumeMapper::vtkBrumeOpenGLSliceVolumeMapper()
+  : Impl(new Internals)
+{
+}
+
+vtkBrumeOpenGLSliceVolumeMapper::~vtkBrumeOpenGLSliceVolumeMapper() = default;
+
+void vtkBrumeOpenGLSliceVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->Impl->Source->ReleaseGraphicsResources(window);
+  this->Impl->Extinction->ReleaseGraphicsResources(window);
+  this->Impl->VAO->ReleaseGraphicsResources();
+  this->Impl->VBO->ReleaseGraphicsResources();
+  this->Impl->Context = nullptr;
+  this->Impl->TextureTime = vtkTimeStamp();
+}
+
+void vtkBrumeOpenGLSliceVolumeMapper::Render(vtkRenderer* ren, vtkVolume*)
+{
+  if (!vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow()))
+  {
+    vtkErrorMacro("Not an OpenGL render window: nothing drawn.");
+    return;
+  }
+  // The first slice mapper called in a frame draws every slice volume of the
+  // renderer, their slices merged in depth order; the others have nothing
+  // left to do. Each volume's own problems are reported by its mapper.
+  vtkInformation* info = ren->GetInformation();
+  if (!info->Has(FRAME()))
+  {
+    vtkNew<vtkCallbackCommand> counter;
+    counter->SetCallback(CountFrame);
+    ren->AddObserver(vtkCommand::StartEvent, counter);
+    info->Set(FRAME(), 1);
+    info->Set(DRAWN_FRAME(), 0);
+  }
+  if (info->Get(DRAWN_FRAME()) == info->Get(FRAME()))
+  {
+    return;
+  }
+  info->Set(DRAWN_FRAME(), info->Get(FRAME()));
+  this->DrawAll(ren);
+}
+
+bool vtkBrumeOpenGLSliceVolumeMapper::PrepareSlices(
+  vtkRenderer* ren, vtkVolume* vol, std::vector<Slice>& slices)
+{
+  this->LastNumberOfSlices = 0;
+  if (this->GetInputAlgorithm())
+  {
+    this->GetInputAlgorithm()->Update();
+  }
+  auto* input = vtkImageData::SafeDownCast(this->GetInput());
+  const std::string problem = ValidateInput(input);
+  if (!problem.empty())
+  {
+    vtkErrorMacro("Cannot draw this medium: " << problem << ".");
+    return false;
+  }
+  if (this->SliceSpacing < 0.0 || !std::isfinite(this->SliceSpacing))
+  {
+    vtkErrorMacro("SliceSpacing must be >= 0, not " << this->SliceSpacing << ": nothing drawn.");
+    return false;
+  }
+  auto* renWin = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
+  Internals& impl = *this->Impl;
+  if (impl.Context != renWin)
+  {
+    this->ReleaseGraphicsResources(impl.Context ? impl.Context : renWin);
+    impl.Context = renWin;
+  }
+  int pointDims[3];
+  input->GetDimensions(pointDims);
+  const int dims[3] = { pointDims[0] - 1, pointDims[1] - 1, pointDims[2] - 1 };
+  const int interpolation =
+    vol->GetProperty() ? vol->GetProperty()->GetInterpolationType() : VTK_LINEAR_INTERPOLATION;
+
+  // Two RGB float 3D textures: source radiance and extinction.
+  if (impl.TextureTime < input->GetMTime() || impl.TextureTime < this->GetMTime() ||
+    !impl.Source->GetHandle() || impl.Interpolation != interpolation)
+  {
+    const vtkIdType cells = static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2];
+    vtkDataArray* source = input->GetCellData()->GetArray("SourceRadiance");
+    vtkDataArray* extinction = input->GetCellData()->GetArray("Extinction");
+    std::vector<float> s(3 * static_cast<std::size_t>(cells)), e(s.size());
+    const int ne = extinction->GetNumberOfComponents();
+    for (vtkIdType i = 0; i < cells; ++i)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        s[3 * i + c] = static_cast<float>(source->GetComponent(i, c));
+        e[3 * i + c] = static_cast<float>(extinction->GetComponent(i, ne == 3 ? c : 0));
+        if (!(e[3 * i + c] >= 0.f) || !std::isfinite(e[3 * i + c]) || !std::isfinite(s[3 * i + c]))
+        {
+          vtkErrorMacro("Cannot draw this medium: its extinction must be finite and "
+                        "non-negative and its source radiance finite (cell "
+            << i << ").");
+          return false;
+        }
+      }
+    }
+    const int filter = interpolation == VTK_NEAREST_INTERPOLATION ? vtkTextureObject::Nearest
+                                                                  : vtkTextureObject::Linear;
+    for (vtkTextureObject* texture : { impl.Source.GetPointer(), impl.Extinction.GetPointer() })
+    {
+      texture->SetContext(renWin);
+      texture->SetWrapS(vtkTextureObject::ClampToEdge);
+      texture->SetWrapT(vtkTextureObject::ClampToEdge);
+      texture->SetWrapR(vtkTextureObject::ClampToEdge);
+      texture->SetMinificationFilter(filter);
+      texture->SetMagnificationFilter(filter);
+    }
+    if (!impl.Source->Create3DFromRaw(static_cast<unsigned int>(dims[0]),
+          static_cast<unsigned int>(dims[1]), static_cast<unsigned int>(dims[2]), 3, VTK_FLOAT,
+          s.data()) ||
+      !impl.Extinction->Create3DFromRaw(static_cast<unsigned int>(dims[0]),
+        static_cast<unsigned int>(dims[1]), static_cast<unsigned int>(dims[2]), 3, VTK_FLOAT,
+        e.data()))
+    {
+      vtkErrorMacro("Could not create the 3D textures (" << dims[0] << " x " << dims[1] << " x "
+                                                         << dims[2] << "): nothing drawn.");
+      return false;
+    }
+    impl.Interpolation = interpolation;
+    impl.TextureTime.Modified();
+  }
+
+  // Slice planes perpendicular to the view direction through the medium's box.
+  vtkCamera* camera = ren->GetActiveCamera();
+  vtkMatrix4x4* model = vol->GetMatrix();
+  const double* eyePtr = camera->GetPosition();
+  const Vec eye{ eyePtr[0], eyePtr[1], eyePtr[2] };
+  double dopPtr[3];
+  camera->GetDirectionOfProjection(dopPtr);
+  const Vec dop{ dopPtr[0], dopPtr[1], dopPtr[2] };
+  double bounds[6];
+  input->GetBounds(bounds);
+  Vec corners[8], cornersWC[8];
+  double dmin = VTK_DOUBLE_MAX, dmax = -VTK_DOUBLE_MAX;
+  for (int c = 0; c < 8; ++c)
+  {
+    corners[c] = { bounds[(c & 1) ? 1 : 0], bounds[(c & 2) ? 3 : 2], bounds[(c & 4) ? 5 : 4] };
+    cornersWC[c] = Transform(model, corners[c]);
+    const double d =
+      Dot({ cornersWC[c][0] - eye[0], cornersWC[c][1] - eye[1], cornersWC[c][2] - eye[2] }, dop);
+    dmin = std::min(dmin, d);
+    dmax = std::max(dmax, d);
+  }
+  // The camera may be inside the medium: start at the near plane.
+  const double nearPlane = camera->GetClippingRange()[0];
+  dmin = std::max(dmin, nearPlane * (1.0 + 1e-6));
+  if (!(dmax > dmin))
+  {
+    return true; // entirely behind the camera
+  }
+  double voxel = VTK_DOUBLE_MAX;
+  const double* spacing = input->GetSpacing();
+  for (int a = 0; a < 3; ++a)
+  {
+    const double axis = std::sqrt(model->GetElement(0, a) * model->GetElement(0, a) +
+      model->GetElement(1, a) * model->GetElement(1, a) +
+      model->GetElement(2, a) * model->GetElement(2, a));
+    voxel = std::min(voxel, axis * spacing[a]);
+  }
+  const double requested = this->SliceSpacing > 0.0 ? this->SliceSpacing : 0.5 * voxel;
+  const int count =
+    static_cast<int>(std::min(8192.0, std::max(1.0, std::ceil((dmax - dmin) / requested))));
+  // An exact partition of [dmin, dmax] into slabs; each slice at its slab's centre.
+  const double delta = (dmax - dmin) / count;
+
+  const Vec extent{ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4] };
+  Vec u;
+  {
+    Vec e{ 0, 0, 0 };
+    e[std::abs(dop[0]) < 0.9 ? 0 : 1] = 1;
+    const double k = Dot(e, dop);
+    u = { e[0] - k * dop[0], e[1] - k * dop[1], e[2] - k * dop[2] };
+    const double n = std::sqrt(Dot(u, u));
+    u = { u[0] / n, u[1] / n, u[2] / n };
+  }
+  const Vec v{ dop[1] * u[2] - dop[2] * u[1], dop[2] * u[0] - dop[0] * u[2],
+    dop[0] * u[1] - dop[1] * u[0] };
+  std::vector<float>& out = this->Impl->Collected;
+  for (int k = 0; k < count; ++k)
+  {
+    const double d = dmin + (k + 0.5) * delta;
+    double f[8];
+    for (int c = 0; c < 8; ++c)
+    {
+      f[c] =
+        Dot({ cornersWC[c][0] - eye[0], cornersWC[c][1] - eye[1], cornersWC[c][2] - eye[2] }, dop) -
+        d;
+    }
+    struct Point
+    {
+      Vec World, Data;
+      double Angle;
+    };
+    Point polygon[6];
+    int n = 0;
+    for (const auto& edge : BoxEdges)
+    {
+      const double fa = f[edge[0]], fb = f[edge[1]];
+      if ((fa < 0.0) == (fb < 0.0) || n == 6)
+      {
+        continue;
+      }
+      const double t = fa / (fa - fb);
+      Point& p = polygon[n++];
+      for (int a = 0; a < 3; ++a)
+      {
+        p.World[a] = cornersWC[edge[0]][a] + t * (cornersWC[edge[1]][a] - cornersWC[edge[0]][a]);
+        p.Data[a] = corners[edge[0]][a] + t * (corners[edge[1]][a] - corners[edge[0]][a]);
+      }
+    }
+    if (n < 3)
+    {
+      continue;
+    }
+    Vec centre{ 0, 0, 0 };
+    for (int i = 0; i < n; ++i)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        centre[a] += polygon[i].World[a] / n;
+      }
+    }
+    for (int i = 0; i < n; ++i)
+    {
+      const Point& p = polygon[i];
+      const Vec r{ p.World[0] - centre[0], p.World[1] - centre[1], p.World[2] - centre[2] };
+      polygon[i].Angle = std::atan2(Dot(r, v), Dot(r, u));
+    }
+    std::sort(
+      polygon, polygon + n, [](const Point& a, const Point& b) { return a.Angle < b.Angle; });
+    Slice slice{ this, d, static_cast<float>(delta), out.size(), 0 };
+    auto emit = [&](const Point& p)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        out.push_back(static_cast<float>(p.World[a]));
+      }
+      for (int a = 0; a < 3; ++a)
+      {
+        out.push_back(static_cast<float>((p.Data[a] - bounds[2 * a]) / extent[a]));
+      }
+    };
+    for (int i = 1; i + 1 < n; ++i)
+    {
+      emit(polygon[0]);
+      emit(polygon[i]);
+      emit(polygon[i + 1]);
+    }
+    slice.Floats = out.size() - slice.First;
+    slices.push_back(slice);
+    ++this->LastNumberOfSlices;
+  }
+  return true;
+}
+
+void vtkBrumeOpenGLSliceVolumeMapper::DrawAll(vtkRenderer* ren)
+{
+  auto* renWin = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
+  Internals& impl = *this->Impl;
+  std::vector<Slice> slices;
+  std::vector<vtkBrumeOpenGLSliceVolumeMapper*> mappers;
+  vtkVolumeCollection* volumes = ren->GetVolumes();
+  vtkCollectionSimpleIterator it;
+  volumes->InitTraversal(it);
+  while (vtkVolume* volume = volumes->GetNextVolume(it))
+  {
+    auto* mapper = vtkBrumeOpenGLSliceVolumeMapper::SafeDownCast(volume->GetMapper());
+    if (!mapper || !volume->GetVisibility())
+    {
+      continue;
+    }
+    mapper->Impl->Collected.clear();
+    if (mapper->PrepareSlices(ren, volume, slices))
+    {
+      mappers.push_back(mapper);
+    }
+  }
+  if (slices.empty())
+  {
+    return;
+  }
+  // Far to near over all volumes.
+  std::stable_sort(
+    slices.begin(), slices.end(), [](const Slice& a, const Slice& b) { return a.Depth > b.Depth; });
+  struct Run
+  {
+    vtkBrumeOpenGLSliceVolumeMapper* Owner;
+    float Spacing;
+    int FirstVertex, Vertices;
+  };
+  std::vector<Run> runs;
+  impl.Sorted.clear();
+  for (const Slice& s : slices)
+  {
+    const float* src = s.Owner->Impl->Collected.data() + s.First;
+    const int first = static_cast<int>(impl.Sorted.size() / 6);
+    impl.Sorted.insert(impl.Sorted.end(), src, src + s.Floats);
+    const int vertices = static_cast<int>(s.Floats / 6);
+    if (!runs.empty() && runs.back().Owner == s.Owner && runs.back().Spacing == s.Spacing)
+    {
+      runs.back().Vertices += vertices;
+    }
+    else
+    {
+      runs.push_back({ s.Owner, s.Spacing, first, vertices });
+    }
+  }
+
+  vtkShaderProgram* program =
+    renWin->GetShaderCache()->ReadyShaderProgram(vtkBrumeSliceVolumeVS, vtkBrumeSliceVolumeFS, "");
+  if (!program)
+  {
+    vtkErrorMacro("Could not build the slice shaders: nothing drawn.");
+    return;
+  }
+  impl.VBO->Upload(impl.Sorted, vtkOpenGLBufferObject::ArrayBuffer);
+  impl.VAO->Bind();
+  const size_t stride = 6 * sizeof(float);
+  if (!impl.VAO->AddAttributeArray(program, impl.VBO, "vertexWC", 0, stride, VTK_FLOAT, 3, false) ||
+    !impl.VAO->AddAttributeArray(
+      program, impl.VBO, "textureCoordinate", 3 * sizeof(float), stride, VTK_FLOAT, 3, false))
+  {
+    vtkErrorMacro("Could not bind the slice vertex attributes: nothing drawn.");
+    impl.VAO->Release();
+    return;
+  }
+  vtkCamera* camera = ren->GetActiveCamera();
+  vtkMatrix4x4* wcvc;
+  vtkMatrix3x3* normals;
+  vtkMatrix4x4* vcdc;
+  vtkMatrix4x4* wcdc;
+  static_cast<vtkOpenGLCamera*>(camera)->GetKeyMatrices(ren, wcvc, normals, vcdc, wcdc);
+  program->SetUniformMatrix("WCDCMatrix", wcdc);
+  const double* eye = camera->GetPosition();
+  double dop[3];
+  camera->GetDirectionOfProjection(dop);
+  const float eyeF[3] = { static_cast<float>(eye[0]), static_cast<float>(eye[1]),
+    static_cast<float>(eye[2]) };
+  const float dopF[3] = { static_cast<float>(dop[0]), static_cast<float>(dop[1]),
+    static_cast<float>(dop[2]) };
+  program->SetUniform3f("eyeWC", eyeF);
+  program->SetUniform3f("viewDirectionWC", dopF);
+  program->SetUniformi("perspective", camera->GetParallelProjection() ? 0 : 1);
+
+  vtkOpenGLState* state = renWin->GetState();
+  vtkOpenGLState::ScopedglEnableDisable blendSaver(state, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable depthSaver(state, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable cullSaver(state, GL_CULL_FACE);
+  vtkOpenGLState::ScopedglDepthMask depthMaskSaver(state);
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFuncSaver(state);
+  state->vtkglEnable(GL_BLEND);
+  // Dual-source blending: C = C_slice + T * C_behind, T per channel.
+  state->vtkglBlendFuncSeparate(GL_ONE, GL_SRC1_COLOR, GL_ONE, GL_SRC1_ALPHA);
+  state->vtkglEnable(GL_DEPTH_TEST);
+  state->vtkglDepthMask(GL_FALSE);
+  state->vtkglDisable(GL_CULL_FACE);
+  for (const Run& run : runs)
+  {
+    run.Owner->Impl->Source->Activate();
+    run.Owner->Impl->Extinction->Activate();
+    program->SetUniformi("sourceTexture", run.Owner->Impl->Source->GetTextureUnit());
+    program->SetUniformi("extinctionTexture", run.Owner->Impl->Extinction->GetTextureUnit());
+    program->SetUniformf("sliceSpacing", run.Spacing);
+    glDrawArrays(GL_TRIANGLES, run.FirstVertex, run.Vertices);
+    run.Owner->Impl->Source->Deactivate();
+    run.Owner->Impl->Extinction->Deactivate();
+  }
+  impl.VAO->Release();
+}
+
+void vtkBrumeOpenGLSliceVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+}

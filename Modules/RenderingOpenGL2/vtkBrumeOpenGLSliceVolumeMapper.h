@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkBrumeOpenGLSliceVolumeMapper
+ * @brief   OpenGL implementation of vtkBrumeSliceVolumeMapper
+ *
+ * Source radiance and extinction live in two RGB float 3D textures. Each
+ * frame, the first slice mapper the renderer calls composites every visible
+ * volume of the renderer that uses this mapper: their slices are merged and
+ * drawn far to near in one pass, with dual-source blending
+ * (GL_ONE, GL_SRC1_COLOR) so that each colour channel keeps its own
+ * transmittance: C = S (1 - T) + T C_behind, T = exp(-sigma_t Delta).
+ *
+ * @sa vtkBrumeSliceVolumeMapper
+ */
+#ifndef vtkBrumeOpenGLSliceVolumeMapper_h
+#define vtkBrumeOpenGLSliceVolumeMapper_h
+
+#include "vtkBrumeRenderingOpenGL2Module.h" // For export macro
+#include "vtkBrumeSliceVolumeMapper.h"
+
+#include <memory> // For std::unique_ptr
+#include <vector> // For slices
+
+class vtkInformationIntegerKey;
+class vtkRenderer;
+class vtkVolume;
+
+class VTKBRUMERENDERINGOPENGL2_EXPORT vtkBrumeOpenGLSliceVolumeMapper
+  : public vtkBrumeSliceVolumeMapper
+{
+public:
+  static vtkBrumeOpenGLSliceVolumeMapper* New();
+  vtkTypeMacro(vtkBrumeOpenGLSliceVolumeMapper, vtkBrumeSliceVolumeMapper);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  void Render(vtkRenderer* ren, vtkVolume* vol) override;
+  void ReleaseGraphicsResources(vtkWindow* window) override;
+
+  /// Renderer keys: the frame count and the frame whose volumes were drawn.
+  static vtkInformationIntegerKey* FRAME();
+  static vtkInformationIntegerKey* DRAWN_FRAME();
+
+protected:
+  vtkBrumeOpenGLSliceVolumeMapper();
+  ~vtkBrumeOpenGLSliceVolumeMapper() override;
+
+private:
+  vtkBrumeOpenGLSliceVolumeMapper(const vtkBrumeOpenGLSliceVolumeMapper&) = delete;
+  void operator=(const vtkBrumeOpenGLSliceVolumeMapper&) = delete;
+
+  struct Slice;
+  /// Uploads the textures if needed and appends this volume's slices.
+  bool PrepareSlices(vtkRenderer* ren, vtkVolume* vol, std::vector<Slice>& slices);
+  /// Draws the slices of every slice volume of the renderer.
+  void DrawAll(vtkRenderer* ren);
+
+  struct Internals;
+  std::unique_ptr<Internals> Impl;
+};
+
+#endif
