@@ -10,6 +10,26 @@
 
 #include "brume/LightTracer.h"
 
+#include "vtkBrumeRadianceReconstruction.h"
+#include "vtkBrumeSceneActors.h"
+#include "vtkBrumeSliceVolumeMapper.h"
+#include "vtkCamera.h"
+#include "vtkCellData.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkDataArray.h"
+#include "vtkFloatArray.h"
+#include "vtkGPUVolumeRayCastMapper.h"
+#include "vtkImageData.h"
+#include "vtkPartitionedDataSet.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+
+#include <cstdlib>
+
 #include "vtkBrumeSceneConversion.h"
 
 #include <chrono>
@@ -47,6 +67,136 @@ bool ResetPeakMemory()
   std::ofstream clear("/proc/self/clear_refs");
   clear << "5";
   return static_cast<bool>(clear);
+}
+}
+
+namespace
+{
+// Milliseconds per frame over `frames` renders, the camera turning 0.5
+// degrees a frame (the first, untimed frame uploads textures and shaders).
+double MillisecondsPerFrame(vtkRenderWindow* window, vtkRenderer* renderer, int frames)
+{
+  window->Render();
+  window->WaitForCompletion();
+  const auto start = std::chrono::steady_clock::now();
+  for (int f = 0; f < frames; ++f)
+  {
+    renderer->GetActiveCamera()->Azimuth(0.5);
+    renderer->ResetCameraClippingRange();
+    window->Render();
+    window->WaitForCompletion();
+  }
+  return 1000.0 * Seconds(start) / frames;
+}
+
+vtkNew<vtkRenderWindow> MakeWindow(vtkRenderer* renderer)
+{
+  vtkNew<vtkRenderWindow> window;
+  window->SetOffScreenRendering(1);
+  window->SetMultiSamples(0);
+  window->SetSize(512, 512);
+  window->AddRenderer(renderer);
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->SetPosition(0, 0, 4);
+  camera->SetFocalPoint(0, 0, 0);
+  camera->SetViewUp(0, 1, 0);
+  camera->SetViewAngle(40);
+  return window;
+}
+
+// Phase 3: frames of the default scene, and of its medium alone with the
+// slice mapper and with vtkGPUVolumeRayCastMapper on the same volume.
+void BenchRendering(vtkAlgorithm* source, vtkAlgorithm* tracer)
+{
+  const char* display = std::getenv("DISPLAY");
+  if (!display || !*display)
+  {
+    std::printf("rendering          skipped: no X display (run under xvfb-run -a)\n");
+    return;
+  }
+  vtkNew<vtkBrumeRadianceReconstruction> reconstruction;
+  reconstruction->SetInputConnection(0, source->GetOutputPort());
+  reconstruction->SetInputConnection(1, tracer->GetOutputPort());
+  reconstruction->Update();
+  const int frames = 30;
+
+  vtkNew<vtkRenderer> sceneRenderer;
+  auto sceneWindow = MakeWindow(sceneRenderer);
+  vtkNew<vtkBrumeSceneActors> actors;
+  actors->SetInputData(reconstruction->GetOutput());
+  actors->AddToRenderer(sceneRenderer);
+  const double sceneFrame = MillisecondsPerFrame(sceneWindow, sceneRenderer, frames);
+  std::printf("rendering          %8.2f ms per 512x512 frame of the default scene\n", sceneFrame);
+
+  // The medium alone.
+  vtkImageData* medium = nullptr;
+  for (unsigned int i = 0; i < reconstruction->GetOutput()->GetNumberOfPartitionedDataSets(); ++i)
+  {
+    auto* image = vtkImageData::SafeDownCast(
+      reconstruction->GetOutput()->GetPartitionedDataSet(i)->GetPartition(0));
+    if (image && image->GetCellData()->GetArray("SourceRadiance"))
+    {
+      medium = image;
+    }
+  }
+  if (!medium)
+  {
+    return;
+  }
+  vtkNew<vtkRenderer> sliceRenderer;
+  auto sliceWindow = MakeWindow(sliceRenderer);
+  vtkNew<vtkVolume> sliceVolume;
+  auto sliceMapper = vtkSmartPointer<vtkBrumeSliceVolumeMapper>::New();
+  sliceMapper->SetInputData(medium);
+  sliceVolume->SetMapper(sliceMapper);
+  sliceVolume->GetProperty()->SetInterpolationTypeToLinear();
+  sliceRenderer->AddVolume(sliceVolume);
+  const double sliceFrame = MillisecondsPerFrame(sliceWindow, sliceRenderer, frames);
+
+  // The same voxels as RGBA point data (S, sigma_t) for the ray caster,
+  // sampled at the same distance as the slices.
+  int dims[3];
+  medium->GetDimensions(dims);
+  vtkNew<vtkImageData> rgba;
+  rgba->SetDimensions(dims[0] - 1, dims[1] - 1, dims[2] - 1);
+  const double* spacing = medium->GetSpacing();
+  const double* origin = medium->GetOrigin();
+  rgba->SetSpacing(spacing);
+  rgba->SetOrigin(
+    origin[0] + spacing[0] / 2, origin[1] + spacing[1] / 2, origin[2] + spacing[2] / 2);
+  vtkDataArray* radiance = medium->GetCellData()->GetArray("SourceRadiance");
+  vtkDataArray* extinction = medium->GetCellData()->GetArray("Extinction");
+  vtkNew<vtkFloatArray> values;
+  values->SetNumberOfComponents(4);
+  values->SetNumberOfTuples(radiance->GetNumberOfTuples());
+  for (vtkIdType i = 0; i < radiance->GetNumberOfTuples(); ++i)
+  {
+    values->SetTuple4(i, radiance->GetComponent(i, 0), radiance->GetComponent(i, 1),
+      radiance->GetComponent(i, 2), extinction->GetComponent(i, 0));
+  }
+  rgba->GetPointData()->SetScalars(values);
+  vtkNew<vtkRenderer> rayRenderer;
+  auto rayWindow = MakeWindow(rayRenderer);
+  vtkNew<vtkGPUVolumeRayCastMapper> rayMapper;
+  rayMapper->SetInputData(rgba);
+  rayMapper->AutoAdjustSampleDistancesOff();
+  rayMapper->SetSampleDistance(
+    static_cast<float>(0.5 * std::min(spacing[0], std::min(spacing[1], spacing[2]))));
+  vtkNew<vtkVolume> rayVolume;
+  rayVolume->SetMapper(rayMapper);
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(0.0, 0.0);
+  opacity->AddPoint(4.0, 1.0);
+  rayVolume->GetProperty()->SetIndependentComponents(false);
+  rayVolume->GetProperty()->SetScalarOpacity(opacity);
+  rayVolume->GetProperty()->SetInterpolationTypeToLinear();
+  rayVolume->GetProperty()->ShadeOff();
+  rayRenderer->AddVolume(rayVolume);
+  const double rayFrame = MillisecondsPerFrame(rayWindow, rayRenderer, frames);
+  std::printf(
+    "medium alone       %8.2f ms per frame with the slice mapper (%d slices), %.2f ms with "
+    "vtkGPUVolumeRayCastMapper: ratio %.2f\n",
+    sliceFrame, sliceMapper->GetLastNumberOfSlices(), rayFrame, sliceFrame / rayFrame);
 }
 }
 
@@ -159,5 +309,6 @@ int RunBench(const BenchOptions& options)
     rawTime, rawRays / rawTime * 1e-6, rawRays);
   std::printf("tracer/raw ray throughput ratio: %.3f (tracer %.2f M rays/s)\n",
     (rays / traceTime) / (rawRays / rawTime), rays / traceTime * 1e-6);
+  BenchRendering(source, tracer);
   return 0;
 }
