@@ -2,6 +2,8 @@
 #include "vtkBrumeRadianceReconstruction.h"
 
 #include "vtkBrumeSceneConversion.h"
+#include "vtkCamera.h"
+#include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDataArray.h"
@@ -15,16 +17,20 @@
 #include "vtkPartitionedDataSet.h"
 #include "vtkPartitionedDataSetCollection.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
 #include "vtkStringArray.h"
+#include "vtkUnsignedIntArray.h"
+#include "vtkUnsignedShortArray.h"
 
 #include "brume/Reconstruction.h"
 
 #include <cmath>
-#include <sstream>
+#include <vector>
 
 vtkStandardNewMacro(vtkBrumeRadianceReconstruction);
+vtkCxxSetObjectMacro(vtkBrumeRadianceReconstruction, Camera, vtkCamera);
 
 namespace
 {
@@ -48,12 +54,13 @@ void AddKind(vtkFieldData* fd, const char* kind)
   fd->AddArray(a);
 }
 
-vtkSmartPointer<vtkFloatArray> NewRGB(const char* name, vtkIdType tuples)
+vtkSmartPointer<vtkFloatArray> NewRGB(const char* name, const std::vector<float>& values)
 {
   auto a = vtkSmartPointer<vtkFloatArray>::New();
   a->SetName(name);
   a->SetNumberOfComponents(3);
-  a->SetNumberOfTuples(tuples);
+  a->SetNumberOfTuples(static_cast<vtkIdType>(values.size() / 3));
+  std::copy(values.begin(), values.end(), a->GetPointer(0));
   return a;
 }
 
@@ -71,11 +78,63 @@ std::array<int, 3> FixedResolution(const brume::Vec3& extent, int n)
   }
   return res;
 }
+
+brume::ParallelFor SMPFor()
+{
+  return [](std::size_t begin, std::size_t end,
+           const std::function<void(std::size_t, std::size_t)>& body)
+  {
+    vtkSMPTools::For(static_cast<vtkIdType>(begin), static_cast<vtkIdType>(end),
+      [&](vtkIdType b, vtkIdType e)
+      { body(static_cast<std::size_t>(b), static_cast<std::size_t>(e)); });
+  };
 }
+
+// A float view of a 3-component array: the array itself, or a float copy.
+const float* FloatView(vtkDataArray* a, std::vector<float>& copy)
+{
+  if (auto* f = vtkFloatArray::SafeDownCast(a))
+  {
+    return f->GetPointer(0);
+  }
+  copy.resize(static_cast<std::size_t>(a->GetNumberOfValues()));
+  for (vtkIdType i = 0; i < a->GetNumberOfValues(); ++i)
+  {
+    copy[i] = static_cast<float>(a->GetVariantValue(i).ToDouble());
+  }
+  return copy.data();
+}
+}
+
+// Textures and what they were built from, kept between executions.
+struct vtkBrumeRadianceReconstruction::Cache
+{
+  vtkMTimeType SceneTime = 0, HitsTime = 0;
+  vtkDataObject* SceneData = nullptr;
+  vtkDataObject* HitsData = nullptr;
+  double Threshold = 0.0;
+  int SurfaceResolution = 0, MediumResolution = 0, Refinement = 0;
+  brume::Scene Scene;
+  std::vector<vtkBrumeSceneConversion::ObjectSource> Sources;
+  std::vector<std::unique_ptr<brume::ObjectRadiance>> Objects;
+  std::vector<vtkSmartPointer<vtkPartitionedDataSet>> Outputs;
+  brume::Vec3 Eye;
+};
 
 vtkBrumeRadianceReconstruction::vtkBrumeRadianceReconstruction()
 {
   this->SetNumberOfInputPorts(2);
+}
+
+vtkBrumeRadianceReconstruction::~vtkBrumeRadianceReconstruction()
+{
+  this->SetCamera(nullptr);
+}
+
+vtkMTimeType vtkBrumeRadianceReconstruction::GetMTime()
+{
+  const vtkMTimeType t = this->Superclass::GetMTime();
+  return this->Camera ? std::max(t, this->Camera->GetMTime()) : t;
 }
 
 int vtkBrumeRadianceReconstruction::FillInputPortInformation(int port, vtkInformation* info)
@@ -111,27 +170,43 @@ int vtkBrumeRadianceReconstruction::RequestData(
       "HistogramRefinement must be in [1, 16], not " << this->HistogramRefinement << ".");
     return 0;
   }
-  const brume::Vec3 eye(static_cast<float>(this->EyePosition[0]),
-    static_cast<float>(this->EyePosition[1]), static_cast<float>(this->EyePosition[2]));
+  double eyePosition[3] = { this->EyePosition[0], this->EyePosition[1], this->EyePosition[2] };
+  if (this->Camera)
+  {
+    this->Camera->GetPosition(eyePosition);
+  }
+  const brume::Vec3 eye(static_cast<float>(eyePosition[0]), static_cast<float>(eyePosition[1]),
+    static_cast<float>(eyePosition[2]));
   if (!brume::IsFinite(eye))
   {
-    vtkErrorMacro("EyePosition must be finite.");
+    vtkErrorMacro("The viewpoint must be finite.");
     return 0;
   }
 
-  brume::Scene scene;
-  std::vector<vtkBrumeSceneConversion::ObjectSource> sources;
-  std::string error = vtkBrumeSceneConversion::ToScene(sceneData, scene, &sources);
-  if (!error.empty())
+  // The hits, read in place.
+  if (!hitData)
   {
-    vtkErrorMacro("Invalid scene: " << error << ".");
+    vtkErrorMacro("No particle hits were given.");
     return 0;
   }
-  std::vector<brume::Hit> hits;
-  error = vtkBrumeSceneConversion::HitsFromPolyData(hitData, hits);
-  if (!error.empty())
+  vtkPointData* pd = hitData->GetPointData();
+  auto* direction = vtkFloatArray::SafeDownCast(pd->GetArray("Direction"));
+  auto* flux = vtkFloatArray::SafeDownCast(pd->GetArray("Flux"));
+  auto* objectIds = vtkUnsignedShortArray::SafeDownCast(pd->GetArray("ObjectId"));
+  auto* triangleIds = vtkUnsignedIntArray::SafeDownCast(pd->GetArray("TriangleId"));
+  const vtkIdType n = hitData->GetNumberOfPoints();
+  if (n > 0 &&
+    (!direction || !flux || !objectIds || direction->GetNumberOfComponents() != 3 ||
+      flux->GetNumberOfComponents() != 3 || direction->GetNumberOfTuples() != n ||
+      flux->GetNumberOfTuples() != n || objectIds->GetNumberOfTuples() != n))
   {
-    vtkErrorMacro("Invalid particle hits: " << error << ".");
+    vtkErrorMacro("Invalid particle hits: they lack the float[3] 'Direction' and 'Flux' or the "
+                  "unsigned short 'ObjectId' point arrays.");
+    return 0;
+  }
+  if (n > static_cast<vtkIdType>(UINT32_MAX))
+  {
+    vtkErrorMacro("More than 2^32 particle hits: reconstruct them in parts.");
     return 0;
   }
   vtkFieldData* hitFields = hitData->GetFieldData();
@@ -147,140 +222,284 @@ int vtkBrumeRadianceReconstruction::RequestData(
   const double* power = powerArray->GetTuple3(0);
   const double particleFlux = (power[0] + power[1] + power[2]) / 3.0 / countArray->GetTuple1(0);
   const double threshold = this->RadiosityThreshold * particleFlux;
-
-  // Group the hits by object (counting sort, stable).
-  const std::size_t objects = scene.NumberOfObjects();
-  std::vector<std::size_t> offsets(objects + 1, 0);
-  for (const brume::Hit& h : hits)
+  std::vector<float> positionCopy;
+  brume::HitArrays hits;
+  hits.Count = static_cast<std::size_t>(n);
+  if (n > 0)
   {
-    if (h.Object >= objects)
+    hits.Position = FloatView(hitData->GetPoints()->GetData(), positionCopy);
+    hits.Direction = direction->GetPointer(0);
+    hits.Flux = flux->GetPointer(0);
+    hits.Object = objectIds->GetPointer(0);
+    hits.Triangle =
+      triangleIds && triangleIds->GetNumberOfTuples() == n ? triangleIds->GetPointer(0) : nullptr;
+  }
+  const brume::ParallelFor parallelFor = SMPFor();
+
+  // Rebuild everything when the inputs or the settings changed; otherwise
+  // only the view-dependent textures follow the viewpoint.
+  Cache* cache = this->Cached.get();
+  const bool rebuild = !cache || cache->SceneData != sceneData || cache->HitsData != hitData ||
+    cache->SceneTime != sceneData->GetMTime() || cache->HitsTime != hitData->GetMTime() ||
+    cache->Threshold != this->RadiosityThreshold ||
+    cache->SurfaceResolution != this->SurfaceResolution ||
+    cache->MediumResolution != this->MediumResolution ||
+    cache->Refinement != this->HistogramRefinement;
+  if (rebuild)
+  {
+    this->Cached.reset(new Cache);
+    cache = this->Cached.get();
+    const std::string error =
+      vtkBrumeSceneConversion::ToScene(sceneData, cache->Scene, &cache->Sources);
+    if (!error.empty())
     {
-      vtkErrorMacro("A particle hit refers to object " << h.Object << " but the scene has "
-                                                       << objects << " objects.");
+      vtkErrorMacro("Invalid scene: " << error << ".");
+      this->Cached.reset();
       return 0;
     }
-    ++offsets[h.Object + 1];
-  }
-  for (std::size_t o = 0; o < objects; ++o)
-  {
-    offsets[o + 1] += offsets[o];
-  }
-  std::vector<brume::Hit> sorted(hits.size());
-  {
-    std::vector<std::size_t> cursor(offsets.begin(), offsets.end() - 1);
-    for (const brume::Hit& h : hits)
+    brume::ObjectHits groups;
+    const std::string groupError =
+      brume::GroupHitsByObject(hits, cache->Scene.NumberOfObjects(), groups);
+    if (!groupError.empty())
     {
-      sorted[cursor[h.Object]++] = h;
+      vtkErrorMacro("Invalid particle hits: " << groupError << ".");
+      this->Cached.reset();
+      return 0;
     }
-  }
-  std::vector<brume::Hit>().swap(hits);
-
-  output->SetNumberOfPartitionedDataSets(sceneData->GetNumberOfPartitionedDataSets());
-  const int refinement = this->HistogramRefinement;
-  for (std::size_t o = 0; o < objects; ++o)
-  {
-    const brume::Hit* objectHits = sorted.data() + offsets[o];
-    const std::size_t count = offsets[o + 1] - offsets[o];
-    vtkNew<vtkPartitionedDataSet> pds;
-    if (!scene.IsMedium(o))
+    const brume::Scene& scene = cache->Scene;
+    const int refinement = this->HistogramRefinement;
+    for (std::size_t o = 0; o < scene.NumberOfObjects(); ++o)
     {
-      const brume::Surface& surface = scene.Surfaces[o];
-      brume::PlanarFrame frame;
-      if (!surface.ComputePlanarFrame(frame))
+      const std::size_t count = groups.Offset[o + 1] - groups.Offset[o];
+      const auto& source = cache->Sources[o];
+      vtkDataObject* sceneObject =
+        sceneData->GetPartitionedDataSet(source.CollectionIndex)->GetPartition(0);
+      vtkDataArray* override = sceneObject->GetFieldData()->GetArray("BrumeTextureResolution");
+      const int perObject = override && override->GetNumberOfTuples() > 0
+        ? static_cast<int>(override->GetTuple1(0))
+        : 0;
+      if (count == 0)
       {
-        vtkErrorMacro("Surface '" << surface.Name
-                                  << "' is not planar: only planar surfaces are supported yet.");
+        vtkWarningMacro("Object '" << source.Name
+                                   << "' received no particle: its texture holds only its "
+                                      "emission (more particles, or a light that reaches it).");
+      }
+      std::unique_ptr<brume::ObjectRadiance> radiance;
+      if (!scene.IsMedium(o))
+      {
+        const brume::Surface& surface = scene.Surfaces[o];
+        auto* polyData = vtkPolyData::SafeDownCast(sceneObject);
+        std::vector<std::array<float, 2>> tcoords;
+        if (vtkDataArray* tc = polyData->GetPointData()->GetTCoords())
+        {
+          if (tc->GetNumberOfComponents() >= 2)
+          {
+            tcoords.resize(static_cast<std::size_t>(tc->GetNumberOfTuples()));
+            for (vtkIdType i = 0; i < tc->GetNumberOfTuples(); ++i)
+            {
+              tcoords[i] = { static_cast<float>(tc->GetComponent(i, 0)),
+                static_cast<float>(tc->GetComponent(i, 1)) };
+            }
+          }
+        }
+        brume::SurfaceChart chart = brume::MakeChart(surface, tcoords.empty() ? nullptr : &tcoords);
+        const brume::Vec3 extent(chart.Width, chart.Height, 0.f);
+        const int fixed = perObject > 0 ? perObject : this->SurfaceResolution;
+        if (fixed > MaxSurfaceResolution)
+        {
+          vtkErrorMacro("BrumeTextureResolution of '" << source.Name << "' exceeds "
+                                                      << MaxSurfaceResolution << ".");
+          this->Cached.reset();
+          return 0;
+        }
+        const auto res = fixed > 0
+          ? FixedResolution(extent, fixed)
+          : brume::ChooseResolution(extent, count, this->RadiosityThreshold, 4, 1024);
+        radiance.reset(new brume::ObjectRadiance(surface, chart, { res[0], res[1] }, refinement));
+      }
+      else
+      {
+        const brume::Medium& medium = scene.Media[o - scene.Surfaces.size()];
+        const brume::Vec3 extent = medium.Bounds.Extent();
+        const int fixed = perObject > 0 ? perObject : this->MediumResolution;
+        if (fixed > MaxMediumResolution)
+        {
+          vtkErrorMacro("BrumeTextureResolution of '" << source.Name << "' exceeds "
+                                                      << MaxMediumResolution << ".");
+          this->Cached.reset();
+          return 0;
+        }
+        const auto res = fixed > 0
+          ? FixedResolution(extent, fixed)
+          : brume::ChooseResolution(extent, count, this->RadiosityThreshold, 4, 256);
+        radiance.reset(new brume::ObjectRadiance(medium, res, refinement));
+      }
+      const std::string buildError = radiance->Build(
+        hits, groups.Index.data() + groups.Offset[o], count, eye, threshold, parallelFor);
+      if (!buildError.empty())
+      {
+        vtkErrorMacro("Cannot reconstruct '" << source.Name << "': " << buildError << ".");
+        this->Cached.reset();
         return 0;
       }
-      const brume::Vec3 extent(Length(frame.U), Length(frame.V), 0.f);
-      const auto res = this->SurfaceResolution > 0
-        ? FixedResolution(extent, this->SurfaceResolution)
-        : brume::ChooseResolution(extent, count, this->RadiosityThreshold, 4, 1024);
-      brume::SurfaceRadiance radiance(surface, frame, { res[0], res[1] }, refinement);
-      radiance.AddHits(objectHits, count);
-      radiance.Finalize();
-      const vtkIdType texels = static_cast<vtkIdType>(res[0]) * res[1];
-      auto values = NewRGB("Radiance", texels);
-      float* out = values->GetPointer(0);
-      vtkSMPTools::For(0, res[1],
-        [&](vtkIdType begin, vtkIdType end)
-        {
-          radiance.Estimate(static_cast<std::size_t>(begin) * res[0],
-            static_cast<std::size_t>(end) * res[0], threshold, out + 3 * begin * res[0]);
-        });
-      vtkNew<vtkImageData> texture;
-      texture->SetDimensions(res[0], res[1], 1);
-      texture->SetSpacing(1.0 / res[0], 1.0 / res[1], 1.0);
-      texture->SetOrigin(0.5 / res[0], 0.5 / res[1], 0.0);
-      texture->GetPointData()->SetScalars(values);
-      AddVec3(texture->GetFieldData(), "BrumeTextureOrigin", frame.Origin);
-      AddVec3(texture->GetFieldData(), "BrumeTextureU", frame.U);
-      AddVec3(texture->GetFieldData(), "BrumeTextureV", frame.V);
-      AddKind(texture->GetFieldData(), "surface");
-
-      // The surface itself, with coordinates that map the texture.
-      auto* source = vtkPolyData::SafeDownCast(
-        sceneData->GetPartitionedDataSet(sources[o].CollectionIndex)->GetPartition(0));
-      vtkNew<vtkPolyData> mapped;
-      mapped->ShallowCopy(source);
-      vtkNew<vtkFloatArray> tcoords;
-      tcoords->SetName("TextureCoordinates");
-      tcoords->SetNumberOfComponents(2);
-      tcoords->SetNumberOfTuples(mapped->GetNumberOfPoints());
-      const float uu = Dot(frame.U, frame.U), vv = Dot(frame.V, frame.V);
-      for (vtkIdType i = 0; i < mapped->GetNumberOfPoints(); ++i)
-      {
-        double p[3];
-        mapped->GetPoint(i, p);
-        const brume::Vec3 d = brume::Vec3(static_cast<float>(p[0]), static_cast<float>(p[1]),
-                                static_cast<float>(p[2])) -
-          frame.Origin;
-        tcoords->SetTuple2(i, Dot(d, frame.U) / uu, Dot(d, frame.V) / vv);
-      }
-      mapped->GetPointData()->SetTCoords(tcoords);
-      AddKind(mapped->GetFieldData(), "surface");
-      pds->SetNumberOfPartitions(2);
-      pds->SetPartition(0, texture);
-      pds->SetPartition(1, mapped);
+      ++this->NumberOfTextureBuilds;
+      cache->Objects.push_back(std::move(radiance));
+      cache->Outputs.push_back(nullptr);
+      this->UpdateProgress(
+        static_cast<double>(o + 1) / static_cast<double>(scene.NumberOfObjects()));
     }
-    else
-    {
-      const brume::Medium& medium = scene.Media[o - scene.Surfaces.size()];
-      const brume::Vec3 extent = medium.Bounds.Extent();
-      const auto res = this->MediumResolution > 0
-        ? FixedResolution(extent, this->MediumResolution)
-        : brume::ChooseResolution(extent, count, this->RadiosityThreshold, 4, 256);
-      brume::MediumRadiance radiance(medium, res, refinement);
-      radiance.AddHits(objectHits, count, eye);
-      radiance.Finalize();
-      const vtkIdType slice = static_cast<vtkIdType>(res[0]) * res[1];
-      const vtkIdType voxels = slice * res[2];
-      auto values = NewRGB("SourceRadiance", voxels);
-      auto extinction = NewRGB("Extinction", voxels);
-      float* out = values->GetPointer(0);
-      float* sigma = extinction->GetPointer(0);
-      vtkSMPTools::For(0, res[2],
-        [&](vtkIdType begin, vtkIdType end)
-        {
-          radiance.Estimate(static_cast<std::size_t>(begin * slice),
-            static_cast<std::size_t>(end * slice), threshold, out + 3 * begin * slice,
-            sigma + 3 * begin * slice);
-        });
-      vtkNew<vtkImageData> texture;
-      texture->SetDimensions(res[0] + 1, res[1] + 1, res[2] + 1);
-      texture->SetOrigin(medium.Bounds.lower.x, medium.Bounds.lower.y, medium.Bounds.lower.z);
-      texture->SetSpacing(extent.x / res[0], extent.y / res[1], extent.z / res[2]);
-      texture->GetCellData()->SetScalars(values);
-      texture->GetCellData()->AddArray(extinction);
-      AddKind(texture->GetFieldData(), "medium");
-      pds->SetNumberOfPartitions(1);
-      pds->SetPartition(0, texture);
-    }
-    const unsigned int index = sources[o].CollectionIndex;
-    output->SetPartitionedDataSet(index, pds);
-    output->GetMetaData(index)->Set(vtkCompositeDataSet::NAME(), sources[o].Name.c_str());
-    this->UpdateProgress(static_cast<double>(o + 1) / static_cast<double>(objects));
+    cache->SceneData = sceneData;
+    cache->HitsData = hitData;
+    cache->SceneTime = sceneData->GetMTime();
+    cache->HitsTime = hitData->GetMTime();
+    cache->Threshold = this->RadiosityThreshold;
+    cache->SurfaceResolution = this->SurfaceResolution;
+    cache->MediumResolution = this->MediumResolution;
+    cache->Refinement = this->HistogramRefinement;
+    cache->Eye = eye;
   }
+  else if (!(cache->Eye.x == eye.x && cache->Eye.y == eye.y && cache->Eye.z == eye.z))
+  {
+    // A new viewpoint: only view-dependent textures change.
+    brume::ObjectHits groups;
+    if (!this->IncrementalUpdate)
+    {
+      brume::GroupHitsByObject(hits, cache->Scene.NumberOfObjects(), groups);
+    }
+    for (std::size_t o = 0; o < cache->Objects.size(); ++o)
+    {
+      brume::ObjectRadiance& radiance = *cache->Objects[o];
+      if (!radiance.IsViewDependent())
+      {
+        continue;
+      }
+      if (this->IncrementalUpdate)
+      {
+        radiance.UpdateView(eye, parallelFor);
+        ++this->NumberOfViewUpdates;
+      }
+      else
+      {
+        radiance.Build(hits, groups.Index.data() + groups.Offset[o],
+          groups.Offset[o + 1] - groups.Offset[o], eye, threshold, parallelFor);
+        ++this->NumberOfTextureBuilds;
+      }
+      cache->Outputs[o] = nullptr;
+    }
+    cache->Eye = eye;
+  }
+
+  // Outputs: new datasets for the textures that changed, the same ones otherwise.
+  output->SetNumberOfPartitionedDataSets(sceneData->GetNumberOfPartitionedDataSets());
+  for (std::size_t o = 0; o < cache->Objects.size(); ++o)
+  {
+    const auto& source = cache->Sources[o];
+    if (!cache->Outputs[o])
+    {
+      const brume::ObjectRadiance& radiance = *cache->Objects[o];
+      const auto& res = radiance.GetResolution();
+      vtkNew<vtkPartitionedDataSet> pds;
+      if (!cache->Scene.IsMedium(o))
+      {
+        const brume::SurfaceChart& chart = radiance.GetChart();
+        vtkNew<vtkImageData> texture;
+        texture->SetDimensions(res[0], res[1], 1);
+        texture->SetSpacing(1.0 / res[0], 1.0 / res[1], 1.0);
+        texture->SetOrigin(0.5 / res[0], 0.5 / res[1], 0.0);
+        texture->GetPointData()->SetScalars(NewRGB("Radiance", radiance.GetRadiance()));
+        if (chart.Type == brume::SurfaceChart::Kind::Planar)
+        {
+          AddVec3(texture->GetFieldData(), "BrumeTextureOrigin", chart.Frame.Origin);
+          AddVec3(texture->GetFieldData(), "BrumeTextureU", chart.Frame.U);
+          AddVec3(texture->GetFieldData(), "BrumeTextureV", chart.Frame.V);
+        }
+        vtkNew<vtkStringArray> chartKind;
+        chartKind->SetName("BrumeTextureChart");
+        chartKind->InsertNextValue(chart.Type == brume::SurfaceChart::Kind::Planar ? "planar"
+            : chart.Type == brume::SurfaceChart::Kind::TextureCoordinates ? "texture coordinates"
+                                                                          : "atlas");
+        texture->GetFieldData()->AddArray(chartKind);
+        AddKind(texture->GetFieldData(), "surface");
+
+        // The surface with texture coordinates that map the image.
+        auto* sourceSurface = vtkPolyData::SafeDownCast(
+          sceneData->GetPartitionedDataSet(source.CollectionIndex)->GetPartition(0));
+        vtkNew<vtkPolyData> mapped;
+        vtkNew<vtkFloatArray> tcoords;
+        tcoords->SetName("TextureCoordinates");
+        tcoords->SetNumberOfComponents(2);
+        if (chart.Type == brume::SurfaceChart::Kind::Atlas)
+        {
+          // Separate points per triangle: each has its own chart.
+          const brume::Surface& surface = cache->Scene.Surfaces[o];
+          vtkNew<vtkPoints> points;
+          vtkNew<vtkCellArray> triangles;
+          for (std::size_t t = 0; t < surface.Triangles.size(); ++t)
+          {
+            vtkIdType ids[3];
+            for (int k = 0; k < 3; ++k)
+            {
+              const brume::Vec3& v = surface.Vertices[surface.Triangles[t][k]];
+              ids[k] = points->InsertNextPoint(v.x, v.y, v.z);
+              tcoords->InsertNextTuple2(chart.TriangleUV[t][2 * k], chart.TriangleUV[t][2 * k + 1]);
+            }
+            triangles->InsertNextCell(3, ids);
+          }
+          mapped->SetPoints(points);
+          mapped->SetPolys(triangles);
+          mapped->GetFieldData()->ShallowCopy(sourceSurface->GetFieldData());
+        }
+        else
+        {
+          mapped->ShallowCopy(sourceSurface);
+          tcoords->SetNumberOfTuples(mapped->GetNumberOfPoints());
+          const float uu = Dot(chart.Frame.U, chart.Frame.U),
+                      vv = Dot(chart.Frame.V, chart.Frame.V);
+          vtkDataArray* given = sourceSurface->GetPointData()->GetTCoords();
+          for (vtkIdType i = 0; i < mapped->GetNumberOfPoints(); ++i)
+          {
+            if (chart.Type == brume::SurfaceChart::Kind::Planar)
+            {
+              double p[3];
+              mapped->GetPoint(i, p);
+              const brume::Vec3 d = brume::Vec3(static_cast<float>(p[0]), static_cast<float>(p[1]),
+                                      static_cast<float>(p[2])) -
+                chart.Frame.Origin;
+              tcoords->SetTuple2(i, Dot(d, chart.Frame.U) / uu, Dot(d, chart.Frame.V) / vv);
+            }
+            else
+            {
+              tcoords->SetTuple2(i, given->GetComponent(i, 0), given->GetComponent(i, 1));
+            }
+          }
+        }
+        mapped->GetPointData()->SetTCoords(tcoords);
+        AddKind(mapped->GetFieldData(), "surface");
+        pds->SetNumberOfPartitions(2);
+        pds->SetPartition(0, texture);
+        pds->SetPartition(1, mapped);
+      }
+      else
+      {
+        const brume::Medium& medium = cache->Scene.Media[o - cache->Scene.Surfaces.size()];
+        const brume::Vec3 extent = medium.Bounds.Extent();
+        vtkNew<vtkImageData> texture;
+        texture->SetDimensions(res[0] + 1, res[1] + 1, res[2] + 1);
+        texture->SetOrigin(medium.Bounds.lower.x, medium.Bounds.lower.y, medium.Bounds.lower.z);
+        texture->SetSpacing(extent.x / res[0], extent.y / res[1], extent.z / res[2]);
+        texture->GetCellData()->SetScalars(NewRGB("SourceRadiance", radiance.GetRadiance()));
+        texture->GetCellData()->AddArray(NewRGB("Extinction", radiance.GetExtinction()));
+        AddKind(texture->GetFieldData(), "medium");
+        pds->SetNumberOfPartitions(1);
+        pds->SetPartition(0, texture);
+      }
+      cache->Outputs[o] = pds;
+    }
+    output->SetPartitionedDataSet(source.CollectionIndex, cache->Outputs[o]);
+    output->GetMetaData(source.CollectionIndex)
+      ->Set(vtkCompositeDataSet::NAME(), source.Name.c_str());
+  }
+  this->UpdateProgress(1.0);
   return 1;
 }
 
@@ -289,8 +508,12 @@ void vtkBrumeRadianceReconstruction::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "EyePosition: (" << this->EyePosition[0] << ", " << this->EyePosition[1] << ", "
      << this->EyePosition[2] << ")\n";
+  os << indent << "Camera: " << this->Camera << "\n";
   os << indent << "RadiosityThreshold: " << this->RadiosityThreshold << "\n";
   os << indent << "SurfaceResolution: " << this->SurfaceResolution << "\n";
   os << indent << "MediumResolution: " << this->MediumResolution << "\n";
   os << indent << "HistogramRefinement: " << this->HistogramRefinement << "\n";
+  os << indent << "IncrementalUpdate: " << this->IncrementalUpdate << "\n";
+  os << indent << "NumberOfTextureBuilds: " << this->NumberOfTextureBuilds << "\n";
+  os << indent << "NumberOfViewUpdates: " << this->NumberOfViewUpdates << "\n";
 }

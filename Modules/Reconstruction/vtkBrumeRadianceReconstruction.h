@@ -33,6 +33,23 @@
  * Every partition's field data holds `BrumeObjectKind` ("surface" or
  * "medium").
  *
+ * Surfaces are parameterized by their plane when planar, else by their
+ * texture coordinates, else by an automatic atlas of one chart per triangle
+ * (the output surface then has separate points per triangle). A texel's
+ * region is divided by the world area it covers (an area map of the
+ * parameterization), so edges and charts keep the right units.
+ *
+ * Model no more than the scene needs: textures are cached between
+ * executions. When only the viewpoint changes, diffuse surfaces and
+ * isotropic media are not recomputed (their output images are the same
+ * objects); glossy surfaces and anisotropic media are updated, incrementally
+ * by default (their hits stay sorted by histogram cell, only the weights
+ * toward the eye are recomputed). GetNumberOfTextureBuilds() and
+ * GetNumberOfViewUpdates() count the work done.
+ *
+ * Per object, the field array `BrumeTextureResolution` (1 component) of the
+ * scene object overrides the texture resolution along its longest axis.
+ *
  * @sa vtkBrumeLightTracer vtkBrumeSliceVolumeMapper
  */
 #ifndef vtkBrumeRadianceReconstruction_h
@@ -40,6 +57,10 @@
 
 #include "vtkBrumeReconstructionModule.h" // For export macro
 #include "vtkPartitionedDataSetCollectionAlgorithm.h"
+
+#include <memory> // For the cache
+
+class vtkCamera;
 
 class VTKBRUMERECONSTRUCTION_EXPORT vtkBrumeRadianceReconstruction
   : public vtkPartitionedDataSetCollectionAlgorithm
@@ -50,10 +71,34 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
-  /// The viewpoint the media radiate toward (default (0, 0, 4)).
+  /// The viewpoint the textures radiate toward (default (0, 0, 4)).
   vtkSetVector3Macro(EyePosition, double);
   vtkGetVector3Macro(EyePosition, double);
   ///@}
+
+  ///@{
+  /// A camera whose position, when set, is the viewpoint (default none).
+  void SetCamera(vtkCamera* camera);
+  vtkGetObjectMacro(Camera, vtkCamera);
+  ///@}
+
+  ///@{
+  /**
+   * Update view-dependent textures incrementally when only the viewpoint
+   * changed (default on); off rebuilds their histograms from the hits.
+   */
+  vtkSetMacro(IncrementalUpdate, bool);
+  vtkGetMacro(IncrementalUpdate, bool);
+  vtkBooleanMacro(IncrementalUpdate, bool);
+  ///@}
+
+  ///@{
+  /// Object textures built from the hits, and incremental view updates, so far.
+  vtkGetMacro(NumberOfTextureBuilds, vtkIdType);
+  vtkGetMacro(NumberOfViewUpdates, vtkIdType);
+  ///@}
+
+  vtkMTimeType GetMTime() override;
 
   ///@{
   /**
@@ -86,7 +131,7 @@ public:
 
 protected:
   vtkBrumeRadianceReconstruction();
-  ~vtkBrumeRadianceReconstruction() override = default;
+  ~vtkBrumeRadianceReconstruction() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
@@ -96,8 +141,15 @@ protected:
   int SurfaceResolution = 0;
   int MediumResolution = 0;
   int HistogramRefinement = 2;
+  vtkCamera* Camera = nullptr;
+  bool IncrementalUpdate = true;
+  vtkIdType NumberOfTextureBuilds = 0;
+  vtkIdType NumberOfViewUpdates = 0;
 
 private:
+  struct Cache;
+  std::unique_ptr<Cache> Cached;
+
   vtkBrumeRadianceReconstruction(const vtkBrumeRadianceReconstruction&) = delete;
   void operator=(const vtkBrumeRadianceReconstruction&) = delete;
 };

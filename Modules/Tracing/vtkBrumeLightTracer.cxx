@@ -16,6 +16,7 @@
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
 #include "vtkUnsignedCharArray.h"
+#include "vtkUnsignedIntArray.h"
 #include "vtkUnsignedShortArray.h"
 
 #include "brume/LightTracer.h"
@@ -57,7 +58,7 @@ struct TraceBlocks
   }
 };
 
-// The output arrays of the hits (41 bytes per hit), grown with realloc: glibc
+// The output arrays of the hits (45 bytes per hit), grown with realloc: glibc
 // moves large blocks with mremap, without copying, so growth needs no second
 // copy of the hits. VTK takes the buffers over (freed with free()).
 template <typename T>
@@ -83,18 +84,19 @@ struct GrowingBuffer
   }
 };
 
-struct HitArrays
+struct OutputHits
 {
   GrowingBuffer<float> Points, Direction, Flux;
   GrowingBuffer<unsigned short> Object, Emitter;
   GrowingBuffer<unsigned char> Depth;
+  GrowingBuffer<unsigned int> Triangle;
 
   bool Resize(vtkIdType n)
   {
     const auto m = static_cast<std::size_t>(n);
     return this->Points.Resize(3 * m) && this->Direction.Resize(3 * m) &&
       this->Flux.Resize(3 * m) && this->Object.Resize(m) && this->Emitter.Resize(m) &&
-      this->Depth.Resize(m);
+      this->Depth.Resize(m) && this->Triangle.Resize(m);
   }
 
   void Write(vtkIdType offset, const std::vector<brume::Hit>& hits)
@@ -105,6 +107,7 @@ struct HitArrays
     unsigned short* o = this->Object.Data + offset;
     unsigned short* e = this->Emitter.Data + offset;
     unsigned char* depth = this->Depth.Data + offset;
+    unsigned int* triangle = this->Triangle.Data + offset;
     for (std::size_t i = 0; i < hits.size(); ++i)
     {
       const brume::Hit& h = hits[i];
@@ -114,6 +117,7 @@ struct HitArrays
       o[i] = h.Object;
       e[i] = h.Emitter;
       depth[i] = h.Depth;
+      triangle[i] = h.Triangle;
     }
   }
 
@@ -138,6 +142,8 @@ struct HitArrays
     pd->AddArray(
       make(vtkSmartPointer<vtkUnsignedShortArray>::New(), this->Emitter, "EmitterId", 1));
     pd->AddArray(make(vtkSmartPointer<vtkUnsignedCharArray>::New(), this->Depth, "Depth", 1));
+    pd->AddArray(
+      make(vtkSmartPointer<vtkUnsignedIntArray>::New(), this->Triangle, "TriangleId", 1));
   }
 };
 
@@ -236,7 +242,7 @@ int vtkBrumeLightTracer::RequestData(
 
   // Output arrays, grown batch by batch (realloc of large blocks moves pages
   // without copying), so the hits are never held twice.
-  HitArrays out;
+  OutputHits out;
   const vtkTypeInt64 blocks = (particles + ParticlesPerBlock - 1) / ParticlesPerBlock;
   std::vector<std::vector<brume::Hit>> blockHits;
   std::vector<brume::TraceCounters> counters;

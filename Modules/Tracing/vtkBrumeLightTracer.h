@@ -8,7 +8,7 @@
  * casting) and scattered by homogeneous media (exact free-flight sampling,
  * Henyey-Greenstein phase sampling), with Russian roulette. Every interaction
  * is stored: the output vtkPolyData holds one point per hit with the arrays
- * documented in vtkBrumeSceneConversion (44 bytes per hit internally).
+ * documented in vtkBrumeSceneConversion (48 bytes per hit internally).
  *
  * Input: a scene collection (vtkBrumeSceneConversion) and, optionally,
  * vtkLight objects. Output: the hits, plus field data with the run's energy
@@ -16,8 +16,8 @@
  * `EstimatorNetFlux`, W per channel; emitted = the sum of the others) and
  * `NumberOfRays`.
  *
- * Memory: hits are appended batch by batch to the output arrays (41 bytes
- * per hit), so the peak stays near 46 bytes per stored hit.
+ * Memory: hits are appended batch by batch to the output arrays (45 bytes
+ * per hit), so the peak stays near 49 bytes per stored hit.
  *
  * Particles are traced in fixed blocks with vtkSMPTools; each particle's
  * random stream depends only on (Seed, particle index), so the output is

@@ -21,6 +21,7 @@
 #include "vtkPolyData.h"
 #include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
+#include "vtkUnsignedIntArray.h"
 #include "vtkUnsignedShortArray.h"
 
 #include "brume/VdbDensity.h"
@@ -526,6 +527,9 @@ vtkSmartPointer<vtkPolyData> vtkBrumeSceneConversion::HitsToPolyData(
   vtkNew<vtkUnsignedCharArray> depth;
   depth->SetName("Depth");
   depth->SetNumberOfTuples(n);
+  vtkNew<vtkUnsignedIntArray> triangle;
+  triangle->SetName("TriangleId");
+  triangle->SetNumberOfTuples(n);
   auto* p = static_cast<float*>(points->GetVoidPointer(0));
   float* d = direction->GetPointer(0);
   float* f = flux->GetPointer(0);
@@ -541,6 +545,7 @@ vtkSmartPointer<vtkPolyData> vtkBrumeSceneConversion::HitsToPolyData(
     object->SetValue(i, h.Object);
     emitter->SetValue(i, h.Emitter);
     depth->SetValue(i, h.Depth);
+    triangle->SetValue(i, h.Triangle);
   }
   auto output = vtkSmartPointer<vtkPolyData>::New();
   output->SetPoints(points);
@@ -549,6 +554,7 @@ vtkSmartPointer<vtkPolyData> vtkBrumeSceneConversion::HitsToPolyData(
   output->GetPointData()->AddArray(object);
   output->GetPointData()->AddArray(emitter);
   output->GetPointData()->AddArray(depth);
+  output->GetPointData()->AddArray(triangle);
   vtkNew<vtkDoubleArray> power;
   power->SetName("TotalPower");
   power->SetNumberOfComponents(3);
@@ -576,6 +582,7 @@ std::string vtkBrumeSceneConversion::HitsFromPolyData(
   auto* object = vtkUnsignedShortArray::SafeDownCast(pd->GetArray("ObjectId"));
   auto* emitter = vtkUnsignedShortArray::SafeDownCast(pd->GetArray("EmitterId"));
   auto* depth = vtkUnsignedCharArray::SafeDownCast(pd->GetArray("Depth"));
+  auto* triangle = vtkUnsignedIntArray::SafeDownCast(pd->GetArray("TriangleId"));
   if (n > 0 &&
     (!direction || !flux || !object || direction->GetNumberOfComponents() != 3 ||
       flux->GetNumberOfComponents() != 3))
@@ -599,6 +606,7 @@ std::string vtkBrumeSceneConversion::HitsFromPolyData(
     h.Emitter = emitter ? emitter->GetValue(i) : 0;
     h.Depth = depth ? depth->GetValue(i) : 0;
     h.Padding[0] = h.Padding[1] = h.Padding[2] = 0;
+    h.Triangle = triangle ? triangle->GetValue(i) : 0;
   }
   return {};
 }

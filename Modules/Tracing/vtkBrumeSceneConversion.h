@@ -36,9 +36,10 @@
  *
  * Particle hits travel as a vtkPolyData whose points are the hit positions,
  * with point data `Direction` (float[3], direction of travel on arrival),
- * `Flux` (float[3], W), `ObjectId` and `EmitterId` (unsigned short) and
- * `Depth` (unsigned char), and field data `TotalPower` (double[3], W) and
- * `NumberOfParticles`.
+ * `Flux` (float[3], W), `ObjectId` and `EmitterId` (unsigned short),
+ * `Depth` (unsigned char) and `TriangleId` (unsigned int: for surface hits,
+ * the triangle in the surface's triangulation, polygons as fans then strips),
+ * and field data `TotalPower` (double[3], W) and `NumberOfParticles`.
  *
  * @sa vtkBrumeLightTracer vtkBrumeDefaultSceneSource
  */

@@ -17,6 +17,7 @@
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
+#include "vtkRendererCollection.h"
 #include "vtkSmartPointer.h"
 #include "vtkSphereSource.h"
 #include "vtkVolume.h"
@@ -93,14 +94,27 @@ struct Frame
 
 // Renders the props looking down -z from z = 5, parallel (scale 1: the
 // window spans [-1, 1]^2) or perspective; returns the float radiance.
+// One window for every frame: opening an X connection per frame is what
+// intermittently fails under Xvfb, not what is under test.
+vtkRenderWindow* SharedWindow()
+{
+  static vtkSmartPointer<vtkRenderWindow> window;
+  if (!window)
+  {
+    window = vtkSmartPointer<vtkRenderWindow>::New();
+    window->SetOffScreenRendering(1);
+    window->SetMultiSamples(0);
+    window->SetSize(Size, Size);
+  }
+  return window;
+}
+
 Frame Render(const std::vector<vtkSmartPointer<vtkProp>>& props, bool parallel)
 {
   vtkNew<vtkRenderer> renderer;
   renderer->SetBackground(0, 0, 0);
-  vtkNew<vtkRenderWindow> window;
-  window->SetOffScreenRendering(1);
-  window->SetMultiSamples(0);
-  window->SetSize(Size, Size);
+  vtkRenderWindow* window = SharedWindow();
+  window->GetRenderers()->RemoveAllItems();
   window->AddRenderer(renderer);
   for (const auto& p : props)
   {
@@ -117,7 +131,9 @@ Frame Render(const std::vector<vtkSmartPointer<vtkProp>>& props, bool parallel)
   vtkNew<vtkBrumeFloatImageCapture> capture;
   capture->Attach(renderer);
   window->Render();
-  return { capture->Capture() };
+  Frame frame{ capture->Capture() };
+  window->RemoveRenderer(renderer);
+  return frame;
 }
 
 // World (x, y) at the centre of pixel (i, j) on the plane z = 0.

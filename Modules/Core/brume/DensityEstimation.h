@@ -35,6 +35,26 @@ struct RegionEstimate
   int Growth = 0;
 };
 
+/// A region of histogram cells [Lo, Hi) on every axis.
+struct Region
+{
+  std::array<int, 3> Lo{ 0, 0, 0 };
+  std::array<int, 3> Hi{ 0, 0, 0 };
+  int Growth = 0;
+  long long Cells() const
+  {
+    return static_cast<long long>(Hi[0] - Lo[0]) * (Hi[1] - Lo[1]) * (Hi[2] - Lo[2]);
+  }
+};
+
+/**
+ * The adaptive region of texel `texel`: its own cells, grown by one cell on
+ * every side (clipped) until channel `settings.WeightChannel` of `weights`
+ * reaches the threshold or the region covers the histogram.
+ */
+Region GrowRegion(const SummedAreaTable& weights, const std::array<int, 3>& histogramDims,
+  const std::array<int, 3>& texel, const AdaptiveRegionSettings& settings);
+
 /**
  * Estimates texel `texel` from `sat` (built on a histogram of dimensions
  * `histogramDims`). Writes, for every channel, the region's sum divided by

@@ -170,7 +170,7 @@ void LightTracer::TraceParticle(std::uint64_t index, std::uint64_t count, std::v
     trackers = heapTrackers.data();
   }
 
-  auto store = [&](const Vec3& p, std::uint16_t object, int depth)
+  auto store = [&](const Vec3& p, std::uint16_t object, int depth, std::uint32_t triangle)
   {
     Hit h;
     h.Position[0] = p.x;
@@ -186,6 +186,7 @@ void LightTracer::TraceParticle(std::uint64_t index, std::uint64_t count, std::v
     h.Emitter = emitter.Id;
     h.Depth = static_cast<std::uint8_t>(std::min(depth, 255));
     h.Padding[0] = h.Padding[1] = h.Padding[2] = 0;
+    h.Triangle = triangle;
     hits.push_back(h);
     ++counters.Hits;
   };
@@ -275,7 +276,7 @@ void LightTracer::TraceParticle(std::uint64_t index, std::uint64_t count, std::v
     if (collided)
     {
       origin = origin + direction * tCollision;
-      store(origin, static_cast<std::uint16_t>(numberOfSurfaces + collidedIndex), depth);
+      store(origin, static_cast<std::uint16_t>(numberOfSurfaces + collidedIndex), depth, 0);
       // Always scatter, weighting by the albedo (less variance than absorbing).
       const Vec3 before = flux;
       flux *= collided->Albedo();
@@ -290,7 +291,7 @@ void LightTracer::TraceParticle(std::uint64_t index, std::uint64_t count, std::v
     {
       const Surface& hitObject = scene.Surfaces[surfaceHit.Surface];
       const Vec3 position = origin + direction * tSurface;
-      store(position, static_cast<std::uint16_t>(surfaceHit.Surface), depth);
+      store(position, static_cast<std::uint16_t>(surfaceHit.Surface), depth, surfaceHit.Triangle);
       // Reflection on the side the particle came from.
       Vec3 n = Normalize(surfaceHit.Ng);
       if (Dot(n, direction) > 0.f)

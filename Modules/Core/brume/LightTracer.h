@@ -20,7 +20,7 @@
 namespace brume
 {
 
-/// One stored particle interaction: 44 bytes.
+/// One stored particle interaction: 48 bytes.
 struct Hit
 {
   /// World-space position of the interaction.
@@ -37,8 +37,10 @@ struct Hit
   /// Number of interactions before this one (0: straight from the light), saturating at 255.
   std::uint8_t Depth;
   std::uint8_t Padding[3];
+  /// Surface hits: the triangle (index in Surface::Triangles); media: 0.
+  std::uint32_t Triangle;
 };
-static_assert(sizeof(Hit) == 44, "Hit layout changed: update the documentation");
+static_assert(sizeof(Hit) == 48, "Hit layout changed: update the documentation");
 
 struct TraceSettings
 {

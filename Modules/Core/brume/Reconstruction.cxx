@@ -1,13 +1,52 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "brume/Reconstruction.h"
 
+#include "brume/Material.h"
 #include "brume/Sampling.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 namespace brume
 {
+
+ParallelFor SerialFor()
+{
+  return [](std::size_t begin, std::size_t end,
+           const std::function<void(std::size_t, std::size_t)>& body)
+  {
+    if (begin < end)
+    {
+      body(begin, end);
+    }
+  };
+}
+
+std::string GroupHitsByObject(const HitArrays& hits, std::size_t objects, ObjectHits& groups)
+{
+  groups.Offset.assign(objects + 1, 0);
+  for (std::size_t i = 0; i < hits.Count; ++i)
+  {
+    if (hits.Object[i] >= objects)
+    {
+      return "a particle hit refers to object " + std::to_string(hits.Object[i]) +
+        " but the scene has " + std::to_string(objects) + " objects";
+    }
+    ++groups.Offset[hits.Object[i] + 1];
+  }
+  for (std::size_t o = 0; o < objects; ++o)
+  {
+    groups.Offset[o + 1] += groups.Offset[o];
+  }
+  groups.Index.resize(hits.Count);
+  std::vector<std::size_t> cursor(groups.Offset.begin(), groups.Offset.end() - 1);
+  for (std::size_t i = 0; i < hits.Count; ++i)
+  {
+    groups.Index[cursor[hits.Object[i]]++] = static_cast<std::uint32_t>(i);
+  }
+  return {};
+}
 
 std::array<int, 3> ChooseResolution(
   const Vec3& extent, std::size_t hitCount, double hitsPerTexel, int minimum, int maximum)
@@ -43,145 +82,538 @@ std::array<int, 3> ChooseResolution(
   return res;
 }
 
-SurfaceRadiance::SurfaceRadiance(
-  const Surface& surface, const PlanarFrame& frame, std::array<int, 2> resolution, int refinement)
-  : SurfaceRef(surface)
-  , Frame(frame)
-  , Resolution(resolution)
-  , Refinement(refinement)
-  // Channels: incident flux R, G, B and the growth weight (their mean).
-  , Cells({ resolution[0] * refinement, resolution[1] * refinement, 1 }, 4)
+namespace
 {
+float UVArea(const std::array<float, 6>& uv)
+{
+  return 0.5f * std::abs((uv[2] - uv[0]) * (uv[5] - uv[1]) - (uv[4] - uv[0]) * (uv[3] - uv[1]));
 }
 
-void SurfaceRadiance::AddHits(const Hit* hits, std::size_t count)
+// Barycentric coordinates of p (projected) in the triangle abc.
+void Barycentric(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& p, float& u, float& v)
 {
-  const float uu = Dot(this->Frame.U, this->Frame.U);
-  const float vv = Dot(this->Frame.V, this->Frame.V);
-  for (std::size_t i = 0; i < count; ++i)
+  const Vec3 e0 = b - a, e1 = c - a, e2 = p - a;
+  const float d00 = Dot(e0, e0), d01 = Dot(e0, e1), d11 = Dot(e1, e1);
+  const float d20 = Dot(e2, e0), d21 = Dot(e2, e1);
+  const float det = d00 * d11 - d01 * d01;
+  u = det != 0.f ? (d11 * d20 - d01 * d21) / det : 0.f;
+  v = det != 0.f ? (d00 * d21 - d01 * d20) / det : 0.f;
+}
+}
+
+SurfaceChart MakeChart(
+  const Surface& surface, const std::vector<std::array<float, 2>>* vertexTextureCoordinates)
+{
+  SurfaceChart chart;
+  const std::size_t triangles = surface.Triangles.size();
+  chart.TriangleUV.resize(triangles);
+  if (surface.ComputePlanarFrame(chart.Frame))
   {
-    const Hit& h = hits[i];
-    const Vec3 d = Vec3(h.Position[0], h.Position[1], h.Position[2]) - this->Frame.Origin;
-    const auto cell =
-      this->Cells.CellOf(Dot(d, this->Frame.U) / uu, Dot(d, this->Frame.V) / vv, 0.0);
-    const double values[4] = { h.Flux[0], h.Flux[1], h.Flux[2],
-      (static_cast<double>(h.Flux[0]) + h.Flux[1] + h.Flux[2]) / 3.0 };
-    this->Cells.Add(this->Cells.Index(cell[0], cell[1], 0), values);
-  }
-}
-
-void SurfaceRadiance::Finalize()
-{
-  this->Table = SummedAreaTable(this->Cells);
-}
-
-void SurfaceRadiance::Estimate(
-  std::size_t begin, std::size_t end, double thresholdFlux, float* rgb) const
-{
-  AdaptiveRegionSettings settings;
-  settings.Refinement = { this->Refinement, this->Refinement, 1 };
-  settings.Threshold = thresholdFlux;
-  settings.WeightChannel = 3;
-  const auto& dims = this->Cells.GetDimensions();
-  const double cellArea =
-    this->Frame.Area() / (static_cast<double>(dims[0]) * static_cast<double>(dims[1]));
-  // The diffuse part; view-dependent lobes are not reconstructed here yet.
-  const Vec3 rho = this->SurfaceRef.Mat.Reflectance;
-  const Vec3 le = this->SurfaceRef.Mat.Emission;
-  for (std::size_t t = begin; t < end; ++t)
-  {
-    const std::array<int, 3> texel{ static_cast<int>(t % this->Resolution[0]),
-      static_cast<int>(t / this->Resolution[0]), 0 };
-    double perCell[4];
-    EstimateTexel(this->Table, dims, texel, settings, perCell);
-    for (int c = 0; c < 3; ++c)
+    chart.Type = SurfaceChart::Kind::Planar;
+    const float uu = Dot(chart.Frame.U, chart.Frame.U), vv = Dot(chart.Frame.V, chart.Frame.V);
+    for (std::size_t t = 0; t < triangles; ++t)
     {
-      // L_o = rho/pi * E + L_e with the irradiance E = flux / area.
-      rgb[3 * (t - begin) + c] = static_cast<float>(rho[c] * InvPi * perCell[c] / cellArea + le[c]);
-    }
-  }
-}
-
-MediumRadiance::MediumRadiance(const Medium& medium, std::array<int, 3> resolution, int refinement)
-  : MediumRef(medium)
-  , Resolution(resolution)
-  , Refinement(refinement)
-  // Channels: phase-weighted flux R, G, B and the growth weight (mean flux).
-  , Cells({ resolution[0] * refinement, resolution[1] * refinement, resolution[2] * refinement }, 4)
-{
-}
-
-void MediumRadiance::AddHits(const Hit* hits, std::size_t count, const Vec3& eye)
-{
-  const Box& box = this->MediumRef.Bounds;
-  const Vec3 extent = box.Extent();
-  const HenyeyGreenstein phase(this->MediumRef.G);
-  for (std::size_t i = 0; i < count; ++i)
-  {
-    const Hit& h = hits[i];
-    const Vec3 p(h.Position[0], h.Position[1], h.Position[2]);
-    const Vec3 q = (p - box.lower) / extent;
-    const auto cell = this->Cells.CellOf(q.x, q.y, q.z);
-    // Phase function from the direction of travel to the direction toward the eye.
-    const Vec3 toEye = Normalize(eye - p);
-    const double pw =
-      phase.Evaluate(Dot(Vec3(h.Direction[0], h.Direction[1], h.Direction[2]), toEye));
-    const double values[4] = { pw * h.Flux[0], pw * h.Flux[1], pw * h.Flux[2],
-      (static_cast<double>(h.Flux[0]) + h.Flux[1] + h.Flux[2]) / 3.0 };
-    this->Cells.Add(this->Cells.Index(cell[0], cell[1], cell[2]), values);
-  }
-}
-
-void MediumRadiance::Finalize()
-{
-  this->Table = SummedAreaTable(this->Cells);
-}
-
-void MediumRadiance::Estimate(
-  std::size_t begin, std::size_t end, double thresholdFlux, float* rgb, float* extinction) const
-{
-  AdaptiveRegionSettings settings;
-  settings.Refinement = { this->Refinement, this->Refinement, this->Refinement };
-  settings.Threshold = thresholdFlux;
-  settings.WeightChannel = 3;
-  const auto& dims = this->Cells.GetDimensions();
-  const double cellVolume = static_cast<double>(this->MediumRef.Bounds.Volume()) /
-    (static_cast<double>(dims[0]) * dims[1] * dims[2]);
-  const Vec3 albedo = this->MediumRef.Albedo();
-  const Box& box = this->MediumRef.Bounds;
-  const Vec3 voxelSize = box.Extent() /
-    Vec3(static_cast<float>(this->Resolution[0]), static_cast<float>(this->Resolution[1]),
-      static_cast<float>(this->Resolution[2]));
-  const std::size_t nx = this->Resolution[0], nxy = nx * this->Resolution[1];
-  for (std::size_t v = begin; v < end; ++v)
-  {
-    const std::array<int, 3> voxel{ static_cast<int>(v % nx), static_cast<int>((v % nxy) / nx),
-      static_cast<int>(v / nxy) };
-    double perCell[4];
-    EstimateTexel(this->Table, dims, voxel, settings, perCell);
-    // The voxel's extinction: sigma_t, times the density's mean over 2^3 points.
-    Vec3 sigmaT = this->MediumRef.SigmaT();
-    if (this->MediumRef.Density)
-    {
-      float mean = 0.f;
-      for (int k = 0; k < 8; ++k)
+      for (int k = 0; k < 3; ++k)
       {
-        const Vec3 offset(
-          0.25f + 0.5f * (k & 1), 0.25f + 0.5f * ((k >> 1) & 1), 0.25f + 0.5f * (k >> 2));
-        const Vec3 corner(
-          static_cast<float>(voxel[0]), static_cast<float>(voxel[1]), static_cast<float>(voxel[2]));
-        mean += this->MediumRef.Density->Evaluate(box.lower + (corner + offset) * voxelSize) / 8.f;
+        const Vec3 d = surface.Vertices[surface.Triangles[t][k]] - chart.Frame.Origin;
+        chart.TriangleUV[t][2 * k] = Dot(d, chart.Frame.U) / uu;
+        chart.TriangleUV[t][2 * k + 1] = Dot(d, chart.Frame.V) / vv;
       }
-      sigmaT = sigmaT * mean;
     }
-    for (int c = 0; c < 3; ++c)
+    chart.Width = Length(chart.Frame.U);
+    chart.Height = Length(chart.Frame.V);
+    return chart;
+  }
+  const float side = std::sqrt(static_cast<float>(surface.Area()));
+  chart.Width = chart.Height = side;
+  if (vertexTextureCoordinates && vertexTextureCoordinates->size() == surface.Vertices.size())
+  {
+    bool valid = true;
+    for (std::size_t t = 0; t < triangles && valid; ++t)
     {
-      // J = albedo * sum(p Phi) / V; S = J / sigma_t.
-      const double j = albedo[c] * perCell[c] / cellVolume;
-      rgb[3 * (v - begin) + c] = sigmaT[c] > 0.f ? static_cast<float>(j / sigmaT[c]) : 0.f;
-      extinction[3 * (v - begin) + c] = sigmaT[c];
+      for (int k = 0; k < 3; ++k)
+      {
+        const auto& tc = (*vertexTextureCoordinates)[surface.Triangles[t][k]];
+        chart.TriangleUV[t][2 * k] = tc[0];
+        chart.TriangleUV[t][2 * k + 1] = tc[1];
+        valid = valid && std::isfinite(tc[0]) && std::isfinite(tc[1]) && tc[0] >= 0.f &&
+          tc[0] <= 1.f && tc[1] >= 0.f && tc[1] <= 1.f;
+      }
+      valid = valid && UVArea(chart.TriangleUV[t]) > 0.f;
+    }
+    if (valid)
+    {
+      chart.Type = SurfaceChart::Kind::TextureCoordinates;
+      return chart;
     }
   }
+  // One square chart per triangle on a G x G grid; the triangle fills the
+  // lower-left half, inside a margin (an affine map: constant area scale).
+  chart.Type = SurfaceChart::Kind::Atlas;
+  const int g = std::max(1, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(triangles)))));
+  const float cell = 1.f / static_cast<float>(g), margin = 0.1f * cell;
+  for (std::size_t t = 0; t < triangles; ++t)
+  {
+    const float x0 = static_cast<float>(t % g) * cell, y0 = static_cast<float>(t / g) * cell;
+    chart.TriangleUV[t] = { x0 + margin, y0 + margin, x0 + cell - margin, y0 + margin, x0 + margin,
+      y0 + cell - margin };
+  }
+  chart.Width = chart.Height = side * std::sqrt(2.f) / (1.f - 2.f * 0.1f);
+  return chart;
+}
+
+ObjectRadiance::ObjectRadiance(
+  const Surface& surface, SurfaceChart chart, std::array<int, 2> resolution, int refinement)
+  : SurfaceRef(&surface)
+  , Chart(std::move(chart))
+  , Resolution{ resolution[0], resolution[1], 1 }
+  , Dims{ resolution[0] * refinement, resolution[1] * refinement, 1 }
+  , Refinement(refinement)
+  , ViewDependent(surface.IsViewDependent())
+{
+}
+
+ObjectRadiance::ObjectRadiance(const Medium& medium, std::array<int, 3> resolution, int refinement)
+  : MediumRef(&medium)
+  , Resolution(resolution)
+  , Dims{ resolution[0] * refinement, resolution[1] * refinement, resolution[2] * refinement }
+  , Refinement(refinement)
+  , ViewDependent(medium.G != 0.f)
+{
+}
+
+std::string ObjectRadiance::Build(const HitArrays& hits, const std::uint32_t* index,
+  std::size_t count, const Vec3& eye, double thresholdFlux, const ParallelFor& parallelFor)
+{
+  this->ThresholdFlux = thresholdFlux;
+  const std::size_t cells = static_cast<std::size_t>(this->Dims[0]) * this->Dims[1] * this->Dims[2];
+  const bool planar = !this->MediumRef && this->Chart.Type == SurfaceChart::Kind::Planar;
+  if (!this->MediumRef && !planar && !hits.Triangle && count > 0)
+  {
+    return "the hits have no TriangleId array, which a non-planar surface needs";
+  }
+  if (!this->MediumRef && !planar)
+  {
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      if (hits.Triangle[index[k]] >= this->Chart.TriangleUV.size())
+      {
+        return "a hit's TriangleId is beyond the surface's triangles";
+      }
+    }
+  }
+
+  // 1. The histogram cell of a hit.
+  const Box box = this->MediumRef ? this->MediumRef->Bounds : Box();
+  const float uu = Dot(this->Chart.Frame.U, this->Chart.Frame.U);
+  const float vv = Dot(this->Chart.Frame.V, this->Chart.Frame.V);
+  auto cellIndex = [&](double s, double t, double r)
+  {
+    std::array<int, 3> c{};
+    const double q[3] = { s, t, r };
+    for (int a = 0; a < 3; ++a)
+    {
+      const double x = std::floor(q[a] * this->Dims[a]);
+      c[a] = x >= 0.0 ? static_cast<int>(std::min<double>(x, this->Dims[a] - 1)) : 0;
+    }
+    return static_cast<std::uint32_t>(
+      (static_cast<std::size_t>(c[2]) * this->Dims[1] + c[1]) * this->Dims[0] + c[0]);
+  };
+  auto cellOfHit = [&](std::uint32_t i) -> std::uint32_t
+  {
+    const Vec3 p(hits.Position[3 * i], hits.Position[3 * i + 1], hits.Position[3 * i + 2]);
+    if (this->MediumRef)
+    {
+      const Vec3 q = (p - box.lower) / box.Extent();
+      return cellIndex(q.x, q.y, q.z);
+    }
+    if (planar)
+    {
+      const Vec3 d = p - this->Chart.Frame.Origin;
+      return cellIndex(Dot(d, this->Chart.Frame.U) / uu, Dot(d, this->Chart.Frame.V) / vv, 0.0);
+    }
+    const std::uint32_t t = hits.Triangle[i];
+    const auto& tri = this->SurfaceRef->Triangles[t];
+    float b1, b2;
+    Barycentric(this->SurfaceRef->Vertices[tri[0]], this->SurfaceRef->Vertices[tri[1]],
+      this->SurfaceRef->Vertices[tri[2]], p, b1, b2);
+    const auto& uv = this->Chart.TriangleUV[t];
+    const float b0 = 1.f - b1 - b2;
+    return cellIndex(
+      b0 * uv[0] + b1 * uv[2] + b2 * uv[4], b0 * uv[1] + b1 * uv[3] + b2 * uv[5], 0.0);
+  };
+
+  if (!this->ViewDependent)
+  {
+    // View-independent objects: one pass in hit order adds every hit to its
+    // cell (deterministic, and the histogram fits in cache); nothing is kept.
+    Histogram weight(this->Dims, 1), value(this->Dims, 3);
+    const HenyeyGreenstein isotropic(0.f);
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      const std::uint32_t i = index[k];
+      const std::uint32_t cell = cellOfHit(i);
+      const float* f = hits.Flux + 3 * i;
+      const double w = (static_cast<double>(f[0]) + f[1] + f[2]) / 3.0;
+      weight.Add(cell, &w);
+      double v[3];
+      if (this->MediumRef)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          v[c] = Inv4Pi * static_cast<double>(f[c]);
+        }
+      }
+      else
+      {
+        const Material& m = this->SurfaceRef->MaterialOf(hits.Triangle ? hits.Triangle[i] : 0);
+        for (int c = 0; c < 3; ++c)
+        {
+          v[c] = m.Reflectance[c] * InvPi * static_cast<double>(f[c]);
+        }
+      }
+      value.Add(cell, v);
+    }
+    this->WeightTable = SummedAreaTable(weight);
+    this->ValueTable = SummedAreaTable(value);
+  }
+  else
+  {
+    std::vector<std::uint32_t> cellOf(count);
+    parallelFor(0, count,
+      [&](std::size_t begin, std::size_t end)
+      {
+        for (std::size_t k = begin; k < end; ++k)
+        {
+          cellOf[k] = cellOfHit(index[k]);
+        }
+      });
+    // 2. Hits sorted by cell (stable counting sort: the sums below do not
+    // depend on the number of threads), their data copied in that order so
+    // that every later pass reads memory sequentially.
+    this->CellStart.assign(cells + 1, 0);
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      ++this->CellStart[cellOf[k] + 1];
+    }
+    for (std::size_t c = 0; c < cells; ++c)
+    {
+      this->CellStart[c + 1] += this->CellStart[c];
+    }
+    {
+      std::vector<std::uint32_t> cursor(this->CellStart.begin(), this->CellStart.end() - 1);
+      for (std::size_t k = 0; k < count; ++k)
+      {
+        cellOf[k] = cursor[cellOf[k]]++; // now the hit's slot
+      }
+    }
+    this->Sorted.resize(count);
+    this->SortedPosition.resize(3 * count);
+    this->SortedDirection.resize(3 * count);
+    this->SortedFlux.resize(3 * count);
+    this->SortedTriangle.resize(hits.Triangle ? count : 0);
+    parallelFor(0, count,
+      [&](std::size_t begin, std::size_t end)
+      {
+        for (std::size_t k = begin; k < end; ++k)
+        {
+          const std::uint32_t i = index[k];
+          const std::uint32_t slot = cellOf[k];
+          this->Sorted[slot] = i;
+          for (int c = 0; c < 3; ++c)
+          {
+            this->SortedPosition[3 * slot + c] = hits.Position[3 * i + c];
+            this->SortedDirection[3 * slot + c] = hits.Direction[3 * i + c];
+            this->SortedFlux[3 * slot + c] = hits.Flux[3 * i + c];
+          }
+          if (hits.Triangle)
+          {
+            this->SortedTriangle[slot] = hits.Triangle[i];
+          }
+        }
+      });
+    std::vector<std::uint32_t>().swap(cellOf);
+
+    // 3. The growth weight per cell (view independent) and its table.
+    Histogram weight(this->Dims, 1);
+    parallelFor(0, cells,
+      [&](std::size_t begin, std::size_t end)
+      {
+        for (std::size_t c = begin; c < end; ++c)
+        {
+          double w = 0.0;
+          for (std::uint32_t k = this->CellStart[c]; k < this->CellStart[c + 1]; ++k)
+          {
+            const float* f = &this->SortedFlux[3 * k];
+            w += (static_cast<double>(f[0]) + f[1] + f[2]) / 3.0;
+          }
+          const_cast<double*>(weight.Get(c))[0] = w;
+        }
+      });
+    this->WeightTable = SummedAreaTable(weight);
+
+    // 4. The value per cell toward the eye, and its table.
+    this->WeighCells(eye, parallelFor);
+  }
+
+  // 5. Regions (view independent), area table, extinction.
+  const std::size_t texels =
+    static_cast<std::size_t>(this->Resolution[0]) * this->Resolution[1] * this->Resolution[2];
+  this->Regions.resize(texels);
+  AdaptiveRegionSettings settings;
+  settings.Refinement = { this->Refinement, this->Refinement,
+    this->MediumRef ? this->Refinement : 1 };
+  settings.Threshold = thresholdFlux;
+  const std::size_t nx = this->Resolution[0], nxy = nx * this->Resolution[1];
+  parallelFor(0, texels,
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t t = begin; t < end; ++t)
+      {
+        const std::array<int, 3> texel{ static_cast<int>(t % nx), static_cast<int>((t % nxy) / nx),
+          static_cast<int>(t / nxy) };
+        this->Regions[t] = GrowRegion(this->WeightTable, this->Dims, texel, settings);
+      }
+    });
+  if (this->MediumRef)
+  {
+    this->Extinction.resize(3 * texels);
+    const Vec3 voxelSize = box.Extent() /
+      Vec3(static_cast<float>(this->Resolution[0]), static_cast<float>(this->Resolution[1]),
+        static_cast<float>(this->Resolution[2]));
+    parallelFor(0, texels,
+      [&](std::size_t begin, std::size_t end)
+      {
+        for (std::size_t t = begin; t < end; ++t)
+        {
+          // sigma_t times the density's mean over 2^3 points of the voxel.
+          Vec3 sigmaT = this->MediumRef->SigmaT();
+          if (this->MediumRef->Density)
+          {
+            const Vec3 corner(static_cast<float>(t % nx), static_cast<float>((t % nxy) / nx),
+              static_cast<float>(t / nxy));
+            float mean = 0.f;
+            for (int k = 0; k < 8; ++k)
+            {
+              const Vec3 offset(
+                0.25f + 0.5f * (k & 1), 0.25f + 0.5f * ((k >> 1) & 1), 0.25f + 0.5f * (k >> 2));
+              mean +=
+                this->MediumRef->Density->Evaluate(box.lower + (corner + offset) * voxelSize) / 8.f;
+            }
+            sigmaT = sigmaT * mean;
+          }
+          for (int c = 0; c < 3; ++c)
+          {
+            this->Extinction[3 * t + c] = sigmaT[c];
+          }
+        }
+      });
+  }
+  else
+  {
+    this->BuildAreaTable();
+  }
+  this->Estimate(parallelFor);
+  return {};
+}
+
+void ObjectRadiance::UpdateView(const Vec3& eye, const ParallelFor& parallelFor)
+{
+  if (!this->ViewDependent)
+  {
+    return;
+  }
+  this->WeighCells(eye, parallelFor);
+  this->Estimate(parallelFor);
+}
+
+void ObjectRadiance::WeighCells(const Vec3& eye, const ParallelFor& parallelFor)
+{
+  const std::size_t cells = this->CellStart.size() - 1;
+  Histogram value(this->Dims, 3);
+  HitArrays hits;
+  hits.Position = this->SortedPosition.data();
+  hits.Direction = this->SortedDirection.data();
+  hits.Flux = this->SortedFlux.data();
+  hits.Triangle = this->SortedTriangle.empty() ? nullptr : this->SortedTriangle.data();
+  const Medium* medium = this->MediumRef;
+  const Surface* surface = this->SurfaceRef;
+  const HenyeyGreenstein phase(medium ? medium->G : 0.f);
+  parallelFor(0, cells,
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t c = begin; c < end; ++c)
+      {
+        double sum[3] = { 0, 0, 0 };
+        for (std::uint32_t k = this->CellStart[c]; k < this->CellStart[c + 1]; ++k)
+        {
+          const std::uint32_t i = k; // the kept arrays are in cell order
+          const float* flux = hits.Flux + 3 * i;
+          if (medium)
+          {
+            // Phase function from the direction of travel to the eye.
+            float p = Inv4Pi;
+            if (this->ViewDependent)
+            {
+              const Vec3 pos(
+                hits.Position[3 * i], hits.Position[3 * i + 1], hits.Position[3 * i + 2]);
+              const Vec3 dir(
+                hits.Direction[3 * i], hits.Direction[3 * i + 1], hits.Direction[3 * i + 2]);
+              p = phase.Evaluate(Dot(dir, Normalize(eye - pos)));
+            }
+            for (int ch = 0; ch < 3; ++ch)
+            {
+              sum[ch] += static_cast<double>(p) * flux[ch];
+            }
+            continue;
+          }
+          // Surfaces: the BRDF from the incoming direction to the eye.
+          const std::uint32_t t = hits.Triangle ? hits.Triangle[i] : 0;
+          const Material& m = surface->MaterialOf(hits.Triangle ? t : 0);
+          Vec3 f = m.Reflectance * InvPi;
+          if (this->ViewDependent && m.IsViewDependent())
+          {
+            const auto& tri = surface->Triangles[hits.Triangle ? t : 0];
+            Vec3 n = Normalize(Cross(surface->Vertices[tri[1]] - surface->Vertices[tri[0]],
+              surface->Vertices[tri[2]] - surface->Vertices[tri[0]]));
+            const Vec3 dir(
+              hits.Direction[3 * i], hits.Direction[3 * i + 1], hits.Direction[3 * i + 2]);
+            if (Dot(n, dir) > 0.f)
+            {
+              n = -n;
+            }
+            const Vec3 pos(
+              hits.Position[3 * i], hits.Position[3 * i + 1], hits.Position[3 * i + 2]);
+            f = EvaluateBrdf(m, n, -dir, Normalize(eye - pos));
+          }
+          for (int ch = 0; ch < 3; ++ch)
+          {
+            sum[ch] += static_cast<double>(f[ch]) * flux[ch];
+          }
+        }
+        double* dst = const_cast<double*>(value.Get(c));
+        dst[0] = sum[0];
+        dst[1] = sum[1];
+        dst[2] = sum[2];
+      }
+    });
+  this->ValueTable = SummedAreaTable(value);
+}
+
+void ObjectRadiance::BuildAreaTable()
+{
+  // World area of the surface inside each histogram cell: every triangle's
+  // (u, v) coverage (4 x 4 samples a cell) times its world/texture area ratio.
+  Histogram area(this->Dims, 1);
+  const int nx = this->Dims[0], ny = this->Dims[1];
+  const double cellUV = 1.0 / (static_cast<double>(nx) * ny);
+  constexpr int S = 4;
+  for (std::size_t t = 0; t < this->SurfaceRef->Triangles.size(); ++t)
+  {
+    const auto& uv = this->Chart.TriangleUV[t];
+    const auto& tri = this->SurfaceRef->Triangles[t];
+    const double world = 0.5 *
+      Length(Cross(this->SurfaceRef->Vertices[tri[1]] - this->SurfaceRef->Vertices[tri[0]],
+        this->SurfaceRef->Vertices[tri[2]] - this->SurfaceRef->Vertices[tri[0]]));
+    const double texture = UVArea(uv);
+    if (!(texture > 0.0))
+    {
+      continue;
+    }
+    const double scale = world / texture;
+    const float umin = std::min({ uv[0], uv[2], uv[4] }), umax = std::max({ uv[0], uv[2], uv[4] });
+    const float vmin = std::min({ uv[1], uv[3], uv[5] }), vmax = std::max({ uv[1], uv[3], uv[5] });
+    const int i0 = std::max(0, static_cast<int>(std::floor(umin * nx)));
+    const int i1 = std::min(nx - 1, static_cast<int>(std::floor(umax * nx)));
+    const int j0 = std::max(0, static_cast<int>(std::floor(vmin * ny)));
+    const int j1 = std::min(ny - 1, static_cast<int>(std::floor(vmax * ny)));
+    // Edge functions of the (u, v) triangle, oriented counter-clockwise.
+    const float sign =
+      ((uv[2] - uv[0]) * (uv[5] - uv[1]) - (uv[4] - uv[0]) * (uv[3] - uv[1])) > 0.f ? 1.f : -1.f;
+    auto inside = [&](float u, float v)
+    {
+      for (int e = 0; e < 3; ++e)
+      {
+        const float ax = uv[2 * e], ay = uv[2 * e + 1];
+        const float bx = uv[(2 * e + 2) % 6], by = uv[(2 * e + 3) % 6];
+        if (sign * ((bx - ax) * (v - ay) - (by - ay) * (u - ax)) < 0.f)
+        {
+          return false;
+        }
+      }
+      return true;
+    };
+    for (int j = j0; j <= j1; ++j)
+    {
+      for (int i = i0; i <= i1; ++i)
+      {
+        int in = 0;
+        const float u0 = static_cast<float>(i) / nx, u1 = static_cast<float>(i + 1) / nx;
+        const float v0 = static_cast<float>(j) / ny, v1 = static_cast<float>(j + 1) / ny;
+        if (inside(u0, v0) && inside(u1, v0) && inside(u0, v1) && inside(u1, v1))
+        {
+          in = S * S; // a convex triangle holding the cell's corners holds the cell
+        }
+        else
+        {
+          for (int sj = 0; sj < S; ++sj)
+            for (int si = 0; si < S; ++si)
+            {
+              in += inside((i + (si + 0.5f) / S) / nx, (j + (sj + 0.5f) / S) / ny) ? 1 : 0;
+            }
+        }
+        if (in > 0)
+        {
+          const double a = scale * cellUV * in / (S * S);
+          area.Add(area.Index(i, j, 0), &a);
+        }
+      }
+    }
+  }
+  this->AreaTable = SummedAreaTable(area);
+}
+
+void ObjectRadiance::Estimate(const ParallelFor& parallelFor)
+{
+  const std::size_t texels = this->Regions.size();
+  this->Radiance.resize(3 * texels);
+  const double cellVolume = this->MediumRef
+    ? static_cast<double>(this->MediumRef->Bounds.Volume()) /
+      (static_cast<double>(this->Dims[0]) * this->Dims[1] * this->Dims[2])
+    : 0.0;
+  const Vec3 albedo = this->MediumRef ? this->MediumRef->Albedo() : Vec3(0.f);
+  const Vec3 emission = this->SurfaceRef ? this->SurfaceRef->Mat.Emission : Vec3(0.f);
+  parallelFor(0, texels,
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t t = begin; t < end; ++t)
+      {
+        const Region& r = this->Regions[t];
+        double sum[3];
+        this->ValueTable.RegionSum(r.Lo, r.Hi, sum);
+        float* out = &this->Radiance[3 * t];
+        if (this->MediumRef)
+        {
+          // J = albedo * sum(p Phi) / V; S = J / sigma_t.
+          const double volume = static_cast<double>(r.Cells()) * cellVolume;
+          for (int c = 0; c < 3; ++c)
+          {
+            const double sigmaT = this->Extinction[3 * t + c];
+            out[c] = sigmaT > 0.0 ? static_cast<float>(albedo[c] * sum[c] / volume / sigmaT) : 0.f;
+          }
+        }
+        else
+        {
+          // L_o = sum f_r Phi / A + L_e.
+          double area = 0.0;
+          this->AreaTable.RegionSum(r.Lo, r.Hi, &area);
+          for (int c = 0; c < 3; ++c)
+          {
+            out[c] = static_cast<float>((area > 0.0 ? sum[c] / area : 0.0) + emission[c]);
+          }
+        }
+      }
+    });
 }
 
 } // namespace brume

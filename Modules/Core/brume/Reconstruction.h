@@ -1,32 +1,72 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Phase 2 of Jimenez & Pueyo (2003), section 3: radiance textures from the
 // stored particle hits, per object, through a histogram, its summed-area
-// table and adaptive nearest-neighbour density estimation.
+// tables and adaptive nearest-neighbour density estimation.
 //
 // Radiometric normalization (units agree with a path tracer's radiance):
-//  - Surface texel, Lambertian reflectance rho, region of area A holding hits
-//    of incident flux Phi_p:  L_o = rho/pi * sum(Phi_p) / A  +  L_e.
+//  - Surface texel, region of world area A holding hits of incident flux
+//    Phi_p arriving from w_p (pointing away from the surface), toward the
+//    eye w_o:  L_o = sum f_r(w_p, w_o) Phi_p / A  +  L_e.
+//    Lambertian: f_r = rho/pi, so L_o = rho/pi * E + L_e with E = sum Phi_p / A.
 //  - Medium voxel, region of volume V holding the hits stored at real
-//    collisions (flux before the albedo weighting), phase function p, direction
-//    of travel w_p, direction toward the eye w_o:
+//    collisions (flux before the albedo weighting), phase function p,
+//    direction of travel w_p, direction toward the eye w_o:
 //      J = (sigma_s/sigma_t) * sum(p(w_p, w_o) Phi_p) / V   (W m^-3 sr^-1)
 //    and the texture holds the slab source radiance S = J / sigma_t
 //    (W m^-2 sr^-1), which the slice renderer composites with
 //    alpha = 1 - exp(-sigma_t * Delta).
-//  - The growth threshold is a flux (W): the region grows until the incident
-//    flux it holds (mean over channels) reaches it.
+//  - The growth threshold is a flux (W): a texel's region grows from its own
+//    histogram cells until the incident flux it holds (mean over channels)
+//    reaches it (the paper's "accumulated radiosity"). The region's sum is
+//    divided by the region's own area (summed from a per-cell area map, so
+//    texels at a polygon's edge or on an atlas chart count only the surface)
+//    or volume.
+//
+// What a view change costs: the hits of a view-dependent object (glossy
+// surface, anisotropic medium) are kept sorted by histogram cell; a new eye
+// only re-weights them, rebuilds the value table and re-evaluates the cached
+// regions (whose growth depends on the view-independent flux alone). Other
+// objects are never recomputed.
 #ifndef brume_Reconstruction_h
 #define brume_Reconstruction_h
 
 #include "brume/DensityEstimation.h"
-#include "brume/LightTracer.h"
 #include "brume/Scene.h"
 
 #include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
 #include <vector>
 
 namespace brume
 {
+
+/// Runs body(begin, end) over sub-ranges of [begin, end), possibly in parallel.
+using ParallelFor = std::function<void(
+  std::size_t, std::size_t, const std::function<void(std::size_t, std::size_t)>&)>;
+/// A ParallelFor that runs everything on the calling thread.
+ParallelFor SerialFor();
+
+/// Hits in structure-of-arrays form (e.g. the arrays of a vtkPolyData).
+struct HitArrays
+{
+  const float* Position = nullptr;  // 3 per hit
+  const float* Direction = nullptr; // 3 per hit, direction of travel
+  const float* Flux = nullptr;      // 3 per hit
+  const std::uint16_t* Object = nullptr;
+  const std::uint32_t* Triangle = nullptr; // may be null: planar surfaces need none
+  std::size_t Count = 0;
+};
+
+/// Hit indices grouped by object, in hit order within each object.
+struct ObjectHits
+{
+  std::vector<std::uint32_t> Index;
+  std::vector<std::size_t> Offset; // objects + 1
+};
+/// Empty on success, otherwise what is wrong (an object id out of range).
+std::string GroupHitsByObject(const HitArrays& hits, std::size_t objects, ObjectHits& groups);
 
 /**
  * Texture resolution along each axis of an object of the given extent (zero
@@ -36,58 +76,88 @@ namespace brume
 std::array<int, 3> ChooseResolution(
   const Vec3& extent, std::size_t hitCount, double hitsPerTexel, int minimum, int maximum);
 
-/// Outgoing radiance texture of a planar Lambertian surface (view independent).
-class SurfaceRadiance
+/// How a surface maps to its texture's [0, 1]^2.
+struct SurfaceChart
 {
-public:
-  /// resolution: texels along the frame's U and V axes; refinement: histogram
-  /// cells per texel along each axis.
-  SurfaceRadiance(const Surface& surface, const PlanarFrame& frame, std::array<int, 2> resolution,
-    int refinement);
-
-  /// Bins the hits of this surface (hits of other objects must be filtered out).
-  void AddHits(const Hit* hits, std::size_t count);
-  /// Builds the summed-area table; call once after the hits are added.
-  void Finalize();
-
-  /// Radiance (RGB) of texels [begin, end) in row-major order (U fastest).
-  void Estimate(std::size_t begin, std::size_t end, double thresholdFlux, float* rgb) const;
-
-  std::array<int, 2> GetResolution() const { return this->Resolution; }
-
-private:
-  const Surface& SurfaceRef;
+  enum class Kind
+  {
+    Planar,             // the plane's own (u, v): PlanarFrame
+    TextureCoordinates, // the mesh's texture coordinates
+    Atlas               // one chart per triangle, made automatically
+  };
+  Kind Type = Kind::Planar;
   PlanarFrame Frame;
-  std::array<int, 2> Resolution;
-  int Refinement;
-  Histogram Cells;
-  SummedAreaTable Table;
+  /// (u, v) of the three corners of every triangle.
+  std::vector<std::array<float, 6>> TriangleUV;
+  /// Aspect (u extent / v extent in the world) for choosing resolutions.
+  float Width = 1.f, Height = 1.f;
 };
 
-/// Source radiance texture of a homogeneous medium toward an eye point.
-class MediumRadiance
+/**
+ * The chart of a surface: planar surfaces use their plane, others the given
+ * per-vertex texture coordinates (if any, with non-degenerate triangles),
+ * others an automatic per-triangle atlas.
+ */
+SurfaceChart MakeChart(
+  const Surface& surface, const std::vector<std::array<float, 2>>* vertexTextureCoordinates);
+
+/// The radiance texture of one object, kept for cheap view updates.
+class ObjectRadiance
 {
 public:
-  MediumRadiance(const Medium& medium, std::array<int, 3> resolution, int refinement);
+  ObjectRadiance(
+    const Surface& surface, SurfaceChart chart, std::array<int, 2> resolution, int refinement);
+  ObjectRadiance(const Medium& medium, std::array<int, 3> resolution, int refinement);
 
-  /// Bins the hits of this medium, weighting each by the phase function
-  /// toward `eye` (view dependent unless the medium is isotropic).
-  void AddHits(const Hit* hits, std::size_t count, const Vec3& eye);
-  void Finalize();
+  /// Glossy surfaces and anisotropic media change with the viewpoint.
+  bool IsViewDependent() const { return this->ViewDependent; }
 
-  /// Source radiance S (RGB) and extinction sigma_t (RGB, the mean over the
-  /// voxel for heterogeneous media) of voxels [begin, end) in x-fastest order.
-  void Estimate(
-    std::size_t begin, std::size_t end, double thresholdFlux, float* rgb, float* extinction) const;
+  /**
+   * Bins the object's hits (`count` indices into `hits`) and estimates the
+   * texture toward `eye`. Empty on success, otherwise what is wrong.
+   */
+  std::string Build(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
+    const Vec3& eye, double thresholdFlux, const ParallelFor& parallelFor);
 
-  std::array<int, 3> GetResolution() const { return this->Resolution; }
+  /// Re-weights the kept hits toward `eye` and re-estimates (view-dependent objects).
+  void UpdateView(const Vec3& eye, const ParallelFor& parallelFor);
+
+  /// RGB per texel, x fastest: surfaces L_o, media the source radiance S.
+  const std::vector<float>& GetRadiance() const { return this->Radiance; }
+  /// Media: sigma_t (RGB) per voxel.
+  const std::vector<float>& GetExtinction() const { return this->Extinction; }
+  const std::array<int, 3>& GetResolution() const { return this->Resolution; }
+  const SurfaceChart& GetChart() const { return this->Chart; }
+  std::size_t GetNumberOfHits() const { return this->Sorted.size(); }
 
 private:
-  const Medium& MediumRef;
+  void WeighCells(const Vec3& eye, const ParallelFor& parallelFor);
+  void Estimate(const ParallelFor& parallelFor);
+  void BuildAreaTable();
+
+  const Surface* SurfaceRef = nullptr;
+  const Medium* MediumRef = nullptr;
+  SurfaceChart Chart;
   std::array<int, 3> Resolution;
+  std::array<int, 3> Dims; // histogram
   int Refinement;
-  Histogram Cells;
-  SummedAreaTable Table;
+  bool ViewDependent = false;
+
+  // Hits sorted by histogram cell, and their data in that order (kept for
+  // re-weighting by view-dependent objects only).
+  std::vector<std::uint32_t> Sorted;
+  std::vector<std::uint32_t> CellStart; // cells + 1
+  std::vector<float> SortedPosition, SortedDirection, SortedFlux;
+  std::vector<std::uint32_t> SortedTriangle;
+
+  SummedAreaTable WeightTable; // incident flux (mean over channels): drives the growth
+  SummedAreaTable ValueTable;  // weighted flux, RGB
+  SummedAreaTable AreaTable;   // surfaces: world area per cell
+  std::vector<Region> Regions; // per texel, view independent
+  double ThresholdFlux = 0.0;
+
+  std::vector<float> Radiance;
+  std::vector<float> Extinction;
 };
 
 } // namespace brume
