@@ -26,6 +26,7 @@
 
 #include "brume/Reconstruction.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -334,19 +335,50 @@ int vtkBrumeRadianceReconstruction::RequestData(
           : brume::ChooseResolution(extent, count, this->RadiosityThreshold, 4, 256);
         radiance.reset(new brume::ObjectRadiance(medium, res, refinement));
       }
-      const std::string buildError = radiance->Build(
-        hits, groups.Index.data() + groups.Offset[o], count, eye, threshold, parallelFor);
-      if (!buildError.empty())
+      cache->Objects.push_back(std::move(radiance));
+      cache->Outputs.push_back(nullptr);
+    }
+    // View-independent objects build concurrently (each on one thread: a
+    // single pass in hit order); view-dependent ones then use every thread.
+    std::vector<std::string> errors(cache->Objects.size());
+    std::vector<vtkIdType> independent;
+    for (std::size_t o = 0; o < cache->Objects.size(); ++o)
+    {
+      if (!cache->Objects[o]->IsViewDependent())
       {
-        vtkErrorMacro("Cannot reconstruct '" << source.Name << "': " << buildError << ".");
+        independent.push_back(static_cast<vtkIdType>(o));
+      }
+    }
+    const brume::ParallelFor serialFor = brume::SerialFor();
+    vtkSMPTools::For(0, static_cast<vtkIdType>(independent.size()), 1,
+      [&](vtkIdType begin, vtkIdType end)
+      {
+        for (vtkIdType k = begin; k < end; ++k)
+        {
+          const auto o = static_cast<std::size_t>(independent[k]);
+          errors[o] = cache->Objects[o]->Build(hits, groups.Index.data() + groups.Offset[o],
+            groups.Offset[o + 1] - groups.Offset[o], eye, threshold, serialFor);
+        }
+      });
+    this->UpdateProgress(0.5);
+    for (std::size_t o = 0; o < cache->Objects.size(); ++o)
+    {
+      if (cache->Objects[o]->IsViewDependent())
+      {
+        errors[o] = cache->Objects[o]->Build(hits, groups.Index.data() + groups.Offset[o],
+          groups.Offset[o + 1] - groups.Offset[o], eye, threshold, parallelFor);
+      }
+    }
+    for (std::size_t o = 0; o < cache->Objects.size(); ++o)
+    {
+      if (!errors[o].empty())
+      {
+        vtkErrorMacro(
+          "Cannot reconstruct '" << cache->Sources[o].Name << "': " << errors[o] << ".");
         this->Cached.reset();
         return 0;
       }
       ++this->NumberOfTextureBuilds;
-      cache->Objects.push_back(std::move(radiance));
-      cache->Outputs.push_back(nullptr);
-      this->UpdateProgress(
-        static_cast<double>(o + 1) / static_cast<double>(scene.NumberOfObjects()));
     }
     cache->SceneData = sceneData;
     cache->HitsData = hitData;

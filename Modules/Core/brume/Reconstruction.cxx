@@ -84,6 +84,9 @@ std::array<int, 3> ChooseResolution(
 
 namespace
 {
+// Ranges of histogram cells that view-dependent objects weigh as tasks.
+constexpr std::size_t Ranges = 64;
+
 float UVArea(const std::array<float, 6>& uv)
 {
   return 0.5f * std::abs((uv[2] - uv[0]) * (uv[5] - uv[1]) - (uv[4] - uv[0]) * (uv[3] - uv[1]));
@@ -279,80 +282,69 @@ std::string ObjectRadiance::Build(const HitArrays& hits, const std::uint32_t* in
   }
   else
   {
-    std::vector<std::uint32_t> cellOf(count);
+    // View-dependent objects keep their hits with their histogram cells,
+    // grouped by ranges of cells: a new eye re-weights them (WeighCells).
+    this->CellOf.resize(count);
     parallelFor(0, count,
       [&](std::size_t begin, std::size_t end)
       {
         for (std::size_t k = begin; k < end; ++k)
         {
-          cellOf[k] = cellOfHit(index[k]);
+          this->CellOf[k] = cellOfHit(index[k]);
         }
       });
-    // 2. Hits sorted by cell (stable counting sort: the sums below do not
-    // depend on the number of threads), their data copied in that order so
-    // that every later pass reads memory sequentially.
-    this->CellStart.assign(cells + 1, 0);
+    // Group the hits by ranges of cells (a coarse, stable counting sort):
+    // each range is then one task, and a cell's sum follows hit order.
+    this->RangeStart.assign(Ranges + 1, 0);
+    auto rangeOf = [&](std::uint32_t cell)
+    { return static_cast<std::size_t>(cell) * Ranges / cells; };
     for (std::size_t k = 0; k < count; ++k)
     {
-      ++this->CellStart[cellOf[k] + 1];
+      ++this->RangeStart[rangeOf(this->CellOf[k]) + 1];
     }
-    for (std::size_t c = 0; c < cells; ++c)
+    for (std::size_t r = 0; r < Ranges; ++r)
     {
-      this->CellStart[c + 1] += this->CellStart[c];
+      this->RangeStart[r + 1] += this->RangeStart[r];
     }
+    this->RangeOrder.resize(count);
     {
-      std::vector<std::uint32_t> cursor(this->CellStart.begin(), this->CellStart.end() - 1);
+      std::vector<std::uint32_t> cursor(this->RangeStart.begin(), this->RangeStart.end() - 1);
       for (std::size_t k = 0; k < count; ++k)
       {
-        cellOf[k] = cursor[cellOf[k]]++; // now the hit's slot
+        this->RangeOrder[cursor[rangeOf(this->CellOf[k])]++] = static_cast<std::uint32_t>(k);
       }
     }
-    this->Sorted.resize(count);
-    this->SortedPosition.resize(3 * count);
-    this->SortedDirection.resize(3 * count);
-    this->SortedFlux.resize(3 * count);
-    this->SortedTriangle.resize(hits.Triangle ? count : 0);
-    parallelFor(0, count,
+    // The hits' data in that order: every later pass reads it sequentially.
+    this->Kept.resize(count);
+    parallelFor(0, Ranges,
       [&](std::size_t begin, std::size_t end)
       {
-        for (std::size_t k = begin; k < end; ++k)
+        for (std::size_t k = this->RangeStart[begin]; k < this->RangeStart[end]; ++k)
         {
-          const std::uint32_t i = index[k];
-          const std::uint32_t slot = cellOf[k];
-          this->Sorted[slot] = i;
-          for (int c = 0; c < 3; ++c)
-          {
-            this->SortedPosition[3 * slot + c] = hits.Position[3 * i + c];
-            this->SortedDirection[3 * slot + c] = hits.Direction[3 * i + c];
-            this->SortedFlux[3 * slot + c] = hits.Flux[3 * i + c];
-          }
-          if (hits.Triangle)
-          {
-            this->SortedTriangle[slot] = hits.Triangle[i];
-          }
+          const std::uint32_t j = this->RangeOrder[k];
+          const std::size_t i = index[j];
+          KeptHit& h = this->Kept[k];
+          std::copy(hits.Position + 3 * i, hits.Position + 3 * i + 3, h.Position);
+          std::copy(hits.Direction + 3 * i, hits.Direction + 3 * i + 3, h.Direction);
+          std::copy(hits.Flux + 3 * i, hits.Flux + 3 * i + 3, h.Flux);
+          h.Cell = this->CellOf[j];
+          h.Triangle = hits.Triangle ? hits.Triangle[i] : 0;
         }
       });
-    std::vector<std::uint32_t>().swap(cellOf);
-
-    // 3. The growth weight per cell (view independent) and its table.
+    std::vector<std::uint32_t>().swap(this->CellOf);
+    std::vector<std::uint32_t>().swap(this->RangeOrder);
     Histogram weight(this->Dims, 1);
-    parallelFor(0, cells,
+    parallelFor(0, Ranges,
       [&](std::size_t begin, std::size_t end)
       {
-        for (std::size_t c = begin; c < end; ++c)
+        for (std::size_t k = this->RangeStart[begin]; k < this->RangeStart[end]; ++k)
         {
-          double w = 0.0;
-          for (std::uint32_t k = this->CellStart[c]; k < this->CellStart[c + 1]; ++k)
-          {
-            const float* f = &this->SortedFlux[3 * k];
-            w += (static_cast<double>(f[0]) + f[1] + f[2]) / 3.0;
-          }
-          const_cast<double*>(weight.Get(c))[0] = w;
+          const float* f = this->Kept[k].Flux;
+          const double w = (static_cast<double>(f[0]) + f[1] + f[2]) / 3.0;
+          weight.Add(this->Kept[k].Cell, &w);
         }
       });
     this->WeightTable = SummedAreaTable(weight);
-
-    // 4. The value per cell toward the eye, and its table.
     this->WeighCells(eye, parallelFor);
   }
 
@@ -429,72 +421,50 @@ void ObjectRadiance::UpdateView(const Vec3& eye, const ParallelFor& parallelFor)
 
 void ObjectRadiance::WeighCells(const Vec3& eye, const ParallelFor& parallelFor)
 {
-  const std::size_t cells = this->CellStart.size() - 1;
   Histogram value(this->Dims, 3);
-  HitArrays hits;
-  hits.Position = this->SortedPosition.data();
-  hits.Direction = this->SortedDirection.data();
-  hits.Flux = this->SortedFlux.data();
-  hits.Triangle = this->SortedTriangle.empty() ? nullptr : this->SortedTriangle.data();
   const Medium* medium = this->MediumRef;
   const Surface* surface = this->SurfaceRef;
   const HenyeyGreenstein phase(medium ? medium->G : 0.f);
-  parallelFor(0, cells,
+  parallelFor(0, Ranges,
     [&](std::size_t begin, std::size_t end)
     {
-      for (std::size_t c = begin; c < end; ++c)
+      for (std::size_t k = this->RangeStart[begin]; k < this->RangeStart[end]; ++k)
       {
-        double sum[3] = { 0, 0, 0 };
-        for (std::uint32_t k = this->CellStart[c]; k < this->CellStart[c + 1]; ++k)
+        const KeptHit& h = this->Kept[k];
+        const std::uint32_t cell = h.Cell;
+        const float* flux = h.Flux;
+        const Vec3 pos(h.Position[0], h.Position[1], h.Position[2]);
+        const Vec3 dir(h.Direction[0], h.Direction[1], h.Direction[2]);
+        const Vec3 toEye = Normalize(eye - pos);
+        double v[3];
+        if (medium)
         {
-          const std::uint32_t i = k; // the kept arrays are in cell order
-          const float* flux = hits.Flux + 3 * i;
-          if (medium)
-          {
-            // Phase function from the direction of travel to the eye.
-            float p = Inv4Pi;
-            if (this->ViewDependent)
-            {
-              const Vec3 pos(
-                hits.Position[3 * i], hits.Position[3 * i + 1], hits.Position[3 * i + 2]);
-              const Vec3 dir(
-                hits.Direction[3 * i], hits.Direction[3 * i + 1], hits.Direction[3 * i + 2]);
-              p = phase.Evaluate(Dot(dir, Normalize(eye - pos)));
-            }
-            for (int ch = 0; ch < 3; ++ch)
-            {
-              sum[ch] += static_cast<double>(p) * flux[ch];
-            }
-            continue;
-          }
-          // Surfaces: the BRDF from the incoming direction to the eye.
-          const std::uint32_t t = hits.Triangle ? hits.Triangle[i] : 0;
-          const Material& m = surface->MaterialOf(hits.Triangle ? t : 0);
-          Vec3 f = m.Reflectance * InvPi;
-          if (this->ViewDependent && m.IsViewDependent())
-          {
-            const auto& tri = surface->Triangles[hits.Triangle ? t : 0];
-            Vec3 n = Normalize(Cross(surface->Vertices[tri[1]] - surface->Vertices[tri[0]],
-              surface->Vertices[tri[2]] - surface->Vertices[tri[0]]));
-            const Vec3 dir(
-              hits.Direction[3 * i], hits.Direction[3 * i + 1], hits.Direction[3 * i + 2]);
-            if (Dot(n, dir) > 0.f)
-            {
-              n = -n;
-            }
-            const Vec3 pos(
-              hits.Position[3 * i], hits.Position[3 * i + 1], hits.Position[3 * i + 2]);
-            f = EvaluateBrdf(m, n, -dir, Normalize(eye - pos));
-          }
+          // Phase function from the direction of travel to the eye.
+          const double p = phase.Evaluate(Dot(dir, toEye));
           for (int ch = 0; ch < 3; ++ch)
           {
-            sum[ch] += static_cast<double>(f[ch]) * flux[ch];
+            v[ch] = p * flux[ch];
           }
         }
-        double* dst = const_cast<double*>(value.Get(c));
-        dst[0] = sum[0];
-        dst[1] = sum[1];
-        dst[2] = sum[2];
+        else
+        {
+          // The BRDF from the incoming direction to the eye.
+          const std::uint32_t t = h.Triangle;
+          const Material& m = surface->MaterialOf(t);
+          const auto& tri = surface->Triangles[t];
+          Vec3 n = Normalize(Cross(surface->Vertices[tri[1]] - surface->Vertices[tri[0]],
+            surface->Vertices[tri[2]] - surface->Vertices[tri[0]]));
+          if (Dot(n, dir) > 0.f)
+          {
+            n = -n;
+          }
+          const Vec3 f = EvaluateBrdf(m, n, -dir, toEye);
+          for (int ch = 0; ch < 3; ++ch)
+          {
+            v[ch] = static_cast<double>(f[ch]) * flux[ch];
+          }
+        }
+        value.Add(cell, v);
       }
     });
   this->ValueTable = SummedAreaTable(value);

@@ -22,11 +22,12 @@
 //    texels at a polygon's edge or on an atlas chart count only the surface)
 //    or volume.
 //
-// What a view change costs: the hits of a view-dependent object (glossy
-// surface, anisotropic medium) are kept sorted by histogram cell; a new eye
+// What a view change costs: a view-dependent object (glossy surface,
+// anisotropic medium) keeps its hits' indices and histogram cells; a new eye
 // only re-weights them, rebuilds the value table and re-evaluates the cached
 // regions (whose growth depends on the view-independent flux alone). Other
-// objects are never recomputed.
+// objects are never recomputed. Per-cell sums follow hit order, so results
+// do not depend on the number of threads.
 #ifndef brume_Reconstruction_h
 #define brume_Reconstruction_h
 
@@ -128,7 +129,6 @@ public:
   const std::vector<float>& GetExtinction() const { return this->Extinction; }
   const std::array<int, 3>& GetResolution() const { return this->Resolution; }
   const SurfaceChart& GetChart() const { return this->Chart; }
-  std::size_t GetNumberOfHits() const { return this->Sorted.size(); }
 
 private:
   void WeighCells(const Vec3& eye, const ParallelFor& parallelFor);
@@ -143,12 +143,16 @@ private:
   int Refinement;
   bool ViewDependent = false;
 
-  // Hits sorted by histogram cell, and their data in that order (kept for
-  // re-weighting by view-dependent objects only).
-  std::vector<std::uint32_t> Sorted;
-  std::vector<std::uint32_t> CellStart; // cells + 1
-  std::vector<float> SortedPosition, SortedDirection, SortedFlux;
-  std::vector<std::uint32_t> SortedTriangle;
+  // View-dependent objects keep their hits (44 bytes each), grouped by
+  // ranges of histogram cells and in hit order within a range.
+  struct KeptHit
+  {
+    float Position[3], Direction[3], Flux[3];
+    std::uint32_t Cell, Triangle;
+  };
+  std::vector<KeptHit> Kept;
+  std::vector<std::size_t> RangeStart;
+  std::vector<std::uint32_t> CellOf, RangeOrder; // scratch during Build
 
   SummedAreaTable WeightTable; // incident flux (mean over channels): drives the growth
   SummedAreaTable ValueTable;  // weighted flux, RGB
