@@ -470,14 +470,59 @@ void ObjectRadiance::WeighCells(const Vec3& eye, const ParallelFor& parallelFor)
   this->ValueTable = SummedAreaTable(value);
 }
 
+namespace
+{
+// Area of the triangle `uv` inside the rectangle [u0, u1] x [v0, v1]
+// (Sutherland-Hodgman clipping, then the shoelace formula).
+double ClippedArea(const std::array<float, 6>& uv, double u0, double u1, double v0, double v1)
+{
+  struct P
+  {
+    double u, v;
+  };
+  std::vector<P> poly = { { uv[0], uv[1] }, { uv[2], uv[3] }, { uv[4], uv[5] } }, next;
+  // Keep the side where f(p) >= 0 for each of the four edges.
+  auto clip = [&](auto f)
+  {
+    next.clear();
+    for (std::size_t k = 0; k < poly.size(); ++k)
+    {
+      const P& a = poly[k];
+      const P& b = poly[(k + 1) % poly.size()];
+      const double fa = f(a), fb = f(b);
+      if (fa >= 0.0)
+      {
+        next.push_back(a);
+      }
+      if ((fa >= 0.0) != (fb >= 0.0))
+      {
+        const double t = fa / (fa - fb);
+        next.push_back({ a.u + t * (b.u - a.u), a.v + t * (b.v - a.v) });
+      }
+    }
+    poly.swap(next);
+  };
+  clip([&](const P& p) { return p.u - u0; });
+  clip([&](const P& p) { return u1 - p.u; });
+  clip([&](const P& p) { return p.v - v0; });
+  clip([&](const P& p) { return v1 - p.v; });
+  double area = 0.0;
+  for (std::size_t k = 0; k < poly.size(); ++k)
+  {
+    const P& a = poly[k];
+    const P& b = poly[(k + 1) % poly.size()];
+    area += a.u * b.v - b.u * a.v;
+  }
+  return 0.5 * std::abs(area);
+}
+}
+
 void ObjectRadiance::BuildAreaTable()
 {
   // World area of the surface inside each histogram cell: every triangle's
-  // (u, v) coverage (4 x 4 samples a cell) times its world/texture area ratio.
+  // exact (u, v) overlap with the cell times its world/texture area ratio.
   Histogram area(this->Dims, 1);
   const int nx = this->Dims[0], ny = this->Dims[1];
-  const double cellUV = 1.0 / (static_cast<double>(nx) * ny);
-  constexpr int S = 4;
   for (std::size_t t = 0; t < this->SurfaceRef->Triangles.size(); ++t)
   {
     const auto& uv = this->Chart.TriangleUV[t];
@@ -497,44 +542,15 @@ void ObjectRadiance::BuildAreaTable()
     const int i1 = std::min(nx - 1, static_cast<int>(std::floor(umax * nx)));
     const int j0 = std::max(0, static_cast<int>(std::floor(vmin * ny)));
     const int j1 = std::min(ny - 1, static_cast<int>(std::floor(vmax * ny)));
-    // Edge functions of the (u, v) triangle, oriented counter-clockwise.
-    const float sign =
-      ((uv[2] - uv[0]) * (uv[5] - uv[1]) - (uv[4] - uv[0]) * (uv[3] - uv[1])) > 0.f ? 1.f : -1.f;
-    auto inside = [&](float u, float v)
-    {
-      for (int e = 0; e < 3; ++e)
-      {
-        const float ax = uv[2 * e], ay = uv[2 * e + 1];
-        const float bx = uv[(2 * e + 2) % 6], by = uv[(2 * e + 3) % 6];
-        if (sign * ((bx - ax) * (v - ay) - (by - ay) * (u - ax)) < 0.f)
-        {
-          return false;
-        }
-      }
-      return true;
-    };
     for (int j = j0; j <= j1; ++j)
     {
       for (int i = i0; i <= i1; ++i)
       {
-        int in = 0;
-        const float u0 = static_cast<float>(i) / nx, u1 = static_cast<float>(i + 1) / nx;
-        const float v0 = static_cast<float>(j) / ny, v1 = static_cast<float>(j + 1) / ny;
-        if (inside(u0, v0) && inside(u1, v0) && inside(u0, v1) && inside(u1, v1))
+        const double a = scale *
+          ClippedArea(uv, static_cast<double>(i) / nx, static_cast<double>(i + 1) / nx,
+            static_cast<double>(j) / ny, static_cast<double>(j + 1) / ny);
+        if (a > 0.0)
         {
-          in = S * S; // a convex triangle holding the cell's corners holds the cell
-        }
-        else
-        {
-          for (int sj = 0; sj < S; ++sj)
-            for (int si = 0; si < S; ++si)
-            {
-              in += inside((i + (si + 0.5f) / S) / nx, (j + (sj + 0.5f) / S) / ny) ? 1 : 0;
-            }
-        }
-        if (in > 0)
-        {
-          const double a = scale * cellUV * in / (S * S);
           area.Add(area.Index(i, j, 0), &a);
         }
       }

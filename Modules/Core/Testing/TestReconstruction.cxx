@@ -1,0 +1,441 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Phase 2 against known answers: exact summed-area tables at large counts,
+// density estimation of known distributions, and radiometry against analytic
+// irradiance and single scattering.
+#include "brume/LightTracer.h"
+#include "brume/Random.h"
+#include "brume/Reconstruction.h"
+#include "brume/Sampling.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+using namespace brume;
+
+namespace
+{
+// The hits of a run in structure-of-arrays form.
+struct HitStore
+{
+  std::vector<float> Position, Direction, Flux;
+  std::vector<std::uint16_t> Object;
+  std::vector<std::uint32_t> Triangle;
+  explicit HitStore(const std::vector<Hit>& hits)
+  {
+    for (const Hit& h : hits)
+    {
+      Position.insert(Position.end(), h.Position, h.Position + 3);
+      Direction.insert(Direction.end(), h.Direction, h.Direction + 3);
+      Flux.insert(Flux.end(), h.Flux, h.Flux + 3);
+      Object.push_back(h.Object);
+      Triangle.push_back(h.Triangle);
+    }
+  }
+  HitArrays View() const
+  {
+    HitArrays a;
+    a.Position = Position.data();
+    a.Direction = Direction.data();
+    a.Flux = Flux.data();
+    a.Object = Object.data();
+    a.Triangle = Triangle.data();
+    a.Count = Object.size();
+    return a;
+  }
+};
+
+std::vector<Hit> Trace(
+  const Scene& scene, std::uint64_t n, const TraceSettings& settings, Vec3* power = nullptr)
+{
+  const RayCaster caster(scene);
+  const LightTracer tracer(scene, caster, settings);
+  if (power)
+  {
+    *power = tracer.GetTotalPower();
+  }
+  std::vector<Hit> hits;
+  TraceCounters counters;
+  for (std::uint64_t i = 0; i < n; ++i)
+  {
+    tracer.TraceParticle(i, n, hits, counters);
+  }
+  return hits;
+}
+
+Surface Wall(float half, const Vec3& reflectance)
+{
+  // The square |x|, |y| <= half in the plane z = 0, facing +z.
+  Surface s;
+  s.Name = "wall";
+  s.Vertices = { { -half, -half, 0 }, { half, -half, 0 }, { half, half, 0 }, { -half, half, 0 } };
+  s.Triangles = { { 0, 1, 2 }, { 0, 2, 3 } };
+  s.Mat.Reflectance = reflectance;
+  return s;
+}
+}
+
+TEST(Reconstruction, SummedAreaTableIsExactBeyond2To31Counts)
+{
+  // 64^3 cells of 9,000 to 11,000 counts: 2.6e9 in all, beyond 2^31.
+  Histogram h({ 64, 64, 64 }, 1);
+  Random rng(9, 9);
+  std::vector<long long> counts(h.GetNumberOfCells());
+  long long total = 0;
+  for (std::size_t c = 0; c < counts.size(); ++c)
+  {
+    counts[c] = 9000 + static_cast<long long>(rng.NextUInt() % 2001);
+    total += counts[c];
+    const double v = static_cast<double>(counts[c]);
+    h.Add(c, &v);
+  }
+  ASSERT_GT(total, 1LL << 31);
+  const SummedAreaTable sat(h);
+  double whole = 0.0;
+  sat.RegionSum({ 0, 0, 0 }, { 64, 64, 64 }, &whole);
+  EXPECT_EQ(static_cast<long long>(whole), total);
+  // Small regions far from the origin: exact, no cancellation.
+  for (int trial = 0; trial < 200; ++trial)
+  {
+    std::array<int, 3> lo, hi;
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] = 32 + static_cast<int>(rng.NextUInt() % 30);
+      hi[a] = lo[a] + 1 + static_cast<int>(rng.NextUInt() % 2);
+    }
+    long long expected = 0;
+    for (int k = lo[2]; k < hi[2]; ++k)
+      for (int j = lo[1]; j < hi[1]; ++j)
+        for (int i = lo[0]; i < hi[0]; ++i)
+          expected += counts[h.Index(i, j, k)];
+    double got = 0.0;
+    sat.RegionSum(lo, hi, &got);
+    ASSERT_EQ(got, static_cast<double>(expected));
+  }
+}
+
+TEST(Reconstruction, LinearGradientIsRecovered)
+{
+  // Density proportional to 1 + x on [0, 1]^2 (x the first coordinate).
+  Histogram h({ 128, 128, 1 }, 1);
+  Random rng(4, 4);
+  const int n = 2000000;
+  const double one = 1.0;
+  for (int i = 0; i < n; ++i)
+  {
+    // Inverse CDF of (1 + x) / 1.5: x = sqrt(1 + 3u) - 1.
+    const double x = std::sqrt(1.0 + 3.0 * rng.NextDouble()) - 1.0;
+    const auto c = h.CellOf(x, rng.NextDouble(), 0.0);
+    h.Add(h.Index(c[0], c[1], 0), &one);
+  }
+  const SummedAreaTable sat(h);
+  AdaptiveRegionSettings settings;
+  settings.Refinement = { 8, 8, 1 };
+  settings.Threshold = 2000.0;
+  for (int i = 0; i < 16; ++i)
+  {
+    double perCell = 0.0;
+    const RegionEstimate r = EstimateTexel(sat, h.GetDimensions(), { i, 7, 0 }, settings, &perCell);
+    const double x = (i + 0.5) / 16.0; // the region is symmetric about the texel centre
+    const double expected = n * (1.0 + x) / 1.5 / (128.0 * 128.0);
+    const double se = std::sqrt(expected * r.Cells) / r.Cells;
+    EXPECT_NEAR(perCell, expected, 4.0 * se + 0.01 * expected) << "texel " << i;
+  }
+}
+
+TEST(Reconstruction, ThresholdTradesVarianceForBias)
+{
+  // A peaked density (a Gaussian of sigma 0.05 at the centre of [0, 1]^2):
+  // a larger threshold lowers the variance of flat regions but widens the
+  // regions, which flattens (biases) the peak. Measured over 20 seeds.
+  const int texels = 32, refinement = 4, n = 200000;
+  std::printf("threshold  peak bias  flat rel. std.dev.\n");
+  double previousStd = 1e30, previousBias = 0.0;
+  for (double threshold : { 32.0, 256.0, 2048.0, 16384.0 })
+  {
+    double peakSum = 0.0, flatSum = 0.0, flatSum2 = 0.0;
+    const int seeds = 20;
+    double peakExpected = 0.0, flatExpected = 0.0;
+    for (int seed = 0; seed < seeds; ++seed)
+    {
+      Histogram h({ texels * refinement, texels * refinement, 1 }, 1);
+      Random rng(100 + seed, 1);
+      const double one = 1.0;
+      for (int i = 0; i < n; ++i)
+      {
+        double x, y;
+        if (i % 2 == 0)
+        {
+          // Box-Muller around the centre.
+          const double r = 0.05 * std::sqrt(-2.0 * std::log(1.0 - rng.NextDouble()));
+          const double a = 2 * M_PI * rng.NextDouble();
+          x = 0.5 + r * std::cos(a);
+          y = 0.5 + r * std::sin(a);
+        }
+        else
+        {
+          x = rng.NextDouble();
+          y = rng.NextDouble();
+        }
+        if (x < 0 || x >= 1 || y < 0 || y >= 1)
+        {
+          continue;
+        }
+        const auto c = h.CellOf(x, y, 0.0);
+        h.Add(h.Index(c[0], c[1], 0), &one);
+      }
+      const SummedAreaTable sat(h);
+      AdaptiveRegionSettings settings;
+      settings.Refinement = { refinement, refinement, 1 };
+      settings.Threshold = threshold;
+      double peak = 0.0, flat = 0.0;
+      EstimateTexel(sat, h.GetDimensions(), { texels / 2, texels / 2, 0 }, settings, &peak);
+      EstimateTexel(sat, h.GetDimensions(), { 3, 3, 0 }, settings, &flat);
+      const double cells = static_cast<double>(texels * refinement) * (texels * refinement);
+      // Expected per cell: the uniform half plus the Gaussian's mean over the
+      // peak texel, [0.5, 0.5 + 1/32]^2 (the Gaussian's centre at its corner).
+      const double half = n / 2.0 / cells;
+      const double side = 1.0 / texels;
+      const double g = 0.5 * std::erf(side / (0.05 * std::sqrt(2.0)));
+      peakExpected = half + n / 2.0 * g * g / (side * side) / cells;
+      flatExpected = half;
+      peakSum += peak;
+      flatSum += flat;
+      flatSum2 += flat * flat;
+    }
+    const double bias = peakSum / seeds / peakExpected - 1.0;
+    const double mean = flatSum / seeds;
+    const double std = std::sqrt(std::max(0.0, flatSum2 / seeds - mean * mean)) / flatExpected;
+    std::printf("%9.0f  %9.3f  %18.4f\n", threshold, bias, std);
+    // Variance falls and the peak's (negative) bias grows with the threshold.
+    EXPECT_LT(std, previousStd * 1.05);
+    EXPECT_LE(bias, previousBias + 0.02);
+    if (threshold <= 2048.0)
+    {
+      EXPECT_LT(std::abs(bias), 0.03); // the peak texel holds that much alone
+    }
+    else
+    {
+      EXPECT_LT(bias, -0.05); // its region had to grow off the peak (measured -0.081)
+    }
+    previousStd = std;
+    previousBias = bias;
+  }
+}
+
+TEST(Reconstruction, DiffuseWallUnderAPointLightShowsRhoEOverPi)
+{
+  // A point light of intensity I at height h above a Lambertian wall:
+  // E = I h / r^3 and L = rho E / pi.
+  Scene scene;
+  scene.Surfaces = { Wall(1.f, Vec3(0.5f, 0.25f, 0.75f)) };
+  Light light;
+  light.Type = LightType::Point;
+  light.Position = { 0.f, 0.f, 1.f };
+  light.Intensity = Vec3(2.f);
+  scene.Lights = { light };
+  ASSERT_EQ(scene.Validate(), "");
+  TraceSettings settings;
+  settings.MaxDepth = 1;
+  Vec3 power;
+  const std::uint64_t particles = 2000000;
+  const HitStore store(Trace(scene, particles, settings, &power));
+  const int res = 8;
+  ObjectRadiance wall(scene.Surfaces[0], MakeChart(scene.Surfaces[0], nullptr), { res, res }, 2);
+  std::vector<std::uint32_t> index(store.Object.size());
+  for (std::size_t i = 0; i < index.size(); ++i)
+  {
+    index[i] = static_cast<std::uint32_t>(i);
+  }
+  // A tiny threshold: every texel keeps its own square.
+  ASSERT_EQ(
+    wall.Build(store.View(), index.data(), index.size(), { 0, 0, 5 }, 1e-12, SerialFor()), "");
+  const auto& L = wall.GetRadiance();
+  const auto& frame = wall.GetChart().Frame;
+  for (int j = 0; j < res; ++j)
+    for (int i = 0; i < res; ++i)
+    {
+      // The analytic radiance averaged over the texel (8 x 8 points).
+      double e = 0.0;
+      for (int b = 0; b < 8; ++b)
+        for (int a = 0; a < 8; ++a)
+        {
+          const Vec3 p = frame.Origin + frame.U * ((i + (a + 0.5f) / 8.f) / res) +
+            frame.V * ((j + (b + 0.5f) / 8.f) / res);
+          const double r = Length(p - light.Position);
+          e += 2.0 * 1.0 / (r * r * r) / 64.0;
+        }
+      // Hits in the texel: about E A / (Phi / N); their count sets the error.
+      const double texelArea = 4.0 / (res * res);
+      const double expectedHits = e * texelArea / (power.x / particles);
+      const double relative = 4.0 / std::sqrt(expectedHits);
+      for (int c = 0; c < 3; ++c)
+      {
+        const double expected = scene.Surfaces[0].Mat.Reflectance[c] / Pi * e;
+        EXPECT_NEAR(L[3 * (j * res + i) + c], expected, relative * expected)
+          << "texel " << i << "," << j << " channel " << c;
+      }
+    }
+}
+
+TEST(Reconstruction, ThinMediumSingleScatteringMatchesTheAnalyticSource)
+{
+  // A point light at the centre of a homogeneous medium, single scattering
+  // only (MaxDepth 1): J(x) = sigma_s p(w_in . w_o) I exp(-sigma_t r) / r^2,
+  // w_in from the light to x, w_o from x to the eye.
+  Medium fog;
+  fog.Name = "fog";
+  fog.Bounds = { Vec3(-1.f), Vec3(1.f) };
+  fog.SigmaS = Vec3(0.3f);
+  fog.SigmaA = Vec3(0.f);
+  fog.G = 0.6f;
+  Scene scene;
+  scene.Media = { fog };
+  Light light;
+  light.Type = LightType::Point;
+  light.Position = Vec3(0.f);
+  light.Intensity = Vec3(1.f);
+  scene.Lights = { light };
+  ASSERT_EQ(scene.Validate(), "");
+  TraceSettings settings;
+  settings.MaxDepth = 1;
+  const HitStore store(Trace(scene, 3000000, settings));
+  const int res = 8;
+  ObjectRadiance medium(scene.Media[0], { res, res, res }, 1);
+  std::vector<std::uint32_t> index(store.Object.size());
+  for (std::size_t i = 0; i < index.size(); ++i)
+  {
+    index[i] = static_cast<std::uint32_t>(i);
+  }
+  const Vec3 eye(0.3f, 0.5f, 5.f);
+  ASSERT_EQ(medium.Build(store.View(), index.data(), index.size(), eye, 1e-12, SerialFor()), "");
+  ASSERT_TRUE(medium.IsViewDependent());
+  const HenyeyGreenstein phase(fog.G);
+  // Compare sums of J over groups of voxels (shells, facing or not the eye).
+  double got[6] = { 0 }, expected[6] = { 0 };
+  const float voxel = 2.f / res;
+  for (int k = 0; k < res; ++k)
+    for (int j = 0; j < res; ++j)
+      for (int i = 0; i < res; ++i)
+      {
+        const Vec3 centre = Vec3(-1.f) + Vec3(i + 0.5f, j + 0.5f, k + 0.5f) * voxel;
+        const float rc = Length(centre);
+        if (rc < 0.5f)
+        {
+          continue; // near the light the 1/r^2 varies too fast within a voxel
+        }
+        const int group =
+          (rc < 0.9f ? 0 : (rc < 1.3f ? 2 : 4)) + (Dot(centre, eye - centre) > 0.f ? 1 : 0);
+        const std::size_t v = (static_cast<std::size_t>(k) * res + j) * res + i;
+        got[group] += medium.GetRadiance()[3 * v] * medium.GetExtinction()[3 * v]; // J = S sigma_t
+        double j0 = 0.0;
+        for (int s = 0; s < 64; ++s)
+        {
+          const Vec3 p = centre +
+            Vec3((s % 4 + 0.5f) / 4.f - 0.5f, ((s / 4) % 4 + 0.5f) / 4.f - 0.5f,
+              (s / 16 + 0.5f) / 4.f - 0.5f) *
+              voxel;
+          const double r = Length(p);
+          j0 += 0.3 * phase.Evaluate(Dot(p / static_cast<float>(r), Normalize(eye - p))) *
+            std::exp(-0.3 * r) / (r * r) / 64.0;
+        }
+        expected[group] += j0;
+      }
+  for (int g = 0; g < 6; ++g)
+  {
+    EXPECT_NEAR(got[g], expected[g], 0.03 * expected[g]) << "group " << g;
+  }
+}
+
+TEST(Reconstruction, IncrementalViewUpdateEqualsAFullBuild)
+{
+  Medium fog;
+  fog.Name = "fog";
+  fog.Bounds = { Vec3(-1.f), Vec3(1.f) };
+  fog.G = 0.8f;
+  Scene scene;
+  scene.Media = { fog };
+  Light light;
+  light.Type = LightType::Point;
+  light.Position = Vec3(0.2f, 0.1f, 0.f);
+  scene.Lights = { light };
+  const HitStore store(Trace(scene, 100000, TraceSettings()));
+  std::vector<std::uint32_t> index(store.Object.size());
+  for (std::size_t i = 0; i < index.size(); ++i)
+  {
+    index[i] = static_cast<std::uint32_t>(i);
+  }
+  ObjectRadiance incremental(scene.Media[0], { 6, 6, 6 }, 2), full(scene.Media[0], { 6, 6, 6 }, 2);
+  const double threshold = 1e-3;
+  ASSERT_EQ(incremental.Build(
+              store.View(), index.data(), index.size(), { 0, 0, 5 }, threshold, SerialFor()),
+    "");
+  const std::vector<float> before = incremental.GetRadiance();
+  incremental.UpdateView({ 0.2f, 0.f, 5.f }, SerialFor());
+  ASSERT_EQ(full.Build(
+              store.View(), index.data(), index.size(), { 0.2f, 0.f, 5.f }, threshold, SerialFor()),
+    "");
+  EXPECT_EQ(incremental.GetRadiance(), full.GetRadiance());
+  EXPECT_NE(incremental.GetRadiance(), before);
+}
+
+TEST(Reconstruction, AtlasOfACurvedSurfaceKeepsTheReflectedPower)
+{
+  // A closed octahedron (not planar, no texture coordinates) around a point
+  // light: every particle lands on it once; the texture must integrate to
+  // the reflected power, L = rho E / pi, integral of pi L dA = rho Phi.
+  Surface octahedron;
+  octahedron.Name = "octahedron";
+  octahedron.Vertices = { { 1, 0, 0 }, { -1, 0, 0 }, { 0, 1, 0 }, { 0, -1, 0 }, { 0, 0, 1 },
+    { 0, 0, -1 } };
+  octahedron.Triangles = { { 0, 2, 4 }, { 2, 1, 4 }, { 1, 3, 4 }, { 3, 0, 4 }, { 2, 0, 5 },
+    { 1, 2, 5 }, { 3, 1, 5 }, { 0, 3, 5 } };
+  octahedron.Mat.Reflectance = Vec3(0.5f);
+  Scene scene;
+  scene.Surfaces = { octahedron };
+  Light light;
+  light.Type = LightType::Point;
+  light.Position = Vec3(0.1f, 0.05f, -0.02f);
+  scene.Lights = { light };
+  ASSERT_EQ(scene.Validate(), "");
+  TraceSettings settings;
+  settings.MaxDepth = 1;
+  Vec3 power;
+  const HitStore store(Trace(scene, 400000, settings, &power));
+  const SurfaceChart chart = MakeChart(octahedron, nullptr);
+  ASSERT_EQ(chart.Type, SurfaceChart::Kind::Atlas);
+  const int res = 48;
+  ObjectRadiance radiance(octahedron, chart, { res, res }, 2);
+  std::vector<std::uint32_t> index(store.Object.size());
+  for (std::size_t i = 0; i < index.size(); ++i)
+  {
+    index[i] = static_cast<std::uint32_t>(i);
+  }
+  ASSERT_EQ(
+    radiance.Build(store.View(), index.data(), index.size(), { 0, 0, 5 }, 1e-12, SerialFor()), "");
+  // Integrate pi L over the surface: each triangle's texels, by their (u, v)
+  // area inside the triangle times the world/texture area ratio.
+  double integral = 0.0;
+  const auto& L = radiance.GetRadiance();
+  for (std::size_t t = 0; t < octahedron.Triangles.size(); ++t)
+  {
+    const auto& uv = chart.TriangleUV[t];
+    const double uvArea =
+      0.5 * std::abs((uv[2] - uv[0]) * (uv[5] - uv[1]) - (uv[4] - uv[0]) * (uv[3] - uv[1]));
+    const double worldArea = std::sqrt(3.0) / 2.0; // equilateral of side sqrt(2)
+    const int samples = 200;
+    for (int b = 0; b < samples; ++b)
+      for (int a = 0; a < samples - b; ++a)
+      {
+        const double s = (a + 0.33) / samples, q = (b + 0.33) / samples;
+        const double u = uv[0] + s * (uv[2] - uv[0]) + q * (uv[4] - uv[0]);
+        const double v = uv[1] + s * (uv[3] - uv[1]) + q * (uv[5] - uv[1]);
+        const int i = std::min(res - 1, static_cast<int>(u * res));
+        const int j = std::min(res - 1, static_cast<int>(v * res));
+        integral += Pi * L[3 * (j * res + i)] * worldArea / (samples * samples / 2.0);
+      }
+    (void)uvArea;
+  }
+  EXPECT_NEAR(integral, 0.5 * power.x, 0.03 * 0.5 * power.x);
+}
