@@ -5,6 +5,7 @@
 #include "vtkBrumeFloatImageCapture.h"
 #include "vtkBrumeLightTracer.h"
 #include "vtkBrumeRadianceReconstruction.h"
+#include "vtkBrumeReferencePathTracer.h"
 #include "vtkBrumeSceneActors.h"
 #include "vtkBrumeSceneConversion.h"
 #include "vtkCamera.h"
@@ -44,6 +45,59 @@ bool EndsWith(const std::string& s, const std::string& suffix)
 
 }
 
+namespace
+{
+int WriteImage(vtkImageData* radiance, const RenderOptions& options, bool png)
+{
+  if (png)
+  {
+    vtkNew<vtkPNGWriter> writer;
+    writer->SetFileName(options.Output.c_str());
+    writer->SetInputData(vtkBrumeFloatImageCapture::ToneMap(radiance, options.Exposure));
+    writer->Write();
+    if (writer->GetErrorCode() != 0)
+    {
+      std::cerr << "brume: could not write " << options.Output << "\n";
+      return 1;
+    }
+    return 0;
+  }
+  vtkNew<vtkXMLImageDataWriter> writer;
+  writer->SetFileName(options.Output.c_str());
+  writer->SetInputData(radiance);
+  if (!writer->Write())
+  {
+    std::cerr << "brume: could not write " << options.Output << "\n";
+    return 1;
+  }
+  return 0;
+}
+
+// The reference image: the unbiased path tracer (no display needed).
+int RunReference(const RenderOptions& options, bool png)
+{
+  vtkNew<vtkBrumeDefaultSceneSource> scene;
+  vtkNew<vtkBrumeReferencePathTracer> reference;
+  reference->SetInputConnection(scene->GetOutputPort());
+  reference->SetSize(options.Width, options.Height);
+  reference->SetSamplesPerPixel(options.SamplesPerPixel);
+  reference->SetSeed(options.Seed);
+  const auto start = std::chrono::steady_clock::now();
+  if (!reference->GetExecutive()->Update())
+  {
+    std::cerr << "brume: reference rendering failed.\n";
+    return 1;
+  }
+  const double seconds = Seconds(start);
+  if (options.Timings)
+  {
+    std::printf("reference path tracing %8.3f s   %d samples per pixel at %dx%d\n", seconds,
+      options.SamplesPerPixel, options.Width, options.Height);
+  }
+  return WriteImage(reference->GetOutput(), options, png);
+}
+}
+
 int RunRender(const RenderOptions& options)
 {
   if (!options.Scene.empty() && options.Scene != "default")
@@ -58,6 +112,10 @@ int RunRender(const RenderOptions& options)
   {
     std::cerr << "brume: the output must end in .png or .vti: " << options.Output << "\n";
     return 2;
+  }
+  if (options.Reference)
+  {
+    return RunReference(options, png);
   }
   const char* display = std::getenv("DISPLAY");
   if (!display || !*display)
@@ -134,28 +192,9 @@ int RunRender(const RenderOptions& options)
     return 1;
   }
 
-  if (png)
+  if (const int rc = WriteImage(radiance, options, png))
   {
-    vtkNew<vtkPNGWriter> writer;
-    writer->SetFileName(options.Output.c_str());
-    writer->SetInputData(vtkBrumeFloatImageCapture::ToneMap(radiance, options.Exposure));
-    writer->Write();
-    if (writer->GetErrorCode() != 0)
-    {
-      std::cerr << "brume: could not write " << options.Output << "\n";
-      return 1;
-    }
-  }
-  else
-  {
-    vtkNew<vtkXMLImageDataWriter> writer;
-    writer->SetFileName(options.Output.c_str());
-    writer->SetInputData(radiance);
-    if (!writer->Write())
-    {
-      std::cerr << "brume: could not write " << options.Output << "\n";
-      return 1;
-    }
+    return rc;
   }
 
   if (options.Timings)

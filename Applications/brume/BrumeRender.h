@@ -17,6 +17,8 @@ struct RenderOptions
   double Exposure = 1.0;
   double Threshold = 128.0;
   bool Timings = false;
+  bool Reference = false; // the unbiased path tracer instead of the three phases
+  int SamplesPerPixel = 64;
 };
 
 /// Runs the pipeline and writes the image; returns the process exit code.

@@ -28,6 +28,9 @@ built-in default scene (a Cornell box around a cube of forward-scattering fog).
   --threshold T       radiosity threshold of the density estimation, in
                       particles (default 128)
   --timings           print the time of each phase (as the paper's Table 1)
+  --reference         render with the unbiased path tracer instead (no
+                      display needed); .vti adds the per-pixel 'Variance'
+  --spp N             samples per pixel of --reference (default 64)
 
 validate slab: traces a collimated beam at normal incidence onto a laterally
 infinite, index-matched slab (sigma_t = 1, thickness B, albedo A, Henyey-
@@ -197,6 +200,19 @@ int Render(int argc, char* argv[])
     else if (arg == "--timings")
     {
       options.Timings = true;
+    }
+    else if (arg == "--reference")
+    {
+      options.Reference = true;
+    }
+    else if (arg == "--spp")
+    {
+      long long spp = 0;
+      if (!args.Value(v) || !ParseInteger(v, 1, 1000000, spp))
+      {
+        return UsageError("--spp needs an integer in [1, 1e6]");
+      }
+      options.SamplesPerPixel = static_cast<int>(spp);
     }
     else if (!arg.empty() && arg[0] == '-')
     {

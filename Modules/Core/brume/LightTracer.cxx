@@ -209,69 +209,14 @@ void LightTracer::TraceParticle(std::uint64_t index, std::uint64_t count, std::v
       origin, direction, 0.f, std::numeric_limits<float>::infinity(), surfaceHit);
     const float tSurface = hitSurface ? surfaceHit.T : std::numeric_limits<float>::infinity();
 
-    // Delta tracking in every medium the segment crosses, events taken in
-    // distance order (superposed Poisson processes), spectral-tracking
-    // weights for coloured or heterogeneous extinction.
-    int active = 0;
-    for (std::size_t m = 0; m < scene.Media.size(); ++m)
-    {
-      MediumTracker& tracker = trackers[active];
-      if (tracker.Begin(scene.Media[m], origin, direction, tSurface) && tracker.Next(rng))
-      {
-        ++active;
-      }
-    }
-    const Medium* collided = nullptr;
-    std::size_t collidedIndex = 0;
+    // Delta tracking in every medium the segment crosses.
     float tCollision = tSurface;
-    while (active > 0)
-    {
-      int next = 0;
-      for (int i = 1; i < active; ++i)
-      {
-        if (trackers[i].T < trackers[next].T)
-        {
-          next = i;
-        }
-      }
-      MediumTracker& tracker = trackers[next];
-      const Medium& medium = *tracker.Tracked;
-      const Vec3 sigmaT = medium.SigmaTAt(origin + direction * tracker.T);
-      const float majorant = tracker.Majorant;
-      // Probability of a real collision, weighted by the flux per channel.
-      float realWeight = 0.f, nullWeight = 0.f;
-      for (int c = 0; c < 3; ++c)
-      {
-        realWeight += sigmaT[c] * flux[c];
-        nullWeight += std::max(0.f, majorant - sigmaT[c]) * flux[c];
-      }
-      const float pReal =
-        realWeight + nullWeight > 0.f ? realWeight / (realWeight + nullWeight) : 0.f;
-      const bool real = pReal >= 1.f || (pReal > 0.f && rng.NextFloat() < pReal);
-      if (real)
-      {
-        if (pReal < 1.f)
-        {
-          const Vec3 before = flux;
-          flux = flux * sigmaT / (majorant * pReal);
-          TallyChange(counters.EstimatorNet, before, flux);
-        }
-        collided = &medium;
-        collidedIndex = static_cast<std::size_t>(collided - scene.Media.data());
-        tCollision = tracker.T;
-        break;
-      }
-      const Vec3 before = flux;
-      for (int c = 0; c < 3; ++c)
-      {
-        flux[c] *= std::max(0.f, majorant - sigmaT[c]) / (majorant * (1.f - pReal));
-      }
-      TallyChange(counters.EstimatorNet, before, flux);
-      if (!tracker.Next(rng))
-      {
-        trackers[next] = trackers[--active];
-      }
-    }
+    const Vec3 beforeTracking = flux;
+    const Medium* collided =
+      SampleCollision(scene.Media, origin, direction, tSurface, rng, flux, tCollision, trackers);
+    TallyChange(counters.EstimatorNet, beforeTracking, flux);
+    const std::size_t collidedIndex =
+      collided ? static_cast<std::size_t>(collided - scene.Media.data()) : 0;
 
     if (collided)
     {

@@ -151,4 +151,100 @@ bool MediumTracker::Next(Random& rng)
   }
 }
 
+const Medium* SampleCollision(const std::vector<Medium>& media, const Vec3& o, const Vec3& d,
+  float tMax, Random& rng, Vec3& weight, float& t, MediumTracker* trackers)
+{
+  int active = 0;
+  for (const Medium& medium : media)
+  {
+    MediumTracker& tracker = trackers[active];
+    if (tracker.Begin(medium, o, d, tMax) && tracker.Next(rng))
+    {
+      ++active;
+    }
+  }
+  while (active > 0)
+  {
+    int next = 0;
+    for (int i = 1; i < active; ++i)
+    {
+      if (trackers[i].T < trackers[next].T)
+      {
+        next = i;
+      }
+    }
+    MediumTracker& tracker = trackers[next];
+    const Medium& medium = *tracker.Tracked;
+    const Vec3 sigmaT = medium.SigmaTAt(o + d * tracker.T);
+    const float majorant = tracker.Majorant;
+    // Probability of a real collision, weighted by the weight per channel.
+    float realWeight = 0.f, nullWeight = 0.f;
+    for (int c = 0; c < 3; ++c)
+    {
+      realWeight += sigmaT[c] * weight[c];
+      nullWeight += std::max(0.f, majorant - sigmaT[c]) * weight[c];
+    }
+    const float pReal =
+      realWeight + nullWeight > 0.f ? realWeight / (realWeight + nullWeight) : 0.f;
+    const bool real = pReal >= 1.f || (pReal > 0.f && rng.NextFloat() < pReal);
+    if (real)
+    {
+      if (pReal < 1.f)
+      {
+        weight = weight * sigmaT / (majorant * pReal);
+      }
+      t = tracker.T;
+      return &medium;
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      weight[c] *= std::max(0.f, majorant - sigmaT[c]) / (majorant * (1.f - pReal));
+    }
+    if (!tracker.Next(rng))
+    {
+      trackers[next] = trackers[--active];
+    }
+  }
+  return nullptr;
+}
+
+Vec3 Transmittance(const std::vector<Medium>& media, const Vec3& o, const Vec3& d, float distance,
+  Random& rng, MediumTracker& tracker)
+{
+  Vec3 tr(1.f);
+  for (const Medium& medium : media)
+  {
+    if (medium.IsHomogeneous())
+    {
+      float t0 = 0.f, t1 = distance;
+      if (medium.Bounds.Intersect(o, d, t0, t1) && t1 > t0)
+      {
+        const Vec3 sigmaT = medium.SigmaT();
+        for (int c = 0; c < 3; ++c)
+        {
+          tr[c] *= std::exp(-sigmaT[c] * (t1 - t0));
+        }
+      }
+      continue;
+    }
+    // Ratio tracking: at each tentative collision, keep the null fraction.
+    if (tracker.Begin(medium, o, d, distance))
+    {
+      while (tracker.Next(rng))
+      {
+        const Vec3 sigmaT = medium.SigmaTAt(o + d * tracker.T);
+        for (int c = 0; c < 3; ++c)
+        {
+          tr[c] *= std::max(0.f, 1.f - sigmaT[c] / tracker.Majorant);
+        }
+        if (!(MaxComponent(tr) > 0.f))
+        {
+          return Vec3(0.f);
+        }
+      }
+    }
+  }
+  return tr;
+}
+
 } // namespace brume

@@ -9,6 +9,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace brume
 {
@@ -83,6 +84,24 @@ private:
   float TNext[3];
   float TDelta[3];
 };
+
+/**
+ * Free-flight sampling along o + t d, t in [0, tMax], through every medium:
+ * each medium's delta tracking, events taken in distance order (superposed
+ * Poisson processes), spectral-tracking weights applied to `weight` (a flux
+ * or a path throughput). Returns the medium of the first real collision and
+ * its distance in `t`, or nullptr. `trackers` has room for media.size().
+ */
+const Medium* SampleCollision(const std::vector<Medium>& media, const Vec3& o, const Vec3& d,
+  float tMax, Random& rng, Vec3& weight, float& t, MediumTracker* trackers);
+
+/**
+ * Transmittance (per channel) along o + t d, t in [0, distance], through
+ * every medium: exact for homogeneous media, ratio tracking (unbiased) for
+ * heterogeneous ones.
+ */
+Vec3 Transmittance(const std::vector<Medium>& media, const Vec3& o, const Vec3& d, float distance,
+  Random& rng, MediumTracker& tracker);
 
 } // namespace brume
 

@@ -1,0 +1,124 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The reference path tracer against known answers.
+#include "brume/PathTracer.h"
+#include "brume/Sampling.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace brume;
+
+namespace
+{
+// The closed box [-1, 1]^3 with inward normals, every face of material m.
+std::vector<Surface> ClosedBox(const Material& m)
+{
+  const Vec3 c[8] = { { -1, -1, -1 }, { 1, -1, -1 }, { -1, 1, -1 }, { 1, 1, -1 }, { -1, -1, 1 },
+    { 1, -1, 1 }, { -1, 1, 1 }, { 1, 1, 1 } };
+  const int faces[6][4] = { { 0, 4, 5, 1 }, { 2, 3, 7, 6 }, { 0, 1, 3, 2 }, { 4, 6, 7, 5 },
+    { 0, 2, 6, 4 }, { 1, 5, 7, 3 } };
+  std::vector<Surface> walls;
+  for (int f = 0; f < 6; ++f)
+  {
+    Surface s;
+    s.Name = "wall" + std::to_string(f);
+    for (int k = 0; k < 4; ++k)
+    {
+      s.Vertices.push_back(c[faces[f][k]]);
+    }
+    s.Triangles = { { 0, 1, 2 }, { 0, 2, 3 } };
+    s.Mat = m;
+    walls.push_back(s);
+  }
+  return walls;
+}
+}
+
+TEST(PathTracer, FurnaceRadianceIsEverywhereTheSteadyState)
+{
+  // Walls emitting L_e = 1 and reflecting rho = 0.5, a scattering medium of
+  // albedo 1 inside: the radiance is L_e / (1 - rho) = 2 everywhere.
+  Material wall;
+  wall.Reflectance = Vec3(0.5f);
+  wall.Emission = Vec3(1.f);
+  Scene scene;
+  scene.Surfaces = ClosedBox(wall);
+  Medium fog;
+  fog.Name = "fog";
+  fog.Bounds = { Vec3(-0.6f), Vec3(0.6f) };
+  fog.SigmaS = Vec3(1.5f);
+  fog.SigmaA = Vec3(0.f);
+  fog.G = 0.5f;
+  scene.Media = { fog };
+  ASSERT_EQ(scene.Validate(), "");
+  const RayCaster caster(scene);
+  PathSettings settings;
+  settings.SamplesPerPixel = 64;
+  const PathTracer tracer(scene, caster, settings);
+  PinholeCamera camera;
+  camera.Position = { 0.1f, 0.2f, 0.3f };
+  camera.FocalPoint = { 0.f, 0.f, -1.f };
+  camera.Width = camera.Height = 16;
+  camera.ViewAngle = 90.f;
+  std::vector<float> mean(3 * 256), variance(3 * 256);
+  tracer.RenderRows(camera, 0, 16, mean.data(), variance.data());
+  double sum = 0.0, var = 0.0;
+  for (int p = 0; p < 256; ++p)
+  {
+    ASSERT_TRUE(std::isfinite(mean[3 * p]));
+    EXPECT_NEAR(mean[3 * p], 2.0, 5.0 * std::sqrt(variance[3 * p]) + 1e-6) << "pixel " << p;
+    sum += mean[3 * p];
+    var += variance[3 * p];
+  }
+  EXPECT_NEAR(sum / 256, 2.0, 4.0 * std::sqrt(var) / 256);
+}
+
+TEST(PathTracer, ThinMediumMatchesSingleScatteringQuadrature)
+{
+  // A point light in an optically thin medium (tau ~ 0.02: multiple
+  // scattering below 1 %), seen along one ray that misses the light.
+  Medium fog;
+  fog.Name = "fog";
+  fog.Bounds = { Vec3(-1.f), Vec3(1.f) };
+  fog.SigmaS = Vec3(0.01f);
+  fog.SigmaA = Vec3(0.f);
+  fog.G = 0.4f;
+  Scene scene;
+  scene.Media = { fog };
+  Light light;
+  light.Type = LightType::Point;
+  light.Position = { 0.f, 0.3f, 0.f };
+  light.Intensity = Vec3(1.f);
+  scene.Lights = { light };
+  ASSERT_EQ(scene.Validate(), "");
+  const RayCaster caster(scene);
+  PathSettings settings;
+  settings.SamplesPerPixel = 1000000; // paths collide with probability ~tau: many are needed
+  const PathTracer tracer(scene, caster, settings);
+  PinholeCamera camera;
+  camera.Position = { 0.f, 0.f, 3.f };
+  camera.FocalPoint = { 0.f, 0.f, 0.f };
+  camera.ViewAngle = 0.001f; // one pixel, one ray
+  camera.Width = camera.Height = 1;
+  float mean[3], variance[3];
+  tracer.RenderRows(camera, 0, 1, mean, variance);
+  // L = int sigma_s p(cos) I exp(-sigma_t (r + path in the medium)) / r^2 ds, z from 1 to -1.
+  const HenyeyGreenstein phase(fog.G);
+  double expected = 0.0;
+  const int n = 200000;
+  for (int i = 0; i < n; ++i)
+  {
+    const double z = 1.0 - 2.0 * (i + 0.5) / n;
+    const Vec3 x(0.f, 0.f, static_cast<float>(z));
+    const Vec3 toLight = light.Position - x;
+    const double r = Length(toLight);
+    // Travel from the light to x, then from x toward the camera (+z).
+    const double cosTheta = Dot(Normalize(-toLight), Vec3(0.f, 0.f, 1.f));
+    const double inMedium = r + (1.0 - z);
+    expected += 0.01 * phase.Evaluate(static_cast<float>(cosTheta)) * std::exp(-0.01 * inMedium) /
+      (r * r) * (2.0 / n);
+  }
+  EXPECT_NEAR(mean[0], expected, 0.02 * expected + 4.0 * std::sqrt(variance[0]));
+  EXPECT_LT(std::sqrt(variance[0]), 0.01 * expected); // the test has the precision it claims
+}
