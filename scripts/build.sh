@@ -12,7 +12,7 @@ packages=(
   paraview paraview-dev python3-paraview libglew-dev
   qtbase5-dev qttools5-dev libqt5svg5-dev qtxmlpatterns5-dev-tools
   # Ray casting, volumes, headless OpenGL.
-  libembree-dev libopenvdb-dev libboost-iostreams-dev libosmesa6-dev xvfb xauth
+  libopenmpi-dev libembree-dev libopenvdb-dev libboost-iostreams-dev libosmesa6-dev xvfb xauth
   # Tools and test frameworks.
   cmake ninja-build g++ git libgtest-dev libbenchmark-dev
 )

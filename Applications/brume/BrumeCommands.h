@@ -4,6 +4,7 @@
 #define BrumeCommands_h
 
 #include <cstdint>
+#include <string>
 
 struct SlabOptions
 {
@@ -25,5 +26,23 @@ struct BenchOptions
 
 /// `brume bench`: phase-1 throughput against Embree's raw throughput.
 int RunBench(const BenchOptions& options);
+
+struct ChartOptions
+{
+  std::string Output = "chart.png";
+  std::string Csv = "chart.csv";
+  std::string CacheDirectory;
+  int Width = 128;
+  int Height = 128;
+  long long MinParticles = 10000;
+  long long MaxParticles = 10000000;
+  int MaxSamples = 1024;
+  int ReferenceSamples = 16384;
+  double Threshold = 128.0;
+  std::uint64_t Seed = 0;
+};
+
+/// `brume chart`: error against time for the pipeline and the path tracer.
+int RunChart(const ChartOptions& options);
 
 #endif

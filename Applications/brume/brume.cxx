@@ -14,6 +14,7 @@ namespace
 const char* Usage = R"(usage: brume render [SCENE] -o OUTPUT [options]
        brume validate slab --albedo A --optical-thickness B --g G [--particles N] [--seed S]
        brume bench [--particles N] [--seed S]
+       brume chart [-o chart.png] [--csv chart.csv] [options]
 
 render: renders a scene with participating media in three phases (particle
 tracing, radiance reconstruction, slice rendering). Without SCENE, renders the
@@ -38,6 +39,21 @@ Greenstein g = G) and prints a CSV header and the fractions of the incident
 power reflected after scattering, transmitted after scattering and transmitted
 unscattered, each with its Monte Carlo standard error (default 1000000
 particles).
+
+chart: renders the built-in scene with the three-phase pipeline at a ladder of
+particle budgets and with the path tracer at a ladder of samples per pixel,
+measures each image's error against a converged reference (cached on disk)
+and draws error against time, log-log, with VTK's charts.
+
+  -o FILE             the chart (PNG, default chart.png)
+  --csv FILE          the measurements (default chart.csv): method, budget,
+                      seconds, rel_mae, rel_rmse, rel_mae_medium, rel_rmse_medium
+  --size WxH          image size (default 128x128)
+  --particles A:B     the pipeline's ladder, by powers of 10 (default 10000:10000000)
+  --max-spp N         the path tracer's ladder, by powers of 4 (default 1024)
+  --reference-spp N   samples per pixel of the converged reference (default 16384)
+  --cache DIR         where converged references are kept (default
+                      $XDG_CACHE_HOME/brume or ~/.cache/brume)
 
 bench: traces the built-in scene (default 1000000 particles) and casts the
 same rays through Embree alone; prints particles/s, hits/s, the ratio of the
@@ -303,6 +319,77 @@ int Validate(int argc, char* argv[])
   return RunValidateSlab(options);
 }
 
+int Chart(int argc, char* argv[])
+{
+  ChartOptions options;
+  const char* xdg = std::getenv("XDG_CACHE_HOME");
+  const char* home = std::getenv("HOME");
+  options.CacheDirectory = xdg && *xdg ? std::string(xdg) + "/brume"
+                                       : std::string(home ? home : ".") + "/.cache/brume";
+  Arguments args(argc, argv, 2);
+  std::string arg, v;
+  while (args.Next(arg))
+  {
+    long long a = 0, b = 0;
+    if (arg == "-o" || arg == "--output")
+    {
+      if (!args.Value(options.Output) || options.Output.empty())
+      {
+        return UsageError(arg + " needs a file name");
+      }
+    }
+    else if (arg == "--csv")
+    {
+      if (!args.Value(options.Csv) || options.Csv.empty())
+      {
+        return UsageError("--csv needs a file name");
+      }
+    }
+    else if (arg == "--cache")
+    {
+      if (!args.Value(options.CacheDirectory) || options.CacheDirectory.empty())
+      {
+        return UsageError("--cache needs a directory");
+      }
+    }
+    else if (arg == "--size")
+    {
+      const auto x = args.Value(v) ? v.find('x') : std::string::npos;
+      if (x == std::string::npos || !ParseInteger(v.substr(0, x), 1, 4096, a) ||
+        !ParseInteger(v.substr(x + 1), 1, 4096, b))
+      {
+        return UsageError("--size needs WIDTHxHEIGHT, each in [1, 4096]");
+      }
+      options.Width = static_cast<int>(a);
+      options.Height = static_cast<int>(b);
+    }
+    else if (arg == "--particles")
+    {
+      const auto colon = args.Value(v) ? v.find(':') : std::string::npos;
+      if (colon == std::string::npos || !ParseInteger(v.substr(0, colon), 1, 10000000000LL, a) ||
+        !ParseInteger(v.substr(colon + 1), a, 10000000000LL, b))
+      {
+        return UsageError("--particles needs MIN:MAX with 1 <= MIN <= MAX <= 1e10");
+      }
+      options.MinParticles = a;
+      options.MaxParticles = b;
+    }
+    else if (arg == "--max-spp" || arg == "--reference-spp")
+    {
+      if (!args.Value(v) || !ParseInteger(v, 1, 1000000, a))
+      {
+        return UsageError(arg + " needs an integer in [1, 1e6]");
+      }
+      (arg == "--max-spp" ? options.MaxSamples : options.ReferenceSamples) = static_cast<int>(a);
+    }
+    else
+    {
+      return UsageError("unknown option '" + arg + "'");
+    }
+  }
+  return RunChart(options);
+}
+
 int Bench(int argc, char* argv[])
 {
   BenchOptions options;
@@ -356,6 +443,10 @@ int main(int argc, char* argv[])
   if (command == "bench")
   {
     return Bench(argc, argv);
+  }
+  if (command == "chart")
+  {
+    return Chart(argc, argv);
   }
   return UsageError("unknown command '" + command + "'");
 }
