@@ -13,11 +13,15 @@
 #include "vtkCamera.h"
 #include "vtkChartLegend.h"
 #include "vtkChartXY.h"
+#include "vtkCompositeDataSet.h"
 #include "vtkContextScene.h"
 #include "vtkContextView.h"
+#include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkInformation.h"
 #include "vtkNew.h"
 #include "vtkPNGWriter.h"
 #include "vtkPartitionedDataSet.h"
@@ -30,12 +34,14 @@
 #include "vtkStringArray.h"
 #include "vtkTable.h"
 #include "vtkTextProperty.h"
+#include "vtkTrivialProducer.h"
 #include "vtkWindowToImageFilter.h"
 #include "vtkXMLImageDataReader.h"
 #include "vtkXMLImageDataWriter.h"
 
 #include "brume/PathTracer.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -103,8 +109,8 @@ Errors Compare(vtkImageData* image, vtkImageData* reference, const std::vector<c
   return e;
 }
 
-vtkSmartPointer<vtkImageData> Reference(
-  vtkAlgorithm* scene, const View& view, int width, int height, int spp, std::uint64_t seed, double& seconds)
+vtkSmartPointer<vtkImageData> Reference(vtkAlgorithm* scene, const View& view, int width,
+  int height, int spp, std::uint64_t seed, double& seconds)
 {
   vtkNew<vtkCamera> camera;
   camera->SetPosition(view.Position);
@@ -153,9 +159,11 @@ vtkSmartPointer<vtkImageData> Downsample(vtkImageData* image, int factor)
         for (int j = 0; j < factor; ++j)
           for (int i = 0; i < factor; ++i)
           {
-            sum += in->GetValue(3 * ((static_cast<vtkIdType>(y) * factor + j) * dims[0] + x * factor + i) + c);
+            sum += in->GetValue(
+              3 * ((static_cast<vtkIdType>(y) * factor + j) * dims[0] + x * factor + i) + c);
           }
-        out->SetValue(3 * (static_cast<vtkIdType>(y) * w + x) + c, static_cast<float>(sum / (factor * factor)));
+        out->SetValue(
+          3 * (static_cast<vtkIdType>(y) * w + x) + c, static_cast<float>(sum / (factor * factor)));
       }
   auto result = vtkSmartPointer<vtkImageData>::New();
   result->SetDimensions(w, h, 1);
@@ -230,12 +238,14 @@ std::vector<char> MediumMask(vtkAlgorithm* scene, const View& view, int width, i
   std::vector<brume::Box> boxes;
   for (unsigned int i = 0; i < collection->GetNumberOfPartitionedDataSets(); ++i)
   {
-    if (auto* image = vtkImageData::SafeDownCast(collection->GetPartitionedDataSet(i)->GetPartition(0)))
+    if (auto* image =
+          vtkImageData::SafeDownCast(collection->GetPartitionedDataSet(i)->GetPartition(0)))
     {
       double b[6];
       image->GetBounds(b);
-      boxes.push_back({ { static_cast<float>(b[0]), static_cast<float>(b[2]), static_cast<float>(b[4]) },
-        { static_cast<float>(b[1]), static_cast<float>(b[3]), static_cast<float>(b[5]) } });
+      boxes.push_back(
+        { { static_cast<float>(b[0]), static_cast<float>(b[2]), static_cast<float>(b[4]) },
+          { static_cast<float>(b[1]), static_cast<float>(b[3]), static_cast<float>(b[5]) } });
     }
   }
   brume::PinholeCamera camera;
@@ -268,7 +278,9 @@ std::vector<char> MediumMask(vtkAlgorithm* scene, const View& view, int width, i
 }
 
 bool DrawChart(const std::map<std::string, std::vector<std::pair<double, double>>>& curves,
-  const std::string& fileName)
+  const std::string& fileName,
+  const std::string& title = "Brume: relative mean absolute error against time (default scene)",
+  const std::string& xTitle = "wall time (s)", bool logX = true)
 {
   vtkNew<vtkContextView> view;
   view->GetRenderWindow()->SetOffScreenRendering(1);
@@ -276,10 +288,10 @@ bool DrawChart(const std::map<std::string, std::vector<std::pair<double, double>
   view->GetRenderer()->SetBackground(1, 1, 1);
   vtkNew<vtkChartXY> chart;
   view->GetScene()->AddItem(chart);
-  chart->SetTitle("Brume: relative mean absolute error against time (default scene)");
-  chart->GetAxis(vtkAxis::BOTTOM)->SetTitle("wall time (s)");
+  chart->SetTitle(title);
+  chart->GetAxis(vtkAxis::BOTTOM)->SetTitle(xTitle);
   chart->GetAxis(vtkAxis::LEFT)->SetTitle("relative mean absolute error");
-  chart->GetAxis(vtkAxis::BOTTOM)->SetLogScale(true);
+  chart->GetAxis(vtkAxis::BOTTOM)->SetLogScale(logX);
   chart->GetAxis(vtkAxis::LEFT)->SetLogScale(true);
   chart->SetShowLegend(true);
   const unsigned char colours[4][3] = { { 31, 119, 180 }, { 255, 127, 14 }, { 44, 160, 44 },
@@ -316,6 +328,216 @@ bool DrawChart(const std::map<std::string, std::vector<std::pair<double, double>
 }
 }
 
+namespace
+{
+// A converged reference of `scene`, from the cache when it is there.
+vtkSmartPointer<vtkImageData> CachedReference(vtkAlgorithm* scene, const View& view, int w, int h,
+  int spp, std::uint64_t seed, const std::string& name, const std::string& directory,
+  double& seconds)
+{
+  std::ostringstream key;
+  key << name << "-" << w << "x" << h << "-spp" << spp << "-seed" << seed << "-v1";
+  std::filesystem::create_directories(directory);
+  const std::filesystem::path cached =
+    std::filesystem::path(directory) / ("brume-reference-" + key.str() + ".vti");
+  seconds = 0;
+  if (std::filesystem::exists(cached))
+  {
+    vtkNew<vtkXMLImageDataReader> reader;
+    reader->SetFileName(cached.string().c_str());
+    reader->Update();
+    if (reader->GetOutput()->GetPointData()->GetArray("Radiance"))
+    {
+      auto image = vtkSmartPointer<vtkImageData>::New();
+      image->ShallowCopy(reader->GetOutput());
+      return image;
+    }
+  }
+  auto image = Reference(scene, view, w, h, spp, seed, seconds);
+  vtkNew<vtkXMLImageDataWriter> writer;
+  writer->SetFileName(cached.string().c_str());
+  writer->SetInputData(image);
+  writer->Write();
+  return image;
+}
+
+bool Finite(vtkImageData* image)
+{
+  auto* a = vtkFloatArray::SafeDownCast(image->GetPointData()->GetArray("Radiance"));
+  for (vtkIdType i = 0; i < a->GetNumberOfValues(); ++i)
+  {
+    if (!std::isfinite(a->GetValue(i)))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+// Sets a field array of the scene object `name`.
+void SetField(vtkPartitionedDataSetCollection* scene, const std::string& object, const char* array,
+  const std::vector<double>& values)
+{
+  for (unsigned int i = 0; i < scene->GetNumberOfPartitionedDataSets(); ++i)
+  {
+    if (object == scene->GetMetaData(i)->Get(vtkCompositeDataSet::NAME()))
+    {
+      vtkFieldData* fd = scene->GetPartitionedDataSet(i)->GetPartition(0)->GetFieldData();
+      vtkNew<vtkDoubleArray> a;
+      a->SetName(array);
+      a->SetNumberOfComponents(static_cast<int>(values.size()));
+      a->InsertNextTuple(values.data());
+      fd->RemoveArray(array);
+      fd->AddArray(a);
+    }
+  }
+}
+
+void SetMaterial(
+  vtkPartitionedDataSetCollection* scene, const std::string& object, const char* type)
+{
+  for (unsigned int i = 0; i < scene->GetNumberOfPartitionedDataSets(); ++i)
+  {
+    if (object == scene->GetMetaData(i)->Get(vtkCompositeDataSet::NAME()))
+    {
+      vtkFieldData* fd = scene->GetPartitionedDataSet(i)->GetPartition(0)->GetFieldData();
+      vtkNew<vtkStringArray> a;
+      a->SetName("BrumeMaterial");
+      a->InsertNextValue(type);
+      fd->RemoveArray("BrumeMaterial");
+      fd->AddArray(a);
+    }
+  }
+}
+
+// Where methods are known to fail: one parameter at a time, the pipeline
+// against the path tracer given the same time, both against a converged
+// reference.
+int RunSweep(const ChartOptions& options)
+{
+  vtkNew<vtkBrumeDefaultSceneSource> source;
+  source->Update();
+  struct Case
+  {
+    std::string Parameter, Value;
+    std::function<void(vtkPartitionedDataSetCollection*)> Edit;
+    long long Particles;
+  };
+  std::vector<Case> cases;
+  const long long particles = options.MaxParticles;
+  for (double g : { -0.99, -0.5, 0.0, 0.5, 0.9, 0.99 })
+  {
+    cases.push_back({ "g", std::to_string(g),
+      [g](vtkPartitionedDataSetCollection* s) { SetField(s, "fog", "BrumeG", { g }); },
+      particles });
+  }
+  for (double k : { 0.001, 0.1, 1.0, 10.0, 100.0, 1000.0 })
+  {
+    cases.push_back({ "optical thickness", std::to_string(1.1 * k),
+      [k](vtkPartitionedDataSetCollection* s)
+      {
+        SetField(s, "fog", "BrumeSigmaS", { k, k, k });
+        SetField(s, "fog", "BrumeSigmaA", { 0.1 * k, 0.1 * k, 0.1 * k });
+      },
+      particles });
+  }
+  for (double a : { 0.0, 0.5, 0.9, 0.99, 1.0 })
+  {
+    cases.push_back({ "albedo", std::to_string(a),
+      [a](vtkPartitionedDataSetCollection* s)
+      {
+        SetField(s, "fog", "BrumeSigmaS", { 1.1 * a, 1.1 * a, 1.1 * a });
+        SetField(s, "fog", "BrumeSigmaA", { 1.1 * (1 - a), 1.1 * (1 - a), 1.1 * (1 - a) });
+      },
+      particles });
+  }
+  for (long long n = std::max<long long>(100, options.MinParticles); n <= particles; n *= 10)
+  {
+    cases.push_back({ "particles", std::to_string(n), [](vtkPartitionedDataSetCollection*) {}, n });
+  }
+  cases.push_back({ "floor", "glossy",
+    [](vtkPartitionedDataSetCollection* s)
+    {
+      SetMaterial(s, "floor", "phong");
+      SetField(s, "floor", "BrumeReflectance", { 0.2, 0.2, 0.2 });
+      SetField(s, "floor", "BrumeSpecular", { 0.6, 0.6, 0.6 });
+      SetField(s, "floor", "BrumeExponent", { 50 });
+    },
+    particles });
+  cases.push_back({ "floor", "mirror",
+    [](vtkPartitionedDataSetCollection* s)
+    {
+      SetMaterial(s, "floor", "mirror");
+      SetField(s, "floor", "BrumeReflectance", { 0, 0, 0 });
+      SetField(s, "floor", "BrumeSpecular", { 0.9, 0.9, 0.9 });
+    },
+    particles });
+
+  std::ofstream csv(options.Csv);
+  if (!csv)
+  {
+    std::cerr << "brume: cannot write " << options.Csv << "\n";
+    return 1;
+  }
+  csv << "parameter,value,pipeline_seconds,pipeline_rel_mae,pathtracer_spp,pathtracer_seconds,"
+         "pathtracer_rel_mae,finite\n";
+  std::printf(
+    "| parameter | value | pipeline rel. MAE | path tracer rel. MAE (same time) | time (s) |\n");
+  std::printf("|---|---|---:|---:|---:|\n");
+  const View view;
+  const int w = options.Width, h = options.Height;
+  std::map<std::string, std::vector<std::pair<double, double>>> curves;
+  bool allFinite = true;
+  Pipeline(source, view, w, h, 1000, options.Threshold, options.Seed); // OpenGL start-up
+  for (std::size_t c = 0; c < cases.size(); ++c)
+  {
+    const Case& k = cases[c];
+    auto scene = vtkSmartPointer<vtkPartitionedDataSetCollection>::New();
+    scene->DeepCopy(source->GetOutput());
+    k.Edit(scene);
+    vtkNew<vtkTrivialProducer> producer;
+    producer->SetOutput(scene);
+    const std::vector<char> mask = MediumMask(producer, view, w, h);
+    double referenceSeconds = 0;
+    std::string name = "sweep-" + k.Parameter + "-" + k.Value;
+    std::replace(name.begin(), name.end(), ' ', '_');
+    auto converged = CachedReference(producer, view, w, h, options.ReferenceSamples,
+      options.Seed + 1000003, name, options.CacheDirectory, referenceSeconds);
+    const PipelineRun run =
+      Pipeline(producer, view, w, h, k.Particles, options.Threshold, options.Seed);
+    const Errors pipeline = Compare(run.Radiance, converged, mask);
+    // The path tracer given the pipeline's time: its speed from one sample.
+    double oneSample = 0;
+    Reference(producer, view, w, h, 1, options.Seed, oneSample);
+    const int spp = std::max(1, static_cast<int>(run.Full / std::max(oneSample, 1e-6)));
+    double ptSeconds = 0;
+    auto pt = Reference(producer, view, w, h, spp, options.Seed, ptSeconds);
+    const Errors tracer = Compare(pt, converged, mask);
+    const bool finite = Finite(run.Radiance) && Finite(pt) && Finite(converged);
+    allFinite = allFinite && finite;
+    csv << k.Parameter << "," << k.Value << "," << run.Full << "," << pipeline.Mae << "," << spp
+        << "," << ptSeconds << "," << tracer.Mae << "," << (finite ? 1 : 0) << "\n";
+    std::printf("| %s | %s | %.3f | %.3f | %.2f |\n", k.Parameter.c_str(), k.Value.c_str(),
+      pipeline.Mae, tracer.Mae, run.Full);
+    curves["pipeline"].emplace_back(static_cast<double>(c + 1), pipeline.Mae);
+    curves["path-tracer, same time"].emplace_back(static_cast<double>(c + 1), tracer.Mae);
+  }
+  csv.close();
+  if (!DrawChart(curves, options.Output, "Brume stability sweep: error per case (see the CSV)",
+        "case", false))
+  {
+    std::cerr << "brume: could not write " << options.Output << "\n";
+    return 1;
+  }
+  if (!allFinite)
+  {
+    std::cerr << "brume: non-finite radiance in the sweep (see the 'finite' column)\n";
+    return 1;
+  }
+  return 0;
+}
+}
+
 int RunChart(const ChartOptions& options)
 {
   const char* display = std::getenv("DISPLAY");
@@ -324,6 +546,10 @@ int RunChart(const ChartOptions& options)
     std::cerr << "brume: chart renders with OpenGL and needs an X display; run it under "
                  "'xvfb-run -a'.\n";
     return 1;
+  }
+  if (options.Sweep)
+  {
+    return RunSweep(options);
   }
   vtkNew<vtkBrumeDefaultSceneSource> scene;
   scene->Update();
@@ -353,7 +579,8 @@ int RunChart(const ChartOptions& options)
   {
     double seconds = 0;
     // Another seed than the ladder's, so that errors are not correlated.
-    converged = Reference(scene, view, w, h, options.ReferenceSamples, options.Seed + 1000003, seconds);
+    converged =
+      Reference(scene, view, w, h, options.ReferenceSamples, options.Seed + 1000003, seconds);
     vtkNew<vtkXMLImageDataWriter> writer;
     writer->SetFileName(cached.string().c_str());
     writer->SetInputData(converged);
@@ -379,6 +606,9 @@ int RunChart(const ChartOptions& options)
     std::printf("%-22s %12.0f %9.3f s  rel. MAE %.4f  RMSE %.4f  (medium %.4f, %.4f)\n",
       method.c_str(), budget, seconds, e.Mae, e.Rmse, e.MaeMedium, e.RmseMedium);
   };
+  // One untimed run first: OpenGL start-up and shader compilation are not
+  // the pipeline's cost.
+  Pipeline(scene, view, w, h, 1000, options.Threshold, options.Seed);
   for (long long particles = options.MinParticles; particles <= options.MaxParticles;
        particles *= 10)
   {

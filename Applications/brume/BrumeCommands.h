@@ -40,6 +40,7 @@ struct ChartOptions
   int ReferenceSamples = 16384;
   double Threshold = 128.0;
   std::uint64_t Seed = 0;
+  bool Sweep = false;
 };
 
 /// `brume chart`: error against time for the pipeline and the path tracer.

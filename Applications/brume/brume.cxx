@@ -54,6 +54,13 @@ and draws error against time, log-log, with VTK's charts.
   --reference-spp N   samples per pixel of the converged reference (default 16384)
   --cache DIR         where converged references are kept (default
                       $XDG_CACHE_HOME/brume or ~/.cache/brume)
+  --sweep             the stability sweep instead: g, optical thickness,
+                      albedo, particle count (up to the --particles maximum),
+                      glossy and mirror floor, one at a time; per case the
+                      pipeline's error and the path tracer's at the same time
+                      (CSV: parameter, value, pipeline_seconds,
+                      pipeline_rel_mae, pathtracer_spp, pathtracer_seconds,
+                      pathtracer_rel_mae, finite)
 
 bench: traces the built-in scene (default 1000000 particles) and casts the
 same rays through Embree alone; prints particles/s, hits/s, the ratio of the
@@ -324,8 +331,8 @@ int Chart(int argc, char* argv[])
   ChartOptions options;
   const char* xdg = std::getenv("XDG_CACHE_HOME");
   const char* home = std::getenv("HOME");
-  options.CacheDirectory = xdg && *xdg ? std::string(xdg) + "/brume"
-                                       : std::string(home ? home : ".") + "/.cache/brume";
+  options.CacheDirectory =
+    xdg && *xdg ? std::string(xdg) + "/brume" : std::string(home ? home : ".") + "/.cache/brume";
   Arguments args(argc, argv, 2);
   std::string arg, v;
   while (args.Next(arg))
@@ -373,6 +380,10 @@ int Chart(int argc, char* argv[])
       }
       options.MinParticles = a;
       options.MaxParticles = b;
+    }
+    else if (arg == "--sweep")
+    {
+      options.Sweep = true;
     }
     else if (arg == "--max-spp" || arg == "--reference-spp")
     {

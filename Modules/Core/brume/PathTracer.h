@@ -53,6 +53,12 @@ public:
   /// One radiance sample of pixel (x, y).
   Vec3 Sample(const PinholeCamera& camera, int x, int y, int sample) const;
 
+  /// Radiance arriving at `origin` from the direction -`direction` (one sample).
+  Vec3 Trace(const Vec3& origin, const Vec3& direction, Random& rng) const
+  {
+    return this->Radiance(origin, direction, rng);
+  }
+
   /// Mean radiance and variance of the mean (RGB) of rows [y0, y1).
   void RenderRows(const PinholeCamera& camera, int y0, int y1, float* mean, float* variance) const;
 
