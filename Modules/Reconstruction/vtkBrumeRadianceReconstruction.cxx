@@ -80,17 +80,6 @@ std::array<int, 3> FixedResolution(const brume::Vec3& extent, int n)
   return res;
 }
 
-brume::ParallelFor SMPFor()
-{
-  return [](std::size_t begin, std::size_t end,
-           const std::function<void(std::size_t, std::size_t)>& body)
-  {
-    vtkSMPTools::For(static_cast<vtkIdType>(begin), static_cast<vtkIdType>(end),
-      [&](vtkIdType b, vtkIdType e)
-      { body(static_cast<std::size_t>(b), static_cast<std::size_t>(e)); });
-  };
-}
-
 // A float view of a 3-component array: the array itself, or a float copy.
 const float* FloatView(vtkDataArray* a, std::vector<float>& copy)
 {
@@ -235,7 +224,7 @@ int vtkBrumeRadianceReconstruction::RequestData(
     hits.Triangle =
       triangleIds && triangleIds->GetNumberOfTuples() == n ? triangleIds->GetPointer(0) : nullptr;
   }
-  const brume::ParallelFor parallelFor = SMPFor();
+  const brume::ParallelFor parallelFor = vtkBrumeSceneConversion::ParallelFor();
 
   // Rebuild everything when the inputs or the settings changed; otherwise
   // only the view-dependent textures follow the viewpoint.

@@ -19,6 +19,7 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSMPTools.h"
 #include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkUnsignedIntArray.h"
@@ -620,4 +621,15 @@ bool vtkBrumeSceneConversion::GetCamera(vtkDataObject* input, double position[3]
     ReadField(fd, "BrumeCameraFocalPoint", 3, focalPoint, error) &&
     ReadField(fd, "BrumeCameraViewUp", 3, viewUp, error) &&
     ReadField(fd, "BrumeCameraViewAngle", 1, &viewAngle, error);
+}
+
+brume::ParallelFor vtkBrumeSceneConversion::ParallelFor()
+{
+  return [](std::size_t begin, std::size_t end,
+           const std::function<void(std::size_t, std::size_t)>& body)
+  {
+    vtkSMPTools::For(static_cast<vtkIdType>(begin), static_cast<vtkIdType>(end),
+      [&](vtkIdType b, vtkIdType e)
+      { body(static_cast<std::size_t>(b), static_cast<std::size_t>(e)); });
+  };
 }

@@ -49,8 +49,9 @@
 #include "vtkBrumeTracingModule.h" // For export macro
 #include "vtkSmartPointer.h"       // For return values
 
-#include "brume/LightTracer.h" // For brume::Hit
-#include "brume/Scene.h"       // For brume::Scene
+#include "brume/LightTracer.h"    // For brume::Hit
+#include "brume/Reconstruction.h" // For brume::ParallelFor
+#include "brume/Scene.h"          // For brume::Scene
 
 #include <string>
 #include <vector>
@@ -91,6 +92,9 @@ public:
 
   /// Reads hits back; empty string on success, otherwise what is missing.
   static std::string HitsFromPolyData(vtkPolyData* data, std::vector<brume::Hit>& hits);
+
+  /// The core's parallel loop on vtkSMPTools.
+  static brume::ParallelFor ParallelFor();
 
   /// The scene's camera, if the collection's field data names one.
   static bool GetCamera(vtkDataObject* input, double position[3], double focalPoint[3],

@@ -7,7 +7,7 @@
 // Every quantity must agree within 4 of its Monte Carlo standard errors and
 // within 0.002 absolute. Skips (exit 125) when the table is absent, as in a
 // user's clone without ../shared.
-#include "vtkSMPTools.h"
+#include "vtkBrumeSceneConversion.h"
 
 #include "brume/Slab.h"
 
@@ -26,24 +26,7 @@ namespace
 brume::SlabTally Run(const brume::SlabSpec& spec, std::uint64_t particles)
 {
   const brume::SlabExperiment experiment(spec, 1);
-  constexpr std::uint64_t Block = 4096;
-  const std::uint64_t blocks = (particles + Block - 1) / Block;
-  std::vector<brume::SlabTally> tallies(blocks);
-  vtkSMPTools::For(0, static_cast<vtkIdType>(blocks),
-    [&](vtkIdType begin, vtkIdType end)
-    {
-      for (vtkIdType b = begin; b < end; ++b)
-      {
-        const std::uint64_t first = static_cast<std::uint64_t>(b) * Block;
-        experiment.Trace(first, std::min(first + Block, particles), particles, tallies[b]);
-      }
-    });
-  brume::SlabTally total;
-  for (const auto& t : tallies)
-  {
-    total.Add(t);
-  }
-  return total;
+  return experiment.Run(particles, vtkBrumeSceneConversion::ParallelFor());
 }
 }
 

@@ -3,11 +3,14 @@
 #include "brume/LightTracer.h"
 #include "brume/Sampling.h"
 
+#include "TestScenes.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 using namespace brume;
+using brume::testing::ClosedBox;
 
 namespace
 {
@@ -127,30 +130,6 @@ TEST(LightTracer, UnscatteredPowerThroughAnAbsorbingSlabFollowsBeerLambert)
 
 namespace
 {
-// The six faces of the box [-1, 1]^3 (inward normals), all of material m.
-std::vector<Surface> ClosedBox(const Material& m)
-{
-  const float h = 1.f;
-  const Vec3 c[8] = { { -h, -h, -h }, { h, -h, -h }, { -h, h, -h }, { h, h, -h }, { -h, -h, h },
-    { h, -h, h }, { -h, h, h }, { h, h, h } };
-  // Quads counter-clockwise seen from inside.
-  const int faces[6][4] = { { 0, 4, 5, 1 }, { 2, 3, 7, 6 }, { 0, 1, 3, 2 }, { 4, 6, 7, 5 },
-    { 0, 2, 6, 4 }, { 1, 5, 7, 3 } };
-  std::vector<Surface> walls;
-  for (int f = 0; f < 6; ++f)
-  {
-    Surface s;
-    s.Name = "wall" + std::to_string(f);
-    for (int k = 0; k < 4; ++k)
-    {
-      s.Vertices.push_back(c[faces[f][k]]);
-    }
-    s.Triangles = { { 0, 1, 2 }, { 0, 2, 3 } };
-    s.Mat = m;
-    walls.push_back(s);
-  }
-  return walls;
-}
 
 TraceCounters TraceAll(const Scene& scene, std::uint64_t n, const TraceSettings& settings,
   std::vector<Hit>& hits, std::vector<ParticleExit>* exits = nullptr)

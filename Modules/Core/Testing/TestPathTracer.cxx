@@ -4,6 +4,8 @@
 #include "brume/Random.h"
 #include "brume/Sampling.h"
 
+#include "TestScenes.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,31 +14,10 @@
 #include <string>
 
 using namespace brume;
+using brume::testing::ClosedBox;
 
 namespace
 {
-// The closed box [-1, 1]^3 with inward normals, every face of material m.
-std::vector<Surface> ClosedBox(const Material& m)
-{
-  const Vec3 c[8] = { { -1, -1, -1 }, { 1, -1, -1 }, { -1, 1, -1 }, { 1, 1, -1 }, { -1, -1, 1 },
-    { 1, -1, 1 }, { -1, 1, 1 }, { 1, 1, 1 } };
-  const int faces[6][4] = { { 0, 4, 5, 1 }, { 2, 3, 7, 6 }, { 0, 1, 3, 2 }, { 4, 6, 7, 5 },
-    { 0, 2, 6, 4 }, { 1, 5, 7, 3 } };
-  std::vector<Surface> walls;
-  for (int f = 0; f < 6; ++f)
-  {
-    Surface s;
-    s.Name = "wall" + std::to_string(f);
-    for (int k = 0; k < 4; ++k)
-    {
-      s.Vertices.push_back(c[faces[f][k]]);
-    }
-    s.Triangles = { { 0, 1, 2 }, { 0, 2, 3 } };
-    s.Mat = m;
-    walls.push_back(s);
-  }
-  return walls;
-}
 }
 
 TEST(PathTracer, FurnaceRadianceIsEverywhereTheSteadyState)

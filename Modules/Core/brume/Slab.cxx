@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "brume/Slab.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace brume
@@ -94,6 +95,27 @@ void SlabExperiment::Trace(
       tally.Sum2[k] += share[k] * share[k];
     }
   }
+}
+
+SlabTally SlabExperiment::Run(std::uint64_t count, const ParallelFor& parallelFor) const
+{
+  constexpr std::uint64_t Block = 4096;
+  const std::uint64_t blocks = (count + Block - 1) / Block;
+  std::vector<SlabTally> tallies(blocks);
+  parallelFor(0, blocks,
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t b = begin; b < end; ++b)
+      {
+        this->Trace(b * Block, std::min<std::uint64_t>((b + 1) * Block, count), count, tallies[b]);
+      }
+    });
+  SlabTally total;
+  for (const SlabTally& t : tallies)
+  {
+    total.Add(t);
+  }
+  return total;
 }
 
 } // namespace brume

@@ -6,6 +6,7 @@
 #define brume_Slab_h
 
 #include "brume/LightTracer.h"
+#include "brume/Reconstruction.h" // For ParallelFor
 
 #include <cstdint>
 #include <memory>
@@ -43,6 +44,10 @@ public:
 
   /// Traces particles [begin, end) of `count` into `tally`.
   void Trace(std::uint64_t begin, std::uint64_t end, std::uint64_t count, SlabTally& tally) const;
+
+  /// Traces `count` particles in fixed blocks (possibly in parallel) and
+  /// sums the blocks in order: the same figures for any thread count.
+  SlabTally Run(std::uint64_t count, const ParallelFor& parallelFor) const;
 
 private:
   std::string Error;
