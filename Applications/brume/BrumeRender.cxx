@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "BrumeRender.h"
+#include "BrumeProgress.h"
 
 #include "vtkBrumeDefaultSceneSource.h"
 #include "vtkBrumeFloatImageCapture.h"
@@ -82,6 +83,7 @@ int RunReference(const RenderOptions& options, bool png)
   reference->SetSize(options.Width, options.Height);
   reference->SetSamplesPerPixel(options.SamplesPerPixel);
   reference->SetSeed(options.Seed);
+  BrumeShowProgress(reference, "path tracing");
   const auto start = std::chrono::steady_clock::now();
   if (!reference->GetExecutive()->Update())
   {
@@ -134,6 +136,7 @@ int RunRender(const RenderOptions& options)
   tracer->SetInputConnection(scene->GetOutputPort());
   tracer->SetNumberOfParticles(options.Particles);
   tracer->SetSeed(options.Seed);
+  BrumeShowProgress(tracer, "particle tracing");
   if (!tracer->GetExecutive()->Update())
   {
     std::cerr << "brume: particle tracing failed.\n";
@@ -150,6 +153,7 @@ int RunRender(const RenderOptions& options)
   reconstruction->SetInputConnection(1, tracer->GetOutputPort());
   reconstruction->SetEyePosition(position);
   reconstruction->SetRadiosityThreshold(options.Threshold);
+  BrumeShowProgress(reconstruction, "reconstruction");
   if (!reconstruction->GetExecutive()->Update())
   {
     std::cerr << "brume: reconstruction failed.\n";

@@ -4,6 +4,8 @@
 #include "BrumeRender.h"
 #include "BrumeThreads.h"
 
+#include "vtkVersion.h"
+
 #include <cerrno>
 #include <cstdlib>
 #include <iostream>
@@ -11,13 +13,21 @@
 
 namespace
 {
-const char* Usage = R"(usage: brume render [SCENE] -o OUTPUT [options]
-       brume validate slab --albedo A --optical-thickness B --g G [--particles N] [--seed S]
+const char* General = R"(usage: brume render [SCENE] -o OUTPUT [options]
+       brume validate slab --albedo A --optical-thickness B --g G [options]
        brume bench [--particles N] [--seed S]
        brume chart [-o chart.png] [--csv chart.csv] [options]
+       brume --version
 
-render: renders a scene with participating media in three phases (particle
-tracing, radiance reconstruction, slice rendering). Without SCENE, renders the
+Renders scenes with participating media in the three phases of Jimenez &
+Pueyo (2003): particle tracing, radiance reconstruction, slice rendering.
+'brume COMMAND --help' describes a command.
+)";
+
+const char* RenderHelp = R"(usage: brume render [SCENE] -o OUTPUT [options]
+
+Renders a scene with participating media in three phases (particle tracing,
+radiance reconstruction, slice rendering). Without SCENE, renders the
 built-in default scene (a Cornell box around a cube of forward-scattering fog).
 
   -o, --output FILE   out.png (tone-mapped: exposure, clamp, sRGB curve) or
@@ -32,18 +42,35 @@ built-in default scene (a Cornell box around a cube of forward-scattering fog).
   --reference         render with the unbiased path tracer instead (no
                       display needed); .vti adds the per-pixel 'Variance'
   --spp N             samples per pixel of --reference (default 64)
+)";
 
-validate slab: traces a collimated beam at normal incidence onto a laterally
-infinite, index-matched slab (sigma_t = 1, thickness B, albedo A, Henyey-
-Greenstein g = G) and prints a CSV header and the fractions of the incident
-power reflected after scattering, transmitted after scattering and transmitted
+const char* ValidateHelp =
+  R"(usage: brume validate slab --albedo A --optical-thickness B --g G [--particles N] [--seed S]
+
+Traces a collimated beam at normal incidence onto a laterally infinite,
+index-matched slab (sigma_t = 1, thickness B, albedo A, Henyey-Greenstein
+g = G) and prints a CSV header and the fractions of the incident power
+reflected after scattering, transmitted after scattering and transmitted
 unscattered, each with its Monte Carlo standard error (default 1000000
 particles).
+)";
 
-chart: renders the built-in scene with the three-phase pipeline at a ladder of
+const char* BenchHelp = R"(usage: brume bench [--particles N] [--seed S]
+
+Traces the built-in scene (default 1000000 particles) and casts the same rays
+through Embree alone; prints particles/s, hits/s, the ratio of the ray
+throughputs and the peak memory per stored hit; then the reconstruction's
+full and per-view times and, with a display, frame times against
+vtkGPUVolumeRayCastMapper.
+)";
+
+const char* ChartHelp = R"(usage: brume chart [-o chart.png] [--csv chart.csv] [options]
+
+Renders the built-in scene with the three-phase pipeline at a ladder of
 particle budgets and with the path tracer at a ladder of samples per pixel,
 measures each image's error against a converged reference (cached on disk)
-and draws error against time, log-log, with VTK's charts.
+and draws error against time, log-log, with VTK's charts. Needs a display
+(xvfb-run -a).
 
   -o FILE             the chart (PNG, default chart.png)
   --csv FILE          the measurements (default chart.csv): method, budget,
@@ -61,13 +88,10 @@ and draws error against time, log-log, with VTK's charts.
                       (CSV: parameter, value, pipeline_seconds,
                       pipeline_rel_mae, pathtracer_spp, pathtracer_seconds,
                       pathtracer_rel_mae, finite)
-
-bench: traces the built-in scene (default 1000000 particles) and casts the
-same rays through Embree alone; prints particles/s, hits/s, the ratio of the
-ray throughputs and the peak memory per stored hit.
-
-  -h, --help          show this help
 )";
+
+// The help of the command being parsed (for usage errors).
+const char* Usage = General;
 
 int UsageError(const std::string& message)
 {
@@ -168,6 +192,15 @@ int ParseParticles(Arguments& args, long long& particles)
 
 int Render(int argc, char* argv[])
 {
+  Usage = RenderHelp;
+  for (int i = 2; i < argc; ++i)
+  {
+    if (std::string(argv[i]) == "-h" || std::string(argv[i]) == "--help")
+    {
+      std::cout << Usage;
+      return 0;
+    }
+  }
   RenderOptions options;
   Arguments args(argc, argv, 2);
   std::string arg, v;
@@ -263,6 +296,15 @@ int Render(int argc, char* argv[])
 
 int Validate(int argc, char* argv[])
 {
+  Usage = ValidateHelp;
+  for (int i = 2; i < argc; ++i)
+  {
+    if (std::string(argv[i]) == "-h" || std::string(argv[i]) == "--help")
+    {
+      std::cout << Usage;
+      return 0;
+    }
+  }
   if (argc < 3 || std::string(argv[2]) != "slab")
   {
     return UsageError("validate needs an experiment: slab");
@@ -328,6 +370,15 @@ int Validate(int argc, char* argv[])
 
 int Chart(int argc, char* argv[])
 {
+  Usage = ChartHelp;
+  for (int i = 2; i < argc; ++i)
+  {
+    if (std::string(argv[i]) == "-h" || std::string(argv[i]) == "--help")
+    {
+      std::cout << Usage;
+      return 0;
+    }
+  }
   ChartOptions options;
   const char* xdg = std::getenv("XDG_CACHE_HOME");
   const char* home = std::getenv("HOME");
@@ -403,6 +454,15 @@ int Chart(int argc, char* argv[])
 
 int Bench(int argc, char* argv[])
 {
+  Usage = BenchHelp;
+  for (int i = 2; i < argc; ++i)
+  {
+    if (std::string(argv[i]) == "-h" || std::string(argv[i]) == "--help")
+    {
+      std::cout << Usage;
+      return 0;
+    }
+  }
   BenchOptions options;
   Arguments args(argc, argv, 2);
   std::string arg;
@@ -440,7 +500,12 @@ int main(int argc, char* argv[])
   BrumeUseAllCores();
   if (command == "-h" || command == "--help" || command == "help")
   {
-    std::cout << Usage;
+    std::cout << General;
+    return 0;
+  }
+  if (command == "--version" || command == "version")
+  {
+    std::cout << "brume " << BRUME_VERSION << " (VTK " << vtkVersion::GetVTKVersionFull() << ")\n";
     return 0;
   }
   if (command == "render")
