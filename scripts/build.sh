@@ -11,8 +11,12 @@ packages=(
   # CMake package needs.
   paraview paraview-dev python3-paraview libglew-dev
   qtbase5-dev qttools5-dev libqt5svg5-dev qtxmlpatterns5-dev-tools
+  # What ParaView's CMake package asks for when the plugin and charts are built.
+  libopenmpi-dev libdouble-conversion-dev libutfcpp-dev liblz4-dev liblzma-dev
+  libexpat1-dev libxml2-dev libfreetype-dev libpng-dev libjpeg-dev libtiff-dev
+  zlib1g-dev libeigen3-dev
   # Ray casting, volumes, headless OpenGL.
-  libopenmpi-dev libembree-dev libopenvdb-dev libboost-iostreams-dev libosmesa6-dev xvfb xauth
+  libembree-dev libopenvdb-dev libboost-iostreams-dev libosmesa6-dev xvfb xauth
   # Tools and test frameworks.
   cmake ninja-build g++ git libgtest-dev libbenchmark-dev
 )

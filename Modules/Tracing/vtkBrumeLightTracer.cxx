@@ -221,6 +221,11 @@ int vtkBrumeLightTracer::RequestData(
     return 0;
   }
 
+  if (this->Seed < 0)
+  {
+    vtkErrorMacro("Seed must be non-negative, not " << this->Seed << ".");
+    return 0;
+  }
   brume::Scene scene;
   const std::string error = vtkBrumeSceneConversion::ToScene(input, scene, nullptr, this->Lights);
   if (!error.empty())
@@ -235,7 +240,7 @@ int vtkBrumeLightTracer::RequestData(
     return 0;
   }
   brume::TraceSettings settings;
-  settings.Seed = this->Seed;
+  settings.Seed = static_cast<std::uint64_t>(this->Seed);
   settings.MaxDepth = this->MaximumDepth;
   settings.RouletteDepth = this->RouletteDepth;
   const brume::LightTracer tracer(scene, caster, settings);

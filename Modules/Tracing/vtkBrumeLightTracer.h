@@ -52,9 +52,9 @@ public:
   ///@}
 
   ///@{
-  /// Seed of the particles' random streams (default 0).
-  vtkSetMacro(Seed, vtkTypeUInt64);
-  vtkGetMacro(Seed, vtkTypeUInt64);
+  /// Seed of the particles' random streams (default 0, non-negative).
+  vtkSetMacro(Seed, vtkIdType);
+  vtkGetMacro(Seed, vtkIdType);
   ///@}
 
   ///@{
@@ -107,7 +107,7 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   vtkTypeInt64 NumberOfParticles = 1000000;
-  vtkTypeUInt64 Seed = 0;
+  vtkIdType Seed = 0;
   int MaximumDepth = 1024;
   int RouletteDepth = 3;
   vtkTypeInt64 MemoryLimit = vtkTypeInt64(8) << 30;

@@ -91,6 +91,11 @@ int vtkBrumeReferencePathTracer::RequestData(
     vtkErrorMacro("SamplesPerPixel must be in [1, 1e6], not " << this->SamplesPerPixel << ".");
     return 0;
   }
+  if (this->Seed < 0)
+  {
+    vtkErrorMacro("Seed must be non-negative, not " << this->Seed << ".");
+    return 0;
+  }
   brume::Scene scene;
   const std::string error = vtkBrumeSceneConversion::ToScene(input, scene, nullptr, this->Lights);
   if (!error.empty())
@@ -134,7 +139,7 @@ int vtkBrumeReferencePathTracer::RequestData(
     return 0;
   }
   brume::PathSettings settings;
-  settings.Seed = this->Seed;
+  settings.Seed = static_cast<std::uint64_t>(this->Seed);
   settings.SamplesPerPixel = this->SamplesPerPixel;
   const brume::PathTracer tracer(scene, caster, settings);
 

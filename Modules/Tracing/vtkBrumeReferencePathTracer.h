@@ -48,9 +48,9 @@ public:
   ///@}
 
   ///@{
-  /// Seed of the samples' random streams (default 0).
-  vtkSetMacro(Seed, vtkTypeUInt64);
-  vtkGetMacro(Seed, vtkTypeUInt64);
+  /// Seed of the samples' random streams (default 0, non-negative).
+  vtkSetMacro(Seed, vtkIdType);
+  vtkGetMacro(Seed, vtkIdType);
   ///@}
 
   ///@{
@@ -77,7 +77,7 @@ protected:
 
   int Size[2] = { 256, 256 };
   int SamplesPerPixel = 16;
-  vtkTypeUInt64 Seed = 0;
+  vtkIdType Seed = 0;
   vtkCamera* Camera = nullptr;
   vtkSmartPointer<vtkLightCollection> Lights;
 

@@ -1,0 +1,73 @@
+"""pvbatch: load the Brume plugin, build the default scene's pipeline from
+proxies, render the particle hits and compare with a baseline image.
+
+usage: pvbatch TestBrumePlugin.py PLUGIN BASELINE OUTPUT_DIR
+"""
+import os
+import sys
+import time
+
+from paraview.simple import *  # noqa: F401,F403
+from vtkmodules.vtkImagingCore import vtkImageDifference
+from vtkmodules.vtkIOImage import vtkPNGReader
+
+plugin, baseline, output_dir = sys.argv[1:4]
+start = time.time()
+LoadPlugin(plugin, ns=globals())
+print("plugin loaded in %.3f s" % (time.time() - start))
+
+scene = BrumeDefaultScene()
+tracer = BrumeLightTracer(Input=scene)
+tracer.NumberOfParticles = 20000
+tracer.Seed = 1
+reconstruction = BrumeRadianceReconstruction(Scene=scene, Hits=tracer)
+reconstruction.RadiosityThreshold = 64
+reconstruction.UpdatePipeline()
+hits = tracer.GetDataInformation().DataInformation.GetNumberOfPoints()
+textures = reconstruction.GetDataInformation().DataInformation.GetNumberOfDataSets()
+print("hits", hits, "texture datasets", textures)
+assert hits > 20000, hits
+assert textures >= 7, textures
+
+# The hits are bare points: give them vertices to be drawn.
+points = MaskPoints(Input=tracer)
+points.OnRatio = 1
+points.MaximumNumberofPoints = 10000000
+points.GenerateVertices = 1
+points.SingleVertexPerCell = 1
+view = CreateView("RenderView")
+view.ViewSize = [300, 300]
+view.UseColorPaletteForBackground = 0
+view.Background = [0, 0, 0]
+view.OrientationAxesVisibility = 0
+display = Show(points, view)
+display.SetRepresentationType("Points")
+ColorBy(display, ("POINTS", "ObjectId"))
+display.LookupTable.RescaleTransferFunction(0, 6)
+view.CameraPosition = [0, 0, 4]
+view.CameraFocalPoint = [0, 0, 0]
+view.CameraViewUp = [0, 1, 0]
+view.CameraViewAngle = 40
+Render(view)
+output = os.path.join(output_dir, "TestBrumePlugin.png")
+SaveScreenshot(output, view)
+# Release the view's OpenGL context before the interpreter tears down.
+Delete(view)
+del view
+if not os.path.exists(baseline):
+    print("no baseline", baseline, "- the image is", output)
+    sys.exit(1)
+reader = vtkPNGReader()
+reader.SetFileName(baseline)
+test = vtkPNGReader()
+test.SetFileName(output)
+difference = vtkImageDifference()
+difference.SetInputConnection(test.GetOutputPort())
+difference.SetImageConnection(reader.GetOutputPort())
+difference.SetThreshold(16)
+difference.AllowShiftOff()
+difference.AveragingOff()
+difference.Update()
+error = difference.GetThresholdedError()
+print("strict image error", error, "(limit 10)")
+sys.exit(0 if error <= 10.0 else 1)
