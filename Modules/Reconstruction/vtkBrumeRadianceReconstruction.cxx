@@ -100,7 +100,8 @@ const float* FloatView(vtkDataArray* a, std::vector<float>& copy)
 struct vtkBrumeRadianceReconstruction::Cache
 {
   vtkMTimeType SceneTime = 0, HitsTime = 0;
-  vtkDataObject* SceneData = nullptr;
+  vtkDataObject* SceneData = nullptr; // the input as given
+  vtkSmartPointer<vtkPartitionedDataSetCollection> SceneCollection; // as a collection
   vtkDataObject* HitsData = nullptr;
   double Threshold = 0.0;
   int SurfaceResolution = 0, MediumResolution = 0, Refinement = 0;
@@ -129,15 +130,22 @@ vtkMTimeType vtkBrumeRadianceReconstruction::GetMTime()
 
 int vtkBrumeRadianceReconstruction::FillInputPortInformation(int port, vtkInformation* info)
 {
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(),
-    port == 0 ? "vtkPartitionedDataSetCollection" : "vtkPolyData");
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), port == 0 ? "vtkDataObject" : "vtkPolyData");
   return 1;
 }
 
 int vtkBrumeRadianceReconstruction::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  auto* sceneData = vtkPartitionedDataSetCollection::GetData(inputVector[0], 0);
+  vtkDataObject* sceneInput = vtkDataObject::GetData(inputVector[0], 0);
+  const auto sceneHolder = vtkBrumeSceneConversion::AsCollection(sceneInput);
+  vtkPartitionedDataSetCollection* sceneData = sceneHolder;
+  if (!sceneData)
+  {
+    vtkErrorMacro("The scene must be a vtkPartitionedDataSetCollection, a vtkMultiBlockDataSet, "
+                  "a vtkPolyData or a vtkImageData.");
+    return 0;
+  }
   auto* hitData = vtkPolyData::GetData(inputVector[1], 0);
   auto* output = vtkPartitionedDataSetCollection::GetData(outputVector, 0);
 
@@ -229,8 +237,8 @@ int vtkBrumeRadianceReconstruction::RequestData(
   // Rebuild everything when the inputs or the settings changed; otherwise
   // only the view-dependent textures follow the viewpoint.
   Cache* cache = this->Cached.get();
-  const bool rebuild = !cache || cache->SceneData != sceneData || cache->HitsData != hitData ||
-    cache->SceneTime != sceneData->GetMTime() || cache->HitsTime != hitData->GetMTime() ||
+  const bool rebuild = !cache || cache->SceneData != sceneInput || cache->HitsData != hitData ||
+    cache->SceneTime != sceneInput->GetMTime() || cache->HitsTime != hitData->GetMTime() ||
     cache->Threshold != this->RadiosityThreshold ||
     cache->SurfaceResolution != this->SurfaceResolution ||
     cache->MediumResolution != this->MediumResolution ||
@@ -369,9 +377,10 @@ int vtkBrumeRadianceReconstruction::RequestData(
       }
       ++this->NumberOfTextureBuilds;
     }
-    cache->SceneData = sceneData;
+    cache->SceneData = sceneInput;
+    cache->SceneCollection = sceneHolder;
     cache->HitsData = hitData;
-    cache->SceneTime = sceneData->GetMTime();
+    cache->SceneTime = sceneInput->GetMTime();
     cache->HitsTime = hitData->GetMTime();
     cache->Threshold = this->RadiosityThreshold;
     cache->SurfaceResolution = this->SurfaceResolution;

@@ -194,14 +194,16 @@ vtkMTimeType vtkBrumeLightTracer::GetMTime()
 
 int vtkBrumeLightTracer::FillInputPortInformation(int, vtkInformation* info)
 {
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPartitionedDataSetCollection");
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataObject");
   return 1;
 }
 
 int vtkBrumeLightTracer::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  auto* input = vtkPartitionedDataSetCollection::GetData(inputVector[0], 0);
+  const auto collection =
+    vtkBrumeSceneConversion::AsCollection(vtkDataObject::GetData(inputVector[0], 0));
+  vtkPartitionedDataSetCollection* input = collection;
   auto* output = vtkPolyData::GetData(outputVector, 0);
   this->LastRayCount = 0;
 

@@ -58,7 +58,7 @@ vtkMTimeType vtkBrumeReferencePathTracer::GetMTime()
 
 int vtkBrumeReferencePathTracer::FillInputPortInformation(int, vtkInformation* info)
 {
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPartitionedDataSetCollection");
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataObject");
   return 1;
 }
 
@@ -78,7 +78,9 @@ int vtkBrumeReferencePathTracer::RequestInformation(
 int vtkBrumeReferencePathTracer::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  auto* input = vtkPartitionedDataSetCollection::GetData(inputVector[0], 0);
+  const auto collection =
+    vtkBrumeSceneConversion::AsCollection(vtkDataObject::GetData(inputVector[0], 0));
+  vtkPartitionedDataSetCollection* input = collection;
   auto* output = vtkImageData::GetData(outputVector, 0);
   if (this->Size[0] < 1 || this->Size[1] < 1 || this->Size[0] > 16384 || this->Size[1] > 16384)
   {

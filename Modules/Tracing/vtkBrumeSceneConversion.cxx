@@ -19,6 +19,8 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkConvertToPartitionedDataSetCollection.h"
+#include "vtkMultiBlockDataSet.h"
 #include "vtkSMPTools.h"
 #include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
@@ -435,6 +437,36 @@ std::string vtkBrumeSceneConversion::ConvertLights(vtkLightCollection* lights, b
   return {};
 }
 
+vtkSmartPointer<vtkPartitionedDataSetCollection> vtkBrumeSceneConversion::AsCollection(
+  vtkDataObject* input)
+{
+  if (auto* collection = vtkPartitionedDataSetCollection::SafeDownCast(input))
+  {
+    return collection;
+  }
+  if (vtkMultiBlockDataSet::SafeDownCast(input))
+  {
+    vtkNew<vtkConvertToPartitionedDataSetCollection> convert;
+    convert->SetInputDataObject(input);
+    convert->Update();
+    auto result = vtkSmartPointer<vtkPartitionedDataSetCollection>::New();
+    result->ShallowCopy(convert->GetOutput());
+    result->GetFieldData()->ShallowCopy(input->GetFieldData());
+    return result;
+  }
+  if (vtkPolyData::SafeDownCast(input) || vtkImageData::SafeDownCast(input))
+  {
+    auto result = vtkSmartPointer<vtkPartitionedDataSetCollection>::New();
+    vtkNew<vtkPartitionedDataSet> pds;
+    pds->SetNumberOfPartitions(1);
+    pds->SetPartition(0, input);
+    result->SetPartitionedDataSet(0, pds);
+    result->GetMetaData(0u)->Set(vtkCompositeDataSet::NAME(), "object0");
+    return result;
+  }
+  return nullptr;
+}
+
 std::string vtkBrumeSceneConversion::ToScene(vtkDataObject* input, brume::Scene& scene,
   std::vector<ObjectSource>* sources, vtkLightCollection* lights)
 {
@@ -442,7 +474,9 @@ std::string vtkBrumeSceneConversion::ToScene(vtkDataObject* input, brume::Scene&
   auto* collection = vtkPartitionedDataSetCollection::SafeDownCast(input);
   if (!collection)
   {
-    return "the scene must be a vtkPartitionedDataSetCollection";
+    return std::string("the scene must be a vtkPartitionedDataSetCollection (or a ") +
+      "vtkMultiBlockDataSet, a vtkPolyData or a vtkImageData), not " +
+      (input ? input->GetClassName() : "nothing");
   }
   std::vector<ObjectSource> surfaceSources, mediumSources;
   for (unsigned int i = 0; i < collection->GetNumberOfPartitionedDataSets(); ++i)

@@ -58,6 +58,7 @@
 
 class vtkDataObject;
 class vtkLightCollection;
+class vtkPartitionedDataSetCollection;
 class vtkPolyData;
 
 class VTKBRUMETRACING_EXPORT vtkBrumeSceneConversion
@@ -69,6 +70,13 @@ public:
     unsigned int CollectionIndex;
     std::string Name;
   };
+
+  /**
+   * The scene as a collection: a vtkPartitionedDataSetCollection as is, a
+   * vtkMultiBlockDataSet converted (block names kept), a single dataset as a
+   * one-object collection. Null for anything else.
+   */
+  static vtkSmartPointer<vtkPartitionedDataSetCollection> AsCollection(vtkDataObject* input);
 
   /**
    * Builds the core scene from a scene collection. Returns an empty string on

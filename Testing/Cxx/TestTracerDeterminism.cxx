@@ -5,6 +5,8 @@
 #include "vtkBrumeReferencePathTracer.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
+#include "vtkConvertToMultiBlockDataSet.h"
+#include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -94,6 +96,22 @@ int TestTracerDeterminism(int, char*[])
     return EXIT_FAILURE;
   }
   std::cout << one->GetNumberOfPoints() << " hits, identical with 1 and 2 threads.\n";
+  // The same scene as a multiblock (as ParaView's Group Datasets makes it).
+  {
+    vtkNew<vtkBrumeDefaultSceneSource> scene;
+    vtkNew<vtkConvertToMultiBlockDataSet> multiblock;
+    multiblock->SetInputConnection(scene->GetOutputPort());
+    vtkNew<vtkBrumeLightTracer> tracer;
+    tracer->SetInputConnection(multiblock->GetOutputPort());
+    tracer->SetNumberOfParticles(50000);
+    tracer->SetSeed(7);
+    tracer->Update();
+    if (!SameBytes(one->GetPoints()->GetData(), tracer->GetOutput()->GetPoints()->GetData()))
+    {
+      std::cerr << "A multiblock scene gives other hits than the collection.\n";
+      return EXIT_FAILURE;
+    }
+  }
   // The reference renderer too.
   auto a = Reference(1), b = Reference(2);
   for (const char* name : { "Radiance", "Variance" })
