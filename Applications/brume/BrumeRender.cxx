@@ -7,6 +7,9 @@
 #include "vtkBrumeLightTracer.h"
 #include "vtkBrumeRadianceReconstruction.h"
 #include "vtkBrumeReferencePathTracer.h"
+#include "vtkBrumeSceneReader.h"
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
 #include "vtkBrumeSceneActors.h"
 #include "vtkBrumeSceneConversion.h"
 #include "vtkCamera.h"
@@ -48,6 +51,63 @@ bool EndsWith(const std::string& s, const std::string& suffix)
 
 namespace
 {
+// The scene: the built-in one, or a scene file; its render settings fill
+// the options the command line did not give.
+vtkSmartPointer<vtkAlgorithm> LoadScene(RenderOptions& options)
+{
+  vtkSmartPointer<vtkAlgorithm> source;
+  if (options.Scene.empty() || options.Scene == "default")
+  {
+    source = vtkSmartPointer<vtkBrumeDefaultSceneSource>::New();
+  }
+  else
+  {
+    auto reader = vtkSmartPointer<vtkBrumeSceneReader>::New();
+    reader->SetFileName(options.Scene.c_str());
+    source = reader;
+  }
+  if (!source->GetExecutive()->Update())
+  {
+    std::cerr << "brume: cannot load the scene '" << options.Scene << "' (see the error above).\n";
+    return nullptr;
+  }
+  vtkFieldData* fd = source->GetOutputDataObject(0)->GetFieldData();
+  auto value = [&](const char* name, int component, double& out)
+  {
+    vtkDataArray* a = fd->GetArray(name);
+    if (a && a->GetNumberOfTuples() > 0 && component < a->GetNumberOfComponents())
+    {
+      out = a->GetComponent(0, component);
+      return true;
+    }
+    return false;
+  };
+  double v = 0;
+  if (!options.ParticlesSet && value("BrumeRenderParticles", 0, v))
+  {
+    options.Particles = static_cast<long long>(v);
+  }
+  if (!options.SizeSet && value("BrumeRenderSize", 0, v))
+  {
+    options.Width = static_cast<int>(v);
+    value("BrumeRenderSize", 1, v);
+    options.Height = static_cast<int>(v);
+  }
+  if (!options.ThresholdSet && value("BrumeRenderThreshold", 0, v))
+  {
+    options.Threshold = v;
+  }
+  if (!options.SeedSet && value("BrumeRenderSeed", 0, v))
+  {
+    options.Seed = static_cast<std::uint64_t>(v);
+  }
+  if (!options.ExposureSet && value("BrumeRenderExposure", 0, v))
+  {
+    options.Exposure = v;
+  }
+  return source;
+}
+
 int WriteImage(vtkImageData* radiance, const RenderOptions& options, bool png)
 {
   if (png)
@@ -75,9 +135,13 @@ int WriteImage(vtkImageData* radiance, const RenderOptions& options, bool png)
 }
 
 // The reference image: the unbiased path tracer (no display needed).
-int RunReference(const RenderOptions& options, bool png)
+int RunReference(RenderOptions options, bool png)
 {
-  vtkNew<vtkBrumeDefaultSceneSource> scene;
+  const vtkSmartPointer<vtkAlgorithm> scene = LoadScene(options);
+  if (!scene)
+  {
+    return 1;
+  }
   vtkNew<vtkBrumeReferencePathTracer> reference;
   reference->SetInputConnection(scene->GetOutputPort());
   reference->SetSize(options.Width, options.Height);
@@ -100,15 +164,8 @@ int RunReference(const RenderOptions& options, bool png)
 }
 }
 
-int RunRender(const RenderOptions& options)
+int RunRender(RenderOptions options)
 {
-  if (!options.Scene.empty() && options.Scene != "default")
-  {
-    std::cerr << "brume: cannot read scene '" << options.Scene
-              << "': scene files are not supported yet; omit SCENE (or say 'default') for the "
-                 "built-in scene.\n";
-    return 1;
-  }
   const bool png = EndsWith(options.Output, ".png");
   if (!png && !EndsWith(options.Output, ".vti"))
   {
@@ -127,8 +184,11 @@ int RunRender(const RenderOptions& options)
     return 1;
   }
 
-  vtkNew<vtkBrumeDefaultSceneSource> scene;
-  scene->Update();
+  const vtkSmartPointer<vtkAlgorithm> scene = LoadScene(options);
+  if (!scene)
+  {
+    return 1;
+  }
 
   // Phase 1: particle tracing.
   auto start = std::chrono::steady_clock::now();

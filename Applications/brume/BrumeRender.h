@@ -19,9 +19,13 @@ struct RenderOptions
   bool Timings = false;
   bool Reference = false; // the unbiased path tracer instead of the three phases
   int SamplesPerPixel = 64;
+  // Which settings the command line gave (a scene file's render settings
+  // give the others).
+  bool ParticlesSet = false, SizeSet = false, ThresholdSet = false, SeedSet = false,
+       ExposureSet = false;
 };
 
 /// Runs the pipeline and writes the image; returns the process exit code.
-int RunRender(const RenderOptions& options);
+int RunRender(RenderOptions options);
 
 #endif

@@ -27,8 +27,10 @@ Pueyo (2003): particle tracing, radiance reconstruction, slice rendering.
 const char* RenderHelp = R"(usage: brume render [SCENE] -o OUTPUT [options]
 
 Renders a scene with participating media in three phases (particle tracing,
-radiance reconstruction, slice rendering). Without SCENE, renders the
-built-in default scene (a Cornell box around a cube of forward-scattering fog).
+radiance reconstruction, slice rendering). SCENE is a scene file
+(Data/scenes/README.md); without it, the built-in default scene (a Cornell
+box around a cube of forward-scattering fog). The scene file's render
+settings are the defaults of the options below.
 
   -o, --output FILE   out.png (tone-mapped: exposure, clamp, sRGB curve) or
                       out.vti (linear float RGB radiance, point array 'Radiance')
@@ -222,10 +224,12 @@ int Render(int argc, char* argv[])
     else if (arg == "--particles")
     {
       rc = ParseParticles(args, options.Particles);
+      options.ParticlesSet = true;
     }
     else if (arg == "--seed")
     {
       rc = ParseSeed(args, options.Seed);
+      options.SeedSet = true;
     }
     else if (arg == "--size")
     {
@@ -238,6 +242,7 @@ int Render(int argc, char* argv[])
       }
       options.Width = static_cast<int>(w);
       options.Height = static_cast<int>(h);
+      options.SizeSet = true;
     }
     else if (arg == "--exposure")
     {
@@ -245,6 +250,7 @@ int Render(int argc, char* argv[])
       {
         return UsageError("--exposure needs a non-negative number");
       }
+      options.ExposureSet = true;
     }
     else if (arg == "--threshold")
     {
@@ -252,6 +258,7 @@ int Render(int argc, char* argv[])
       {
         return UsageError("--threshold needs a positive number");
       }
+      options.ThresholdSet = true;
     }
     else if (arg == "--timings")
     {

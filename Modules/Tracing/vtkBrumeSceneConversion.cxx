@@ -381,11 +381,80 @@ brume::Box SceneBounds(const brume::Scene& scene)
 }
 }
 
-std::string vtkBrumeSceneConversion::ConvertLights(vtkLightCollection* lights, brume::Scene& scene)
+namespace
+{
+// A collimated beam along `direction` that covers the whole scene.
+void CoverWithBeam(brume::Light& l, const brume::Scene& scene)
 {
   const brume::Box bounds = SceneBounds(scene);
   const brume::Vec3 centre = (bounds.lower + bounds.upper) * 0.5f;
   const float radius = 0.5f * Length(bounds.Extent()) * 1.01f;
+  l.BeamRadius = radius;
+  l.BeamCenter = centre - l.Direction * radius;
+}
+}
+
+std::string vtkBrumeSceneConversion::ConvertFieldLights(vtkFieldData* fd, brume::Scene& scene)
+{
+  auto* types = fd ? vtkStringArray::SafeDownCast(fd->GetAbstractArray("BrumeLightType")) : nullptr;
+  if (!types)
+  {
+    return {};
+  }
+  const vtkIdType n = types->GetNumberOfValues();
+  auto array = [&](const char* name, int components) -> vtkDataArray*
+  {
+    vtkDataArray* a = fd->GetArray(name);
+    return a && a->GetNumberOfComponents() == components && a->GetNumberOfTuples() == n ? a
+                                                                                       : nullptr;
+  };
+  vtkDataArray* position = array("BrumeLightPosition", 3);
+  vtkDataArray* direction = array("BrumeLightDirection", 3);
+  vtkDataArray* intensity = array("BrumeLightIntensity", 3);
+  vtkDataArray* cone = array("BrumeLightConeAngle", 1);
+  if (!position || !direction || !intensity || !cone)
+  {
+    return "the scene's lights need BrumeLightPosition, BrumeLightDirection, BrumeLightIntensity "
+           "(3 components) and BrumeLightConeAngle (1), one tuple per BrumeLightType";
+  }
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    brume::Light l;
+    l.Name = "light " + std::to_string(i);
+    double v[3];
+    position->GetTuple(i, v);
+    l.Position = { static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]) };
+    direction->GetTuple(i, v);
+    const brume::Vec3 d(static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]));
+    l.Direction = Length(d) > 0.f ? Normalize(d) : d;
+    intensity->GetTuple(i, v);
+    l.Intensity = { static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]) };
+    l.ConeAngle = static_cast<float>(cone->GetTuple1(i));
+    const std::string type = types->GetValue(i);
+    if (type == "point")
+    {
+      l.Type = brume::LightType::Point;
+    }
+    else if (type == "spot")
+    {
+      l.Type = brume::LightType::Spot;
+    }
+    else if (type == "directional")
+    {
+      l.Type = brume::LightType::Directional;
+      CoverWithBeam(l, scene);
+    }
+    else
+    {
+      return "light " + std::to_string(i) + " has the unknown type '" + type + "'";
+    }
+    scene.Lights.push_back(l);
+  }
+  return {};
+}
+
+std::string vtkBrumeSceneConversion::ConvertLights(vtkLightCollection* lights, brume::Scene& scene)
+{
   lights->InitTraversal();
   int index = 0;
   while (vtkLight* light = lights->GetNextItem())
@@ -420,8 +489,7 @@ std::string vtkBrumeSceneConversion::ConvertLights(vtkLightCollection* lights, b
     {
       // A collimated beam covering the whole scene.
       l.Type = brume::LightType::Directional;
-      l.BeamRadius = radius;
-      l.BeamCenter = centre - l.Direction * radius;
+      CoverWithBeam(l, scene);
     }
     else if (light->GetConeAngle() >= 90.0)
     {
@@ -527,13 +595,14 @@ std::string vtkBrumeSceneConversion::ToScene(vtkDataObject* input, brume::Scene&
     *sources = surfaceSources;
     sources->insert(sources->end(), mediumSources.begin(), mediumSources.end());
   }
-  if (lights)
+  std::string lightError = ConvertFieldLights(collection->GetFieldData(), scene);
+  if (lightError.empty() && lights)
   {
-    std::string error = ConvertLights(lights, scene);
-    if (!error.empty())
-    {
-      return error;
-    }
+    lightError = ConvertLights(lights, scene);
+  }
+  if (!lightError.empty())
+  {
+    return lightError;
   }
   return scene.Validate();
 }

@@ -57,6 +57,7 @@
 #include <vector>
 
 class vtkDataObject;
+class vtkFieldData;
 class vtkLightCollection;
 class vtkPartitionedDataSetCollection;
 class vtkPolyData;
@@ -93,6 +94,15 @@ public:
    * directional light, whose collimated beam covers the scene's bounds.
    */
   static std::string ConvertLights(vtkLightCollection* lights, brume::Scene& scene);
+
+  /**
+   * Adds the lights listed in a scene collection's field data: the string
+   * array `BrumeLightType` ("point", "spot", "directional") and, one tuple
+   * per light, `BrumeLightPosition`, `BrumeLightDirection`,
+   * `BrumeLightIntensity` (3 components; the same units as vtkLight's) and
+   * `BrumeLightConeAngle` (spot half-angle, degrees).
+   */
+  static std::string ConvertFieldLights(vtkFieldData* fieldData, brume::Scene& scene);
 
   /// Stores hits in a vtkPolyData with the documented arrays.
   static vtkSmartPointer<vtkPolyData> HitsToPolyData(

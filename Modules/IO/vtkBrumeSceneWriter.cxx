@@ -1,0 +1,249 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkBrumeSceneWriter.h"
+
+#include "vtkCellData.h"
+#include "vtkCompositeDataSet.h"
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPartitionedDataSet.h"
+#include "vtkPartitionedDataSetCollection.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkStringArray.h"
+#include "vtkXMLImageDataWriter.h"
+#include "vtkXMLPolyDataWriter.h"
+
+#include "vtk_nlohmannjson.h"
+#include VTK_NLOHMANN_JSON(json.hpp)
+
+#include <filesystem>
+#include <fstream>
+
+vtkStandardNewMacro(vtkBrumeSceneWriter);
+
+namespace
+{
+using json = nlohmann::json;
+
+json Tuple(vtkDataArray* a, vtkIdType i = 0)
+{
+  json values = json::array();
+  for (int c = 0; c < a->GetNumberOfComponents(); ++c)
+  {
+    values.push_back(a->GetComponent(i, c));
+  }
+  return values;
+}
+
+std::string StringField(vtkFieldData* fd, const char* name)
+{
+  auto* a = vtkStringArray::SafeDownCast(fd->GetAbstractArray(name));
+  return a && a->GetNumberOfValues() > 0 ? a->GetValue(0) : std::string();
+}
+
+// A file name from an object name.
+std::string Safe(std::string name)
+{
+  for (char& c : name)
+  {
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_')
+    {
+      c = '_';
+    }
+  }
+  return name;
+}
+}
+
+int vtkBrumeSceneWriter::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPartitionedDataSetCollection");
+  return 1;
+}
+
+void vtkBrumeSceneWriter::WriteData()
+{
+  auto* scene = vtkPartitionedDataSetCollection::SafeDownCast(this->GetInput());
+  if (!scene || this->FileName.empty())
+  {
+    vtkErrorMacro("A scene collection and a FileName are needed.");
+    this->SetErrorCode(1);
+    return;
+  }
+  const std::filesystem::path path(this->FileName);
+  const std::string stem = path.stem().string();
+  json root;
+  root["brume_scene"] = 1;
+  root["surfaces"] = json::array();
+  root["media"] = json::array();
+  root["lights"] = json::array();
+  for (unsigned int i = 0; i < scene->GetNumberOfPartitionedDataSets(); ++i)
+  {
+    vtkPartitionedDataSet* pds = scene->GetPartitionedDataSet(i);
+    vtkDataObject* object = pds && pds->GetNumberOfPartitions() > 0 ? pds->GetPartition(0) : nullptr;
+    std::string name = "object" + std::to_string(i);
+    if (scene->HasMetaData(i) && scene->GetMetaData(i)->Has(vtkCompositeDataSet::NAME()))
+    {
+      name = scene->GetMetaData(i)->Get(vtkCompositeDataSet::NAME());
+    }
+    if (auto* surface = vtkPolyData::SafeDownCast(object))
+    {
+      const std::string file = stem + "-" + Safe(name) + ".vtp";
+      vtkNew<vtkXMLPolyDataWriter> writer;
+      writer->SetFileName((path.parent_path() / file).string().c_str());
+      writer->SetInputData(surface);
+      if (!writer->Write())
+      {
+        vtkErrorMacro("Cannot write " << file << ".");
+        this->SetErrorCode(1);
+        return;
+      }
+      json s;
+      s["name"] = name;
+      s["file"] = file;
+      json material = json::object();
+      vtkFieldData* fd = surface->GetFieldData();
+      const std::string type = StringField(fd, "BrumeMaterial");
+      if (!type.empty())
+      {
+        material["type"] = type;
+      }
+      for (const auto& key : { std::make_pair("reflectance", "BrumeReflectance"),
+             std::make_pair("specular", "BrumeSpecular"), std::make_pair("emission", "BrumeEmission"),
+             std::make_pair("exponent", "BrumeExponent") })
+      {
+        if (vtkDataArray* a = fd->GetArray(key.second))
+        {
+          material[key.first] = a->GetNumberOfComponents() == 1 ? json(a->GetTuple1(0)) : Tuple(a);
+        }
+      }
+      s["material"] = material;
+      root["surfaces"].push_back(s);
+    }
+    else if (auto* medium = vtkImageData::SafeDownCast(object))
+    {
+      vtkFieldData* fd = medium->GetFieldData();
+      json m;
+      m["name"] = name;
+      for (const auto& key : { std::make_pair("sigma_a", "BrumeSigmaA"),
+             std::make_pair("sigma_s", "BrumeSigmaS") })
+      {
+        if (vtkDataArray* a = fd->GetArray(key.second))
+        {
+          m[key.first] = Tuple(a);
+        }
+      }
+      if (vtkDataArray* g = fd->GetArray("BrumeG"))
+      {
+        m["g"] = g->GetTuple1(0);
+      }
+      if (vtkDataArray* s = fd->GetArray("BrumeDensityScale"))
+      {
+        m["density_scale"] = s->GetTuple1(0);
+      }
+      const std::string vdb = StringField(fd, "BrumeVDBFile");
+      const bool dense = medium->GetPointData()->GetNumberOfArrays() > 0 ||
+        medium->GetCellData()->GetNumberOfArrays() > 0;
+      double b[6];
+      medium->GetBounds(b);
+      if (!vdb.empty() || !dense)
+      {
+        m["box"] = json::array({ json::array({ b[0], b[2], b[4] }), json::array({ b[1], b[3], b[5] }) });
+      }
+      if (!vdb.empty())
+      {
+        m["density"]["vdb"] = std::filesystem::absolute(vdb).string();
+        const std::string grid = StringField(fd, "BrumeVDBGrid");
+        if (!grid.empty())
+        {
+          m["density"]["grid"] = grid;
+        }
+      }
+      else if (dense)
+      {
+        const std::string file = stem + "-" + Safe(name) + ".vti";
+        vtkNew<vtkXMLImageDataWriter> writer;
+        writer->SetFileName((path.parent_path() / file).string().c_str());
+        writer->SetInputData(medium);
+        if (!writer->Write())
+        {
+          vtkErrorMacro("Cannot write " << file << ".");
+          this->SetErrorCode(1);
+          return;
+        }
+        m["density"]["vti"] = file;
+        const std::string array = StringField(fd, "BrumeDensityArray");
+        if (!array.empty())
+        {
+          m["density"]["array"] = array;
+        }
+      }
+      root["media"].push_back(m);
+    }
+  }
+  vtkFieldData* fd = scene->GetFieldData();
+  if (auto* types = vtkStringArray::SafeDownCast(fd->GetAbstractArray("BrumeLightType")))
+  {
+    for (vtkIdType i = 0; i < types->GetNumberOfValues(); ++i)
+    {
+      json l;
+      const std::string type = types->GetValue(i);
+      l["type"] = type;
+      if (type != "directional")
+      {
+        l["position"] = Tuple(fd->GetArray("BrumeLightPosition"), i);
+        l["intensity"] = Tuple(fd->GetArray("BrumeLightIntensity"), i);
+      }
+      else
+      {
+        l["irradiance"] = Tuple(fd->GetArray("BrumeLightIntensity"), i);
+      }
+      if (type != "point")
+      {
+        l["direction"] = Tuple(fd->GetArray("BrumeLightDirection"), i);
+      }
+      if (type == "spot")
+      {
+        l["cone_angle"] = fd->GetArray("BrumeLightConeAngle")->GetTuple1(i);
+      }
+      root["lights"].push_back(l);
+    }
+  }
+  const std::pair<const char*, const char*> camera[] = { { "position", "BrumeCameraPosition" },
+    { "focal_point", "BrumeCameraFocalPoint" }, { "view_up", "BrumeCameraViewUp" },
+    { "view_angle", "BrumeCameraViewAngle" } };
+  for (const auto& key : camera)
+  {
+    if (vtkDataArray* a = fd->GetArray(key.second))
+    {
+      root["camera"][key.first] = a->GetNumberOfComponents() == 1 ? json(a->GetTuple1(0)) : Tuple(a);
+    }
+  }
+  const std::pair<const char*, const char*> render[] = { { "particles", "BrumeRenderParticles" },
+    { "size", "BrumeRenderSize" }, { "threshold", "BrumeRenderThreshold" },
+    { "seed", "BrumeRenderSeed" }, { "exposure", "BrumeRenderExposure" } };
+  for (const auto& key : render)
+  {
+    if (vtkDataArray* a = fd->GetArray(key.second))
+    {
+      root["render"][key.first] = a->GetNumberOfComponents() == 1 ? json(a->GetTuple1(0)) : Tuple(a);
+    }
+  }
+  std::ofstream out(path);
+  out << root.dump(2) << "\n";
+  if (!out)
+  {
+    vtkErrorMacro("Cannot write " << this->FileName << ".");
+    this->SetErrorCode(1);
+  }
+}
+
+void vtkBrumeSceneWriter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << this->FileName << "\n";
+}
