@@ -20,7 +20,9 @@
  *
  * Input: a vtkImageData whose cells are the voxels, with cell data
  * `SourceRadiance` (3 components, W m^-2 sr^-1) and `Extinction` (1 or 3
- * components, m^-1), as vtkBrumeRadianceReconstruction produces. The
+ * components, m^-1), as vtkBrumeRadianceReconstruction produces; they are
+ * filtered as J = S sigma_t and sigma_t, which stay bounded where a medium
+ * thins out (S alone would not). The
  * volume property's interpolation type (nearest or linear) is honoured; its
  * transfer functions are not used: the data are physical.
  *

@@ -184,8 +184,10 @@ bool vtkBrumeOpenGLSliceVolumeMapper::PrepareSlices(
     {
       for (int c = 0; c < 3; ++c)
       {
-        s[3 * i + c] = static_cast<float>(source->GetComponent(i, c));
+        // The texture holds J = S sigma_t: filtered between voxels, J and
+        // sigma_t stay bounded where the medium thins out (S would not).
         e[3 * i + c] = static_cast<float>(extinction->GetComponent(i, ne == 3 ? c : 0));
+        s[3 * i + c] = static_cast<float>(source->GetComponent(i, c)) * e[3 * i + c];
         if (!(e[3 * i + c] >= 0.f) || !std::isfinite(e[3 * i + c]) || !std::isfinite(s[3 * i + c]))
         {
           vtkErrorMacro("Cannot draw this medium: its extinction must be finite and "

@@ -389,8 +389,9 @@ TEST(Reconstruction, AtlasOfACurvedSurfaceKeepsTheReflectedPower)
   octahedron.Name = "octahedron";
   octahedron.Vertices = { { 1, 0, 0 }, { -1, 0, 0 }, { 0, 1, 0 }, { 0, -1, 0 }, { 0, 0, 1 },
     { 0, 0, -1 } };
-  octahedron.Triangles = { { 0, 2, 4 }, { 2, 1, 4 }, { 1, 3, 4 }, { 3, 0, 4 }, { 2, 0, 5 },
-    { 1, 2, 5 }, { 3, 1, 5 }, { 0, 3, 5 } };
+  // Wound inward: the light inside sees the front side of every face.
+  octahedron.Triangles = { { 0, 4, 2 }, { 2, 4, 1 }, { 1, 4, 3 }, { 3, 4, 0 }, { 2, 5, 0 },
+    { 1, 5, 2 }, { 3, 5, 1 }, { 0, 5, 3 } };
   octahedron.Mat.Reflectance = Vec3(0.5f);
   Scene scene;
   scene.Surfaces = { octahedron };

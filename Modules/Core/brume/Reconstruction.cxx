@@ -185,6 +185,17 @@ ObjectRadiance::ObjectRadiance(const Medium& medium, std::array<int, 3> resoluti
 {
 }
 
+bool ObjectRadiance::FromFront(const HitArrays& hits, std::uint32_t i) const
+{
+  // The particle travels against the front (winding) normal of its triangle.
+  const std::uint32_t t = hits.Triangle ? hits.Triangle[i] : 0;
+  const auto& tri = this->SurfaceRef->Triangles[t < this->SurfaceRef->Triangles.size() ? t : 0];
+  const Vec3 n = Cross(this->SurfaceRef->Vertices[tri[1]] - this->SurfaceRef->Vertices[tri[0]],
+    this->SurfaceRef->Vertices[tri[2]] - this->SurfaceRef->Vertices[tri[0]]);
+  const Vec3 d(hits.Direction[3 * i], hits.Direction[3 * i + 1], hits.Direction[3 * i + 2]);
+  return Dot(n, d) < 0.f;
+}
+
 std::string ObjectRadiance::Build(const HitArrays& hits, const std::uint32_t* index,
   std::size_t count, const Vec3& eye, double thresholdFlux, const ParallelFor& parallelFor)
 {
@@ -255,6 +266,10 @@ std::string ObjectRadiance::Build(const HitArrays& hits, const std::uint32_t* in
     for (std::size_t k = 0; k < count; ++k)
     {
       const std::uint32_t i = index[k];
+      if (!this->MediumRef && !this->FromFront(hits, i))
+      {
+        continue; // light on the back side: reflected, not shown
+      }
       const std::uint32_t cell = cellOfHit(i);
       const float* f = hits.Flux + 3 * i;
       const double w = (static_cast<double>(f[0]) + f[1] + f[2]) / 3.0;
@@ -284,6 +299,20 @@ std::string ObjectRadiance::Build(const HitArrays& hits, const std::uint32_t* in
   {
     // View-dependent objects keep their hits with their histogram cells,
     // grouped by ranges of cells: a new eye re-weights them (WeighCells).
+    // Surfaces keep the hits arriving on their front side only.
+    std::vector<std::uint32_t> front;
+    if (!this->MediumRef)
+    {
+      for (std::size_t k = 0; k < count; ++k)
+      {
+        if (this->FromFront(hits, index[k]))
+        {
+          front.push_back(index[k]);
+        }
+      }
+      index = front.data();
+      count = front.size();
+    }
     this->CellOf.resize(count);
     parallelFor(0, count,
       [&](std::size_t begin, std::size_t end)

@@ -4,6 +4,9 @@
 // tables and adaptive nearest-neighbour density estimation.
 //
 // Radiometric normalization (units agree with a path tracer's radiance):
+//  - Surface textures show the front side (the side the triangles' winding
+//    normal points to): light arriving on the back is reflected by the
+//    tracer but not shown.
 //  - Surface texel, region of world area A holding hits of incident flux
 //    Phi_p arriving from w_p (pointing away from the surface), toward the
 //    eye w_o:  L_o = sum f_r(w_p, w_o) Phi_p / A  +  L_e.
@@ -131,6 +134,7 @@ public:
   const SurfaceChart& GetChart() const { return this->Chart; }
 
 private:
+  bool FromFront(const HitArrays& hits, std::uint32_t i) const;
   void WeighCells(const Vec3& eye, const ParallelFor& parallelFor);
   void Estimate(const ParallelFor& parallelFor);
   void BuildAreaTable();

@@ -9,7 +9,7 @@
 in vec3 positionWC;
 in vec3 texcoord;
 
-uniform sampler3D sourceTexture;     // S = J / sigma_t (W m^-2 sr^-1)
+uniform sampler3D sourceTexture;     // J = S sigma_t (W m^-3 sr^-1)
 uniform sampler3D extinctionTexture; // sigma_t (m^-1)
 uniform vec3 eyeWC;
 uniform vec3 viewDirectionWC;
@@ -21,7 +21,7 @@ layout(location = 0, index = 1) out vec4 fragTransmittance;
 
 void main()
 {
-  vec3 source = texture(sourceTexture, texcoord).rgb;
+  vec3 emission = texture(sourceTexture, texcoord).rgb;
   vec3 sigmaT = texture(extinctionTexture, texcoord).rgb;
   // Distance between two slice planes along this fragment's viewing ray:
   // it grows as 1/cos(angle to the view direction) in perspective.
@@ -33,6 +33,10 @@ void main()
   }
   vec3 transmittance = exp(-sigmaT * delta);
   float meanTransmittance = dot(transmittance, vec3(1.0 / 3.0));
-  fragColor = vec4(source * (vec3(1.0) - transmittance), 1.0 - meanTransmittance);
+  // S (1 - T) with S = J / sigma_t; J Delta where sigma_t Delta is tiny.
+  vec3 thick = emission * (vec3(1.0) - transmittance) / max(sigmaT, vec3(1e-30));
+  vec3 thin = emission * delta;
+  vec3 radiance = mix(thin, thick, step(vec3(1e-4), sigmaT * delta));
+  fragColor = vec4(radiance, 1.0 - meanTransmittance);
   fragTransmittance = vec4(transmittance, meanTransmittance);
 }
