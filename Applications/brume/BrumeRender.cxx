@@ -32,6 +32,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 
 namespace
@@ -108,26 +109,36 @@ vtkSmartPointer<vtkAlgorithm> LoadScene(RenderOptions& options)
   return source;
 }
 
+// Writes next to the output under a temporary name and renames it on
+// success, so that a failure never leaves a partial image behind.
 int WriteImage(vtkImageData* radiance, const RenderOptions& options, bool png)
 {
+  const std::string partial = options.Output + ".partial";
+  bool ok = false;
   if (png)
   {
     vtkNew<vtkPNGWriter> writer;
-    writer->SetFileName(options.Output.c_str());
+    writer->SetFileName(partial.c_str());
     writer->SetInputData(vtkBrumeFloatImageCapture::ToneMap(radiance, options.Exposure));
     writer->Write();
-    if (writer->GetErrorCode() != 0)
-    {
-      std::cerr << "brume: could not write " << options.Output << "\n";
-      return 1;
-    }
-    return 0;
+    ok = writer->GetErrorCode() == 0;
   }
-  vtkNew<vtkXMLImageDataWriter> writer;
-  writer->SetFileName(options.Output.c_str());
-  writer->SetInputData(radiance);
-  if (!writer->Write())
+  else
   {
+    vtkNew<vtkXMLImageDataWriter> writer;
+    writer->SetFileName(partial.c_str());
+    writer->SetInputData(radiance);
+    ok = writer->Write() != 0;
+  }
+  std::error_code error;
+  if (ok)
+  {
+    std::filesystem::rename(partial, options.Output, error);
+    ok = !error;
+  }
+  if (!ok)
+  {
+    std::filesystem::remove(partial, error);
     std::cerr << "brume: could not write " << options.Output << "\n";
     return 1;
   }
@@ -176,17 +187,18 @@ int RunRender(RenderOptions options)
   {
     return RunReference(options, png);
   }
+  // The scene first: a bad file is reported with or without a display.
+  const vtkSmartPointer<vtkAlgorithm> scene = LoadScene(options);
+  if (!scene)
+  {
+    return 1;
+  }
+
   const char* display = std::getenv("DISPLAY");
   if (!display || !*display)
   {
     std::cerr << "brume: rendering needs an X display (none is set in DISPLAY); on a headless "
                  "machine run it under 'xvfb-run -a'.\n";
-    return 1;
-  }
-
-  const vtkSmartPointer<vtkAlgorithm> scene = LoadScene(options);
-  if (!scene)
-  {
     return 1;
   }
 

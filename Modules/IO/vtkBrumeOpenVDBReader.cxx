@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumeOpenVDBReader.h"
 
+#include "brume/VdbDensity.h"
+
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -61,7 +63,7 @@ int vtkBrumeOpenVDBReader::RequestInformation(
   }
   catch (const std::exception& e)
   {
-    vtkErrorMacro("Cannot read OpenVDB file '" << this->FileName << "': " << e.what());
+    vtkErrorMacro("Cannot read OpenVDB file '" << this->FileName << "': " << brume::ShortMessage(e.what()));
     return 0;
   }
   return 1;
@@ -90,7 +92,7 @@ int vtkBrumeOpenVDBReader::RequestData(
   }
   catch (const std::exception& e)
   {
-    vtkErrorMacro("Cannot read OpenVDB file '" << this->FileName << "': " << e.what());
+    vtkErrorMacro("Cannot read OpenVDB file '" << this->FileName << "': " << brume::ShortMessage(e.what()));
     return 0;
   }
   if (!grid)

@@ -2,6 +2,7 @@
 #include "vtkBrumeSceneReader.h"
 
 #include "vtkAlgorithm.h"
+#include "vtkBrumeSceneConversion.h"
 #include "vtkCellArray.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDataSetSurfaceFilter.h"
@@ -36,6 +37,8 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 vtkStandardNewMacro(vtkBrumeSceneReader);
 
@@ -165,6 +168,119 @@ void AddObject(vtkPartitionedDataSetCollection* out, vtkDataObject* data, const 
 }
 
 // Reads a surface file with the VTK reader its extension calls for.
+// VTK's PLY parser asserts on a file shorter than its header promises: check
+// the header's element counts against what the file holds first.
+bool PlyLooksComplete(const std::filesystem::path& file, std::string& error)
+{
+  std::ifstream in(file, std::ios::binary);
+  std::string line, format;
+  double minimumBytes = 0, rows = 0, rowBytes = 0;
+  bool headerEnded = false;
+  auto size = [](const std::string& type) -> double
+  {
+    if (type == "char" || type == "uchar" || type == "int8" || type == "uint8")
+      return 1;
+    if (type == "short" || type == "ushort" || type == "int16" || type == "uint16")
+      return 2;
+    if (type == "double" || type == "float64")
+      return 8;
+    return 4;
+  };
+  if (!in)
+  {
+    error = "cannot open '" + file.string() + "'";
+    return false;
+  }
+  if (!std::getline(in, line) || line.rfind("ply", 0) != 0)
+  {
+    error = "'" + file.string() + "' is not a PLY file (no 'ply' magic)";
+    return false;
+  }
+  while (std::getline(in, line))
+  {
+    std::istringstream words(line);
+    std::string word;
+    words >> word;
+    if (word == "format")
+    {
+      words >> format;
+    }
+    else if (word == "element")
+    {
+      minimumBytes += rows * rowBytes;
+      std::string name;
+      rows = -1;
+      words >> name >> rows;
+      rowBytes = 0;
+      if (!(rows >= 0) || rows > 1e10)
+      {
+        error = "'" + file.string() + "': bad element count in '" + line + "'";
+        return false;
+      }
+    }
+    else if (word == "property")
+    {
+      std::string type, countType;
+      words >> type;
+      // A list needs at least its count.
+      rowBytes += type == "list" ? (words >> countType, size(countType)) : size(type);
+    }
+    else if (word == "end_header")
+    {
+      minimumBytes += rows * rowBytes;
+      headerEnded = true;
+      break;
+    }
+  }
+  if (!headerEnded)
+  {
+    error = "'" + file.string() + "': the PLY header has no end_header";
+    return false;
+  }
+  double available = 0, lines = 0;
+  const auto body = in.tellg();
+  in.seekg(0, std::ios::end);
+  available = static_cast<double>(in.tellg() - body);
+  if (format == "ascii")
+  {
+    in.seekg(body);
+    while (std::getline(in, line))
+    {
+      lines += line.find_first_not_of(" \t\r") != std::string::npos ? 1 : 0;
+    }
+    // One line per element row.
+    minimumBytes = 0;
+    std::ifstream header(file);
+    double expected = 0;
+    while (std::getline(header, line) && line.rfind("end_header", 0) != 0)
+    {
+      std::istringstream words(line);
+      std::string word, name;
+      double count = 0;
+      if ((words >> word >> name >> count) && word == "element")
+      {
+        expected += count;
+      }
+    }
+    if (lines < expected)
+    {
+      error = "'" + file.string() + "' is truncated: the header announces " +
+        std::to_string(static_cast<long long>(expected)) + " rows, the file holds " +
+        std::to_string(static_cast<long long>(lines));
+      return false;
+    }
+    return true;
+  }
+  if (available < minimumBytes)
+  {
+    error = "'" + file.string() + "' is truncated: the header needs at least " +
+      std::to_string(static_cast<long long>(minimumBytes)) + " bytes of data, the file holds " +
+      std::to_string(static_cast<long long>(available));
+    return false;
+  }
+  return true;
+}
+
 vtkSmartPointer<vtkPolyData> ReadGeometry(const std::filesystem::path& file, std::string& error)
 {
   const std::string ext = file.extension().string();
@@ -177,6 +293,10 @@ vtkSmartPointer<vtkPolyData> ReadGeometry(const std::filesystem::path& file, std
   }
   else if (ext == ".ply")
   {
+    if (!PlyLooksComplete(file, error))
+    {
+      return nullptr;
+    }
     auto r = vtkSmartPointer<vtkPLYReader>::New();
     r->SetFileName(file.string().c_str());
     reader = r;
@@ -274,6 +394,9 @@ int vtkBrumeSceneReader::RequestData(
   {
     return fail();
   }
+
+  // The field each object came from, to name it in later messages.
+  std::vector<std::pair<std::string, std::string>> objectFields;
 
   // Surfaces.
   if (root.contains("surfaces") && !root["surfaces"].is_array())
@@ -382,6 +505,7 @@ int vtkBrumeSceneReader::RequestData(
       AddTuple(sfd, "BrumeExponent", &e, 1);
     }
     AddObject(scene, surface, name);
+    objectFields.emplace_back(name, at);
   }
 
   // Media.
@@ -511,6 +635,7 @@ int vtkBrumeSceneReader::RequestData(
     AddTuple(mfd, "BrumeG", &g, 1);
     AddTuple(mfd, "BrumeDensityScale", &scale, 1);
     AddObject(scene, image, name);
+    objectFields.emplace_back(name, at);
   }
 
   // Lights.
@@ -590,6 +715,19 @@ int vtkBrumeSceneReader::RequestData(
   {
     return fail();
   }
+  const double view[3] = { focal[0] - position[0], focal[1] - position[1], focal[2] - position[2] };
+  const double cross[3] = { view[1] * up[2] - view[2] * up[1], view[2] * up[0] - view[0] * up[2],
+    view[0] * up[1] - view[1] * up[0] };
+  if (!(view[0] * view[0] + view[1] * view[1] + view[2] * view[2] > 0))
+  {
+    p.Fail("camera.position", "the camera sits on its focal point");
+    return fail();
+  }
+  if (!(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2] > 0))
+  {
+    p.Fail("camera.view_up", "zero or parallel to the view direction");
+    return fail();
+  }
   AddTuple(fd, "BrumeCameraPosition", position, 3);
   AddTuple(fd, "BrumeCameraFocalPoint", focal, 3);
   AddTuple(fd, "BrumeCameraViewUp", up, 3);
@@ -616,6 +754,38 @@ int vtkBrumeSceneReader::RequestData(
   if (scene->GetNumberOfPartitionedDataSets() == 0)
   {
     p.Fail("surfaces", "the scene has no surfaces and no media");
+    return fail();
+  }
+  if (lights.empty())
+  {
+    p.Fail("lights", "the scene has no lights: nothing would be lit");
+    return fail();
+  }
+  // Everything the tracer will check (zero-area geometry, densities read from
+  // VTI or VDB files, material energy) is checked here, so that a bad file
+  // fails when it is read and the message names the file.
+  brume::Scene check;
+  const std::string invalid = vtkBrumeSceneConversion::ToScene(scene, check);
+  if (!invalid.empty())
+  {
+    // Name the field: the object the message quotes, else its kind.
+    std::string field = invalid.rfind("medium", 0) == 0 ? "media"
+      : invalid.rfind("light", 0) == 0                 ? "lights"
+                                                       : "surfaces";
+    const auto open = invalid.find('\''), close = invalid.find('\'', open + 1);
+    if (open != std::string::npos && close != std::string::npos)
+    {
+      const std::string quoted = invalid.substr(open + 1, close - open - 1);
+      for (const auto& object : objectFields)
+      {
+        if (object.first == quoted)
+        {
+          field = object.second;
+          break;
+        }
+      }
+    }
+    p.Fail(field, invalid);
     return fail();
   }
   output->ShallowCopy(scene);

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <mutex>
 
 namespace brume
@@ -58,7 +59,7 @@ std::shared_ptr<VdbDensity> VdbDensity::Load(
   }
   catch (const std::exception& e)
   {
-    error = "cannot read OpenVDB file '" + fileName + "': " + e.what();
+    error = "cannot read OpenVDB file '" + fileName + "': " + ShortMessage(e.what());
     return nullptr;
   }
   if (!grid)
@@ -175,6 +176,26 @@ float VdbDensity::Evaluate(const Vec3& p) const
     (p.y - impl.Origin[1]) / impl.VoxelSize[1], (p.z - impl.Origin[2]) / impl.VoxelSize[2]);
   // The tree (not a cached accessor) is safe to share between threads.
   return openvdb::tools::BoxSampler::sample(impl.Grid->tree(), index);
+}
+
+std::string ShortMessage(const char* what)
+{
+  std::string out;
+  for (const char* c = what; c && *c && out.size() < 200; ++c)
+  {
+    const bool printable = *c >= 0x20 && *c < 0x7f;
+    const char ch = printable ? *c : ' ';
+    if (ch == ' ' && (out.empty() || out.back() == ' '))
+    {
+      continue;
+    }
+    out += ch;
+  }
+  if (what && std::strlen(what) > out.size() && out.size() >= 200)
+  {
+    out += "...";
+  }
+  return out;
 }
 
 } // namespace brume

@@ -35,6 +35,11 @@ private:
   std::unique_ptr<Internals> Impl;
 };
 
+/// A library's exception text made fit for a message: printable characters,
+/// runs of blanks collapsed, at most 200 characters (a corrupt file can make
+/// OpenVDB quote a string of hundreds of megabytes).
+std::string ShortMessage(const char* what);
+
 } // namespace brume
 
 #endif

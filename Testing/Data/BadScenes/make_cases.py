@@ -1,0 +1,116 @@
+# Writes the malformed scene files of this directory: python3 make_cases.py .
+# Each case breaks a valid base scene (good.json) in one place; cases.txt lists
+# the message each must produce. The support files were made once: sphere.vdb
+# (a unit fog sphere written with openvdb::io::File), truncated.vdb (its first
+# three quarters), header-only.vdb (its first 600 bytes), corrupt.vdb (its magic
+# followed by random bytes), garbage.* (text that is no such file), the two
+# density volumes (a NaN and a negative voxel) and points.vtp (no cells).
+import json, copy, os, sys
+out = sys.argv[1]
+base = {
+  "brume_scene": 1,
+  "name": "a valid base that every case breaks in one place",
+  "camera": {"position": [0, 0, 4], "focal_point": [0, 0, 0], "view_up": [0, 1, 0], "view_angle": 40},
+  "render": {"particles": 2000, "size": [16, 16]},
+  "surfaces": [{"name": "floor", "quad": [[-1, -1, -1], [-1, -1, 1], [1, -1, 1], [1, -1, -1]],
+                "material": {"reflectance": [0.5, 0.5, 0.5]}}],
+  "media": [{"name": "fog", "box": [[-1, -1, -1], [1, 1, 1]], "sigma_a": [0.1, 0.1, 0.1],
+             "sigma_s": [0.5, 0.5, 0.5], "g": 0.3}],
+  "lights": [{"type": "point", "position": [0, 0.9, 0], "intensity": [1, 1, 1]}],
+}
+cases = {}
+def case(name, edit):
+    s = copy.deepcopy(base); edit(s); cases[name] = s
+def setp(path, value):
+    def f(s):
+        o = s
+        for k in path[:-1]: o = o[k]
+        o[path[-1]] = value
+    return f
+def delp(path):
+    def f(s):
+        o = s
+        for k in path[:-1]: o = o[k]
+        del o[path[-1]]
+    return f
+case("good", lambda s: None)
+case("top-not-object", lambda s: s.clear())  # replaced below
+case("missing-version", delp(["brume_scene"]))
+case("version-2", setp(["brume_scene"], 2))
+case("version-string", setp(["brume_scene"], "1"))
+case("unknown-top-key", setp(["lihgts"], []))
+case("surfaces-not-array", setp(["surfaces"], {"name": "floor"}))
+case("surface-no-name", delp(["surfaces", 0, "name"]))
+case("surface-file-and-quad", setp(["surfaces", 0, "file"], "room.obj"))
+case("surface-no-geometry", delp(["surfaces", 0, "quad"]))
+case("quad-three-corners", setp(["surfaces", 0, "quad"], [[0, 0, 0], [1, 0, 0], [1, 1, 0]]))
+case("quad-infinite", setp(["surfaces", 0, "quad", 1, 0], "INF"))
+case("quad-degenerate", setp(["surfaces", 0, "quad"], [[0, 0, 0], [1, 0, 0], [2, 0, 0], [3, 0, 0]]))
+case("quad-corner-string", setp(["surfaces", 0, "quad", 2], "corner"))
+case("mesh-missing-file", lambda s: (delp(["surfaces", 0, "quad"])(s), setp(["surfaces", 0, "file"], "no-such-mesh.obj")(s)))
+case("mesh-unknown-format", lambda s: (delp(["surfaces", 0, "quad"])(s), setp(["surfaces", 0, "file"], "mesh.xyz")(s)))
+case("mesh-garbage-obj", lambda s: (delp(["surfaces", 0, "quad"])(s), setp(["surfaces", 0, "file"], "garbage.obj")(s)))
+case("mesh-truncated-ply", lambda s: (delp(["surfaces", 0, "quad"])(s), setp(["surfaces", 0, "file"], "truncated.ply")(s)))
+case("mesh-degenerate-obj", lambda s: (delp(["surfaces", 0, "quad"])(s), setp(["surfaces", 0, "file"], "degenerate.obj")(s)))
+case("mesh-points-only-vtp", lambda s: (delp(["surfaces", 0, "quad"])(s), setp(["surfaces", 0, "file"], "points.vtp")(s)))
+case("material-unknown-type", setp(["surfaces", 0, "material", "type"], "velvet"))
+case("material-unknown-key", setp(["surfaces", 0, "material", "roughness"], 0.2))
+case("reflectance-negative", setp(["surfaces", 0, "material", "reflectance"], [0.5, -0.1, 0.5]))
+case("reflectance-above-one", setp(["surfaces", 0, "material", "reflectance"], [1.5, 0.5, 0.5]))
+case("reflectance-two-numbers", setp(["surfaces", 0, "material", "reflectance"], [0.5, 0.5]))
+case("phong-exponent-negative", setp(["surfaces", 0, "material"], {"type": "phong", "reflectance": [0.3, 0.3, 0.3], "specular": [0.3, 0.3, 0.3], "exponent": -4}))
+case("phong-energy-above-one", setp(["surfaces", 0, "material"], {"type": "phong", "reflectance": [0.7, 0.7, 0.7], "specular": [0.6, 0.6, 0.6], "exponent": 20}))
+case("media-not-array", setp(["media"], 3))
+case("sigma-a-negative", setp(["media", 0, "sigma_a"], [0.1, -0.1, 0.1]))
+case("sigma-s-infinite", setp(["media", 0, "sigma_s", 0], "INF"))
+case("sigma-s-missing", delp(["media", 0, "sigma_s"]))
+case("g-one", setp(["media", 0, "g"], 1.0))
+case("g-below-minus-one", setp(["media", 0, "g"], -1.5))
+case("g-string", setp(["media", 0, "g"], "forward"))
+case("density-scale-negative", setp(["media", 0, "density_scale"], -2))
+case("box-empty", setp(["media", 0, "box"], [[0, 0, 0], [1, 0, 1]]))
+case("box-missing", delp(["media", 0, "box"]))
+case("density-vdb-and-vti", setp(["media", 0, "density"], {"vdb": "truncated.vdb", "vti": "nan-density.vti"}))
+case("density-vti-missing", setp(["media", 0, "density"], {"vti": "no-such-volume.vti"}))
+case("density-vti-nan", setp(["media", 0, "density"], {"vti": "nan-density.vti", "array": "density"}))
+case("density-vti-negative", setp(["media", 0, "density"], {"vti": "negative-density.vti", "array": "density"}))
+case("density-vti-wrong-array", setp(["media", 0, "density"], {"vti": "nan-density.vti", "array": "temperature"}))
+case("density-vti-garbage", setp(["media", 0, "density"], {"vti": "garbage.vti"}))
+case("density-vdb-missing", setp(["media", 0, "density"], {"vdb": "no-such-volume.vdb"}))
+case("density-vdb-truncated", setp(["media", 0, "density"], {"vdb": "truncated.vdb"}))
+case("density-vdb-header-only", setp(["media", 0, "density"], {"vdb": "header-only.vdb"}))
+case("density-vdb-corrupt", setp(["media", 0, "density"], {"vdb": "corrupt.vdb"}))
+case("density-vdb-not-vdb", setp(["media", 0, "density"], {"vdb": "garbage.vdb"}))
+case("density-vdb-wrong-grid", setp(["media", 0, "density"], {"vdb": "sphere.vdb", "grid": "temperature"}))
+case("lights-not-array", setp(["lights"], {"type": "point"}))
+case("no-lights", setp(["lights"], []))
+case("light-unknown-type", setp(["lights", 0, "type"], "area"))
+case("light-zero-power", setp(["lights", 0, "intensity"], [0, 0, 0]))
+case("light-negative-intensity", setp(["lights", 0, "intensity"], [1, -1, 1]))
+case("light-unknown-key", setp(["lights", 0, "radius"], 0.1))
+case("spot-zero-direction", setp(["lights", 0], {"type": "spot", "position": [0, 0.9, 0], "direction": [0, 0, 0], "intensity": [1, 1, 1], "cone_angle": 30}))
+case("spot-zero-cone", setp(["lights", 0], {"type": "spot", "position": [0, 0.9, 0], "direction": [0, -1, 0], "intensity": [1, 1, 1], "cone_angle": 0}))
+case("directional-no-irradiance", setp(["lights", 0], {"type": "directional", "direction": [0, -1, 0]}))
+case("nothing-to-render", lambda s: (setp(["surfaces"], [])(s), setp(["media"], [])(s)))
+case("camera-on-focal-point", setp(["camera", "position"], [0, 0, 0]))
+case("camera-up-along-view", setp(["camera", "view_up"], [0, 0, 1]))
+case("camera-view-angle-zero", setp(["camera", "view_angle"], 0))
+case("render-size-zero", setp(["render", "size"], [0, 16]))
+case("render-size-absurd", setp(["render", "size"], [1000000, 1000000]))
+case("render-particles-zero", setp(["render", "particles"], 0))
+case("render-particles-absurd", setp(["render", "particles"], 1e18))
+case("render-unknown-key", setp(["render", "samples"], 16))
+os.makedirs(out, exist_ok=True)
+for name, s in cases.items():
+    text = json.dumps(s, indent=1)
+    text = text.replace('"INF"', '1e999')
+    if name == "top-not-object":
+        text = "[1, 2, 3]\n"
+    open(os.path.join(out, name + ".json"), "w").write(text + "\n")
+full = json.dumps(base, indent=1)
+open(os.path.join(out, "empty.json"), "w").write("")
+open(os.path.join(out, "truncated.json"), "w").write(full[: len(full) // 2])
+open(os.path.join(out, "trailing-comma.json"), "w").write(full.replace('"g": 0.3', '"g": 0.3,'))
+open(os.path.join(out, "nan-literal.json"), "w").write(full.replace('"g": 0.3', '"g": NaN'))
+open(os.path.join(out, "binary.json"), "wb").write(bytes(range(256)))
+print(len(cases) + 5 - 1, "cases")
