@@ -63,7 +63,8 @@ int vtkBrumeOpenVDBReader::RequestInformation(
   }
   catch (const std::exception& e)
   {
-    vtkErrorMacro("Cannot read OpenVDB file '" << this->FileName << "': " << brume::ShortMessage(e.what()));
+    vtkErrorMacro(
+      "Cannot read OpenVDB file '" << this->FileName << "': " << brume::ShortMessage(e.what()));
     return 0;
   }
   return 1;
@@ -92,14 +93,15 @@ int vtkBrumeOpenVDBReader::RequestData(
   }
   catch (const std::exception& e)
   {
-    vtkErrorMacro("Cannot read OpenVDB file '" << this->FileName << "': " << brume::ShortMessage(e.what()));
+    vtkErrorMacro(
+      "Cannot read OpenVDB file '" << this->FileName << "': " << brume::ShortMessage(e.what()));
     return 0;
   }
   if (!grid)
   {
-    vtkErrorMacro("OpenVDB file '" << this->FileName << "' has no float grid"
-                                   << (this->GridName.empty() ? "" : " named '" + this->GridName + "'")
-                                   << ".");
+    vtkErrorMacro("OpenVDB file '"
+      << this->FileName << "' has no float grid"
+      << (this->GridName.empty() ? "" : " named '" + this->GridName + "'") << ".");
     return 0;
   }
   const openvdb::math::Transform& transform = grid->transform();
@@ -109,7 +111,8 @@ int vtkBrumeOpenVDBReader::RequestData(
     !map->isType<openvdb::math::ScaleMap>() && !map->isType<openvdb::math::UniformScaleMap>() &&
     !map->isType<openvdb::math::TranslationMap>())
   {
-    vtkErrorMacro("Grid '" << name << "' has a transform that is not an axis-aligned scale and translation.");
+    vtkErrorMacro(
+      "Grid '" << name << "' has a transform that is not an axis-aligned scale and translation.");
     return 0;
   }
   const openvdb::CoordBBox bbox = grid->evalActiveVoxelBoundingBox();
@@ -132,7 +135,8 @@ int vtkBrumeOpenVDBReader::RequestData(
     }
     dims[a] = std::max(2, (dim[a] + k - 1) / k);
   }
-  output->SetOrigin(origin[0] + lo[0] * voxel[0], origin[1] + lo[1] * voxel[1], origin[2] + lo[2] * voxel[2]);
+  output->SetOrigin(
+    origin[0] + lo[0] * voxel[0], origin[1] + lo[1] * voxel[1], origin[2] + lo[2] * voxel[2]);
   if (this->SparseReference)
   {
     // Only the box: the tracer reads the grid in place.
@@ -150,10 +154,9 @@ int vtkBrumeOpenVDBReader::RequestData(
   const double bytes = 4.0 * dims[0] * static_cast<double>(dims[1]) * dims[2];
   if (bytes > static_cast<double>(this->MemoryLimit))
   {
-    vtkErrorMacro("A dense copy of grid '" << name << "' would take " << bytes / (1 << 20)
-                                           << " MiB, more than MemoryLimit ("
-                                           << this->MemoryLimit / (1 << 20)
-                                           << " MiB): raise Downsample or use SparseReference.");
+    vtkErrorMacro("A dense copy of grid '"
+      << name << "' would take " << bytes / (1 << 20) << " MiB, more than MemoryLimit ("
+      << this->MemoryLimit / (1 << 20) << " MiB): raise Downsample or use SparseReference.");
     return 0;
   }
   output->SetDimensions(dims);

@@ -380,7 +380,8 @@ int vtkBrumeSceneReader::RequestData(
     return 0;
   };
 
-  if (!p.Keys(root, "(top)", { "brume_scene", "name", "camera", "render", "surfaces", "media", "lights" }))
+  if (!p.Keys(root, "(top)",
+        { "brume_scene", "name", "camera", "render", "surfaces", "media", "lights" }))
   {
     return fail();
   }
@@ -481,8 +482,9 @@ int vtkBrumeSceneReader::RequestData(
       }
       AddString(sfd, "BrumeMaterial", type);
     }
-    for (const auto& key : { std::make_pair("reflectance", "BrumeReflectance"),
-           std::make_pair("specular", "BrumeSpecular"), std::make_pair("emission", "BrumeEmission") })
+    for (const auto& key :
+      { std::make_pair("reflectance", "BrumeReflectance"),
+        std::make_pair("specular", "BrumeSpecular"), std::make_pair("emission", "BrumeEmission") })
     {
       if (material.contains(key.first))
       {
@@ -535,7 +537,8 @@ int vtkBrumeSceneReader::RequestData(
     {
       return fail();
     }
-    if (m.contains("density_scale") && !p.Number(m["density_scale"], at + ".density_scale", scale, 0, Huge))
+    if (m.contains("density_scale") &&
+      !p.Number(m["density_scale"], at + ".density_scale", scale, 0, Huge))
     {
       return fail();
     }
@@ -650,7 +653,8 @@ int vtkBrumeSceneReader::RequestData(
     const std::string at = "lights[" + std::to_string(i) + "]";
     const json& l = lights[i];
     std::string type;
-    if (!p.Keys(l, at, { "type", "position", "direction", "intensity", "irradiance", "cone_angle" }) ||
+    if (!p.Keys(
+          l, at, { "type", "position", "direction", "intensity", "irradiance", "cone_angle" }) ||
       !p.String(l.value("type", json()), at + ".type", type))
     {
       return fail();
@@ -684,14 +688,16 @@ int vtkBrumeSceneReader::RequestData(
       return fail();
     }
     if (type != "point" &&
-      !(std::sqrt(direction[0] * direction[0] + direction[1] * direction[1] + direction[2] * direction[2]) > 0))
+      !(std::sqrt(direction[0] * direction[0] + direction[1] * direction[1] +
+          direction[2] * direction[2]) > 0))
     {
       p.Fail(at + ".direction", "the direction is zero");
       return fail();
     }
     if (!(power[0] + power[1] + power[2] > 0))
     {
-      p.Fail(at + (type == "directional" ? ".irradiance" : ".intensity"), "the light has zero power");
+      p.Fail(
+        at + (type == "directional" ? ".irradiance" : ".intensity"), "the light has zero power");
       return fail();
     }
     AddString(fd, "BrumeLightType", type);
@@ -708,10 +714,14 @@ int vtkBrumeSceneReader::RequestData(
     return fail();
   }
   double position[3] = { 0, 0, 4 }, focal[3] = { 0, 0, 0 }, up[3] = { 0, 1, 0 }, angle = 40;
-  if ((camera.contains("position") && !p.Vector(camera["position"], "camera.position", position, 3, -Huge, Huge)) ||
-    (camera.contains("focal_point") && !p.Vector(camera["focal_point"], "camera.focal_point", focal, 3, -Huge, Huge)) ||
-    (camera.contains("view_up") && !p.Vector(camera["view_up"], "camera.view_up", up, 3, -Huge, Huge)) ||
-    (camera.contains("view_angle") && !p.Number(camera["view_angle"], "camera.view_angle", angle, 1e-3, 179)))
+  if ((camera.contains("position") &&
+        !p.Vector(camera["position"], "camera.position", position, 3, -Huge, Huge)) ||
+    (camera.contains("focal_point") &&
+      !p.Vector(camera["focal_point"], "camera.focal_point", focal, 3, -Huge, Huge)) ||
+    (camera.contains("view_up") &&
+      !p.Vector(camera["view_up"], "camera.view_up", up, 3, -Huge, Huge)) ||
+    (camera.contains("view_angle") &&
+      !p.Number(camera["view_angle"], "camera.view_angle", angle, 1e-3, 179)))
   {
     return fail();
   }
@@ -738,11 +748,14 @@ int vtkBrumeSceneReader::RequestData(
     return fail();
   }
   double particles = 1e6, size[2] = { 512, 512 }, threshold = 128, seed = 0, exposure = 1;
-  if ((render.contains("particles") && !p.Number(render["particles"], "render.particles", particles, 1, 1e10)) ||
+  if ((render.contains("particles") &&
+        !p.Number(render["particles"], "render.particles", particles, 1, 1e10)) ||
     (render.contains("size") && !p.Vector(render["size"], "render.size", size, 2, 1, 16384)) ||
-    (render.contains("threshold") && !p.Number(render["threshold"], "render.threshold", threshold, 1e-6, 1e12)) ||
+    (render.contains("threshold") &&
+      !p.Number(render["threshold"], "render.threshold", threshold, 1e-6, 1e12)) ||
     (render.contains("seed") && !p.Number(render["seed"], "render.seed", seed, 0, 9e15)) ||
-    (render.contains("exposure") && !p.Number(render["exposure"], "render.exposure", exposure, 0, 1e12)))
+    (render.contains("exposure") &&
+      !p.Number(render["exposure"], "render.exposure", exposure, 0, 1e12)))
   {
     return fail();
   }
@@ -756,11 +769,6 @@ int vtkBrumeSceneReader::RequestData(
     p.Fail("surfaces", "the scene has no surfaces and no media");
     return fail();
   }
-  if (lights.empty())
-  {
-    p.Fail("lights", "the scene has no lights: nothing would be lit");
-    return fail();
-  }
   // Everything the tracer will check (zero-area geometry, densities read from
   // VTI or VDB files, material energy) is checked here, so that a bad file
   // fails when it is read and the message names the file.
@@ -770,8 +778,9 @@ int vtkBrumeSceneReader::RequestData(
   {
     // Name the field: the object the message quotes, else its kind.
     std::string field = invalid.rfind("medium", 0) == 0 ? "media"
-      : invalid.rfind("light", 0) == 0                 ? "lights"
-                                                       : "surfaces";
+      : invalid.rfind("light", 0) == 0 || invalid.find("no light") != std::string::npos
+      ? "lights"
+      : "surfaces";
     const auto open = invalid.find('\''), close = invalid.find('\'', open + 1);
     if (open != std::string::npos && close != std::string::npos)
     {
