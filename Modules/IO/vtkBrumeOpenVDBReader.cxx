@@ -48,6 +48,12 @@ int vtkBrumeOpenVDBReader::RequestInformation(
 {
   this->GridNames->Reset();
   InitializeOpenVDB();
+  const std::string invalid = brume::CheckVdbFile(this->FileName);
+  if (!invalid.empty())
+  {
+    vtkErrorMacro("Cannot read OpenVDB file: " << invalid << ".");
+    return 0;
+  }
   try
   {
     openvdb::io::File file(this->FileName);
@@ -77,6 +83,12 @@ int vtkBrumeOpenVDBReader::RequestData(
   InitializeOpenVDB();
   openvdb::FloatGrid::Ptr grid;
   std::string name = this->GridName;
+  const std::string invalid = brume::CheckVdbFile(this->FileName);
+  if (!invalid.empty())
+  {
+    vtkErrorMacro("Cannot read OpenVDB file: " << invalid << ".");
+    return 0;
+  }
   try
   {
     openvdb::io::File file(this->FileName);

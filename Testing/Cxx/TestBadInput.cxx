@@ -177,11 +177,11 @@ int TestBadInput(int, char*[])
     std::ofstream(path) << "this is not an OpenVDB file";
     AddString(Object(scene, "fog"), "BrumeVDBFile", path);
   }
-  ok &= TracerFails("corrupt VDB file", scene, "cannot read OpenVDB file");
+  ok &= TracerFails("corrupt VDB file", scene, "is not a valid OpenVDB file");
 
   scene = DefaultScene();
   AddString(Object(scene, "fog"), "BrumeVDBFile", "/nonexistent/fog.vdb");
-  ok &= TracerFails("missing VDB file", scene, "cannot read OpenVDB file");
+  ok &= TracerFails("missing VDB file", scene, "cannot open OpenVDB file");
 
   scene = DefaultScene();
   ok &= TracerFails("zero-power light", scene, "zero power",

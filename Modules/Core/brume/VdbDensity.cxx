@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <fstream>
 #include <mutex>
 
 namespace brume
@@ -38,6 +40,11 @@ std::shared_ptr<VdbDensity> VdbDensity::Load(
   static std::once_flag once;
   std::call_once(once, [] { openvdb::initialize(); });
   openvdb::FloatGrid::Ptr grid;
+  error = CheckVdbFile(fileName);
+  if (!error.empty())
+  {
+    return nullptr;
+  }
   try
   {
     openvdb::io::File file(fileName);
@@ -176,6 +183,163 @@ float VdbDensity::Evaluate(const Vec3& p) const
     (p.y - impl.Origin[1]) / impl.VoxelSize[1], (p.z - impl.Origin[2]) / impl.VoxelSize[2]);
   // The tree (not a cached accessor) is safe to share between threads.
   return openvdb::tools::BoxSampler::sample(impl.Grid->tree(), index);
+}
+
+namespace
+{
+// Reads little-endian values and length-prefixed strings, never past `End`.
+class VdbScanner
+{
+public:
+  VdbScanner(std::istream& in, std::int64_t end)
+    : In(in)
+    , End(end)
+  {
+  }
+  std::int64_t Left() { return this->End - static_cast<std::int64_t>(this->In.tellg()); }
+  template <typename T>
+  bool Read(T& value)
+  {
+    if (this->Left() < static_cast<std::int64_t>(sizeof(T)))
+    {
+      return false;
+    }
+    this->In.read(reinterpret_cast<char*>(&value), sizeof(T));
+    return static_cast<bool>(this->In);
+  }
+  bool Skip(std::int64_t bytes)
+  {
+    if (bytes < 0 || bytes > this->Left())
+    {
+      return false;
+    }
+    this->In.seekg(bytes, std::ios::cur);
+    return static_cast<bool>(this->In);
+  }
+  bool String(std::string* out = nullptr)
+  {
+    std::uint32_t size = 0;
+    if (!this->Read(size) || static_cast<std::int64_t>(size) > this->Left())
+    {
+      return false;
+    }
+    if (!out)
+    {
+      return this->Skip(size);
+    }
+    out->resize(size);
+    this->In.read(out->data(), size);
+    return static_cast<bool>(this->In);
+  }
+  // A MetaMap: count, then (name, type name, byte count, bytes) entries.
+  bool Metadata()
+  {
+    std::uint32_t count = 0;
+    if (!this->Read(count) || static_cast<std::int64_t>(count) * 12 > this->Left())
+    {
+      return false;
+    }
+    for (std::uint32_t i = 0; i < count; ++i)
+    {
+      std::uint32_t bytes = 0;
+      if (!this->String() || !this->String() || !this->Read(bytes) || !this->Skip(bytes))
+      {
+        return false;
+      }
+    }
+    return true;
+  }
+  std::istream& In;
+  std::int64_t End;
+};
+}
+
+std::string CheckVdbFile(const std::string& fileName)
+{
+  std::ifstream in(fileName, std::ios::binary);
+  if (!in)
+  {
+    return "cannot open OpenVDB file '" + fileName + "'";
+  }
+  in.seekg(0, std::ios::end);
+  const std::int64_t size = static_cast<std::int64_t>(in.tellg());
+  in.seekg(0);
+  VdbScanner scan(in, size);
+  const std::string corrupt = "'" + fileName + "' is not a valid OpenVDB file: ";
+  std::int64_t magic = 0;
+  std::uint32_t version = 0, major = 0, minor = 0;
+  char hasOffsets = 0;
+  if (!scan.Read(magic) || magic != 0x56444220)
+  {
+    return corrupt + "no VDB magic number";
+  }
+  // The header's layout follows the file version (openvdb/io/Archive.cc).
+  if (!scan.Read(version))
+  {
+    return corrupt + "truncated header";
+  }
+  if (version < 211 || version > 224)
+  {
+    return corrupt + "file format version " + std::to_string(version) +
+      " is not one OpenVDB 10 reads";
+  }
+  char isCompressed = 0;
+  if (!scan.Read(major) || !scan.Read(minor) || (version >= 212 && !scan.Read(hasOffsets)) ||
+    (version >= 220 && version < 222 && !scan.Read(isCompressed)) ||
+    !scan.Skip(version >= 218 ? 36 : 16))
+  {
+    return corrupt + "truncated header";
+  }
+  if (!scan.Metadata())
+  {
+    return corrupt + "the file metadata runs past the end of the file";
+  }
+  std::int32_t grids = 0;
+  if (!scan.Read(grids) || grids < 0 || static_cast<std::int64_t>(grids) * 32 > scan.Left())
+  {
+    return corrupt + "bad grid count";
+  }
+  for (std::int32_t g = 0; g < grids; ++g)
+  {
+    std::int64_t gridPos = 0, blockPos = 0, endPos = 0;
+    if (!scan.String() || !scan.String() || (version >= 216 && !scan.String()))
+    {
+      return corrupt + "grid descriptor " + std::to_string(g) + " runs past the end of the file";
+    }
+    if (!hasOffsets)
+    {
+      // A stream without offsets: the first grid follows its descriptor, and
+      // where the next one starts is known only after reading the first.
+      gridPos = static_cast<std::int64_t>(in.tellg());
+      blockPos = endPos = size;
+    }
+    else if (!scan.Read(gridPos) || !scan.Read(blockPos) || !scan.Read(endPos))
+    {
+      return corrupt + "grid descriptor " + std::to_string(g) + " runs past the end of the file";
+    }
+    if (!(0 <= gridPos && gridPos <= blockPos && blockPos <= endPos && endPos <= size))
+    {
+      return corrupt + "grid " + std::to_string(g) + " has offsets outside the file";
+    }
+    in.seekg(gridPos);
+    VdbScanner grid(in, blockPos);
+    std::uint32_t compression = 0;
+    std::string map;
+    if ((version >= 222 && !grid.Read(compression)) || !grid.Metadata())
+    {
+      return corrupt + "the metadata of grid " + std::to_string(g) + " runs past its data";
+    }
+    if (version >= 219 && (!grid.String(&map) || map.size() > 64))
+    {
+      return corrupt + "grid " + std::to_string(g) + " has no valid transform";
+    }
+    if (!hasOffsets)
+    {
+      break;
+    }
+    in.seekg(endPos);
+  }
+  return "";
 }
 
 std::string ShortMessage(const char* what)

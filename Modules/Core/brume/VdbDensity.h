@@ -35,6 +35,12 @@ private:
   std::unique_ptr<Internals> Impl;
 };
 
+/// Checks the structure of a .vdb file before OpenVDB reads it: the header,
+/// the file and grid metadata, the grid descriptors and the transform's name. OpenVDB trusts the lengths and counts
+/// it reads, so a corrupt file of a kilobyte can make it allocate gigabytes;
+/// every such length must fit in the bytes the file has. Empty when plausible.
+std::string CheckVdbFile(const std::string& fileName);
+
 /// A library's exception text made fit for a message: printable characters,
 /// runs of blanks collapsed, at most 200 characters (a corrupt file can make
 /// OpenVDB quote a string of hundreds of megabytes).

@@ -3,8 +3,12 @@
 # the message each must produce. The support files were made once: sphere.vdb
 # (a unit fog sphere written with openvdb::io::File), truncated.vdb (its first
 # three quarters), header-only.vdb (its first 600 bytes), corrupt.vdb (its magic
-# followed by random bytes), garbage.* (text that is no such file), the two
+# followed by random bytes), huge-lengths.vdb (a fuzzer's find: lengths that
+# made OpenVDB allocate 7 GB), version-zero.vdb (header-only.vdb with version
+# 0), garbage.* (text that is no such file), the two
 # density volumes (a NaN and a negative voxel) and points.vtp (no cells).
+# Four cases were added by hand: mesh-truncated-binary-ply, mesh-absurd-count-ply,
+# density-vdb-huge-lengths and density-vdb-version-zero.
 import json, copy, os, sys
 out = sys.argv[1]
 base = {

@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets with clang, AddressSanitizer and
+# UndefinedBehaviorSanitizer in build-fuzz/ and runs each for FUZZ_SECONDS
+# (default 300; FUZZ_TARGETS picks targets) from a seed corpus: the shipped scenes, the malformed scenes of
+# Testing/Data/BadScenes and its VDB files. Findings land in build-fuzz/findings.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+root=$PWD
+seconds=${FUZZ_SECONDS:-300}
+command -v clang++ > /dev/null || sudo apt-get install -y -q clang
+flags="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
+CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja \
+  -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_C_FLAGS="$flags" \
+  -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
+  -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined" \
+  -DBUILD_TESTING=OFF -DBRUME_WRAP_PYTHON=OFF -DBRUME_BUILD_PARAVIEW_PLUGIN=OFF \
+  -DBRUME_BUILD_FUZZERS=ON
+cmake --build build-fuzz --parallel "${BUILD_JOBS:-2}" --target FuzzSceneReader FuzzOpenVDBReader
+
+work=build-fuzz/run
+rm -rf build-fuzz/findings
+mkdir -p "$work/scene-corpus" "$work/vdb-corpus" build-fuzz/findings
+cp Testing/Data/BadScenes/* "$work/"
+cp Data/scenes/* "$work/"
+cp Testing/Data/BadScenes/*.json Data/scenes/*.json "$work/scene-corpus/"
+cp Testing/Data/BadScenes/*.vdb "$work/vdb-corpus/"
+export ASAN_OPTIONS="detect_leaks=0"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+status=0
+for target in ${FUZZ_TARGETS:-FuzzSceneReader FuzzOpenVDBReader}; do
+  corpus=scene-corpus
+  [ "$target" = FuzzOpenVDBReader ] && corpus=vdb-corpus
+  echo "== $target, $seconds s"
+  (cd "$work" && "$root/build-fuzz/bin/$target" "$corpus" -max_total_time="$seconds" \
+    -max_len=65536 -rss_limit_mb=4096 -artifact_prefix="$root/build-fuzz/findings/$target-" \
+    -print_final_stats=1) 2>&1 | grep -E "^#[0-9]+.*DONE|stat::number_of_executed_units|ERROR|SUMMARY" || status=1
+done
+ls build-fuzz/findings
+exit $status
