@@ -131,16 +131,7 @@ constexpr double Huge = 1e12;
 
 void AddTuple(vtkFieldData* fd, const char* name, const double* v, int n)
 {
-  vtkDataArray* existing = fd->GetArray(name);
-  vtkSmartPointer<vtkDoubleArray> a = vtkDoubleArray::SafeDownCast(existing);
-  if (!a)
-  {
-    a = vtkSmartPointer<vtkDoubleArray>::New();
-    a->SetName(name);
-    a->SetNumberOfComponents(n);
-    fd->AddArray(a);
-  }
-  a->InsertNextTuple(v);
+  vtkBrumeSceneConversion::AppendTuple(fd, name, v, n);
 }
 
 void AddString(vtkFieldData* fd, const char* name, const std::string& value)
@@ -154,17 +145,6 @@ void AddString(vtkFieldData* fd, const char* name, const std::string& value)
     fd->AddArray(a);
   }
   a->InsertNextValue(value);
-}
-
-void AddObject(vtkPartitionedDataSetCollection* out, vtkDataObject* data, const std::string& name)
-{
-  const unsigned int index = out->GetNumberOfPartitionedDataSets();
-  out->SetNumberOfPartitionedDataSets(index + 1);
-  vtkNew<vtkPartitionedDataSet> pds;
-  pds->SetNumberOfPartitions(1);
-  pds->SetPartition(0, data);
-  out->SetPartitionedDataSet(index, pds);
-  out->GetMetaData(index)->Set(vtkCompositeDataSet::NAME(), name.c_str());
 }
 
 // Reads a surface file with the VTK reader its extension calls for.
@@ -506,7 +486,7 @@ int vtkBrumeSceneReader::RequestData(
       }
       AddTuple(sfd, "BrumeExponent", &e, 1);
     }
-    AddObject(scene, surface, name);
+    vtkBrumeSceneConversion::AddObject(scene, surface, name);
     objectFields.emplace_back(name, at);
   }
 
@@ -637,7 +617,7 @@ int vtkBrumeSceneReader::RequestData(
     AddTuple(mfd, "BrumeSigmaS", ss, 3);
     AddTuple(mfd, "BrumeG", &g, 1);
     AddTuple(mfd, "BrumeDensityScale", &scale, 1);
-    AddObject(scene, image, name);
+    vtkBrumeSceneConversion::AddObject(scene, image, name);
     objectFields.emplace_back(name, at);
   }
 

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumeDefaultSceneSource.h"
 
+#include "vtkBrumeSceneConversion.h"
+
 #include "vtkCellArray.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDoubleArray.h"
@@ -23,30 +25,13 @@ namespace
 {
 void AddVec3(vtkFieldData* fd, const char* name, double x, double y, double z)
 {
-  vtkNew<vtkDoubleArray> a;
-  a->SetName(name);
-  a->SetNumberOfComponents(3);
-  a->InsertNextTuple3(x, y, z);
-  fd->AddArray(a);
+  const double v[3] = { x, y, z };
+  vtkBrumeSceneConversion::AppendTuple(fd, name, v, 3);
 }
 
 void AddScalar(vtkFieldData* fd, const char* name, double v)
 {
-  vtkNew<vtkDoubleArray> a;
-  a->SetName(name);
-  a->InsertNextValue(v);
-  fd->AddArray(a);
-}
-
-void AddObject(vtkPartitionedDataSetCollection* out, vtkDataObject* data, const std::string& name)
-{
-  const unsigned int index = out->GetNumberOfPartitionedDataSets();
-  out->SetNumberOfPartitionedDataSets(index + 1);
-  vtkNew<vtkPartitionedDataSet> pds;
-  pds->SetNumberOfPartitions(1);
-  pds->SetPartition(0, data);
-  out->SetPartitionedDataSet(index, pds);
-  out->GetMetaData(index)->Set(vtkCompositeDataSet::NAME(), name.c_str());
+  vtkBrumeSceneConversion::AppendTuple(fd, name, &v, 1);
 }
 }
 
@@ -83,7 +68,7 @@ int vtkBrumeDefaultSceneSource::RequestData(
       s.Mat.Reflectance.z);
     AddVec3(
       pd->GetFieldData(), "BrumeEmission", s.Mat.Emission.x, s.Mat.Emission.y, s.Mat.Emission.z);
-    AddObject(output, pd, s.Name);
+    vtkBrumeSceneConversion::AddObject(output, pd, s.Name);
   }
   if (this->IncludeMedium)
   {
@@ -97,7 +82,7 @@ int vtkBrumeDefaultSceneSource::RequestData(
       AddVec3(box->GetFieldData(), "BrumeSigmaA", m.SigmaA.x, m.SigmaA.y, m.SigmaA.z);
       AddVec3(box->GetFieldData(), "BrumeSigmaS", m.SigmaS.x, m.SigmaS.y, m.SigmaS.z);
       AddScalar(box->GetFieldData(), "BrumeG", m.G);
-      AddObject(output, box, m.Name);
+      vtkBrumeSceneConversion::AddObject(output, box, m.Name);
     }
   }
   vtkFieldData* fd = output->GetFieldData();

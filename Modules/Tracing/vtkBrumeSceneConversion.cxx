@@ -4,6 +4,7 @@
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkCompositeDataSet.h"
+#include "vtkConvertToPartitionedDataSetCollection.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -14,13 +15,13 @@
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkMatrix3x3.h"
+#include "vtkMultiBlockDataSet.h"
+#include "vtkNew.h"
 #include "vtkPartitionedDataSet.h"
 #include "vtkPartitionedDataSetCollection.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
-#include "vtkConvertToPartitionedDataSetCollection.h"
-#include "vtkMultiBlockDataSet.h"
 #include "vtkSMPTools.h"
 #include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
@@ -406,7 +407,7 @@ std::string vtkBrumeSceneConversion::ConvertFieldLights(vtkFieldData* fd, brume:
   {
     vtkDataArray* a = fd->GetArray(name);
     return a && a->GetNumberOfComponents() == components && a->GetNumberOfTuples() == n ? a
-                                                                                       : nullptr;
+                                                                                        : nullptr;
   };
   vtkDataArray* position = array("BrumeLightPosition", 3);
   vtkDataArray* direction = array("BrumeLightDirection", 3);
@@ -425,7 +426,8 @@ std::string vtkBrumeSceneConversion::ConvertFieldLights(vtkFieldData* fd, brume:
     position->GetTuple(i, v);
     l.Position = { static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]) };
     direction->GetTuple(i, v);
-    const brume::Vec3 d(static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]));
+    const brume::Vec3 d(
+      static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]));
     l.Direction = Length(d) > 0.f ? Normalize(d) : d;
     intensity->GetTuple(i, v);
     l.Intensity = { static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]) };
@@ -503,6 +505,32 @@ std::string vtkBrumeSceneConversion::ConvertLights(vtkLightCollection* lights, b
     scene.Lights.push_back(l);
   }
   return {};
+}
+
+void vtkBrumeSceneConversion::AddObject(
+  vtkPartitionedDataSetCollection* scene, vtkDataObject* data, const std::string& name)
+{
+  const unsigned int index = scene->GetNumberOfPartitionedDataSets();
+  scene->SetNumberOfPartitionedDataSets(index + 1);
+  vtkNew<vtkPartitionedDataSet> pds;
+  pds->SetNumberOfPartitions(1);
+  pds->SetPartition(0, data);
+  scene->SetPartitionedDataSet(index, pds);
+  scene->GetMetaData(index)->Set(vtkCompositeDataSet::NAME(), name.c_str());
+}
+
+void vtkBrumeSceneConversion::AppendTuple(
+  vtkFieldData* fieldData, const char* name, const double* values, int n)
+{
+  vtkSmartPointer<vtkDoubleArray> a = vtkDoubleArray::SafeDownCast(fieldData->GetArray(name));
+  if (!a)
+  {
+    a = vtkSmartPointer<vtkDoubleArray>::New();
+    a->SetName(name);
+    a->SetNumberOfComponents(n);
+    fieldData->AddArray(a);
+  }
+  a->InsertNextTuple(values);
 }
 
 vtkSmartPointer<vtkPartitionedDataSetCollection> vtkBrumeSceneConversion::AsCollection(

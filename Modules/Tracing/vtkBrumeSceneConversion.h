@@ -79,6 +79,17 @@ public:
    */
   static vtkSmartPointer<vtkPartitionedDataSetCollection> AsCollection(vtkDataObject* input);
 
+  /// Appends `data` to a scene collection as a one-partition object named `name`.
+  static void AddObject(
+    vtkPartitionedDataSetCollection* scene, vtkDataObject* data, const std::string& name);
+
+  /**
+   * Appends an n-component tuple to the double array `name` of `fieldData`,
+   * creating it on first use: how scene properties (BrumeSigmaA, BrumeLight*,
+   * ...) are written.
+   */
+  static void AppendTuple(vtkFieldData* fieldData, const char* name, const double* values, int n);
+
   /**
    * Builds the core scene from a scene collection. Returns an empty string on
    * success, otherwise a message saying what is wrong with the input.
