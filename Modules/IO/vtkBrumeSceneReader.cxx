@@ -154,7 +154,7 @@ bool PlyLooksComplete(const std::filesystem::path& file, std::string& error)
 {
   std::ifstream in(file, std::ios::binary);
   std::string line, format;
-  double minimumBytes = 0, rows = 0, rowBytes = 0;
+  double minimumBytes = 0, rows = 0, rowBytes = 0, allRows = 0;
   bool headerEnded = false;
   auto size = [](const std::string& type) -> double
   {
@@ -197,6 +197,7 @@ bool PlyLooksComplete(const std::filesystem::path& file, std::string& error)
         error = "'" + file.string() + "': bad element count in '" + line + "'";
         return false;
       }
+      allRows += rows;
     }
     else if (word == "property")
     {
@@ -229,23 +230,10 @@ bool PlyLooksComplete(const std::filesystem::path& file, std::string& error)
       lines += line.find_first_not_of(" \t\r") != std::string::npos ? 1 : 0;
     }
     // One line per element row.
-    minimumBytes = 0;
-    std::ifstream header(file);
-    double expected = 0;
-    while (std::getline(header, line) && line.rfind("end_header", 0) != 0)
-    {
-      std::istringstream words(line);
-      std::string word, name;
-      double count = 0;
-      if ((words >> word >> name >> count) && word == "element")
-      {
-        expected += count;
-      }
-    }
-    if (lines < expected)
+    if (lines < allRows)
     {
       error = "'" + file.string() + "' is truncated: the header announces " +
-        std::to_string(static_cast<long long>(expected)) + " rows, the file holds " +
+        std::to_string(static_cast<long long>(allRows)) + " rows, the file holds " +
         std::to_string(static_cast<long long>(lines));
       return false;
     }
