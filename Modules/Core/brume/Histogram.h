@@ -42,6 +42,14 @@ public:
       dst[c] += values[c];
     }
   }
+  /// Multiplies every value by `factor`.
+  void Scale(double factor)
+  {
+    for (double& v : this->Values)
+    {
+      v *= factor;
+    }
+  }
   const double* Get(std::size_t cell) const { return &this->Values[cell * this->Channels]; }
   const std::vector<double>& GetValues() const { return this->Values; }
 

@@ -3,6 +3,7 @@
 
 #include "brume/Material.h"
 #include "brume/Sampling.h"
+#include "brume/SphericalHarmonics.h"
 
 #include <algorithm>
 #include <atomic>
@@ -199,7 +200,72 @@ bool ObjectRadiance::FromFront(const HitArrays& hits, std::uint32_t i) const
 std::string ObjectRadiance::Build(const HitArrays& hits, const std::uint32_t* index,
   std::size_t count, const Vec3& eye, double thresholdFlux, const ParallelFor& parallelFor)
 {
-  this->ThresholdFlux = thresholdFlux;
+  this->Kept.clear();
+  this->RangeStart.assign(Ranges + 1, 0);
+  this->WeightHistogram = Histogram(this->Dims, 1);
+  this->ValueHistogram = Histogram(this->Dims, 3);
+  this->Regions.clear();
+  this->Directional.clear();
+  this->DirectionalOrder = -1;
+  const std::string error = this->Bin(hits, index, count, parallelFor);
+  if (!error.empty())
+  {
+    return error;
+  }
+  this->Finish(eye, thresholdFlux, true, parallelFor);
+  return {};
+}
+
+std::string ObjectRadiance::Add(const HitArrays& hits, const std::uint32_t* index,
+  std::size_t count, double scale, const Vec3& eye, double thresholdFlux,
+  const ParallelFor& parallelFor)
+{
+  if (this->Regions.empty())
+  {
+    return "particles can only be added to a texture already built";
+  }
+  if (!(scale > 0.0) || !std::isfinite(scale))
+  {
+    return "the flux scale of the particles already binned must be positive and finite";
+  }
+  // The particles already binned were normalized by a smaller count: scale
+  // them (exactly, when the count grows by a power of two), then bin the new.
+  if (this->ViewDependent)
+  {
+    const float s = static_cast<float>(scale);
+    parallelFor(0, this->Kept.size(),
+      [&](std::size_t begin, std::size_t end)
+      {
+        for (std::size_t k = begin; k < end; ++k)
+        {
+          for (float& f : this->Kept[k].Flux)
+          {
+            f *= s;
+          }
+        }
+      });
+  }
+  else
+  {
+    this->WeightHistogram.Scale(scale);
+    this->ValueHistogram.Scale(scale);
+  }
+  const std::string error = this->Bin(hits, index, count, parallelFor);
+  if (!error.empty())
+  {
+    return error;
+  }
+  this->Finish(eye, thresholdFlux, false, parallelFor);
+  if (this->DirectionalOrder >= 0)
+  {
+    return this->BuildDirectional(this->DirectionalOrder, parallelFor);
+  }
+  return {};
+}
+
+std::string ObjectRadiance::Bin(const HitArrays& hits, const std::uint32_t* index,
+  std::size_t count, const ParallelFor& parallelFor)
+{
   const std::size_t cells = static_cast<std::size_t>(this->Dims[0]) * this->Dims[1] * this->Dims[2];
   const bool planar = !this->MediumRef && this->Chart.Type == SurfaceChart::Kind::Planar;
   if (!this->MediumRef && !planar && !hits.Triangle && count > 0)
@@ -217,7 +283,7 @@ std::string ObjectRadiance::Build(const HitArrays& hits, const std::uint32_t* in
     }
   }
 
-  // 1. The histogram cell of a hit.
+  // The histogram cell of a hit.
   const Box box = this->MediumRef ? this->MediumRef->Bounds : Box();
   const float uu = Dot(this->Chart.Frame.U, this->Chart.Frame.U);
   const float vv = Dot(this->Chart.Frame.V, this->Chart.Frame.V);
@@ -261,8 +327,6 @@ std::string ObjectRadiance::Build(const HitArrays& hits, const std::uint32_t* in
   {
     // View-independent objects: one pass in hit order adds every hit to its
     // cell (deterministic, and the histogram fits in cache); nothing is kept.
-    Histogram weight(this->Dims, 1), value(this->Dims, 3);
-    const HenyeyGreenstein isotropic(0.f);
     for (std::size_t k = 0; k < count; ++k)
     {
       const std::uint32_t i = index[k];
@@ -273,7 +337,7 @@ std::string ObjectRadiance::Build(const HitArrays& hits, const std::uint32_t* in
       const std::uint32_t cell = cellOfHit(i);
       const float* f = hits.Flux + 3 * i;
       const double w = (static_cast<double>(f[0]) + f[1] + f[2]) / 3.0;
-      weight.Add(cell, &w);
+      this->WeightHistogram.Add(cell, &w);
       double v[3];
       if (this->MediumRef)
       {
@@ -290,79 +354,103 @@ std::string ObjectRadiance::Build(const HitArrays& hits, const std::uint32_t* in
           v[c] = m.Reflectance[c] * InvPi * static_cast<double>(f[c]);
         }
       }
-      value.Add(cell, v);
+      this->ValueHistogram.Add(cell, v);
     }
-    this->WeightTable = SummedAreaTable(weight);
-    this->ValueTable = SummedAreaTable(value);
+    return {};
+  }
+
+  // View-dependent objects keep their hits with their histogram cells,
+  // grouped by ranges of cells: a new eye re-weights them (WeighCells).
+  // Surfaces keep the hits arriving on their front side only.
+  std::vector<std::uint32_t> front;
+  if (!this->MediumRef)
+  {
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      if (this->FromFront(hits, index[k]))
+      {
+        front.push_back(index[k]);
+      }
+    }
+    index = front.data();
+    count = front.size();
+  }
+  std::vector<std::uint32_t> cellOf(count);
+  parallelFor(0, count,
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t k = begin; k < end; ++k)
+      {
+        cellOf[k] = cellOfHit(index[k]);
+      }
+    });
+  // Group the hits by ranges of cells (a coarse, stable counting sort):
+  // each range is then one task, and a cell's sum follows hit order.
+  std::vector<std::size_t> start(Ranges + 1, 0);
+  auto rangeOf = [&](std::uint32_t cell) { return static_cast<std::size_t>(cell) * Ranges / cells; };
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    ++start[rangeOf(cellOf[k]) + 1];
+  }
+  for (std::size_t r = 0; r < Ranges; ++r)
+  {
+    start[r + 1] += start[r];
+  }
+  std::vector<std::uint32_t> order(count);
+  {
+    std::vector<std::size_t> cursor(start.begin(), start.end() - 1);
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      order[cursor[rangeOf(cellOf[k])]++] = static_cast<std::uint32_t>(k);
+    }
+  }
+  // The hits' data in that order, after the hits already kept in each range
+  // (particles added later come later in hit order): every later pass reads
+  // it sequentially.
+  std::vector<KeptHit> merged(this->Kept.size() + count);
+  std::vector<std::size_t> mergedStart(Ranges + 1, 0);
+  for (std::size_t r = 0; r < Ranges; ++r)
+  {
+    mergedStart[r + 1] = mergedStart[r] + (this->RangeStart[r + 1] - this->RangeStart[r]) +
+      (start[r + 1] - start[r]);
+  }
+  parallelFor(0, Ranges,
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t r = begin; r < end; ++r)
+      {
+        KeptHit* out = merged.data() + mergedStart[r];
+        out = std::copy(this->Kept.begin() + static_cast<std::ptrdiff_t>(this->RangeStart[r]),
+          this->Kept.begin() + static_cast<std::ptrdiff_t>(this->RangeStart[r + 1]), out);
+        for (std::size_t k = start[r]; k < start[r + 1]; ++k, ++out)
+        {
+          const std::uint32_t j = order[k];
+          const std::size_t i = index[j];
+          std::copy(hits.Position + 3 * i, hits.Position + 3 * i + 3, out->Position);
+          std::copy(hits.Direction + 3 * i, hits.Direction + 3 * i + 3, out->Direction);
+          std::copy(hits.Flux + 3 * i, hits.Flux + 3 * i + 3, out->Flux);
+          out->Cell = cellOf[j];
+          out->Triangle = hits.Triangle ? hits.Triangle[i] : 0;
+        }
+      }
+    });
+  this->Kept.swap(merged);
+  this->RangeStart.swap(mergedStart);
+  return {};
+}
+
+void ObjectRadiance::Finish(
+  const Vec3& eye, double thresholdFlux, bool first, const ParallelFor& parallelFor)
+{
+  this->ThresholdFlux = thresholdFlux;
+  if (!this->ViewDependent)
+  {
+    this->WeightTable = SummedAreaTable(this->WeightHistogram);
+    this->ValueTable = SummedAreaTable(this->ValueHistogram);
   }
   else
   {
-    // View-dependent objects keep their hits with their histogram cells,
-    // grouped by ranges of cells: a new eye re-weights them (WeighCells).
-    // Surfaces keep the hits arriving on their front side only.
-    std::vector<std::uint32_t> front;
-    if (!this->MediumRef)
-    {
-      for (std::size_t k = 0; k < count; ++k)
-      {
-        if (this->FromFront(hits, index[k]))
-        {
-          front.push_back(index[k]);
-        }
-      }
-      index = front.data();
-      count = front.size();
-    }
-    this->CellOf.resize(count);
-    parallelFor(0, count,
-      [&](std::size_t begin, std::size_t end)
-      {
-        for (std::size_t k = begin; k < end; ++k)
-        {
-          this->CellOf[k] = cellOfHit(index[k]);
-        }
-      });
-    // Group the hits by ranges of cells (a coarse, stable counting sort):
-    // each range is then one task, and a cell's sum follows hit order.
-    this->RangeStart.assign(Ranges + 1, 0);
-    auto rangeOf = [&](std::uint32_t cell)
-    { return static_cast<std::size_t>(cell) * Ranges / cells; };
-    for (std::size_t k = 0; k < count; ++k)
-    {
-      ++this->RangeStart[rangeOf(this->CellOf[k]) + 1];
-    }
-    for (std::size_t r = 0; r < Ranges; ++r)
-    {
-      this->RangeStart[r + 1] += this->RangeStart[r];
-    }
-    this->RangeOrder.resize(count);
-    {
-      std::vector<std::uint32_t> cursor(this->RangeStart.begin(), this->RangeStart.end() - 1);
-      for (std::size_t k = 0; k < count; ++k)
-      {
-        this->RangeOrder[cursor[rangeOf(this->CellOf[k])]++] = static_cast<std::uint32_t>(k);
-      }
-    }
-    // The hits' data in that order: every later pass reads it sequentially.
-    this->Kept.resize(count);
-    parallelFor(0, Ranges,
-      [&](std::size_t begin, std::size_t end)
-      {
-        for (std::size_t k = this->RangeStart[begin]; k < this->RangeStart[end]; ++k)
-        {
-          const std::uint32_t j = this->RangeOrder[k];
-          const std::size_t i = index[j];
-          KeptHit& h = this->Kept[k];
-          std::copy(hits.Position + 3 * i, hits.Position + 3 * i + 3, h.Position);
-          std::copy(hits.Direction + 3 * i, hits.Direction + 3 * i + 3, h.Direction);
-          std::copy(hits.Flux + 3 * i, hits.Flux + 3 * i + 3, h.Flux);
-          h.Cell = this->CellOf[j];
-          h.Triangle = hits.Triangle ? hits.Triangle[i] : 0;
-        }
-      });
-    std::vector<std::uint32_t>().swap(this->CellOf);
-    std::vector<std::uint32_t>().swap(this->RangeOrder);
-    Histogram weight(this->Dims, 1);
+    this->WeightHistogram = Histogram(this->Dims, 1);
     parallelFor(0, Ranges,
       [&](std::size_t begin, std::size_t end)
       {
@@ -370,14 +458,14 @@ std::string ObjectRadiance::Build(const HitArrays& hits, const std::uint32_t* in
         {
           const float* f = this->Kept[k].Flux;
           const double w = (static_cast<double>(f[0]) + f[1] + f[2]) / 3.0;
-          weight.Add(this->Kept[k].Cell, &w);
+          this->WeightHistogram.Add(this->Kept[k].Cell, &w);
         }
       });
-    this->WeightTable = SummedAreaTable(weight);
+    this->WeightTable = SummedAreaTable(this->WeightHistogram);
     this->WeighCells(eye, parallelFor);
   }
 
-  // 5. Regions (view independent), area table, extinction.
+  // Regions (view independent), then once: area table, extinction.
   const std::size_t texels =
     static_cast<std::size_t>(this->Resolution[0]) * this->Resolution[1] * this->Resolution[2];
   this->Regions.resize(texels);
@@ -396,8 +484,9 @@ std::string ObjectRadiance::Build(const HitArrays& hits, const std::uint32_t* in
         this->Regions[t] = GrowRegion(this->WeightTable, this->Dims, texel, settings);
       }
     });
-  if (this->MediumRef)
+  if (first && this->MediumRef)
   {
+    const Box box = this->MediumRef->Bounds;
     this->Extinction.resize(3 * texels);
     const Vec3 voxelSize = box.Extent() /
       Vec3(static_cast<float>(this->Resolution[0]), static_cast<float>(this->Resolution[1]),
@@ -430,12 +519,102 @@ std::string ObjectRadiance::Build(const HitArrays& hits, const std::uint32_t* in
         }
       });
   }
-  else
+  else if (first)
   {
     this->BuildAreaTable();
   }
   this->Estimate(parallelFor);
+}
+
+std::string ObjectRadiance::BuildDirectional(int order, const ParallelFor& parallelFor)
+{
+  if (!this->MediumRef || !this->ViewDependent)
+  {
+    return "directional radiance is made for anisotropic media only";
+  }
+  if (order < 0 || order > MaxShOrder)
+  {
+    return "the spherical-harmonics order must be in [0, " + std::to_string(MaxShOrder) + "]";
+  }
+  const int nk = ShCoefficients(order);
+  const std::size_t texels = this->Regions.size();
+  this->Directional.assign(texels * nk * 3, 0.f);
+  this->DirectionalOrder = order;
+  // A few coefficients per pass bound the memory: each pass bins
+  // Y_k(w_p) Phi_p into a histogram, sums every region from its table and
+  // normalizes the sums as the per-view textures are.
+  constexpr int PerPass = 4;
+  for (int k0 = 0; k0 < nk; k0 += PerPass)
+  {
+    const int kn = std::min(PerPass, nk - k0);
+    Histogram projected(this->Dims, 3 * kn);
+    parallelFor(0, Ranges,
+      [&](std::size_t begin, std::size_t end)
+      {
+        float y[ShCoefficients(MaxShOrder)];
+        double v[3 * PerPass];
+        for (std::size_t k = this->RangeStart[begin]; k < this->RangeStart[end]; ++k)
+        {
+          const KeptHit& h = this->Kept[k];
+          EvaluateSh(order, Vec3(h.Direction[0], h.Direction[1], h.Direction[2]), y);
+          for (int j = 0; j < kn; ++j)
+          {
+            for (int c = 0; c < 3; ++c)
+            {
+              v[3 * j + c] = static_cast<double>(y[k0 + j]) * h.Flux[c];
+            }
+          }
+          projected.Add(h.Cell, v);
+        }
+      });
+    const SummedAreaTable table(projected);
+    parallelFor(0, texels,
+      [&](std::size_t begin, std::size_t end)
+      {
+        double sum[3 * PerPass];
+        for (std::size_t t = begin; t < end; ++t)
+        {
+          const Region& r = this->Regions[t];
+          table.RegionSum(r.Lo, r.Hi, sum);
+          for (int j = 0; j < kn; ++j)
+          {
+            this->ToRadiance(t, r, sum + 3 * j, &this->Directional[(t * nk + k0 + j) * 3]);
+          }
+        }
+      });
+  }
   return {};
+}
+
+void ObjectRadiance::EvaluateDirectional(const Vec3& eye, std::vector<float>& radiance) const
+{
+  const std::size_t texels = this->Regions.size();
+  radiance.assign(3 * texels, 0.f);
+  if (this->DirectionalOrder < 0 || !this->MediumRef)
+  {
+    return;
+  }
+  const int nk = ShCoefficients(this->DirectionalOrder);
+  const Box box = this->MediumRef->Bounds;
+  const Vec3 voxel = box.Extent() /
+    Vec3(static_cast<float>(this->Resolution[0]), static_cast<float>(this->Resolution[1]),
+      static_cast<float>(this->Resolution[2]));
+  const std::size_t nx = this->Resolution[0], nxy = nx * this->Resolution[1];
+  for (std::size_t t = 0; t < texels; ++t)
+  {
+    const Vec3 centre = box.lower +
+      (Vec3(static_cast<float>(t % nx), static_cast<float>((t % nxy) / nx),
+         static_cast<float>(t / nxy)) +
+        Vec3(0.5f)) *
+        voxel;
+    const Vec3 toEye = Normalize(eye - centre);
+    for (int c = 0; c < 3; ++c)
+    {
+      radiance[3 * t + c] = std::max(0.f,
+        EvaluateHgFromSh(this->DirectionalOrder, this->MediumRef->G,
+          &this->Directional[t * nk * 3 + c], 3, toEye));
+    }
+  }
 }
 
 void ObjectRadiance::UpdateView(const Vec3& eye, const ParallelFor& parallelFor)
@@ -450,7 +629,8 @@ void ObjectRadiance::UpdateView(const Vec3& eye, const ParallelFor& parallelFor)
 
 void ObjectRadiance::WeighCells(const Vec3& eye, const ParallelFor& parallelFor)
 {
-  Histogram value(this->Dims, 3);
+  this->ValueHistogram = Histogram(this->Dims, 3);
+  Histogram& value = this->ValueHistogram;
   const Medium* medium = this->MediumRef;
   const Surface* surface = this->SurfaceRef;
   const HenyeyGreenstein phase(medium ? medium->G : 0.f);
@@ -588,15 +768,25 @@ void ObjectRadiance::BuildAreaTable()
   this->AreaTable = SummedAreaTable(area);
 }
 
+void ObjectRadiance::ToRadiance(
+  std::size_t t, const Region& r, const double* sum, float* out) const
+{
+  // J = albedo * sum(p Phi) / V; S = J / sigma_t.
+  const double cellVolume = static_cast<double>(this->MediumRef->Bounds.Volume()) /
+    (static_cast<double>(this->Dims[0]) * this->Dims[1] * this->Dims[2]);
+  const double volume = static_cast<double>(r.Cells()) * cellVolume;
+  const Vec3 albedo = this->MediumRef->Albedo();
+  for (int c = 0; c < 3; ++c)
+  {
+    const double sigmaT = this->Extinction[3 * t + c];
+    out[c] = sigmaT > 0.0 ? static_cast<float>(albedo[c] * sum[c] / volume / sigmaT) : 0.f;
+  }
+}
+
 void ObjectRadiance::Estimate(const ParallelFor& parallelFor)
 {
   const std::size_t texels = this->Regions.size();
   this->Radiance.resize(3 * texels);
-  const double cellVolume = this->MediumRef
-    ? static_cast<double>(this->MediumRef->Bounds.Volume()) /
-      (static_cast<double>(this->Dims[0]) * this->Dims[1] * this->Dims[2])
-    : 0.0;
-  const Vec3 albedo = this->MediumRef ? this->MediumRef->Albedo() : Vec3(0.f);
   const Vec3 emission = this->SurfaceRef ? this->SurfaceRef->Mat.Emission : Vec3(0.f);
   parallelFor(0, texels,
     [&](std::size_t begin, std::size_t end)
@@ -609,13 +799,7 @@ void ObjectRadiance::Estimate(const ParallelFor& parallelFor)
         float* out = &this->Radiance[3 * t];
         if (this->MediumRef)
         {
-          // J = albedo * sum(p Phi) / V; S = J / sigma_t.
-          const double volume = static_cast<double>(r.Cells()) * cellVolume;
-          for (int c = 0; c < 3; ++c)
-          {
-            const double sigmaT = this->Extinction[3 * t + c];
-            out[c] = sigmaT > 0.0 ? static_cast<float>(albedo[c] * sum[c] / volume / sigmaT) : 0.f;
-          }
+          this->ToRadiance(t, r, sum, out);
         }
         else
         {

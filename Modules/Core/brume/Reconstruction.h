@@ -35,6 +35,7 @@
 #define brume_Reconstruction_h
 
 #include "brume/DensityEstimation.h"
+#include "brume/Histogram.h"
 #include "brume/Scene.h"
 
 #include <array>
@@ -123,8 +124,42 @@ public:
   std::string Build(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
     const Vec3& eye, double thresholdFlux, const ParallelFor& parallelFor);
 
+  /**
+   * Progressive refinement: adds more particles' hits to the histograms of
+   * Build() (and earlier Add() calls) instead of starting over. The hits
+   * already binned are multiplied by `scale` (old particle count / new
+   * count, since every particle's flux is normalized by the count), then the
+   * new hits are binned after them, and the regions are regrown with
+   * `thresholdFlux`. When the count grows by a power of two (scale 1/2,
+   * 1/4, ...) and the new hits are those of the particles that follow, the
+   * histograms are bitwise those of one Build() with all the hits.
+   */
+  std::string Add(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
+    double scale, const Vec3& eye, double thresholdFlux, const ParallelFor& parallelFor);
+
   /// Re-weights the kept hits toward `eye` and re-estimates (view-dependent objects).
   void UpdateView(const Vec3& eye, const ParallelFor& parallelFor);
+
+  /**
+   * Anisotropic media: per voxel, the spherical-harmonics projection up to
+   * `order` (at most MaxShOrder) of the directions of travel of the light
+   * received, normalized as the source radiance, so that the source radiance
+   * toward any direction w_o is sum_lm g^l c_lm Y_lm(w_o) (see
+   * brume/SphericalHarmonics.h) without reconstructing again. Regions are
+   * those of the per-view textures. Kept up to date by Add().
+   */
+  std::string BuildDirectional(int order, const ParallelFor& parallelFor);
+  /// -1 before BuildDirectional().
+  int GetDirectionalOrder() const { return this->DirectionalOrder; }
+  /// (order + 1)^2 RGB coefficients per voxel: [voxel][coefficient][channel].
+  const std::vector<float>& GetDirectional() const { return this->Directional; }
+  /// The source radiance toward `eye` from the directional representation,
+  /// evaluated at voxel centres (clamped at zero), RGB per voxel.
+  void EvaluateDirectional(const Vec3& eye, std::vector<float>& radiance) const;
+
+  /// The histograms behind the current textures (incident flux; weighted flux, RGB).
+  const Histogram& GetWeightHistogram() const { return this->WeightHistogram; }
+  const Histogram& GetValueHistogram() const { return this->ValueHistogram; }
 
   /// RGB per texel, x fastest: surfaces L_o, media the source radiance S.
   const std::vector<float>& GetRadiance() const { return this->Radiance; }
@@ -135,6 +170,10 @@ public:
 
 private:
   bool FromFront(const HitArrays& hits, std::uint32_t i) const;
+  std::string Bin(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
+    const ParallelFor& parallelFor);
+  void Finish(const Vec3& eye, double thresholdFlux, bool first, const ParallelFor& parallelFor);
+  void ToRadiance(std::size_t texel, const Region& region, const double* sum, float* out) const;
   void WeighCells(const Vec3& eye, const ParallelFor& parallelFor);
   void Estimate(const ParallelFor& parallelFor);
   void BuildAreaTable();
@@ -156,7 +195,9 @@ private:
   };
   std::vector<KeptHit> Kept;
   std::vector<std::size_t> RangeStart;
-  std::vector<std::uint32_t> CellOf, RangeOrder; // scratch during Build
+
+  Histogram WeightHistogram; // kept for Add()
+  Histogram ValueHistogram;
 
   SummedAreaTable WeightTable; // incident flux (mean over channels): drives the growth
   SummedAreaTable ValueTable;  // weighted flux, RGB
@@ -166,6 +207,8 @@ private:
 
   std::vector<float> Radiance;
   std::vector<float> Extinction;
+  std::vector<float> Directional;
+  int DirectionalOrder = -1;
 };
 
 } // namespace brume

@@ -1,0 +1,283 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Beyond the paper: directional (spherical-harmonics) radiance in media and
+// progressive refinement. The basis against the addition theorem, the
+// directional mode against the per-view reconstruction of the same hits, and
+// progressively added particles against one run with all of them (bitwise).
+#include "brume/LightTracer.h"
+#include "brume/Random.h"
+#include "brume/Reconstruction.h"
+#include "brume/Sampling.h"
+#include "brume/SphericalHarmonics.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+using namespace brume;
+
+namespace
+{
+double Legendre(int l, double x)
+{
+  switch (l)
+  {
+    case 0:
+      return 1.0;
+    case 1:
+      return x;
+    case 2:
+      return 0.5 * (3 * x * x - 1);
+    default:
+      return 0.5 * (5 * x * x * x - 3 * x);
+  }
+}
+
+Vec3 RandomDirection(Random& rng)
+{
+  return SampleUniformSphere(rng.NextFloat(), rng.NextFloat());
+}
+
+// The hits of particles [first, last) of a run of `count`, as arrays.
+struct Hits
+{
+  std::vector<float> Position, Direction, Flux;
+  std::vector<std::uint16_t> Object;
+  std::vector<std::uint32_t> Triangle;
+  HitArrays View() const
+  {
+    HitArrays a;
+    a.Position = Position.data();
+    a.Direction = Direction.data();
+    a.Flux = Flux.data();
+    a.Object = Object.data();
+    a.Triangle = Triangle.data();
+    a.Count = Object.size();
+    return a;
+  }
+};
+
+Hits Trace(const Scene& scene, std::uint64_t first, std::uint64_t last, std::uint64_t count)
+{
+  const RayCaster caster(scene);
+  const LightTracer tracer(scene, caster, TraceSettings());
+  std::vector<Hit> hits;
+  TraceCounters counters;
+  for (std::uint64_t i = first; i < last; ++i)
+  {
+    tracer.TraceParticle(i, count, hits, counters);
+  }
+  Hits out;
+  for (const Hit& h : hits)
+  {
+    out.Position.insert(out.Position.end(), h.Position, h.Position + 3);
+    out.Direction.insert(out.Direction.end(), h.Direction, h.Direction + 3);
+    out.Flux.insert(out.Flux.end(), h.Flux, h.Flux + 3);
+    out.Object.push_back(h.Object);
+    out.Triangle.push_back(h.Triangle);
+  }
+  return out;
+}
+
+// One texture per object of the scene at fixed resolutions.
+std::vector<std::unique_ptr<ObjectRadiance>> Objects(const Scene& scene)
+{
+  std::vector<std::unique_ptr<ObjectRadiance>> objects;
+  for (const Surface& s : scene.Surfaces)
+  {
+    objects.emplace_back(new ObjectRadiance(s, MakeChart(s, nullptr), { 12, 12 }, 2));
+  }
+  for (const Medium& m : scene.Media)
+  {
+    objects.emplace_back(new ObjectRadiance(m, { 10, 10, 10 }, 2));
+  }
+  return objects;
+}
+}
+
+TEST(SphericalHarmonics, AdditionTheoremHolds)
+{
+  // sum_m Y_lm(a) Y_lm(b) = (2l + 1) / (4 pi) P_l(a . b): orthonormal basis.
+  Random rng(3, 0);
+  for (int trial = 0; trial < 200; ++trial)
+  {
+    const Vec3 a = RandomDirection(rng), b = RandomDirection(rng);
+    float ya[16], yb[16];
+    EvaluateSh(3, a, ya);
+    EvaluateSh(3, b, yb);
+    for (int l = 0; l <= 3; ++l)
+    {
+      double sum = 0.0;
+      for (int k = l * l; k < (l + 1) * (l + 1); ++k)
+      {
+        sum += static_cast<double>(ya[k]) * yb[k];
+      }
+      EXPECT_NEAR(sum, (2 * l + 1) / (4 * M_PI) * Legendre(l, Dot(a, b)), 2e-6) << "l " << l;
+    }
+  }
+}
+
+TEST(SphericalHarmonics, ProjectedHenyeyGreensteinIsItsLegendreSeries)
+{
+  // One direction of travel w_p projected, then convolved with HG toward
+  // w_o: the bands l <= 3 are sum_l g^l (2l + 1) / (4 pi) P_l(w_p . w_o),
+  // the truncated series of p(w_p . w_o); with the lobe tail (mean cosine
+  // 1: one direction) the whole of p is recovered.
+  Random rng(5, 0);
+  for (int trial = 0; trial < 50; ++trial)
+  {
+    const Vec3 wp = RandomDirection(rng), wo = RandomDirection(rng);
+    float c[16];
+    EvaluateSh(3, wp, c);
+    for (const float g : { 0.f, 0.3f, -0.5f, 0.8f })
+    {
+      double series = 0.0;
+      for (int l = 0; l <= 3; ++l)
+      {
+        series += std::pow(g, l) * (2 * l + 1) / (4 * M_PI) * Legendre(l, Dot(wp, wo));
+      }
+      EXPECT_NEAR(EvaluateHgFromSh(3, g, c, 1, wo, false), series, 1e-5);
+      const double p = HenyeyGreenstein(g).Evaluate(Dot(wp, wo));
+      // gL is clamped at 0.999 (a pole at 1): a few 1e-4 of difference.
+      EXPECT_NEAR(EvaluateHgFromSh(3, g, c, 1, wo, true), p, 0.02 * p + 5e-4);
+    }
+  }
+}
+
+TEST(Directional, MatchesThePerViewReconstruction)
+{
+  // The default scene (a Cornell box with fog) with the fog's g varied: the
+  // directional mode evaluated toward two eyes against the per-view texture
+  // of the same hits and regions, and both against a per-view texture of
+  // 5x more particles (the reference). Exact (up to rounding) for g = 0;
+  // the truncation error grows with |g|.
+  std::printf("g     directional vs per view   vs reference: directional  per view\n");
+  double previous = -1.0;
+  for (const float g : { 0.f, 0.3f, 0.6f, 0.9f })
+  {
+    Scene scene = MakeDefaultScene();
+    scene.Media[0].G = g;
+    ASSERT_EQ(scene.Validate(), "");
+    const std::size_t o = scene.Surfaces.size();
+    // g = 0 is view independent; its texture is the l = 0 term alone.
+    Medium anisotropic = scene.Media[0];
+    anisotropic.G = g != 0.f ? g : 1e-7f;
+    const Vec3 eyes[2] = { { 0.4f, 0.3f, 3.5f }, { -2.f, 1.f, 2.5f } };
+    auto build = [&](std::uint64_t particles, ObjectRadiance& fog)
+    {
+      const Hits hits = Trace(scene, 0, particles, particles);
+      ObjectHits groups;
+      ASSERT_EQ(GroupHitsByObject(hits.View(), scene.NumberOfObjects(), groups), "");
+      ASSERT_EQ(fog.Build(hits.View(), groups.Index.data() + groups.Offset[o],
+                  groups.Offset[o + 1] - groups.Offset[o], eyes[0], 64 * 3.0 / 200000,
+                  SerialFor()),
+        "");
+    };
+    ObjectRadiance fog(anisotropic, { 10, 10, 10 }, 2), reference(anisotropic, { 10, 10, 10 }, 2);
+    build(200000, fog);
+    build(1000000, reference);
+    ASSERT_EQ(fog.BuildDirectional(3, SerialFor()), "");
+    auto relative = [](const std::vector<float>& a, const std::vector<float>& b)
+    {
+      double difference = 0.0, total = 0.0;
+      for (std::size_t k = 0; k < a.size(); ++k)
+      {
+        difference += std::abs(a[k] - b[k]);
+        total += b[k];
+      }
+      return difference / total;
+    };
+    double worst = 0.0, directionalError = 0.0, perViewError = 0.0;
+    for (const Vec3& e : eyes)
+    {
+      fog.UpdateView(e, SerialFor());
+      reference.UpdateView(e, SerialFor());
+      std::vector<float> directional;
+      fog.EvaluateDirectional(e, directional);
+      worst = std::max(worst, relative(directional, fog.GetRadiance()));
+      directionalError = std::max(directionalError, relative(directional, reference.GetRadiance()));
+      perViewError = std::max(perViewError, relative(fog.GetRadiance(), reference.GetRadiance()));
+    }
+    std::printf("%.1f   %.4f                    %.4f       %.4f\n", g, worst, directionalError,
+      perViewError);
+    if (g == 0.f)
+    {
+      EXPECT_LT(worst, 0.02);
+    }
+    EXPECT_GE(worst, previous * 0.9) << "the error should grow with g";
+    previous = worst;
+  }
+}
+
+TEST(Progressive, AddedParticlesEqualOneRunBitwise)
+{
+  // 2 x 6000 particles added in two steps against 12,000 at once: the
+  // histograms, the textures and the directional coefficients are equal
+  // bit for bit (the first step's fluxes scale by exactly 1/2).
+  const Scene scene = MakeDefaultScene();
+  const std::uint64_t n = 6000;
+  const Hits first = Trace(scene, 0, n, n), second = Trace(scene, n, 2 * n, 2 * n);
+  const Hits all = Trace(scene, 0, 2 * n, 2 * n);
+  ASSERT_EQ(first.Object.size() + second.Object.size(), all.Object.size());
+  const Vec3 eye(0.f, 0.f, 3.f);
+  const double threshold = 16 * 3.0 / (2 * n);
+  auto progressive = Objects(scene), single = Objects(scene);
+  ObjectHits g1, g2, ga;
+  ASSERT_EQ(GroupHitsByObject(first.View(), scene.NumberOfObjects(), g1), "");
+  ASSERT_EQ(GroupHitsByObject(second.View(), scene.NumberOfObjects(), g2), "");
+  ASSERT_EQ(GroupHitsByObject(all.View(), scene.NumberOfObjects(), ga), "");
+  bool sawViewDependent = false;
+  for (std::size_t o = 0; o < scene.NumberOfObjects(); ++o)
+  {
+    auto range = [&](const ObjectHits& g) { return g.Offset[o + 1] - g.Offset[o]; };
+    ObjectRadiance& p = *progressive[o];
+    ObjectRadiance& s = *single[o];
+    ASSERT_EQ(p.Build(first.View(), g1.Index.data() + g1.Offset[o], range(g1), eye, 2 * threshold,
+                SerialFor()),
+      "");
+    if (p.IsViewDependent())
+    {
+      sawViewDependent = true;
+      ASSERT_EQ(p.BuildDirectional(2, SerialFor()), "");
+      ASSERT_EQ(s.Build(all.View(), ga.Index.data() + ga.Offset[o], range(ga), eye, threshold,
+                  SerialFor()),
+        "");
+      ASSERT_EQ(s.BuildDirectional(2, SerialFor()), "");
+    }
+    else
+    {
+      ASSERT_EQ(s.Build(all.View(), ga.Index.data() + ga.Offset[o], range(ga), eye, threshold,
+                  SerialFor()),
+        "");
+    }
+    const std::vector<float> before = p.GetRadiance();
+    ASSERT_EQ(p.Add(second.View(), g2.Index.data() + g2.Offset[o], range(g2), 0.5, eye, threshold,
+                SerialFor()),
+      "");
+    EXPECT_EQ(p.GetWeightHistogram().GetValues(), s.GetWeightHistogram().GetValues()) << o;
+    EXPECT_EQ(p.GetValueHistogram().GetValues(), s.GetValueHistogram().GetValues()) << o;
+    EXPECT_EQ(p.GetRadiance(), s.GetRadiance()) << o;
+    EXPECT_EQ(p.GetDirectional(), s.GetDirectional()) << o;
+    const auto& values = s.GetValueHistogram().GetValues();
+    if (std::any_of(values.begin(), values.end(), [](double v) { return v != 0.0; }))
+    {
+      EXPECT_NE(p.GetRadiance(), before) << o;
+    }
+  }
+  EXPECT_TRUE(sawViewDependent);
+}
+
+TEST(Progressive, RejectsAddBeforeBuildAndBadScales)
+{
+  const Scene scene = MakeDefaultScene();
+  auto objects = Objects(scene);
+  const Hits hits = Trace(scene, 0, 100, 100);
+  std::vector<std::uint32_t> none;
+  EXPECT_NE(objects[0]->Add(hits.View(), none.data(), 0, 0.5, Vec3(0.f), 1.0, SerialFor()), "");
+  ASSERT_EQ(objects[0]->Build(hits.View(), none.data(), 0, Vec3(0.f), 1.0, SerialFor()), "");
+  EXPECT_NE(objects[0]->Add(hits.View(), none.data(), 0, -1.0, Vec3(0.f), 1.0, SerialFor()), "");
+  EXPECT_NE(objects[0]->Add(hits.View(), none.data(), 0, NAN, Vec3(0.f), 1.0, SerialFor()), "");
+  EXPECT_NE(objects[0]->BuildDirectional(2, SerialFor()), "") << "surfaces have no directional mode";
+}
