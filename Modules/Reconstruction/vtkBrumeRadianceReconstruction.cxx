@@ -25,6 +25,7 @@
 #include "vtkUnsignedShortArray.h"
 
 #include "brume/Reconstruction.h"
+#include "brume/SphericalHarmonics.h"
 
 #include <algorithm>
 #include <cmath>
@@ -109,7 +110,10 @@ struct vtkBrumeRadianceReconstruction::Cache
   std::vector<vtkBrumeSceneConversion::ObjectSource> Sources;
   std::vector<std::unique_ptr<brume::ObjectRadiance>> Objects;
   std::vector<vtkSmartPointer<vtkPartitionedDataSet>> Outputs;
-  brume::Vec3 Eye;
+  std::vector<brume::Vec3> ObjectEye; // the eye each texture was estimated toward
+  std::vector<bool> ObjectDirectional; // whose output holds directional radiance
+  double Particles = 0.0, Seed = 0.0;
+  bool Accumulated = false; // particles were added after the build
 };
 
 vtkBrumeRadianceReconstruction::vtkBrumeRadianceReconstruction()
@@ -218,6 +222,27 @@ int vtkBrumeRadianceReconstruction::RequestData(
     return 0;
   }
   const double* power = powerArray->GetTuple3(0);
+  auto fieldValue = [&](const char* name)
+  {
+    vtkDataArray* a = hitFields->GetArray(name);
+    return a && a->GetNumberOfTuples() > 0 ? a->GetTuple1(0) : 0.0;
+  };
+  const double particles = countArray->GetTuple1(0);
+  const double firstParticle = fieldValue("FirstParticle");
+  const double seed = fieldValue("Seed");
+  if (this->DirectionalOrder < 1 || this->DirectionalOrder > brume::MaxShOrder)
+  {
+    vtkErrorMacro("DirectionalOrder must be in [1, " << brume::MaxShOrder << "], not "
+                                                     << this->DirectionalOrder << ".");
+    return 0;
+  }
+  if (firstParticle > 0.0 && !this->AccumulateParticles)
+  {
+    vtkErrorMacro("These hits are the particles ["
+      << firstParticle << ", " << particles
+      << ") of a run: turn AccumulateParticles on to add them to the earlier ones.");
+    return 0;
+  }
   const double particleFlux = (power[0] + power[1] + power[2]) / 3.0 / countArray->GetTuple1(0);
   const double threshold = this->RadiosityThreshold * particleFlux;
   std::vector<float> positionCopy;
@@ -234,15 +259,59 @@ int vtkBrumeRadianceReconstruction::RequestData(
   }
   const brume::ParallelFor parallelFor = vtkBrumeSceneConversion::ParallelFor();
 
-  // Rebuild everything when the inputs or the settings changed; otherwise
-  // only the view-dependent textures follow the viewpoint.
+  // Rebuild everything when the inputs or the settings changed; add the
+  // hits when they continue the run the textures hold; otherwise only the
+  // view-dependent textures follow the viewpoint.
   Cache* cache = this->Cached.get();
-  const bool rebuild = !cache || cache->SceneData != sceneInput || cache->HitsData != hitData ||
-    cache->SceneTime != sceneInput->GetMTime() || cache->HitsTime != hitData->GetMTime() ||
-    cache->Threshold != this->RadiosityThreshold ||
-    cache->SurfaceResolution != this->SurfaceResolution ||
-    cache->MediumResolution != this->MediumResolution ||
-    cache->Refinement != this->HistogramRefinement;
+  const bool sameSettings = cache && cache->SceneData == sceneInput &&
+    cache->SceneTime == sceneInput->GetMTime() && cache->Threshold == this->RadiosityThreshold &&
+    cache->SurfaceResolution == this->SurfaceResolution &&
+    cache->MediumResolution == this->MediumResolution &&
+    cache->Refinement == this->HistogramRefinement;
+  const bool newHits =
+    !cache || cache->HitsData != hitData || cache->HitsTime != hitData->GetMTime();
+  const bool accumulate = firstParticle > 0.0 && newHits;
+  if (accumulate)
+  {
+    if (!sameSettings || cache->Particles != firstParticle || cache->Seed != seed ||
+      !(particles > firstParticle))
+    {
+      vtkErrorMacro("These hits continue a run of "
+        << firstParticle << " particles (seed " << seed << ") but the textures hold "
+        << (cache ? cache->Particles : 0.0) << " particles (seed " << (cache ? cache->Seed : 0.0)
+        << ") of the same scene and settings: trace from FirstParticle 0 again.");
+      return 0;
+    }
+    brume::ObjectHits groups;
+    const std::string groupError =
+      brume::GroupHitsByObject(hits, cache->Scene.NumberOfObjects(), groups);
+    for (std::size_t o = 0; o < cache->Objects.size() && groupError.empty(); ++o)
+    {
+      const std::string error = cache->Objects[o]->Add(hits,
+        groups.Index.data() + groups.Offset[o], groups.Offset[o + 1] - groups.Offset[o],
+        cache->Particles / particles, cache->ObjectEye[o], threshold, parallelFor);
+      if (!error.empty())
+      {
+        vtkErrorMacro("Cannot add particles to '" << cache->Sources[o].Name << "': " << error
+                                                  << ".");
+        this->Cached.reset();
+        return 0;
+      }
+      cache->Outputs[o] = nullptr;
+      ++this->NumberOfParticleAdditions;
+    }
+    if (!groupError.empty())
+    {
+      vtkErrorMacro("Invalid particle hits: " << groupError << ".");
+      this->Cached.reset();
+      return 0;
+    }
+    cache->HitsData = hitData;
+    cache->HitsTime = hitData->GetMTime();
+    cache->Particles = particles;
+    cache->Accumulated = true;
+  }
+  const bool rebuild = !accumulate && (!sameSettings || newHits);
   if (rebuild)
   {
     this->Cached.reset(new Cache);
@@ -386,37 +455,68 @@ int vtkBrumeRadianceReconstruction::RequestData(
     cache->SurfaceResolution = this->SurfaceResolution;
     cache->MediumResolution = this->MediumResolution;
     cache->Refinement = this->HistogramRefinement;
-    cache->Eye = eye;
+    cache->ObjectEye.assign(cache->Objects.size(), eye);
+    cache->ObjectDirectional.assign(cache->Objects.size(), false);
+    cache->Particles = particles;
+    cache->Seed = seed;
   }
-  else if (!(cache->Eye.x == eye.x && cache->Eye.y == eye.y && cache->Eye.z == eye.z))
+
+  // Directional mode: anisotropic media carry their projection (made once,
+  // kept up to date by added particles) and follow no viewpoint.
+  auto directional = [&](std::size_t o)
+  { return this->DirectionalRadiance && cache->Scene.IsMedium(o); };
+  for (std::size_t o = 0; o < cache->Objects.size(); ++o)
   {
-    // A new viewpoint: only view-dependent textures change.
-    brume::ObjectHits groups;
-    if (!this->IncrementalUpdate)
+    brume::ObjectRadiance& radiance = *cache->Objects[o];
+    if (!radiance.IsViewDependent() || directional(o) == cache->ObjectDirectional[o])
     {
-      brume::GroupHitsByObject(hits, cache->Scene.NumberOfObjects(), groups);
+      continue;
     }
-    for (std::size_t o = 0; o < cache->Objects.size(); ++o)
+    if (directional(o) && radiance.GetDirectionalOrder() != this->DirectionalOrder)
     {
-      brume::ObjectRadiance& radiance = *cache->Objects[o];
-      if (!radiance.IsViewDependent())
+      const std::string error = radiance.BuildDirectional(this->DirectionalOrder, parallelFor);
+      if (!error.empty())
       {
-        continue;
+        vtkErrorMacro("Cannot project '" << cache->Sources[o].Name << "': " << error << ".");
+        this->Cached.reset();
+        return 0;
       }
-      if (this->IncrementalUpdate)
-      {
-        radiance.UpdateView(eye, parallelFor);
-        ++this->NumberOfViewUpdates;
-      }
-      else
-      {
-        radiance.Build(hits, groups.Index.data() + groups.Offset[o],
-          groups.Offset[o + 1] - groups.Offset[o], eye, threshold, parallelFor);
-        ++this->NumberOfTextureBuilds;
-      }
-      cache->Outputs[o] = nullptr;
+      ++this->NumberOfDirectionalBuilds;
     }
-    cache->Eye = eye;
+    cache->ObjectDirectional[o] = directional(o);
+    cache->Outputs[o] = nullptr;
+  }
+
+  // A new viewpoint: only view-dependent textures change.
+  brume::ObjectHits groups;
+  for (std::size_t o = 0; o < cache->Objects.size(); ++o)
+  {
+    brume::ObjectRadiance& radiance = *cache->Objects[o];
+    const brume::Vec3& last = cache->ObjectEye[o];
+    if (!radiance.IsViewDependent() || directional(o) ||
+      (last.x == eye.x && last.y == eye.y && last.z == eye.z))
+    {
+      continue;
+    }
+    // Textures that hold added particles have no single hits input to be
+    // rebuilt from: they are always updated incrementally.
+    if (this->IncrementalUpdate || cache->Accumulated)
+    {
+      radiance.UpdateView(eye, parallelFor);
+      ++this->NumberOfViewUpdates;
+    }
+    else
+    {
+      if (groups.Offset.empty())
+      {
+        brume::GroupHitsByObject(hits, cache->Scene.NumberOfObjects(), groups);
+      }
+      radiance.Build(hits, groups.Index.data() + groups.Offset[o],
+        groups.Offset[o + 1] - groups.Offset[o], eye, threshold, parallelFor);
+      ++this->NumberOfTextureBuilds;
+    }
+    cache->Outputs[o] = nullptr;
+    cache->ObjectEye[o] = eye;
   }
 
   // Outputs: new datasets for the textures that changed, the same ones otherwise.
@@ -517,7 +617,37 @@ int vtkBrumeRadianceReconstruction::RequestData(
         texture->SetDimensions(res[0] + 1, res[1] + 1, res[2] + 1);
         texture->SetOrigin(medium.Bounds.lower.x, medium.Bounds.lower.y, medium.Bounds.lower.z);
         texture->SetSpacing(extent.x / res[0], extent.y / res[1], extent.z / res[2]);
-        texture->GetCellData()->SetScalars(NewRGB("SourceRadiance", radiance.GetRadiance()));
+        if (cache->ObjectDirectional[o])
+        {
+          // The projection, and as SourceRadiance its mean over directions
+          // (the l = 0 term: c_00 Y_00).
+          const int order = radiance.GetDirectionalOrder();
+          const int components = 3 * brume::ShCoefficients(order);
+          const std::vector<float>& coefficients = radiance.GetDirectional();
+          vtkNew<vtkFloatArray> sh;
+          sh->SetName("SourceRadianceSH");
+          sh->SetNumberOfComponents(components);
+          sh->SetNumberOfTuples(static_cast<vtkIdType>(coefficients.size() / components));
+          std::copy(coefficients.begin(), coefficients.end(), sh->GetPointer(0));
+          std::vector<float> mean(3 * static_cast<std::size_t>(sh->GetNumberOfTuples()));
+          for (std::size_t t = 0; t < mean.size() / 3; ++t)
+          {
+            for (int c = 0; c < 3; ++c)
+            {
+              mean[3 * t + c] = std::max(0.f, 0.282094792f * coefficients[t * components + c]);
+            }
+          }
+          texture->GetCellData()->SetScalars(NewRGB("SourceRadiance", mean));
+          texture->GetCellData()->AddArray(sh);
+          vtkNew<vtkDoubleArray> g;
+          g->SetName("BrumePhaseAsymmetry");
+          g->InsertNextValue(medium.G);
+          texture->GetFieldData()->AddArray(g);
+        }
+        else
+        {
+          texture->GetCellData()->SetScalars(NewRGB("SourceRadiance", radiance.GetRadiance()));
+        }
         texture->GetCellData()->AddArray(NewRGB("Extinction", radiance.GetExtinction()));
         AddKind(texture->GetFieldData(), "medium");
         pds->SetNumberOfPartitions(1);
@@ -546,4 +676,9 @@ void vtkBrumeRadianceReconstruction::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "IncrementalUpdate: " << this->IncrementalUpdate << "\n";
   os << indent << "NumberOfTextureBuilds: " << this->NumberOfTextureBuilds << "\n";
   os << indent << "NumberOfViewUpdates: " << this->NumberOfViewUpdates << "\n";
+  os << indent << "AccumulateParticles: " << this->AccumulateParticles << "\n";
+  os << indent << "DirectionalRadiance: " << this->DirectionalRadiance << "\n";
+  os << indent << "DirectionalOrder: " << this->DirectionalOrder << "\n";
+  os << indent << "NumberOfParticleAdditions: " << this->NumberOfParticleAdditions << "\n";
+  os << indent << "NumberOfDirectionalBuilds: " << this->NumberOfDirectionalBuilds << "\n";
 }

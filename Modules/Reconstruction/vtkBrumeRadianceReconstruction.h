@@ -93,9 +93,51 @@ public:
   ///@}
 
   ///@{
-  /// Object textures built from the hits, and incremental view updates, so far.
+  /**
+   * Progressive refinement (default off). When on, hits traced from a
+   * FirstParticle > 0 (vtkBrumeLightTracer) are added to the histograms the
+   * textures were made from instead of replacing them: they must continue
+   * the run the textures hold (FirstParticle equal to its particle count,
+   * same seed, scene and settings), else RequestData fails. The particles
+   * already binned are rescaled to the new count; when the count doubles
+   * the result is bitwise that of one run with all the particles. Texture
+   * resolutions stay those of the first run (set them to compare with one).
+   */
+  vtkSetMacro(AccumulateParticles, bool);
+  vtkGetMacro(AccumulateParticles, bool);
+  vtkBooleanMacro(AccumulateParticles, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Directional radiance for anisotropic media (default off): instead of a
+   * texture toward the viewpoint, each voxel holds the spherical-harmonics
+   * projection (up to DirectionalOrder, default 3, in [1, 3]) of the light
+   * it receives, as the cell array `SourceRadianceSH` (3 (order + 1)^2
+   * components: coefficient-major, RGB within), with the phase function's g
+   * as field data `BrumePhaseAsymmetry`; `SourceRadiance` then holds the
+   * mean over directions. vtkBrumeSliceVolumeMapper evaluates the source
+   * radiance toward the eye per fragment (brume/SphericalHarmonics.h), so a
+   * view change costs only the render. Accurate where |g| is moderate (see
+   * the README's accuracy table); the per-view mode stays exact for any g.
+   * Glossy surfaces stay per view.
+   */
+  vtkSetMacro(DirectionalRadiance, bool);
+  vtkGetMacro(DirectionalRadiance, bool);
+  vtkBooleanMacro(DirectionalRadiance, bool);
+  vtkSetMacro(DirectionalOrder, int);
+  vtkGetMacro(DirectionalOrder, int);
+  ///@}
+
+  ///@{
+  /**
+   * Work done so far: object textures built from the hits, incremental view
+   * updates, objects that received added particles, directional projections.
+   */
   vtkGetMacro(NumberOfTextureBuilds, vtkIdType);
   vtkGetMacro(NumberOfViewUpdates, vtkIdType);
+  vtkGetMacro(NumberOfParticleAdditions, vtkIdType);
+  vtkGetMacro(NumberOfDirectionalBuilds, vtkIdType);
   ///@}
 
   vtkMTimeType GetMTime() override;
@@ -143,8 +185,13 @@ protected:
   int HistogramRefinement = 2;
   vtkCamera* Camera = nullptr;
   bool IncrementalUpdate = true;
+  bool AccumulateParticles = false;
+  bool DirectionalRadiance = false;
+  int DirectionalOrder = 3;
   vtkIdType NumberOfTextureBuilds = 0;
   vtkIdType NumberOfViewUpdates = 0;
+  vtkIdType NumberOfParticleAdditions = 0;
+  vtkIdType NumberOfDirectionalBuilds = 0;
 
 private:
   struct Cache;

@@ -3,6 +3,7 @@
 
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkObjectFactory.h"
@@ -51,7 +52,34 @@ std::string vtkBrumeSliceVolumeMapper::ValidateInput(vtkImageData* image)
     return "the medium image needs the cell arrays 'SourceRadiance' (3 components) and "
            "'Extinction' (1 or 3 components), one tuple per cell";
   }
+  if (vtkDataArray* sh = image->GetCellData()->GetArray("SourceRadianceSH"))
+  {
+    const int order = DirectionalOrder(sh->GetNumberOfComponents());
+    vtkDataArray* g = image->GetFieldData()->GetArray("BrumePhaseAsymmetry");
+    if (order < 1 || sh->GetNumberOfTuples() != cells)
+    {
+      return "the cell array 'SourceRadianceSH' needs 3 (order + 1)^2 components (order 1 to 3), "
+             "one tuple per cell";
+    }
+    if (!g || g->GetNumberOfTuples() < 1 || !(std::abs(g->GetTuple1(0)) < 1.0))
+    {
+      return "directional radiance ('SourceRadianceSH') needs the field array "
+             "'BrumePhaseAsymmetry' with the phase function's g in (-1, 1)";
+    }
+  }
   return {};
+}
+
+int vtkBrumeSliceVolumeMapper::DirectionalOrder(int components)
+{
+  for (int order = 1; order <= 3; ++order)
+  {
+    if (components == 3 * (order + 1) * (order + 1))
+    {
+      return order;
+    }
+  }
+  return -1;
 }
 
 void vtkBrumeSliceVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)

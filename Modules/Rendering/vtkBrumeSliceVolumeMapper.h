@@ -18,6 +18,16 @@
  * composited together, their slices merged in depth order, so overlapping
  * media blend correctly.
  *
+ * Directional radiance (beyond the paper): when the image also has the cell
+ * array `SourceRadianceSH` (spherical-harmonics coefficients of the source
+ * radiance, see vtkBrumeRadianceReconstruction::DirectionalRadiance) and
+ * the field array `BrumePhaseAsymmetry` (g), the source radiance toward the
+ * eye is evaluated per fragment from them (Henyey-Greenstein is diagonal in
+ * spherical harmonics, plus a lobe for the bands beyond the order, see
+ * brume/SphericalHarmonics.h), so an anisotropic medium follows the camera
+ * with no reconstruction. The coefficients travel as RGBA float 3D textures
+ * (12 for order 3), multiplied by sigma_t like J.
+ *
  * Input: a vtkImageData whose cells are the voxels, with cell data
  * `SourceRadiance` (3 components, W m^-2 sr^-1) and `Extinction` (1 or 3
  * components, m^-1), as vtkBrumeRadianceReconstruction produces; they are
@@ -67,6 +77,9 @@ public:
    * are uploaded (negative or non-finite extinction is an error).
    */
   static std::string ValidateInput(vtkImageData* image);
+
+  /// The order of a `SourceRadianceSH` array of so many components, or -1.
+  static int DirectionalOrder(int components);
 
 protected:
   vtkBrumeSliceVolumeMapper();

@@ -5,6 +5,7 @@
 #include "vtkCamera.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationIntegerKey.h"
@@ -20,6 +21,7 @@
 #include "vtkOpenGLVertexArrayObject.h"
 #include "vtkRenderer.h"
 #include "vtkShaderProgram.h"
+#include "vtkSmartPointer.h"
 #include "vtkTextureObject.h"
 #include "vtkVolume.h"
 #include "vtkVolumeCollection.h"
@@ -80,10 +82,130 @@ struct vtkBrumeOpenGLSliceVolumeMapper::Slice
   std::size_t Floats;
 };
 
+namespace
+{
+// The fragment shader of a volume: the slab shader, plus for directional
+// radiance of the given order (> 0) the evaluation of its spherical-harmonics
+// coefficients toward the eye (brume/SphericalHarmonics.h, in GLSL).
+std::string FragmentShader(int order)
+{
+  std::string fs = vtkBrumeSliceVolumeFS;
+  if (order < 1)
+  {
+    return fs;
+  }
+  const int coefficients = (order + 1) * (order + 1);
+  const int textures = (3 * coefficients + 3) / 4;
+  std::string dec = "uniform float phaseG;\nuniform vec3 eyeData;\nuniform vec3 boundsLower;\n"
+                    "uniform vec3 boundsExtent;\n";
+  std::string fetch = "  float v[" + std::to_string(4 * textures) + "];\n  vec4 f;\n";
+  for (int t = 0; t < textures; ++t)
+  {
+    const std::string n = std::to_string(t);
+    dec += "uniform sampler3D shTexture" + n + ";\n";
+    fetch += "  f = texture(shTexture" + n + ", texcoord);\n";
+    for (int c = 0; c < 4; ++c)
+    {
+      fetch += "  v[" + std::to_string(4 * t + c) + "] = f[" + std::to_string(c) + "];\n";
+    }
+  }
+  dec += "#define SH_ORDER " + std::to_string(order) + "\n" + R"GLSL(
+const float Inv4Pi = 0.0795774715;
+float legendre(int l, float x)
+{
+  if (l == 0) return 1.0;
+  if (l == 1) return x;
+  if (l == 2) return 0.5 * (3.0 * x * x - 1.0);
+  return 0.5 * x * (5.0 * x * x - 3.0);
+}
+vec3 directionalSource()
+{
+)GLSL" + fetch + R"GLSL(
+  vec3 d = normalize(eyeData - (boundsLower + texcoord * boundsExtent));
+  float y[16];
+  y[0] = 0.282094792;
+  y[1] = 0.488602512 * d.y;
+  y[2] = 0.488602512 * d.z;
+  y[3] = 0.488602512 * d.x;
+#if SH_ORDER >= 2
+  y[4] = 1.092548431 * d.x * d.y;
+  y[5] = 1.092548431 * d.y * d.z;
+  y[6] = 0.315391565 * (3.0 * d.z * d.z - 1.0);
+  y[7] = 1.092548431 * d.x * d.z;
+  y[8] = 0.546274215 * (d.x * d.x - d.y * d.y);
+#endif
+#if SH_ORDER >= 3
+  y[9] = 0.590043589 * d.y * (3.0 * d.x * d.x - d.y * d.y);
+  y[10] = 2.890611442 * d.x * d.y * d.z;
+  y[11] = 0.457045799 * d.y * (5.0 * d.z * d.z - 1.0);
+  y[12] = 0.373176333 * d.z * (5.0 * d.z * d.z - 3.0);
+  y[13] = 0.457045799 * d.x * (5.0 * d.z * d.z - 1.0);
+  y[14] = 1.445305721 * d.z * (d.x * d.x - d.y * d.y);
+  y[15] = 0.590043589 * d.x * (d.x * d.x - 3.0 * d.y * d.y);
+#endif
+  // The bands: Henyey-Greenstein scales band l by g^l.
+  vec3 sum = vec3(0.0);
+  float gl = 1.0;
+  for (int l = 0; l <= SH_ORDER; ++l)
+  {
+    vec3 band = vec3(0.0);
+    for (int k = l * l; k < (l + 1) * (l + 1); ++k)
+    {
+      band += vec3(v[3 * k], v[3 * k + 1], v[3 * k + 2]) * y[k];
+    }
+    sum += gl * band;
+    gl *= phaseG;
+  }
+  // The bands beyond the order, from the lobe with the same first moment.
+  for (int c = 0; c < 3; ++c)
+  {
+    float total = v[c] / 0.282094792;
+    vec3 moment = vec3(v[9 + c], v[3 + c], v[6 + c]) / 0.488602512;
+    float len = length(moment);
+    if (total > 0.0 && len > 0.0)
+    {
+      float g2 = phaseG * min(len / total, 0.999);
+      float mu = dot(moment, d) / len;
+      float truncated = 0.0;
+      float power = 1.0;
+      for (int l = 0; l <= SH_ORDER; ++l)
+      {
+        truncated += power * float(2 * l + 1) * Inv4Pi * legendre(l, mu);
+        power *= g2;
+      }
+      float hg = Inv4Pi * (1.0 - g2 * g2) / pow(max(1.0 + g2 * g2 - 2.0 * g2 * mu, 1e-6), 1.5);
+      sum[c] += total * (hg - truncated);
+    }
+  }
+  return max(sum, vec3(0.0));
+}
+)GLSL";
+  auto replace = [&](const std::string& tag, const std::string& text)
+  {
+    const std::size_t at = fs.find(tag);
+    if (at != std::string::npos)
+    {
+      fs.replace(at, tag.size(), text);
+    }
+  };
+  replace("//BRUME::Directional::Dec", dec);
+  replace("//BRUME::Directional::Impl", "emission = directionalSource();");
+  return fs;
+}
+}
+
 struct vtkBrumeOpenGLSliceVolumeMapper::Internals
 {
   vtkNew<vtkTextureObject> Source;
   vtkNew<vtkTextureObject> Extinction;
+  // Directional radiance: the coefficients (RGBA float 3D textures), the
+  // order (0: none), g, and the eye and box in data coordinates.
+  std::vector<vtkSmartPointer<vtkTextureObject>> Coefficients;
+  int Order = 0;
+  float G = 0.f;
+  float EyeData[3] = { 0.f, 0.f, 0.f };
+  float BoundsLower[3] = { 0.f, 0.f, 0.f };
+  float BoundsExtent[3] = { 1.f, 1.f, 1.f };
   vtkTimeStamp TextureTime;
   int Interpolation = -1;
   vtkOpenGLRenderWindow* Context = nullptr;
@@ -105,6 +227,10 @@ void vtkBrumeOpenGLSliceVolumeMapper::ReleaseGraphicsResources(vtkWindow* window
 {
   this->Impl->Source->ReleaseGraphicsResources(window);
   this->Impl->Extinction->ReleaseGraphicsResources(window);
+  for (auto& texture : this->Impl->Coefficients)
+  {
+    texture->ReleaseGraphicsResources(window);
+  }
   this->Impl->VAO->ReleaseGraphicsResources();
   this->Impl->VBO->ReleaseGraphicsResources();
   this->Impl->Context = nullptr;
@@ -219,6 +345,58 @@ bool vtkBrumeOpenGLSliceVolumeMapper::PrepareSlices(
                                                          << dims[2] << "): nothing drawn.");
       return false;
     }
+    // Directional radiance: 3 (order + 1)^2 values per voxel, J-scaled like
+    // the source, four per RGBA texture.
+    impl.Order = 0;
+    vtkDataArray* sh = input->GetCellData()->GetArray("SourceRadianceSH");
+    const int order = sh ? DirectionalOrder(sh->GetNumberOfComponents()) : -1;
+    if (order > 0)
+    {
+      const int values = sh->GetNumberOfComponents();
+      const int textures = (values + 3) / 4;
+      std::vector<float> packed(4 * static_cast<std::size_t>(cells));
+      impl.Coefficients.resize(static_cast<std::size_t>(textures));
+      for (int t = 0; t < textures; ++t)
+      {
+        for (vtkIdType i = 0; i < cells; ++i)
+        {
+          for (int c = 0; c < 4; ++c)
+          {
+            const int value = 4 * t + c;
+            packed[4 * i + c] = value < values
+              ? static_cast<float>(sh->GetComponent(i, value)) * e[3 * i + value % 3]
+              : 0.f;
+            if (!std::isfinite(packed[4 * i + c]))
+            {
+              vtkErrorMacro("Cannot draw this medium: its directional radiance must be finite "
+                            "(cell "
+                << i << ").");
+              return false;
+            }
+          }
+        }
+        auto& texture = impl.Coefficients[t];
+        if (!texture)
+        {
+          texture = vtkSmartPointer<vtkTextureObject>::New();
+        }
+        texture->SetContext(renWin);
+        texture->SetWrapS(vtkTextureObject::ClampToEdge);
+        texture->SetWrapT(vtkTextureObject::ClampToEdge);
+        texture->SetWrapR(vtkTextureObject::ClampToEdge);
+        texture->SetMinificationFilter(filter);
+        texture->SetMagnificationFilter(filter);
+        if (!texture->Create3DFromRaw(static_cast<unsigned int>(dims[0]),
+              static_cast<unsigned int>(dims[1]), static_cast<unsigned int>(dims[2]), 4, VTK_FLOAT,
+              packed.data()))
+        {
+          vtkErrorMacro("Could not create the directional radiance textures: nothing drawn.");
+          return false;
+        }
+      }
+      impl.Order = order;
+      impl.G = static_cast<float>(input->GetFieldData()->GetArray("BrumePhaseAsymmetry")->GetTuple1(0));
+    }
     impl.Interpolation = interpolation;
     impl.TextureTime.Modified();
   }
@@ -233,6 +411,19 @@ bool vtkBrumeOpenGLSliceVolumeMapper::PrepareSlices(
   const Vec dop{ dopPtr[0], dopPtr[1], dopPtr[2] };
   double bounds[6];
   input->GetBounds(bounds);
+  {
+    // The eye in data coordinates, where the directions of directional
+    // radiance are expressed.
+    vtkNew<vtkMatrix4x4> inverse;
+    vtkMatrix4x4::Invert(model, inverse);
+    const Vec eyeData = Transform(inverse, eye);
+    for (int a = 0; a < 3; ++a)
+    {
+      impl.EyeData[a] = static_cast<float>(eyeData[a]);
+      impl.BoundsLower[a] = static_cast<float>(bounds[2 * a]);
+      impl.BoundsExtent[a] = static_cast<float>(bounds[2 * a + 1] - bounds[2 * a]);
+    }
+  }
   Vec corners[8], cornersWC[8];
   double dmin = VTK_DOUBLE_MAX, dmax = -VTK_DOUBLE_MAX;
   for (int c = 0; c < 8; ++c)
@@ -409,31 +600,13 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawAll(vtkRenderer* ren)
     }
   }
 
-  vtkShaderProgram* program =
-    renWin->GetShaderCache()->ReadyShaderProgram(vtkBrumeSliceVolumeVS, vtkBrumeSliceVolumeFS, "");
-  if (!program)
-  {
-    vtkErrorMacro("Could not build the slice shaders: nothing drawn.");
-    return;
-  }
   impl.VBO->Upload(impl.Sorted, vtkOpenGLBufferObject::ArrayBuffer);
-  impl.VAO->Bind();
-  const size_t stride = 6 * sizeof(float);
-  if (!impl.VAO->AddAttributeArray(program, impl.VBO, "vertexWC", 0, stride, VTK_FLOAT, 3, false) ||
-    !impl.VAO->AddAttributeArray(
-      program, impl.VBO, "textureCoordinate", 3 * sizeof(float), stride, VTK_FLOAT, 3, false))
-  {
-    vtkErrorMacro("Could not bind the slice vertex attributes: nothing drawn.");
-    impl.VAO->Release();
-    return;
-  }
   vtkCamera* camera = ren->GetActiveCamera();
   vtkMatrix4x4* wcvc;
   vtkMatrix3x3* normals;
   vtkMatrix4x4* vcdc;
   vtkMatrix4x4* wcdc;
   static_cast<vtkOpenGLCamera*>(camera)->GetKeyMatrices(ren, wcvc, normals, vcdc, wcdc);
-  program->SetUniformMatrix("WCDCMatrix", wcdc);
   const double* eye = camera->GetPosition();
   double dop[3];
   camera->GetDirectionOfProjection(dop);
@@ -441,9 +614,6 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawAll(vtkRenderer* ren)
     static_cast<float>(eye[2]) };
   const float dopF[3] = { static_cast<float>(dop[0]), static_cast<float>(dop[1]),
     static_cast<float>(dop[2]) };
-  program->SetUniform3f("eyeWC", eyeF);
-  program->SetUniform3f("viewDirectionWC", dopF);
-  program->SetUniformi("perspective", camera->GetParallelProjection() ? 0 : 1);
 
   vtkOpenGLState* state = renWin->GetState();
   vtkOpenGLState::ScopedglEnableDisable blendSaver(state, GL_BLEND);
@@ -457,16 +627,65 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawAll(vtkRenderer* ren)
   state->vtkglEnable(GL_DEPTH_TEST);
   state->vtkglDepthMask(GL_FALSE);
   state->vtkglDisable(GL_CULL_FACE);
+  // One program per kind of volume (plain, or directional of an order).
+  vtkShaderProgram* bound = nullptr;
+  const size_t stride = 6 * sizeof(float);
   for (const Run& run : runs)
   {
-    run.Owner->Impl->Source->Activate();
-    run.Owner->Impl->Extinction->Activate();
-    program->SetUniformi("sourceTexture", run.Owner->Impl->Source->GetTextureUnit());
-    program->SetUniformi("extinctionTexture", run.Owner->Impl->Extinction->GetTextureUnit());
+    Internals& owner = *run.Owner->Impl;
+    vtkShaderProgram* program = renWin->GetShaderCache()->ReadyShaderProgram(
+      vtkBrumeSliceVolumeVS, FragmentShader(owner.Order).c_str(), "");
+    if (!program)
+    {
+      vtkErrorMacro("Could not build the slice shaders: nothing drawn.");
+      break;
+    }
+    if (program != bound)
+    {
+      impl.VAO->ShaderProgramChanged();
+      impl.VAO->Bind();
+      if (!impl.VAO->AddAttributeArray(
+            program, impl.VBO, "vertexWC", 0, stride, VTK_FLOAT, 3, false) ||
+        !impl.VAO->AddAttributeArray(
+          program, impl.VBO, "textureCoordinate", 3 * sizeof(float), stride, VTK_FLOAT, 3, false))
+      {
+        vtkErrorMacro("Could not bind the slice vertex attributes: nothing drawn.");
+        break;
+      }
+      program->SetUniformMatrix("WCDCMatrix", wcdc);
+      program->SetUniform3f("eyeWC", eyeF);
+      program->SetUniform3f("viewDirectionWC", dopF);
+      program->SetUniformi("perspective", camera->GetParallelProjection() ? 0 : 1);
+      bound = program;
+    }
+    owner.Source->Activate();
+    owner.Extinction->Activate();
+    program->SetUniformi("sourceTexture", owner.Source->GetTextureUnit());
+    program->SetUniformi("extinctionTexture", owner.Extinction->GetTextureUnit());
     program->SetUniformf("sliceSpacing", run.Spacing);
+    if (owner.Order > 0)
+    {
+      for (std::size_t t = 0; t < owner.Coefficients.size(); ++t)
+      {
+        owner.Coefficients[t]->Activate();
+        program->SetUniformi(
+          ("shTexture" + std::to_string(t)).c_str(), owner.Coefficients[t]->GetTextureUnit());
+      }
+      program->SetUniformf("phaseG", owner.G);
+      program->SetUniform3f("eyeData", owner.EyeData);
+      program->SetUniform3f("boundsLower", owner.BoundsLower);
+      program->SetUniform3f("boundsExtent", owner.BoundsExtent);
+    }
     glDrawArrays(GL_TRIANGLES, run.FirstVertex, run.Vertices);
-    run.Owner->Impl->Source->Deactivate();
-    run.Owner->Impl->Extinction->Deactivate();
+    owner.Source->Deactivate();
+    owner.Extinction->Deactivate();
+    if (owner.Order > 0)
+    {
+      for (auto& texture : owner.Coefficients)
+      {
+        texture->Deactivate();
+      }
+    }
   }
   impl.VAO->Release();
 }

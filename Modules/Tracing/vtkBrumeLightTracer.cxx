@@ -38,13 +38,14 @@ struct TraceBlocks
   std::vector<std::vector<brume::Hit>>& Hits;
   std::vector<brume::TraceCounters>& Counters;
   vtkTypeInt64 Particles;
+  vtkTypeInt64 FirstParticle;
   vtkTypeInt64 FirstBlock;
 
   void operator()(vtkIdType begin, vtkIdType end) const
   {
     for (vtkIdType b = begin; b < end; ++b)
     {
-      const vtkTypeInt64 first = (this->FirstBlock + b) * ParticlesPerBlock;
+      const vtkTypeInt64 first = this->FirstParticle + (this->FirstBlock + b) * ParticlesPerBlock;
       const vtkTypeInt64 last = std::min(first + ParticlesPerBlock, this->Particles);
       std::vector<brume::Hit>& hits = this->Hits[b];
       hits.reserve(static_cast<std::size_t>(4 * (last - first)));
@@ -213,11 +214,19 @@ int vtkBrumeLightTracer::RequestData(
     vtkErrorMacro("NumberOfParticles must be in [1, 1e10], not " << particles << ".");
     return 0;
   }
+  const vtkTypeInt64 firstParticle = this->FirstParticle;
+  if (firstParticle < 0 || firstParticle >= particles)
+  {
+    vtkErrorMacro("FirstParticle must be in [0, NumberOfParticles - 1 = "
+      << particles - 1 << "], not " << firstParticle << ".");
+    return 0;
+  }
+  const vtkTypeInt64 traced = particles - firstParticle;
   // A particle stores one hit per interaction; a few per particle is typical.
-  const double expectedBytes = 4.0 * static_cast<double>(particles) * sizeof(brume::Hit);
+  const double expectedBytes = 4.0 * static_cast<double>(traced) * sizeof(brume::Hit);
   if (expectedBytes > static_cast<double>(this->MemoryLimit))
   {
-    vtkErrorMacro("" << particles << " particles would need about " << expectedBytes / (1 << 20)
+    vtkErrorMacro("" << traced << " particles would need about " << expectedBytes / (1 << 20)
                      << " MiB of hits, more than MemoryLimit (" << this->MemoryLimit / (1 << 20)
                      << " MiB).");
     return 0;
@@ -250,7 +259,7 @@ int vtkBrumeLightTracer::RequestData(
   // Output arrays, grown batch by batch (realloc of large blocks moves pages
   // without copying), so the hits are never held twice.
   OutputHits out;
-  const vtkTypeInt64 blocks = (particles + ParticlesPerBlock - 1) / ParticlesPerBlock;
+  const vtkTypeInt64 blocks = (traced + ParticlesPerBlock - 1) / ParticlesPerBlock;
   std::vector<std::vector<brume::Hit>> blockHits;
   std::vector<brume::TraceCounters> counters;
   brume::TraceCounters sum;
@@ -267,7 +276,7 @@ int vtkBrumeLightTracer::RequestData(
       block.clear();
     }
     counters.assign(static_cast<std::size_t>(end - begin), {});
-    TraceBlocks functor{ tracer, blockHits, counters, particles, begin };
+    TraceBlocks functor{ tracer, blockHits, counters, particles, firstParticle, begin };
     vtkSMPTools::For(0, end - begin, functor);
     std::size_t batchHits = 0;
     for (std::size_t b = 0; b < blockHits.size(); ++b)
@@ -304,6 +313,14 @@ int vtkBrumeLightTracer::RequestData(
   count->SetName("NumberOfParticles");
   count->InsertNextValue(static_cast<double>(particles));
   output->GetFieldData()->AddArray(count);
+  vtkNew<vtkDoubleArray> first;
+  first->SetName("FirstParticle");
+  first->InsertNextValue(static_cast<double>(firstParticle));
+  output->GetFieldData()->AddArray(first);
+  vtkNew<vtkDoubleArray> seed;
+  seed->SetName("Seed");
+  seed->InsertNextValue(static_cast<double>(this->Seed));
+  output->GetFieldData()->AddArray(seed);
   vtkNew<vtkDoubleArray> rays;
   rays->SetName("NumberOfRays");
   rays->InsertNextValue(static_cast<double>(sum.Rays));
@@ -321,6 +338,7 @@ void vtkBrumeLightTracer::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "NumberOfParticles: " << this->NumberOfParticles << "\n";
+  os << indent << "FirstParticle: " << this->FirstParticle << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "MaximumDepth: " << this->MaximumDepth << "\n";
   os << indent << "RouletteDepth: " << this->RouletteDepth << "\n";

@@ -52,6 +52,19 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Progressive tracing: trace only the particles [FirstParticle,
+   * NumberOfParticles) of a run of NumberOfParticles (default 0: all). Each
+   * particle's flux is normalized by NumberOfParticles, so these hits are
+   * exactly the later part of the full run's; vtkBrumeRadianceReconstruction
+   * with AccumulateParticles adds them to the hits it already holds. The
+   * output's field data records `FirstParticle` and `Seed`.
+   */
+  vtkSetMacro(FirstParticle, vtkTypeInt64);
+  vtkGetMacro(FirstParticle, vtkTypeInt64);
+  ///@}
+
+  ///@{
   /// Seed of the particles' random streams (default 0, non-negative).
   vtkSetMacro(Seed, vtkIdType);
   vtkGetMacro(Seed, vtkIdType);
@@ -107,6 +120,7 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   vtkTypeInt64 NumberOfParticles = 1000000;
+  vtkTypeInt64 FirstParticle = 0;
   vtkIdType Seed = 0;
   int MaximumDepth = 1024;
   int RouletteDepth = 3;

@@ -8,6 +8,8 @@
 #include "vtkBrumeSliceVolumeMapper.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkCellData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -22,6 +24,9 @@
 #include "vtkSphereSource.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
+
+#include "brume/Sampling.h"
+#include "brume/SphericalHarmonics.h"
 
 #include <array>
 #include <cmath>
@@ -374,6 +379,56 @@ bool BadInput()
 }
 }
 
+bool Directional()
+{
+  // Directional radiance: a cube lit from one direction w_p (flux Phi per
+  // channel), projected to spherical harmonics of order 1 to 3. Seen along
+  // +z at the centre, S = Phi p_g(w_p . z) exactly (the lobe tail restores
+  // the bands beyond the order), composited as S (1 - exp(-sigma_t)).
+  const double box[6] = { -0.5, 0.5, -0.5, 0.5, -0.5, 0.5 };
+  const RGB phi{ 1.0, 0.5, 2.0 }, sigmaT{ 1.5, 0.5, 3.0 };
+  const double g = 0.5;
+  bool ok = true;
+  for (int order = 1; order <= 3; ++order)
+  {
+    for (const brume::Vec3& wp : { brume::Vec3(0.f, 0.f, 1.f), brume::Vec3(1.f, 0.f, 0.f),
+           brume::Normalize(brume::Vec3(1.f, 1.f, -1.f)), brume::Vec3(0.f, 0.6f, 0.8f) })
+    {
+      auto image = Medium(box, { Layer{ { 0.0, 0.0, 0.0 }, sigmaT } });
+      const int k = brume::ShCoefficients(order);
+      float y[16];
+      brume::EvaluateSh(order, wp, y);
+      vtkNew<vtkFloatArray> sh;
+      sh->SetName("SourceRadianceSH");
+      sh->SetNumberOfComponents(3 * k);
+      sh->SetNumberOfTuples(1);
+      for (int j = 0; j < k; ++j)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          sh->SetComponent(0, 3 * j + c, y[j] * phi[c]);
+        }
+      }
+      image->GetCellData()->AddArray(sh);
+      vtkNew<vtkDoubleArray> asymmetry;
+      asymmetry->SetName("BrumePhaseAsymmetry");
+      asymmetry->InsertNextValue(g);
+      image->GetFieldData()->AddArray(asymmetry);
+      const Frame f = Render({ Volume(image, 1.0 / 16.0, true) }, true);
+      const double p = brume::HenyeyGreenstein(static_cast<float>(g)).Evaluate(wp.z);
+      RGB expected;
+      for (int c = 0; c < 3; ++c)
+      {
+        expected[c] = phi[c] * p * (1.0 - std::exp(-sigmaT[c]));
+      }
+      ok = Near(f.At(Size / 2, Size / 2), expected, 0.015,
+             "directional order " + std::to_string(order) + ", w_p . z = " + std::to_string(wp.z)) &&
+        ok;
+    }
+  }
+  return ok;
+}
+
 int TestSliceVolumeMapper(int, char*[])
 {
   bool ok = true;
@@ -382,5 +437,6 @@ int TestSliceVolumeMapper(int, char*[])
   ok = Occlusion() && ok;
   ok = DepthOrder() && ok;
   ok = BadInput() && ok;
+  ok = Directional() && ok;
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }

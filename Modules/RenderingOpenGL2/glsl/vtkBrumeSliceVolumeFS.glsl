@@ -16,12 +16,15 @@ uniform vec3 viewDirectionWC;
 uniform float sliceSpacing;
 uniform int perspective;
 
+//BRUME::Directional::Dec
+
 layout(location = 0, index = 0) out vec4 fragColor;
 layout(location = 0, index = 1) out vec4 fragTransmittance;
 
 void main()
 {
   vec3 emission = texture(sourceTexture, texcoord).rgb;
+  //BRUME::Directional::Impl
   vec3 sigmaT = texture(extinctionTexture, texcoord).rgb;
   // Distance between two slice planes along this fragment's viewing ray:
   // it grows as 1/cos(angle to the view direction) in perspective.
