@@ -50,10 +50,6 @@ bool EndsWith(const std::string& s, const std::string& suffix)
 
 }
 
-namespace
-{
-// The scene: the built-in one, or a scene file; its render settings fill
-// the options the command line did not give.
 vtkSmartPointer<vtkAlgorithm> LoadScene(RenderOptions& options)
 {
   vtkSmartPointer<vtkAlgorithm> source;
@@ -109,6 +105,8 @@ vtkSmartPointer<vtkAlgorithm> LoadScene(RenderOptions& options)
   return source;
 }
 
+namespace
+{
 // Writes next to the output under a temporary name and renames it on
 // success, so that a failure never leaves a partial image behind.
 int WriteImage(vtkImageData* radiance, const RenderOptions& options, bool png)

@@ -3,6 +3,9 @@
 #ifndef BrumeRender_h
 #define BrumeRender_h
 
+#include "vtkAlgorithm.h"
+#include "vtkSmartPointer.h"
+
 #include <cstdint>
 #include <string>
 
@@ -27,5 +30,12 @@ struct RenderOptions
 
 /// Runs the pipeline and writes the image; returns the process exit code.
 int RunRender(RenderOptions options);
+
+/**
+ * The scene: the built-in one (empty or "default"), or a scene file, loaded
+ * and validated; its render settings fill the options the command line did
+ * not give. Null, with the reason on stderr, when it cannot be loaded.
+ */
+vtkSmartPointer<vtkAlgorithm> LoadScene(RenderOptions& options);
 
 #endif

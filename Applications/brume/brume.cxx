@@ -3,6 +3,7 @@
 #include "BrumeCommands.h"
 #include "BrumeRender.h"
 #include "BrumeThreads.h"
+#include "BrumeView.h"
 
 #include "vtkVersion.h"
 
@@ -14,6 +15,7 @@
 namespace
 {
 const char* General = R"(usage: brume render [SCENE] -o OUTPUT [options]
+       brume view [SCENE] [options]
        brume validate slab --albedo A --optical-thickness B --g G [options]
        brume bench [--particles N] [--seed S]
        brume chart [-o chart.png] [--csv chart.csv] [options]
@@ -44,6 +46,41 @@ settings are the defaults of the options below.
   --reference         render with the unbiased path tracer instead (no
                       display needed); .vti adds the per-pixel 'Variance'
   --spp N             samples per pixel of --reference (default 64)
+)";
+
+const char* ViewHelp = R"(usage: brume view [SCENE] [options]
+
+Opens an interactive window (trackball camera) on a scene (default: the
+built-in one). Particles are traced once; on every camera change only the
+view-dependent textures (anisotropic media, glossy surfaces) are updated,
+incrementally, then the frame is rendered. With --orbit the camera circles
+the scene instead, off screen, and the frame times are printed.
+
+  --particles N       particles traced at the start (default 1000000)
+  --seed S            seed of the particles' random streams (default 0)
+  --size WxH          window size (default 512x512)
+  --exposure E        display exposure (default 1)
+  --threshold T       radiosity threshold, in particles (default 128)
+  --mode paper|sh     media: per-view reconstruction as in the paper
+                      (default), or spherical harmonics evaluated in the
+                      slice shader (a view change costs only the render)
+  --order N           spherical-harmonics order, 1 to 3, or auto (default:
+                      3 up to |g| = 0.65, else 1)
+  --keys KEYS         keys pressed at the start (p, d, m), e.g. --keys pp
+  --no-overlay        hide the text overlay
+  --orbit N           render N frames around the focal point (no window
+                      interaction, needs a display: xvfb-run -a) and print
+                      the median and 95th percentile of the update and
+                      render times, and the textures recomputed meanwhile
+  --frames-out DIR    with --orbit: write DIR/frame_NNNN.png
+  --csv FILE          with --orbit: per-frame times (frame,update_ms,render_ms)
+
+Keys: p  more particles (doubles the count; the new particles are added to
+         the existing histograms)
+      d  switch the media between per-view textures and spherical harmonics
+      m  show or hide the media
+      s  save the window to brume-view-NNNN.png
+      q  quit
 )";
 
 const char* ValidateHelp =
@@ -192,6 +229,65 @@ int ParseParticles(Arguments& args, long long& particles)
   return 0;
 }
 
+// Options shared by render and view: the scene and how it is traced and
+// shown. 1 when `arg` is not one of them, else 0 or a usage error's code.
+int ParseSceneOption(Arguments& args, const std::string& arg, RenderOptions& options)
+{
+  std::string v;
+  if (arg == "--particles")
+  {
+    options.ParticlesSet = true;
+    return ParseParticles(args, options.Particles);
+  }
+  if (arg == "--seed")
+  {
+    options.SeedSet = true;
+    return ParseSeed(args, options.Seed);
+  }
+  if (arg == "--size")
+  {
+    const auto x = args.Value(v) ? v.find('x') : std::string::npos;
+    long long w = 0, h = 0;
+    if (x == std::string::npos || !ParseInteger(v.substr(0, x), 1, 16384, w) ||
+      !ParseInteger(v.substr(x + 1), 1, 16384, h))
+    {
+      return UsageError("--size needs WIDTHxHEIGHT, each in [1, 16384]");
+    }
+    options.Width = static_cast<int>(w);
+    options.Height = static_cast<int>(h);
+    options.SizeSet = true;
+    return 0;
+  }
+  if (arg == "--exposure")
+  {
+    if (!args.Value(v) || !ParseDouble(v, 0.0, 1e12, options.Exposure))
+    {
+      return UsageError("--exposure needs a non-negative number");
+    }
+    options.ExposureSet = true;
+    return 0;
+  }
+  if (arg == "--threshold")
+  {
+    if (!args.Value(v) || !ParseDouble(v, 1e-6, 1e12, options.Threshold))
+    {
+      return UsageError("--threshold needs a positive number");
+    }
+    options.ThresholdSet = true;
+    return 0;
+  }
+  if (!arg.empty() && arg[0] == '-')
+  {
+    return 1;
+  }
+  if (!options.Scene.empty())
+  {
+    return UsageError("more than one SCENE given ('" + options.Scene + "', '" + arg + "')");
+  }
+  options.Scene = arg;
+  return 0;
+}
+
 int Render(int argc, char* argv[])
 {
   Usage = RenderHelp;
@@ -221,45 +317,6 @@ int Render(int argc, char* argv[])
         return UsageError(arg + " needs a file name");
       }
     }
-    else if (arg == "--particles")
-    {
-      rc = ParseParticles(args, options.Particles);
-      options.ParticlesSet = true;
-    }
-    else if (arg == "--seed")
-    {
-      rc = ParseSeed(args, options.Seed);
-      options.SeedSet = true;
-    }
-    else if (arg == "--size")
-    {
-      const auto x = args.Value(v) ? v.find('x') : std::string::npos;
-      long long w = 0, h = 0;
-      if (x == std::string::npos || !ParseInteger(v.substr(0, x), 1, 16384, w) ||
-        !ParseInteger(v.substr(x + 1), 1, 16384, h))
-      {
-        return UsageError("--size needs WIDTHxHEIGHT, each in [1, 16384]");
-      }
-      options.Width = static_cast<int>(w);
-      options.Height = static_cast<int>(h);
-      options.SizeSet = true;
-    }
-    else if (arg == "--exposure")
-    {
-      if (!args.Value(v) || !ParseDouble(v, 0.0, 1e12, options.Exposure))
-      {
-        return UsageError("--exposure needs a non-negative number");
-      }
-      options.ExposureSet = true;
-    }
-    else if (arg == "--threshold")
-    {
-      if (!args.Value(v) || !ParseDouble(v, 1e-6, 1e12, options.Threshold))
-      {
-        return UsageError("--threshold needs a positive number");
-      }
-      options.ThresholdSet = true;
-    }
     else if (arg == "--timings")
     {
       options.Timings = true;
@@ -277,17 +334,9 @@ int Render(int argc, char* argv[])
       }
       options.SamplesPerPixel = static_cast<int>(spp);
     }
-    else if (!arg.empty() && arg[0] == '-')
+    else if ((rc = ParseSceneOption(args, arg, options)) == 1)
     {
       return UsageError("unknown option '" + arg + "'");
-    }
-    else if (options.Scene.empty())
-    {
-      options.Scene = arg;
-    }
-    else
-    {
-      return UsageError("more than one SCENE given ('" + options.Scene + "', '" + arg + "')");
     }
     if (rc != 0)
     {
@@ -299,6 +348,83 @@ int Render(int argc, char* argv[])
     return UsageError("missing -o OUTPUT");
   }
   return RunRender(options);
+}
+
+int View(int argc, char* argv[])
+{
+  Usage = ViewHelp;
+  for (int i = 2; i < argc; ++i)
+  {
+    if (std::string(argv[i]) == "-h" || std::string(argv[i]) == "--help")
+    {
+      std::cout << Usage;
+      return 0;
+    }
+  }
+  ViewOptions options;
+  Arguments args(argc, argv, 2);
+  std::string arg, v;
+  while (args.Next(arg))
+  {
+    long long n = 0;
+    int rc = 0;
+    if (arg == "--mode")
+    {
+      if (!args.Value(v) || (v != "paper" && v != "sh"))
+      {
+        return UsageError("--mode needs 'paper' or 'sh'");
+      }
+      options.Directional = v == "sh";
+    }
+    else if (arg == "--order")
+    {
+      if (!args.Value(v) || (v != "auto" && !ParseInteger(v, 1, 3, n)))
+      {
+        return UsageError("--order needs auto, 1, 2 or 3");
+      }
+      options.Order = v == "auto" ? 0 : static_cast<int>(n);
+    }
+    else if (arg == "--orbit")
+    {
+      if (!args.Value(v) || !ParseInteger(v, 1, 100000, n))
+      {
+        return UsageError("--orbit needs a number of frames in [1, 100000]");
+      }
+      options.Orbit = static_cast<int>(n);
+    }
+    else if (arg == "--frames-out" || arg == "--csv")
+    {
+      if (!args.Value(v) || v.empty())
+      {
+        return UsageError(arg + " needs a path");
+      }
+      (arg == "--csv" ? options.Csv : options.FramesOut) = v;
+    }
+    else if (arg == "--keys")
+    {
+      if (!args.Value(options.Keys))
+      {
+        return UsageError("--keys needs the keys to press");
+      }
+    }
+    else if (arg == "--no-overlay")
+    {
+      options.Overlay = false;
+    }
+    else if ((rc = ParseSceneOption(args, arg, options.Render)) == 1)
+    {
+      return UsageError("unknown option '" + arg + "'");
+    }
+    if (rc != 0)
+    {
+      return rc;
+    }
+  }
+  if (options.Orbit == 0 && (!options.FramesOut.empty() || !options.Csv.empty()))
+  {
+    return UsageError("--frames-out and --csv go with --orbit");
+  }
+  return RunView(options);
 }
 
 int Validate(int argc, char* argv[])
@@ -518,6 +644,10 @@ int main(int argc, char* argv[])
   if (command == "render")
   {
     return Render(argc, argv);
+  }
+  if (command == "view")
+  {
+    return View(argc, argv);
   }
   if (command == "validate")
   {

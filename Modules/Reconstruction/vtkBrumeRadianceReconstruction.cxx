@@ -230,9 +230,9 @@ int vtkBrumeRadianceReconstruction::RequestData(
   const double particles = countArray->GetTuple1(0);
   const double firstParticle = fieldValue("FirstParticle");
   const double seed = fieldValue("Seed");
-  if (this->DirectionalOrder < 1 || this->DirectionalOrder > brume::MaxShOrder)
+  if (this->DirectionalOrder < 0 || this->DirectionalOrder > brume::MaxShOrder)
   {
-    vtkErrorMacro("DirectionalOrder must be in [1, " << brume::MaxShOrder << "], not "
+    vtkErrorMacro("DirectionalOrder must be in [0, " << brume::MaxShOrder << "], not "
                                                      << this->DirectionalOrder << ".");
     return 0;
   }
@@ -468,13 +468,21 @@ int vtkBrumeRadianceReconstruction::RequestData(
   for (std::size_t o = 0; o < cache->Objects.size(); ++o)
   {
     brume::ObjectRadiance& radiance = *cache->Objects[o];
-    if (!radiance.IsViewDependent() || directional(o) == cache->ObjectDirectional[o])
+    if (!radiance.IsViewDependent())
     {
       continue;
     }
-    if (directional(o) && radiance.GetDirectionalOrder() != this->DirectionalOrder)
+    const int order = this->DirectionalOrder > 0
+      ? this->DirectionalOrder
+      : brume::ChooseShOrder(cache->Scene.Media[o - cache->Scene.Surfaces.size()].G);
+    const bool project = directional(o) && radiance.GetDirectionalOrder() != order;
+    if (directional(o) == cache->ObjectDirectional[o] && !project)
     {
-      const std::string error = radiance.BuildDirectional(this->DirectionalOrder, parallelFor);
+      continue;
+    }
+    if (project)
+    {
+      const std::string error = radiance.BuildDirectional(order, parallelFor);
       if (!error.empty())
       {
         vtkErrorMacro("Cannot project '" << cache->Sources[o].Name << "': " << error << ".");

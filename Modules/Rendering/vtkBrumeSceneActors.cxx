@@ -31,6 +31,16 @@ std::string KindOf(vtkDataObject* data)
 }
 }
 
+// What AddToRenderer() made for one object of the input.
+struct vtkBrumeSceneActors::Entry
+{
+  unsigned int Index;
+  vtkSmartPointer<vtkTexture> Texture;            // surfaces
+  vtkSmartPointer<vtkPolyDataMapper> Surface;     // surfaces
+  vtkSmartPointer<vtkBrumeSliceVolumeMapper> Slices; // media
+  vtkSmartPointer<vtkVolume> Volume;              // media
+};
+
 vtkBrumeSceneActors::vtkBrumeSceneActors()
   : Props(vtkSmartPointer<vtkPropCollection>::New())
 {
@@ -60,6 +70,7 @@ vtkPropCollection* vtkBrumeSceneActors::GetProps()
 bool vtkBrumeSceneActors::AddToRenderer(vtkRenderer* renderer)
 {
   this->Props->RemoveAllItems();
+  this->Entries.clear();
   if (!this->Input || !renderer)
   {
     vtkErrorMacro("AddToRenderer needs an input collection and a renderer.");
@@ -98,8 +109,12 @@ bool vtkBrumeSceneActors::AddToRenderer(vtkRenderer* renderer)
       actor->GetProperty()->SetAmbient(1.0);
       actor->GetProperty()->SetDiffuse(0.0);
       actor->GetProperty()->SetSpecular(0.0);
+      // The texture holds the light leaving the front (winding) side: seen
+      // from behind, a surface is cut away rather than shown wrongly lit.
+      actor->GetProperty()->SetBackfaceCulling(this->BackfaceCulling);
       renderer->AddActor(actor);
       this->Props->AddItem(actor);
+      this->Entries.push_back({ i, texture.Get(), mapper.Get(), nullptr, nullptr });
     }
     else if (kind == "medium")
     {
@@ -115,6 +130,7 @@ bool vtkBrumeSceneActors::AddToRenderer(vtkRenderer* renderer)
       volume->GetProperty()->SetInterpolationTypeToLinear();
       renderer->AddVolume(volume);
       this->Props->AddItem(volume);
+      this->Entries.push_back({ i, nullptr, nullptr, mapper.Get(), volume.Get() });
     }
     else
     {
@@ -125,9 +141,69 @@ bool vtkBrumeSceneActors::AddToRenderer(vtkRenderer* renderer)
   return true;
 }
 
+bool vtkBrumeSceneActors::UpdateInputs(vtkPartitionedDataSetCollection* textures)
+{
+  if (!textures)
+  {
+    vtkErrorMacro("UpdateInputs needs a texture collection.");
+    return false;
+  }
+  // Check every object first: a mismatch changes nothing.
+  for (const Entry& e : this->Entries)
+  {
+    vtkPartitionedDataSet* pds = e.Index < textures->GetNumberOfPartitionedDataSets()
+      ? textures->GetPartitionedDataSet(e.Index)
+      : nullptr;
+    vtkDataObject* first = pds && pds->GetNumberOfPartitions() > 0 ? pds->GetPartition(0) : nullptr;
+    const bool surface = e.Texture && KindOf(first) == "surface" &&
+      pds->GetNumberOfPartitions() >= 2 && vtkImageData::SafeDownCast(first) &&
+      vtkPolyData::SafeDownCast(pds->GetPartition(1));
+    const bool medium = e.Slices && KindOf(first) == "medium" && vtkImageData::SafeDownCast(first);
+    if (!surface && !medium)
+    {
+      vtkErrorMacro("Object " << e.Index << " does not match the props made by AddToRenderer().");
+      return false;
+    }
+  }
+  for (const Entry& e : this->Entries)
+  {
+    vtkPartitionedDataSet* pds = textures->GetPartitionedDataSet(e.Index);
+    auto* image = vtkImageData::SafeDownCast(pds->GetPartition(0));
+    if (e.Texture)
+    {
+      if (e.Texture->GetInput() != image)
+      {
+        e.Texture->SetInputData(image);
+      }
+      if (e.Surface->GetInput() != pds->GetPartition(1))
+      {
+        e.Surface->SetInputData(vtkPolyData::SafeDownCast(pds->GetPartition(1)));
+      }
+    }
+    else if (e.Slices->GetInput() != image)
+    {
+      e.Slices->SetInputData(image);
+    }
+  }
+  this->Input = textures;
+  return true;
+}
+
+void vtkBrumeSceneActors::SetMediaVisibility(bool visible)
+{
+  for (const Entry& e : this->Entries)
+  {
+    if (e.Volume)
+    {
+      e.Volume->SetVisibility(visible);
+    }
+  }
+}
+
 void vtkBrumeSceneActors::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "ShowMedia: " << this->ShowMedia << "\n";
+  os << indent << "BackfaceCulling: " << this->BackfaceCulling << "\n";
   os << indent << "Input: " << this->Input.Get() << "\n";
 }

@@ -25,6 +25,8 @@
 #include "vtkObject.h"
 #include "vtkSmartPointer.h" // For members
 
+#include <vector> // For the entries
+
 class vtkPartitionedDataSetCollection;
 class vtkPropCollection;
 class vtkRenderer;
@@ -49,6 +51,19 @@ public:
   vtkBooleanMacro(ShowMedia, bool);
   ///@}
 
+  ///@{
+  /**
+   * Cull the back of surfaces (default on). Their textures hold the light
+   * leaving their front side (the side their triangles' winding normal
+   * points to); seen from behind, a wall of a room is then cut away, and
+   * the inside stays visible from outside. Off shows the front's texture on
+   * both sides.
+   */
+  vtkSetMacro(BackfaceCulling, bool);
+  vtkGetMacro(BackfaceCulling, bool);
+  vtkBooleanMacro(BackfaceCulling, bool);
+  ///@}
+
   /**
    * Builds the props and adds them to the renderer. Returns false, with an
    * error, when an object of the input is not a reconstructed texture.
@@ -58,6 +73,18 @@ public:
   /// The props made by the last AddToRenderer().
   vtkPropCollection* GetProps();
 
+  /**
+   * Points the props made by AddToRenderer() at `textures`, a newer output
+   * of the same reconstruction (same objects, in the same order), and makes
+   * it the input. Only the textures that are new objects are uploaded again:
+   * after a view change, those of the view-dependent objects. Returns false,
+   * with an error, when the objects do not match the props.
+   */
+  bool UpdateInputs(vtkPartitionedDataSetCollection* textures);
+
+  /// Shows or hides the media's volumes made by AddToRenderer().
+  void SetMediaVisibility(bool visible);
+
 protected:
   vtkBrumeSceneActors();
   ~vtkBrumeSceneActors() override;
@@ -65,8 +92,12 @@ protected:
   vtkSmartPointer<vtkPartitionedDataSetCollection> Input;
   vtkSmartPointer<vtkPropCollection> Props;
   bool ShowMedia = true;
+  bool BackfaceCulling = true;
 
 private:
+  struct Entry;
+  std::vector<Entry> Entries;
+
   vtkBrumeSceneActors(const vtkBrumeSceneActors&) = delete;
   void operator=(const vtkBrumeSceneActors&) = delete;
 };

@@ -1,0 +1,438 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "BrumeView.h"
+#include "BrumeProgress.h"
+
+#include "vtkBrumeDisplayPass.h"
+#include "vtkBrumeLightTracer.h"
+#include "vtkBrumeRadianceReconstruction.h"
+#include "vtkBrumeSceneActors.h"
+#include "vtkBrumeSceneConversion.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCamera.h"
+#include "vtkExecutive.h"
+#include "vtkInteractorStyleTrackballCamera.h"
+#include "vtkNew.h"
+#include "vtkPNGWriter.h"
+#include "vtkPartitionedDataSetCollection.h"
+#include "vtkPolyData.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderWindowInteractor.h"
+#include "vtkRenderer.h"
+#include "vtkTextActor.h"
+#include "vtkTextProperty.h"
+#include "vtkWindowToImageFilter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <vector>
+
+namespace
+{
+using Clock = std::chrono::steady_clock;
+
+double Milliseconds(Clock::time_point start)
+{
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// The q-quantile of the values (nearest rank).
+double Quantile(std::vector<double> values, double q)
+{
+  if (values.empty())
+  {
+    return 0.0;
+  }
+  std::sort(values.begin(), values.end());
+  const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(values.size())));
+  return values[std::min(values.size() - 1, rank > 0 ? rank - 1 : 0)];
+}
+
+std::string Thousands(long long n)
+{
+  std::string digits = std::to_string(n), out;
+  for (std::size_t i = 0; i < digits.size(); ++i)
+  {
+    if (i > 0 && (digits.size() - i) % 3 == 0)
+    {
+      out += ',';
+    }
+    out += digits[i];
+  }
+  return out;
+}
+
+// The three phases behind a window: tracing once (and progressively more),
+// reconstruction before every frame, rendering.
+class Viewer
+{
+public:
+  explicit Viewer(const ViewOptions& options)
+    : Options(options)
+    , Particles(options.Render.Particles)
+  {
+  }
+
+  bool Start(vtkAlgorithm* scene)
+  {
+    this->Tracer->SetInputConnection(scene->GetOutputPort());
+    this->Tracer->SetSeed(static_cast<vtkIdType>(this->Options.Render.Seed));
+    BrumeShowProgress(this->Tracer, "particle tracing");
+    if (!this->Trace(0, this->Particles))
+    {
+      return false;
+    }
+    double position[3] = { 0, 0, 4 }, focal[3] = { 0, 0, 0 }, up[3] = { 0, 1, 0 }, angle = 40;
+    vtkBrumeSceneConversion::GetCamera(scene->GetOutputDataObject(0), position, focal, up, angle);
+    vtkCamera* camera = this->Renderer->GetActiveCamera();
+    camera->SetPosition(position);
+    camera->SetFocalPoint(focal);
+    camera->SetViewUp(up);
+    camera->SetViewAngle(angle);
+
+    this->Reconstruction->SetInputConnection(0, scene->GetOutputPort());
+    this->Reconstruction->SetInputConnection(1, this->Tracer->GetOutputPort());
+    this->Reconstruction->SetCamera(camera);
+    this->Reconstruction->SetRadiosityThreshold(this->Options.Render.Threshold);
+    this->Reconstruction->AccumulateParticlesOn();
+    this->Reconstruction->SetDirectionalRadiance(this->Options.Directional);
+    this->Reconstruction->SetDirectionalOrder(this->Options.Order);
+    if (!this->Reconstruction->GetExecutive()->Update())
+    {
+      std::cerr << "brume: reconstruction failed.\n";
+      return false;
+    }
+
+    this->Renderer->SetBackground(0, 0, 0);
+    this->Display->SetExposure(this->Options.Render.Exposure);
+    this->Renderer->SetPass(this->Display);
+    this->Window->SetMultiSamples(0);
+    this->Window->SetSize(this->Options.Render.Width, this->Options.Render.Height);
+    this->Window->SetWindowName("Brume");
+    this->Window->AddRenderer(this->Renderer);
+    this->Actors->SetInputData(this->Reconstruction->GetOutput());
+    if (!this->Actors->AddToRenderer(this->Renderer))
+    {
+      return false;
+    }
+    this->Overlay->GetTextProperty()->SetFontSize(12);
+    this->Overlay->GetTextProperty()->SetColor(1.0, 1.0, 0.6);
+    this->Overlay->SetDisplayPosition(8, 8);
+    this->Overlay->SetVisibility(this->Options.Overlay);
+    this->Renderer->AddActor2D(this->Overlay);
+    this->Renderer->ResetCameraClippingRange();
+    this->ShowOverlay();
+    return true;
+  }
+
+  // Traces particles [first, total) of a run of `total`.
+  bool Trace(long long first, long long total)
+  {
+    const auto start = Clock::now();
+    this->Tracer->SetFirstParticle(first);
+    this->Tracer->SetNumberOfParticles(total);
+    if (!this->Tracer->GetExecutive()->Update())
+    {
+      std::cerr << "brume: particle tracing failed.\n";
+      return false;
+    }
+    this->LastTrace = Milliseconds(start);
+    this->Particles = total;
+    return true;
+  }
+
+  // Brings the textures up to date with the camera and the settings; false
+  // on failure. Only what changed is recomputed and uploaded.
+  bool Update()
+  {
+    const auto start = Clock::now();
+    this->Renderer->ResetCameraClippingRange();
+    if (!this->Reconstruction->GetExecutive()->Update() ||
+      !this->Actors->UpdateInputs(this->Reconstruction->GetOutput()))
+    {
+      std::cerr << "brume: reconstruction failed.\n";
+      return false;
+    }
+    this->LastUpdate = Milliseconds(start);
+    return true;
+  }
+
+  // A frame: update, then render to completion; the times are kept.
+  bool Frame()
+  {
+    if (!this->Update())
+    {
+      return false;
+    }
+    const auto start = Clock::now();
+    this->Window->Render();
+    this->Window->WaitForCompletion();
+    this->LastRender = Milliseconds(start);
+    return true;
+  }
+
+  // The viewer's keys; false if the key is not one of them.
+  bool Key(char key)
+  {
+    switch (key)
+    {
+      case 'p':
+      case '+':
+        // Progressive: the next particles are added to the histograms.
+        if (this->Particles > 5000000000LL || !this->Trace(this->Particles, 2 * this->Particles))
+        {
+          std::cerr << "brume: cannot add particles.\n";
+        }
+        break;
+      case 'd':
+        this->Reconstruction->SetDirectionalRadiance(
+          !this->Reconstruction->GetDirectionalRadiance());
+        break;
+      case 'm':
+        this->MediaVisible = !this->MediaVisible;
+        this->Actors->SetMediaVisibility(this->MediaVisible);
+        break;
+      case 's':
+        this->Screenshot();
+        break;
+      default:
+        return false;
+    }
+    this->ShowOverlay();
+    return true;
+  }
+
+  bool Save(const std::string& file)
+  {
+    vtkNew<vtkWindowToImageFilter> grab;
+    grab->SetInput(this->Window);
+    grab->ReadFrontBufferOff();
+    vtkNew<vtkPNGWriter> writer;
+    writer->SetFileName(file.c_str());
+    writer->SetInputConnection(grab->GetOutputPort());
+    writer->Write();
+    if (writer->GetErrorCode() != 0)
+    {
+      std::cerr << "brume: could not write " << file << "\n";
+      return false;
+    }
+    return true;
+  }
+
+  void Screenshot()
+  {
+    char name[64];
+    std::snprintf(name, sizeof(name), "brume-view-%04d.png", this->Screenshots++);
+    if (this->Save(name))
+    {
+      std::cout << "saved " << name << "\n";
+    }
+  }
+
+  void ShowOverlay()
+  {
+    char text[512];
+    std::snprintf(text, sizeof(text),
+      "%s particles (traced in %.2f s)   media: %s\n"
+      "last frame: update %.1f ms, render %.1f ms\n"
+      "p more particles   d paper / SH   m medium   s screenshot   q quit",
+      Thousands(this->Particles).c_str(), this->LastTrace / 1000.0,
+      this->Reconstruction->GetDirectionalRadiance() ? "spherical harmonics" : "per view (paper)",
+      this->LastUpdate, this->LastRender);
+    this->Overlay->SetInput(text);
+  }
+
+  const ViewOptions& Options;
+  long long Particles;
+  double LastUpdate = 0.0, LastRender = 0.0, LastTrace = 0.0;
+  bool MediaVisible = true;
+  int Screenshots = 0;
+  vtkNew<vtkBrumeLightTracer> Tracer;
+  vtkNew<vtkBrumeRadianceReconstruction> Reconstruction;
+  vtkNew<vtkRenderer> Renderer;
+  vtkNew<vtkRenderWindow> Window;
+  vtkNew<vtkBrumeDisplayPass> Display;
+  vtkNew<vtkBrumeSceneActors> Actors;
+  vtkNew<vtkTextActor> Overlay;
+};
+
+// N frames around the focal point, each timed; prints medians and 95th
+// percentiles and the work the reconstruction did during the orbit.
+int Orbit(Viewer& viewer, const ViewOptions& options)
+{
+  if (!options.FramesOut.empty())
+  {
+    std::error_code error;
+    std::filesystem::create_directories(options.FramesOut, error);
+    if (error)
+    {
+      std::cerr << "brume: cannot create " << options.FramesOut << ": " << error.message() << "\n";
+      return 1;
+    }
+  }
+  // The first frame compiles shaders and uploads every texture: not counted.
+  if (!viewer.Frame())
+  {
+    return 1;
+  }
+  vtkBrumeRadianceReconstruction* reconstruction = viewer.Reconstruction;
+  const vtkIdType builds = reconstruction->GetNumberOfTextureBuilds();
+  const vtkIdType updates = reconstruction->GetNumberOfViewUpdates();
+  std::vector<double> update, render, total;
+  std::ofstream csv;
+  if (!options.Csv.empty())
+  {
+    csv.open(options.Csv);
+    if (!csv)
+    {
+      std::cerr << "brume: cannot write " << options.Csv << "\n";
+      return 1;
+    }
+    csv << "frame,update_ms,render_ms\n";
+  }
+  for (int k = 0; k < options.Orbit; ++k)
+  {
+    viewer.Renderer->GetActiveCamera()->Azimuth(360.0 / options.Orbit);
+    viewer.Renderer->GetActiveCamera()->OrthogonalizeViewUp();
+    if (!viewer.Frame())
+    {
+      return 1;
+    }
+    update.push_back(viewer.LastUpdate);
+    render.push_back(viewer.LastRender);
+    total.push_back(viewer.LastUpdate + viewer.LastRender);
+    if (csv)
+    {
+      csv << k << ',' << viewer.LastUpdate << ',' << viewer.LastRender << '\n';
+    }
+    if (!options.FramesOut.empty())
+    {
+      char name[32];
+      std::snprintf(name, sizeof(name), "/frame_%04d.png", k);
+      if (!viewer.Save(options.FramesOut + name))
+      {
+        return 1;
+      }
+    }
+    viewer.ShowOverlay();
+  }
+  std::printf("orbit: %d frames at %dx%d, media %s, %s particles\n", options.Orbit,
+    options.Render.Width, options.Render.Height,
+    reconstruction->GetDirectionalRadiance() ? "spherical harmonics" : "per view (paper)",
+    Thousands(viewer.Particles).c_str());
+  std::printf("per frame        median (ms)   95th percentile (ms)\n");
+  std::printf("update           %11.2f   %20.2f\n", Quantile(update, 0.5), Quantile(update, 0.95));
+  std::printf("render           %11.2f   %20.2f\n", Quantile(render, 0.5), Quantile(render, 0.95));
+  std::printf("update + render  %11.2f   %20.2f\n", Quantile(total, 0.5), Quantile(total, 0.95));
+  std::printf("texture builds during the orbit: %lld\n",
+    static_cast<long long>(reconstruction->GetNumberOfTextureBuilds() - builds));
+  std::printf("view-dependent texture updates during the orbit: %lld\n",
+    static_cast<long long>(reconstruction->GetNumberOfViewUpdates() - updates));
+  return 0;
+}
+}
+
+int RunView(const ViewOptions& options)
+{
+  ViewOptions resolved = options;
+  // The scene first: a bad file is reported with or without a display.
+  const vtkSmartPointer<vtkAlgorithm> scene = LoadScene(resolved.Render);
+  if (!scene)
+  {
+    return 1;
+  }
+  const char* display = std::getenv("DISPLAY");
+  if (!display || !*display)
+  {
+    std::cerr << "brume: the viewer needs an X display (none is set in DISPLAY); on a headless "
+                 "machine run an orbit under 'xvfb-run -a'.\n";
+    return 1;
+  }
+  Viewer viewer(resolved);
+  if (resolved.Orbit > 0)
+  {
+    viewer.Window->SetOffScreenRendering(1);
+  }
+  if (!viewer.Start(scene))
+  {
+    return 1;
+  }
+  for (const char key : resolved.Keys)
+  {
+    if (key == 's' || !viewer.Key(key))
+    {
+      std::cerr << "brume: --keys accepts p, d and m, not '" << key << "'.\n";
+      return 2;
+    }
+  }
+  if (resolved.Orbit > 0)
+  {
+    return Orbit(viewer, resolved);
+  }
+
+  // Interactive: before each frame the textures follow the camera; after it
+  // the overlay shows what the frame cost.
+  vtkNew<vtkRenderWindowInteractor> interactor;
+  vtkNew<vtkInteractorStyleTrackballCamera> style;
+  interactor->SetInteractorStyle(style);
+  interactor->SetRenderWindow(viewer.Window);
+  Clock::time_point frameStart;
+  bool failed = false;
+  vtkNew<vtkCallbackCommand> before, after, keys;
+  struct Hooks
+  {
+    Viewer* View;
+    Clock::time_point* Start;
+    bool* Failed;
+  } hooks{ &viewer, &frameStart, &failed };
+  before->SetClientData(&hooks);
+  before->SetCallback(
+    [](vtkObject*, unsigned long, void* data, void*)
+    {
+      auto* h = static_cast<Hooks*>(data);
+      if (!h->View->Update())
+      {
+        *h->Failed = true;
+        h->View->Window->GetInteractor()->TerminateApp();
+      }
+      *h->Start = Clock::now();
+    });
+  after->SetClientData(&hooks);
+  after->SetCallback(
+    [](vtkObject*, unsigned long, void* data, void*)
+    {
+      auto* h = static_cast<Hooks*>(data);
+      h->View->LastRender = Milliseconds(*h->Start);
+      h->View->ShowOverlay();
+    });
+  struct KeyHook
+  {
+    Viewer* View;
+    vtkCallbackCommand* Command;
+  } keyHook{ &viewer, keys };
+  keys->SetClientData(&keyHook);
+  keys->SetCallback(
+    [](vtkObject* caller, unsigned long, void* data, void*)
+    {
+      auto* hook = static_cast<KeyHook*>(data);
+      auto* source = static_cast<vtkRenderWindowInteractor*>(caller);
+      if (hook->View->Key(source->GetKeyCode()))
+      {
+        hook->Command->SetAbortFlag(1); // the style's own meaning of the key is not wanted
+        source->Render();
+      }
+    });
+  viewer.Window->AddObserver(vtkCommand::StartEvent, before);
+  viewer.Window->AddObserver(vtkCommand::EndEvent, after);
+  // Before the style's own keys (p picks, s shows surfaces).
+  interactor->AddObserver(vtkCommand::CharEvent, keys, 1.0);
+  interactor->Initialize();
+  viewer.Window->Render();
+  interactor->Start();
+  return failed ? 1 : 0;
+}

@@ -1,0 +1,25 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// `brume view`: the interactive viewer and its scripted orbit.
+#ifndef BrumeView_h
+#define BrumeView_h
+
+#include "BrumeRender.h"
+
+#include <string>
+
+struct ViewOptions
+{
+  RenderOptions Render;    // scene, particles, seed, size, exposure, threshold
+  bool Directional = false; // spherical-harmonics media instead of per-view textures
+  int Order = 0;            // their order (0: chosen from g)
+  int Orbit = 0;            // frames of a scripted orbit (0: interactive)
+  std::string FramesOut;    // with Orbit: where frame_NNNN.png go
+  std::string Csv;          // with Orbit: per-frame timings
+  std::string Keys;         // keys pressed before the orbit or the interaction
+  bool Overlay = true;      // the text overlay
+};
+
+/// Runs the viewer; returns the process exit code.
+int RunView(const ViewOptions& options);
+
+#endif

@@ -1,0 +1,127 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkBrumeDisplayPass.h"
+
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLQuadHelper.h"
+#include "vtkOpenGLRenderUtilities.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkRenderState.h"
+#include "vtkRenderStepsPass.h"
+#include "vtkRenderer.h"
+#include "vtkShaderProgram.h"
+#include "vtkSmartPointer.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+vtkStandardNewMacro(vtkBrumeDisplayPass);
+
+struct vtkBrumeDisplayPass::Internals
+{
+  vtkSmartPointer<vtkOpenGLFramebufferObject> Framebuffer;
+  vtkSmartPointer<vtkTextureObject> Color;
+  std::unique_ptr<vtkOpenGLQuadHelper> Quad;
+};
+
+vtkBrumeDisplayPass::vtkBrumeDisplayPass()
+  : Impl(new Internals)
+{
+  vtkNew<vtkRenderStepsPass> steps;
+  this->SetDelegatePass(steps);
+}
+
+vtkBrumeDisplayPass::~vtkBrumeDisplayPass() = default;
+
+void vtkBrumeDisplayPass::Render(const vtkRenderState* s)
+{
+  this->NumberOfRenderedProps = 0;
+  if (!this->DelegatePass)
+  {
+    vtkErrorMacro("No delegate pass: nothing drawn.");
+    return;
+  }
+  vtkRenderer* renderer = s->GetRenderer();
+  auto* window = static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow());
+  vtkOpenGLState* state = window->GetState();
+  vtkOpenGLState::ScopedglEnableDisable blendSaver(state, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable depthSaver(state, GL_DEPTH_TEST);
+  Internals& impl = *this->Impl;
+
+  // The delegate draws radiance into a float texture.
+  int x, y, w, h;
+  renderer->GetTiledSizeAndOrigin(&w, &h, &x, &y);
+  if (!impl.Color)
+  {
+    impl.Color = vtkSmartPointer<vtkTextureObject>::New();
+    impl.Color->SetContext(window);
+    impl.Color->SetMinificationFilter(vtkTextureObject::Nearest);
+    impl.Color->SetMagnificationFilter(vtkTextureObject::Nearest);
+    impl.Color->Allocate2D(w, h, 4, VTK_FLOAT);
+  }
+  impl.Color->Resize(w, h);
+  if (!impl.Framebuffer)
+  {
+    impl.Framebuffer = vtkSmartPointer<vtkOpenGLFramebufferObject>::New();
+    impl.Framebuffer->SetContext(window);
+  }
+  state->PushFramebufferBindings();
+  this->RenderDelegate(s, w, h, w, h, impl.Framebuffer, impl.Color);
+  state->PopFramebufferBindings();
+
+  // Then exposure, clamp and the sRGB curve, as vtkBrumeFloatImageCapture::ToneMap.
+  if (!impl.Quad)
+  {
+    std::string fs = vtkOpenGLRenderUtilities::GetFullScreenQuadFragmentShaderTemplate();
+    vtkShaderProgram::Substitute(
+      fs, "//VTK::FSQ::Decl", "uniform sampler2D radiance;\nuniform float exposure;\n");
+    vtkShaderProgram::Substitute(fs, "//VTK::FSQ::Impl",
+      "  vec3 x = clamp(exposure * texture2D(radiance, texCoord).rgb, 0.0, 1.0);\n"
+      "  vec3 low = 12.92 * x;\n"
+      "  vec3 high = 1.055 * pow(x, vec3(1.0 / 2.4)) - 0.055;\n"
+      "  gl_FragData[0] = vec4(mix(high, low, vec3(lessThanEqual(x, vec3(0.0031308)))), 1.0);\n");
+    impl.Quad.reset(new vtkOpenGLQuadHelper(
+      window, vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(), fs.c_str(), ""));
+  }
+  else
+  {
+    window->GetShaderCache()->ReadyShaderProgram(impl.Quad->Program);
+  }
+  if (!impl.Quad->Program || !impl.Quad->Program->GetCompiled())
+  {
+    vtkErrorMacro("Could not build the display shader: nothing drawn.");
+    return;
+  }
+  impl.Color->Activate();
+  impl.Quad->Program->SetUniformi("radiance", impl.Color->GetTextureUnit());
+  impl.Quad->Program->SetUniformf("exposure", static_cast<float>(this->Exposure));
+  state->vtkglDisable(GL_BLEND);
+  state->vtkglDisable(GL_DEPTH_TEST);
+  state->vtkglViewport(x, y, w, h);
+  state->vtkglScissor(x, y, w, h);
+  impl.Quad->Render();
+  impl.Color->Deactivate();
+}
+
+void vtkBrumeDisplayPass::ReleaseGraphicsResources(vtkWindow* w)
+{
+  this->Superclass::ReleaseGraphicsResources(w);
+  this->Impl->Quad.reset();
+  if (this->Impl->Framebuffer)
+  {
+    this->Impl->Framebuffer->ReleaseGraphicsResources(w);
+  }
+  this->Impl->Framebuffer = nullptr;
+  if (this->Impl->Color)
+  {
+    this->Impl->Color->ReleaseGraphicsResources(w);
+  }
+  this->Impl->Color = nullptr;
+}
+
+void vtkBrumeDisplayPass::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Exposure: " << this->Exposure << "\n";
+}

@@ -1,0 +1,56 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkBrumeDisplayPass
+ * @brief   shows radiance on screen with Brume's display transform
+ *
+ * A render pass that draws its delegate (by default the standard render
+ * steps) into a 32-bit float framebuffer, then shows it with the transform
+ * `brume render` applies to PNG files (vtkBrumeFloatImageCapture::ToneMap):
+ * multiply by Exposure, clamp to [0, 1], apply the sRGB transfer curve. An
+ * interactive window then looks like the images Brume writes.
+ *
+ * @code
+ * vtkNew<vtkBrumeDisplayPass> display;
+ * display->SetExposure(1.5);
+ * renderer->SetPass(display);
+ * @endcode
+ */
+#ifndef vtkBrumeDisplayPass_h
+#define vtkBrumeDisplayPass_h
+
+#include "vtkBrumeRenderingOpenGL2Module.h" // For export macro
+#include "vtkImageProcessingPass.h"
+
+#include <memory> // For the internals
+
+class VTKBRUMERENDERINGOPENGL2_EXPORT vtkBrumeDisplayPass : public vtkImageProcessingPass
+{
+public:
+  static vtkBrumeDisplayPass* New();
+  vtkTypeMacro(vtkBrumeDisplayPass, vtkImageProcessingPass);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// Multiplier of the radiance before clamping (default 1, non-negative).
+  vtkSetClampMacro(Exposure, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(Exposure, double);
+  ///@}
+
+  void Render(const vtkRenderState* s) override;
+  void ReleaseGraphicsResources(vtkWindow* w) override;
+
+protected:
+  vtkBrumeDisplayPass();
+  ~vtkBrumeDisplayPass() override;
+
+  double Exposure = 1.0;
+
+private:
+  struct Internals;
+  std::unique_ptr<Internals> Impl;
+
+  vtkBrumeDisplayPass(const vtkBrumeDisplayPass&) = delete;
+  void operator=(const vtkBrumeDisplayPass&) = delete;
+};
+
+#endif
