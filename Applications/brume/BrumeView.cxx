@@ -183,8 +183,10 @@ public:
     {
       case 'p':
       case '+':
-        // Progressive: the next particles are added to the histograms.
-        if (this->Particles > 5000000000LL || !this->Trace(this->Particles, 2 * this->Particles))
+        // Progressive: the next particles are added to the histograms (at
+        // once: the reconstruction holds the hits of one step at a time).
+        if (this->Particles > 5000000000LL || !this->Trace(this->Particles, 2 * this->Particles) ||
+          !this->Update())
         {
           std::cerr << "brume: cannot add particles.\n";
         }
