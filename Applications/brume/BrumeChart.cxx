@@ -174,7 +174,7 @@ vtkSmartPointer<vtkImageData> Downsample(vtkImageData* image, int factor)
 constexpr int Supersampling = 4;
 
 PipelineRun Pipeline(vtkAlgorithm* scene, const View& view, int width, int height,
-  long long particles, double threshold, std::uint64_t seed)
+  long long particles, double threshold, std::uint64_t seed, bool directional = false)
 {
   PipelineRun run;
   width *= Supersampling;
@@ -204,6 +204,7 @@ PipelineRun Pipeline(vtkAlgorithm* scene, const View& view, int width, int heigh
   reconstruction->SetInputConnection(1, tracer->GetOutputPort());
   reconstruction->SetCamera(camera);
   reconstruction->SetRadiosityThreshold(threshold);
+  reconstruction->SetDirectionalRadiance(directional);
   reconstruction->Update();
   vtkNew<vtkBrumeSceneActors> actors;
   actors->SetInputData(reconstruction->GetOutput());
@@ -220,9 +221,7 @@ PipelineRun Pipeline(vtkAlgorithm* scene, const View& view, int width, int heigh
   camera->Azimuth(2.0);
   const auto viewStart = std::chrono::steady_clock::now();
   reconstruction->Update();
-  renderer->RemoveAllViewProps();
-  actors->SetInputData(reconstruction->GetOutput());
-  actors->AddToRenderer(renderer);
+  actors->UpdateInputs(reconstruction->GetOutput());
   window->Render();
   window->WaitForCompletion();
   run.NewView = Seconds(viewStart);
@@ -294,8 +293,8 @@ bool DrawChart(const std::map<std::string, std::vector<std::pair<double, double>
   chart->GetAxis(vtkAxis::BOTTOM)->SetLogScale(logX);
   chart->GetAxis(vtkAxis::LEFT)->SetLogScale(true);
   chart->SetShowLegend(true);
-  const unsigned char colours[4][3] = { { 31, 119, 180 }, { 255, 127, 14 }, { 44, 160, 44 },
-    { 214, 39, 40 } };
+  const unsigned char colours[6][3] = { { 31, 119, 180 }, { 255, 127, 14 }, { 44, 160, 44 },
+    { 214, 39, 40 }, { 148, 103, 189 }, { 140, 86, 75 } };
   int k = 0;
   for (const auto& curve : curves)
   {
@@ -312,7 +311,7 @@ bool DrawChart(const std::map<std::string, std::vector<std::pair<double, double>
     table->AddColumn(y);
     vtkPlot* line = chart->AddPlot(vtkChart::LINE);
     line->SetInputData(table, 0, 1);
-    line->SetColor(colours[k % 4][0], colours[k % 4][1], colours[k % 4][2], 255);
+    line->SetColor(colours[k % 6][0], colours[k % 6][1], colours[k % 6][2], 255);
     line->SetWidth(2.0);
     ++k;
   }
@@ -480,10 +479,10 @@ int RunSweep(const ChartOptions& options)
     return 1;
   }
   csv << "parameter,value,pipeline_seconds,pipeline_rel_mae,pathtracer_spp,pathtracer_seconds,"
-         "pathtracer_rel_mae,finite\n";
-  std::printf(
-    "| parameter | value | pipeline rel. MAE | path tracer rel. MAE (same time) | time (s) |\n");
-  std::printf("|---|---|---:|---:|---:|\n");
+         "pathtracer_rel_mae,finite,pipeline_sh_rel_mae\n";
+  std::printf("| parameter | value | pipeline rel. MAE | SH media rel. MAE | path tracer rel. MAE "
+              "(same time) | time (s) |\n");
+  std::printf("|---|---|---:|---:|---:|---:|\n");
   const View view;
   const int w = options.Width, h = options.Height;
   std::map<std::string, std::vector<std::pair<double, double>>> curves;
@@ -513,13 +512,20 @@ int RunSweep(const ChartOptions& options)
     double ptSeconds = 0;
     auto pt = Reference(producer, view, w, h, spp, options.Seed, ptSeconds);
     const Errors tracer = Compare(pt, converged, mask);
-    const bool finite = Finite(run.Radiance) && Finite(pt) && Finite(converged);
+    // The same budget with directional (spherical-harmonics) media.
+    const PipelineRun sh =
+      Pipeline(producer, view, w, h, k.Particles, options.Threshold, options.Seed, true);
+    const Errors directional = Compare(sh.Radiance, converged, mask);
+    const bool finite =
+      Finite(run.Radiance) && Finite(sh.Radiance) && Finite(pt) && Finite(converged);
     allFinite = allFinite && finite;
     csv << k.Parameter << "," << k.Value << "," << run.Full << "," << pipeline.Mae << "," << spp
-        << "," << ptSeconds << "," << tracer.Mae << "," << (finite ? 1 : 0) << "\n";
-    std::printf("| %s | %s | %.3f | %.3f | %.2f |\n", k.Parameter.c_str(), k.Value.c_str(),
-      pipeline.Mae, tracer.Mae, run.Full);
+        << "," << ptSeconds << "," << tracer.Mae << "," << (finite ? 1 : 0) << ","
+        << directional.Mae << "\n";
+    std::printf("| %s | %s | %.3f | %.3f | %.3f | %.2f |\n", k.Parameter.c_str(), k.Value.c_str(),
+      pipeline.Mae, directional.Mae, tracer.Mae, run.Full);
     curves["pipeline"].emplace_back(static_cast<double>(c + 1), pipeline.Mae);
+    curves["pipeline, SH media"].emplace_back(static_cast<double>(c + 1), directional.Mae);
     curves["path-tracer, same time"].emplace_back(static_cast<double>(c + 1), tracer.Mae);
   }
   csv.close();
@@ -616,6 +622,12 @@ int RunChart(const ChartOptions& options)
     const Errors e = Compare(run.Radiance, converged, mask);
     record("pipeline", static_cast<double>(particles), run.Full, e);
     record("pipeline-new-view", static_cast<double>(particles), run.NewView, e);
+    // Directional media: a new view is a render alone.
+    const PipelineRun sh =
+      Pipeline(scene, view, w, h, particles, options.Threshold, options.Seed, true);
+    const Errors d = Compare(sh.Radiance, converged, mask);
+    record("pipeline-sh", static_cast<double>(particles), sh.Full, d);
+    record("pipeline-sh-new-view", static_cast<double>(particles), sh.NewView, d);
   }
   for (int spp = 1; spp <= options.MaxSamples; spp *= 4)
   {

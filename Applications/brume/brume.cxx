@@ -106,14 +106,17 @@ vtkGPUVolumeRayCastMapper.
 const char* ChartHelp = R"(usage: brume chart [-o chart.png] [--csv chart.csv] [options]
 
 Renders the built-in scene with the three-phase pipeline at a ladder of
-particle budgets and with the path tracer at a ladder of samples per pixel,
+particle budgets (media per view, as in the paper, and as spherical
+harmonics) and with the path tracer at a ladder of samples per pixel,
 measures each image's error against a converged reference (cached on disk)
 and draws error against time, log-log, with VTK's charts. Needs a display
 (xvfb-run -a).
 
   -o FILE             the chart (PNG, default chart.png)
-  --csv FILE          the measurements (default chart.csv): method, budget,
-                      seconds, rel_mae, rel_rmse, rel_mae_medium, rel_rmse_medium
+  --csv FILE          the measurements (default chart.csv): method (pipeline,
+                      pipeline-new-view, pipeline-sh, pipeline-sh-new-view,
+                      path-tracer), budget, seconds, rel_mae, rel_rmse,
+                      rel_mae_medium, rel_rmse_medium
   --size WxH          image size (default 128x128)
   --particles A:B     the pipeline's ladder, by powers of 10 (default 10000:10000000)
   --max-spp N         the path tracer's ladder, by powers of 4 (default 1024)
@@ -126,7 +129,7 @@ and draws error against time, log-log, with VTK's charts. Needs a display
                       pipeline's error and the path tracer's at the same time
                       (CSV: parameter, value, pipeline_seconds,
                       pipeline_rel_mae, pathtracer_spp, pathtracer_seconds,
-                      pathtracer_rel_mae, finite)
+                      pathtracer_rel_mae, finite, pipeline_sh_rel_mae)
 )";
 
 // The help of the command being parsed (for usage errors).
