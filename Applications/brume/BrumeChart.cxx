@@ -174,7 +174,8 @@ vtkSmartPointer<vtkImageData> Downsample(vtkImageData* image, int factor)
 constexpr int Supersampling = 4;
 
 PipelineRun Pipeline(vtkAlgorithm* scene, const View& view, int width, int height,
-  long long particles, double threshold, std::uint64_t seed, bool directional = false)
+  long long particles, double threshold, std::uint64_t seed, bool directional = false,
+  int order = 0)
 {
   PipelineRun run;
   width *= Supersampling;
@@ -205,6 +206,7 @@ PipelineRun Pipeline(vtkAlgorithm* scene, const View& view, int width, int heigh
   reconstruction->SetCamera(camera);
   reconstruction->SetRadiosityThreshold(threshold);
   reconstruction->SetDirectionalRadiance(directional);
+  reconstruction->SetDirectionalOrder(order);
   reconstruction->Update();
   vtkNew<vtkBrumeSceneActors> actors;
   actors->SetInputData(reconstruction->GetOutput());
@@ -356,6 +358,7 @@ vtkSmartPointer<vtkImageData> CachedReference(vtkAlgorithm* scene, const View& v
   vtkNew<vtkXMLImageDataWriter> writer;
   writer->SetFileName(cached.string().c_str());
   writer->SetInputData(image);
+  writer->SetDataModeToBinary(); // readable despite expat reparse deferral (see README)
   writer->Write();
   return image;
 }
@@ -514,7 +517,8 @@ int RunSweep(const ChartOptions& options)
     const Errors tracer = Compare(pt, converged, mask);
     // The same budget with directional (spherical-harmonics) media.
     const PipelineRun sh =
-      Pipeline(producer, view, w, h, k.Particles, options.Threshold, options.Seed, true);
+      Pipeline(producer, view, w, h, k.Particles, options.Threshold, options.Seed, true,
+        options.ShOrder);
     const Errors directional = Compare(sh.Radiance, converged, mask);
     const bool finite =
       Finite(run.Radiance) && Finite(sh.Radiance) && Finite(pt) && Finite(converged);
@@ -590,6 +594,7 @@ int RunChart(const ChartOptions& options)
     vtkNew<vtkXMLImageDataWriter> writer;
     writer->SetFileName(cached.string().c_str());
     writer->SetInputData(converged);
+    writer->SetDataModeToBinary(); // readable despite expat reparse deferral (see README)
     writer->Write();
     std::cerr << "brume: converged reference (" << options.ReferenceSamples << " spp) in "
               << seconds << " s, cached in " << cached << "\n";
@@ -624,7 +629,7 @@ int RunChart(const ChartOptions& options)
     record("pipeline-new-view", static_cast<double>(particles), run.NewView, e);
     // Directional media: a new view is a render alone.
     const PipelineRun sh =
-      Pipeline(scene, view, w, h, particles, options.Threshold, options.Seed, true);
+      Pipeline(scene, view, w, h, particles, options.Threshold, options.Seed, true, options.ShOrder);
     const Errors d = Compare(sh.Radiance, converged, mask);
     record("pipeline-sh", static_cast<double>(particles), sh.Full, d);
     record("pipeline-sh-new-view", static_cast<double>(particles), sh.NewView, d);

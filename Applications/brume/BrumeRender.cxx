@@ -126,6 +126,7 @@ int WriteImage(vtkImageData* radiance, const RenderOptions& options, bool png)
     vtkNew<vtkXMLImageDataWriter> writer;
     writer->SetFileName(partial.c_str());
     writer->SetInputData(radiance);
+    writer->SetDataModeToBinary(); // readable despite expat reparse deferral (see README)
     ok = writer->Write() != 0;
   }
   std::error_code error;

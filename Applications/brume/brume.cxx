@@ -120,6 +120,8 @@ and draws error against time, log-log, with VTK's charts. Needs a display
   --size WxH          image size (default 128x128)
   --particles A:B     the pipeline's ladder, by powers of 10 (default 10000:10000000)
   --max-spp N         the path tracer's ladder, by powers of 4 (default 1024)
+  --sh-order N        order of the spherical-harmonics rows: 1 to 3, or auto
+                      (default, chosen from g)
   --reference-spp N   samples per pixel of the converged reference (default 16384)
   --cache DIR         where converged references are kept (default
                       $XDG_CACHE_HOME/brume or ~/.cache/brume)
@@ -571,6 +573,14 @@ int Chart(int argc, char* argv[])
     else if (arg == "--sweep")
     {
       options.Sweep = true;
+    }
+    else if (arg == "--sh-order")
+    {
+      if (!args.Value(v) || (v != "auto" && !ParseInteger(v, 1, 3, a)))
+      {
+        return UsageError("--sh-order needs auto, 1, 2 or 3");
+      }
+      options.ShOrder = v == "auto" ? 0 : static_cast<int>(a);
     }
     else if (arg == "--max-spp" || arg == "--reference-spp")
     {

@@ -96,6 +96,7 @@ void vtkBrumeSceneWriter::WriteData()
       vtkNew<vtkXMLPolyDataWriter> writer;
       writer->SetFileName((path.parent_path() / file).string().c_str());
       writer->SetInputData(surface);
+      writer->SetDataModeToBinary(); // readable despite expat reparse deferral (see README)
       if (!writer->Write())
       {
         vtkErrorMacro("Cannot write " << file << ".");
@@ -169,6 +170,7 @@ void vtkBrumeSceneWriter::WriteData()
         vtkNew<vtkXMLImageDataWriter> writer;
         writer->SetFileName((path.parent_path() / file).string().c_str());
         writer->SetInputData(medium);
+        writer->SetDataModeToBinary(); // readable despite expat reparse deferral (see README)
         if (!writer->Write())
         {
           vtkErrorMacro("Cannot write " << file << ".");

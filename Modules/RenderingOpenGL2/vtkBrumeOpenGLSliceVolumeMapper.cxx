@@ -156,26 +156,45 @@ vec3 directionalSource()
     sum += gl * band;
     gl *= phaseG;
   }
-  // The bands beyond the order, from the lobe with the same first moment.
+  // The bands beyond the order, from an isotropic part plus a lobe fitted
+  // to the first two moments (brume::EvaluateHgFromSh).
   for (int c = 0; c < 3; ++c)
   {
     float total = v[c] / 0.282094792;
     vec3 moment = vec3(v[9 + c], v[3 + c], v[6 + c]) / 0.488602512;
     float len = length(moment);
-    if (total > 0.0 && len > 0.0)
+    if (!(total > 0.0) || !(len > 0.0))
     {
-      float g2 = phaseG * min(len / total, 0.999);
-      float mu = dot(moment, d) / len;
-      float truncated = 0.0;
-      float power = 1.0;
-      for (int l = 0; l <= SH_ORDER; ++l)
-      {
-        truncated += power * float(2 * l + 1) * Inv4Pi * legendre(l, mu);
-        power *= g2;
-      }
-      float hg = Inv4Pi * (1.0 - g2 * g2) / pow(max(1.0 + g2 * g2 - 2.0 * g2 * mu, 1e-6), 1.5);
-      sum[c] += total * (hg - truncated);
+      continue;
     }
+    vec3 axis = moment / len;
+    float weight = total;
+    float meanCosine = min(len / total, 0.999);
+#if SH_ORDER >= 2
+    float zonal = v[12 + c] * 1.092548431 * axis.x * axis.y
+      + v[15 + c] * 1.092548431 * axis.y * axis.z
+      + v[18 + c] * 0.315391565 * (3.0 * axis.z * axis.z - 1.0)
+      + v[21 + c] * 1.092548431 * axis.x * axis.z
+      + v[24 + c] * 0.546274215 * (axis.x * axis.x - axis.y * axis.y);
+    float second = zonal * 4.0 * 3.14159265 / 5.0;
+    if (!(second > 1e-4 * len))
+    {
+      continue;
+    }
+    meanCosine = min(second / len, 0.999);
+    weight = min(len / meanCosine, total);
+#endif
+    float gg = phaseG * meanCosine;
+    float mu = dot(axis, d);
+    float truncated = 0.0;
+    float power = 1.0;
+    for (int l = 0; l <= SH_ORDER; ++l)
+    {
+      truncated += power * float(2 * l + 1) * Inv4Pi * legendre(l, mu);
+      power *= gg;
+    }
+    float hg = Inv4Pi * (1.0 - gg * gg) / pow(max(1.0 + gg * gg - 2.0 * gg * mu, 1e-6), 1.5);
+    sum[c] += weight * (hg - truncated);
   }
   return max(sum, vec3(0.0));
 }

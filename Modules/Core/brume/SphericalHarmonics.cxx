@@ -75,31 +75,53 @@ float EvaluateHgFromSh(
     sum += gl * band;
     gl *= g;
   }
-  if (tail && order >= 1)
+  if (!tail || order < 1)
   {
-    // The lost bands l > order, from the Henyey-Greenstein lobe that has the
-    // projection's first moment: mean direction mu and mean cosine gL
-    // (exact for light from one direction, gL = 1, and isotropic light).
-    const float total = coefficients[0] / 0.282094792f;
-    const Vec3 moment = Vec3(coefficients[3 * stride], coefficients[stride],
-                          coefficients[2 * stride]) /
-      0.488602512f;
-    const float length = Length(moment);
-    if (total > 0.f && length > 0.f)
-    {
-      const float gl2 = g * std::min(length / total, 0.999f);
-      const float mu = Dot(moment, d) / length;
-      float truncated = 0.f, power = 1.f;
-      for (int l = 0; l <= order; ++l)
-      {
-        truncated += power * (2 * l + 1) * Inv4Pi * LegendreP(l, mu);
-        power *= gl2;
-      }
-      const HenyeyGreenstein lobe(gl2);
-      sum += total * (lobe.Evaluate(mu) - truncated);
-    }
+    return sum;
   }
-  return sum;
+  // The lost bands l > order, from a model of the incident light: an
+  // isotropic part plus a Henyey-Greenstein lobe of weight b, mean direction
+  // mu and mean cosine gL. Its first moment b gL mu is band 1; with order
+  // >= 2 its second, b gL^2 = sum Phi P_2(w . mu), is band 2 along mu, which
+  // separates the lobe from the isotropic part (order 1: all light in the
+  // lobe). Convolved with HG(g) the lobe is b HG(g gL); its bands up to the
+  // order are already in the sum.
+  const float total = coefficients[0] / 0.282094792f;
+  const Vec3 moment =
+    Vec3(coefficients[3 * stride], coefficients[stride], coefficients[2 * stride]) / 0.488602512f;
+  const float length = Length(moment);
+  if (!(total > 0.f) || !(length > 0.f))
+  {
+    return sum;
+  }
+  const Vec3 axis = moment / length;
+  float weight = total, meanCosine = std::min(length / total, 0.999f);
+  if (order >= 2)
+  {
+    float band2[ShCoefficients(MaxShOrder)];
+    EvaluateSh(2, axis, band2);
+    float zonal = 0.f;
+    for (int k = 4; k < 9; ++k)
+    {
+      zonal += coefficients[k * stride] * band2[k];
+    }
+    const float second = zonal * 4.f * Pi / 5.f; // b gL^2
+    if (!(second > 1e-4f * length))
+    {
+      return sum; // no lobe: nothing beyond the bands
+    }
+    meanCosine = std::min(second / length, 0.999f);
+    weight = std::min(length / meanCosine, total);
+  }
+  const float gg = g * meanCosine;
+  const float mu = Dot(axis, d);
+  float truncated = 0.f, power = 1.f;
+  for (int l = 0; l <= order; ++l)
+  {
+    truncated += power * (2 * l + 1) * Inv4Pi * LegendreP(l, mu);
+    power *= gg;
+  }
+  return sum + weight * (HenyeyGreenstein(gg).Evaluate(mu) - truncated);
 }
 
 } // namespace brume
