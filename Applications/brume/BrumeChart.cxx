@@ -175,7 +175,7 @@ constexpr int Supersampling = 4;
 
 PipelineRun Pipeline(vtkAlgorithm* scene, const View& view, int width, int height,
   long long particles, double threshold, std::uint64_t seed, bool directional = false,
-  int order = 0)
+  int order = 3)
 {
   PipelineRun run;
   width *= Supersampling;

@@ -41,7 +41,7 @@ struct ChartOptions
   double Threshold = 128.0;
   std::uint64_t Seed = 0;
   bool Sweep = false;
-  int ShOrder = 0; // spherical-harmonics order of the SH rows (0: chosen from g)
+  int ShOrder = 3; // spherical-harmonics order of the SH rows
 };
 
 /// `brume chart`: error against time for the pipeline and the path tracer.

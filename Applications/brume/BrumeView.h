@@ -11,7 +11,7 @@ struct ViewOptions
 {
   RenderOptions Render;    // scene, particles, seed, size, exposure, threshold
   bool Directional = false; // spherical-harmonics media instead of per-view textures
-  int Order = 0;            // their order (0: chosen from g)
+  int Order = 3;            // their order
   int Orbit = 0;            // frames of a scripted orbit (0: interactive)
   std::string FramesOut;    // with Orbit: where frame_NNNN.png go
   std::string Csv;          // with Orbit: per-frame timings

@@ -64,8 +64,7 @@ the scene instead, off screen, and the frame times are printed.
   --mode paper|sh     media: per-view reconstruction as in the paper
                       (default), or spherical harmonics evaluated in the
                       slice shader (a view change costs only the render)
-  --order N           spherical-harmonics order, 1 to 3, or auto (default:
-                      3 up to |g| = 0.65, else 1)
+  --order N           spherical-harmonics order, 1 to 3 (default 3)
   --keys KEYS         keys pressed at the start (p, d, m), e.g. --keys pp
   --no-overlay        hide the text overlay
   --orbit N           render N frames around the focal point (no window
@@ -120,8 +119,7 @@ and draws error against time, log-log, with VTK's charts. Needs a display
   --size WxH          image size (default 128x128)
   --particles A:B     the pipeline's ladder, by powers of 10 (default 10000:10000000)
   --max-spp N         the path tracer's ladder, by powers of 4 (default 1024)
-  --sh-order N        order of the spherical-harmonics rows: 1 to 3, or auto
-                      (default, chosen from g)
+  --sh-order N        order of the spherical-harmonics rows, 1 to 3 (default 3)
   --reference-spp N   samples per pixel of the converged reference (default 16384)
   --cache DIR         where converged references are kept (default
                       $XDG_CACHE_HOME/brume or ~/.cache/brume)
@@ -383,11 +381,11 @@ int View(int argc, char* argv[])
     }
     else if (arg == "--order")
     {
-      if (!args.Value(v) || (v != "auto" && !ParseInteger(v, 1, 3, n)))
+      if (!args.Value(v) || !ParseInteger(v, 1, 3, n))
       {
-        return UsageError("--order needs auto, 1, 2 or 3");
+        return UsageError("--order needs 1, 2 or 3");
       }
-      options.Order = v == "auto" ? 0 : static_cast<int>(n);
+      options.Order = static_cast<int>(n);
     }
     else if (arg == "--orbit")
     {
@@ -576,11 +574,11 @@ int Chart(int argc, char* argv[])
     }
     else if (arg == "--sh-order")
     {
-      if (!args.Value(v) || (v != "auto" && !ParseInteger(v, 1, 3, a)))
+      if (!args.Value(v) || !ParseInteger(v, 1, 3, a))
       {
-        return UsageError("--sh-order needs auto, 1, 2 or 3");
+        return UsageError("--sh-order needs 1, 2 or 3");
       }
-      options.ShOrder = v == "auto" ? 0 : static_cast<int>(a);
+      options.ShOrder = static_cast<int>(a);
     }
     else if (arg == "--max-spp" || arg == "--reference-spp")
     {

@@ -230,9 +230,9 @@ int vtkBrumeRadianceReconstruction::RequestData(
   const double particles = countArray->GetTuple1(0);
   const double firstParticle = fieldValue("FirstParticle");
   const double seed = fieldValue("Seed");
-  if (this->DirectionalOrder < 0 || this->DirectionalOrder > brume::MaxShOrder)
+  if (this->DirectionalOrder < 1 || this->DirectionalOrder > brume::MaxShOrder)
   {
-    vtkErrorMacro("DirectionalOrder must be in [0, " << brume::MaxShOrder << "], not "
+    vtkErrorMacro("DirectionalOrder must be in [1, " << brume::MaxShOrder << "], not "
                                                      << this->DirectionalOrder << ".");
     return 0;
   }
@@ -472,9 +472,7 @@ int vtkBrumeRadianceReconstruction::RequestData(
     {
       continue;
     }
-    const int order = this->DirectionalOrder > 0
-      ? this->DirectionalOrder
-      : brume::ChooseShOrder(cache->Scene.Media[o - cache->Scene.Surfaces.size()].G);
+    const int order = this->DirectionalOrder;
     const bool project = directional(o) && radiance.GetDirectionalOrder() != order;
     if (directional(o) == cache->ObjectDirectional[o] && !project)
     {

@@ -112,8 +112,7 @@ public:
   /**
    * Directional radiance for anisotropic media (default off): instead of a
    * texture toward the viewpoint, each voxel holds the spherical-harmonics
-   * projection (up to DirectionalOrder, in [1, 3]; 0, the default, chooses
-   * per medium with brume::ChooseShOrder: 3 up to |g| = 0.65, else 1) of the light
+   * projection (up to DirectionalOrder, in [1, 3], default 3) of the light
    * it receives, as the cell array `SourceRadianceSH` (3 (order + 1)^2
    * components: coefficient-major, RGB within), with the phase function's g
    * as field data `BrumePhaseAsymmetry`; `SourceRadiance` then holds the
@@ -188,7 +187,7 @@ protected:
   bool IncrementalUpdate = true;
   bool AccumulateParticles = false;
   bool DirectionalRadiance = false;
-  int DirectionalOrder = 0;
+  int DirectionalOrder = 3;
   vtkIdType NumberOfTextureBuilds = 0;
   vtkIdType NumberOfViewUpdates = 0;
   vtkIdType NumberOfParticleAdditions = 0;

@@ -213,6 +213,25 @@ vec3 directionalSource()
 }
 }
 
+namespace
+{
+// Uploads `values` (`components` floats per voxel) as a 3D texture clamped
+// at the edges and filtered with `filter` (nearest or linear).
+bool Upload3D(vtkTextureObject* texture, vtkOpenGLRenderWindow* window, const int dims[3],
+  int components, int filter, float* values)
+{
+  texture->SetContext(window);
+  texture->SetWrapS(vtkTextureObject::ClampToEdge);
+  texture->SetWrapT(vtkTextureObject::ClampToEdge);
+  texture->SetWrapR(vtkTextureObject::ClampToEdge);
+  texture->SetMinificationFilter(filter);
+  texture->SetMagnificationFilter(filter);
+  return texture->Create3DFromRaw(static_cast<unsigned int>(dims[0]),
+    static_cast<unsigned int>(dims[1]), static_cast<unsigned int>(dims[2]), components, VTK_FLOAT,
+    values);
+}
+}
+
 struct vtkBrumeOpenGLSliceVolumeMapper::Internals
 {
   vtkNew<vtkTextureObject> Source;
@@ -344,21 +363,8 @@ bool vtkBrumeOpenGLSliceVolumeMapper::PrepareSlices(
     }
     const int filter = interpolation == VTK_NEAREST_INTERPOLATION ? vtkTextureObject::Nearest
                                                                   : vtkTextureObject::Linear;
-    for (vtkTextureObject* texture : { impl.Source.GetPointer(), impl.Extinction.GetPointer() })
-    {
-      texture->SetContext(renWin);
-      texture->SetWrapS(vtkTextureObject::ClampToEdge);
-      texture->SetWrapT(vtkTextureObject::ClampToEdge);
-      texture->SetWrapR(vtkTextureObject::ClampToEdge);
-      texture->SetMinificationFilter(filter);
-      texture->SetMagnificationFilter(filter);
-    }
-    if (!impl.Source->Create3DFromRaw(static_cast<unsigned int>(dims[0]),
-          static_cast<unsigned int>(dims[1]), static_cast<unsigned int>(dims[2]), 3, VTK_FLOAT,
-          s.data()) ||
-      !impl.Extinction->Create3DFromRaw(static_cast<unsigned int>(dims[0]),
-        static_cast<unsigned int>(dims[1]), static_cast<unsigned int>(dims[2]), 3, VTK_FLOAT,
-        e.data()))
+    if (!Upload3D(impl.Source, renWin, dims, 3, filter, s.data()) ||
+      !Upload3D(impl.Extinction, renWin, dims, 3, filter, e.data()))
     {
       vtkErrorMacro("Could not create the 3D textures (" << dims[0] << " x " << dims[1] << " x "
                                                          << dims[2] << "): nothing drawn.");
@@ -399,15 +405,7 @@ bool vtkBrumeOpenGLSliceVolumeMapper::PrepareSlices(
         {
           texture = vtkSmartPointer<vtkTextureObject>::New();
         }
-        texture->SetContext(renWin);
-        texture->SetWrapS(vtkTextureObject::ClampToEdge);
-        texture->SetWrapT(vtkTextureObject::ClampToEdge);
-        texture->SetWrapR(vtkTextureObject::ClampToEdge);
-        texture->SetMinificationFilter(filter);
-        texture->SetMagnificationFilter(filter);
-        if (!texture->Create3DFromRaw(static_cast<unsigned int>(dims[0]),
-              static_cast<unsigned int>(dims[1]), static_cast<unsigned int>(dims[2]), 4, VTK_FLOAT,
-              packed.data()))
+        if (!Upload3D(texture, renWin, dims, 4, filter, packed.data()))
         {
           vtkErrorMacro("Could not create the directional radiance textures: nothing drawn.");
           return false;

@@ -4,7 +4,7 @@
 // continue the textures' is refused, and directional media follow the
 // camera without any reconstruction, then return to per-view textures that
 // equal a fresh reconstruction's.
-#include "vtkBrumeDefaultSceneSource.h"
+#include "BrumeTestScenes.h"
 #include "vtkBrumeLightTracer.h"
 #include "vtkBrumeRadianceReconstruction.h"
 #include "vtkCallbackCommand.h"
@@ -95,27 +95,7 @@ bool FailsWithError(vtkAlgorithm* algorithm)
 int TestProgressiveDirectional(int, char*[])
 {
   // The default scene with a glossy floor (view dependent, like the fog).
-  vtkNew<vtkBrumeDefaultSceneSource> source;
-  source->Update();
-  vtkNew<vtkPartitionedDataSetCollection> scene;
-  scene->DeepCopy(source->GetOutput());
-  for (unsigned int i = 0; i < scene->GetNumberOfPartitionedDataSets(); ++i)
-  {
-    if (std::string(scene->GetMetaData(i)->Get(vtkCompositeDataSet::NAME())) == "floor")
-    {
-      vtkFieldData* fd = scene->GetPartitionedDataSet(i)->GetPartition(0)->GetFieldData();
-      vtkNew<vtkStringArray> type;
-      type->SetName("BrumeMaterial");
-      type->InsertNextValue("phong");
-      fd->AddArray(type);
-      vtkNew<vtkDoubleArray> specular;
-      specular->SetName("BrumeSpecular");
-      specular->SetNumberOfComponents(3);
-      specular->InsertNextTuple3(0.2, 0.2, 0.2);
-      fd->AddArray(specular);
-      fd->GetArray("BrumeReflectance")->SetTuple3(0, 0.5, 0.5, 0.5);
-    }
-  }
+  const auto scene = DefaultSceneWithGlossyFloor();
   vtkNew<vtkCamera> camera;
   camera->SetPosition(0, 0, 4);
   camera->SetFocalPoint(0, 0, 0);
@@ -181,8 +161,8 @@ int TestProgressiveDirectional(int, char*[])
   directional->Update();
   vtkDataObject* fog = Fog(directional->GetOutput());
   vtkDataArray* sh = vtkImageData::SafeDownCast(fog)->GetCellData()->GetArray("SourceRadianceSH");
-  // g = 0.7: the automatic order is 1 (3 x 4 components).
-  if (!sh || sh->GetNumberOfComponents() != 12 || directional->GetNumberOfDirectionalBuilds() != 1 ||
+  // Order 3: 3 x 16 components.
+  if (!sh || sh->GetNumberOfComponents() != 48 || directional->GetNumberOfDirectionalBuilds() != 1 ||
     !fog->GetFieldData()->GetArray("BrumePhaseAsymmetry"))
   {
     std::cerr << "the directional fog lacks its coefficients\n";

@@ -3,7 +3,7 @@
 // turning the camera recomputes only the view-dependent textures (a glossy
 // floor and the anisotropic fog), the others stay the same objects with the
 // same bits; objects without particles are reported, not fatal.
-#include "vtkBrumeDefaultSceneSource.h"
+#include "BrumeTestScenes.h"
 #include "vtkBrumeLightTracer.h"
 #include "vtkBrumeRadianceReconstruction.h"
 #include "vtkCallbackCommand.h"
@@ -69,28 +69,8 @@ Snapshot Take(vtkPartitionedDataSetCollection* out)
 
 int TestReconstructionViews(int, char*[])
 {
-  // The default scene with a glossy floor.
-  vtkNew<vtkBrumeDefaultSceneSource> source;
-  source->Update();
-  vtkNew<vtkPartitionedDataSetCollection> scene;
-  scene->DeepCopy(source->GetOutput());
-  for (unsigned int i = 0; i < scene->GetNumberOfPartitionedDataSets(); ++i)
-  {
-    if (std::string(scene->GetMetaData(i)->Get(vtkCompositeDataSet::NAME())) == "floor")
-    {
-      vtkFieldData* fd = scene->GetPartitionedDataSet(i)->GetPartition(0)->GetFieldData();
-      vtkNew<vtkStringArray> type;
-      type->SetName("BrumeMaterial");
-      type->InsertNextValue("phong");
-      fd->AddArray(type);
-      vtkNew<vtkDoubleArray> specular;
-      specular->SetName("BrumeSpecular");
-      specular->SetNumberOfComponents(3);
-      specular->InsertNextTuple3(0.2, 0.2, 0.2);
-      fd->AddArray(specular);
-      fd->GetArray("BrumeReflectance")->SetTuple3(0, 0.5, 0.5, 0.5);
-    }
-  }
+  // The default scene with a glossy floor (view dependent, like the fog).
+  const auto scene = DefaultSceneWithGlossyFloor();
   vtkNew<vtkBrumeLightTracer> tracer;
   tracer->SetInputData(scene);
   tracer->SetNumberOfParticles(100000);

@@ -8,6 +8,7 @@
 #include "brume/Reconstruction.h"
 #include "brume/Sampling.h"
 #include "brume/SphericalHarmonics.h"
+#include "TestScenes.h"
 
 #include <gtest/gtest.h>
 
@@ -41,23 +42,7 @@ Vec3 RandomDirection(Random& rng)
 }
 
 // The hits of particles [first, last) of a run of `count`, as arrays.
-struct Hits
-{
-  std::vector<float> Position, Direction, Flux;
-  std::vector<std::uint16_t> Object;
-  std::vector<std::uint32_t> Triangle;
-  HitArrays View() const
-  {
-    HitArrays a;
-    a.Position = Position.data();
-    a.Direction = Direction.data();
-    a.Flux = Flux.data();
-    a.Object = Object.data();
-    a.Triangle = Triangle.data();
-    a.Count = Object.size();
-    return a;
-  }
-};
+using Hits = brume::testing::HitStore;
 
 Hits Trace(const Scene& scene, std::uint64_t first, std::uint64_t last, std::uint64_t count)
 {
@@ -69,16 +54,7 @@ Hits Trace(const Scene& scene, std::uint64_t first, std::uint64_t last, std::uin
   {
     tracer.TraceParticle(i, count, hits, counters);
   }
-  Hits out;
-  for (const Hit& h : hits)
-  {
-    out.Position.insert(out.Position.end(), h.Position, h.Position + 3);
-    out.Direction.insert(out.Direction.end(), h.Direction, h.Direction + 3);
-    out.Flux.insert(out.Flux.end(), h.Flux, h.Flux + 3);
-    out.Object.push_back(h.Object);
-    out.Triangle.push_back(h.Triangle);
-  }
-  return out;
+  return Hits(hits);
 }
 
 // One texture per object of the scene at fixed resolutions.

@@ -6,6 +6,7 @@
 #include "brume/Random.h"
 #include "brume/Reconstruction.h"
 #include "brume/Sampling.h"
+#include "TestScenes.h"
 
 #include <gtest/gtest.h>
 
@@ -16,35 +17,7 @@ using namespace brume;
 
 namespace
 {
-// The hits of a run in structure-of-arrays form.
-struct HitStore
-{
-  std::vector<float> Position, Direction, Flux;
-  std::vector<std::uint16_t> Object;
-  std::vector<std::uint32_t> Triangle;
-  explicit HitStore(const std::vector<Hit>& hits)
-  {
-    for (const Hit& h : hits)
-    {
-      Position.insert(Position.end(), h.Position, h.Position + 3);
-      Direction.insert(Direction.end(), h.Direction, h.Direction + 3);
-      Flux.insert(Flux.end(), h.Flux, h.Flux + 3);
-      Object.push_back(h.Object);
-      Triangle.push_back(h.Triangle);
-    }
-  }
-  HitArrays View() const
-  {
-    HitArrays a;
-    a.Position = Position.data();
-    a.Direction = Direction.data();
-    a.Flux = Flux.data();
-    a.Object = Object.data();
-    a.Triangle = Triangle.data();
-    a.Count = Object.size();
-    return a;
-  }
-};
+using brume::testing::HitStore;
 
 std::vector<Hit> Trace(
   const Scene& scene, std::uint64_t n, const TraceSettings& settings, Vec3* power = nullptr)

@@ -3,6 +3,8 @@
 #ifndef brume_TestScenes_h
 #define brume_TestScenes_h
 
+#include "brume/LightTracer.h"
+#include "brume/Reconstruction.h"
 #include "brume/Scene.h"
 
 #include <string>
@@ -35,6 +37,36 @@ inline std::vector<Surface> ClosedBox(const Material& m)
   }
   return walls;
 }
+/// The hits of a run in structure-of-arrays form.
+struct HitStore
+{
+  std::vector<float> Position, Direction, Flux;
+  std::vector<std::uint16_t> Object;
+  std::vector<std::uint32_t> Triangle;
+  HitStore() = default;
+  explicit HitStore(const std::vector<Hit>& hits)
+  {
+    for (const Hit& h : hits)
+    {
+      Position.insert(Position.end(), h.Position, h.Position + 3);
+      Direction.insert(Direction.end(), h.Direction, h.Direction + 3);
+      Flux.insert(Flux.end(), h.Flux, h.Flux + 3);
+      Object.push_back(h.Object);
+      Triangle.push_back(h.Triangle);
+    }
+  }
+  HitArrays View() const
+  {
+    HitArrays a;
+    a.Position = Position.data();
+    a.Direction = Direction.data();
+    a.Flux = Flux.data();
+    a.Object = Object.data();
+    a.Triangle = Triangle.data();
+    a.Count = Object.size();
+    return a;
+  }
+};
 } // namespace testing
 } // namespace brume
 

@@ -26,19 +26,6 @@ constexpr int ShCoefficients(int order)
   return (order + 1) * (order + 1);
 }
 
-/**
- * The order that represents a Henyey-Greenstein medium of asymmetry g best
- * (with the lobe tail of EvaluateHgFromSh): 3 up to |g| = 0.65, else 1.
- * Measured on the default scene against the per-view reconstruction (Core
- * test Directional.MatchesThePerViewReconstruction): order 3 is best for
- * moderate g, but for strongly forward media the truncated bands 2 and 3
- * ring where the lobe tail, which carries most of the peak, is accurate.
- */
-inline int ChooseShOrder(float g)
-{
-  return g <= 0.65f && g >= -0.65f ? 3 : 1;
-}
-
 /// The (order + 1)^2 basis functions at the unit direction d.
 void EvaluateSh(int order, const Vec3& d, float* y);
 
