@@ -7,6 +7,7 @@
 #include "vtkBrumeRadianceReconstruction.h"
 #include "vtkBrumeSceneActors.h"
 #include "vtkBrumeSceneConversion.h"
+#include "vtkBrumeSliceVolumeMapper.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkExecutive.h"
@@ -15,11 +16,13 @@
 #include "vtkPNGWriter.h"
 #include "vtkPartitionedDataSetCollection.h"
 #include "vtkPolyData.h"
+#include "vtkPropCollection.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
 #include "vtkTextActor.h"
 #include "vtkTextProperty.h"
+#include "vtkVolume.h"
 #include "vtkWindowToImageFilter.h"
 
 #include <algorithm>
@@ -119,6 +122,18 @@ public:
     if (!this->Actors->AddToRenderer(this->Renderer))
     {
       return false;
+    }
+    vtkPropCollection* props = this->Actors->GetProps();
+    props->InitTraversal();
+    while (vtkProp* prop = props->GetNextProp())
+    {
+      if (auto* volume = vtkVolume::SafeDownCast(prop))
+      {
+        vtkBrumeSliceVolumeMapper::SafeDownCast(volume->GetMapper())
+          ->SetDirectionalEvaluation(this->Options.PerFragment
+              ? vtkBrumeSliceVolumeMapper::PerFragment
+              : vtkBrumeSliceVolumeMapper::PerVoxel);
+      }
     }
     this->Overlay->GetTextProperty()->SetFontSize(12);
     this->Overlay->GetTextProperty()->SetColor(1.0, 1.0, 0.6);
@@ -325,7 +340,9 @@ int Orbit(Viewer& viewer, const ViewOptions& options)
   }
   std::printf("orbit: %d frames at %dx%d, media %s, %s particles\n", options.Orbit,
     options.Render.Width, options.Render.Height,
-    reconstruction->GetDirectionalRadiance() ? "spherical harmonics" : "per view (paper)",
+    !reconstruction->GetDirectionalRadiance() ? "per view (paper)"
+      : options.PerFragment                   ? "spherical harmonics (per fragment)"
+                                              : "spherical harmonics (per voxel)",
     Thousands(viewer.Particles).c_str());
   std::printf("per frame        median (ms)   95th percentile (ms)\n");
   std::printf("update           %11.2f   %20.2f\n", Quantile(update, 0.5), Quantile(update, 0.95));

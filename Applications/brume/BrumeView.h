@@ -12,6 +12,7 @@ struct ViewOptions
   RenderOptions Render;    // scene, particles, seed, size, exposure, threshold
   bool Directional = false; // spherical-harmonics media instead of per-view textures
   int Order = 3;            // their order
+  bool PerFragment = false; // evaluated in the slice shader rather than per voxel
   int Orbit = 0;            // frames of a scripted orbit (0: interactive)
   std::string FramesOut;    // with Orbit: where frame_NNNN.png go
   std::string Csv;          // with Orbit: per-frame timings

@@ -65,6 +65,10 @@ the scene instead, off screen, and the frame times are printed.
                       (default), or spherical harmonics evaluated in the
                       slice shader (a view change costs only the render)
   --order N           spherical-harmonics order, 1 to 3 (default 3)
+  --sh-evaluation voxel|fragment
+                      where sh media are evaluated toward the eye: once per
+                      view and voxel (default; cheapest under Mesa), or per
+                      fragment in the slice shader (no work on a view change)
   --keys KEYS         keys pressed at the start (p, d, m), e.g. --keys pp
   --no-overlay        hide the text overlay
   --orbit N           render N frames around the focal point (no window
@@ -402,6 +406,14 @@ int View(int argc, char* argv[])
         return UsageError(arg + " needs a path");
       }
       (arg == "--csv" ? options.Csv : options.FramesOut) = v;
+    }
+    else if (arg == "--sh-evaluation")
+    {
+      if (!args.Value(v) || (v != "voxel" && v != "fragment"))
+      {
+        return UsageError("--sh-evaluation needs 'voxel' or 'fragment'");
+      }
+      options.PerFragment = v == "fragment";
     }
     else if (arg == "--keys")
     {

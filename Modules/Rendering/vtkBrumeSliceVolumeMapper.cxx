@@ -86,5 +86,7 @@ void vtkBrumeSliceVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "SliceSpacing: " << this->SliceSpacing << "\n";
+  os << indent << "DirectionalEvaluation: "
+     << (this->DirectionalEvaluation == PerVoxel ? "PerVoxel" : "PerFragment") << "\n";
   os << indent << "LastNumberOfSlices: " << this->LastNumberOfSlices << "\n";
 }

@@ -25,8 +25,9 @@
  * eye is evaluated per fragment from them (Henyey-Greenstein is diagonal in
  * spherical harmonics, plus a lobe for the bands beyond the order, see
  * brume/SphericalHarmonics.h), so an anisotropic medium follows the camera
- * with no reconstruction. The coefficients travel as RGBA float 3D textures
- * (12 for order 3), multiplied by sigma_t like J.
+ * with no reconstruction: per voxel once per view (the default) or per
+ * fragment in the slice shader, see DirectionalEvaluation. Coefficients are
+ * multiplied by sigma_t like J.
  *
  * Input: a vtkImageData whose cells are the voxels, with cell data
  * `SourceRadiance` (3 components, W m^-2 sr^-1) and `Extinction` (1 or 3
@@ -68,6 +69,26 @@ public:
   vtkGetMacro(SliceSpacing, double);
   ///@}
 
+  /// Where directional radiance is evaluated toward the eye.
+  enum DirectionalEvaluationModes
+  {
+    /// Once per view and voxel (at its centre), into the source texture the
+    /// slices sample: a view change costs a pass over the voxels (on the
+    /// CPU, threaded) and a 3-channel upload; the slices cost what plain
+    /// ones do. The default: fastest where fragments are expensive (Mesa).
+    PerVoxel = 0,
+    /// Per fragment, in the slice shader, from the interpolated
+    /// coefficients (12 RGBA textures for order 3): exact direction to the
+    /// eye everywhere, no work at all on a view change, heavier fragments.
+    PerFragment = 1
+  };
+
+  ///@{
+  /// How directional radiance (`SourceRadianceSH`) is evaluated (default PerVoxel).
+  vtkSetClampMacro(DirectionalEvaluation, int, PerVoxel, PerFragment);
+  vtkGetMacro(DirectionalEvaluation, int);
+  ///@}
+
   /// Number of slices of this volume drawn by the last render.
   vtkGetMacro(LastNumberOfSlices, int);
 
@@ -88,6 +109,7 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
 
   double SliceSpacing = 0.0;
+  int DirectionalEvaluation = PerVoxel;
   int LastNumberOfSlices = 0;
 
 private:

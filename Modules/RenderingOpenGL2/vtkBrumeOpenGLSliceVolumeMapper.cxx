@@ -20,6 +20,7 @@
 #include "vtkOpenGLState.h"
 #include "vtkOpenGLVertexArrayObject.h"
 #include "vtkRenderer.h"
+#include "vtkSMPTools.h"
 #include "vtkShaderProgram.h"
 #include "vtkSmartPointer.h"
 #include "vtkTextureObject.h"
@@ -31,9 +32,12 @@
 #include "vtkBrumeSliceVolumeFS.h"
 #include "vtkBrumeSliceVolumeVS.h"
 
+#include "brume/SphericalHarmonics.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -240,6 +244,9 @@ struct vtkBrumeOpenGLSliceVolumeMapper::Internals
   // order (0: none), g, and the eye and box in data coordinates.
   std::vector<vtkSmartPointer<vtkTextureObject>> Coefficients;
   int Order = 0;
+  int FragmentOrder = 0;     // the order the shader evaluates (0: none)
+  std::vector<float> Voxels; // per-voxel evaluation: the J-scaled coefficients
+  float EvaluatedEye[3] = { 0.f, 0.f, 0.f };
   float G = 0.f;
   float EyeData[3] = { 0.f, 0.f, 0.f };
   float BoundsLower[3] = { 0.f, 0.f, 0.f };
@@ -371,48 +378,68 @@ bool vtkBrumeOpenGLSliceVolumeMapper::PrepareSlices(
       return false;
     }
     // Directional radiance: 3 (order + 1)^2 values per voxel, J-scaled like
-    // the source, four per RGBA texture.
+    // the source; evaluated per voxel below, or per fragment from RGBA
+    // textures (four values each).
     impl.Order = 0;
+    impl.FragmentOrder = 0;
+    impl.Voxels.clear();
     vtkDataArray* sh = input->GetCellData()->GetArray("SourceRadianceSH");
     const int order = sh ? DirectionalOrder(sh->GetNumberOfComponents()) : -1;
     if (order > 0)
     {
       const int values = sh->GetNumberOfComponents();
-      const int textures = (values + 3) / 4;
-      std::vector<float> packed(4 * static_cast<std::size_t>(cells));
-      impl.Coefficients.resize(static_cast<std::size_t>(textures));
-      for (int t = 0; t < textures; ++t)
+      std::vector<float> coefficients(static_cast<std::size_t>(values) * cells);
+      for (vtkIdType i = 0; i < cells; ++i)
       {
-        for (vtkIdType i = 0; i < cells; ++i)
+        for (int v = 0; v < values; ++v)
         {
-          for (int c = 0; c < 4; ++c)
+          float& value = coefficients[static_cast<std::size_t>(i) * values + v];
+          value = static_cast<float>(sh->GetComponent(i, v)) * e[3 * i + v % 3];
+          if (!std::isfinite(value))
           {
-            const int value = 4 * t + c;
-            packed[4 * i + c] = value < values
-              ? static_cast<float>(sh->GetComponent(i, value)) * e[3 * i + value % 3]
-              : 0.f;
-            if (!std::isfinite(packed[4 * i + c]))
-            {
-              vtkErrorMacro("Cannot draw this medium: its directional radiance must be finite "
-                            "(cell "
-                << i << ").");
-              return false;
-            }
+            vtkErrorMacro("Cannot draw this medium: its directional radiance must be finite (cell "
+              << i << ").");
+            return false;
           }
         }
-        auto& texture = impl.Coefficients[t];
-        if (!texture)
+      }
+      if (this->DirectionalEvaluation == PerFragment)
+      {
+        const int textures = (values + 3) / 4;
+        std::vector<float> packed(4 * static_cast<std::size_t>(cells));
+        impl.Coefficients.resize(static_cast<std::size_t>(textures));
+        for (int t = 0; t < textures; ++t)
         {
-          texture = vtkSmartPointer<vtkTextureObject>::New();
+          for (vtkIdType i = 0; i < cells; ++i)
+          {
+            for (int c = 0; c < 4; ++c)
+            {
+              const int value = 4 * t + c;
+              packed[4 * i + c] =
+                value < values ? coefficients[static_cast<std::size_t>(i) * values + value] : 0.f;
+            }
+          }
+          auto& texture = impl.Coefficients[t];
+          if (!texture)
+          {
+            texture = vtkSmartPointer<vtkTextureObject>::New();
+          }
+          if (!Upload3D(texture, renWin, dims, 4, filter, packed.data()))
+          {
+            vtkErrorMacro("Could not create the directional radiance textures: nothing drawn.");
+            return false;
+          }
         }
-        if (!Upload3D(texture, renWin, dims, 4, filter, packed.data()))
-        {
-          vtkErrorMacro("Could not create the directional radiance textures: nothing drawn.");
-          return false;
-        }
+        impl.FragmentOrder = order;
+      }
+      else
+      {
+        impl.Voxels.swap(coefficients);
+        impl.EvaluatedEye[0] = std::numeric_limits<float>::quiet_NaN(); // evaluate below
       }
       impl.Order = order;
-      impl.G = static_cast<float>(input->GetFieldData()->GetArray("BrumePhaseAsymmetry")->GetTuple1(0));
+      impl.G = static_cast<float>(
+        input->GetFieldData()->GetArray("BrumePhaseAsymmetry")->GetTuple1(0));
     }
     impl.Interpolation = interpolation;
     impl.TextureTime.Modified();
@@ -440,6 +467,43 @@ bool vtkBrumeOpenGLSliceVolumeMapper::PrepareSlices(
       impl.BoundsLower[a] = static_cast<float>(bounds[2 * a]);
       impl.BoundsExtent[a] = static_cast<float>(bounds[2 * a + 1] - bounds[2 * a]);
     }
+  }
+  if (impl.Order > 0 && impl.FragmentOrder == 0 &&
+    !(impl.EvaluatedEye[0] == impl.EyeData[0] && impl.EvaluatedEye[1] == impl.EyeData[1] &&
+      impl.EvaluatedEye[2] == impl.EyeData[2]))
+  {
+    // Directional radiance toward the eye, once per view and voxel centre.
+    const int values = 3 * brume::ShCoefficients(impl.Order);
+    const std::size_t cells = impl.Voxels.size() / values;
+    std::vector<float> source(3 * cells);
+    const brume::Vec3 eyeData(impl.EyeData[0], impl.EyeData[1], impl.EyeData[2]);
+    vtkSMPTools::For(0, static_cast<vtkIdType>(cells),
+      [&](vtkIdType begin, vtkIdType end)
+      {
+        for (vtkIdType i = begin; i < end; ++i)
+        {
+          const vtkIdType x = i % dims[0], y = (i / dims[0]) % dims[1], z = i / (dims[0] * dims[1]);
+          const brume::Vec3 centre(
+            impl.BoundsLower[0] + (static_cast<float>(x) + 0.5f) * impl.BoundsExtent[0] / dims[0],
+            impl.BoundsLower[1] + (static_cast<float>(y) + 0.5f) * impl.BoundsExtent[1] / dims[1],
+            impl.BoundsLower[2] + (static_cast<float>(z) + 0.5f) * impl.BoundsExtent[2] / dims[2]);
+          const brume::Vec3 toEye = brume::Normalize(eyeData - centre);
+          for (int c = 0; c < 3; ++c)
+          {
+            source[3 * i + c] = std::max(0.f,
+              brume::EvaluateHgFromSh(
+                impl.Order, impl.G, &impl.Voxels[static_cast<std::size_t>(i) * values + c], 3, toEye));
+          }
+        }
+      });
+    const int filter = interpolation == VTK_NEAREST_INTERPOLATION ? vtkTextureObject::Nearest
+                                                                  : vtkTextureObject::Linear;
+    if (!Upload3D(impl.Source, renWin, dims, 3, filter, source.data()))
+    {
+      vtkErrorMacro("Could not upload the directional radiance toward the eye: nothing drawn.");
+      return false;
+    }
+    std::copy(impl.EyeData, impl.EyeData + 3, impl.EvaluatedEye);
   }
   Vec corners[8], cornersWC[8];
   double dmin = VTK_DOUBLE_MAX, dmax = -VTK_DOUBLE_MAX;
@@ -651,7 +715,7 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawAll(vtkRenderer* ren)
   {
     Internals& owner = *run.Owner->Impl;
     vtkShaderProgram* program = renWin->GetShaderCache()->ReadyShaderProgram(
-      vtkBrumeSliceVolumeVS, FragmentShader(owner.Order).c_str(), "");
+      vtkBrumeSliceVolumeVS, FragmentShader(owner.FragmentOrder).c_str(), "");
     if (!program)
     {
       vtkErrorMacro("Could not build the slice shaders: nothing drawn.");
@@ -680,7 +744,7 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawAll(vtkRenderer* ren)
     program->SetUniformi("sourceTexture", owner.Source->GetTextureUnit());
     program->SetUniformi("extinctionTexture", owner.Extinction->GetTextureUnit());
     program->SetUniformf("sliceSpacing", run.Spacing);
-    if (owner.Order > 0)
+    if (owner.FragmentOrder > 0)
     {
       for (std::size_t t = 0; t < owner.Coefficients.size(); ++t)
       {
@@ -696,7 +760,7 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawAll(vtkRenderer* ren)
     glDrawArrays(GL_TRIANGLES, run.FirstVertex, run.Vertices);
     owner.Source->Deactivate();
     owner.Extinction->Deactivate();
-    if (owner.Order > 0)
+    if (owner.FragmentOrder > 0)
     {
       for (auto& texture : owner.Coefficients)
       {

@@ -389,8 +389,12 @@ bool Directional()
   const RGB phi{ 1.0, 0.5, 2.0 }, sigmaT{ 1.5, 0.5, 3.0 };
   const double g = 0.5;
   bool ok = true;
-  for (int order = 1; order <= 3; ++order)
+  for (int run = 0; run < 6; ++run)
   {
+    // Each order, evaluated per voxel, then per fragment.
+    const int order = 1 + run % 3;
+    const int evaluation =
+      run < 3 ? vtkBrumeSliceVolumeMapper::PerVoxel : vtkBrumeSliceVolumeMapper::PerFragment;
     for (const brume::Vec3& wp : { brume::Vec3(0.f, 0.f, 1.f), brume::Vec3(1.f, 0.f, 0.f),
            brume::Normalize(brume::Vec3(1.f, 1.f, -1.f)), brume::Vec3(0.f, 0.6f, 0.8f) })
     {
@@ -414,7 +418,10 @@ bool Directional()
       asymmetry->SetName("BrumePhaseAsymmetry");
       asymmetry->InsertNextValue(g);
       image->GetFieldData()->AddArray(asymmetry);
-      const Frame f = Render({ Volume(image, 1.0 / 16.0, true) }, true);
+      auto volume = Volume(image, 1.0 / 16.0, true);
+      vtkBrumeSliceVolumeMapper::SafeDownCast(volume->GetMapper())
+        ->SetDirectionalEvaluation(evaluation);
+      const Frame f = Render({ volume }, true);
       const double p = brume::HenyeyGreenstein(static_cast<float>(g)).Evaluate(wp.z);
       RGB expected;
       for (int c = 0; c < 3; ++c)
@@ -422,7 +429,8 @@ bool Directional()
         expected[c] = phi[c] * p * (1.0 - std::exp(-sigmaT[c]));
       }
       ok = Near(f.At(Size / 2, Size / 2), expected, 0.015,
-             "directional order " + std::to_string(order) + ", w_p . z = " + std::to_string(wp.z)) &&
+             std::string(evaluation == vtkBrumeSliceVolumeMapper::PerVoxel ? "per voxel" : "per fragment") +
+               ", order " + std::to_string(order) + ", w_p . z = " + std::to_string(wp.z)) &&
         ok;
     }
   }
