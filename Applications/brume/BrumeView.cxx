@@ -297,6 +297,7 @@ int Orbit(Viewer& viewer, const ViewOptions& options)
   {
     return 1;
   }
+  viewer.ShowOverlay(); // each frame shows the previous frame's times
   vtkBrumeRadianceReconstruction* reconstruction = viewer.Reconstruction;
   const vtkIdType builds = reconstruction->GetNumberOfTextureBuilds();
   const vtkIdType updates = reconstruction->GetNumberOfViewUpdates();
