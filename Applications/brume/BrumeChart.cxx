@@ -2,6 +2,7 @@
 // `brume chart`: error against time, the fast pipeline against the unbiased
 // reference path tracer, drawn with VTK's charts.
 #include "BrumeCommands.h"
+#include "BrumeRender.h"
 
 #include "vtkAxis.h"
 #include "vtkBrumeDefaultSceneSource.h"
@@ -550,11 +551,8 @@ int RunSweep(const ChartOptions& options)
 
 int RunChart(const ChartOptions& options)
 {
-  const char* display = std::getenv("DISPLAY");
-  if (!display || !*display)
+  if (!HasDisplay("chart (it renders with OpenGL)"))
   {
-    std::cerr << "brume: chart renders with OpenGL and needs an X display; run it under "
-                 "'xvfb-run -a'.\n";
     return 1;
   }
   if (options.Sweep)

@@ -50,6 +50,19 @@ bool EndsWith(const std::string& s, const std::string& suffix)
 
 }
 
+bool HasDisplay(const char* what)
+{
+  const char* display = std::getenv("DISPLAY");
+  if (!display || !*display)
+  {
+    std::cerr << "brume: " << what
+              << " needs an X display (none is set in DISPLAY); on a headless machine run it "
+                 "under 'xvfb-run -a'.\n";
+    return false;
+  }
+  return true;
+}
+
 vtkSmartPointer<vtkAlgorithm> LoadScene(RenderOptions& options)
 {
   vtkSmartPointer<vtkAlgorithm> source;
@@ -193,11 +206,8 @@ int RunRender(RenderOptions options)
     return 1;
   }
 
-  const char* display = std::getenv("DISPLAY");
-  if (!display || !*display)
+  if (!HasDisplay("rendering"))
   {
-    std::cerr << "brume: rendering needs an X display (none is set in DISPLAY); on a headless "
-                 "machine run it under 'xvfb-run -a'.\n";
     return 1;
   }
 

@@ -38,4 +38,8 @@ int RunRender(RenderOptions options);
  */
 vtkSmartPointer<vtkAlgorithm> LoadScene(RenderOptions& options);
 
+/// True when an X display is set; otherwise says on stderr that `what`
+/// needs one and how to get one (xvfb-run -a).
+bool HasDisplay(const char* what);
+
 #endif

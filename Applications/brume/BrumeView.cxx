@@ -366,11 +366,8 @@ int RunView(const ViewOptions& options)
   {
     return 1;
   }
-  const char* display = std::getenv("DISPLAY");
-  if (!display || !*display)
+  if (!HasDisplay("the viewer (or its --orbit)"))
   {
-    std::cerr << "brume: the viewer needs an X display (none is set in DISPLAY); on a headless "
-                 "machine run an orbit under 'xvfb-run -a'.\n";
     return 1;
   }
   Viewer viewer(resolved);

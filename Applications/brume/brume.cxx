@@ -179,6 +179,19 @@ bool ParseDouble(const std::string& text, double minimum, double maximum, double
   return true;
 }
 
+// Whether -h or --help is among a sub-command's arguments.
+bool WantsHelp(int argc, char* argv[])
+{
+  for (int i = 2; i < argc; ++i)
+  {
+    if (std::string(argv[i]) == "-h" || std::string(argv[i]) == "--help")
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 // Walks the options of a sub-command.
 class Arguments
 {
@@ -298,13 +311,10 @@ int ParseSceneOption(Arguments& args, const std::string& arg, RenderOptions& opt
 int Render(int argc, char* argv[])
 {
   Usage = RenderHelp;
-  for (int i = 2; i < argc; ++i)
+  if (WantsHelp(argc, argv))
   {
-    if (std::string(argv[i]) == "-h" || std::string(argv[i]) == "--help")
-    {
-      std::cout << Usage;
-      return 0;
-    }
+    std::cout << Usage;
+    return 0;
   }
   RenderOptions options;
   Arguments args(argc, argv, 2);
@@ -360,13 +370,10 @@ int Render(int argc, char* argv[])
 int View(int argc, char* argv[])
 {
   Usage = ViewHelp;
-  for (int i = 2; i < argc; ++i)
+  if (WantsHelp(argc, argv))
   {
-    if (std::string(argv[i]) == "-h" || std::string(argv[i]) == "--help")
-    {
-      std::cout << Usage;
-      return 0;
-    }
+    std::cout << Usage;
+    return 0;
   }
   ViewOptions options;
   Arguments args(argc, argv, 2);
@@ -445,13 +452,10 @@ int View(int argc, char* argv[])
 int Validate(int argc, char* argv[])
 {
   Usage = ValidateHelp;
-  for (int i = 2; i < argc; ++i)
+  if (WantsHelp(argc, argv))
   {
-    if (std::string(argv[i]) == "-h" || std::string(argv[i]) == "--help")
-    {
-      std::cout << Usage;
-      return 0;
-    }
+    std::cout << Usage;
+    return 0;
   }
   if (argc < 3 || std::string(argv[2]) != "slab")
   {
@@ -519,13 +523,10 @@ int Validate(int argc, char* argv[])
 int Chart(int argc, char* argv[])
 {
   Usage = ChartHelp;
-  for (int i = 2; i < argc; ++i)
+  if (WantsHelp(argc, argv))
   {
-    if (std::string(argv[i]) == "-h" || std::string(argv[i]) == "--help")
-    {
-      std::cout << Usage;
-      return 0;
-    }
+    std::cout << Usage;
+    return 0;
   }
   ChartOptions options;
   const char* xdg = std::getenv("XDG_CACHE_HOME");
@@ -611,13 +612,10 @@ int Chart(int argc, char* argv[])
 int Bench(int argc, char* argv[])
 {
   Usage = BenchHelp;
-  for (int i = 2; i < argc; ++i)
+  if (WantsHelp(argc, argv))
   {
-    if (std::string(argv[i]) == "-h" || std::string(argv[i]) == "--help")
-    {
-      std::cout << Usage;
-      return 0;
-    }
+    std::cout << Usage;
+    return 0;
   }
   BenchOptions options;
   Arguments args(argc, argv, 2);
