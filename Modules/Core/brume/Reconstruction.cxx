@@ -183,6 +183,9 @@ ObjectRadiance::ObjectRadiance(const Medium& medium, std::array<int, 3> resoluti
   , Dims{ resolution[0] * refinement, resolution[1] * refinement, resolution[2] * refinement }
   , Refinement(refinement)
   , ViewDependent(medium.G != 0.f)
+  , CellVolume(static_cast<double>(medium.Bounds.Volume()) /
+      (static_cast<double>(this->Dims[0]) * this->Dims[1] * this->Dims[2]))
+  , MediumAlbedo(medium.Albedo())
 {
 }
 
@@ -772,14 +775,12 @@ void ObjectRadiance::ToRadiance(
   std::size_t t, const Region& r, const double* sum, float* out) const
 {
   // J = albedo * sum(p Phi) / V; S = J / sigma_t.
-  const double cellVolume = static_cast<double>(this->MediumRef->Bounds.Volume()) /
-    (static_cast<double>(this->Dims[0]) * this->Dims[1] * this->Dims[2]);
-  const double volume = static_cast<double>(r.Cells()) * cellVolume;
-  const Vec3 albedo = this->MediumRef->Albedo();
+  const double volume = static_cast<double>(r.Cells()) * this->CellVolume;
   for (int c = 0; c < 3; ++c)
   {
     const double sigmaT = this->Extinction[3 * t + c];
-    out[c] = sigmaT > 0.0 ? static_cast<float>(albedo[c] * sum[c] / volume / sigmaT) : 0.f;
+    out[c] =
+      sigmaT > 0.0 ? static_cast<float>(this->MediumAlbedo[c] * sum[c] / volume / sigmaT) : 0.f;
   }
 }
 

@@ -185,6 +185,8 @@ private:
   std::array<int, 3> Dims; // histogram
   int Refinement;
   bool ViewDependent = false;
+  double CellVolume = 0.0; // media: one histogram cell's volume
+  Vec3 MediumAlbedo;       // media: sigma_s / sigma_t
 
   // View-dependent objects keep their hits (44 bytes each), grouped by
   // ranges of histogram cells and in hit order within a range.
