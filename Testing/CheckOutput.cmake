@@ -1,6 +1,14 @@
-# Runs COMMAND (a list): it must exit with 0 (no crash) and its output must
-# contain every string of EXPECT (a list).
-execute_process(COMMAND ${COMMAND} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+# Runs COMMAND (a list), in WORKDIR if given: it must exit with 0 (no crash),
+# its output must contain every string of EXPECT (a list) and every file of
+# FILES (a list, relative to WORKDIR) must exist afterwards.
+if (WORKDIR)
+  file(REMOVE_RECURSE "${WORKDIR}")
+  file(MAKE_DIRECTORY "${WORKDIR}")
+else ()
+  set(WORKDIR ".")
+endif ()
+execute_process(COMMAND ${COMMAND} WORKING_DIRECTORY "${WORKDIR}"
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if (NOT rc EQUAL 0)
   message(FATAL_ERROR "exit code ${rc}\nstdout: ${out}\nstderr: ${err}")
 endif ()
@@ -8,5 +16,10 @@ foreach (expected IN LISTS EXPECT)
   string(FIND "${out}${err}" "${expected}" found)
   if (found EQUAL -1)
     message(FATAL_ERROR "missing message '${expected}'\nstdout: ${out}\nstderr: ${err}")
+  endif ()
+endforeach ()
+foreach (expected_file IN LISTS FILES)
+  if (NOT EXISTS "${WORKDIR}/${expected_file}")
+    message(FATAL_ERROR "missing file '${expected_file}' in ${WORKDIR}\nstdout: ${out}")
   endif ()
 endforeach ()

@@ -381,14 +381,20 @@ int RunView(const ViewOptions& options)
   }
   for (const char key : resolved.Keys)
   {
-    if (key == 's' || !viewer.Key(key))
+    const bool known = key == 'p' || key == 'd' || key == 'm' || (key == 's' && resolved.ExitAfter);
+    if (!known)
     {
-      std::cerr << "brume: --keys accepts p, d and m, not '" << key << "'.\n";
+      std::cerr << "brume: --keys accepts p, d and m (and s with --exit-after), not '" << key
+                << "'.\n";
       return 2;
     }
   }
   if (resolved.Orbit > 0)
   {
+    for (const char key : resolved.Keys)
+    {
+      viewer.Key(key);
+    }
     return Orbit(viewer, resolved);
   }
 
@@ -450,6 +456,61 @@ int RunView(const ViewOptions& options)
   interactor->AddObserver(vtkCommand::CharEvent, keys, 1.0);
   interactor->Initialize();
   viewer.Window->Render();
+
+  // --exit-after N: a timer presses the --keys through the interactor, then
+  // turns the camera 5 degrees a frame for N frames and quits (for tests and
+  // demonstrations of the interactive path itself).
+  struct Script
+  {
+    Viewer* View;
+    vtkRenderWindowInteractor* Interactor;
+    std::string Keys;
+    int Frames, Done;
+    vtkIdType Builds, Updates;
+  } script{ &viewer, interactor, resolved.Keys, resolved.ExitAfter, 0,
+    viewer.Reconstruction->GetNumberOfTextureBuilds(),
+    viewer.Reconstruction->GetNumberOfViewUpdates() };
+  vtkNew<vtkCallbackCommand> tick;
+  if (resolved.ExitAfter > 0)
+  {
+    tick->SetClientData(&script);
+    tick->SetCallback(
+      [](vtkObject*, unsigned long, void* data, void*)
+      {
+        auto* run = static_cast<Script*>(data);
+        for (const char key : run->Keys)
+        {
+          run->Interactor->SetKeyCode(key);
+          run->Interactor->InvokeEvent(vtkCommand::CharEvent, nullptr);
+        }
+        if (run->Done == 0)
+        {
+          // The keys' own renders are not counted.
+          run->Builds = run->View->Reconstruction->GetNumberOfTextureBuilds();
+          run->Updates = run->View->Reconstruction->GetNumberOfViewUpdates();
+        }
+        run->Keys.clear();
+        if (run->Done++ == run->Frames)
+        {
+          run->Interactor->TerminateApp();
+          return;
+        }
+        run->View->Renderer->GetActiveCamera()->Azimuth(5.0);
+        run->Interactor->Render();
+      });
+    interactor->AddObserver(vtkCommand::TimerEvent, tick);
+    interactor->CreateRepeatingTimer(1);
+  }
   interactor->Start();
+  if (resolved.ExitAfter > 0)
+  {
+    std::printf("interactive: %d frames, %s particles, media %s\n", resolved.ExitAfter,
+      Thousands(viewer.Particles).c_str(),
+      viewer.Reconstruction->GetDirectionalRadiance() ? "spherical harmonics" : "per view (paper)");
+    std::printf("texture builds during the frames: %lld\n",
+      static_cast<long long>(viewer.Reconstruction->GetNumberOfTextureBuilds() - script.Builds));
+    std::printf("view-dependent texture updates during the frames: %lld\n",
+      static_cast<long long>(viewer.Reconstruction->GetNumberOfViewUpdates() - script.Updates));
+  }
   return failed ? 1 : 0;
 }

@@ -18,6 +18,7 @@ struct ViewOptions
   std::string Csv;          // with Orbit: per-frame timings
   std::string Keys;         // keys pressed before the orbit or the interaction
   bool Overlay = true;      // the text overlay
+  int ExitAfter = 0;        // interactive: quit after so many timer-driven frames (0: never)
 };
 
 /// Runs the viewer; returns the process exit code.

@@ -69,7 +69,11 @@ the scene instead, off screen, and the frame times are printed.
                       where sh media are evaluated toward the eye: once per
                       view and voxel (default; cheapest under Mesa), or per
                       fragment in the slice shader (no work on a view change)
-  --keys KEYS         keys pressed at the start (p, d, m), e.g. --keys pp
+  --keys KEYS         keys pressed at the start (p, d, m; and s with
+                      --exit-after), e.g. --keys pp
+  --exit-after N      interactive window driven by a timer: press the --keys,
+                      turn the camera 5 degrees a frame for N frames, quit
+                      and print the work done (a test of the interactive path)
   --no-overlay        hide the text overlay
   --orbit N           render N frames around the focal point (no window
                       interaction, needs a display: xvfb-run -a) and print
@@ -429,6 +433,14 @@ int View(int argc, char* argv[])
         return UsageError("--keys needs the keys to press");
       }
     }
+    else if (arg == "--exit-after")
+    {
+      if (!args.Value(v) || !ParseInteger(v, 1, 100000, n))
+      {
+        return UsageError("--exit-after needs a number of frames in [1, 100000]");
+      }
+      options.ExitAfter = static_cast<int>(n);
+    }
     else if (arg == "--no-overlay")
     {
       options.Overlay = false;
@@ -445,6 +457,10 @@ int View(int argc, char* argv[])
   if (options.Orbit == 0 && (!options.FramesOut.empty() || !options.Csv.empty()))
   {
     return UsageError("--frames-out and --csv go with --orbit");
+  }
+  if (options.Orbit > 0 && options.ExitAfter > 0)
+  {
+    return UsageError("--exit-after is for the interactive window, not --orbit");
   }
   return RunView(options);
 }
