@@ -218,9 +218,13 @@ PipelineRun Pipeline(vtkAlgorithm* scene, const View& view, int width, int heigh
   run.Full = Seconds(start);
   run.Radiance = Downsample(capture->Capture(), Supersampling);
 
-  // A new viewpoint: come back to this one from 2 degrees away.
+  // A new viewpoint: come back to this one from 2 degrees away (drawn
+  // there, so that every per-view step runs again).
   camera->Azimuth(-2.0);
   reconstruction->Update();
+  actors->UpdateInputs(reconstruction->GetOutput());
+  window->Render();
+  window->WaitForCompletion();
   camera->Azimuth(2.0);
   const auto viewStart = std::chrono::steady_clock::now();
   reconstruction->Update();

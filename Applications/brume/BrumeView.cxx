@@ -200,11 +200,7 @@ public:
       case '+':
         // Progressive: the next particles are added to the histograms (at
         // once: the reconstruction holds the hits of one step at a time).
-        if (this->Particles > 5000000000LL || !this->Trace(this->Particles, 2 * this->Particles) ||
-          !this->Update())
-        {
-          std::cerr << "brume: cannot add particles.\n";
-        }
+        this->MoreParticles();
         break;
       case 'd':
         this->Reconstruction->SetDirectionalRadiance(
@@ -222,6 +218,27 @@ public:
     }
     this->ShowOverlay();
     return true;
+  }
+
+  // Doubles the particles; on failure the viewer keeps the textures it has.
+  void MoreParticles()
+  {
+    const long long first = this->Tracer->GetFirstParticle(), total = this->Particles;
+    if (total > 5000000000LL)
+    {
+      std::cerr << "brume: already " << Thousands(total) << " particles; not adding more.\n";
+      return;
+    }
+    if (this->Trace(total, 2 * total) && this->Update())
+    {
+      return;
+    }
+    // Back to the step the textures hold: the tracer runs it again and the
+    // reconstruction recognizes it as nothing new.
+    std::cerr << "brume: cannot add particles; keeping " << Thousands(total) << ".\n";
+    this->Tracer->SetFirstParticle(first);
+    this->Tracer->SetNumberOfParticles(total);
+    this->Particles = total;
   }
 
   bool Save(const std::string& file)
@@ -378,16 +395,6 @@ int RunView(const ViewOptions& options)
   if (!viewer.Start(scene))
   {
     return 1;
-  }
-  for (const char key : resolved.Keys)
-  {
-    const bool known = key == 'p' || key == 'd' || key == 'm' || (key == 's' && resolved.ExitAfter);
-    if (!known)
-    {
-      std::cerr << "brume: --keys accepts p, d and m (and s with --exit-after), not '" << key
-                << "'.\n";
-      return 2;
-    }
   }
   if (resolved.Orbit > 0)
   {

@@ -62,8 +62,9 @@ the scene instead, off screen, and the frame times are printed.
   --exposure E        display exposure (default 1)
   --threshold T       radiosity threshold, in particles (default 128)
   --mode paper|sh     media: per-view reconstruction as in the paper
-                      (default), or spherical harmonics evaluated in the
-                      slice shader (a view change costs only the render)
+                      (default), or spherical harmonics evaluated toward the
+                      eye by the slice mapper (a view change costs no
+                      reconstruction)
   --order N           spherical-harmonics order, 1 to 3 (default 3)
   --sh-evaluation voxel|fragment
                       where sh media are evaluated toward the eye: once per
@@ -461,6 +462,14 @@ int View(int argc, char* argv[])
   if (options.Orbit > 0 && options.ExitAfter > 0)
   {
     return UsageError("--exit-after is for the interactive window, not --orbit");
+  }
+  for (const char key : options.Keys)
+  {
+    if (key != 'p' && key != 'd' && key != 'm' && !(key == 's' && options.ExitAfter > 0))
+    {
+      return UsageError(
+        std::string("--keys accepts p, d and m (and s with --exit-after), not '") + key + "'");
+    }
   }
   return RunView(options);
 }

@@ -114,6 +114,7 @@ struct vtkBrumeRadianceReconstruction::Cache
   std::vector<bool> ObjectDirectional; // whose output holds directional radiance
   double Particles = 0.0, Seed = 0.0;
   bool Accumulated = false; // particles were added after the build
+  double LastFirstParticle = 0.0; // the first particle of the last step added
 };
 
 vtkBrumeRadianceReconstruction::vtkBrumeRadianceReconstruction()
@@ -268,9 +269,24 @@ int vtkBrumeRadianceReconstruction::RequestData(
     cache->SurfaceResolution == this->SurfaceResolution &&
     cache->MediumResolution == this->MediumResolution &&
     cache->Refinement == this->HistogramRefinement;
-  const bool newHits =
-    !cache || cache->HitsData != hitData || cache->HitsTime != hitData->GetMTime();
+  // A tracer that ran again with the settings of the step already added
+  // (same seed, particles [first, total)) brings nothing new.
+  const bool sameStep = cache && firstParticle > 0.0 && cache->Accumulated &&
+    cache->LastFirstParticle == firstParticle && cache->Particles == particles &&
+    cache->Seed == seed;
+  const bool newHits = !sameStep &&
+    (!cache || cache->HitsData != hitData || cache->HitsTime != hitData->GetMTime());
   const bool accumulate = firstParticle > 0.0 && newHits;
+  if (firstParticle > 0.0 && !newHits && !sameSettings)
+  {
+    // The hits hold only the last step's particles: the textures cannot be
+    // rebuilt from them.
+    vtkErrorMacro("The settings or the scene changed, but the hits are only the particles ["
+      << firstParticle << ", " << particles
+      << ") of a run: trace from FirstParticle 0 again to rebuild the textures.");
+    this->Cached.reset();
+    return 0;
+  }
   if (accumulate)
   {
     if (!sameSettings || cache->Particles != firstParticle || cache->Seed != seed ||
@@ -309,6 +325,7 @@ int vtkBrumeRadianceReconstruction::RequestData(
     cache->HitsData = hitData;
     cache->HitsTime = hitData->GetMTime();
     cache->Particles = particles;
+    cache->LastFirstParticle = firstParticle;
     cache->Accumulated = true;
   }
   const bool rebuild = !accumulate && (!sameSettings || newHits);

@@ -140,6 +140,25 @@ int TestProgressiveDirectional(int, char*[])
   single->Update();
   ok = SameTextures(progressive->GetOutput(), single->GetOutput(), "added, then turned") && ok;
 
+  // The tracer running the same step again brings nothing new; a changed
+  // setting cannot rebuild the textures from the last step's particles.
+  progressiveTracer->Modified();
+  if (!progressive->GetExecutive()->Update() ||
+    progressive->GetNumberOfParticleAdditions() != objects ||
+    progressive->GetNumberOfTextureBuilds() != objects)
+  {
+    std::cerr << "the same step traced again changed the textures\n";
+    ok = false;
+  }
+  ok = SameTextures(progressive->GetOutput(), single->GetOutput(), "same step again") && ok;
+  progressive->SetRadiosityThreshold(64.0);
+  if (!FailsWithError(progressive))
+  {
+    std::cerr << "a setting change rebuilt the textures from part of the particles\n";
+    ok = false;
+  }
+  progressive->SetRadiosityThreshold(128.0);
+
   // 2. Hits that do not continue the textures' run are refused.
   progressiveTracer->SetFirstParticle(50000);
   progressiveTracer->SetNumberOfParticles(60000);

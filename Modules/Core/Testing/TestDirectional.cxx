@@ -256,11 +256,38 @@ TEST(Progressive, RejectsAddBeforeBuildAndBadScales)
 {
   const Scene scene = MakeDefaultScene();
   auto objects = Objects(scene);
-  const Hits hits = Trace(scene, 0, 100, 100);
+  const Hits hits = Trace(scene, 0, 2000, 2000);
   std::vector<std::uint32_t> none;
   EXPECT_NE(objects[0]->Add(hits.View(), none.data(), 0, 0.5, Vec3(0.f), 1.0, SerialFor()), "");
   ASSERT_EQ(objects[0]->Build(hits.View(), none.data(), 0, Vec3(0.f), 1.0, SerialFor()), "");
   EXPECT_NE(objects[0]->Add(hits.View(), none.data(), 0, -1.0, Vec3(0.f), 1.0, SerialFor()), "");
   EXPECT_NE(objects[0]->Add(hits.View(), none.data(), 0, NAN, Vec3(0.f), 1.0, SerialFor()), "");
   EXPECT_NE(objects[0]->BuildDirectional(2, SerialFor()), "") << "surfaces have no directional mode";
+  EXPECT_NE(objects.back()->BuildDirectional(2, SerialFor()), "") << "the fog is not built yet";
+  // A hit refers to a triangle the surface lacks: refused before anything changes.
+  Hits bad = hits;
+  std::vector<std::uint32_t> all(bad.Object.size());
+  for (std::size_t i = 0; i < all.size(); ++i)
+  {
+    all[i] = static_cast<std::uint32_t>(i);
+    bad.Triangle[i] = 1000000;
+  }
+  Surface sphere = scene.Surfaces[0];
+  sphere.Vertices.push_back(Vec3(0.f, 0.f, 5.f)); // no longer planar: an atlas, TriangleId needed
+  sphere.Triangles.push_back({ 0, 1, static_cast<std::uint32_t>(sphere.Vertices.size() - 1) });
+  ObjectRadiance curved(sphere, MakeChart(sphere, nullptr), { 8, 8 }, 2);
+  std::vector<std::uint32_t> wall;
+  for (std::uint32_t i = 0; i < hits.Object.size(); ++i)
+  {
+    if (hits.Object[i] == 0)
+    {
+      wall.push_back(i);
+    }
+  }
+  ASSERT_FALSE(wall.empty());
+  ASSERT_EQ(curved.Build(hits.View(), wall.data(), wall.size(), Vec3(0.f), 1.0, SerialFor()), "");
+  const std::vector<double> before = curved.GetValueHistogram().GetValues();
+  ASSERT_TRUE(std::any_of(before.begin(), before.end(), [](double v) { return v != 0.0; }));
+  EXPECT_NE(curved.Add(bad.View(), all.data(), all.size(), 0.5, Vec3(0.f), 1.0, SerialFor()), "");
+  EXPECT_EQ(curved.GetValueHistogram().GetValues(), before);
 }

@@ -210,11 +210,12 @@ std::string ObjectRadiance::Build(const HitArrays& hits, const std::uint32_t* in
   this->Regions.clear();
   this->Directional.clear();
   this->DirectionalOrder = -1;
-  const std::string error = this->Bin(hits, index, count, parallelFor);
+  const std::string error = this->Check(hits, index, count);
   if (!error.empty())
   {
     return error;
   }
+  this->Bin(hits, index, count, parallelFor);
   this->Finish(eye, thresholdFlux, true, parallelFor);
   return {};
 }
@@ -230,6 +231,11 @@ std::string ObjectRadiance::Add(const HitArrays& hits, const std::uint32_t* inde
   if (!(scale > 0.0) || !std::isfinite(scale))
   {
     return "the flux scale of the particles already binned must be positive and finite";
+  }
+  const std::string error = this->Check(hits, index, count);
+  if (!error.empty())
+  {
+    return error; // nothing changed
   }
   // The particles already binned were normalized by a smaller count: scale
   // them (exactly, when the count grows by a power of two), then bin the new.
@@ -253,11 +259,7 @@ std::string ObjectRadiance::Add(const HitArrays& hits, const std::uint32_t* inde
     this->WeightHistogram.Scale(scale);
     this->ValueHistogram.Scale(scale);
   }
-  const std::string error = this->Bin(hits, index, count, parallelFor);
-  if (!error.empty())
-  {
-    return error;
-  }
+  this->Bin(hits, index, count, parallelFor);
   this->Finish(eye, thresholdFlux, false, parallelFor);
   if (this->DirectionalOrder >= 0)
   {
@@ -266,10 +268,9 @@ std::string ObjectRadiance::Add(const HitArrays& hits, const std::uint32_t* inde
   return {};
 }
 
-std::string ObjectRadiance::Bin(const HitArrays& hits, const std::uint32_t* index,
-  std::size_t count, const ParallelFor& parallelFor)
+std::string ObjectRadiance::Check(
+  const HitArrays& hits, const std::uint32_t* index, std::size_t count) const
 {
-  const std::size_t cells = static_cast<std::size_t>(this->Dims[0]) * this->Dims[1] * this->Dims[2];
   const bool planar = !this->MediumRef && this->Chart.Type == SurfaceChart::Kind::Planar;
   if (!this->MediumRef && !planar && !hits.Triangle && count > 0)
   {
@@ -285,6 +286,14 @@ std::string ObjectRadiance::Bin(const HitArrays& hits, const std::uint32_t* inde
       }
     }
   }
+  return {};
+}
+
+void ObjectRadiance::Bin(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
+  const ParallelFor& parallelFor)
+{
+  const std::size_t cells = static_cast<std::size_t>(this->Dims[0]) * this->Dims[1] * this->Dims[2];
+  const bool planar = !this->MediumRef && this->Chart.Type == SurfaceChart::Kind::Planar;
 
   // The histogram cell of a hit.
   const Box box = this->MediumRef ? this->MediumRef->Bounds : Box();
@@ -359,7 +368,7 @@ std::string ObjectRadiance::Bin(const HitArrays& hits, const std::uint32_t* inde
       }
       this->ValueHistogram.Add(cell, v);
     }
-    return {};
+    return;
   }
 
   // View-dependent objects keep their hits with their histogram cells,
@@ -439,7 +448,6 @@ std::string ObjectRadiance::Bin(const HitArrays& hits, const std::uint32_t* inde
     });
   this->Kept.swap(merged);
   this->RangeStart.swap(mergedStart);
-  return {};
 }
 
 void ObjectRadiance::Finish(
@@ -534,6 +542,10 @@ std::string ObjectRadiance::BuildDirectional(int order, const ParallelFor& paral
   if (!this->MediumRef || !this->ViewDependent)
   {
     return "directional radiance is made for anisotropic media only";
+  }
+  if (this->Regions.empty())
+  {
+    return "directional radiance needs a texture already built";
   }
   if (order < 0 || order > MaxShOrder)
   {

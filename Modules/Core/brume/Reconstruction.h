@@ -170,7 +170,8 @@ public:
 
 private:
   bool FromFront(const HitArrays& hits, std::uint32_t i) const;
-  std::string Bin(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
+  std::string Check(const HitArrays& hits, const std::uint32_t* index, std::size_t count) const;
+  void Bin(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
     const ParallelFor& parallelFor);
   void Finish(const Vec3& eye, double thresholdFlux, bool first, const ParallelFor& parallelFor);
   void ToRadiance(std::size_t texel, const Region& region, const double* sum, float* out) const;
