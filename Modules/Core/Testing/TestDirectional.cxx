@@ -14,8 +14,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <condition_variable>
 #include <cstdio>
+#include <deque>
 #include <memory>
+#include <mutex>
+#include <thread>
 
 using namespace brume;
 
@@ -290,4 +294,117 @@ TEST(Progressive, RejectsAddBeforeBuildAndBadScales)
   ASSERT_TRUE(std::any_of(before.begin(), before.end(), [](double v) { return v != 0.0; }));
   EXPECT_NE(curved.Add(bad.View(), all.data(), all.size(), 0.5, Vec3(0.f), 1.0, SerialFor()), "");
   EXPECT_EQ(curved.GetValueHistogram().GetValues(), before);
+}
+
+namespace
+{
+// Two "processes" as threads: process 0 passes its running sums to process
+// 1, which gives the totals back.
+struct Mailbox
+{
+  std::mutex Mutex;
+  std::condition_variable Ready;
+  std::deque<std::vector<double>> ToNext, Totals;
+};
+
+class ThreadChain : public HistogramChain
+{
+public:
+  ThreadChain(Mailbox& box, int rank)
+    : Box(box)
+    , Rank(rank)
+  {
+  }
+  void Receive(std::vector<double>& values) override
+  {
+    if (this->Rank == 1)
+    {
+      values = Take(this->Box.ToNext);
+      this->Bytes += values.size() * sizeof(double);
+    }
+  }
+  void Forward(std::vector<double>& values) override
+  {
+    std::unique_lock<std::mutex> lock(this->Box.Mutex);
+    this->Bytes += values.size() * sizeof(double);
+    if (this->Rank == 0)
+    {
+      this->Box.ToNext.push_back(values);
+      this->Box.Ready.notify_all();
+      lock.unlock();
+      values = Take(this->Box.Totals);
+    }
+    else
+    {
+      this->Box.Totals.push_back(values);
+      this->Box.Ready.notify_all();
+    }
+  }
+
+private:
+  std::vector<double> Take(std::deque<std::vector<double>>& queue)
+  {
+    std::unique_lock<std::mutex> lock(this->Box.Mutex);
+    this->Box.Ready.wait(lock, [&] { return !queue.empty(); });
+    std::vector<double> v = std::move(queue.front());
+    queue.pop_front();
+    return v;
+  }
+  Mailbox& Box;
+  int Rank;
+};
+}
+
+TEST(Distributed, ChainedHistogramsEqualOneProcessBitwise)
+{
+  // Particles [0, 10000) on process 0 and [10000, 20000) on process 1 of a
+  // run of 20,000, against one process with all of them: every histogram,
+  // texture and projection, after a build, a view change and a projection.
+  const Scene scene = MakeDefaultScene();
+  const std::uint64_t n = 20000;
+  const Hits part[2] = { Trace(scene, 0, n / 2, n), Trace(scene, n / 2, n, n) };
+  const Hits all = Trace(scene, 0, n, n);
+  const double threshold = 16 * 3.0 / n;
+  const Vec3 eye(0.f, 0.f, 3.f), other(1.f, 0.5f, 3.f);
+  auto run = [&](const Hits& hits, HistogramChain* chain)
+  {
+    auto objects = Objects(scene);
+    ObjectHits groups;
+    EXPECT_EQ(GroupHitsByObject(hits.View(), scene.NumberOfObjects(), groups), "");
+    for (std::size_t o = 0; o < objects.size(); ++o)
+    {
+      objects[o]->SetChain(chain);
+      EXPECT_EQ(objects[o]->Build(hits.View(), groups.Index.data() + groups.Offset[o],
+                  groups.Offset[o + 1] - groups.Offset[o], eye, threshold, SerialFor()),
+        "");
+      if (objects[o]->IsViewDependent())
+      {
+        objects[o]->UpdateView(other, SerialFor());
+        EXPECT_EQ(objects[o]->BuildDirectional(3, SerialFor()), "");
+      }
+    }
+    return objects;
+  };
+  Mailbox box;
+  ThreadChain chain0(box, 0), chain1(box, 1);
+  std::vector<std::unique_ptr<ObjectRadiance>> distributed[2];
+  std::thread second([&] { distributed[1] = run(part[1], &chain1); });
+  distributed[0] = run(part[0], &chain0);
+  second.join();
+  const auto single = run(all, nullptr);
+  for (std::size_t o = 0; o < single.size(); ++o)
+  {
+    for (const auto& process : distributed)
+    {
+      EXPECT_EQ(process[o]->GetWeightHistogram().GetValues(),
+        single[o]->GetWeightHistogram().GetValues())
+        << o;
+      EXPECT_EQ(
+        process[o]->GetValueHistogram().GetValues(), single[o]->GetValueHistogram().GetValues())
+        << o;
+      EXPECT_EQ(process[o]->GetRadiance(), single[o]->GetRadiance()) << o;
+      EXPECT_EQ(process[o]->GetDirectional(), single[o]->GetDirectional()) << o;
+    }
+  }
+  EXPECT_GT(chain0.Bytes + chain1.Bytes, 0u) << "nothing went through the chain";
 }

@@ -52,6 +52,7 @@ public:
   }
   const double* Get(std::size_t cell) const { return &this->Values[cell * this->Channels]; }
   const std::vector<double>& GetValues() const { return this->Values; }
+  std::vector<double>& GetValues() { return this->Values; }
 
 private:
   std::array<int, 3> Dims{ 0, 0, 0 };

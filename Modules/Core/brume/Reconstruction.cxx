@@ -228,6 +228,10 @@ std::string ObjectRadiance::Add(const HitArrays& hits, const std::uint32_t* inde
   {
     return "particles can only be added to a texture already built";
   }
+  if (this->Chain)
+  {
+    return "particles cannot be added to a texture summed across processes";
+  }
   if (!(scale > 0.0) || !std::isfinite(scale))
   {
     return "the flux scale of the particles already binned must be positive and finite";
@@ -339,6 +343,7 @@ void ObjectRadiance::Bin(const HitArrays& hits, const std::uint32_t* index, std:
   {
     // View-independent objects: one pass in hit order adds every hit to its
     // cell (deterministic, and the histogram fits in cache); nothing is kept.
+    this->ChainReceive(this->WeightHistogram, &this->ValueHistogram);
     for (std::size_t k = 0; k < count; ++k)
     {
       const std::uint32_t i = index[k];
@@ -368,6 +373,7 @@ void ObjectRadiance::Bin(const HitArrays& hits, const std::uint32_t* index, std:
       }
       this->ValueHistogram.Add(cell, v);
     }
+    this->ChainForward(this->WeightHistogram, &this->ValueHistogram);
     return;
   }
 
@@ -462,6 +468,7 @@ void ObjectRadiance::Finish(
   else
   {
     this->WeightHistogram = Histogram(this->Dims, 1);
+    this->ChainReceive(this->WeightHistogram);
     parallelFor(0, Ranges,
       [&](std::size_t begin, std::size_t end)
       {
@@ -472,6 +479,7 @@ void ObjectRadiance::Finish(
           this->WeightHistogram.Add(this->Kept[k].Cell, &w);
         }
       });
+    this->ChainForward(this->WeightHistogram);
     this->WeightTable = SummedAreaTable(this->WeightHistogram);
     this->WeighCells(eye, parallelFor);
   }
@@ -563,6 +571,7 @@ std::string ObjectRadiance::BuildDirectional(int order, const ParallelFor& paral
   {
     const int kn = std::min(PerPass, nk - k0);
     Histogram projected(this->Dims, 3 * kn);
+    this->ChainReceive(projected);
     parallelFor(0, Ranges,
       [&](std::size_t begin, std::size_t end)
       {
@@ -582,6 +591,7 @@ std::string ObjectRadiance::BuildDirectional(int order, const ParallelFor& paral
           projected.Add(h.Cell, v);
         }
       });
+    this->ChainForward(projected);
     const SummedAreaTable table(projected);
     parallelFor(0, texels,
       [&](std::size_t begin, std::size_t end)
@@ -646,6 +656,7 @@ void ObjectRadiance::WeighCells(const Vec3& eye, const ParallelFor& parallelFor)
 {
   this->ValueHistogram = Histogram(this->Dims, 3);
   Histogram& value = this->ValueHistogram;
+  this->ChainReceive(value);
   const Medium* medium = this->MediumRef;
   const Surface* surface = this->SurfaceRef;
   const HenyeyGreenstein phase(medium ? medium->G : 0.f);
@@ -691,6 +702,7 @@ void ObjectRadiance::WeighCells(const Vec3& eye, const ParallelFor& parallelFor)
         value.Add(cell, v);
       }
     });
+  this->ChainForward(value);
   this->ValueTable = SummedAreaTable(value);
 }
 
@@ -781,6 +793,56 @@ void ObjectRadiance::BuildAreaTable()
     }
   }
   this->AreaTable = SummedAreaTable(area);
+}
+
+namespace
+{
+// One buffer for one or two histograms: each chain step is one message.
+std::vector<double> Joined(Histogram& a, Histogram* b)
+{
+  std::vector<double> v;
+  if (!b)
+  {
+    v.swap(a.GetValues());
+    return v;
+  }
+  v.reserve(a.GetValues().size() + b->GetValues().size());
+  v.insert(v.end(), a.GetValues().begin(), a.GetValues().end());
+  v.insert(v.end(), b->GetValues().begin(), b->GetValues().end());
+  return v;
+}
+
+void Split(std::vector<double>& v, Histogram& a, Histogram* b)
+{
+  if (!b)
+  {
+    a.GetValues().swap(v);
+    return;
+  }
+  const auto middle = v.begin() + static_cast<std::ptrdiff_t>(a.GetValues().size());
+  std::copy(v.begin(), middle, a.GetValues().begin());
+  std::copy(middle, v.end(), b->GetValues().begin());
+}
+}
+
+void ObjectRadiance::ChainReceive(Histogram& a, Histogram* b)
+{
+  if (this->Chain)
+  {
+    std::vector<double> v = Joined(a, b);
+    this->Chain->Receive(v);
+    Split(v, a, b);
+  }
+}
+
+void ObjectRadiance::ChainForward(Histogram& a, Histogram* b)
+{
+  if (this->Chain)
+  {
+    std::vector<double> v = Joined(a, b);
+    this->Chain->Forward(v);
+    Split(v, a, b);
+  }
 }
 
 void ObjectRadiance::ToRadiance(

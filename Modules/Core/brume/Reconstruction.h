@@ -106,6 +106,26 @@ struct SurfaceChart
 SurfaceChart MakeChart(
   const Surface& surface, const std::vector<std::array<float, 2>>* vertexTextureCoordinates);
 
+/**
+ * Sums histograms across processes that hold consecutive parts of one run
+ * (process r: the particles after those of process r - 1), in an order that
+ * makes the result bitwise that of one process adding every hit: each
+ * process starts from the running sums of the processes before it, adds its
+ * own hits in order, and passes the sums on; the last one gives the totals
+ * to all. Every process must make the same calls in the same order.
+ */
+class HistogramChain
+{
+public:
+  virtual ~HistogramChain() = default;
+  /// Before this process adds its hits: the running sums so far (in place).
+  virtual void Receive(std::vector<double>& values) = 0;
+  /// After: passes the sums on; on return `values` holds the totals.
+  virtual void Forward(std::vector<double>& values) = 0;
+  /// Bytes this process has sent and received so far.
+  std::size_t Bytes = 0;
+};
+
 /// The radiance texture of one object, kept for cheap view updates.
 class ObjectRadiance
 {
@@ -116,6 +136,13 @@ public:
 
   /// Glossy surfaces and anisotropic media change with the viewpoint.
   bool IsViewDependent() const { return this->ViewDependent; }
+
+  /**
+   * Distributed runs: every histogram this object builds from now on is
+   * summed across processes through `chain` (not owned; null: this process
+   * holds every hit). Progressive Add() is not supported with a chain.
+   */
+  void SetChain(HistogramChain* chain) { this->Chain = chain; }
 
   /**
    * Bins the object's hits (`count` indices into `hits`) and estimates the
@@ -212,6 +239,12 @@ private:
   std::vector<float> Extinction;
   std::vector<float> Directional;
   int DirectionalOrder = -1;
+  HistogramChain* Chain = nullptr;
+
+  // The chain's Receive / Forward, when there is one, of one histogram or
+  // of two as one message.
+  void ChainReceive(Histogram& a, Histogram* b = nullptr);
+  void ChainForward(Histogram& a, Histogram* b = nullptr);
 };
 
 } // namespace brume
