@@ -1,4 +1,5 @@
-# Runs COMMAND (a list) and fails unless it exits with EXPECTED.
+# Runs COMMAND (a list) and fails unless it exits with EXPECTED and its
+# stderr holds every string of EXPECT_ERROR (a list, optional).
 execute_process(COMMAND ${COMMAND} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if (NOT "${rc}" STREQUAL "${EXPECTED}")
   message(FATAL_ERROR "expected exit code ${EXPECTED}, got '${rc}'\nstdout: ${out}\nstderr: ${err}")
@@ -6,3 +7,9 @@ endif ()
 if (NOT "${EXPECTED}" STREQUAL "0" AND "${err}" STREQUAL "")
   message(FATAL_ERROR "a failing command must say why on stderr")
 endif ()
+foreach (expected IN LISTS EXPECT_ERROR)
+  string(FIND "${err}" "${expected}" found)
+  if (found EQUAL -1)
+    message(FATAL_ERROR "missing '${expected}' on stderr\nstderr: ${err}")
+  endif ()
+endforeach ()

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "BrumeRender.h"
+#include "BrumeProcesses.h"
 #include "BrumeProgress.h"
 
 #include "vtkBrumeDefaultSceneSource.h"
@@ -11,6 +12,8 @@
 #include "vtkBrumeSceneConversion.h"
 #include "vtkBrumeSceneReader.h"
 #include "vtkCamera.h"
+#include "vtkCommunicator.h"
+#include "vtkMultiProcessController.h"
 #include "vtkDataArray.h"
 #include "vtkExecutive.h"
 #include "vtkFieldData.h"
@@ -199,14 +202,18 @@ int RunRender(RenderOptions options)
   {
     return RunReference(options, png);
   }
+  // Under mpirun every process traces its share of the particles, the
+  // histograms are summed across processes, process 0 renders and writes.
+  // Any process failing stops all of them at the next agreement.
+  const int rank = BrumeRank(), processes = BrumeSize();
+
   // The scene first: a bad file is reported with or without a display.
   const vtkSmartPointer<vtkAlgorithm> scene = LoadScene(options);
-  if (!scene)
+  if (!BrumeAllSucceeded(scene != nullptr, "loading the scene"))
   {
     return 1;
   }
-
-  if (!HasDisplay("rendering"))
+  if (!BrumeAllSucceeded(rank != 0 || HasDisplay("rendering"), "finding a display"))
   {
     return 1;
   }
@@ -217,13 +224,28 @@ int RunRender(RenderOptions options)
   tracer->SetInputConnection(scene->GetOutputPort());
   tracer->SetNumberOfParticles(options.Particles);
   tracer->SetSeed(options.Seed);
-  BrumeShowProgress(tracer, "particle tracing");
-  if (!tracer->GetExecutive()->Update())
+  if (rank == 0)
+  {
+    BrumeShowProgress(tracer, "particle tracing");
+  }
+  const bool traced = tracer->UpdatePiece(rank, processes, 0) != 0;
+  if (!traced)
   {
     std::cerr << "brume: particle tracing failed.\n";
+  }
+  if (!BrumeAllSucceeded(traced, "particle tracing"))
+  {
     return 1;
   }
-  const double tracing = Seconds(start);
+  double tracing = Seconds(start);
+  if (processes > 1)
+  {
+    // The slowest process's tracing time.
+    double slowest = tracing;
+    vtkMultiProcessController::GetGlobalController()->AllReduce(
+      &tracing, &slowest, 1, vtkCommunicator::MAX_OP);
+    tracing = slowest;
+  }
 
   // Phase 2: reconstruction toward the camera.
   double position[3] = { 0, 0, 4 }, focal[3] = { 0, 0, 0 }, up[3] = { 0, 1, 0 }, angle = 40;
@@ -234,13 +256,32 @@ int RunRender(RenderOptions options)
   reconstruction->SetInputConnection(1, tracer->GetOutputPort());
   reconstruction->SetEyePosition(position);
   reconstruction->SetRadiosityThreshold(options.Threshold);
-  BrumeShowProgress(reconstruction, "reconstruction");
-  if (!reconstruction->GetExecutive()->Update())
+  if (rank == 0)
+  {
+    BrumeShowProgress(reconstruction, "reconstruction");
+  }
+  const bool reconstructed = reconstruction->UpdatePiece(rank, processes, 0) != 0;
+  if (!reconstructed)
   {
     std::cerr << "brume: reconstruction failed.\n";
+  }
+  if (!BrumeAllSucceeded(reconstructed, "reconstruction"))
+  {
     return 1;
   }
   const double reconstructing = Seconds(start);
+  vtkTypeInt64 reductionBytes = reconstruction->GetLastReductionBytes();
+  if (processes > 1)
+  {
+    vtkTypeInt64 total = 0;
+    vtkMultiProcessController::GetGlobalController()->AllReduce(
+      &reductionBytes, &total, 1, vtkCommunicator::SUM_OP);
+    reductionBytes = total;
+  }
+  if (rank != 0)
+  {
+    return 0; // process 0 renders
+  }
 
   // Phase 3: textured surfaces, then the media as slices.
   vtkNew<vtkRenderer> renderer;
@@ -286,10 +327,14 @@ int RunRender(RenderOptions options)
   {
     auto* hits = tracer->GetOutput();
     std::printf("phase                time (s)\n");
-    std::printf("particle tracing     %8.3f   %lld particles, %lld hits, %lld rays\n", tracing,
+    std::printf("particle tracing     %8.3f   %lld particles, %lld hits, %lld rays", tracing,
       options.Particles, static_cast<long long>(hits->GetNumberOfPoints()),
       static_cast<long long>(tracer->GetLastRayCount()));
-    std::printf("reconstruction       %8.3f\n", reconstructing);
+    std::printf(processes > 1 ? " (process 0 of %d; time: the slowest)\n" : "\n", processes);
+    std::printf("reconstruction       %8.3f", reconstructing);
+    std::printf(processes > 1 ? "   histograms summed across processes: %.1f MB sent and received\n"
+                              : "\n",
+      static_cast<double>(reductionBytes) / 1e6);
     std::printf("rendering            %8.3f   per frame at %dx%d (first frame %.3f s, with "
                 "texture upload and shader compilation)\n",
       frame, options.Width, options.Height, firstFrame);

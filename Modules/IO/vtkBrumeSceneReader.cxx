@@ -316,6 +316,15 @@ vtkBrumeSceneReader::vtkBrumeSceneReader()
   this->SetNumberOfInputPorts(0);
 }
 
+int vtkBrumeSceneReader::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  // A scene is replicated, not split: every piece (every process of a
+  // distributed run) gets all of it.
+  outputVector->GetInformationObject(0)->Set(CAN_HANDLE_PIECE_REQUEST(), 1);
+  return 1;
+}
+
 int vtkBrumeSceneReader::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {

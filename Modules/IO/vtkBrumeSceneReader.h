@@ -48,6 +48,7 @@ protected:
   vtkBrumeSceneReader();
   ~vtkBrumeSceneReader() override = default;
 
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   std::string FileName;

@@ -11,6 +11,7 @@
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkMultiProcessController.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
@@ -33,6 +34,7 @@
 
 vtkStandardNewMacro(vtkBrumeRadianceReconstruction);
 vtkCxxSetObjectMacro(vtkBrumeRadianceReconstruction, Camera, vtkCamera);
+vtkCxxSetObjectMacro(vtkBrumeRadianceReconstruction, Controller, vtkMultiProcessController);
 
 namespace
 {
@@ -97,9 +99,47 @@ const float* FloatView(vtkDataArray* a, std::vector<float>& copy)
 }
 }
 
+// Histograms summed along the processes of a controller, in rank order.
+class ControllerChain : public brume::HistogramChain
+{
+public:
+  explicit ControllerChain(vtkMultiProcessController* controller)
+    : Controller(controller)
+  {
+  }
+  void Receive(std::vector<double>& values) override
+  {
+    const int rank = this->Controller->GetLocalProcessId();
+    if (rank > 0)
+    {
+      this->Controller->Receive(
+        values.data(), static_cast<vtkIdType>(values.size()), rank - 1, ChainTag);
+      this->Bytes += values.size() * sizeof(double);
+    }
+  }
+  void Forward(std::vector<double>& values) override
+  {
+    const int rank = this->Controller->GetLocalProcessId();
+    const int last = this->Controller->GetNumberOfProcesses() - 1;
+    if (rank < last)
+    {
+      this->Controller->Send(
+        values.data(), static_cast<vtkIdType>(values.size()), rank + 1, ChainTag);
+      this->Bytes += values.size() * sizeof(double);
+    }
+    this->Controller->Broadcast(values.data(), static_cast<vtkIdType>(values.size()), last);
+    this->Bytes += values.size() * sizeof(double);
+  }
+
+private:
+  static constexpr int ChainTag = 24101;
+  vtkMultiProcessController* Controller;
+};
+
 // Textures and what they were built from, kept between executions.
 struct vtkBrumeRadianceReconstruction::Cache
 {
+  std::unique_ptr<ControllerChain> Chain; // distributed runs
   vtkMTimeType SceneTime = 0, HitsTime = 0;
   vtkDataObject* SceneData = nullptr; // the input as given
   vtkSmartPointer<vtkPartitionedDataSetCollection> SceneCollection; // as a collection
@@ -120,11 +160,13 @@ struct vtkBrumeRadianceReconstruction::Cache
 vtkBrumeRadianceReconstruction::vtkBrumeRadianceReconstruction()
 {
   this->SetNumberOfInputPorts(2);
+  this->SetController(vtkMultiProcessController::GetGlobalController());
 }
 
 vtkBrumeRadianceReconstruction::~vtkBrumeRadianceReconstruction()
 {
   this->SetCamera(nullptr);
+  this->SetController(nullptr);
 }
 
 vtkMTimeType vtkBrumeRadianceReconstruction::GetMTime()
@@ -260,6 +302,17 @@ int vtkBrumeRadianceReconstruction::RequestData(
   }
   const brume::ParallelFor parallelFor = vtkBrumeSceneConversion::ParallelFor();
 
+  // Distributed: the hits are this process's piece of the run; every
+  // histogram is summed across the processes (bitwise as one process would).
+  vtkMultiProcessController* controller = this->Controller;
+  const bool distributed = controller && controller->GetNumberOfProcesses() > 1;
+  if (distributed && firstParticle > 0.0)
+  {
+    vtkErrorMacro("Adding particles (AccumulateParticles) is not supported across processes.");
+    return 0;
+  }
+  this->LastReductionBytes = 0;
+
   // Rebuild everything when the inputs or the settings changed; add the
   // hits when they continue the run the textures hold; otherwise only the
   // view-dependent textures follow the viewpoint.
@@ -352,9 +405,22 @@ int vtkBrumeRadianceReconstruction::RequestData(
     }
     const brume::Scene& scene = cache->Scene;
     const int refinement = this->HistogramRefinement;
+    // Resolutions follow the hits of the whole run, on every process.
+    std::vector<vtkTypeInt64> counts(scene.NumberOfObjects()), totals(counts.size());
+    for (std::size_t o = 0; o < counts.size(); ++o)
+    {
+      counts[o] = static_cast<vtkTypeInt64>(groups.Offset[o + 1] - groups.Offset[o]);
+    }
+    totals = counts;
+    if (distributed && !counts.empty())
+    {
+      controller->AllReduce(counts.data(), totals.data(), static_cast<vtkIdType>(counts.size()),
+        vtkCommunicator::SUM_OP);
+      cache->Chain.reset(new ControllerChain(controller));
+    }
     for (std::size_t o = 0; o < scene.NumberOfObjects(); ++o)
     {
-      const std::size_t count = groups.Offset[o + 1] - groups.Offset[o];
+      const auto count = static_cast<std::size_t>(totals[o]);
       const auto& source = cache->Sources[o];
       vtkDataObject* sceneObject =
         sceneData->GetPartitionedDataSet(source.CollectionIndex)->GetPartition(0);
@@ -418,6 +484,7 @@ int vtkBrumeRadianceReconstruction::RequestData(
           : brume::ChooseResolution(extent, count, this->RadiosityThreshold, 4, 256);
         radiance.reset(new brume::ObjectRadiance(medium, res, refinement));
       }
+      radiance->SetChain(cache->Chain.get());
       cache->Objects.push_back(std::move(radiance));
       cache->Outputs.push_back(nullptr);
     }
@@ -433,16 +500,24 @@ int vtkBrumeRadianceReconstruction::RequestData(
       }
     }
     const brume::ParallelFor serialFor = brume::SerialFor();
-    vtkSMPTools::For(0, static_cast<vtkIdType>(independent.size()), 1,
-      [&](vtkIdType begin, vtkIdType end)
+    auto buildIndependent = [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType k = begin; k < end; ++k)
       {
-        for (vtkIdType k = begin; k < end; ++k)
-        {
-          const auto o = static_cast<std::size_t>(independent[k]);
-          errors[o] = cache->Objects[o]->Build(hits, groups.Index.data() + groups.Offset[o],
-            groups.Offset[o + 1] - groups.Offset[o], eye, threshold, serialFor);
-        }
-      });
+        const auto o = static_cast<std::size_t>(independent[k]);
+        errors[o] = cache->Objects[o]->Build(hits, groups.Index.data() + groups.Offset[o],
+          groups.Offset[o + 1] - groups.Offset[o], eye, threshold, serialFor);
+      }
+    };
+    if (distributed)
+    {
+      // One object at a time: the chain's messages follow the objects' order.
+      buildIndependent(0, static_cast<vtkIdType>(independent.size()));
+    }
+    else
+    {
+      vtkSMPTools::For(0, static_cast<vtkIdType>(independent.size()), 1, buildIndependent);
+    }
     this->UpdateProgress(0.5);
     for (std::size_t o = 0; o < cache->Objects.size(); ++o)
     {
@@ -540,6 +615,19 @@ int vtkBrumeRadianceReconstruction::RequestData(
     }
     cache->Outputs[o] = nullptr;
     cache->ObjectEye[o] = eye;
+  }
+
+  if (cache->Chain)
+  {
+    this->LastReductionBytes = static_cast<vtkTypeInt64>(cache->Chain->Bytes);
+    cache->Chain->Bytes = 0;
+  }
+  if (distributed && controller->GetLocalProcessId() != 0)
+  {
+    // The textures are the same on every process; process 0 gives them.
+    output->SetNumberOfPartitionedDataSets(0);
+    this->UpdateProgress(1.0);
+    return 1;
   }
 
   // Outputs: new datasets for the textures that changed, the same ones otherwise.
@@ -700,6 +788,8 @@ void vtkBrumeRadianceReconstruction::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfTextureBuilds: " << this->NumberOfTextureBuilds << "\n";
   os << indent << "NumberOfViewUpdates: " << this->NumberOfViewUpdates << "\n";
   os << indent << "AccumulateParticles: " << this->AccumulateParticles << "\n";
+  os << indent << "Controller: " << this->Controller << "\n";
+  os << indent << "LastReductionBytes: " << this->LastReductionBytes << "\n";
   os << indent << "DirectionalRadiance: " << this->DirectionalRadiance << "\n";
   os << indent << "DirectionalOrder: " << this->DirectionalOrder << "\n";
   os << indent << "NumberOfParticleAdditions: " << this->NumberOfParticleAdditions << "\n";

@@ -61,6 +61,7 @@
 #include <memory> // For the cache
 
 class vtkCamera;
+class vtkMultiProcessController;
 
 class VTKBRUMERECONSTRUCTION_EXPORT vtkBrumeRadianceReconstruction
   : public vtkPartitionedDataSetCollectionAlgorithm
@@ -131,6 +132,27 @@ public:
 
   ///@{
   /**
+   * Distributed runs (default: the global controller). With more than one
+   * process, each holds a piece of the run's hits (vtkBrumeLightTracer
+   * pieces: process r the r-th consecutive share of the particles) and
+   * every histogram is summed across the processes along a chain in rank
+   * order (process r starts from the sums of the processes before it, adds
+   * its hits, passes them on; the last one broadcasts), so that the
+   * textures are bitwise those of one process with all the hits. Hits are
+   * never shipped, only histograms: the view-independent ones once, those
+   * of view-dependent objects at every view change. Every process must
+   * execute the filter; process 0 outputs the textures, the others an empty
+   * collection. AccumulateParticles is not supported across processes.
+   */
+  void SetController(vtkMultiProcessController* controller);
+  vtkGetObjectMacro(Controller, vtkMultiProcessController);
+  ///@}
+
+  /// Bytes this process sent and received summing histograms in the last execution.
+  vtkGetMacro(LastReductionBytes, vtkTypeInt64);
+
+  ///@{
+  /**
    * Work done so far: object textures built from the hits, incremental view
    * updates, objects that received added particles, directional projections.
    */
@@ -184,6 +206,8 @@ protected:
   int MediumResolution = 0;
   int HistogramRefinement = 2;
   vtkCamera* Camera = nullptr;
+  vtkMultiProcessController* Controller = nullptr;
+  vtkTypeInt64 LastReductionBytes = 0;
   bool IncrementalUpdate = true;
   bool AccumulateParticles = false;
   bool DirectionalRadiance = false;

@@ -40,6 +40,15 @@ vtkBrumeDefaultSceneSource::vtkBrumeDefaultSceneSource()
   this->SetNumberOfInputPorts(0);
 }
 
+int vtkBrumeDefaultSceneSource::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  // A scene is replicated, not split: every piece (every process of a
+  // distributed run) gets all of it.
+  outputVector->GetInformationObject(0)->Set(CAN_HANDLE_PIECE_REQUEST(), 1);
+  return 1;
+}
+
 int vtkBrumeDefaultSceneSource::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {

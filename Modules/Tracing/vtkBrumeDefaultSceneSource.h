@@ -44,6 +44,7 @@ protected:
   vtkBrumeDefaultSceneSource();
   ~vtkBrumeDefaultSceneSource() override = default;
 
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   bool IncludeMedium = true;

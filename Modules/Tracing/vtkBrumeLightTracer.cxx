@@ -15,6 +15,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkUnsignedIntArray.h"
 #include "vtkUnsignedShortArray.h"
@@ -37,8 +38,9 @@ struct TraceBlocks
   const brume::LightTracer& Tracer;
   std::vector<std::vector<brume::Hit>>& Hits;
   std::vector<brume::TraceCounters>& Counters;
-  vtkTypeInt64 Particles;
+  vtkTypeInt64 Particles; // the run's count (normalization)
   vtkTypeInt64 FirstParticle;
+  vtkTypeInt64 EndParticle; // this execution traces [FirstParticle, EndParticle)
   vtkTypeInt64 FirstBlock;
 
   void operator()(vtkIdType begin, vtkIdType end) const
@@ -46,7 +48,7 @@ struct TraceBlocks
     for (vtkIdType b = begin; b < end; ++b)
     {
       const vtkTypeInt64 first = this->FirstParticle + (this->FirstBlock + b) * ParticlesPerBlock;
-      const vtkTypeInt64 last = std::min(first + ParticlesPerBlock, this->Particles);
+      const vtkTypeInt64 last = std::min(first + ParticlesPerBlock, this->EndParticle);
       std::vector<brume::Hit>& hits = this->Hits[b];
       hits.reserve(static_cast<std::size_t>(4 * (last - first)));
       hits.clear();
@@ -193,6 +195,14 @@ vtkMTimeType vtkBrumeLightTracer::GetMTime()
   return t;
 }
 
+int vtkBrumeLightTracer::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  // Any number of pieces: each traces its share of the particles.
+  outputVector->GetInformationObject(0)->Set(CAN_HANDLE_PIECE_REQUEST(), 1);
+  return 1;
+}
+
 int vtkBrumeLightTracer::FillInputPortInformation(int, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataObject");
@@ -221,7 +231,20 @@ int vtkBrumeLightTracer::RequestData(
       << particles - 1 << "], not " << firstParticle << ".");
     return 0;
   }
-  const vtkTypeInt64 traced = particles - firstParticle;
+  // A piece of the pipeline (one process of a distributed run) traces its
+  // share of [FirstParticle, NumberOfParticles); each particle's stream
+  // depends only on (seed, index), so the pieces together are the whole run.
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  const int piece = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    : 0;
+  const int pieces = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    ? std::max(1, outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()))
+    : 1;
+  const vtkTypeInt64 runFirst = firstParticle;
+  const vtkTypeInt64 pieceFirst = runFirst + (particles - runFirst) * piece / pieces;
+  const vtkTypeInt64 pieceEnd = runFirst + (particles - runFirst) * (piece + 1) / pieces;
+  const vtkTypeInt64 traced = pieceEnd - pieceFirst;
   // A particle stores one hit per interaction; a few per particle is typical.
   const double expectedBytes = 4.0 * static_cast<double>(traced) * sizeof(brume::Hit);
   if (expectedBytes > static_cast<double>(this->MemoryLimit))
@@ -276,7 +299,7 @@ int vtkBrumeLightTracer::RequestData(
       block.clear();
     }
     counters.assign(static_cast<std::size_t>(end - begin), {});
-    TraceBlocks functor{ tracer, blockHits, counters, particles, firstParticle, begin };
+    TraceBlocks functor{ tracer, blockHits, counters, particles, pieceFirst, pieceEnd, begin };
     vtkSMPTools::For(0, end - begin, functor);
     std::size_t batchHits = 0;
     for (std::size_t b = 0; b < blockHits.size(); ++b)
@@ -317,6 +340,11 @@ int vtkBrumeLightTracer::RequestData(
   first->SetName("FirstParticle");
   first->InsertNextValue(static_cast<double>(firstParticle));
   output->GetFieldData()->AddArray(first);
+  vtkNew<vtkDoubleArray> pieceRange;
+  pieceRange->SetName("PieceParticles"); // [first, end) traced by this piece
+  pieceRange->SetNumberOfComponents(2);
+  pieceRange->InsertNextTuple2(static_cast<double>(pieceFirst), static_cast<double>(pieceEnd));
+  output->GetFieldData()->AddArray(pieceRange);
   vtkNew<vtkDoubleArray> seed;
   seed->SetName("Seed");
   seed->InsertNextValue(static_cast<double>(this->Seed));

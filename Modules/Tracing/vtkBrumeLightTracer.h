@@ -21,7 +21,10 @@
  *
  * Particles are traced in fixed blocks with vtkSMPTools; each particle's
  * random stream depends only on (Seed, particle index), so the output is
- * identical whatever the number of threads.
+ * identical whatever the number of threads. Piece requests (UpdatePiece,
+ * or a parallel ParaView pipeline with one piece per process) split the
+ * particles: piece p of P traces the p-th consecutive share, and the pieces
+ * together are exactly the one-piece run (field data `PieceParticles`).
  *
  * @sa vtkBrumeDefaultSceneSource vtkBrumeRadianceReconstruction
  */
@@ -117,6 +120,7 @@ protected:
   ~vtkBrumeLightTracer() override = default;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   vtkTypeInt64 NumberOfParticles = 1000000;

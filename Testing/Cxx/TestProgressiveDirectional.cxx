@@ -30,37 +30,6 @@
 
 namespace
 {
-// Every array of every texture (partition 0) of `a` has the bits of `b`'s.
-bool SameTextures(vtkPartitionedDataSetCollection* a, vtkPartitionedDataSetCollection* b,
-  const std::string& what)
-{
-  bool ok = a->GetNumberOfPartitionedDataSets() == b->GetNumberOfPartitionedDataSets();
-  for (unsigned int i = 0; ok && i < a->GetNumberOfPartitionedDataSets(); ++i)
-  {
-    auto* ta = vtkImageData::SafeDownCast(a->GetPartitionedDataSet(i)->GetPartition(0));
-    auto* tb = vtkImageData::SafeDownCast(b->GetPartitionedDataSet(i)->GetPartition(0));
-    for (vtkFieldData* fa : { static_cast<vtkFieldData*>(ta->GetPointData()),
-           static_cast<vtkFieldData*>(ta->GetCellData()) })
-    {
-      vtkFieldData* fb = fa == ta->GetPointData() ? static_cast<vtkFieldData*>(tb->GetPointData())
-                                                  : static_cast<vtkFieldData*>(tb->GetCellData());
-      for (int k = 0; k < fa->GetNumberOfArrays(); ++k)
-      {
-        vtkDataArray* x = fa->GetArray(k);
-        vtkDataArray* y = fb->GetArray(x->GetName());
-        if (!y || x->GetNumberOfValues() != y->GetNumberOfValues() ||
-          std::memcmp(x->GetVoidPointer(0), y->GetVoidPointer(0),
-            x->GetNumberOfValues() * x->GetDataTypeSize()) != 0)
-        {
-          std::cerr << what << ": object " << i << ", array " << x->GetName() << " differs\n";
-          ok = false;
-        }
-      }
-    }
-  }
-  return ok;
-}
-
 vtkDataObject* Fog(vtkPartitionedDataSetCollection* out)
 {
   for (unsigned int i = 0; i < out->GetNumberOfPartitionedDataSets(); ++i)
