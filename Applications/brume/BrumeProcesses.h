@@ -11,8 +11,9 @@
 #include "vtkMPIController.h"
 #endif
 
+#include <cstdio>
 #include <cstdlib>
-#include <iostream>
+#include <string>
 
 class BrumeProcesses
 {
@@ -79,14 +80,16 @@ inline bool BrumeAllSucceeded(bool ok, const char* step)
   int all = 0;
   vtkMultiProcessController::GetGlobalController()->AllReduce(
     &local, &all, 1, vtkCommunicator::MIN_OP);
-  if (!ok)
+  if (!all)
   {
-    std::cerr << "brume: process " << BrumeRank() << " failed at " << step << ".\n";
-  }
-  else if (!all)
-  {
-    std::cerr << "brume: process " << BrumeRank() << " stops: another process failed at " << step
-              << ".\n";
+    // One write per message (the launcher merges the processes' streams),
+    // and every process says it before any exits: the launcher stops the
+    // others as soon as one exits with an error.
+    const std::string message = "brume: process " + std::to_string(BrumeRank()) +
+      (ok ? " stops: another process failed at " : " failed at ") + step + ".\n";
+    std::fputs(message.c_str(), stderr);
+    std::fflush(stderr);
+    vtkMultiProcessController::GetGlobalController()->Barrier();
   }
   return all != 0;
 }
