@@ -1,0 +1,16 @@
+# Runs ONE and TWO (lists: the same work on one process and on several);
+# both must exit 0 and print the same "textures sha256 ..." line.
+foreach (run IN ITEMS ONE TWO)
+  execute_process(COMMAND ${${run}} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if (NOT rc EQUAL 0)
+    message(FATAL_ERROR "${run} failed (${rc}):\n${out}\n${err}")
+  endif ()
+  string(REGEX MATCH "textures sha256 [0-9a-f]+" digest_${run} "${out}")
+  if (NOT digest_${run})
+    message(FATAL_ERROR "${run} printed no digest:\n${out}\n${err}")
+  endif ()
+  message(STATUS "${run}: ${out}")
+endforeach ()
+if (NOT digest_ONE STREQUAL digest_TWO)
+  message(FATAL_ERROR "different textures: one process ${digest_ONE}, several ${digest_TWO}")
+endif ()
