@@ -271,12 +271,16 @@ int RunRender(RenderOptions options)
   }
   const double reconstructing = Seconds(start);
   vtkTypeInt64 reductionBytes = reconstruction->GetLastReductionBytes();
+  double reductionSeconds = reconstruction->GetLastReductionSeconds();
   if (processes > 1)
   {
     vtkTypeInt64 total = 0;
-    vtkMultiProcessController::GetGlobalController()->AllReduce(
-      &reductionBytes, &total, 1, vtkCommunicator::SUM_OP);
+    double slowest = 0.0;
+    vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+    controller->AllReduce(&reductionBytes, &total, 1, vtkCommunicator::SUM_OP);
+    controller->AllReduce(&reductionSeconds, &slowest, 1, vtkCommunicator::MAX_OP);
     reductionBytes = total;
+    reductionSeconds = slowest;
   }
   if (rank != 0)
   {
@@ -332,9 +336,16 @@ int RunRender(RenderOptions options)
       static_cast<long long>(tracer->GetLastRayCount()));
     std::printf(processes > 1 ? " (process 0 of %d; time: the slowest)\n" : "\n", processes);
     std::printf("reconstruction       %8.3f", reconstructing);
-    std::printf(processes > 1 ? "   histograms summed across processes: %.1f MB sent and received\n"
-                              : "\n",
-      static_cast<double>(reductionBytes) / 1e6);
+    if (processes > 1)
+    {
+      std::printf("   histograms summed across processes: %.1f MB sent and received in all, "
+                  "%.3f s in the chain (the slowest process)\n",
+        static_cast<double>(reductionBytes) / 1e6, reductionSeconds);
+    }
+    else
+    {
+      std::printf("\n");
+    }
     std::printf("rendering            %8.3f   per frame at %dx%d (first frame %.3f s, with "
                 "texture upload and shader compilation)\n",
       frame, options.Width, options.Height, firstFrame);

@@ -29,6 +29,7 @@
 #include "brume/SphericalHarmonics.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <vector>
 
@@ -109,6 +110,7 @@ public:
   }
   void Receive(std::vector<double>& values) override
   {
+    const auto start = std::chrono::steady_clock::now();
     const int rank = this->Controller->GetLocalProcessId();
     if (rank > 0)
     {
@@ -116,9 +118,11 @@ public:
         values.data(), static_cast<vtkIdType>(values.size()), rank - 1, ChainTag);
       this->Bytes += values.size() * sizeof(double);
     }
+    this->Seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   void Forward(std::vector<double>& values) override
   {
+    const auto start = std::chrono::steady_clock::now();
     const int rank = this->Controller->GetLocalProcessId();
     const int last = this->Controller->GetNumberOfProcesses() - 1;
     if (rank < last)
@@ -129,7 +133,10 @@ public:
     }
     this->Controller->Broadcast(values.data(), static_cast<vtkIdType>(values.size()), last);
     this->Bytes += values.size() * sizeof(double);
+    this->Seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
+  /// Time spent in the chain (waiting for the processes before included).
+  double Seconds = 0.0;
 
 private:
   static constexpr int ChainTag = 24101;
@@ -312,6 +319,7 @@ int vtkBrumeRadianceReconstruction::RequestData(
     return 0;
   }
   this->LastReductionBytes = 0;
+  this->LastReductionSeconds = 0.0;
 
   // Rebuild everything when the inputs or the settings changed; add the
   // hits when they continue the run the textures hold; otherwise only the
@@ -620,7 +628,9 @@ int vtkBrumeRadianceReconstruction::RequestData(
   if (cache->Chain)
   {
     this->LastReductionBytes = static_cast<vtkTypeInt64>(cache->Chain->Bytes);
+    this->LastReductionSeconds = cache->Chain->Seconds;
     cache->Chain->Bytes = 0;
+    cache->Chain->Seconds = 0.0;
   }
   if (distributed && controller->GetLocalProcessId() != 0)
   {

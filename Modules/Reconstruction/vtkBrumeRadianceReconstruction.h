@@ -148,8 +148,15 @@ public:
   vtkGetObjectMacro(Controller, vtkMultiProcessController);
   ///@}
 
-  /// Bytes this process sent and received summing histograms in the last execution.
+  ///@{
+  /**
+   * Bytes this process sent and received summing histograms in the last
+   * execution, and the seconds it spent doing so (waiting for the processes
+   * before it along the chain included).
+   */
   vtkGetMacro(LastReductionBytes, vtkTypeInt64);
+  vtkGetMacro(LastReductionSeconds, double);
+  ///@}
 
   ///@{
   /**
@@ -208,6 +215,7 @@ protected:
   vtkCamera* Camera = nullptr;
   vtkMultiProcessController* Controller = nullptr;
   vtkTypeInt64 LastReductionBytes = 0;
+  double LastReductionSeconds = 0.0;
   bool IncrementalUpdate = true;
   bool AccumulateParticles = false;
   bool DirectionalRadiance = false;
