@@ -17,8 +17,8 @@ packages=(
   zlib1g-dev libeigen3-dev
   # Ray casting, volumes, headless OpenGL.
   libembree-dev libopenvdb-dev libboost-iostreams-dev libosmesa6-dev xvfb xauth
-  # Tools and test frameworks.
-  cmake ninja-build g++ git libgtest-dev libbenchmark-dev
+  # Tools and test frameworks; mpirun for distributed runs and their tests.
+  cmake ninja-build g++ git libgtest-dev libbenchmark-dev openmpi-bin
 )
 
 missing=()
