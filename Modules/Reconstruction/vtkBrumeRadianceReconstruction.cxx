@@ -5,6 +5,7 @@
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
+#include "vtkCommunicator.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
@@ -191,6 +192,26 @@ int vtkBrumeRadianceReconstruction::FillInputPortInformation(int port, vtkInform
 int vtkBrumeRadianceReconstruction::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  // Distributed runs: every process must reach the same collective calls,
+  // so a process that fails still takes part in the next agreement, and
+  // the others stop there (no process is left waiting).
+  vtkMultiProcessController* controller = this->Controller;
+  const bool distributed = controller && controller->GetNumberOfProcesses() > 1;
+  auto agree = [&](bool ok)
+  {
+    if (!distributed)
+    {
+      return ok;
+    }
+    const int local = ok ? 1 : 0;
+    int all = 0;
+    controller->AllReduce(&local, &all, 1, vtkCommunicator::MIN_OP);
+    if (ok && !all)
+    {
+      vtkErrorMacro("Another process failed (see its errors): stopping.");
+    }
+    return all != 0;
+  };
   vtkDataObject* sceneInput = vtkDataObject::GetData(inputVector[0], 0);
   const auto sceneHolder = vtkBrumeSceneConversion::AsCollection(sceneInput);
   vtkPartitionedDataSetCollection* sceneData = sceneHolder;
@@ -198,6 +219,7 @@ int vtkBrumeRadianceReconstruction::RequestData(
   {
     vtkErrorMacro("The scene must be a vtkPartitionedDataSetCollection, a vtkMultiBlockDataSet, "
                   "a vtkPolyData or a vtkImageData.");
+    agree(false);
     return 0;
   }
   auto* hitData = vtkPolyData::GetData(inputVector[1], 0);
@@ -207,6 +229,7 @@ int vtkBrumeRadianceReconstruction::RequestData(
   {
     vtkErrorMacro(
       "RadiosityThreshold must be positive and finite, not " << this->RadiosityThreshold << ".");
+    agree(false);
     return 0;
   }
   if (this->SurfaceResolution < 0 || this->SurfaceResolution > MaxSurfaceResolution ||
@@ -214,12 +237,14 @@ int vtkBrumeRadianceReconstruction::RequestData(
   {
     vtkErrorMacro("SurfaceResolution must be in [0, "
       << MaxSurfaceResolution << "] and MediumResolution in [0, " << MaxMediumResolution << "].");
+    agree(false);
     return 0;
   }
   if (this->HistogramRefinement < 1 || this->HistogramRefinement > 16)
   {
     vtkErrorMacro(
       "HistogramRefinement must be in [1, 16], not " << this->HistogramRefinement << ".");
+    agree(false);
     return 0;
   }
   double eyePosition[3] = { this->EyePosition[0], this->EyePosition[1], this->EyePosition[2] };
@@ -232,6 +257,7 @@ int vtkBrumeRadianceReconstruction::RequestData(
   if (!brume::IsFinite(eye))
   {
     vtkErrorMacro("The viewpoint must be finite.");
+    agree(false);
     return 0;
   }
 
@@ -239,6 +265,7 @@ int vtkBrumeRadianceReconstruction::RequestData(
   if (!hitData)
   {
     vtkErrorMacro("No particle hits were given.");
+    agree(false);
     return 0;
   }
   vtkPointData* pd = hitData->GetPointData();
@@ -254,11 +281,13 @@ int vtkBrumeRadianceReconstruction::RequestData(
   {
     vtkErrorMacro("Invalid particle hits: they lack the float[3] 'Direction' and 'Flux' or the "
                   "unsigned short 'ObjectId' point arrays.");
+    agree(false);
     return 0;
   }
   if (n > static_cast<vtkIdType>(UINT32_MAX))
   {
     vtkErrorMacro("More than 2^32 particle hits: reconstruct them in parts.");
+    agree(false);
     return 0;
   }
   vtkFieldData* hitFields = hitData->GetFieldData();
@@ -269,6 +298,7 @@ int vtkBrumeRadianceReconstruction::RequestData(
     !(countArray->GetTuple1(0) >= 1.0))
   {
     vtkErrorMacro("The particle hits lack the 'TotalPower' and 'NumberOfParticles' field arrays.");
+    agree(false);
     return 0;
   }
   const double* power = powerArray->GetTuple3(0);
@@ -284,6 +314,7 @@ int vtkBrumeRadianceReconstruction::RequestData(
   {
     vtkErrorMacro("DirectionalOrder must be in [1, " << brume::MaxShOrder << "], not "
                                                      << this->DirectionalOrder << ".");
+    agree(false);
     return 0;
   }
   if (firstParticle > 0.0 && !this->AccumulateParticles)
@@ -291,6 +322,7 @@ int vtkBrumeRadianceReconstruction::RequestData(
     vtkErrorMacro("These hits are the particles ["
       << firstParticle << ", " << particles
       << ") of a run: turn AccumulateParticles on to add them to the earlier ones.");
+    agree(false);
     return 0;
   }
   const double particleFlux = (power[0] + power[1] + power[2]) / 3.0 / countArray->GetTuple1(0);
@@ -311,11 +343,14 @@ int vtkBrumeRadianceReconstruction::RequestData(
 
   // Distributed: the hits are this process's piece of the run; every
   // histogram is summed across the processes (bitwise as one process would).
-  vtkMultiProcessController* controller = this->Controller;
-  const bool distributed = controller && controller->GetNumberOfProcesses() > 1;
   if (distributed && firstParticle > 0.0)
   {
     vtkErrorMacro("Adding particles (AccumulateParticles) is not supported across processes.");
+    agree(false);
+    return 0;
+  }
+  if (!agree(true))
+  {
     return 0;
   }
   this->LastReductionBytes = 0;
@@ -396,18 +431,20 @@ int vtkBrumeRadianceReconstruction::RequestData(
     cache = this->Cached.get();
     const std::string error =
       vtkBrumeSceneConversion::ToScene(sceneData, cache->Scene, &cache->Sources);
+    brume::ObjectHits groups;
+    const std::string groupError = error.empty()
+      ? brume::GroupHitsByObject(hits, cache->Scene.NumberOfObjects(), groups)
+      : std::string();
     if (!error.empty())
     {
       vtkErrorMacro("Invalid scene: " << error << ".");
-      this->Cached.reset();
-      return 0;
     }
-    brume::ObjectHits groups;
-    const std::string groupError =
-      brume::GroupHitsByObject(hits, cache->Scene.NumberOfObjects(), groups);
-    if (!groupError.empty())
+    else if (!groupError.empty())
     {
       vtkErrorMacro("Invalid particle hits: " << groupError << ".");
+    }
+    if (!agree(error.empty() && groupError.empty()))
+    {
       this->Cached.reset();
       return 0;
     }
@@ -495,6 +532,23 @@ int vtkBrumeRadianceReconstruction::RequestData(
       radiance->SetChain(cache->Chain.get());
       cache->Objects.push_back(std::move(radiance));
       cache->Outputs.push_back(nullptr);
+    }
+    // Every process checks its hits before any enters the chain.
+    bool hitsOk = true;
+    for (std::size_t o = 0; o < cache->Objects.size() && distributed; ++o)
+    {
+      const std::string problem = cache->Objects[o]->Check(
+        hits, groups.Index.data() + groups.Offset[o], groups.Offset[o + 1] - groups.Offset[o]);
+      if (!problem.empty())
+      {
+        vtkErrorMacro("Cannot reconstruct '" << cache->Sources[o].Name << "': " << problem << ".");
+        hitsOk = false;
+      }
+    }
+    if (!agree(hitsOk))
+    {
+      this->Cached.reset();
+      return 0;
     }
     // View-independent objects build concurrently (each on one thread: a
     // single pass in hit order); view-dependent ones then use every thread.

@@ -8,7 +8,11 @@
 
 #include "vtkBrumeLightTracer.h"
 #include "vtkBrumeRadianceReconstruction.h"
+#include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
+#include "vtkExecutive.h"
+#include "vtkPolyData.h"
+#include "vtkUnsignedShortArray.h"
 #include "vtkCommunicator.h"
 #include "vtkMPIController.h"
 
@@ -70,6 +74,31 @@ int TestDistributedReconstruction(int argc, char* argv[])
   distributed->DirectionalRadianceOn();
   single->DirectionalRadianceOn();
   compare("directional media");
+
+  // Process 1's hits name an object the scene lacks: every process fails
+  // (none waits forever for it), each with an error.
+  {
+    tracer->UpdatePiece(rank, size, 0);
+    vtkNew<vtkPolyData> hits;
+    hits->DeepCopy(tracer->GetOutput());
+    if (rank == 1 && hits->GetNumberOfPoints() > 0)
+    {
+      vtkUnsignedShortArray::SafeDownCast(hits->GetPointData()->GetArray("ObjectId"))
+        ->SetValue(0, 999);
+    }
+    vtkNew<vtkBrumeRadianceReconstruction> broken;
+    broken->SetController(controller);
+    broken->SetInputDataObject(0, scene);
+    broken->SetInputDataObject(1, hits);
+    vtkNew<vtkCallbackCommand> silence;
+    broken->AddObserver(vtkCommand::ErrorEvent, silence);
+    broken->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, silence);
+    if (broken->UpdatePiece(rank, size, 0) != 0)
+    {
+      std::cerr << "process " << rank << " went on although process 1's hits were bad\n";
+      ok = false;
+    }
+  }
 
   // Every process agrees on the result.
   int local = ok ? 1 : 0, all = 0;

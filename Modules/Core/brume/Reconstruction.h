@@ -164,6 +164,9 @@ public:
   std::string Add(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
     double scale, const Vec3& eye, double thresholdFlux, const ParallelFor& parallelFor);
 
+  /// Empty when Build() or Add() would accept these hits, otherwise why not.
+  std::string Check(const HitArrays& hits, const std::uint32_t* index, std::size_t count) const;
+
   /// Re-weights the kept hits toward `eye` and re-estimates (view-dependent objects).
   void UpdateView(const Vec3& eye, const ParallelFor& parallelFor);
 
@@ -197,7 +200,6 @@ public:
 
 private:
   bool FromFront(const HitArrays& hits, std::uint32_t i) const;
-  std::string Check(const HitArrays& hits, const std::uint32_t* index, std::size_t count) const;
   void Bin(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
     const ParallelFor& parallelFor);
   void Finish(const Vec3& eye, double thresholdFlux, bool first, const ParallelFor& parallelFor);
