@@ -2,6 +2,7 @@
 #include "vtkBrumeOpenVDBReader.h"
 
 #include "brume/VdbDensity.h"
+#include "brume/VdbGrid.h"
 
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
@@ -81,52 +82,15 @@ int vtkBrumeOpenVDBReader::RequestData(
 {
   auto* output = vtkImageData::GetData(outputVector, 0);
   InitializeOpenVDB();
-  openvdb::FloatGrid::Ptr grid;
-  std::string name = this->GridName;
-  const std::string invalid = brume::CheckVdbFile(this->FileName);
-  if (!invalid.empty())
-  {
-    vtkErrorMacro("Cannot read OpenVDB file: " << invalid << ".");
-    return 0;
-  }
-  try
-  {
-    openvdb::io::File file(this->FileName);
-    file.open(false);
-    if (name.empty() && this->GridNames->GetNumberOfValues() > 0)
-    {
-      name = this->GridNames->GetValue(0);
-    }
-    if (!name.empty() && file.hasGrid(name))
-    {
-      grid = openvdb::gridPtrCast<openvdb::FloatGrid>(file.readGrid(name));
-    }
-    file.close();
-  }
-  catch (const std::exception& e)
-  {
-    vtkErrorMacro(
-      "Cannot read OpenVDB file '" << this->FileName << "': " << brume::ShortMessage(e.what()));
-    return 0;
-  }
+  std::string error;
+  const openvdb::FloatGrid::Ptr grid = brume::ReadVdbFloatGrid(this->FileName, this->GridName, error);
   if (!grid)
   {
-    vtkErrorMacro("OpenVDB file '"
-      << this->FileName << "' has no float grid"
-      << (this->GridName.empty() ? "" : " named '" + this->GridName + "'") << ".");
+    vtkErrorMacro("" << error << ".");
     return 0;
   }
+  const std::string name = grid->getName();
   const openvdb::math::Transform& transform = grid->transform();
-  const auto map = transform.baseMap();
-  if (!map->isType<openvdb::math::ScaleTranslateMap>() &&
-    !map->isType<openvdb::math::UniformScaleTranslateMap>() &&
-    !map->isType<openvdb::math::ScaleMap>() && !map->isType<openvdb::math::UniformScaleMap>() &&
-    !map->isType<openvdb::math::TranslationMap>())
-  {
-    vtkErrorMacro(
-      "Grid '" << name << "' has a transform that is not an axis-aligned scale and translation.");
-    return 0;
-  }
   const openvdb::CoordBBox bbox = grid->evalActiveVoxelBoundingBox();
   if (bbox.empty())
   {

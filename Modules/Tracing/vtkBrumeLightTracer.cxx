@@ -255,16 +255,9 @@ int vtkBrumeLightTracer::RequestData(
     return 0;
   }
 
-  if (this->Seed < 0)
-  {
-    vtkErrorMacro("Seed must be non-negative, not " << this->Seed << ".");
-    return 0;
-  }
   brume::Scene scene;
-  const std::string error = vtkBrumeSceneConversion::ToScene(input, scene, nullptr, this->Lights);
-  if (!error.empty())
+  if (!vtkBrumeSceneConversion::ToTracedScene(this, input, this->Seed, this->Lights, scene))
   {
-    vtkErrorMacro("Invalid scene: " << error << ".");
     return 0;
   }
   const brume::RayCaster caster(scene);

@@ -93,16 +93,9 @@ int vtkBrumeReferencePathTracer::RequestData(
     vtkErrorMacro("SamplesPerPixel must be in [1, 1e6], not " << this->SamplesPerPixel << ".");
     return 0;
   }
-  if (this->Seed < 0)
-  {
-    vtkErrorMacro("Seed must be non-negative, not " << this->Seed << ".");
-    return 0;
-  }
   brume::Scene scene;
-  const std::string error = vtkBrumeSceneConversion::ToScene(input, scene, nullptr, this->Lights);
-  if (!error.empty())
+  if (!vtkBrumeSceneConversion::ToTracedScene(this, input, this->Seed, this->Lights, scene))
   {
-    vtkErrorMacro("Invalid scene: " << error << ".");
     return 0;
   }
   brume::PinholeCamera camera;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumeSceneConversion.h"
 
+#include "vtkAlgorithm.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkCompositeDataSet.h"
@@ -561,6 +562,23 @@ vtkSmartPointer<vtkPartitionedDataSetCollection> vtkBrumeSceneConversion::AsColl
     return result;
   }
   return nullptr;
+}
+
+bool vtkBrumeSceneConversion::ToTracedScene(vtkAlgorithm* algorithm, vtkDataObject* input,
+  vtkIdType seed, vtkLightCollection* lights, brume::Scene& scene)
+{
+  if (seed < 0)
+  {
+    vtkErrorWithObjectMacro(algorithm, "Seed must be non-negative, not " << seed << ".");
+    return false;
+  }
+  const std::string error = ToScene(input, scene, nullptr, lights);
+  if (!error.empty())
+  {
+    vtkErrorWithObjectMacro(algorithm, "Invalid scene: " << error << ".");
+    return false;
+  }
+  return true;
 }
 
 std::string vtkBrumeSceneConversion::ToScene(vtkDataObject* input, brume::Scene& scene,

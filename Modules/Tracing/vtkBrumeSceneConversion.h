@@ -58,6 +58,7 @@
 
 class vtkDataObject;
 class vtkFieldData;
+class vtkAlgorithm;
 class vtkLightCollection;
 class vtkPartitionedDataSetCollection;
 class vtkPolyData;
@@ -96,6 +97,14 @@ public:
    */
   static std::string ToScene(vtkDataObject* input, brume::Scene& scene,
     std::vector<ObjectSource>* sources = nullptr, vtkLightCollection* lights = nullptr);
+
+  /**
+   * What both tracers check before tracing: a non-negative seed and a valid
+   * scene (with `lights` added). False, with an error reported on
+   * `algorithm`, otherwise.
+   */
+  static bool ToTracedScene(vtkAlgorithm* algorithm, vtkDataObject* input, vtkIdType seed,
+    vtkLightCollection* lights, brume::Scene& scene);
 
   /**
    * Adds the switched-on lights to the scene. Intensity x DiffuseColor is the

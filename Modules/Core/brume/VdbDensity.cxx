@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "brume/VdbDensity.h"
+#include "brume/VdbGrid.h"
 
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Interpolation.h>
@@ -34,7 +35,7 @@ std::size_t VdbDensity::GetNumberOfActiveVoxels() const
   return this->Impl->Active;
 }
 
-std::shared_ptr<VdbDensity> VdbDensity::Load(
+openvdb::FloatGrid::Ptr ReadVdbFloatGrid(
   const std::string& fileName, const std::string& gridName, std::string& error)
 {
   static std::once_flag once;
@@ -48,17 +49,13 @@ std::shared_ptr<VdbDensity> VdbDensity::Load(
   try
   {
     openvdb::io::File file(fileName);
-    file.open();
+    file.open(false);
     for (auto it = file.beginName(); it != file.endName(); ++it)
     {
-      if (!gridName.empty() && it.gridName() != gridName)
+      if ((gridName.empty() || it.gridName() == gridName) &&
+        file.readGridMetadata(it.gridName())->isType<openvdb::FloatGrid>())
       {
-        continue;
-      }
-      openvdb::GridBase::Ptr base = file.readGrid(it.gridName());
-      grid = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
-      if (grid || !gridName.empty())
-      {
+        grid = openvdb::gridPtrCast<openvdb::FloatGrid>(file.readGrid(it.gridName()));
         break;
       }
     }
@@ -75,8 +72,7 @@ std::shared_ptr<VdbDensity> VdbDensity::Load(
       (gridName.empty() ? std::string() : " named '" + gridName + "'");
     return nullptr;
   }
-  const openvdb::math::Transform& transform = grid->transform();
-  const auto map = transform.baseMap();
+  const auto map = grid->transform().baseMap();
   if (!map->isType<openvdb::math::ScaleTranslateMap>() &&
     !map->isType<openvdb::math::UniformScaleTranslateMap>() &&
     !map->isType<openvdb::math::ScaleMap>() && !map->isType<openvdb::math::UniformScaleMap>() &&
@@ -86,6 +82,18 @@ std::shared_ptr<VdbDensity> VdbDensity::Load(
       "' has a transform that is not an axis-aligned scale and translation";
     return nullptr;
   }
+  return grid;
+}
+
+std::shared_ptr<VdbDensity> VdbDensity::Load(
+  const std::string& fileName, const std::string& gridName, std::string& error)
+{
+  const openvdb::FloatGrid::Ptr grid = ReadVdbFloatGrid(fileName, gridName, error);
+  if (!grid)
+  {
+    return nullptr;
+  }
+  const openvdb::math::Transform& transform = grid->transform();
   auto density = std::shared_ptr<VdbDensity>(new VdbDensity);
   Internals& impl = *density->Impl;
   impl.Origin = transform.indexToWorld(openvdb::Vec3d(0.0));
