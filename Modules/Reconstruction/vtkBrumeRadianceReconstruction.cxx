@@ -480,6 +480,22 @@ int vtkBrumeRadianceReconstruction::RequestData(
                                       "emission (more particles, or a light that reaches it).");
       }
       std::unique_ptr<brume::ObjectRadiance> radiance;
+      // The object's own resolution, the filter's, or one chosen from its hits;
+      // {0, 0, 0} (with an error) when the object's is too large.
+      auto resolution = [&](const brume::Vec3& extent, int global, int maximum, int automatic)
+      {
+        const int fixed = perObject > 0 ? perObject : global;
+        if (fixed > maximum)
+        {
+          vtkErrorMacro(
+            "BrumeTextureResolution of '" << source.Name << "' exceeds " << maximum << ".");
+          this->Cached.reset();
+          return std::array<int, 3>{ 0, 0, 0 };
+        }
+        return fixed > 0
+          ? FixedResolution(extent, fixed)
+          : brume::ChooseResolution(extent, count, this->RadiosityThreshold, 4, automatic);
+      };
       if (!scene.IsMedium(o))
       {
         const brume::Surface& surface = scene.Surfaces[o];
@@ -498,35 +514,23 @@ int vtkBrumeRadianceReconstruction::RequestData(
           }
         }
         brume::SurfaceChart chart = brume::MakeChart(surface, tcoords.empty() ? nullptr : &tcoords);
-        const brume::Vec3 extent(chart.Width, chart.Height, 0.f);
-        const int fixed = perObject > 0 ? perObject : this->SurfaceResolution;
-        if (fixed > MaxSurfaceResolution)
+        const auto res = resolution(brume::Vec3(chart.Width, chart.Height, 0.f),
+          this->SurfaceResolution, MaxSurfaceResolution, 1024);
+        if (res[0] == 0)
         {
-          vtkErrorMacro("BrumeTextureResolution of '" << source.Name << "' exceeds "
-                                                      << MaxSurfaceResolution << ".");
-          this->Cached.reset();
           return 0;
         }
-        const auto res = fixed > 0
-          ? FixedResolution(extent, fixed)
-          : brume::ChooseResolution(extent, count, this->RadiosityThreshold, 4, 1024);
         radiance.reset(new brume::ObjectRadiance(surface, chart, { res[0], res[1] }, refinement));
       }
       else
       {
         const brume::Medium& medium = scene.Media[o - scene.Surfaces.size()];
-        const brume::Vec3 extent = medium.Bounds.Extent();
-        const int fixed = perObject > 0 ? perObject : this->MediumResolution;
-        if (fixed > MaxMediumResolution)
+        const auto res =
+          resolution(medium.Bounds.Extent(), this->MediumResolution, MaxMediumResolution, 256);
+        if (res[0] == 0)
         {
-          vtkErrorMacro("BrumeTextureResolution of '" << source.Name << "' exceeds "
-                                                      << MaxMediumResolution << ".");
-          this->Cached.reset();
           return 0;
         }
-        const auto res = fixed > 0
-          ? FixedResolution(extent, fixed)
-          : brume::ChooseResolution(extent, count, this->RadiosityThreshold, 4, 256);
         radiance.reset(new brume::ObjectRadiance(medium, res, refinement));
       }
       radiance->SetChain(cache->Chain.get());
