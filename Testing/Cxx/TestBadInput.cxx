@@ -3,6 +3,7 @@
 #include "vtkBrumeDefaultSceneSource.h"
 #include "vtkBrumeLightTracer.h"
 #include "vtkBrumeRadianceReconstruction.h"
+#include "vtkDataSet.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDataArray.h"
@@ -248,6 +249,19 @@ int TestBadInput(int, char*[])
   noPower->ShallowCopy(tracer->GetOutput());
   noPower->SetFieldData(nullptr);
   ok &= reconstruct(noPower, "hits without TotalPower", "TotalPower", {});
+  // A scene object asking for a texture beyond the limit.
+  vtkNew<vtkPartitionedDataSetCollection> huge;
+  huge->DeepCopy(scene);
+  vtkNew<vtkDoubleArray> texels;
+  texels->SetName("BrumeTextureResolution");
+  texels->InsertNextValue(100000);
+  huge->GetPartitionedDataSet(0)->GetPartition(0)->GetFieldData()->AddArray(texels);
+  {
+    vtkNew<vtkBrumeRadianceReconstruction> r;
+    r->SetInputDataObject(0, huge);
+    r->SetInputDataObject(1, tracer->GetOutput());
+    ok &= ExpectFailure("absurd per-object resolution", r, "BrumeTextureResolution");
+  }
 
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }
