@@ -30,6 +30,7 @@
 
 #include <cstdlib>
 
+#include "vtkBrumeSceneCamera.h"
 #include "vtkBrumeSceneConversion.h"
 
 #include <chrono>
@@ -96,11 +97,7 @@ vtkNew<vtkRenderWindow> MakeWindow(vtkRenderer* renderer)
   window->SetMultiSamples(0);
   window->SetSize(512, 512);
   window->AddRenderer(renderer);
-  vtkCamera* camera = renderer->GetActiveCamera();
-  camera->SetPosition(0, 0, 4);
-  camera->SetFocalPoint(0, 0, 0);
-  camera->SetViewUp(0, 1, 0);
-  camera->SetViewAngle(40);
+  vtkBrumeSceneCamera::SetToDefault(renderer->GetActiveCamera());
   return window;
 }
 
@@ -109,9 +106,6 @@ vtkNew<vtkRenderWindow> MakeWindow(vtkRenderer* renderer)
 void BenchReconstruction(vtkAlgorithm* source, vtkAlgorithm* tracer)
 {
   vtkNew<vtkCamera> camera;
-  camera->SetPosition(0, 0, 4);
-  camera->SetFocalPoint(0, 0, 0);
-  camera->SetViewUp(0, 1, 0);
   double full = 1e30, update = 1e30;
   vtkIdType builds = 0, updates = 0;
   for (int run = 0; run < 3; ++run)
@@ -119,7 +113,7 @@ void BenchReconstruction(vtkAlgorithm* source, vtkAlgorithm* tracer)
     vtkNew<vtkBrumeRadianceReconstruction> reconstruction;
     reconstruction->SetInputConnection(0, source->GetOutputPort());
     reconstruction->SetInputConnection(1, tracer->GetOutputPort());
-    camera->SetPosition(0, 0, 4);
+    vtkBrumeSceneCamera::SetToDefault(camera);
     reconstruction->SetCamera(camera);
     auto start = std::chrono::steady_clock::now();
     reconstruction->Update();

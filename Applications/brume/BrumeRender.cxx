@@ -1,6 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "BrumeRender.h"
-#include "BrumeProcesses.h"
 #include "BrumeProgress.h"
 
 #include "vtkBrumeDefaultSceneSource.h"
@@ -9,7 +8,8 @@
 #include "vtkBrumeRadianceReconstruction.h"
 #include "vtkBrumeReferencePathTracer.h"
 #include "vtkBrumeSceneActors.h"
-#include "vtkBrumeSceneConversion.h"
+#include "vtkBrumeProcesses.h"
+#include "vtkBrumeSceneCamera.h"
 #include "vtkBrumeSceneReader.h"
 #include "vtkCamera.h"
 #include "vtkCommunicator.h"
@@ -205,15 +205,17 @@ int RunRender(RenderOptions options)
   // Under mpirun every process traces its share of the particles, the
   // histograms are summed across processes, process 0 renders and writes.
   // Any process failing stops all of them at the next agreement.
-  const int rank = BrumeRank(), processes = BrumeSize();
+  vtkMultiProcessController* controller = vtkBrumeProcesses::GetGlobalController();
+  const int rank = vtkBrumeProcesses::GetRank(controller);
+  const int processes = vtkBrumeProcesses::GetSize(controller);
 
   // The scene first: a bad file is reported with or without a display.
   const vtkSmartPointer<vtkAlgorithm> scene = LoadScene(options);
-  if (!BrumeAllSucceeded(scene != nullptr, "loading the scene"))
+  if (!vtkBrumeProcesses::AllSucceeded(scene != nullptr, "loading the scene"))
   {
     return 1;
   }
-  if (!BrumeAllSucceeded(rank != 0 || HasDisplay("rendering"), "finding a display"))
+  if (!vtkBrumeProcesses::AllSucceeded(rank != 0 || HasDisplay("rendering"), "finding a display"))
   {
     return 1;
   }
@@ -233,23 +235,16 @@ int RunRender(RenderOptions options)
   {
     std::cerr << "brume: particle tracing failed.\n";
   }
-  if (!BrumeAllSucceeded(traced, "particle tracing"))
+  if (!vtkBrumeProcesses::AllSucceeded(traced, "particle tracing"))
   {
     return 1;
   }
-  double tracing = Seconds(start);
-  if (processes > 1)
-  {
-    // The slowest process's tracing time.
-    double slowest = tracing;
-    vtkMultiProcessController::GetGlobalController()->AllReduce(
-      &tracing, &slowest, 1, vtkCommunicator::MAX_OP);
-    tracing = slowest;
-  }
+  // The slowest process's tracing time.
+  const double tracing = vtkBrumeProcesses::Max(controller, Seconds(start));
 
   // Phase 2: reconstruction toward the camera.
-  double position[3] = { 0, 0, 4 }, focal[3] = { 0, 0, 0 }, up[3] = { 0, 1, 0 }, angle = 40;
-  vtkBrumeSceneConversion::GetCamera(scene->GetOutputDataObject(0), position, focal, up, angle);
+  double position[3], focal[3], up[3], angle;
+  vtkBrumeSceneCamera::GetSceneCamera(scene->GetOutputDataObject(0), position, focal, up, angle);
   start = std::chrono::steady_clock::now();
   vtkNew<vtkBrumeRadianceReconstruction> reconstruction;
   reconstruction->SetInputConnection(0, scene->GetOutputPort());
@@ -265,23 +260,15 @@ int RunRender(RenderOptions options)
   {
     std::cerr << "brume: reconstruction failed.\n";
   }
-  if (!BrumeAllSucceeded(reconstructed, "reconstruction"))
+  if (!vtkBrumeProcesses::AllSucceeded(reconstructed, "reconstruction"))
   {
     return 1;
   }
   const double reconstructing = Seconds(start);
-  vtkTypeInt64 reductionBytes = reconstruction->GetLastReductionBytes();
-  double reductionSeconds = reconstruction->GetLastReductionSeconds();
-  if (processes > 1)
-  {
-    vtkTypeInt64 total = 0;
-    double slowest = 0.0;
-    vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
-    controller->AllReduce(&reductionBytes, &total, 1, vtkCommunicator::SUM_OP);
-    controller->AllReduce(&reductionSeconds, &slowest, 1, vtkCommunicator::MAX_OP);
-    reductionBytes = total;
-    reductionSeconds = slowest;
-  }
+  const vtkTypeInt64 reductionBytes =
+    vtkBrumeProcesses::Sum(controller, reconstruction->GetLastReductionBytes());
+  const double reductionSeconds =
+    vtkBrumeProcesses::Max(controller, reconstruction->GetLastReductionSeconds());
   if (rank != 0)
   {
     return 0; // process 0 renders

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "BrumeCommands.h"
 
-#include "vtkBrumeSceneConversion.h"
+#include "vtkBrumeSMP.h"
 
 #include "brume/Slab.h"
 
@@ -22,7 +22,7 @@ int RunValidateSlab(const SlabOptions& options)
     return 1;
   }
   const brume::SlabTally total = experiment.Run(
-    static_cast<std::uint64_t>(options.Particles), vtkBrumeSceneConversion::ParallelFor());
+    static_cast<std::uint64_t>(options.Particles), vtkBrumeSMP::ParallelFor());
   std::printf(
     "R_diffuse,R_diffuse_stderr,T_diffuse,T_diffuse_stderr,T_unscattered,T_unscattered_stderr\n");
   std::printf("%.9g,%.3g,%.9g,%.3g,%.9g,%.3g\n", total.Mean(0), total.StandardError(0),

@@ -6,7 +6,7 @@
 #include "vtkBrumeLightTracer.h"
 #include "vtkBrumeRadianceReconstruction.h"
 #include "vtkBrumeSceneActors.h"
-#include "vtkBrumeSceneConversion.h"
+#include "vtkBrumeSceneCamera.h"
 #include "vtkBrumeSliceVolumeMapper.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
@@ -90,8 +90,8 @@ public:
     {
       return false;
     }
-    double position[3] = { 0, 0, 4 }, focal[3] = { 0, 0, 0 }, up[3] = { 0, 1, 0 }, angle = 40;
-    vtkBrumeSceneConversion::GetCamera(scene->GetOutputDataObject(0), position, focal, up, angle);
+    double position[3], focal[3], up[3], angle;
+    vtkBrumeSceneCamera::GetSceneCamera(scene->GetOutputDataObject(0), position, focal, up, angle);
     vtkCamera* camera = this->Renderer->GetActiveCamera();
     camera->SetPosition(position);
     camera->SetFocalPoint(focal);

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // `brume`: the command line front end of the Brume toolkit.
 #include "BrumeCommands.h"
-#include "BrumeProcesses.h"
 #include "BrumeRender.h"
 #include "BrumeThreads.h"
 #include "BrumeView.h"
 
+#include "vtkBrumeProcesses.h"
 #include "vtkVersion.h"
 
 #include <cerrno>
@@ -672,7 +672,7 @@ int Bench(int argc, char* argv[])
 
 int main(int argc, char* argv[])
 {
-  const BrumeProcesses processes(&argc, &argv); // MPI, when mpirun started brume
+  const vtkBrumeProcesses::Session processes(&argc, &argv); // MPI, when mpirun started brume
   if (argc < 2)
   {
     return UsageError("missing command");

@@ -2,6 +2,7 @@
 #include "vtkBrumeSceneReader.h"
 
 #include "vtkAlgorithm.h"
+#include "vtkBrumeSceneCamera.h"
 #include "vtkBrumeSceneConversion.h"
 #include "vtkCellArray.h"
 #include "vtkCompositeDataSet.h"
@@ -690,7 +691,8 @@ int vtkBrumeSceneReader::RequestData(
   {
     return fail();
   }
-  double position[3] = { 0, 0, 4 }, focal[3] = { 0, 0, 0 }, up[3] = { 0, 1, 0 }, angle = 40;
+  double position[3], focal[3], up[3], angle;
+  vtkBrumeSceneCamera::GetDefault(position, focal, up, angle);
   if ((camera.contains("position") &&
         !p.Vector(camera["position"], "camera.position", position, 3, -Huge, Huge)) ||
     (camera.contains("focal_point") &&

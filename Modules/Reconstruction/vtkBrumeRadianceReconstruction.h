@@ -62,6 +62,9 @@
 
 class vtkCamera;
 class vtkMultiProcessController;
+class vtkBrumeRadianceTextures;
+struct vtkBrumeReconstructionRequest;
+struct vtkBrumeReconstructionWork;
 
 class VTKBRUMERECONSTRUCTION_EXPORT vtkBrumeRadianceReconstruction
   : public vtkPartitionedDataSetCollectionAlgorithm
@@ -207,7 +210,7 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  double EyePosition[3] = { 0.0, 0.0, 4.0 };
+  double EyePosition[3]; // the default view's position (brume::PinholeCamera)
   double RadiosityThreshold = 128.0;
   int SurfaceResolution = 0;
   int MediumResolution = 0;
@@ -226,8 +229,16 @@ protected:
   vtkIdType NumberOfDirectionalBuilds = 0;
 
 private:
-  struct Cache;
-  std::unique_ptr<Cache> Cached;
+  // The steps of RequestData: validate the inputs, plan (build, add or
+  // keep the textures), then directional media, the view, the output.
+  bool Validate(vtkInformationVector** inputVector, vtkBrumeReconstructionRequest& request);
+  bool ValidateSettings();
+  bool Plan(const vtkBrumeReconstructionRequest& request);
+  bool Agree(bool ok);
+  void CountWork();
+
+  std::unique_ptr<vtkBrumeRadianceTextures> Textures; // kept between executions
+  std::unique_ptr<vtkBrumeReconstructionWork> WorkDone;
 
   vtkBrumeRadianceReconstruction(const vtkBrumeRadianceReconstruction&) = delete;
   void operator=(const vtkBrumeRadianceReconstruction&) = delete;

@@ -29,6 +29,7 @@
 #include "vtkVolumeProperty.h"
 #include "vtk_glew.h"
 
+#include "vtkBrumeSliceVolumeDirectionalFS.h"
 #include "vtkBrumeSliceVolumeFS.h"
 #include "vtkBrumeSliceVolumeVS.h"
 
@@ -37,7 +38,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iomanip>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -88,6 +91,16 @@ struct vtkBrumeOpenGLSliceVolumeMapper::Slice
 
 namespace
 {
+// Replaces the tag `tag` of a shader by `text`.
+void Replace(std::string& shader, const std::string& tag, const std::string& text)
+{
+  const std::size_t at = shader.find(tag);
+  if (at != std::string::npos)
+  {
+    shader.replace(at, tag.size(), text);
+  }
+}
+
 // The fragment shader of a volume: the slab shader, plus for directional
 // radiance of the given order (> 0) the evaluation of its spherical-harmonics
 // coefficients toward the eye (brume/SphericalHarmonics.h, in GLSL).
@@ -100,8 +113,7 @@ std::string FragmentShader(int order)
   }
   const int coefficients = (order + 1) * (order + 1);
   const int textures = (3 * coefficients + 3) / 4;
-  std::string dec = "uniform float phaseG;\nuniform vec3 eyeData;\nuniform vec3 boundsLower;\n"
-                    "uniform vec3 boundsExtent;\n";
+  std::string dec;
   std::string fetch = "  float v[" + std::to_string(4 * textures) + "];\n  vec4 f;\n";
   for (int t = 0; t < textures; ++t)
   {
@@ -113,106 +125,14 @@ std::string FragmentShader(int order)
       fetch += "  v[" + std::to_string(4 * t + c) + "] = f[" + std::to_string(c) + "];\n";
     }
   }
-  dec += "#define SH_ORDER " + std::to_string(order) + "\n" + R"GLSL(
-const float Inv4Pi = 0.0795774715;
-float legendre(int l, float x)
-{
-  if (l == 0) return 1.0;
-  if (l == 1) return x;
-  if (l == 2) return 0.5 * (3.0 * x * x - 1.0);
-  return 0.5 * x * (5.0 * x * x - 3.0);
-}
-vec3 directionalSource()
-{
-)GLSL" + fetch + R"GLSL(
-  vec3 d = normalize(eyeData - (boundsLower + texcoord * boundsExtent));
-  float y[16];
-  y[0] = 0.282094792;
-  y[1] = 0.488602512 * d.y;
-  y[2] = 0.488602512 * d.z;
-  y[3] = 0.488602512 * d.x;
-#if SH_ORDER >= 2
-  y[4] = 1.092548431 * d.x * d.y;
-  y[5] = 1.092548431 * d.y * d.z;
-  y[6] = 0.315391565 * (3.0 * d.z * d.z - 1.0);
-  y[7] = 1.092548431 * d.x * d.z;
-  y[8] = 0.546274215 * (d.x * d.x - d.y * d.y);
-#endif
-#if SH_ORDER >= 3
-  y[9] = 0.590043589 * d.y * (3.0 * d.x * d.x - d.y * d.y);
-  y[10] = 2.890611442 * d.x * d.y * d.z;
-  y[11] = 0.457045799 * d.y * (5.0 * d.z * d.z - 1.0);
-  y[12] = 0.373176333 * d.z * (5.0 * d.z * d.z - 3.0);
-  y[13] = 0.457045799 * d.x * (5.0 * d.z * d.z - 1.0);
-  y[14] = 1.445305721 * d.z * (d.x * d.x - d.y * d.y);
-  y[15] = 0.590043589 * d.x * (d.x * d.x - 3.0 * d.y * d.y);
-#endif
-  // The bands: Henyey-Greenstein scales band l by g^l.
-  vec3 sum = vec3(0.0);
-  float gl = 1.0;
-  for (int l = 0; l <= SH_ORDER; ++l)
-  {
-    vec3 band = vec3(0.0);
-    for (int k = l * l; k < (l + 1) * (l + 1); ++k)
-    {
-      band += vec3(v[3 * k], v[3 * k + 1], v[3 * k + 2]) * y[k];
-    }
-    sum += gl * band;
-    gl *= phaseG;
-  }
-  // The bands beyond the order, from an isotropic part plus a lobe fitted
-  // to the first two moments (brume::EvaluateHgFromSh).
-  for (int c = 0; c < 3; ++c)
-  {
-    float total = v[c] / 0.282094792;
-    vec3 moment = vec3(v[9 + c], v[3 + c], v[6 + c]) / 0.488602512;
-    float len = length(moment);
-    if (!(total > 0.0) || !(len > 0.0))
-    {
-      continue;
-    }
-    vec3 axis = moment / len;
-    float weight = total;
-    float meanCosine = min(len / total, 0.999);
-#if SH_ORDER >= 2
-    float zonal = v[12 + c] * 1.092548431 * axis.x * axis.y
-      + v[15 + c] * 1.092548431 * axis.y * axis.z
-      + v[18 + c] * 0.315391565 * (3.0 * axis.z * axis.z - 1.0)
-      + v[21 + c] * 1.092548431 * axis.x * axis.z
-      + v[24 + c] * 0.546274215 * (axis.x * axis.x - axis.y * axis.y);
-    float second = zonal * 4.0 * 3.14159265 / 5.0;
-    if (!(second > 1e-4 * len))
-    {
-      continue;
-    }
-    meanCosine = min(second / len, 0.999);
-    weight = min(len / meanCosine, total);
-#endif
-    float gg = phaseG * meanCosine;
-    float mu = dot(axis, d);
-    float truncated = 0.0;
-    float power = 1.0;
-    for (int l = 0; l <= SH_ORDER; ++l)
-    {
-      truncated += power * float(2 * l + 1) * Inv4Pi * legendre(l, mu);
-      power *= gg;
-    }
-    float hg = Inv4Pi * (1.0 - gg * gg) / pow(max(1.0 + gg * gg - 2.0 * gg * mu, 1e-6), 1.5);
-    sum[c] += weight * (hg - truncated);
-  }
-  return max(sum, vec3(0.0));
-}
-)GLSL";
-  auto replace = [&](const std::string& tag, const std::string& text)
-  {
-    const std::size_t at = fs.find(tag);
-    if (at != std::string::npos)
-    {
-      fs.replace(at, tag.size(), text);
-    }
-  };
-  replace("//BRUME::Directional::Dec", dec);
-  replace("//BRUME::Directional::Impl", "emission = directionalSource();");
+  std::ostringstream constants;
+  constants << std::setprecision(9) << "#define SH_ORDER " << order << "\n#define BRUME_SH_Y00 "
+            << brume::ShY00 << "\n";
+  std::string directional = vtkBrumeSliceVolumeDirectionalFS;
+  Replace(directional, "//BRUME::Directional::Uniforms", dec + constants.str());
+  Replace(directional, "//BRUME::Directional::Fetch", fetch);
+  Replace(fs, "//BRUME::Directional::Dec", directional);
+  Replace(fs, "//BRUME::Directional::Impl", "emission = directionalSource();");
   return fs;
 }
 }

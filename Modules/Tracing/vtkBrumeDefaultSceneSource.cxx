@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumeDefaultSceneSource.h"
 
+#include "vtkBrumeSceneCamera.h"
 #include "vtkBrumeSceneConversion.h"
 
 #include "vtkCellArray.h"
@@ -95,10 +96,12 @@ int vtkBrumeDefaultSceneSource::RequestData(
     }
   }
   vtkFieldData* fd = output->GetFieldData();
-  AddVec3(fd, "BrumeCameraPosition", 0, 0, 4);
-  AddVec3(fd, "BrumeCameraFocalPoint", 0, 0, 0);
-  AddVec3(fd, "BrumeCameraViewUp", 0, 1, 0);
-  AddScalar(fd, "BrumeCameraViewAngle", 40);
+  double position[3], focal[3], up[3], angle;
+  vtkBrumeSceneCamera::GetDefault(position, focal, up, angle);
+  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeCameraPosition", position, 3);
+  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeCameraFocalPoint", focal, 3);
+  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeCameraViewUp", up, 3);
+  AddScalar(fd, "BrumeCameraViewAngle", angle);
   return 1;
 }
 

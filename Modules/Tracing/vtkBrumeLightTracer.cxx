@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumeLightTracer.h"
 
+#include "vtkBrumeHitConversion.h"
 #include "vtkBrumeSceneConversion.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -139,14 +140,14 @@ struct OutputHits
     pts->SetData(points);
     output->SetPoints(pts);
     vtkPointData* pd = output->GetPointData();
-    pd->AddArray(make(vtkSmartPointer<vtkFloatArray>::New(), this->Direction, "Direction", 3));
-    pd->AddArray(make(vtkSmartPointer<vtkFloatArray>::New(), this->Flux, "Flux", 3));
-    pd->AddArray(make(vtkSmartPointer<vtkUnsignedShortArray>::New(), this->Object, "ObjectId", 1));
+    pd->AddArray(make(vtkSmartPointer<vtkFloatArray>::New(), this->Direction, vtkBrumeHitConversion::DirectionName, 3));
+    pd->AddArray(make(vtkSmartPointer<vtkFloatArray>::New(), this->Flux, vtkBrumeHitConversion::FluxName, 3));
+    pd->AddArray(make(vtkSmartPointer<vtkUnsignedShortArray>::New(), this->Object, vtkBrumeHitConversion::ObjectIdName, 1));
     pd->AddArray(
-      make(vtkSmartPointer<vtkUnsignedShortArray>::New(), this->Emitter, "EmitterId", 1));
-    pd->AddArray(make(vtkSmartPointer<vtkUnsignedCharArray>::New(), this->Depth, "Depth", 1));
+      make(vtkSmartPointer<vtkUnsignedShortArray>::New(), this->Emitter, vtkBrumeHitConversion::EmitterIdName, 1));
+    pd->AddArray(make(vtkSmartPointer<vtkUnsignedCharArray>::New(), this->Depth, vtkBrumeHitConversion::DepthName, 1));
     pd->AddArray(
-      make(vtkSmartPointer<vtkUnsignedIntArray>::New(), this->Triangle, "TriangleId", 1));
+      make(vtkSmartPointer<vtkUnsignedIntArray>::New(), this->Triangle, vtkBrumeHitConversion::TriangleIdName, 1));
   }
 };
 
@@ -324,13 +325,13 @@ int vtkBrumeLightTracer::RequestData(
   }
   this->LastRayCount = static_cast<vtkTypeInt64>(sum.Rays);
   out.Attach(output, stored);
-  AddTuple(output, "TotalPower", tracer.GetTotalPower());
+  AddTuple(output, vtkBrumeHitConversion::TotalPowerName, tracer.GetTotalPower());
   vtkNew<vtkDoubleArray> count;
-  count->SetName("NumberOfParticles");
+  count->SetName(vtkBrumeHitConversion::NumberOfParticlesName);
   count->InsertNextValue(static_cast<double>(particles));
   output->GetFieldData()->AddArray(count);
   vtkNew<vtkDoubleArray> first;
-  first->SetName("FirstParticle");
+  first->SetName(vtkBrumeHitConversion::FirstParticleName);
   first->InsertNextValue(static_cast<double>(firstParticle));
   output->GetFieldData()->AddArray(first);
   vtkNew<vtkDoubleArray> pieceRange;
@@ -339,7 +340,7 @@ int vtkBrumeLightTracer::RequestData(
   pieceRange->InsertNextTuple2(static_cast<double>(pieceFirst), static_cast<double>(pieceEnd));
   output->GetFieldData()->AddArray(pieceRange);
   vtkNew<vtkDoubleArray> seed;
-  seed->SetName("Seed");
+  seed->SetName(vtkBrumeHitConversion::SeedName);
   seed->InsertNextValue(static_cast<double>(this->Seed));
   output->GetFieldData()->AddArray(seed);
   vtkNew<vtkDoubleArray> rays;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumeReferencePathTracer.h"
 
+#include "vtkBrumeSceneCamera.h"
 #include "vtkBrumeSceneConversion.h"
 #include "vtkCamera.h"
 #include "vtkFloatArray.h"
@@ -99,7 +100,7 @@ int vtkBrumeReferencePathTracer::RequestData(
     return 0;
   }
   brume::PinholeCamera camera;
-  double position[3] = { 0, 0, 4 }, focal[3] = { 0, 0, 0 }, up[3] = { 0, 1, 0 }, angle = 40;
+  double position[3], focal[3], up[3], angle;
   if (this->Camera)
   {
     this->Camera->GetPosition(position);
@@ -109,7 +110,7 @@ int vtkBrumeReferencePathTracer::RequestData(
   }
   else
   {
-    vtkBrumeSceneConversion::GetCamera(input, position, focal, up, angle);
+    vtkBrumeSceneCamera::GetSceneCamera(input, position, focal, up, angle);
   }
   camera.Position = { static_cast<float>(position[0]), static_cast<float>(position[1]),
     static_cast<float>(position[2]) };

@@ -7,7 +7,7 @@
 // Every quantity must agree within 4 of its Monte Carlo standard errors and
 // within 0.002 absolute. Skips (exit 125) when the table is absent, as in a
 // user's clone without ../shared.
-#include "vtkBrumeSceneConversion.h"
+#include "vtkBrumeSMP.h"
 
 #include "brume/Slab.h"
 
@@ -26,7 +26,7 @@ namespace
 brume::SlabTally Run(const brume::SlabSpec& spec, std::uint64_t particles)
 {
   const brume::SlabExperiment experiment(spec, 1);
-  return experiment.Run(particles, vtkBrumeSceneConversion::ParallelFor());
+  return experiment.Run(particles, vtkBrumeSMP::ParallelFor());
 }
 }
 

@@ -13,6 +13,7 @@
 #ifndef brume_PathTracer_h
 #define brume_PathTracer_h
 
+#include "brume/Camera.h"
 #include "brume/RayCaster.h"
 #include "brume/Scene.h"
 
@@ -21,20 +22,6 @@
 
 namespace brume
 {
-
-/// A pinhole camera as vtkCamera describes it (vertical view angle).
-struct PinholeCamera
-{
-  Vec3 Position{ 0.f, 0.f, 4.f };
-  Vec3 FocalPoint{ 0.f };
-  Vec3 ViewUp{ 0.f, 1.f, 0.f };
-  float ViewAngle = 40.f; // degrees
-  int Width = 512;
-  int Height = 512;
-
-  /// The ray through image point (x, y), pixel units, row 0 at the bottom.
-  void Ray(float x, float y, Vec3& origin, Vec3& direction) const;
-};
 
 struct PathSettings
 {

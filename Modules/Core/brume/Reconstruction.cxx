@@ -3,7 +3,6 @@
 
 #include "brume/Material.h"
 #include "brume/Sampling.h"
-#include "brume/SphericalHarmonics.h"
 
 #include <algorithm>
 #include <atomic>
@@ -11,18 +10,6 @@
 
 namespace brume
 {
-
-ParallelFor SerialFor()
-{
-  return [](std::size_t begin, std::size_t end,
-           const std::function<void(std::size_t, std::size_t)>& body)
-  {
-    if (begin < end)
-    {
-      body(begin, end);
-    }
-  };
-}
 
 std::string GroupHitsByObject(const HitArrays& hits, std::size_t objects, ObjectHits& groups)
 {
@@ -85,14 +72,6 @@ std::array<int, 3> ChooseResolution(
 
 namespace
 {
-// Ranges of histogram cells that view-dependent objects weigh as tasks.
-constexpr std::size_t Ranges = 64;
-
-float UVArea(const std::array<float, 6>& uv)
-{
-  return 0.5f * std::abs((uv[2] - uv[0]) * (uv[5] - uv[1]) - (uv[4] - uv[0]) * (uv[3] - uv[1]));
-}
-
 // Barycentric coordinates of p (projected) in the triangle abc.
 void Barycentric(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& p, float& u, float& v)
 {
@@ -103,67 +82,6 @@ void Barycentric(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& p, flo
   u = det != 0.f ? (d11 * d20 - d01 * d21) / det : 0.f;
   v = det != 0.f ? (d00 * d21 - d01 * d20) / det : 0.f;
 }
-}
-
-SurfaceChart MakeChart(
-  const Surface& surface, const std::vector<std::array<float, 2>>* vertexTextureCoordinates)
-{
-  SurfaceChart chart;
-  const std::size_t triangles = surface.Triangles.size();
-  chart.TriangleUV.resize(triangles);
-  if (surface.ComputePlanarFrame(chart.Frame))
-  {
-    chart.Type = SurfaceChart::Kind::Planar;
-    const float uu = Dot(chart.Frame.U, chart.Frame.U), vv = Dot(chart.Frame.V, chart.Frame.V);
-    for (std::size_t t = 0; t < triangles; ++t)
-    {
-      for (int k = 0; k < 3; ++k)
-      {
-        const Vec3 d = surface.Vertices[surface.Triangles[t][k]] - chart.Frame.Origin;
-        chart.TriangleUV[t][2 * k] = Dot(d, chart.Frame.U) / uu;
-        chart.TriangleUV[t][2 * k + 1] = Dot(d, chart.Frame.V) / vv;
-      }
-    }
-    chart.Width = Length(chart.Frame.U);
-    chart.Height = Length(chart.Frame.V);
-    return chart;
-  }
-  const float side = std::sqrt(static_cast<float>(surface.Area()));
-  chart.Width = chart.Height = side;
-  if (vertexTextureCoordinates && vertexTextureCoordinates->size() == surface.Vertices.size())
-  {
-    bool valid = true;
-    for (std::size_t t = 0; t < triangles && valid; ++t)
-    {
-      for (int k = 0; k < 3; ++k)
-      {
-        const auto& tc = (*vertexTextureCoordinates)[surface.Triangles[t][k]];
-        chart.TriangleUV[t][2 * k] = tc[0];
-        chart.TriangleUV[t][2 * k + 1] = tc[1];
-        valid = valid && std::isfinite(tc[0]) && std::isfinite(tc[1]) && tc[0] >= 0.f &&
-          tc[0] <= 1.f && tc[1] >= 0.f && tc[1] <= 1.f;
-      }
-      valid = valid && UVArea(chart.TriangleUV[t]) > 0.f;
-    }
-    if (valid)
-    {
-      chart.Type = SurfaceChart::Kind::TextureCoordinates;
-      return chart;
-    }
-  }
-  // One square chart per triangle on a G x G grid; the triangle fills the
-  // lower-left half, inside a margin (an affine map: constant area scale).
-  chart.Type = SurfaceChart::Kind::Atlas;
-  const int g = std::max(1, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(triangles)))));
-  const float cell = 1.f / static_cast<float>(g), margin = 0.1f * cell;
-  for (std::size_t t = 0; t < triangles; ++t)
-  {
-    const float x0 = static_cast<float>(t % g) * cell, y0 = static_cast<float>(t / g) * cell;
-    chart.TriangleUV[t] = { x0 + margin, y0 + margin, x0 + cell - margin, y0 + margin, x0 + margin,
-      y0 + cell - margin };
-  }
-  chart.Width = chart.Height = side * std::sqrt(2.f) / (1.f - 2.f * 0.1f);
-  return chart;
 }
 
 ObjectRadiance::ObjectRadiance(
@@ -545,103 +463,6 @@ void ObjectRadiance::Finish(
   this->Estimate(parallelFor);
 }
 
-std::string ObjectRadiance::BuildDirectional(int order, const ParallelFor& parallelFor)
-{
-  if (!this->MediumRef || !this->ViewDependent)
-  {
-    return "directional radiance is made for anisotropic media only";
-  }
-  if (this->Regions.empty())
-  {
-    return "directional radiance needs a texture already built";
-  }
-  if (order < 0 || order > MaxShOrder)
-  {
-    return "the spherical-harmonics order must be in [0, " + std::to_string(MaxShOrder) + "]";
-  }
-  const int nk = ShCoefficients(order);
-  const std::size_t texels = this->Regions.size();
-  this->Directional.assign(texels * nk * 3, 0.f);
-  this->DirectionalOrder = order;
-  // A few coefficients per pass bound the memory: each pass bins
-  // Y_k(w_p) Phi_p into a histogram, sums every region from its table and
-  // normalizes the sums as the per-view textures are.
-  constexpr int PerPass = 4;
-  for (int k0 = 0; k0 < nk; k0 += PerPass)
-  {
-    const int kn = std::min(PerPass, nk - k0);
-    Histogram projected(this->Dims, 3 * kn);
-    this->ChainReceive(projected);
-    parallelFor(0, Ranges,
-      [&](std::size_t begin, std::size_t end)
-      {
-        float y[ShCoefficients(MaxShOrder)];
-        double v[3 * PerPass];
-        for (std::size_t k = this->RangeStart[begin]; k < this->RangeStart[end]; ++k)
-        {
-          const KeptHit& h = this->Kept[k];
-          EvaluateSh(order, Vec3(h.Direction[0], h.Direction[1], h.Direction[2]), y);
-          for (int j = 0; j < kn; ++j)
-          {
-            for (int c = 0; c < 3; ++c)
-            {
-              v[3 * j + c] = static_cast<double>(y[k0 + j]) * h.Flux[c];
-            }
-          }
-          projected.Add(h.Cell, v);
-        }
-      });
-    this->ChainForward(projected);
-    const SummedAreaTable table(projected);
-    parallelFor(0, texels,
-      [&](std::size_t begin, std::size_t end)
-      {
-        double sum[3 * PerPass];
-        for (std::size_t t = begin; t < end; ++t)
-        {
-          const Region& r = this->Regions[t];
-          table.RegionSum(r.Lo, r.Hi, sum);
-          for (int j = 0; j < kn; ++j)
-          {
-            this->ToRadiance(t, r, sum + 3 * j, &this->Directional[(t * nk + k0 + j) * 3]);
-          }
-        }
-      });
-  }
-  return {};
-}
-
-void ObjectRadiance::EvaluateDirectional(const Vec3& eye, std::vector<float>& radiance) const
-{
-  const std::size_t texels = this->Regions.size();
-  radiance.assign(3 * texels, 0.f);
-  if (this->DirectionalOrder < 0 || !this->MediumRef)
-  {
-    return;
-  }
-  const int nk = ShCoefficients(this->DirectionalOrder);
-  const Box box = this->MediumRef->Bounds;
-  const Vec3 voxel = box.Extent() /
-    Vec3(static_cast<float>(this->Resolution[0]), static_cast<float>(this->Resolution[1]),
-      static_cast<float>(this->Resolution[2]));
-  const std::size_t nx = this->Resolution[0], nxy = nx * this->Resolution[1];
-  for (std::size_t t = 0; t < texels; ++t)
-  {
-    const Vec3 centre = box.lower +
-      (Vec3(static_cast<float>(t % nx), static_cast<float>((t % nxy) / nx),
-         static_cast<float>(t / nxy)) +
-        Vec3(0.5f)) *
-        voxel;
-    const Vec3 toEye = Normalize(eye - centre);
-    for (int c = 0; c < 3; ++c)
-    {
-      radiance[3 * t + c] = std::max(0.f,
-        EvaluateHgFromSh(this->DirectionalOrder, this->MediumRef->G,
-          &this->Directional[t * nk * 3 + c], 3, toEye));
-    }
-  }
-}
-
 void ObjectRadiance::UpdateView(const Vec3& eye, const ParallelFor& parallelFor)
 {
   if (!this->ViewDependent)
@@ -706,92 +527,10 @@ void ObjectRadiance::WeighCells(const Vec3& eye, const ParallelFor& parallelFor)
   this->ValueTable = SummedAreaTable(value);
 }
 
-namespace
-{
-// Area of the triangle `uv` inside the rectangle [u0, u1] x [v0, v1]
-// (Sutherland-Hodgman clipping, then the shoelace formula).
-double ClippedArea(const std::array<float, 6>& uv, double u0, double u1, double v0, double v1)
-{
-  struct P
-  {
-    double u, v;
-  };
-  std::vector<P> poly = { { uv[0], uv[1] }, { uv[2], uv[3] }, { uv[4], uv[5] } }, next;
-  // Keep the side where f(p) >= 0 for each of the four edges.
-  auto clip = [&](auto f)
-  {
-    next.clear();
-    for (std::size_t k = 0; k < poly.size(); ++k)
-    {
-      const P& a = poly[k];
-      const P& b = poly[(k + 1) % poly.size()];
-      const double fa = f(a), fb = f(b);
-      if (fa >= 0.0)
-      {
-        next.push_back(a);
-      }
-      if ((fa >= 0.0) != (fb >= 0.0))
-      {
-        const double t = fa / (fa - fb);
-        next.push_back({ a.u + t * (b.u - a.u), a.v + t * (b.v - a.v) });
-      }
-    }
-    poly.swap(next);
-  };
-  clip([&](const P& p) { return p.u - u0; });
-  clip([&](const P& p) { return u1 - p.u; });
-  clip([&](const P& p) { return p.v - v0; });
-  clip([&](const P& p) { return v1 - p.v; });
-  double area = 0.0;
-  for (std::size_t k = 0; k < poly.size(); ++k)
-  {
-    const P& a = poly[k];
-    const P& b = poly[(k + 1) % poly.size()];
-    area += a.u * b.v - b.u * a.v;
-  }
-  return 0.5 * std::abs(area);
-}
-}
-
 void ObjectRadiance::BuildAreaTable()
 {
-  // World area of the surface inside each histogram cell: every triangle's
-  // exact (u, v) overlap with the cell times its world/texture area ratio.
   Histogram area(this->Dims, 1);
-  const int nx = this->Dims[0], ny = this->Dims[1];
-  for (std::size_t t = 0; t < this->SurfaceRef->Triangles.size(); ++t)
-  {
-    const auto& uv = this->Chart.TriangleUV[t];
-    const auto& tri = this->SurfaceRef->Triangles[t];
-    const double world = 0.5 *
-      Length(Cross(this->SurfaceRef->Vertices[tri[1]] - this->SurfaceRef->Vertices[tri[0]],
-        this->SurfaceRef->Vertices[tri[2]] - this->SurfaceRef->Vertices[tri[0]]));
-    const double texture = UVArea(uv);
-    if (!(texture > 0.0))
-    {
-      continue;
-    }
-    const double scale = world / texture;
-    const float umin = std::min({ uv[0], uv[2], uv[4] }), umax = std::max({ uv[0], uv[2], uv[4] });
-    const float vmin = std::min({ uv[1], uv[3], uv[5] }), vmax = std::max({ uv[1], uv[3], uv[5] });
-    const int i0 = std::max(0, static_cast<int>(std::floor(umin * nx)));
-    const int i1 = std::min(nx - 1, static_cast<int>(std::floor(umax * nx)));
-    const int j0 = std::max(0, static_cast<int>(std::floor(vmin * ny)));
-    const int j1 = std::min(ny - 1, static_cast<int>(std::floor(vmax * ny)));
-    for (int j = j0; j <= j1; ++j)
-    {
-      for (int i = i0; i <= i1; ++i)
-      {
-        const double a = scale *
-          ClippedArea(uv, static_cast<double>(i) / nx, static_cast<double>(i + 1) / nx,
-            static_cast<double>(j) / ny, static_cast<double>(j + 1) / ny);
-        if (a > 0.0)
-        {
-          area.Add(area.Index(i, j, 0), &a);
-        }
-      }
-    }
-  }
+  AddChartAreas(*this->SurfaceRef, this->Chart, area);
   this->AreaTable = SummedAreaTable(area);
 }
 

@@ -36,22 +36,17 @@
 
 #include "brume/DensityEstimation.h"
 #include "brume/Histogram.h"
+#include "brume/Parallel.h"
 #include "brume/Scene.h"
+#include "brume/SurfaceChart.h"
 
 #include <array>
 #include <cstdint>
-#include <functional>
 #include <string>
 #include <vector>
 
 namespace brume
 {
-
-/// Runs body(begin, end) over sub-ranges of [begin, end), possibly in parallel.
-using ParallelFor = std::function<void(
-  std::size_t, std::size_t, const std::function<void(std::size_t, std::size_t)>&)>;
-/// A ParallelFor that runs everything on the calling thread.
-ParallelFor SerialFor();
 
 /// Hits in structure-of-arrays form (e.g. the arrays of a vtkPolyData).
 struct HitArrays
@@ -80,31 +75,6 @@ std::string GroupHitsByObject(const HitArrays& hits, std::size_t objects, Object
  */
 std::array<int, 3> ChooseResolution(
   const Vec3& extent, std::size_t hitCount, double hitsPerTexel, int minimum, int maximum);
-
-/// How a surface maps to its texture's [0, 1]^2.
-struct SurfaceChart
-{
-  enum class Kind
-  {
-    Planar,             // the plane's own (u, v): PlanarFrame
-    TextureCoordinates, // the mesh's texture coordinates
-    Atlas               // one chart per triangle, made automatically
-  };
-  Kind Type = Kind::Planar;
-  PlanarFrame Frame;
-  /// (u, v) of the three corners of every triangle.
-  std::vector<std::array<float, 6>> TriangleUV;
-  /// Aspect (u extent / v extent in the world) for choosing resolutions.
-  float Width = 1.f, Height = 1.f;
-};
-
-/**
- * The chart of a surface: planar surfaces use their plane, others the given
- * per-vertex texture coordinates (if any, with non-degenerate triangles),
- * others an automatic per-triangle atlas.
- */
-SurfaceChart MakeChart(
-  const Surface& surface, const std::vector<std::array<float, 2>>* vertexTextureCoordinates);
 
 /**
  * Sums histograms across processes that hold consecutive parts of one run
@@ -199,6 +169,9 @@ public:
   const SurfaceChart& GetChart() const { return this->Chart; }
 
 private:
+  // Ranges of histogram cells that view-dependent objects weigh as tasks.
+  static constexpr std::size_t Ranges = 64;
+
   bool FromFront(const HitArrays& hits, std::uint32_t i) const;
   void Bin(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
     const ParallelFor& parallelFor);

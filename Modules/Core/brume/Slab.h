@@ -6,7 +6,7 @@
 #define brume_Slab_h
 
 #include "brume/LightTracer.h"
-#include "brume/Reconstruction.h" // For ParallelFor
+#include "brume/Parallel.h"
 
 #include <cstdint>
 #include <memory>

@@ -29,7 +29,7 @@ float LegendreP(int l, float x)
 void EvaluateSh(int order, const Vec3& d, float* y)
 {
   const float x = d.x, yy = d.y, z = d.z;
-  y[0] = 0.282094792f;
+  y[0] = ShY00;
   if (order < 1)
   {
     return;
@@ -86,7 +86,7 @@ float EvaluateHgFromSh(
   // separates the lobe from the isotropic part (order 1: all light in the
   // lobe). Convolved with HG(g) the lobe is b HG(g gL); its bands up to the
   // order are already in the sum.
-  const float total = coefficients[0] / 0.282094792f;
+  const float total = coefficients[0] / ShY00;
   const Vec3 moment =
     Vec3(coefficients[3 * stride], coefficients[stride], coefficients[2 * stride]) / 0.488602512f;
   const float length = Length(moment);

@@ -20,6 +20,9 @@ namespace brume
 
 constexpr int MaxShOrder = 3;
 
+/// Y_00 = 1 / (2 sqrt(pi)): the constant band; c_00 Y_00 is the mean over directions.
+constexpr float ShY00 = 0.282094792f;
+
 /// Number of coefficients of an expansion up to `order`: (order + 1)^2.
 constexpr int ShCoefficients(int order)
 {

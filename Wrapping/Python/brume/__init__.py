@@ -20,6 +20,7 @@ import vtkmodules.vtkCommonExecutionModel  # noqa: F401
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
 import vtkmodules.vtkRenderingVolumeOpenGL2  # noqa: F401
 
+from .vtkBrumeDataModel import *  # noqa: F401,F403
 from .vtkBrumeTracing import *  # noqa: F401,F403
 from .vtkBrumeReconstruction import *  # noqa: F401,F403
 from .vtkBrumeRendering import *  # noqa: F401,F403

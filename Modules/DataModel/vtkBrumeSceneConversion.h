@@ -34,24 +34,18 @@
  * `BrumeCameraPosition`, `BrumeCameraFocalPoint`, `BrumeCameraViewUp` (3
  * components) and `BrumeCameraViewAngle` (degrees).
  *
- * Particle hits travel as a vtkPolyData whose points are the hit positions,
- * with point data `Direction` (float[3], direction of travel on arrival),
- * `Flux` (float[3], W), `ObjectId` and `EmitterId` (unsigned short),
- * `Depth` (unsigned char) and `TriangleId` (unsigned int: for surface hits,
- * the triangle in the surface's triangulation, polygons as fans then strips),
- * and field data `TotalPower` (double[3], W) and `NumberOfParticles`.
+ * Particle hits: vtkBrumeHitConversion. Radiance textures:
+ * vtkBrumeRadianceConversion. The camera: vtkBrumeSceneCamera.
  *
- * @sa vtkBrumeLightTracer vtkBrumeDefaultSceneSource
+ * @sa vtkBrumeHitConversion vtkBrumeRadianceConversion vtkBrumeSceneCamera
  */
 #ifndef vtkBrumeSceneConversion_h
 #define vtkBrumeSceneConversion_h
 
-#include "vtkBrumeTracingModule.h" // For export macro
+#include "vtkBrumeDataModelModule.h" // For export macro
 #include "vtkSmartPointer.h"       // For return values
 
-#include "brume/LightTracer.h"    // For brume::Hit
-#include "brume/Reconstruction.h" // For brume::ParallelFor
-#include "brume/Scene.h"          // For brume::Scene
+#include "brume/Scene.h" // For brume::Scene
 
 #include <string>
 #include <vector>
@@ -61,9 +55,8 @@ class vtkFieldData;
 class vtkAlgorithm;
 class vtkLightCollection;
 class vtkPartitionedDataSetCollection;
-class vtkPolyData;
 
-class VTKBRUMETRACING_EXPORT vtkBrumeSceneConversion
+class VTKBRUMEDATAMODEL_EXPORT vtkBrumeSceneConversion
 {
 public:
   /// Where each core object came from in the collection.
@@ -123,20 +116,6 @@ public:
    * `BrumeLightConeAngle` (spot half-angle, degrees).
    */
   static std::string ConvertFieldLights(vtkFieldData* fieldData, brume::Scene& scene);
-
-  /// Stores hits in a vtkPolyData with the documented arrays.
-  static vtkSmartPointer<vtkPolyData> HitsToPolyData(
-    const std::vector<brume::Hit>& hits, const brume::Vec3& totalPower, long long particles);
-
-  /// Reads hits back; empty string on success, otherwise what is missing.
-  static std::string HitsFromPolyData(vtkPolyData* data, std::vector<brume::Hit>& hits);
-
-  /// The core's parallel loop on vtkSMPTools.
-  static brume::ParallelFor ParallelFor();
-
-  /// The scene's camera, if the collection's field data names one.
-  static bool GetCamera(vtkDataObject* input, double position[3], double focalPoint[3],
-    double viewUp[3], double& viewAngle);
 };
 
 #endif

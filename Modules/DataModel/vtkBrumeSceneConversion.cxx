@@ -23,16 +23,11 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
-#include "vtkSMPTools.h"
 #include "vtkStringArray.h"
-#include "vtkUnsignedCharArray.h"
-#include "vtkUnsignedIntArray.h"
-#include "vtkUnsignedShortArray.h"
 
 #include "brume/VdbDensity.h"
 
 #include <algorithm>
-
 #include <cmath>
 #include <sstream>
 
@@ -651,134 +646,4 @@ std::string vtkBrumeSceneConversion::ToScene(vtkDataObject* input, brume::Scene&
     return lightError;
   }
   return scene.Validate();
-}
-
-vtkSmartPointer<vtkPolyData> vtkBrumeSceneConversion::HitsToPolyData(
-  const std::vector<brume::Hit>& hits, const brume::Vec3& totalPower, long long particles)
-{
-  const auto n = static_cast<vtkIdType>(hits.size());
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToFloat();
-  points->SetNumberOfPoints(n);
-  vtkNew<vtkFloatArray> direction;
-  direction->SetName("Direction");
-  direction->SetNumberOfComponents(3);
-  direction->SetNumberOfTuples(n);
-  vtkNew<vtkFloatArray> flux;
-  flux->SetName("Flux");
-  flux->SetNumberOfComponents(3);
-  flux->SetNumberOfTuples(n);
-  vtkNew<vtkUnsignedShortArray> object;
-  object->SetName("ObjectId");
-  object->SetNumberOfTuples(n);
-  vtkNew<vtkUnsignedShortArray> emitter;
-  emitter->SetName("EmitterId");
-  emitter->SetNumberOfTuples(n);
-  vtkNew<vtkUnsignedCharArray> depth;
-  depth->SetName("Depth");
-  depth->SetNumberOfTuples(n);
-  vtkNew<vtkUnsignedIntArray> triangle;
-  triangle->SetName("TriangleId");
-  triangle->SetNumberOfTuples(n);
-  auto* p = static_cast<float*>(points->GetVoidPointer(0));
-  float* d = direction->GetPointer(0);
-  float* f = flux->GetPointer(0);
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    const brume::Hit& h = hits[i];
-    for (int c = 0; c < 3; ++c)
-    {
-      p[3 * i + c] = h.Position[c];
-      d[3 * i + c] = h.Direction[c];
-      f[3 * i + c] = h.Flux[c];
-    }
-    object->SetValue(i, h.Object);
-    emitter->SetValue(i, h.Emitter);
-    depth->SetValue(i, h.Depth);
-    triangle->SetValue(i, h.Triangle);
-  }
-  auto output = vtkSmartPointer<vtkPolyData>::New();
-  output->SetPoints(points);
-  output->GetPointData()->AddArray(direction);
-  output->GetPointData()->AddArray(flux);
-  output->GetPointData()->AddArray(object);
-  output->GetPointData()->AddArray(emitter);
-  output->GetPointData()->AddArray(depth);
-  output->GetPointData()->AddArray(triangle);
-  vtkNew<vtkDoubleArray> power;
-  power->SetName("TotalPower");
-  power->SetNumberOfComponents(3);
-  power->InsertNextTuple3(totalPower.x, totalPower.y, totalPower.z);
-  output->GetFieldData()->AddArray(power);
-  vtkNew<vtkDoubleArray> count;
-  count->SetName("NumberOfParticles");
-  count->InsertNextValue(static_cast<double>(particles));
-  output->GetFieldData()->AddArray(count);
-  return output;
-}
-
-std::string vtkBrumeSceneConversion::HitsFromPolyData(
-  vtkPolyData* data, std::vector<brume::Hit>& hits)
-{
-  hits.clear();
-  if (!data)
-  {
-    return "no particle hits were given";
-  }
-  const vtkIdType n = data->GetNumberOfPoints();
-  vtkPointData* pd = data->GetPointData();
-  auto* direction = vtkFloatArray::SafeDownCast(pd->GetArray("Direction"));
-  auto* flux = vtkFloatArray::SafeDownCast(pd->GetArray("Flux"));
-  auto* object = vtkUnsignedShortArray::SafeDownCast(pd->GetArray("ObjectId"));
-  auto* emitter = vtkUnsignedShortArray::SafeDownCast(pd->GetArray("EmitterId"));
-  auto* depth = vtkUnsignedCharArray::SafeDownCast(pd->GetArray("Depth"));
-  auto* triangle = vtkUnsignedIntArray::SafeDownCast(pd->GetArray("TriangleId"));
-  if (n > 0 &&
-    (!direction || !flux || !object || direction->GetNumberOfComponents() != 3 ||
-      flux->GetNumberOfComponents() != 3))
-  {
-    return "the particle hits lack the float[3] 'Direction' and 'Flux' or the unsigned short "
-           "'ObjectId' point arrays";
-  }
-  hits.resize(n);
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    brume::Hit& h = hits[i];
-    double p[3];
-    data->GetPoint(i, p);
-    for (int c = 0; c < 3; ++c)
-    {
-      h.Position[c] = static_cast<float>(p[c]);
-      h.Direction[c] = direction->GetValue(3 * i + c);
-      h.Flux[c] = flux->GetValue(3 * i + c);
-    }
-    h.Object = object->GetValue(i);
-    h.Emitter = emitter ? emitter->GetValue(i) : 0;
-    h.Depth = depth ? depth->GetValue(i) : 0;
-    h.Padding[0] = h.Padding[1] = h.Padding[2] = 0;
-    h.Triangle = triangle ? triangle->GetValue(i) : 0;
-  }
-  return {};
-}
-
-bool vtkBrumeSceneConversion::GetCamera(vtkDataObject* input, double position[3],
-  double focalPoint[3], double viewUp[3], double& viewAngle)
-{
-  vtkFieldData* fd = input ? input->GetFieldData() : nullptr;
-  std::string error;
-  return ReadField(fd, "BrumeCameraPosition", 3, position, error) &&
-    ReadField(fd, "BrumeCameraFocalPoint", 3, focalPoint, error) &&
-    ReadField(fd, "BrumeCameraViewUp", 3, viewUp, error) &&
-    ReadField(fd, "BrumeCameraViewAngle", 1, &viewAngle, error);
-}
-
-brume::ParallelFor vtkBrumeSceneConversion::ParallelFor()
-{
-  return [](std::size_t begin, std::size_t end,
-           const std::function<void(std::size_t, std::size_t)>& body)
-  {
-    vtkSMPTools::For(static_cast<vtkIdType>(begin), static_cast<vtkIdType>(end),
-      [&](vtkIdType b, vtkIdType e)
-      { body(static_cast<std::size_t>(b), static_cast<std::size_t>(e)); });
-  };
 }

@@ -1,0 +1,211 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkBrumeHitConversion.h"
+
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkUnsignedIntArray.h"
+#include "vtkUnsignedShortArray.h"
+
+#include <cstdint>
+
+const char* const vtkBrumeHitConversion::DirectionName = "Direction";
+const char* const vtkBrumeHitConversion::FluxName = "Flux";
+const char* const vtkBrumeHitConversion::ObjectIdName = "ObjectId";
+const char* const vtkBrumeHitConversion::EmitterIdName = "EmitterId";
+const char* const vtkBrumeHitConversion::DepthName = "Depth";
+const char* const vtkBrumeHitConversion::TriangleIdName = "TriangleId";
+const char* const vtkBrumeHitConversion::TotalPowerName = "TotalPower";
+const char* const vtkBrumeHitConversion::NumberOfParticlesName = "NumberOfParticles";
+const char* const vtkBrumeHitConversion::FirstParticleName = "FirstParticle";
+const char* const vtkBrumeHitConversion::SeedName = "Seed";
+
+namespace
+{
+// A float view of a 3-component array: the array itself, or a float copy.
+const float* FloatView(vtkDataArray* a, std::vector<float>& copy)
+{
+  if (auto* f = vtkFloatArray::SafeDownCast(a))
+  {
+    return f->GetPointer(0);
+  }
+  copy.resize(static_cast<std::size_t>(a->GetNumberOfValues()));
+  for (vtkIdType i = 0; i < a->GetNumberOfValues(); ++i)
+  {
+    copy[i] = static_cast<float>(a->GetVariantValue(i).ToDouble());
+  }
+  return copy.data();
+}
+}
+
+vtkSmartPointer<vtkPolyData> vtkBrumeHitConversion::HitsToPolyData(
+  const std::vector<brume::Hit>& hits, const brume::Vec3& totalPower, long long particles)
+{
+  const auto n = static_cast<vtkIdType>(hits.size());
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToFloat();
+  points->SetNumberOfPoints(n);
+  vtkNew<vtkFloatArray> direction;
+  direction->SetName(DirectionName);
+  direction->SetNumberOfComponents(3);
+  direction->SetNumberOfTuples(n);
+  vtkNew<vtkFloatArray> flux;
+  flux->SetName(FluxName);
+  flux->SetNumberOfComponents(3);
+  flux->SetNumberOfTuples(n);
+  vtkNew<vtkUnsignedShortArray> object;
+  object->SetName(ObjectIdName);
+  object->SetNumberOfTuples(n);
+  vtkNew<vtkUnsignedShortArray> emitter;
+  emitter->SetName(EmitterIdName);
+  emitter->SetNumberOfTuples(n);
+  vtkNew<vtkUnsignedCharArray> depth;
+  depth->SetName(DepthName);
+  depth->SetNumberOfTuples(n);
+  vtkNew<vtkUnsignedIntArray> triangle;
+  triangle->SetName(TriangleIdName);
+  triangle->SetNumberOfTuples(n);
+  auto* p = static_cast<float*>(points->GetVoidPointer(0));
+  float* d = direction->GetPointer(0);
+  float* f = flux->GetPointer(0);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    const brume::Hit& h = hits[i];
+    for (int c = 0; c < 3; ++c)
+    {
+      p[3 * i + c] = h.Position[c];
+      d[3 * i + c] = h.Direction[c];
+      f[3 * i + c] = h.Flux[c];
+    }
+    object->SetValue(i, h.Object);
+    emitter->SetValue(i, h.Emitter);
+    depth->SetValue(i, h.Depth);
+    triangle->SetValue(i, h.Triangle);
+  }
+  auto output = vtkSmartPointer<vtkPolyData>::New();
+  output->SetPoints(points);
+  output->GetPointData()->AddArray(direction);
+  output->GetPointData()->AddArray(flux);
+  output->GetPointData()->AddArray(object);
+  output->GetPointData()->AddArray(emitter);
+  output->GetPointData()->AddArray(depth);
+  output->GetPointData()->AddArray(triangle);
+  vtkNew<vtkDoubleArray> power;
+  power->SetName(TotalPowerName);
+  power->SetNumberOfComponents(3);
+  power->InsertNextTuple3(totalPower.x, totalPower.y, totalPower.z);
+  output->GetFieldData()->AddArray(power);
+  vtkNew<vtkDoubleArray> count;
+  count->SetName(NumberOfParticlesName);
+  count->InsertNextValue(static_cast<double>(particles));
+  output->GetFieldData()->AddArray(count);
+  return output;
+}
+
+std::string vtkBrumeHitConversion::HitsFromPolyData(
+  vtkPolyData* data, std::vector<brume::Hit>& hits)
+{
+  hits.clear();
+  if (!data)
+  {
+    return "no particle hits were given";
+  }
+  const vtkIdType n = data->GetNumberOfPoints();
+  vtkPointData* pd = data->GetPointData();
+  auto* direction = vtkFloatArray::SafeDownCast(pd->GetArray(DirectionName));
+  auto* flux = vtkFloatArray::SafeDownCast(pd->GetArray(FluxName));
+  auto* object = vtkUnsignedShortArray::SafeDownCast(pd->GetArray(ObjectIdName));
+  auto* emitter = vtkUnsignedShortArray::SafeDownCast(pd->GetArray(EmitterIdName));
+  auto* depth = vtkUnsignedCharArray::SafeDownCast(pd->GetArray(DepthName));
+  auto* triangle = vtkUnsignedIntArray::SafeDownCast(pd->GetArray(TriangleIdName));
+  if (n > 0 &&
+    (!direction || !flux || !object || direction->GetNumberOfComponents() != 3 ||
+      flux->GetNumberOfComponents() != 3))
+  {
+    return "the particle hits lack the float[3] 'Direction' and 'Flux' or the unsigned short "
+           "'ObjectId' point arrays";
+  }
+  hits.resize(n);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    brume::Hit& h = hits[i];
+    double p[3];
+    data->GetPoint(i, p);
+    for (int c = 0; c < 3; ++c)
+    {
+      h.Position[c] = static_cast<float>(p[c]);
+      h.Direction[c] = direction->GetValue(3 * i + c);
+      h.Flux[c] = flux->GetValue(3 * i + c);
+    }
+    h.Object = object->GetValue(i);
+    h.Emitter = emitter ? emitter->GetValue(i) : 0;
+    h.Depth = depth ? depth->GetValue(i) : 0;
+    h.Padding[0] = h.Padding[1] = h.Padding[2] = 0;
+    h.Triangle = triangle ? triangle->GetValue(i) : 0;
+  }
+  return {};
+}
+
+std::string vtkBrumeHitConversion::ReadHits(
+  vtkPolyData* data, brume::HitArrays& hits, RunInfo& run, std::vector<float>& positionCopy)
+{
+  hits = brume::HitArrays();
+  run = RunInfo();
+  if (!data)
+  {
+    return "No particle hits were given";
+  }
+  vtkPointData* pd = data->GetPointData();
+  auto* direction = vtkFloatArray::SafeDownCast(pd->GetArray(DirectionName));
+  auto* flux = vtkFloatArray::SafeDownCast(pd->GetArray(FluxName));
+  auto* objectIds = vtkUnsignedShortArray::SafeDownCast(pd->GetArray(ObjectIdName));
+  auto* triangleIds = vtkUnsignedIntArray::SafeDownCast(pd->GetArray(TriangleIdName));
+  const vtkIdType n = data->GetNumberOfPoints();
+  if (n > 0 &&
+    (!direction || !flux || !objectIds || direction->GetNumberOfComponents() != 3 ||
+      flux->GetNumberOfComponents() != 3 || direction->GetNumberOfTuples() != n ||
+      flux->GetNumberOfTuples() != n || objectIds->GetNumberOfTuples() != n))
+  {
+    return "Invalid particle hits: they lack the float[3] 'Direction' and 'Flux' or the "
+           "unsigned short 'ObjectId' point arrays";
+  }
+  if (n > static_cast<vtkIdType>(UINT32_MAX))
+  {
+    return "More than 2^32 particle hits: reconstruct them in parts";
+  }
+  vtkFieldData* fields = data->GetFieldData();
+  vtkDataArray* power = fields ? fields->GetArray(TotalPowerName) : nullptr;
+  vtkDataArray* count = fields ? fields->GetArray(NumberOfParticlesName) : nullptr;
+  if (!power || !count || power->GetNumberOfComponents() != 3 ||
+    power->GetNumberOfTuples() < 1 || count->GetNumberOfTuples() < 1 ||
+    !(count->GetTuple1(0) >= 1.0))
+  {
+    return "The particle hits lack the 'TotalPower' and 'NumberOfParticles' field arrays";
+  }
+  power->GetTuple(0, run.TotalPower);
+  run.Particles = count->GetTuple1(0);
+  auto fieldValue = [&](const char* name)
+  {
+    vtkDataArray* a = fields->GetArray(name);
+    return a && a->GetNumberOfTuples() > 0 ? a->GetTuple1(0) : 0.0;
+  };
+  run.FirstParticle = fieldValue(FirstParticleName);
+  run.Seed = fieldValue(SeedName);
+  hits.Count = static_cast<std::size_t>(n);
+  if (n > 0)
+  {
+    hits.Position = FloatView(data->GetPoints()->GetData(), positionCopy);
+    hits.Direction = direction->GetPointer(0);
+    hits.Flux = flux->GetPointer(0);
+    hits.Object = objectIds->GetPointer(0);
+    hits.Triangle =
+      triangleIds && triangleIds->GetNumberOfTuples() == n ? triangleIds->GetPointer(0) : nullptr;
+  }
+  return {};
+}

@@ -1,0 +1,202 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkBrumeRadianceConversion.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPartitionedDataSet.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkStringArray.h"
+
+#include "brume/SphericalHarmonics.h"
+
+#include <algorithm>
+
+namespace
+{
+void AddVec3(vtkFieldData* fd, const char* name, const brume::Vec3& v)
+{
+  vtkNew<vtkDoubleArray> a;
+  a->SetName(name);
+  a->SetNumberOfComponents(3);
+  a->InsertNextTuple3(v.x, v.y, v.z);
+  fd->AddArray(a);
+}
+
+void AddString(vtkFieldData* fd, const char* name, const char* value)
+{
+  vtkNew<vtkStringArray> a;
+  a->SetName(name);
+  a->InsertNextValue(value);
+  fd->AddArray(a);
+}
+
+vtkSmartPointer<vtkFloatArray> NewRGB(const char* name, const std::vector<float>& values)
+{
+  auto a = vtkSmartPointer<vtkFloatArray>::New();
+  a->SetName(name);
+  a->SetNumberOfComponents(3);
+  a->SetNumberOfTuples(static_cast<vtkIdType>(values.size() / 3));
+  std::copy(values.begin(), values.end(), a->GetPointer(0));
+  return a;
+}
+
+const char* ChartName(brume::SurfaceChart::Kind kind)
+{
+  switch (kind)
+  {
+    case brume::SurfaceChart::Kind::Planar:
+      return "planar";
+    case brume::SurfaceChart::Kind::TextureCoordinates:
+      return "texture coordinates";
+    default:
+      return "atlas";
+  }
+}
+
+// The surface with separate points per triangle: each has its own chart.
+void MapAtlas(const brume::Surface& surface, const brume::SurfaceChart& chart,
+  vtkPolyData* sceneSurface, vtkPolyData* mapped, vtkFloatArray* tcoords)
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> triangles;
+  for (std::size_t t = 0; t < surface.Triangles.size(); ++t)
+  {
+    vtkIdType ids[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      const brume::Vec3& v = surface.Vertices[surface.Triangles[t][k]];
+      ids[k] = points->InsertNextPoint(v.x, v.y, v.z);
+      tcoords->InsertNextTuple2(chart.TriangleUV[t][2 * k], chart.TriangleUV[t][2 * k + 1]);
+    }
+    triangles->InsertNextCell(3, ids);
+  }
+  mapped->SetPoints(points);
+  mapped->SetPolys(triangles);
+  mapped->GetFieldData()->ShallowCopy(sceneSurface->GetFieldData());
+}
+
+// The scene's surface itself, with its plane's (u, v) or its own texture
+// coordinates.
+void MapInPlace(
+  const brume::SurfaceChart& chart, vtkPolyData* sceneSurface, vtkPolyData* mapped,
+  vtkFloatArray* tcoords)
+{
+  mapped->ShallowCopy(sceneSurface);
+  tcoords->SetNumberOfTuples(mapped->GetNumberOfPoints());
+  const float uu = Dot(chart.Frame.U, chart.Frame.U), vv = Dot(chart.Frame.V, chart.Frame.V);
+  vtkDataArray* given = sceneSurface->GetPointData()->GetTCoords();
+  for (vtkIdType i = 0; i < mapped->GetNumberOfPoints(); ++i)
+  {
+    if (chart.Type == brume::SurfaceChart::Kind::Planar)
+    {
+      double p[3];
+      mapped->GetPoint(i, p);
+      const brume::Vec3 d = brume::Vec3(static_cast<float>(p[0]), static_cast<float>(p[1]),
+                              static_cast<float>(p[2])) -
+        chart.Frame.Origin;
+      tcoords->SetTuple2(i, Dot(d, chart.Frame.U) / uu, Dot(d, chart.Frame.V) / vv);
+    }
+    else
+    {
+      tcoords->SetTuple2(i, given->GetComponent(i, 0), given->GetComponent(i, 1));
+    }
+  }
+}
+}
+
+vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromSurface(
+  const brume::ObjectRadiance& radiance, const brume::Surface& surface, vtkPolyData* sceneSurface)
+{
+  const auto& res = radiance.GetResolution();
+  const brume::SurfaceChart& chart = radiance.GetChart();
+  vtkNew<vtkImageData> texture;
+  texture->SetDimensions(res[0], res[1], 1);
+  texture->SetSpacing(1.0 / res[0], 1.0 / res[1], 1.0);
+  texture->SetOrigin(0.5 / res[0], 0.5 / res[1], 0.0);
+  texture->GetPointData()->SetScalars(NewRGB("Radiance", radiance.GetRadiance()));
+  if (chart.Type == brume::SurfaceChart::Kind::Planar)
+  {
+    AddVec3(texture->GetFieldData(), "BrumeTextureOrigin", chart.Frame.Origin);
+    AddVec3(texture->GetFieldData(), "BrumeTextureU", chart.Frame.U);
+    AddVec3(texture->GetFieldData(), "BrumeTextureV", chart.Frame.V);
+  }
+  AddString(texture->GetFieldData(), "BrumeTextureChart", ChartName(chart.Type));
+  AddString(texture->GetFieldData(), "BrumeObjectKind", "surface");
+
+  vtkNew<vtkPolyData> mapped;
+  vtkNew<vtkFloatArray> tcoords;
+  tcoords->SetName("TextureCoordinates");
+  tcoords->SetNumberOfComponents(2);
+  if (chart.Type == brume::SurfaceChart::Kind::Atlas)
+  {
+    MapAtlas(surface, chart, sceneSurface, mapped, tcoords);
+  }
+  else
+  {
+    MapInPlace(chart, sceneSurface, mapped, tcoords);
+  }
+  mapped->GetPointData()->SetTCoords(tcoords);
+  AddString(mapped->GetFieldData(), "BrumeObjectKind", "surface");
+
+  auto pds = vtkSmartPointer<vtkPartitionedDataSet>::New();
+  pds->SetNumberOfPartitions(2);
+  pds->SetPartition(0, texture);
+  pds->SetPartition(1, mapped);
+  return pds;
+}
+
+vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
+  const brume::ObjectRadiance& radiance, const brume::Medium& medium, bool directional)
+{
+  const auto& res = radiance.GetResolution();
+  const brume::Vec3 extent = medium.Bounds.Extent();
+  vtkNew<vtkImageData> texture;
+  texture->SetDimensions(res[0] + 1, res[1] + 1, res[2] + 1);
+  texture->SetOrigin(medium.Bounds.lower.x, medium.Bounds.lower.y, medium.Bounds.lower.z);
+  texture->SetSpacing(extent.x / res[0], extent.y / res[1], extent.z / res[2]);
+  if (directional)
+  {
+    // The projection, and as SourceRadiance its mean over directions (the
+    // l = 0 term: c_00 Y_00).
+    const int order = radiance.GetDirectionalOrder();
+    const int components = 3 * brume::ShCoefficients(order);
+    const std::vector<float>& coefficients = radiance.GetDirectional();
+    vtkNew<vtkFloatArray> sh;
+    sh->SetName("SourceRadianceSH");
+    sh->SetNumberOfComponents(components);
+    sh->SetNumberOfTuples(static_cast<vtkIdType>(coefficients.size() / components));
+    std::copy(coefficients.begin(), coefficients.end(), sh->GetPointer(0));
+    std::vector<float> mean(3 * static_cast<std::size_t>(sh->GetNumberOfTuples()));
+    for (std::size_t t = 0; t < mean.size() / 3; ++t)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        mean[3 * t + c] = std::max(0.f, brume::ShY00 * coefficients[t * components + c]);
+      }
+    }
+    texture->GetCellData()->SetScalars(NewRGB("SourceRadiance", mean));
+    texture->GetCellData()->AddArray(sh);
+    vtkNew<vtkDoubleArray> g;
+    g->SetName("BrumePhaseAsymmetry");
+    g->InsertNextValue(medium.G);
+    texture->GetFieldData()->AddArray(g);
+  }
+  else
+  {
+    texture->GetCellData()->SetScalars(NewRGB("SourceRadiance", radiance.GetRadiance()));
+  }
+  texture->GetCellData()->AddArray(NewRGB("Extinction", radiance.GetExtinction()));
+  AddString(texture->GetFieldData(), "BrumeObjectKind", "medium");
+  auto pds = vtkSmartPointer<vtkPartitionedDataSet>::New();
+  pds->SetNumberOfPartitions(1);
+  pds->SetPartition(0, texture);
+  return pds;
+}

@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkBrumeRadianceConversion
+ * @brief   the radiance-texture schema: the core's textures as VTK data
+ *
+ * The inverse of vtkBrumeSceneConversion: phase 2's textures
+ * (brume::ObjectRadiance) become the partitioned datasets that
+ * vtkBrumeRadianceReconstruction outputs, one per scene object:
+ *
+ * - a surface: partition 0 is a 2D vtkImageData in texture space ([0,1]^2,
+ *   point data `Radiance`, float[3], W m^-2 sr^-1), with field data
+ *   `BrumeTextureChart` ("planar", "texture coordinates" or "atlas") and,
+ *   for planar charts, `BrumeTextureOrigin`, `BrumeTextureU`,
+ *   `BrumeTextureV` that place it in the world (x = Origin + s U + t V);
+ *   partition 1 is the surface with texture coordinates
+ *   `TextureCoordinates` that map the image (an atlas gets separate points
+ *   per triangle);
+ * - a medium: partition 0 is a 3D vtkImageData over the medium's box with
+ *   cell data `SourceRadiance` (float[3], W m^-2 sr^-1) and `Extinction`
+ *   (float[3], sigma_t in m^-1); directional media add `SourceRadianceSH`
+ *   (3 (order + 1)^2 components, coefficient-major, RGB within; then
+ *   `SourceRadiance` is the mean over directions) and the field value
+ *   `BrumePhaseAsymmetry`.
+ *
+ * Every partition's field data holds `BrumeObjectKind` ("surface" or
+ * "medium").
+ *
+ * @sa vtkBrumeRadianceReconstruction vtkBrumeSceneConversion
+ */
+#ifndef vtkBrumeRadianceConversion_h
+#define vtkBrumeRadianceConversion_h
+
+#include "vtkBrumeDataModelModule.h" // For export macro
+#include "vtkSmartPointer.h"         // For return values
+
+#include "brume/Reconstruction.h" // For brume::ObjectRadiance
+
+class vtkPartitionedDataSet;
+class vtkPolyData;
+
+class VTKBRUMEDATAMODEL_EXPORT vtkBrumeRadianceConversion
+{
+public:
+  /**
+   * A surface's texture and the surface mapped to it. `sceneSurface` is the
+   * scene's polydata of the object, whose field data the mapped surface
+   * keeps.
+   */
+  static vtkSmartPointer<vtkPartitionedDataSet> FromSurface(const brume::ObjectRadiance& radiance,
+    const brume::Surface& surface, vtkPolyData* sceneSurface);
+
+  /**
+   * A medium's texture: toward the eye, or the directional projection when
+   * `directional` (the object holds one: ObjectRadiance::BuildDirectional).
+   */
+  static vtkSmartPointer<vtkPartitionedDataSet> FromMedium(
+    const brume::ObjectRadiance& radiance, const brume::Medium& medium, bool directional);
+};
+
+#endif

@@ -1,0 +1,15 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkBrumeSMP.h"
+
+#include "vtkSMPTools.h"
+
+brume::ParallelFor vtkBrumeSMP::ParallelFor()
+{
+  return [](std::size_t begin, std::size_t end,
+           const std::function<void(std::size_t, std::size_t)>& body)
+  {
+    vtkSMPTools::For(static_cast<vtkIdType>(begin), static_cast<vtkIdType>(end),
+      [&](vtkIdType b, vtkIdType e)
+      { body(static_cast<std::size_t>(b), static_cast<std::size_t>(e)); });
+  };
+}

@@ -1,0 +1,24 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkBrumeSMP
+ * @brief   the physics core's parallel loop on vtkSMPTools
+ *
+ * The core takes its thread primitive from its caller (brume/Parallel.h);
+ * Brume's VTK modules give it vtkSMPTools, so that VTK's backend and thread
+ * count (VTK_SMP_BACKEND_IN_USE, VTK_SMP_MAX_THREADS) apply to every phase.
+ */
+#ifndef vtkBrumeSMP_h
+#define vtkBrumeSMP_h
+
+#include "vtkBrumeDataModelModule.h" // For export macro
+
+#include "brume/Parallel.h" // For brume::ParallelFor
+
+class VTKBRUMEDATAMODEL_EXPORT vtkBrumeSMP
+{
+public:
+  /// A brume::ParallelFor that runs on vtkSMPTools::For.
+  static brume::ParallelFor ParallelFor();
+};
+
+#endif

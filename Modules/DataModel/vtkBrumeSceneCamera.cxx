@@ -1,0 +1,103 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkBrumeSceneCamera.h"
+
+#include "vtkCamera.h"
+#include "vtkDataArray.h"
+#include "vtkDataObject.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+
+#include "brume/Camera.h"
+
+vtkStandardNewMacro(vtkBrumeSceneCamera);
+
+namespace
+{
+// One tuple of `n` components of the field array `name`; false when absent
+// or of another shape (the value is then left as it was).
+bool ReadTuple(vtkFieldData* fd, const char* name, int n, double* values)
+{
+  vtkDataArray* a = fd ? vtkDataArray::SafeDownCast(fd->GetAbstractArray(name)) : nullptr;
+  if (!a || a->GetNumberOfTuples() < 1 || a->GetNumberOfComponents() != n)
+  {
+    return false;
+  }
+  a->GetTuple(0, values);
+  return true;
+}
+
+void WriteTuple(vtkFieldData* fd, const char* name, const double* values, int n)
+{
+  vtkNew<vtkDoubleArray> a;
+  a->SetName(name);
+  a->SetNumberOfComponents(n);
+  a->InsertNextTuple(values);
+  fd->RemoveArray(name);
+  fd->AddArray(a);
+}
+
+void DefaultView(double position[3], double focalPoint[3], double viewUp[3], double& viewAngle)
+{
+  const brume::PinholeCamera view;
+  for (int a = 0; a < 3; ++a)
+  {
+    position[a] = view.Position[a];
+    focalPoint[a] = view.FocalPoint[a];
+    viewUp[a] = view.ViewUp[a];
+  }
+  viewAngle = view.ViewAngle;
+}
+}
+
+void vtkBrumeSceneCamera::GetDefault(
+  double position[3], double focalPoint[3], double viewUp[3], double& viewAngle)
+{
+  DefaultView(position, focalPoint, viewUp, viewAngle);
+}
+
+void vtkBrumeSceneCamera::SetToDefault(vtkCamera* camera)
+{
+  double position[3], focalPoint[3], viewUp[3], viewAngle;
+  DefaultView(position, focalPoint, viewUp, viewAngle);
+  camera->SetPosition(position);
+  camera->SetFocalPoint(focalPoint);
+  camera->SetViewUp(viewUp);
+  camera->SetViewAngle(viewAngle);
+}
+
+bool vtkBrumeSceneCamera::GetSceneCamera(vtkDataObject* scene, double position[3],
+  double focalPoint[3], double viewUp[3], double& viewAngle)
+{
+  DefaultView(position, focalPoint, viewUp, viewAngle);
+  vtkFieldData* fd = scene ? scene->GetFieldData() : nullptr;
+  return ReadTuple(fd, "BrumeCameraPosition", 3, position) &&
+    ReadTuple(fd, "BrumeCameraFocalPoint", 3, focalPoint) &&
+    ReadTuple(fd, "BrumeCameraViewUp", 3, viewUp) &&
+    ReadTuple(fd, "BrumeCameraViewAngle", 1, &viewAngle);
+}
+
+bool vtkBrumeSceneCamera::SetFromScene(vtkDataObject* scene, vtkCamera* camera)
+{
+  double position[3], focalPoint[3], viewUp[3], viewAngle;
+  const bool named = GetSceneCamera(scene, position, focalPoint, viewUp, viewAngle);
+  if (!named)
+  {
+    DefaultView(position, focalPoint, viewUp, viewAngle);
+  }
+  camera->SetPosition(position);
+  camera->SetFocalPoint(focalPoint);
+  camera->SetViewUp(viewUp);
+  camera->SetViewAngle(viewAngle);
+  return named;
+}
+
+void vtkBrumeSceneCamera::WriteToScene(vtkCamera* camera, vtkFieldData* fieldData)
+{
+  const double angle = camera->GetViewAngle();
+  WriteTuple(fieldData, "BrumeCameraPosition", camera->GetPosition(), 3);
+  WriteTuple(fieldData, "BrumeCameraFocalPoint", camera->GetFocalPoint(), 3);
+  WriteTuple(fieldData, "BrumeCameraViewUp", camera->GetViewUp(), 3);
+  WriteTuple(fieldData, "BrumeCameraViewAngle", &angle, 1);
+}

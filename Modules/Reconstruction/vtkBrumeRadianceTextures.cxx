@@ -1,0 +1,465 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkBrumeRadianceTextures.h"
+
+#include "vtkAlgorithm.h"
+#include "vtkBrumeProcesses.h"
+#include "vtkBrumeRadianceConversion.h"
+#include "vtkBrumeSMP.h"
+#include "vtkCompositeDataSet.h"
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkInformation.h"
+#include "vtkPartitionedDataSet.h"
+#include "vtkPartitionedDataSetCollection.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkSMPTools.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+
+namespace
+{
+// Resolution along the longer axis `n`, the others in proportion.
+std::array<int, 3> FixedResolution(const brume::Vec3& extent, int n)
+{
+  const float longest = MaxComponent(extent);
+  std::array<int, 3> res{ 1, 1, 1 };
+  for (int a = 0; a < 3; ++a)
+  {
+    if (extent[a] > 0.f)
+    {
+      res[a] = std::max(1, static_cast<int>(std::lround(n * extent[a] / longest)));
+    }
+  }
+  return res;
+}
+
+// The per-vertex texture coordinates of a scene surface, if it has some.
+std::vector<std::array<float, 2>> TextureCoordinates(vtkPolyData* polyData)
+{
+  std::vector<std::array<float, 2>> tcoords;
+  vtkDataArray* tc = polyData->GetPointData()->GetTCoords();
+  if (tc && tc->GetNumberOfComponents() >= 2)
+  {
+    tcoords.resize(static_cast<std::size_t>(tc->GetNumberOfTuples()));
+    for (vtkIdType i = 0; i < tc->GetNumberOfTuples(); ++i)
+    {
+      tcoords[i] = { static_cast<float>(tc->GetComponent(i, 0)),
+        static_cast<float>(tc->GetComponent(i, 1)) };
+    }
+  }
+  return tcoords;
+}
+}
+
+vtkBrumeRadianceTextures::vtkBrumeRadianceTextures(
+  vtkAlgorithm* filter, vtkMultiProcessController* controller)
+  : Filter(filter)
+  , Controller(controller)
+{
+}
+
+vtkBrumeRadianceTextures::~vtkBrumeRadianceTextures() = default;
+
+bool vtkBrumeRadianceTextures::Distributed() const
+{
+  return vtkBrumeProcesses::IsDistributed(this->Controller);
+}
+
+bool vtkBrumeRadianceTextures::Agree(bool ok)
+{
+  const bool all = vtkBrumeProcesses::Agree(this->Controller, ok);
+  if (ok && !all)
+  {
+    vtkErrorWithObjectMacro(this->Filter, "Another process failed (see its errors): stopping.");
+  }
+  return all;
+}
+
+bool vtkBrumeRadianceTextures::SameSceneAndSettings(
+  const vtkBrumeReconstructionRequest& request, const vtkBrumeReconstructionSettings& s) const
+{
+  return this->SceneData == request.SceneInput &&
+    this->SceneTime == request.SceneInput->GetMTime() && this->Settings == s;
+}
+
+bool vtkBrumeRadianceTextures::HoldsHits(vtkPolyData* hits) const
+{
+  return this->HitsData == hits && this->HitsTime == hits->GetMTime();
+}
+
+bool vtkBrumeRadianceTextures::HoldsStep(const vtkBrumeHitConversion::RunInfo& run) const
+{
+  return run.FirstParticle > 0.0 && this->Accumulated &&
+    this->LastFirstParticle == run.FirstParticle && this->Particles == run.Particles &&
+    this->Seed == run.Seed;
+}
+
+bool vtkBrumeRadianceTextures::Continues(const vtkBrumeHitConversion::RunInfo& run) const
+{
+  return this->Particles == run.FirstParticle && this->Seed == run.Seed &&
+    run.Particles > run.FirstParticle;
+}
+
+bool vtkBrumeRadianceTextures::Build(const vtkBrumeReconstructionRequest& request,
+  const vtkBrumeReconstructionSettings& settings, vtkBrumeReconstructionWork& work)
+{
+  this->SceneCollection = request.Scene;
+  const std::string error =
+    vtkBrumeSceneConversion::ToScene(request.Scene, this->Scene, &this->Sources);
+  brume::ObjectHits groups;
+  const std::string groupError = error.empty()
+    ? brume::GroupHitsByObject(request.Hits, this->Scene.NumberOfObjects(), groups)
+    : std::string();
+  if (!error.empty())
+  {
+    vtkErrorWithObjectMacro(this->Filter, "Invalid scene: " << error << ".");
+  }
+  else if (!groupError.empty())
+  {
+    vtkErrorWithObjectMacro(this->Filter, "Invalid particle hits: " << groupError << ".");
+  }
+  if (!this->Agree(error.empty() && groupError.empty()))
+  {
+    return false;
+  }
+  if (!this->CreateObjects(settings, groups) || !this->CheckHits(request.Hits, groups) ||
+    !this->BuildObjects(request, groups, work))
+  {
+    return false;
+  }
+  this->SceneData = request.SceneInput;
+  this->HitsData = request.HitData;
+  this->SceneTime = request.SceneInput->GetMTime();
+  this->HitsTime = request.HitData->GetMTime();
+  this->Settings = settings;
+  this->ObjectEye.assign(this->Objects.size(), request.Eye);
+  this->ObjectDirectional.assign(this->Objects.size(), false);
+  this->Particles = request.Run.Particles;
+  this->Seed = request.Run.Seed;
+  return true;
+}
+
+std::unique_ptr<brume::ObjectRadiance> vtkBrumeRadianceTextures::CreateObject(
+  std::size_t o, std::size_t hitCount, const vtkBrumeReconstructionSettings& settings)
+{
+  const auto& source = this->Sources[o];
+  vtkDataObject* sceneObject =
+    this->SceneCollection->GetPartitionedDataSet(source.CollectionIndex)->GetPartition(0);
+  vtkDataArray* override = sceneObject->GetFieldData()->GetArray("BrumeTextureResolution");
+  const int perObject =
+    override && override->GetNumberOfTuples() > 0 ? static_cast<int>(override->GetTuple1(0)) : 0;
+  if (hitCount == 0)
+  {
+    vtkWarningWithObjectMacro(this->Filter,
+      "Object '" << source.Name
+                 << "' received no particle: its texture holds only its "
+                    "emission (more particles, or a light that reaches it).");
+  }
+  // The object's own resolution, the filter's, or one chosen from its hits.
+  bool tooLarge = false;
+  auto resolution = [&](const brume::Vec3& extent, int global, int maximum, int automatic)
+  {
+    const int fixed = perObject > 0 ? perObject : global;
+    if (fixed > maximum)
+    {
+      vtkErrorWithObjectMacro(this->Filter,
+        "BrumeTextureResolution of '" << source.Name << "' exceeds " << maximum << ".");
+      tooLarge = true;
+      return std::array<int, 3>{ 0, 0, 0 };
+    }
+    return fixed > 0
+      ? FixedResolution(extent, fixed)
+      : brume::ChooseResolution(extent, hitCount, settings.RadiosityThreshold, 4, automatic);
+  };
+  std::unique_ptr<brume::ObjectRadiance> radiance;
+  const int refinement = settings.HistogramRefinement;
+  if (!this->Scene.IsMedium(o))
+  {
+    const brume::Surface& surface = this->Scene.Surfaces[o];
+    const auto tcoords = TextureCoordinates(vtkPolyData::SafeDownCast(sceneObject));
+    brume::SurfaceChart chart = brume::MakeChart(surface, tcoords.empty() ? nullptr : &tcoords);
+    const auto res = resolution(brume::Vec3(chart.Width, chart.Height, 0.f),
+      settings.SurfaceResolution, MaxSurfaceResolution, 1024);
+    if (!tooLarge)
+    {
+      radiance.reset(new brume::ObjectRadiance(surface, chart, { res[0], res[1] }, refinement));
+    }
+  }
+  else
+  {
+    const brume::Medium& medium = this->Scene.Media[o - this->Scene.Surfaces.size()];
+    const auto res =
+      resolution(medium.Bounds.Extent(), settings.MediumResolution, MaxMediumResolution, 256);
+    if (!tooLarge)
+    {
+      radiance.reset(new brume::ObjectRadiance(medium, res, refinement));
+    }
+  }
+  return radiance;
+}
+
+bool vtkBrumeRadianceTextures::CreateObjects(
+  const vtkBrumeReconstructionSettings& settings, const brume::ObjectHits& groups)
+{
+  // Resolutions follow the hits of the whole run, on every process.
+  std::vector<vtkTypeInt64> counts(this->Scene.NumberOfObjects());
+  for (std::size_t o = 0; o < counts.size(); ++o)
+  {
+    counts[o] = static_cast<vtkTypeInt64>(groups.Offset[o + 1] - groups.Offset[o]);
+  }
+  if (this->Distributed() && !counts.empty())
+  {
+    vtkBrumeProcesses::Sum(this->Controller, counts);
+    this->Chain.reset(new vtkBrumeHistogramChain(this->Controller));
+  }
+  for (std::size_t o = 0; o < counts.size(); ++o)
+  {
+    auto radiance = this->CreateObject(o, static_cast<std::size_t>(counts[o]), settings);
+    if (!radiance)
+    {
+      return false;
+    }
+    radiance->SetChain(this->Chain.get());
+    this->Objects.push_back(std::move(radiance));
+    this->Outputs.push_back(nullptr);
+  }
+  return true;
+}
+
+bool vtkBrumeRadianceTextures::CheckHits(
+  const brume::HitArrays& hits, const brume::ObjectHits& groups)
+{
+  // Every process checks its hits before any enters the chain.
+  if (!this->Distributed())
+  {
+    return true;
+  }
+  bool hitsOk = true;
+  for (std::size_t o = 0; o < this->Objects.size(); ++o)
+  {
+    const std::string problem = this->Objects[o]->Check(
+      hits, groups.Index.data() + groups.Offset[o], groups.Offset[o + 1] - groups.Offset[o]);
+    if (!problem.empty())
+    {
+      vtkErrorWithObjectMacro(this->Filter,
+        "Cannot reconstruct '" << this->Sources[o].Name << "': " << problem << ".");
+      hitsOk = false;
+    }
+  }
+  return this->Agree(hitsOk);
+}
+
+bool vtkBrumeRadianceTextures::BuildObjects(const vtkBrumeReconstructionRequest& request,
+  const brume::ObjectHits& groups, vtkBrumeReconstructionWork& work)
+{
+  // View-independent objects build concurrently (each on one thread: a
+  // single pass in hit order); view-dependent ones then use every thread.
+  const brume::HitArrays& hits = request.Hits;
+  std::vector<std::string> errors(this->Objects.size());
+  std::vector<vtkIdType> independent;
+  for (std::size_t o = 0; o < this->Objects.size(); ++o)
+  {
+    if (!this->Objects[o]->IsViewDependent())
+    {
+      independent.push_back(static_cast<vtkIdType>(o));
+    }
+  }
+  const brume::ParallelFor serialFor = brume::SerialFor();
+  auto build = [&](std::size_t o, const brume::ParallelFor& parallelFor)
+  {
+    errors[o] = this->Objects[o]->Build(hits, groups.Index.data() + groups.Offset[o],
+      groups.Offset[o + 1] - groups.Offset[o], request.Eye, request.ThresholdFlux, parallelFor);
+  };
+  auto buildIndependent = [&](vtkIdType begin, vtkIdType end)
+  {
+    for (vtkIdType k = begin; k < end; ++k)
+    {
+      build(static_cast<std::size_t>(independent[k]), serialFor);
+    }
+  };
+  if (this->Distributed())
+  {
+    // One object at a time: the chain's messages follow the objects' order.
+    buildIndependent(0, static_cast<vtkIdType>(independent.size()));
+  }
+  else
+  {
+    vtkSMPTools::For(0, static_cast<vtkIdType>(independent.size()), 1, buildIndependent);
+  }
+  this->Filter->UpdateProgress(0.5);
+  const brume::ParallelFor parallelFor = vtkBrumeSMP::ParallelFor();
+  for (std::size_t o = 0; o < this->Objects.size(); ++o)
+  {
+    if (this->Objects[o]->IsViewDependent())
+    {
+      build(o, parallelFor);
+    }
+  }
+  for (std::size_t o = 0; o < this->Objects.size(); ++o)
+  {
+    if (!errors[o].empty())
+    {
+      vtkErrorWithObjectMacro(
+        this->Filter, "Cannot reconstruct '" << this->Sources[o].Name << "': " << errors[o] << ".");
+      return false;
+    }
+    ++work.TextureBuilds;
+  }
+  return true;
+}
+
+bool vtkBrumeRadianceTextures::Add(
+  const vtkBrumeReconstructionRequest& request, vtkBrumeReconstructionWork& work)
+{
+  const brume::ParallelFor parallelFor = vtkBrumeSMP::ParallelFor();
+  brume::ObjectHits groups;
+  const std::string groupError =
+    brume::GroupHitsByObject(request.Hits, this->Scene.NumberOfObjects(), groups);
+  for (std::size_t o = 0; o < this->Objects.size() && groupError.empty(); ++o)
+  {
+    const std::string error = this->Objects[o]->Add(request.Hits,
+      groups.Index.data() + groups.Offset[o], groups.Offset[o + 1] - groups.Offset[o],
+      this->Particles / request.Run.Particles, this->ObjectEye[o], request.ThresholdFlux,
+      parallelFor);
+    if (!error.empty())
+    {
+      vtkErrorWithObjectMacro(this->Filter,
+        "Cannot add particles to '" << this->Sources[o].Name << "': " << error << ".");
+      return false;
+    }
+    this->Outputs[o] = nullptr;
+    ++work.ParticleAdditions;
+  }
+  if (!groupError.empty())
+  {
+    vtkErrorWithObjectMacro(this->Filter, "Invalid particle hits: " << groupError << ".");
+    return false;
+  }
+  this->HitsData = request.HitData;
+  this->HitsTime = request.HitData->GetMTime();
+  this->Particles = request.Run.Particles;
+  this->LastFirstParticle = request.Run.FirstParticle;
+  this->Accumulated = true;
+  return true;
+}
+
+bool vtkBrumeRadianceTextures::SetDirectional(
+  bool directionalMedia, int order, vtkBrumeReconstructionWork& work)
+{
+  // Directional mode: anisotropic media carry their projection (made once,
+  // kept up to date by added particles) and follow no viewpoint.
+  const brume::ParallelFor parallelFor = vtkBrumeSMP::ParallelFor();
+  for (std::size_t o = 0; o < this->Objects.size(); ++o)
+  {
+    brume::ObjectRadiance& radiance = *this->Objects[o];
+    if (!radiance.IsViewDependent())
+    {
+      continue;
+    }
+    const bool directional = directionalMedia && this->Scene.IsMedium(o);
+    const bool project = directional && radiance.GetDirectionalOrder() != order;
+    if (directional == this->ObjectDirectional[o] && !project)
+    {
+      continue;
+    }
+    if (project)
+    {
+      const std::string error = radiance.BuildDirectional(order, parallelFor);
+      if (!error.empty())
+      {
+        vtkErrorWithObjectMacro(
+          this->Filter, "Cannot project '" << this->Sources[o].Name << "': " << error << ".");
+        return false;
+      }
+      ++work.DirectionalBuilds;
+    }
+    this->ObjectDirectional[o] = directional;
+    this->Outputs[o] = nullptr;
+  }
+  return true;
+}
+
+void vtkBrumeRadianceTextures::FollowView(const vtkBrumeReconstructionRequest& request,
+  bool incremental, vtkBrumeReconstructionWork& work)
+{
+  // A new viewpoint: only view-dependent textures change.
+  const brume::ParallelFor parallelFor = vtkBrumeSMP::ParallelFor();
+  const brume::Vec3& eye = request.Eye;
+  brume::ObjectHits groups;
+  for (std::size_t o = 0; o < this->Objects.size(); ++o)
+  {
+    brume::ObjectRadiance& radiance = *this->Objects[o];
+    const brume::Vec3& last = this->ObjectEye[o];
+    if (!radiance.IsViewDependent() || this->ObjectDirectional[o] ||
+      (last.x == eye.x && last.y == eye.y && last.z == eye.z))
+    {
+      continue;
+    }
+    // Textures that hold added particles have no single hits input to be
+    // rebuilt from: they are always updated incrementally.
+    if (incremental || this->Accumulated)
+    {
+      radiance.UpdateView(eye, parallelFor);
+      ++work.ViewUpdates;
+    }
+    else
+    {
+      if (groups.Offset.empty())
+      {
+        brume::GroupHitsByObject(request.Hits, this->Scene.NumberOfObjects(), groups);
+      }
+      radiance.Build(request.Hits, groups.Index.data() + groups.Offset[o],
+        groups.Offset[o + 1] - groups.Offset[o], eye, request.ThresholdFlux, parallelFor);
+      ++work.TextureBuilds;
+    }
+    this->Outputs[o] = nullptr;
+    this->ObjectEye[o] = eye;
+  }
+}
+
+void vtkBrumeRadianceTextures::TakeReduction(vtkTypeInt64& bytes, double& seconds)
+{
+  bytes = 0;
+  seconds = 0.0;
+  if (this->Chain)
+  {
+    bytes = static_cast<vtkTypeInt64>(this->Chain->Bytes);
+    seconds = this->Chain->Seconds;
+    this->Chain->Bytes = 0;
+    this->Chain->Seconds = 0.0;
+  }
+}
+
+void vtkBrumeRadianceTextures::Emit(vtkPartitionedDataSetCollection* output)
+{
+  // New datasets for the textures that changed, the same ones otherwise.
+  vtkPartitionedDataSetCollection* scene = this->SceneCollection;
+  output->SetNumberOfPartitionedDataSets(scene->GetNumberOfPartitionedDataSets());
+  for (std::size_t o = 0; o < this->Objects.size(); ++o)
+  {
+    const auto& source = this->Sources[o];
+    if (!this->Outputs[o])
+    {
+      const brume::ObjectRadiance& radiance = *this->Objects[o];
+      if (!this->Scene.IsMedium(o))
+      {
+        auto* sceneSurface = vtkPolyData::SafeDownCast(
+          scene->GetPartitionedDataSet(source.CollectionIndex)->GetPartition(0));
+        this->Outputs[o] = vtkBrumeRadianceConversion::FromSurface(
+          radiance, this->Scene.Surfaces[o], sceneSurface);
+      }
+      else
+      {
+        this->Outputs[o] = vtkBrumeRadianceConversion::FromMedium(radiance,
+          this->Scene.Media[o - this->Scene.Surfaces.size()], this->ObjectDirectional[o]);
+      }
+    }
+    output->SetPartitionedDataSet(source.CollectionIndex, this->Outputs[o]);
+    output->GetMetaData(source.CollectionIndex)
+      ->Set(vtkCompositeDataSet::NAME(), source.Name.c_str());
+  }
+}

@@ -1,0 +1,146 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The textures of vtkBrumeRadianceReconstruction and what they were built
+// from, kept between executions (private to the module). Each step of the
+// filter is one method here: Build (all textures from the hits), Add (more
+// particles' hits into the same histograms), SetDirectional (directional
+// media on or off), FollowView (view-dependent textures toward a new eye)
+// and Emit (the output collection). Errors are reported on the filter.
+#ifndef vtkBrumeRadianceTextures_h
+#define vtkBrumeRadianceTextures_h
+
+#include "vtkBrumeHitConversion.h"   // For RunInfo
+#include "vtkBrumeHistogramChain.h"  // For the distributed reduction
+#include "vtkBrumeSceneConversion.h" // For ObjectSource
+#include "vtkSmartPointer.h"
+#include "vtkType.h"
+
+#include "brume/Reconstruction.h"
+
+#include <memory>
+#include <vector>
+
+class vtkAlgorithm;
+class vtkDataObject;
+class vtkMultiProcessController;
+class vtkPartitionedDataSet;
+class vtkPartitionedDataSetCollection;
+class vtkPolyData;
+
+/// One execution's validated inputs.
+struct vtkBrumeReconstructionRequest
+{
+  vtkDataObject* SceneInput = nullptr; // as given
+  vtkSmartPointer<vtkPartitionedDataSetCollection> Scene; // as a collection
+  vtkPolyData* HitData = nullptr;
+  brume::HitArrays Hits; // views of HitData's arrays
+  std::vector<float> PositionCopy;
+  vtkBrumeHitConversion::RunInfo Run;
+  brume::Vec3 Eye;
+  double ThresholdFlux = 0.0; // RadiosityThreshold x one particle's flux
+};
+
+/// The filter's settings that the textures depend on.
+struct vtkBrumeReconstructionSettings
+{
+  double RadiosityThreshold = 0.0;
+  int SurfaceResolution = 0;
+  int MediumResolution = 0;
+  int HistogramRefinement = 0;
+
+  bool operator==(const vtkBrumeReconstructionSettings& o) const
+  {
+    return this->RadiosityThreshold == o.RadiosityThreshold &&
+      this->SurfaceResolution == o.SurfaceResolution &&
+      this->MediumResolution == o.MediumResolution &&
+      this->HistogramRefinement == o.HistogramRefinement;
+  }
+};
+
+/// What the steps did, added to the filter's counters.
+struct vtkBrumeReconstructionWork
+{
+  vtkIdType TextureBuilds = 0;
+  vtkIdType ViewUpdates = 0;
+  vtkIdType ParticleAdditions = 0;
+  vtkIdType DirectionalBuilds = 0;
+};
+
+class vtkBrumeRadianceTextures
+{
+public:
+  static constexpr int MaxSurfaceResolution = 4096;
+  static constexpr int MaxMediumResolution = 512;
+
+  /// Errors and warnings go to `filter`; `controller` may be null.
+  vtkBrumeRadianceTextures(vtkAlgorithm* filter, vtkMultiProcessController* controller);
+  ~vtkBrumeRadianceTextures();
+
+  /// Whether these textures were made from this scene with these settings.
+  bool SameSceneAndSettings(
+    const vtkBrumeReconstructionRequest& request, const vtkBrumeReconstructionSettings& s) const;
+  /// Whether the hits are those the textures hold.
+  bool HoldsHits(vtkPolyData* hits) const;
+  /// Whether the hits are the last progressive step added (nothing new).
+  bool HoldsStep(const vtkBrumeHitConversion::RunInfo& run) const;
+  /// Whether `run` continues the run the textures hold.
+  bool Continues(const vtkBrumeHitConversion::RunInfo& run) const;
+  double GetParticles() const { return this->Particles; }
+  double GetSeed() const { return this->Seed; }
+
+  /// Every texture from the hits. False (errors reported) on failure.
+  bool Build(const vtkBrumeReconstructionRequest& request,
+    const vtkBrumeReconstructionSettings& settings, vtkBrumeReconstructionWork& work);
+
+  /// The hits of a progressive step, added to every texture's histograms.
+  bool Add(const vtkBrumeReconstructionRequest& request, vtkBrumeReconstructionWork& work);
+
+  /// Anisotropic media as directional radiance of `order` (or per view).
+  bool SetDirectional(bool directional, int order, vtkBrumeReconstructionWork& work);
+
+  /**
+   * View-dependent textures toward `request.Eye`: incrementally, or rebuilt
+   * from the hits (textures holding added particles are always updated
+   * incrementally: no single hits input holds them).
+   */
+  void FollowView(const vtkBrumeReconstructionRequest& request, bool incremental,
+    vtkBrumeReconstructionWork& work);
+
+  /// The textures as the output collection (unchanged textures: the same datasets).
+  void Emit(vtkPartitionedDataSetCollection* output);
+
+  /// Bytes moved and seconds spent summing histograms since the last call.
+  void TakeReduction(vtkTypeInt64& bytes, double& seconds);
+
+private:
+  bool CreateObjects(
+    const vtkBrumeReconstructionSettings& settings, const brume::ObjectHits& groups);
+  std::unique_ptr<brume::ObjectRadiance> CreateObject(std::size_t o, std::size_t hitCount,
+    const vtkBrumeReconstructionSettings& settings);
+  bool CheckHits(const brume::HitArrays& hits, const brume::ObjectHits& groups);
+  bool BuildObjects(const vtkBrumeReconstructionRequest& request, const brume::ObjectHits& groups,
+    vtkBrumeReconstructionWork& work);
+  bool Agree(bool ok);
+  bool Distributed() const;
+
+  vtkAlgorithm* Filter;
+  vtkMultiProcessController* Controller;
+  std::unique_ptr<vtkBrumeHistogramChain> Chain; // distributed runs
+
+  vtkDataObject* SceneData = nullptr; // the input as given
+  vtkSmartPointer<vtkPartitionedDataSetCollection> SceneCollection;
+  vtkMTimeType SceneTime = 0;
+  vtkPolyData* HitsData = nullptr;
+  vtkMTimeType HitsTime = 0;
+  vtkBrumeReconstructionSettings Settings;
+  brume::Scene Scene;
+  std::vector<vtkBrumeSceneConversion::ObjectSource> Sources;
+  std::vector<std::unique_ptr<brume::ObjectRadiance>> Objects;
+  std::vector<vtkSmartPointer<vtkPartitionedDataSet>> Outputs;
+  std::vector<brume::Vec3> ObjectEye;  // the eye each texture was estimated toward
+  std::vector<bool> ObjectDirectional; // whose output holds directional radiance
+  double Particles = 0.0, Seed = 0.0;
+  bool Accumulated = false;       // particles were added after the build
+  double LastFirstParticle = 0.0; // the first particle of the last step added
+};
+
+#endif
