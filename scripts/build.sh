@@ -17,6 +17,8 @@ packages=(
   zlib1g-dev libeigen3-dev
   # Ray casting, volumes, headless OpenGL.
   libembree-dev libopenvdb-dev libboost-iostreams-dev libosmesa6-dev xvfb xauth
+  # The brume command line's parser (header-only).
+  libcli11-dev
   # Tools and test frameworks; mpirun for distributed runs and their tests.
   cmake ninja-build g++ git libgtest-dev libbenchmark-dev openmpi-bin
 )

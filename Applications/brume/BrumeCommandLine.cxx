@@ -1,0 +1,489 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "BrumeCommandLine.h"
+
+#include "BrumeOptions.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdlib>
+#include <memory>
+#include <string>
+#include <vector>
+
+using namespace BrumeOptions;
+
+namespace
+{
+// The help of a command: its usage line(s), the paragraph that describes
+// it, its arguments and options (one line each, the description in a column
+// beside it), and its footer.
+class BrumeFormatter : public CLI::Formatter
+{
+public:
+  explicit BrumeFormatter(std::string usage)
+    : Usage(std::move(usage))
+  {
+    this->column_width(22);
+    this->label("Positionals", "Arguments");
+  }
+  std::string make_usage(const CLI::App*, std::string) const override
+  {
+    return "usage: " + this->Usage + "\n";
+  }
+  std::string make_help(
+    const CLI::App* app, std::string name, CLI::AppFormatMode mode) const override
+  {
+    std::string footer = this->make_footer(app);
+    return this->make_usage(app, name) + "\n" + this->make_description(app) +
+      this->make_positionals(app) + this->make_groups(app, mode) +
+      (footer.empty() ? "" : "\n" + footer);
+  }
+  // "-o, --output FILE"
+  std::string make_option_name(const CLI::Option* option, bool positional) const override
+  {
+    std::string names = CLI::Formatter::make_option_name(option, positional);
+    for (std::size_t comma = names.find(','); comma != std::string::npos;
+         comma = names.find(',', comma + 2))
+    {
+      names.insert(comma + 1, " ");
+    }
+    return names;
+  }
+  // The value's name alone: the description says the range and the default.
+  std::string make_option_opts(const CLI::Option* option) const override
+  {
+    return option->nonpositional() && option->get_type_size() != 0 ? " " + option->get_type_name()
+                                                                   : std::string();
+  }
+
+private:
+  std::string Usage;
+};
+
+CLI::App* AddCommand(
+  CLI::App& app, const std::string& name, const std::string& usage, const std::string& description)
+{
+  CLI::App* command = app.add_subcommand(name, description);
+  command->formatter(std::make_shared<BrumeFormatter>(usage));
+  return command;
+}
+
+void AddSeed(CLI::App* command, std::uint64_t& seed)
+{
+  command->add_option("--seed", seed, "seed of the particles' random streams (default 0)")
+    ->transform(Integer(0, 9223372036854775807LL, "a non-negative integer"))
+    ->type_name("S");
+}
+
+// What render and view say of the options they share.
+struct SceneHelp
+{
+  const char* Particles;
+  const char* Size;
+  const char* Exposure;
+  const char* Threshold;
+};
+
+// The scene and how it is traced and shown (render and view). Each option
+// given is recorded (ParticlesSet...): the scene file's render settings
+// give the others.
+void AddSceneOptions(CLI::App* command, RenderOptions& o, const SceneHelp& help)
+{
+  command->add_option("SCENE", o.Scene, "a scene file, or 'default' (the built-in scene)");
+  command
+    ->add_option_function<long long>(
+      "--particles",
+      [&o](const long long& n)
+      {
+        o.Particles = n;
+        o.ParticlesSet = true;
+      },
+      help.Particles)
+    ->transform(Integer(1, 10000000000LL, "an integer in [1, 1e10]"))
+    ->type_name("N");
+  command
+    ->add_option_function<std::uint64_t>(
+      "--seed",
+      [&o](const std::uint64_t& seed)
+      {
+        o.Seed = seed;
+        o.SeedSet = true;
+      },
+      "seed of the particles' random streams (default 0)")
+    ->transform(Integer(0, 9223372036854775807LL, "a non-negative integer"))
+    ->type_name("S");
+  command
+    ->add_option_function<std::string>(
+      "--size",
+      [&o](const std::string& size) { o.SizeSet = ParseSize(size, 16384, o.Width, o.Height); },
+      help.Size)
+    ->transform(Size(16384))
+    ->type_name("WxH");
+  command
+    ->add_option_function<double>(
+      "--exposure",
+      [&o](const double& exposure)
+      {
+        o.Exposure = exposure;
+        o.ExposureSet = true;
+      },
+      help.Exposure)
+    ->transform(Number(0.0, 1e12, "a non-negative number"))
+    ->type_name("E");
+  command
+    ->add_option_function<double>(
+      "--threshold",
+      [&o](const double& threshold)
+      {
+        o.Threshold = threshold;
+        o.ThresholdSet = true;
+      },
+      help.Threshold)
+    ->transform(Number(1e-6, 1e12, "a positive number"))
+    ->type_name("T");
+}
+
+void AddRender(CLI::App& app, RenderOptions& o)
+{
+  CLI::App* render = AddCommand(app, "render", "brume render [SCENE] -o OUTPUT [options]",
+    "Renders a scene with participating media in three phases (particle tracing,\n"
+    "radiance reconstruction, slice rendering). SCENE is a scene file\n"
+    "(Data/scenes/README.md); without it, the built-in default scene (a Cornell\n"
+    "box around a cube of forward-scattering fog). The scene file's render\n"
+    "settings are the defaults of the options below.");
+  render
+    ->add_option("-o,--output", o.Output,
+      "out.png (tone-mapped: exposure, clamp, sRGB curve) or\n"
+      "out.vti (linear float RGB radiance, point array 'Radiance')")
+    ->transform(Suffix({ ".png", ".vti" }))
+    ->type_name("FILE")
+    ->required();
+  AddSceneOptions(render, o,
+    { "particles traced from the lights (default 1000000)",
+      "image size in pixels (default 512x512)", "PNG exposure multiplier (default 1)",
+      "radiosity threshold of the density estimation, in\nparticles (default 128)" });
+  render->add_flag("--timings", o.Timings, "print the time of each phase (as the paper's Table 1)");
+  render->add_flag("--reference", o.Reference,
+    "render with the unbiased path tracer instead (no\n"
+    "display needed); .vti adds the per-pixel 'Variance'");
+  render->add_option("--spp", o.SamplesPerPixel, "samples per pixel of --reference (default 64)")
+    ->transform(Integer(1, 1000000, "an integer in [1, 1e6]"))
+    ->type_name("N");
+}
+
+void AddView(CLI::App& app, ViewOptions& o)
+{
+  CLI::App* view = AddCommand(app, "view", "brume view [SCENE] [options]",
+    "Opens an interactive window (trackball camera) on a scene (default: the\n"
+    "built-in one). Particles are traced once; on every camera change only the\n"
+    "view-dependent textures (anisotropic media, glossy surfaces) are updated,\n"
+    "incrementally, then the frame is rendered. With --orbit the camera circles\n"
+    "the scene instead, off screen, and the frame times are printed.");
+  AddSceneOptions(view, o.Render,
+    { "particles traced at the start (default 1000000)", "window size (default 512x512)",
+      "display exposure (default 1)", "radiosity threshold, in particles (default 128)" });
+  view
+    ->add_option_function<std::string>(
+      "--mode", [&o](const std::string& mode) { o.Directional = mode == "sh"; },
+      "media: per-view reconstruction as in the paper\n"
+      "(default), or spherical harmonics evaluated toward the\n"
+      "eye by the slice mapper (a view change costs no\n"
+      "reconstruction)")
+    ->transform(OneOf({ "paper", "sh" }))
+    ->type_name("paper|sh");
+  view->add_option("--order", o.Order, "spherical-harmonics order, 1 to 3 (default 3)")
+    ->transform(Integer(1, 3, "1, 2 or 3"))
+    ->type_name("N");
+  view
+    ->add_option_function<std::string>(
+      "--sh-evaluation", [&o](const std::string& where) { o.PerFragment = where == "fragment"; },
+      "where sh media are evaluated toward the eye: once per\n"
+      "view and voxel (default; cheapest under Mesa), or per\n"
+      "fragment in the slice shader (no work on a view change)")
+    ->transform(OneOf({ "voxel", "fragment" }))
+    ->type_name("voxel|fragment");
+  view
+    ->add_option("--keys", o.Keys,
+      "keys pressed at the start (p, d, m; and s with\n"
+      "--exit-after), e.g. --keys pp")
+    ->type_name("KEYS");
+  CLI::Option* exitAfter = view->add_option("--exit-after", o.ExitAfter,
+    "interactive window driven by a timer: press the --keys,\n"
+    "turn the camera 5 degrees a frame for N frames, quit\n"
+    "and print the work done (a test of the interactive path)");
+  exitAfter->transform(Integer(1, 100000, "a number of frames in [1, 100000]"))->type_name("N");
+  view->add_flag_callback(
+    "--no-overlay", [&o]() { o.Overlay = false; }, "hide the text overlay");
+  CLI::Option* orbit = view->add_option("--orbit", o.Orbit,
+    "render N frames around the focal point (no window\n"
+    "interaction, needs a display: xvfb-run -a) and print\n"
+    "the median and 95th percentile of the update and\n"
+    "render times, and the textures recomputed meanwhile");
+  orbit->transform(Integer(1, 100000, "a number of frames in [1, 100000]"))->type_name("N");
+  exitAfter->excludes(orbit);
+  view->add_option("--frames-out", o.FramesOut, "with --orbit: write DIR/frame_NNNN.png")
+    ->transform(NotEmpty("a path"))
+    ->type_name("DIR")
+    ->needs(orbit);
+  view->add_option("--csv", o.Csv, "with --orbit: per-frame times (frame,update_ms,render_ms)")
+    ->transform(NotEmpty("a path"))
+    ->type_name("FILE")
+    ->needs(orbit);
+  view->footer("Keys: p  more particles (doubles the count; the new particles are added to\n"
+               "         the existing histograms)\n"
+               "      d  switch the media between per-view textures and spherical harmonics\n"
+               "      m  show or hide the media\n"
+               "      s  save the window to brume-view-NNNN.png\n"
+               "      q  quit");
+  // After the options and their --orbit checks: which keys depends on --exit-after.
+  view->final_callback(
+    [&o]()
+    {
+      const std::string why = CheckKeys(o.Keys, o.ExitAfter > 0);
+      if (!why.empty())
+      {
+        throw CLI::ValidationError(why);
+      }
+    });
+}
+
+const char* const SlabUsage =
+  "brume validate slab --albedo A --optical-thickness B --g G [--particles N] [--seed S]";
+
+void AddValidate(CLI::App& app, SlabOptions& o)
+{
+  CLI::App* validate = AddCommand(app, "validate", SlabUsage,
+    "Checks the particle tracer against published values; the experiment: slab.");
+  validate->require_subcommand(0, 1);
+  CLI::App* slab = AddCommand(*validate, "slab", SlabUsage,
+    "Traces a collimated beam at normal incidence onto a laterally infinite,\n"
+    "index-matched slab (sigma_t = 1, thickness B, albedo A, Henyey-Greenstein\n"
+    "g = G) and prints a CSV header and the fractions of the incident power\n"
+    "reflected after scattering, transmitted after scattering and transmitted\n"
+    "unscattered, each with its Monte Carlo standard error.");
+  validate->final_callback(
+    [slab]()
+    {
+      if (!*slab)
+      {
+        throw CLI::RequiredError(
+          "validate needs an experiment: slab", CLI::ExitCodes::RequiredError);
+      }
+    });
+  slab->add_option("--albedo", o.Albedo, "single-scattering albedo, in [0, 1]")
+    ->transform(Number(0.0, 1.0, "a number in [0, 1]"))
+    ->type_name("A")
+    ->required();
+  slab->add_option("--optical-thickness", o.OpticalThickness, "optical thickness, in (0, 1e4]")
+    ->transform(Number(1e-9, 1e4, "a number in (0, 1e4]"))
+    ->type_name("B")
+    ->required();
+  slab->add_option("--g", o.G, "Henyey-Greenstein asymmetry, in (-1, 1)")
+    ->transform(Number(-0.999999, 0.999999, "a number in (-1, 1)"))
+    ->type_name("G")
+    ->required();
+  slab->add_option("--particles", o.Particles, "particles traced (default 1000000, at least 2)")
+    ->transform(Integer(
+      2, 10000000000LL, "an integer in [2, 1e10] (a standard error needs at least 2 particles)"))
+    ->type_name("N");
+  AddSeed(slab, o.Seed);
+}
+
+void AddBench(CLI::App& app, BenchOptions& o)
+{
+  CLI::App* bench = AddCommand(app, "bench", "brume bench [--particles N] [--seed S]",
+    "Traces the built-in scene and casts the same rays through Embree alone;\n"
+    "prints particles/s, hits/s, the ratio of the ray throughputs and the peak\n"
+    "memory per stored hit; then the reconstruction's full and per-view times\n"
+    "and, with a display, frame times against vtkGPUVolumeRayCastMapper.");
+  bench->add_option("--particles", o.Particles, "particles traced (default 1000000)")
+    ->transform(Integer(1, 10000000000LL, "an integer in [1, 1e10]"))
+    ->type_name("N");
+  AddSeed(bench, o.Seed);
+}
+
+void AddChart(CLI::App& app, ChartOptions& o)
+{
+  CLI::App* chart =
+    AddCommand(app, "chart", "brume chart [SCENE] [-o chart.png] [--csv chart.csv] [options]",
+      "Renders a scene (default: the built-in one) with the three-phase pipeline\n"
+      "at a ladder of particle budgets (media per view, as in the paper, and as\n"
+      "spherical harmonics) and with the path tracer at a ladder of samples per\n"
+      "pixel, measures each image's error against a converged reference (cached\n"
+      "on disk) and draws error against time, log-log, with VTK's charts. Needs a\n"
+      "display (xvfb-run -a).");
+  chart->add_option("SCENE", o.Scene, "a scene file (default: the built-in scene)");
+  chart->add_option("-o,--output", o.Output, "the chart (PNG, default chart.png)")
+    ->transform(NotEmpty("a file name"))
+    ->type_name("FILE");
+  chart
+    ->add_option("--csv", o.Csv,
+      "the measurements (default chart.csv): method (pipeline,\n"
+      "pipeline-new-view, pipeline-sh, pipeline-sh-new-view,\n"
+      "path-tracer), budget, seconds, rel_mae, rel_rmse,\n"
+      "rel_mae_medium, rel_rmse_medium")
+    ->transform(NotEmpty("a file name"))
+    ->type_name("FILE");
+  chart
+    ->add_option_function<std::string>(
+      "--size", [&o](const std::string& size) { ParseSize(size, 4096, o.Width, o.Height); },
+      "image size (default 128x128)")
+    ->transform(Size(4096))
+    ->type_name("WxH");
+  chart
+    ->add_option_function<std::string>(
+      "--particles",
+      [&o](const std::string& range)
+      { ParseRange(range, 1, 10000000000LL, o.MinParticles, o.MaxParticles); },
+      "the pipeline's ladder, by powers of 10 (default\n10000:10000000)")
+    ->transform(Range(1, 10000000000LL, "MIN:MAX with 1 <= MIN <= MAX <= 1e10"))
+    ->type_name("MIN:MAX");
+  chart
+    ->add_option(
+      "--max-spp", o.MaxSamples, "the path tracer's ladder, by powers of 4 (default 1024)")
+    ->transform(Integer(1, 1000000, "an integer in [1, 1e6]"))
+    ->type_name("N");
+  chart
+    ->add_option(
+      "--sh-order", o.ShOrder, "order of the spherical-harmonics rows, 1 to 3 (default 3)")
+    ->transform(Integer(1, 3, "1, 2 or 3"))
+    ->type_name("N");
+  chart
+    ->add_option("--reference-spp", o.ReferenceSamples,
+      "samples per pixel of the converged reference (default 16384)")
+    ->transform(Integer(1, 1000000, "an integer in [1, 1e6]"))
+    ->type_name("N");
+  chart
+    ->add_option("--cache", o.CacheDirectory,
+      "where converged references are kept (default\n"
+      "$XDG_CACHE_HOME/brume or ~/.cache/brume)")
+    ->transform(NotEmpty("a directory"))
+    ->type_name("DIR");
+  chart->add_flag("--sweep", o.Sweep,
+    "the stability sweep instead: g, optical thickness,\n"
+    "albedo, particle count (up to the --particles maximum),\n"
+    "glossy and mirror floor, one at a time; per case the\n"
+    "pipeline's error and the path tracer's at the same time\n"
+    "(CSV: parameter, value, pipeline_seconds,\n"
+    "pipeline_rel_mae, pathtracer_spp, pathtracer_seconds,\n"
+    "pathtracer_rel_mae, finite, pipeline_sh_rel_mae)");
+  chart
+    ->add_option(
+      "--medium", o.Medium, "the medium the sweep edits (default: the scene's\nfirst medium)")
+    ->transform(NotEmpty("a medium's name"))
+    ->type_name("NAME");
+  chart
+    ->add_option("--surface", o.Surface,
+      "the surface the sweep makes glossy and mirror\n(default: chosen automatically)")
+    ->transform(NotEmpty("a surface's name"))
+    ->type_name("NAME");
+}
+
+std::string DefaultCacheDirectory()
+{
+  const char* xdg = std::getenv("XDG_CACHE_HOME");
+  const char* home = std::getenv("HOME");
+  return xdg && *xdg ? std::string(xdg) + "/brume"
+                     : std::string(home ? home : ".") + "/.cache/brume";
+}
+
+// "brume render" for the render command.
+std::string CommandPath(const CLI::App* command)
+{
+  const CLI::App* parent = command->get_parent();
+  return parent ? CommandPath(parent) + " " + command->get_name() : command->get_name();
+}
+
+int UsageError(const CLI::App& app, const std::string& message, std::ostream& err)
+{
+  // The innermost command reached: its usage.
+  const CLI::App* command = &app;
+  while (!command->get_subcommands().empty())
+  {
+    command = command->get_subcommands().front();
+  }
+  const std::string path = command == &app ? "brume COMMAND" : CommandPath(command);
+  err << "brume: " << message << "\n"
+      << std::static_pointer_cast<BrumeFormatter>(command->get_formatter())->make_usage(command, "")
+      << "'" << path << " --help' "
+      << (command == &app ? "describes a command" : "lists the options") << ".\n";
+  return 2;
+}
+}
+
+int ParseCommandLine(
+  int argc, char** argv, BrumeCommandLine& line, std::ostream& out, std::ostream& err)
+{
+  CLI::App app("Renders scenes with participating media in the three phases of Jimenez &\n"
+               "Pueyo (2003): particle tracing, radiance reconstruction, slice rendering.\n"
+               "'brume COMMAND --help' describes a command.",
+    "brume");
+  app.formatter(std::make_shared<BrumeFormatter>(
+    "brume render [SCENE] -o OUTPUT [options]\n"
+    "       brume view [SCENE] [options]\n"
+    "       brume validate slab --albedo A --optical-thickness B --g G [options]\n"
+    "       brume bench [--particles N] [--seed S]\n"
+    "       brume chart [SCENE] [-o chart.png] [--csv chart.csv] [options]\n"
+    "       brume --version"));
+  app.set_help_flag("-h,--help", "print this help");
+  app.add_flag("--version", "print the versions of brume and VTK");
+  app.require_subcommand(1);
+  // As before CLI11: an option given twice takes its last value.
+  app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+
+  line = BrumeCommandLine();
+  line.Chart.CacheDirectory = DefaultCacheDirectory();
+  AddRender(app, line.Render);
+  AddView(app, line.View);
+  AddValidate(app, line.Slab);
+  AddBench(app, line.Bench);
+  AddChart(app, line.Chart);
+
+  // Help and version as the first argument, and a command's help wherever
+  // -h or --help is among its arguments (whatever else they hold).
+  const std::string first = argc > 1 ? argv[1] : "";
+  if (first == "-h" || first == "--help" || first == "help")
+  {
+    out << app.help();
+    return 0;
+  }
+  if (first == "--version" || first == "version")
+  {
+    line.Run = BrumeCommandLine::Command::Version;
+    return -1;
+  }
+  if (argc < 2)
+  {
+    return UsageError(app, "missing command", err);
+  }
+  const std::vector<CLI::App*> named =
+    app.get_subcommands([&first](CLI::App* command) { return command->get_name() == first; });
+  if (named.empty())
+  {
+    return UsageError(app, "unknown command '" + first + "'", err);
+  }
+  for (int i = 2; i < argc; ++i)
+  {
+    if (std::string(argv[i]) == "-h" || std::string(argv[i]) == "--help")
+    {
+      out << (first == "validate" ? named[0]->get_subcommand("slab") : named[0])->help();
+      return 0;
+    }
+  }
+
+  try
+  {
+    app.parse(argc, argv);
+  }
+  catch (const CLI::ParseError& e)
+  {
+    return UsageError(app, e.what(), err);
+  }
+  using Command = BrumeCommandLine::Command;
+  line.Run = *app.get_subcommand("render") ? Command::Render
+    : *app.get_subcommand("view")          ? Command::View
+    : *app.get_subcommand("validate")      ? Command::ValidateSlab
+    : *app.get_subcommand("bench")         ? Command::Bench
+                                           : Command::Chart;
+  return -1;
+}
