@@ -265,46 +265,35 @@ int RunBench(const BenchOptions& options)
   brume::TraceSettings settings;
   settings.Seed = options.Seed;
   const brume::LightTracer core(scene, caster, settings);
-  constexpr long long Block = 4096;
+  constexpr auto Block = static_cast<long long>(brume::LightTracer::ParticlesPerBlock);
   const long long blocks = (particles + Block - 1) / Block;
-  // The transport alone: the same particles, hits dropped as they come.
-  start = std::chrono::steady_clock::now();
-  vtkSMPTools::For(0, blocks,
-    [&](vtkIdType begin, vtkIdType end)
-    {
-      std::vector<brume::Hit> scratch;
-      brume::TraceCounters counters;
-      for (vtkIdType b = begin; b < end; ++b)
+  // The same blocks of particles as the filter, hits dropped as they come.
+  auto traceBlocks = [&](std::vector<brume::RayLog>* logs)
+  {
+    vtkSMPTools::For(0, blocks,
+      [&](vtkIdType begin, vtkIdType end)
       {
-        for (long long i = b * Block; i < std::min((b + 1) * Block, particles); ++i)
+        std::vector<brume::Hit> scratch;
+        brume::TraceCounters counters;
+        for (vtkIdType b = begin; b < end; ++b)
         {
-          scratch.clear();
-          core.TraceParticle(static_cast<std::uint64_t>(i), static_cast<std::uint64_t>(particles),
-            scratch, counters);
+          core.TraceParticles(static_cast<std::uint64_t>(b * Block),
+            static_cast<std::uint64_t>(std::min((b + 1) * Block, particles)),
+            static_cast<std::uint64_t>(particles), scratch, counters, logs ? &(*logs)[b] : nullptr,
+            false);
         }
-      }
-    });
+      });
+  };
+  // The transport alone.
+  start = std::chrono::steady_clock::now();
+  traceBlocks(nullptr);
   const double transportTime = Seconds(start);
   std::printf("transport only     %8.3f s  (same particles, hits not kept: the rest of the tracing "
               "time is storing %.0f hits)\n",
     transportTime, hits);
 
   std::vector<brume::RayLog> logs(static_cast<std::size_t>(blocks));
-  vtkSMPTools::For(0, blocks,
-    [&](vtkIdType begin, vtkIdType end)
-    {
-      std::vector<brume::Hit> scratch;
-      brume::TraceCounters counters;
-      for (vtkIdType b = begin; b < end; ++b)
-      {
-        for (long long i = b * Block; i < std::min((b + 1) * Block, particles); ++i)
-        {
-          scratch.clear();
-          core.TraceParticle(static_cast<std::uint64_t>(i), static_cast<std::uint64_t>(particles),
-            scratch, counters, nullptr, &logs[b]);
-        }
-      }
-    });
+  traceBlocks(&logs);
   std::vector<double> found(static_cast<std::size_t>(blocks), 0.0);
   start = std::chrono::steady_clock::now();
   vtkSMPTools::For(0, blocks,

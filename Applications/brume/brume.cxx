@@ -2,9 +2,9 @@
 // `brume`: the command line front end of the Brume toolkit. Its commands and
 // their options are declared in BrumeCommandLine.cxx.
 #include "BrumeCommandLine.h"
-#include "BrumeThreads.h"
 
 #include "vtkBrumeProcesses.h"
+#include "vtkBrumeSMP.h"
 #include "vtkVersion.h"
 
 #include <iostream>
@@ -18,7 +18,7 @@ int main(int argc, char* argv[])
   {
     return rc;
   }
-  BrumeUseAllCores();
+  vtkBrumeSMP::UseAllCores();
   using Command = BrumeCommandLine::Command;
   switch (line.Run)
   {

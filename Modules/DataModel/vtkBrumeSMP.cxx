@@ -3,6 +3,18 @@
 
 #include "vtkSMPTools.h"
 
+#include <cstdlib>
+
+void vtkBrumeSMP::UseAllCores()
+{
+  if (!std::getenv("VTK_SMP_BACKEND_IN_USE"))
+  {
+    vtkSMPTools::SetBackend("STDThread");
+  }
+  const char* max = std::getenv("VTK_SMP_MAX_THREADS");
+  vtkSMPTools::Initialize(max ? std::atoi(max) : 0);
+}
+
 brume::ParallelFor vtkBrumeSMP::ParallelFor()
 {
   return [](std::size_t begin, std::size_t end,

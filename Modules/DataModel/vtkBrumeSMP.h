@@ -19,6 +19,14 @@ class VTKBRUMEDATAMODEL_EXPORT vtkBrumeSMP
 public:
   /// A brume::ParallelFor that runs on vtkSMPTools::For.
   static brume::ParallelFor ParallelFor();
+
+  /**
+   * ParaView's VTK defaults vtkSMPTools to its Sequential backend: Brume's
+   * programs and tests use the STDThread one on every core, unless the user
+   * chose a backend with VTK_SMP_BACKEND_IN_USE (and a count with
+   * VTK_SMP_MAX_THREADS).
+   */
+  static void UseAllCores();
 };
 
 #endif

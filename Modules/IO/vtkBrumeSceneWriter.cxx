@@ -57,137 +57,111 @@ std::string Safe(std::string name)
   }
   return name;
 }
-}
 
-int vtkBrumeSceneWriter::FillInputPortInformation(int, vtkInformation* info)
+// A surface: its geometry in a .vtp file beside the scene file, its
+// material in the document. Empty on success, otherwise the error.
+std::string WriteSurface(
+  vtkPolyData* surface, const std::string& name, const std::filesystem::path& path, json& s)
 {
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPartitionedDataSetCollection");
-  return 1;
-}
-
-void vtkBrumeSceneWriter::WriteData()
-{
-  auto* scene = vtkPartitionedDataSetCollection::SafeDownCast(this->GetInput());
-  if (!scene || this->FileName.empty())
-  {
-    vtkErrorMacro("A scene collection and a FileName are needed.");
-    this->SetErrorCode(1);
-    return;
-  }
-  const std::filesystem::path path(this->FileName);
   const std::string stem = path.stem().string();
-  json root;
-  root["brume_scene"] = 1;
-  root["surfaces"] = json::array();
-  root["media"] = json::array();
-  root["lights"] = json::array();
-  for (unsigned int i = 0; i < scene->GetNumberOfPartitionedDataSets(); ++i)
+  const std::string file = stem + "-" + Safe(name) + ".vtp";
+  vtkNew<vtkXMLPolyDataWriter> writer;
+  writer->SetFileName((path.parent_path() / file).string().c_str());
+  writer->SetInputData(surface);
+  writer->SetDataModeToBinary(); // readable despite expat reparse deferral (see README)
+  if (!writer->Write())
   {
-    vtkPartitionedDataSet* pds = scene->GetPartitionedDataSet(i);
-    vtkDataObject* object = pds && pds->GetNumberOfPartitions() > 0 ? pds->GetPartition(0) : nullptr;
-    std::string name = "object" + std::to_string(i);
-    if (scene->HasMetaData(i) && scene->GetMetaData(i)->Has(vtkCompositeDataSet::NAME()))
+    return "Cannot write " + file + ".";
+  }
+  s["name"] = name;
+  s["file"] = file;
+  json material = json::object();
+  vtkFieldData* fd = surface->GetFieldData();
+  const std::string type = StringField(fd, "BrumeMaterial");
+  if (!type.empty())
+  {
+    material["type"] = type;
+  }
+  for (const auto& key : { std::make_pair("reflectance", "BrumeReflectance"),
+         std::make_pair("specular", "BrumeSpecular"), std::make_pair("emission", "BrumeEmission"),
+         std::make_pair("exponent", "BrumeExponent") })
+  {
+    if (vtkDataArray* a = fd->GetArray(key.second))
     {
-      name = scene->GetMetaData(i)->Get(vtkCompositeDataSet::NAME());
-    }
-    if (auto* surface = vtkPolyData::SafeDownCast(object))
-    {
-      const std::string file = stem + "-" + Safe(name) + ".vtp";
-      vtkNew<vtkXMLPolyDataWriter> writer;
-      writer->SetFileName((path.parent_path() / file).string().c_str());
-      writer->SetInputData(surface);
-      writer->SetDataModeToBinary(); // readable despite expat reparse deferral (see README)
-      if (!writer->Write())
-      {
-        vtkErrorMacro("Cannot write " << file << ".");
-        this->SetErrorCode(1);
-        return;
-      }
-      json s;
-      s["name"] = name;
-      s["file"] = file;
-      json material = json::object();
-      vtkFieldData* fd = surface->GetFieldData();
-      const std::string type = StringField(fd, "BrumeMaterial");
-      if (!type.empty())
-      {
-        material["type"] = type;
-      }
-      for (const auto& key : { std::make_pair("reflectance", "BrumeReflectance"),
-             std::make_pair("specular", "BrumeSpecular"), std::make_pair("emission", "BrumeEmission"),
-             std::make_pair("exponent", "BrumeExponent") })
-      {
-        if (vtkDataArray* a = fd->GetArray(key.second))
-        {
-          material[key.first] = a->GetNumberOfComponents() == 1 ? json(a->GetTuple1(0)) : Tuple(a);
-        }
-      }
-      s["material"] = material;
-      root["surfaces"].push_back(s);
-    }
-    else if (auto* medium = vtkImageData::SafeDownCast(object))
-    {
-      vtkFieldData* fd = medium->GetFieldData();
-      json m;
-      m["name"] = name;
-      for (const auto& key : { std::make_pair("sigma_a", "BrumeSigmaA"),
-             std::make_pair("sigma_s", "BrumeSigmaS") })
-      {
-        if (vtkDataArray* a = fd->GetArray(key.second))
-        {
-          m[key.first] = Tuple(a);
-        }
-      }
-      if (vtkDataArray* g = fd->GetArray("BrumeG"))
-      {
-        m["g"] = g->GetTuple1(0);
-      }
-      if (vtkDataArray* s = fd->GetArray("BrumeDensityScale"))
-      {
-        m["density_scale"] = s->GetTuple1(0);
-      }
-      const std::string vdb = StringField(fd, "BrumeVDBFile");
-      const bool dense = medium->GetPointData()->GetNumberOfArrays() > 0 ||
-        medium->GetCellData()->GetNumberOfArrays() > 0;
-      double b[6];
-      medium->GetBounds(b);
-      if (!vdb.empty() || !dense)
-      {
-        m["box"] = json::array({ json::array({ b[0], b[2], b[4] }), json::array({ b[1], b[3], b[5] }) });
-      }
-      if (!vdb.empty())
-      {
-        m["density"]["vdb"] = std::filesystem::absolute(vdb).string();
-        const std::string grid = StringField(fd, "BrumeVDBGrid");
-        if (!grid.empty())
-        {
-          m["density"]["grid"] = grid;
-        }
-      }
-      else if (dense)
-      {
-        const std::string file = stem + "-" + Safe(name) + ".vti";
-        vtkNew<vtkXMLImageDataWriter> writer;
-        writer->SetFileName((path.parent_path() / file).string().c_str());
-        writer->SetInputData(medium);
-        writer->SetDataModeToBinary(); // readable despite expat reparse deferral (see README)
-        if (!writer->Write())
-        {
-          vtkErrorMacro("Cannot write " << file << ".");
-          this->SetErrorCode(1);
-          return;
-        }
-        m["density"]["vti"] = file;
-        const std::string array = StringField(fd, "BrumeDensityArray");
-        if (!array.empty())
-        {
-          m["density"]["array"] = array;
-        }
-      }
-      root["media"].push_back(m);
+      material[key.first] = a->GetNumberOfComponents() == 1 ? json(a->GetTuple1(0)) : Tuple(a);
     }
   }
-  vtkFieldData* fd = scene->GetFieldData();
+  s["material"] = material;
+  return {};
+}
+
+// A medium: its box, coefficients and density (an OpenVDB file by path, a
+// dense grid in a .vti file beside the scene file).
+std::string WriteMedium(
+  vtkImageData* medium, const std::string& name, const std::filesystem::path& path, json& m)
+{
+  const std::string stem = path.stem().string();
+  vtkFieldData* fd = medium->GetFieldData();
+  m["name"] = name;
+  for (const auto& key :
+    { std::make_pair("sigma_a", "BrumeSigmaA"), std::make_pair("sigma_s", "BrumeSigmaS") })
+  {
+    if (vtkDataArray* a = fd->GetArray(key.second))
+    {
+      m[key.first] = Tuple(a);
+    }
+  }
+  if (vtkDataArray* g = fd->GetArray("BrumeG"))
+  {
+    m["g"] = g->GetTuple1(0);
+  }
+  if (vtkDataArray* s = fd->GetArray("BrumeDensityScale"))
+  {
+    m["density_scale"] = s->GetTuple1(0);
+  }
+  const std::string vdb = StringField(fd, "BrumeVDBFile");
+  const bool dense = medium->GetPointData()->GetNumberOfArrays() > 0 ||
+    medium->GetCellData()->GetNumberOfArrays() > 0;
+  double b[6];
+  medium->GetBounds(b);
+  if (!vdb.empty() || !dense)
+  {
+    m["box"] =
+      json::array({ json::array({ b[0], b[2], b[4] }), json::array({ b[1], b[3], b[5] }) });
+  }
+  if (!vdb.empty())
+  {
+    m["density"]["vdb"] = std::filesystem::absolute(vdb).string();
+    const std::string grid = StringField(fd, "BrumeVDBGrid");
+    if (!grid.empty())
+    {
+      m["density"]["grid"] = grid;
+    }
+  }
+  else if (dense)
+  {
+    const std::string file = stem + "-" + Safe(name) + ".vti";
+    vtkNew<vtkXMLImageDataWriter> writer;
+    writer->SetFileName((path.parent_path() / file).string().c_str());
+    writer->SetInputData(medium);
+    writer->SetDataModeToBinary(); // readable despite expat reparse deferral (see README)
+    if (!writer->Write())
+    {
+      return "Cannot write " + file + ".";
+    }
+    m["density"]["vti"] = file;
+    const std::string array = StringField(fd, "BrumeDensityArray");
+    if (!array.empty())
+    {
+      m["density"]["array"] = array;
+    }
+  }
+  return {};
+}
+
+// The lights of the collection's field data.
+void WriteLights(vtkFieldData* fd, json& root)
+{
   if (auto* types = vtkStringArray::SafeDownCast(fd->GetAbstractArray("BrumeLightType")))
   {
     for (vtkIdType i = 0; i < types->GetNumberOfValues(); ++i)
@@ -215,6 +189,11 @@ void vtkBrumeSceneWriter::WriteData()
       root["lights"].push_back(l);
     }
   }
+}
+
+// The camera and render settings of the collection's field data.
+void WriteSettings(vtkFieldData* fd, json& root)
+{
   const std::pair<const char*, const char*> camera[] = { { "position", "BrumeCameraPosition" },
     { "focal_point", "BrumeCameraFocalPoint" }, { "view_up", "BrumeCameraViewUp" },
     { "view_angle", "BrumeCameraViewAngle" } };
@@ -222,7 +201,8 @@ void vtkBrumeSceneWriter::WriteData()
   {
     if (vtkDataArray* a = fd->GetArray(key.second))
     {
-      root["camera"][key.first] = a->GetNumberOfComponents() == 1 ? json(a->GetTuple1(0)) : Tuple(a);
+      root["camera"][key.first] =
+        a->GetNumberOfComponents() == 1 ? json(a->GetTuple1(0)) : Tuple(a);
     }
   }
   const std::pair<const char*, const char*> render[] = { { "particles", "BrumeRenderParticles" },
@@ -232,9 +212,65 @@ void vtkBrumeSceneWriter::WriteData()
   {
     if (vtkDataArray* a = fd->GetArray(key.second))
     {
-      root["render"][key.first] = a->GetNumberOfComponents() == 1 ? json(a->GetTuple1(0)) : Tuple(a);
+      root["render"][key.first] =
+        a->GetNumberOfComponents() == 1 ? json(a->GetTuple1(0)) : Tuple(a);
     }
   }
+}
+}
+
+int vtkBrumeSceneWriter::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPartitionedDataSetCollection");
+  return 1;
+}
+
+void vtkBrumeSceneWriter::WriteData()
+{
+  auto* scene = vtkPartitionedDataSetCollection::SafeDownCast(this->GetInput());
+  if (!scene || this->FileName.empty())
+  {
+    vtkErrorMacro("A scene collection and a FileName are needed.");
+    this->SetErrorCode(1);
+    return;
+  }
+  const std::filesystem::path path(this->FileName);
+  json root;
+  root["brume_scene"] = 1;
+  root["surfaces"] = json::array();
+  root["media"] = json::array();
+  root["lights"] = json::array();
+  for (unsigned int i = 0; i < scene->GetNumberOfPartitionedDataSets(); ++i)
+  {
+    vtkPartitionedDataSet* pds = scene->GetPartitionedDataSet(i);
+    vtkDataObject* object =
+      pds && pds->GetNumberOfPartitions() > 0 ? pds->GetPartition(0) : nullptr;
+    std::string name = "object" + std::to_string(i);
+    if (scene->HasMetaData(i) && scene->GetMetaData(i)->Has(vtkCompositeDataSet::NAME()))
+    {
+      name = scene->GetMetaData(i)->Get(vtkCompositeDataSet::NAME());
+    }
+    std::string error;
+    json item;
+    if (auto* surface = vtkPolyData::SafeDownCast(object))
+    {
+      error = WriteSurface(surface, name, path, item);
+      root["surfaces"].push_back(item);
+    }
+    else if (auto* medium = vtkImageData::SafeDownCast(object))
+    {
+      error = WriteMedium(medium, name, path, item);
+      root["media"].push_back(item);
+    }
+    if (!error.empty())
+    {
+      vtkErrorMacro(<< error);
+      this->SetErrorCode(1);
+      return;
+    }
+  }
+  WriteLights(scene->GetFieldData(), root);
+  WriteSettings(scene->GetFieldData(), root);
   std::ofstream out(path);
   out << root.dump(2) << "\n";
   if (!out)

@@ -29,8 +29,7 @@
 #include "vtkVolumeProperty.h"
 #include "vtk_glew.h"
 
-#include "vtkBrumeSliceVolumeDirectionalFS.h"
-#include "vtkBrumeSliceVolumeFS.h"
+#include "vtkBrumeSliceVolumeShader.h"
 #include "vtkBrumeSliceVolumeVS.h"
 
 #include "brume/SphericalHarmonics.h"
@@ -38,9 +37,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <iomanip>
 #include <limits>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -88,54 +85,6 @@ struct vtkBrumeOpenGLSliceVolumeMapper::Slice
   std::size_t First; // in floats, into the collected vertices
   std::size_t Floats;
 };
-
-namespace
-{
-// Replaces the tag `tag` of a shader by `text`.
-void Replace(std::string& shader, const std::string& tag, const std::string& text)
-{
-  const std::size_t at = shader.find(tag);
-  if (at != std::string::npos)
-  {
-    shader.replace(at, tag.size(), text);
-  }
-}
-
-// The fragment shader of a volume: the slab shader, plus for directional
-// radiance of the given order (> 0) the evaluation of its spherical-harmonics
-// coefficients toward the eye (brume/SphericalHarmonics.h, in GLSL).
-std::string FragmentShader(int order)
-{
-  std::string fs = vtkBrumeSliceVolumeFS;
-  if (order < 1)
-  {
-    return fs;
-  }
-  const int coefficients = (order + 1) * (order + 1);
-  const int textures = (3 * coefficients + 3) / 4;
-  std::string dec;
-  std::string fetch = "  float v[" + std::to_string(4 * textures) + "];\n  vec4 f;\n";
-  for (int t = 0; t < textures; ++t)
-  {
-    const std::string n = std::to_string(t);
-    dec += "uniform sampler3D shTexture" + n + ";\n";
-    fetch += "  f = texture(shTexture" + n + ", texcoord);\n";
-    for (int c = 0; c < 4; ++c)
-    {
-      fetch += "  v[" + std::to_string(4 * t + c) + "] = f[" + std::to_string(c) + "];\n";
-    }
-  }
-  std::ostringstream constants;
-  constants << std::setprecision(9) << "#define SH_ORDER " << order << "\n#define BRUME_SH_Y00 "
-            << brume::ShY00 << "\n";
-  std::string directional = vtkBrumeSliceVolumeDirectionalFS;
-  Replace(directional, "//BRUME::Directional::Uniforms", dec + constants.str());
-  Replace(directional, "//BRUME::Directional::Fetch", fetch);
-  Replace(fs, "//BRUME::Directional::Dec", directional);
-  Replace(fs, "//BRUME::Directional::Impl", "emission = directionalSource();");
-  return fs;
-}
-}
 
 namespace
 {
@@ -229,6 +178,168 @@ void vtkBrumeOpenGLSliceVolumeMapper::Render(vtkRenderer* ren, vtkVolume*)
   this->DrawAll(ren);
 }
 
+bool vtkBrumeOpenGLSliceVolumeMapper::UploadTextures(
+  vtkImageData* input, vtkOpenGLRenderWindow* renWin, const int dims[3], int interpolation)
+{
+  // Two RGB float 3D textures: source radiance and extinction.
+  Internals& impl = *this->Impl;
+  const vtkIdType cells = static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2];
+  vtkDataArray* source = input->GetCellData()->GetArray("SourceRadiance");
+  vtkDataArray* extinction = input->GetCellData()->GetArray("Extinction");
+  std::vector<float> s(3 * static_cast<std::size_t>(cells)), e(s.size());
+  const int ne = extinction->GetNumberOfComponents();
+  for (vtkIdType i = 0; i < cells; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      // The texture holds J = S sigma_t: filtered between voxels, J and
+      // sigma_t stay bounded where the medium thins out (S would not).
+      e[3 * i + c] = static_cast<float>(extinction->GetComponent(i, ne == 3 ? c : 0));
+      s[3 * i + c] = static_cast<float>(source->GetComponent(i, c)) * e[3 * i + c];
+      if (!(e[3 * i + c] >= 0.f) || !std::isfinite(e[3 * i + c]) || !std::isfinite(s[3 * i + c]))
+      {
+        vtkErrorMacro("Cannot draw this medium: its extinction must be finite and "
+                      "non-negative and its source radiance finite (cell "
+          << i << ").");
+        return false;
+      }
+    }
+  }
+  const int filter = interpolation == VTK_NEAREST_INTERPOLATION ? vtkTextureObject::Nearest
+                                                                : vtkTextureObject::Linear;
+  if (!Upload3D(impl.Source, renWin, dims, 3, filter, s.data()) ||
+    !Upload3D(impl.Extinction, renWin, dims, 3, filter, e.data()))
+  {
+    vtkErrorMacro("Could not create the 3D textures (" << dims[0] << " x " << dims[1] << " x "
+                                                       << dims[2] << "): nothing drawn.");
+    return false;
+  }
+  if (!this->UploadDirectional(input, renWin, dims, filter, e))
+  {
+    return false;
+  }
+  impl.Interpolation = interpolation;
+  impl.TextureTime.Modified();
+  return true;
+}
+
+bool vtkBrumeOpenGLSliceVolumeMapper::UploadDirectional(vtkImageData* input,
+  vtkOpenGLRenderWindow* renWin, const int dims[3], int filter, const std::vector<float>& e)
+{
+  Internals& impl = *this->Impl;
+  const vtkIdType cells = static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2];
+  // Directional radiance: 3 (order + 1)^2 values per voxel, J-scaled like
+  // the source; evaluated per voxel below, or per fragment from RGBA
+  // textures (four values each).
+  impl.Order = 0;
+  impl.FragmentOrder = 0;
+  impl.Voxels.clear();
+  vtkDataArray* sh = input->GetCellData()->GetArray("SourceRadianceSH");
+  const int order = sh ? DirectionalOrder(sh->GetNumberOfComponents()) : -1;
+  if (order <= 0)
+  {
+    return true;
+  }
+  const int values = sh->GetNumberOfComponents();
+  std::vector<float> coefficients(static_cast<std::size_t>(values) * cells);
+  for (vtkIdType i = 0; i < cells; ++i)
+  {
+    for (int v = 0; v < values; ++v)
+    {
+      float& value = coefficients[static_cast<std::size_t>(i) * values + v];
+      value = static_cast<float>(sh->GetComponent(i, v)) * e[3 * i + v % 3];
+      if (!std::isfinite(value))
+      {
+        vtkErrorMacro(
+          "Cannot draw this medium: its directional radiance must be finite (cell " << i << ").");
+        return false;
+      }
+    }
+  }
+  if (this->DirectionalEvaluation == PerFragment)
+  {
+    const int textures = (values + 3) / 4;
+    std::vector<float> packed(4 * static_cast<std::size_t>(cells));
+    impl.Coefficients.resize(static_cast<std::size_t>(textures));
+    for (int t = 0; t < textures; ++t)
+    {
+      for (vtkIdType i = 0; i < cells; ++i)
+      {
+        for (int c = 0; c < 4; ++c)
+        {
+          const int value = 4 * t + c;
+          packed[4 * i + c] =
+            value < values ? coefficients[static_cast<std::size_t>(i) * values + value] : 0.f;
+        }
+      }
+      auto& texture = impl.Coefficients[t];
+      if (!texture)
+      {
+        texture = vtkSmartPointer<vtkTextureObject>::New();
+      }
+      if (!Upload3D(texture, renWin, dims, 4, filter, packed.data()))
+      {
+        vtkErrorMacro("Could not create the directional radiance textures: nothing drawn.");
+        return false;
+      }
+    }
+    impl.FragmentOrder = order;
+  }
+  else
+  {
+    impl.Voxels.swap(coefficients);
+    impl.EvaluatedEye[0] = std::numeric_limits<float>::quiet_NaN(); // evaluate below
+  }
+  impl.Order = order;
+  impl.G = static_cast<float>(input->GetFieldData()->GetArray("BrumePhaseAsymmetry")->GetTuple1(0));
+  return true;
+}
+
+bool vtkBrumeOpenGLSliceVolumeMapper::EvaluateTowardEye(
+  vtkOpenGLRenderWindow* renWin, const int dims[3], int interpolation)
+{
+  Internals& impl = *this->Impl;
+  if (impl.Order <= 0 || impl.FragmentOrder != 0 ||
+    (impl.EvaluatedEye[0] == impl.EyeData[0] && impl.EvaluatedEye[1] == impl.EyeData[1] &&
+      impl.EvaluatedEye[2] == impl.EyeData[2]))
+  {
+    return true;
+  }
+  // Directional radiance toward the eye, once per view and voxel centre.
+  const int values = 3 * brume::ShCoefficients(impl.Order);
+  const std::size_t cells = impl.Voxels.size() / values;
+  std::vector<float> source(3 * cells);
+  const brume::Vec3 eyeData(impl.EyeData[0], impl.EyeData[1], impl.EyeData[2]);
+  vtkSMPTools::For(0, static_cast<vtkIdType>(cells),
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        const vtkIdType x = i % dims[0], y = (i / dims[0]) % dims[1], z = i / (dims[0] * dims[1]);
+        const brume::Vec3 centre(
+          impl.BoundsLower[0] + (static_cast<float>(x) + 0.5f) * impl.BoundsExtent[0] / dims[0],
+          impl.BoundsLower[1] + (static_cast<float>(y) + 0.5f) * impl.BoundsExtent[1] / dims[1],
+          impl.BoundsLower[2] + (static_cast<float>(z) + 0.5f) * impl.BoundsExtent[2] / dims[2]);
+        const brume::Vec3 toEye = brume::Normalize(eyeData - centre);
+        for (int c = 0; c < 3; ++c)
+        {
+          source[3 * i + c] = std::max(0.f,
+            brume::EvaluateHgFromSh(impl.Order, impl.G,
+              &impl.Voxels[static_cast<std::size_t>(i) * values + c], 3, toEye));
+        }
+      }
+    });
+  const int filter = interpolation == VTK_NEAREST_INTERPOLATION ? vtkTextureObject::Nearest
+                                                                : vtkTextureObject::Linear;
+  if (!Upload3D(impl.Source, renWin, dims, 3, filter, source.data()))
+  {
+    vtkErrorMacro("Could not upload the directional radiance toward the eye: nothing drawn.");
+    return false;
+  }
+  std::copy(impl.EyeData, impl.EyeData + 3, impl.EvaluatedEye);
+  return true;
+}
+
 bool vtkBrumeOpenGLSliceVolumeMapper::PrepareSlices(
   vtkRenderer* ren, vtkVolume* vol, std::vector<Slice>& slices)
 {
@@ -266,113 +377,15 @@ bool vtkBrumeOpenGLSliceVolumeMapper::PrepareSlices(
   if (impl.TextureTime < input->GetMTime() || impl.TextureTime < this->GetMTime() ||
     !impl.Source->GetHandle() || impl.Interpolation != interpolation)
   {
-    const vtkIdType cells = static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2];
-    vtkDataArray* source = input->GetCellData()->GetArray("SourceRadiance");
-    vtkDataArray* extinction = input->GetCellData()->GetArray("Extinction");
-    std::vector<float> s(3 * static_cast<std::size_t>(cells)), e(s.size());
-    const int ne = extinction->GetNumberOfComponents();
-    for (vtkIdType i = 0; i < cells; ++i)
+    if (!this->UploadTextures(input, renWin, dims, interpolation))
     {
-      for (int c = 0; c < 3; ++c)
-      {
-        // The texture holds J = S sigma_t: filtered between voxels, J and
-        // sigma_t stay bounded where the medium thins out (S would not).
-        e[3 * i + c] = static_cast<float>(extinction->GetComponent(i, ne == 3 ? c : 0));
-        s[3 * i + c] = static_cast<float>(source->GetComponent(i, c)) * e[3 * i + c];
-        if (!(e[3 * i + c] >= 0.f) || !std::isfinite(e[3 * i + c]) || !std::isfinite(s[3 * i + c]))
-        {
-          vtkErrorMacro("Cannot draw this medium: its extinction must be finite and "
-                        "non-negative and its source radiance finite (cell "
-            << i << ").");
-          return false;
-        }
-      }
-    }
-    const int filter = interpolation == VTK_NEAREST_INTERPOLATION ? vtkTextureObject::Nearest
-                                                                  : vtkTextureObject::Linear;
-    if (!Upload3D(impl.Source, renWin, dims, 3, filter, s.data()) ||
-      !Upload3D(impl.Extinction, renWin, dims, 3, filter, e.data()))
-    {
-      vtkErrorMacro("Could not create the 3D textures (" << dims[0] << " x " << dims[1] << " x "
-                                                         << dims[2] << "): nothing drawn.");
       return false;
     }
-    // Directional radiance: 3 (order + 1)^2 values per voxel, J-scaled like
-    // the source; evaluated per voxel below, or per fragment from RGBA
-    // textures (four values each).
-    impl.Order = 0;
-    impl.FragmentOrder = 0;
-    impl.Voxels.clear();
-    vtkDataArray* sh = input->GetCellData()->GetArray("SourceRadianceSH");
-    const int order = sh ? DirectionalOrder(sh->GetNumberOfComponents()) : -1;
-    if (order > 0)
-    {
-      const int values = sh->GetNumberOfComponents();
-      std::vector<float> coefficients(static_cast<std::size_t>(values) * cells);
-      for (vtkIdType i = 0; i < cells; ++i)
-      {
-        for (int v = 0; v < values; ++v)
-        {
-          float& value = coefficients[static_cast<std::size_t>(i) * values + v];
-          value = static_cast<float>(sh->GetComponent(i, v)) * e[3 * i + v % 3];
-          if (!std::isfinite(value))
-          {
-            vtkErrorMacro("Cannot draw this medium: its directional radiance must be finite (cell "
-              << i << ").");
-            return false;
-          }
-        }
-      }
-      if (this->DirectionalEvaluation == PerFragment)
-      {
-        const int textures = (values + 3) / 4;
-        std::vector<float> packed(4 * static_cast<std::size_t>(cells));
-        impl.Coefficients.resize(static_cast<std::size_t>(textures));
-        for (int t = 0; t < textures; ++t)
-        {
-          for (vtkIdType i = 0; i < cells; ++i)
-          {
-            for (int c = 0; c < 4; ++c)
-            {
-              const int value = 4 * t + c;
-              packed[4 * i + c] =
-                value < values ? coefficients[static_cast<std::size_t>(i) * values + value] : 0.f;
-            }
-          }
-          auto& texture = impl.Coefficients[t];
-          if (!texture)
-          {
-            texture = vtkSmartPointer<vtkTextureObject>::New();
-          }
-          if (!Upload3D(texture, renWin, dims, 4, filter, packed.data()))
-          {
-            vtkErrorMacro("Could not create the directional radiance textures: nothing drawn.");
-            return false;
-          }
-        }
-        impl.FragmentOrder = order;
-      }
-      else
-      {
-        impl.Voxels.swap(coefficients);
-        impl.EvaluatedEye[0] = std::numeric_limits<float>::quiet_NaN(); // evaluate below
-      }
-      impl.Order = order;
-      impl.G = static_cast<float>(
-        input->GetFieldData()->GetArray("BrumePhaseAsymmetry")->GetTuple1(0));
-    }
-    impl.Interpolation = interpolation;
-    impl.TextureTime.Modified();
   }
-
-  // Slice planes perpendicular to the view direction through the medium's box.
   vtkCamera* camera = ren->GetActiveCamera();
   vtkMatrix4x4* model = vol->GetMatrix();
   const double* eyePtr = camera->GetPosition();
   const Vec eye{ eyePtr[0], eyePtr[1], eyePtr[2] };
-  double dopPtr[3];
-  camera->GetDirectionOfProjection(dopPtr);
-  const Vec dop{ dopPtr[0], dopPtr[1], dopPtr[2] };
   double bounds[6];
   input->GetBounds(bounds);
   {
@@ -388,43 +401,24 @@ bool vtkBrumeOpenGLSliceVolumeMapper::PrepareSlices(
       impl.BoundsExtent[a] = static_cast<float>(bounds[2 * a + 1] - bounds[2 * a]);
     }
   }
-  if (impl.Order > 0 && impl.FragmentOrder == 0 &&
-    !(impl.EvaluatedEye[0] == impl.EyeData[0] && impl.EvaluatedEye[1] == impl.EyeData[1] &&
-      impl.EvaluatedEye[2] == impl.EyeData[2]))
+  if (!this->EvaluateTowardEye(renWin, dims, interpolation))
   {
-    // Directional radiance toward the eye, once per view and voxel centre.
-    const int values = 3 * brume::ShCoefficients(impl.Order);
-    const std::size_t cells = impl.Voxels.size() / values;
-    std::vector<float> source(3 * cells);
-    const brume::Vec3 eyeData(impl.EyeData[0], impl.EyeData[1], impl.EyeData[2]);
-    vtkSMPTools::For(0, static_cast<vtkIdType>(cells),
-      [&](vtkIdType begin, vtkIdType end)
-      {
-        for (vtkIdType i = begin; i < end; ++i)
-        {
-          const vtkIdType x = i % dims[0], y = (i / dims[0]) % dims[1], z = i / (dims[0] * dims[1]);
-          const brume::Vec3 centre(
-            impl.BoundsLower[0] + (static_cast<float>(x) + 0.5f) * impl.BoundsExtent[0] / dims[0],
-            impl.BoundsLower[1] + (static_cast<float>(y) + 0.5f) * impl.BoundsExtent[1] / dims[1],
-            impl.BoundsLower[2] + (static_cast<float>(z) + 0.5f) * impl.BoundsExtent[2] / dims[2]);
-          const brume::Vec3 toEye = brume::Normalize(eyeData - centre);
-          for (int c = 0; c < 3; ++c)
-          {
-            source[3 * i + c] = std::max(0.f,
-              brume::EvaluateHgFromSh(
-                impl.Order, impl.G, &impl.Voxels[static_cast<std::size_t>(i) * values + c], 3, toEye));
-          }
-        }
-      });
-    const int filter = interpolation == VTK_NEAREST_INTERPOLATION ? vtkTextureObject::Nearest
-                                                                  : vtkTextureObject::Linear;
-    if (!Upload3D(impl.Source, renWin, dims, 3, filter, source.data()))
-    {
-      vtkErrorMacro("Could not upload the directional radiance toward the eye: nothing drawn.");
-      return false;
-    }
-    std::copy(impl.EyeData, impl.EyeData + 3, impl.EvaluatedEye);
+    return false;
   }
+  this->CutSlices(camera, model, input, slices);
+  return true;
+}
+
+void vtkBrumeOpenGLSliceVolumeMapper::CutSlices(
+  vtkCamera* camera, vtkMatrix4x4* model, vtkImageData* input, std::vector<Slice>& slices)
+{
+  const double* eyePtr = camera->GetPosition();
+  const Vec eye{ eyePtr[0], eyePtr[1], eyePtr[2] };
+  double dopPtr[3];
+  camera->GetDirectionOfProjection(dopPtr);
+  const Vec dop{ dopPtr[0], dopPtr[1], dopPtr[2] };
+  double bounds[6];
+  input->GetBounds(bounds);
   Vec corners[8], cornersWC[8];
   double dmin = VTK_DOUBLE_MAX, dmax = -VTK_DOUBLE_MAX;
   for (int c = 0; c < 8; ++c)
@@ -441,7 +435,7 @@ bool vtkBrumeOpenGLSliceVolumeMapper::PrepareSlices(
   dmin = std::max(dmin, nearPlane * (1.0 + 1e-6));
   if (!(dmax > dmin))
   {
-    return true; // entirely behind the camera
+    return; // entirely behind the camera
   }
   double voxel = VTK_DOUBLE_MAX;
   const double* spacing = input->GetSpacing();
@@ -545,7 +539,6 @@ bool vtkBrumeOpenGLSliceVolumeMapper::PrepareSlices(
     slices.push_back(slice);
     ++this->LastNumberOfSlices;
   }
-  return true;
 }
 
 void vtkBrumeOpenGLSliceVolumeMapper::DrawAll(vtkRenderer* ren)
@@ -635,7 +628,7 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawAll(vtkRenderer* ren)
   {
     Internals& owner = *run.Owner->Impl;
     vtkShaderProgram* program = renWin->GetShaderCache()->ReadyShaderProgram(
-      vtkBrumeSliceVolumeVS, FragmentShader(owner.FragmentOrder).c_str(), "");
+      vtkBrumeSliceVolumeVS, vtkBrumeSliceVolumeShader::Fragment(owner.FragmentOrder).c_str(), "");
     if (!program)
     {
       vtkErrorMacro("Could not build the slice shaders: nothing drawn.");

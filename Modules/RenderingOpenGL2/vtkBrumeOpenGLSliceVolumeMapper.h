@@ -21,7 +21,11 @@
 #include <memory> // For std::unique_ptr
 #include <vector> // For slices
 
+class vtkCamera;
+class vtkImageData;
 class vtkInformationIntegerKey;
+class vtkMatrix4x4;
+class vtkOpenGLRenderWindow;
 class vtkRenderer;
 class vtkVolume;
 
@@ -51,6 +55,15 @@ private:
   struct Slice;
   /// Uploads the textures if needed and appends this volume's slices.
   bool PrepareSlices(vtkRenderer* ren, vtkVolume* vol, std::vector<Slice>& slices);
+  // The steps of PrepareSlices: the textures (when the input changed), the
+  // directional radiance, its evaluation toward the eye, the slice polygons.
+  bool UploadTextures(
+    vtkImageData* input, vtkOpenGLRenderWindow* renWin, const int dims[3], int interpolation);
+  bool UploadDirectional(vtkImageData* input, vtkOpenGLRenderWindow* renWin, const int dims[3],
+    int filter, const std::vector<float>& extinction);
+  bool EvaluateTowardEye(vtkOpenGLRenderWindow* renWin, const int dims[3], int interpolation);
+  void CutSlices(
+    vtkCamera* camera, vtkMatrix4x4* model, vtkImageData* input, std::vector<Slice>& slices);
   /// Draws the slices of every slice volume of the renderer.
   void DrawAll(vtkRenderer* ren);
 

@@ -32,7 +32,7 @@ vtkStandardNewMacro(vtkBrumeLightTracer);
 namespace
 {
 // Particles per block: blocks, not threads, own the output order.
-constexpr vtkTypeInt64 ParticlesPerBlock = 4096;
+constexpr auto ParticlesPerBlock = static_cast<vtkTypeInt64>(brume::LightTracer::ParticlesPerBlock);
 
 struct TraceBlocks
 {
@@ -53,11 +53,9 @@ struct TraceBlocks
       std::vector<brume::Hit>& hits = this->Hits[b];
       hits.reserve(static_cast<std::size_t>(4 * (last - first)));
       hits.clear();
-      for (vtkTypeInt64 i = first; i < last; ++i)
-      {
-        this->Tracer.TraceParticle(static_cast<std::uint64_t>(i),
-          static_cast<std::uint64_t>(this->Particles), hits, this->Counters[b]);
-      }
+      this->Tracer.TraceParticles(static_cast<std::uint64_t>(first),
+        static_cast<std::uint64_t>(last), static_cast<std::uint64_t>(this->Particles), hits,
+        this->Counters[b]);
     }
   }
 };
@@ -140,14 +138,18 @@ struct OutputHits
     pts->SetData(points);
     output->SetPoints(pts);
     vtkPointData* pd = output->GetPointData();
-    pd->AddArray(make(vtkSmartPointer<vtkFloatArray>::New(), this->Direction, vtkBrumeHitConversion::DirectionName, 3));
-    pd->AddArray(make(vtkSmartPointer<vtkFloatArray>::New(), this->Flux, vtkBrumeHitConversion::FluxName, 3));
-    pd->AddArray(make(vtkSmartPointer<vtkUnsignedShortArray>::New(), this->Object, vtkBrumeHitConversion::ObjectIdName, 1));
+    pd->AddArray(make(vtkSmartPointer<vtkFloatArray>::New(), this->Direction,
+      vtkBrumeHitConversion::DirectionName, 3));
     pd->AddArray(
-      make(vtkSmartPointer<vtkUnsignedShortArray>::New(), this->Emitter, vtkBrumeHitConversion::EmitterIdName, 1));
-    pd->AddArray(make(vtkSmartPointer<vtkUnsignedCharArray>::New(), this->Depth, vtkBrumeHitConversion::DepthName, 1));
-    pd->AddArray(
-      make(vtkSmartPointer<vtkUnsignedIntArray>::New(), this->Triangle, vtkBrumeHitConversion::TriangleIdName, 1));
+      make(vtkSmartPointer<vtkFloatArray>::New(), this->Flux, vtkBrumeHitConversion::FluxName, 3));
+    pd->AddArray(make(vtkSmartPointer<vtkUnsignedShortArray>::New(), this->Object,
+      vtkBrumeHitConversion::ObjectIdName, 1));
+    pd->AddArray(make(vtkSmartPointer<vtkUnsignedShortArray>::New(), this->Emitter,
+      vtkBrumeHitConversion::EmitterIdName, 1));
+    pd->AddArray(make(vtkSmartPointer<vtkUnsignedCharArray>::New(), this->Depth,
+      vtkBrumeHitConversion::DepthName, 1));
+    pd->AddArray(make(vtkSmartPointer<vtkUnsignedIntArray>::New(), this->Triangle,
+      vtkBrumeHitConversion::TriangleIdName, 1));
   }
 };
 
@@ -228,8 +230,8 @@ int vtkBrumeLightTracer::RequestData(
   const vtkTypeInt64 firstParticle = this->FirstParticle;
   if (firstParticle < 0 || firstParticle >= particles)
   {
-    vtkErrorMacro("FirstParticle must be in [0, NumberOfParticles - 1 = "
-      << particles - 1 << "], not " << firstParticle << ".");
+    vtkErrorMacro("FirstParticle must be in [0, NumberOfParticles - 1 = " << particles -
+        1 << "], not " << firstParticle << ".");
     return 0;
   }
   // A piece of the pipeline (one process of a distributed run) traces its

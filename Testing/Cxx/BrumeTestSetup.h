@@ -1,13 +1,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Runs before every test of the driver: the threaded SMP backend, as `brume` uses.
+// Runs before every test of a Brume test driver: the threaded SMP backend,
+// as `brume` uses.
 #ifndef BrumeTestSetup_h
 #define BrumeTestSetup_h
 
-#include "BrumeThreads.h"
+#include "vtkBrumeSMP.h"
 
 inline void BrumeTestSetup(int*, char***)
 {
-  BrumeUseAllCores();
+  vtkBrumeSMP::UseAllCores();
 }
 
 #endif

@@ -115,21 +115,23 @@ void TallyChange(double* tally, const Vec3& before, const Vec3& after)
 constexpr int InlineTrackers = 4;
 }
 
-void LightTracer::TraceParticle(std::uint64_t index, std::uint64_t count, std::vector<Hit>& hits,
-  TraceCounters& counters, ParticleExit* exit, RayLog* rays) const
+void LightTracer::TraceParticles(std::uint64_t first, std::uint64_t end, std::uint64_t count,
+  std::vector<Hit>& hits, TraceCounters& counters, RayLog* rays, bool keepHits) const
 {
-  if (exit)
+  for (std::uint64_t i = first; i < end; ++i)
   {
-    *exit = ParticleExit();
+    if (!keepHits)
+    {
+      hits.clear();
+    }
+    this->TraceParticle(i, count, hits, counters, nullptr, rays);
   }
-  if (this->Emitters.empty() || count == 0)
-  {
-    return;
-  }
-  Random rng(this->Settings.Seed, index);
-  const Scene& scene = this->SceneRef;
-  const auto numberOfSurfaces = static_cast<std::uint16_t>(scene.Surfaces.size());
+}
 
+const LightTracer::Emitter& LightTracer::Emit(
+  Random& rng, std::uint64_t count, Vec3& flux, Vec3& origin, Vec3& direction) const
+{
+  const Scene& scene = this->SceneRef;
   // Choose an emitter in proportion to its power.
   const double u = rng.NextDouble();
   const auto it = std::upper_bound(this->EmitterCdf.begin(), this->EmitterCdf.end(), u);
@@ -138,9 +140,8 @@ void LightTracer::TraceParticle(std::uint64_t index, std::uint64_t count, std::v
   const Emitter& emitter = this->Emitters[k];
   const double pdfEmitter = this->EmitterCdf[k] - (k > 0 ? this->EmitterCdf[k - 1] : 0.0);
   // Flux = Phi_emitter / (N p_emitter).
-  Vec3 flux = emitter.Power * static_cast<float>(1.0 / (static_cast<double>(count) * pdfEmitter));
+  flux = emitter.Power * static_cast<float>(1.0 / (static_cast<double>(count) * pdfEmitter));
 
-  Vec3 origin, direction;
   if (emitter.Light >= 0)
   {
     scene.Lights[emitter.Light].SampleEmission(rng, origin, direction);
@@ -158,6 +159,26 @@ void LightTracer::TraceParticle(std::uint64_t index, std::uint64_t count, std::v
     direction = Normalize(Frame(emitter.Normal).ToWorld(SampleCosineHemisphere(r1, r2)));
     origin += emitter.Normal * OffsetEpsilon(origin);
   }
+  return emitter;
+}
+
+void LightTracer::TraceParticle(std::uint64_t index, std::uint64_t count, std::vector<Hit>& hits,
+  TraceCounters& counters, ParticleExit* exit, RayLog* rays) const
+{
+  if (exit)
+  {
+    *exit = ParticleExit();
+  }
+  if (this->Emitters.empty() || count == 0)
+  {
+    return;
+  }
+  Random rng(this->Settings.Seed, index);
+  const Scene& scene = this->SceneRef;
+  const auto numberOfSurfaces = static_cast<std::uint16_t>(scene.Surfaces.size());
+
+  Vec3 flux, origin, direction;
+  const Emitter& emitter = this->Emit(rng, count, flux, origin, direction);
   Tally(counters.Emitted, flux);
   const float initialFlux = MaxComponent(flux);
 

@@ -20,6 +20,8 @@
 namespace brume
 {
 
+class Random;
+
 /// One stored particle interaction: 48 bytes.
 struct Hit
 {
@@ -99,6 +101,19 @@ public:
   void TraceParticle(std::uint64_t index, std::uint64_t count, std::vector<Hit>& hits,
     TraceCounters& counters, ParticleExit* exit = nullptr, RayLog* rays = nullptr) const;
 
+  /**
+   * Particles [first, end) of a run of `count`, in order: the loop every
+   * caller runs over a block of particles. With `keepHits` false the hits
+   * are dropped as they come (what tracing costs without storing them).
+   */
+  void TraceParticles(std::uint64_t first, std::uint64_t end, std::uint64_t count,
+    std::vector<Hit>& hits, TraceCounters& counters, RayLog* rays = nullptr,
+    bool keepHits = true) const;
+
+  /// Particles per block: callers split a run into blocks of this many, which
+  /// (not threads) own the order of the hits.
+  static constexpr std::uint64_t ParticlesPerBlock = 4096;
+
 private:
   // An emissive triangle or a light, chosen in proportion to its power.
   struct Emitter
@@ -110,6 +125,11 @@ private:
     Vec3 Power;
     std::uint16_t Id = 0;
   };
+
+  /// Chooses an emitter in proportion to its power and samples where and
+  /// in which direction the particle leaves it, with its flux.
+  const Emitter& Emit(
+    Random& rng, std::uint64_t count, Vec3& flux, Vec3& origin, Vec3& direction) const;
 
   const Scene& SceneRef;
   const RayCaster& Caster;

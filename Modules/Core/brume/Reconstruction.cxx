@@ -211,17 +211,53 @@ std::string ObjectRadiance::Check(
   return {};
 }
 
-void ObjectRadiance::Bin(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
-  const ParallelFor& parallelFor)
+namespace
 {
-  const std::size_t cells = static_cast<std::size_t>(this->Dims[0]) * this->Dims[1] * this->Dims[2];
-  const bool planar = !this->MediumRef && this->Chart.Type == SurfaceChart::Kind::Planar;
+// The histogram cell of a hit: its (u, v) on the surface's chart, or its
+// position in the medium's box.
+class CellLocator
+{
+public:
+  CellLocator(const std::array<int, 3>& dims, const Medium* medium, const Surface* surface,
+    const SurfaceChart& chart)
+    : Dims(dims)
+    , MediumRef(medium)
+    , SurfaceRef(surface)
+    , Chart(chart)
+    , Planar(!medium && chart.Type == SurfaceChart::Kind::Planar)
+    , Bounds(medium ? medium->Bounds : Box())
+    , UU(Dot(chart.Frame.U, chart.Frame.U))
+    , VV(Dot(chart.Frame.V, chart.Frame.V))
+  {
+  }
 
-  // The histogram cell of a hit.
-  const Box box = this->MediumRef ? this->MediumRef->Bounds : Box();
-  const float uu = Dot(this->Chart.Frame.U, this->Chart.Frame.U);
-  const float vv = Dot(this->Chart.Frame.V, this->Chart.Frame.V);
-  auto cellIndex = [&](double s, double t, double r)
+  std::uint32_t operator()(const HitArrays& hits, std::uint32_t i) const
+  {
+    const Vec3 p(hits.Position[3 * i], hits.Position[3 * i + 1], hits.Position[3 * i + 2]);
+    if (this->MediumRef)
+    {
+      const Vec3 q = (p - this->Bounds.lower) / this->Bounds.Extent();
+      return this->Index(q.x, q.y, q.z);
+    }
+    if (this->Planar)
+    {
+      const Vec3 d = p - this->Chart.Frame.Origin;
+      return this->Index(
+        Dot(d, this->Chart.Frame.U) / this->UU, Dot(d, this->Chart.Frame.V) / this->VV, 0.0);
+    }
+    const std::uint32_t t = hits.Triangle[i];
+    const auto& tri = this->SurfaceRef->Triangles[t];
+    float b1, b2;
+    Barycentric(this->SurfaceRef->Vertices[tri[0]], this->SurfaceRef->Vertices[tri[1]],
+      this->SurfaceRef->Vertices[tri[2]], p, b1, b2);
+    const auto& uv = this->Chart.TriangleUV[t];
+    const float b0 = 1.f - b1 - b2;
+    return this->Index(
+      b0 * uv[0] + b1 * uv[2] + b2 * uv[4], b0 * uv[1] + b1 * uv[3] + b2 * uv[5], 0.0);
+  }
+
+private:
+  std::uint32_t Index(double s, double t, double r) const
   {
     std::array<int, 3> c{};
     const double q[3] = { s, t, r };
@@ -232,69 +268,76 @@ void ObjectRadiance::Bin(const HitArrays& hits, const std::uint32_t* index, std:
     }
     return static_cast<std::uint32_t>(
       (static_cast<std::size_t>(c[2]) * this->Dims[1] + c[1]) * this->Dims[0] + c[0]);
-  };
-  auto cellOfHit = [&](std::uint32_t i) -> std::uint32_t
-  {
-    const Vec3 p(hits.Position[3 * i], hits.Position[3 * i + 1], hits.Position[3 * i + 2]);
-    if (this->MediumRef)
-    {
-      const Vec3 q = (p - box.lower) / box.Extent();
-      return cellIndex(q.x, q.y, q.z);
-    }
-    if (planar)
-    {
-      const Vec3 d = p - this->Chart.Frame.Origin;
-      return cellIndex(Dot(d, this->Chart.Frame.U) / uu, Dot(d, this->Chart.Frame.V) / vv, 0.0);
-    }
-    const std::uint32_t t = hits.Triangle[i];
-    const auto& tri = this->SurfaceRef->Triangles[t];
-    float b1, b2;
-    Barycentric(this->SurfaceRef->Vertices[tri[0]], this->SurfaceRef->Vertices[tri[1]],
-      this->SurfaceRef->Vertices[tri[2]], p, b1, b2);
-    const auto& uv = this->Chart.TriangleUV[t];
-    const float b0 = 1.f - b1 - b2;
-    return cellIndex(
-      b0 * uv[0] + b1 * uv[2] + b2 * uv[4], b0 * uv[1] + b1 * uv[3] + b2 * uv[5], 0.0);
-  };
-
-  if (!this->ViewDependent)
-  {
-    // View-independent objects: one pass in hit order adds every hit to its
-    // cell (deterministic, and the histogram fits in cache); nothing is kept.
-    this->ChainReceive(this->WeightHistogram, &this->ValueHistogram);
-    for (std::size_t k = 0; k < count; ++k)
-    {
-      const std::uint32_t i = index[k];
-      if (!this->MediumRef && !this->FromFront(hits, i))
-      {
-        continue; // light on the back side: reflected, not shown
-      }
-      const std::uint32_t cell = cellOfHit(i);
-      const float* f = hits.Flux + 3 * i;
-      const double w = (static_cast<double>(f[0]) + f[1] + f[2]) / 3.0;
-      this->WeightHistogram.Add(cell, &w);
-      double v[3];
-      if (this->MediumRef)
-      {
-        for (int c = 0; c < 3; ++c)
-        {
-          v[c] = Inv4Pi * static_cast<double>(f[c]);
-        }
-      }
-      else
-      {
-        const Material& m = this->SurfaceRef->MaterialOf(hits.Triangle ? hits.Triangle[i] : 0);
-        for (int c = 0; c < 3; ++c)
-        {
-          v[c] = m.Reflectance[c] * InvPi * static_cast<double>(f[c]);
-        }
-      }
-      this->ValueHistogram.Add(cell, v);
-    }
-    this->ChainForward(this->WeightHistogram, &this->ValueHistogram);
-    return;
   }
 
+  const std::array<int, 3>& Dims;
+  const Medium* MediumRef;
+  const Surface* SurfaceRef;
+  const SurfaceChart& Chart;
+  bool Planar;
+  Box Bounds;
+  float UU, VV;
+};
+}
+
+void ObjectRadiance::Bin(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
+  const ParallelFor& parallelFor)
+{
+  const CellLocator cellOfHit(this->Dims, this->MediumRef, this->SurfaceRef, this->Chart);
+  if (!this->ViewDependent)
+  {
+    this->BinInPlace(hits, index, count, cellOfHit);
+  }
+  else
+  {
+    this->KeepHits(hits, index, count, cellOfHit, parallelFor);
+  }
+}
+
+template <typename Locator>
+void ObjectRadiance::BinInPlace(
+  const HitArrays& hits, const std::uint32_t* index, std::size_t count, const Locator& cellOfHit)
+{
+  // View-independent objects: one pass in hit order adds every hit to its
+  // cell (deterministic, and the histogram fits in cache); nothing is kept.
+  this->ChainReceive(this->WeightHistogram, &this->ValueHistogram);
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    const std::uint32_t i = index[k];
+    if (!this->MediumRef && !this->FromFront(hits, i))
+    {
+      continue; // light on the back side: reflected, not shown
+    }
+    const std::uint32_t cell = cellOfHit(hits, i);
+    const float* f = hits.Flux + 3 * i;
+    const double w = (static_cast<double>(f[0]) + f[1] + f[2]) / 3.0;
+    this->WeightHistogram.Add(cell, &w);
+    double v[3];
+    if (this->MediumRef)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        v[c] = Inv4Pi * static_cast<double>(f[c]);
+      }
+    }
+    else
+    {
+      const Material& m = this->SurfaceRef->MaterialOf(hits.Triangle ? hits.Triangle[i] : 0);
+      for (int c = 0; c < 3; ++c)
+      {
+        v[c] = m.Reflectance[c] * InvPi * static_cast<double>(f[c]);
+      }
+    }
+    this->ValueHistogram.Add(cell, v);
+  }
+  this->ChainForward(this->WeightHistogram, &this->ValueHistogram);
+}
+
+template <typename Locator>
+void ObjectRadiance::KeepHits(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
+  const Locator& cellOfHit, const ParallelFor& parallelFor)
+{
+  const std::size_t cells = static_cast<std::size_t>(this->Dims[0]) * this->Dims[1] * this->Dims[2];
   // View-dependent objects keep their hits with their histogram cells,
   // grouped by ranges of cells: a new eye re-weights them (WeighCells).
   // Surfaces keep the hits arriving on their front side only.
@@ -317,13 +360,14 @@ void ObjectRadiance::Bin(const HitArrays& hits, const std::uint32_t* index, std:
     {
       for (std::size_t k = begin; k < end; ++k)
       {
-        cellOf[k] = cellOfHit(index[k]);
+        cellOf[k] = cellOfHit(hits, index[k]);
       }
     });
   // Group the hits by ranges of cells (a coarse, stable counting sort):
   // each range is then one task, and a cell's sum follows hit order.
   std::vector<std::size_t> start(Ranges + 1, 0);
-  auto rangeOf = [&](std::uint32_t cell) { return static_cast<std::size_t>(cell) * Ranges / cells; };
+  auto rangeOf = [&](std::uint32_t cell)
+  { return static_cast<std::size_t>(cell) * Ranges / cells; };
   for (std::size_t k = 0; k < count; ++k)
   {
     ++start[rangeOf(cellOf[k]) + 1];
@@ -347,8 +391,8 @@ void ObjectRadiance::Bin(const HitArrays& hits, const std::uint32_t* index, std:
   std::vector<std::size_t> mergedStart(Ranges + 1, 0);
   for (std::size_t r = 0; r < Ranges; ++r)
   {
-    mergedStart[r + 1] = mergedStart[r] + (this->RangeStart[r + 1] - this->RangeStart[r]) +
-      (start[r + 1] - start[r]);
+    mergedStart[r + 1] =
+      mergedStart[r] + (this->RangeStart[r + 1] - this->RangeStart[r]) + (start[r + 1] - start[r]);
   }
   parallelFor(0, Ranges,
     [&](std::size_t begin, std::size_t end)
@@ -584,8 +628,7 @@ void ObjectRadiance::ChainForward(Histogram& a, Histogram* b)
   }
 }
 
-void ObjectRadiance::ToRadiance(
-  std::size_t t, const Region& r, const double* sum, float* out) const
+void ObjectRadiance::ToRadiance(std::size_t t, const Region& r, const double* sum, float* out) const
 {
   // J = albedo * sum(p Phi) / V; S = J / sigma_t.
   const double volume = static_cast<double>(r.Cells()) * this->CellVolume;

@@ -175,6 +175,14 @@ private:
   bool FromFront(const HitArrays& hits, std::uint32_t i) const;
   void Bin(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
     const ParallelFor& parallelFor);
+  // Bin()'s two ways: view-independent objects add every hit to its cell in
+  // one pass in hit order; view-dependent ones keep their hits by cell.
+  template <typename Locator>
+  void BinInPlace(
+    const HitArrays& hits, const std::uint32_t* index, std::size_t count, const Locator& cellOfHit);
+  template <typename Locator>
+  void KeepHits(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
+    const Locator& cellOfHit, const ParallelFor& parallelFor);
   void Finish(const Vec3& eye, double thresholdFlux, bool first, const ParallelFor& parallelFor);
   void ToRadiance(std::size_t texel, const Region& region, const double* sum, float* out) const;
   void WeighCells(const Vec3& eye, const ParallelFor& parallelFor);

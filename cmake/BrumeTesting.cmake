@@ -1,0 +1,21 @@
+# brume_test_driver(NAME TESTS file.cxx... LIBRARIES target... [RENDERING])
+#
+# One test driver executable per test directory, as VTK builds its tests
+# (create_test_sourcelist): `NAME TestX [args]` runs TestX(argc, argv) after
+# BrumeTestSetup (the threaded SMP backend). RENDERING registers the OpenGL
+# implementations (VTK's and the slice mapper's) with the object factories.
+function (brume_test_driver name)
+  cmake_parse_arguments(PARSE_ARGV 1 arg "RENDERING" "" "TESTS;LIBRARIES")
+  create_test_sourcelist(sources "${name}.cxx" ${arg_TESTS}
+    EXTRA_INCLUDE BrumeTestSetup.h
+    FUNCTION BrumeTestSetup)
+  add_executable("${name}" ${sources})
+  target_include_directories("${name}" PRIVATE
+    "${CMAKE_CURRENT_SOURCE_DIR}" "${PROJECT_SOURCE_DIR}/Testing/Cxx")
+  target_link_libraries("${name}" PRIVATE Brume::DataModel ${arg_LIBRARIES})
+  brume_set_warnings("${name}")
+  if (arg_RENDERING)
+    vtk_module_autoinit(TARGETS "${name}"
+      MODULES VTK::RenderingOpenGL2 VTK::RenderingVolumeOpenGL2 Brume::RenderingOpenGL2)
+  endif ()
+endfunction ()
