@@ -29,6 +29,9 @@ int RunBench(const BenchOptions& options);
 
 struct ChartOptions
 {
+  std::string Scene;   // `brume chart [SCENE]`: a scene file; empty: the built-in scene
+  std::string Medium;  // --medium NAME: the medium the sweep edits (empty: the first)
+  std::string Surface; // --surface NAME: the surface the sweep edits (empty: the most visible)
   std::string Output = "chart.png";
   std::string Csv = "chart.csv";
   std::string CacheDirectory;
