@@ -6,7 +6,8 @@ endif ()
 file(STRINGS "${CSV}" lines)
 list(LENGTH lines count)
 list(GET lines 0 header)
-if (NOT header STREQUAL "method,budget,seconds,rel_mae,rel_rmse,rel_mae_medium,rel_rmse_medium")
+# Today's columns, then the 8x8-block error (vtkBrumeImageError).
+if (NOT header STREQUAL "method,budget,seconds,rel_mae,rel_rmse,rel_mae_medium,rel_rmse_medium,block_error")
   message(FATAL_ERROR "unexpected CSV header: ${header}")
 endif ()
 # 2 pipeline budgets x 4 rows (per-view and SH media, full and new view),

@@ -15,6 +15,8 @@ function (brume_test_driver name)
   target_link_libraries("${name}" PRIVATE Brume::DataModel ${arg_LIBRARIES})
   brume_set_warnings("${name}")
   if (arg_RENDERING)
+    target_link_libraries("${name}" PRIVATE
+      VTK::RenderingOpenGL2 VTK::RenderingVolumeOpenGL2 Brume::RenderingOpenGL2)
     vtk_module_autoinit(TARGETS "${name}"
       MODULES VTK::RenderingOpenGL2 VTK::RenderingVolumeOpenGL2 Brume::RenderingOpenGL2)
   endif ()

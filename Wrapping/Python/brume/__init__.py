@@ -12,7 +12,9 @@ The three phases of Jimenez & Pueyo (2003) as VTK algorithms:
 
 then vtkBrumeSceneActors adds the textured surfaces and the slice volumes to
 a vtkRenderer. Importing brume also registers the OpenGL implementation of
-vtkBrumeSliceVolumeMapper with VTK's object factory.
+vtkBrumeSliceVolumeMapper with VTK's object factory. vtkBrumeImageError,
+vtkBrumeErrorChart and vtkBrumeStabilitySweep measure images against the
+reference path tracer on any scene.
 """
 
 # ParaView's (or VTK's) own modules first: ours depend on them.
@@ -25,5 +27,6 @@ from .vtkBrumeTracing import *  # noqa: F401,F403
 from .vtkBrumeReconstruction import *  # noqa: F401,F403
 from .vtkBrumeRendering import *  # noqa: F401,F403
 from .vtkBrumeRenderingOpenGL2 import *  # noqa: F401,F403
+from .vtkBrumeEvaluation import *  # noqa: F401,F403
 
 __version__ = "0.1.0"

@@ -1,0 +1,110 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Small scenes built in code for the Evaluation tests, with object names of
+// their own (none of the default scene's).
+#ifndef EvaluationTestScenes_h
+#define EvaluationTestScenes_h
+
+#include "vtkBrumeSceneConversion.h"
+#include "vtkCellArray.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPartitionedDataSetCollection.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkStringArray.h"
+
+#include <string>
+
+/// Appends the quad p0 p1 p2 p3 (its front: counter-clockwise seen from it),
+/// Lambertian of reflectance 0.6, emitting `emission` from its front.
+inline void AddQuad(vtkPartitionedDataSetCollection* scene, const std::string& name,
+  const double p0[3], const double p1[3], const double p2[3], const double p3[3],
+  double emission = 0.0)
+{
+  vtkNew<vtkPoints> points;
+  for (const double* p : { p0, p1, p2, p3 })
+  {
+    points->InsertNextPoint(p);
+  }
+  vtkNew<vtkCellArray> polys;
+  const vtkIdType quad[4] = { 0, 1, 2, 3 };
+  polys->InsertNextCell(4, quad);
+  vtkNew<vtkPolyData> surface;
+  surface->SetPoints(points);
+  surface->SetPolys(polys);
+  const double reflectance[3] = { 0.6, 0.6, 0.6 }, emitted[3] = { emission, emission, emission };
+  vtkBrumeSceneConversion::AppendTuple(surface->GetFieldData(), "BrumeReflectance", reflectance, 3);
+  vtkBrumeSceneConversion::AppendTuple(surface->GetFieldData(), "BrumeEmission", emitted, 3);
+  vtkBrumeSceneConversion::AddObject(scene, surface, name);
+}
+
+/// Appends a homogeneous medium filling the box [lower, upper].
+inline void AddMedium(vtkPartitionedDataSetCollection* scene, const std::string& name,
+  const double lower[3], const double upper[3])
+{
+  vtkNew<vtkImageData> box;
+  box->SetOrigin(lower[0], lower[1], lower[2]);
+  box->SetSpacing(upper[0] - lower[0], upper[1] - lower[1], upper[2] - lower[2]);
+  box->SetDimensions(2, 2, 2);
+  const double sigmaA[3] = { 0.1, 0.1, 0.1 }, sigmaS[3] = { 0.9, 0.9, 0.9 }, g = 0.3;
+  vtkBrumeSceneConversion::AppendTuple(box->GetFieldData(), "BrumeSigmaA", sigmaA, 3);
+  vtkBrumeSceneConversion::AppendTuple(box->GetFieldData(), "BrumeSigmaS", sigmaS, 3);
+  vtkBrumeSceneConversion::AppendTuple(box->GetFieldData(), "BrumeG", &g, 1);
+  vtkBrumeSceneConversion::AddObject(scene, box, name);
+}
+
+/// Adds a point light (radiant intensity `intensity` W/sr per channel) to the scene's field data.
+inline void AddPointLight(
+  vtkPartitionedDataSetCollection* scene, const double position[3], double intensity)
+{
+  vtkFieldData* fd = scene->GetFieldData();
+  vtkNew<vtkStringArray> type;
+  type->SetName("BrumeLightType");
+  type->InsertNextValue("point");
+  fd->AddArray(type);
+  const double down[3] = { 0, -1, 0 }, power[3] = { intensity, intensity, intensity }, cone = 180;
+  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeLightPosition", position, 3);
+  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeLightDirection", down, 3);
+  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeLightIntensity", power, 3);
+  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeLightConeAngle", &cone, 1);
+}
+
+/// Names the scene's camera in its field data.
+inline void SetSceneCamera(vtkPartitionedDataSetCollection* scene, const double position[3],
+  const double focalPoint[3], double viewAngle)
+{
+  vtkFieldData* fd = scene->GetFieldData();
+  const double up[3] = { 0, 1, 0 };
+  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeCameraPosition", position, 3);
+  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeCameraFocalPoint", focalPoint, 3);
+  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeCameraViewUp", up, 3);
+  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeCameraViewAngle", &viewAngle, 1);
+}
+
+/// A gallery: a floor ("stage"), a back wall ("backdrop"), a small emitter
+/// ("lamp") and, with `medium`, a box of mist ("mist") on the stage, seen
+/// by the scene's own camera.
+inline vtkSmartPointer<vtkPartitionedDataSetCollection> Gallery(bool medium)
+{
+  auto scene = vtkSmartPointer<vtkPartitionedDataSetCollection>::New();
+  const double f0[3] = { -2, -1, -2 }, f1[3] = { -2, -1, 2 }, f2[3] = { 2, -1, 2 },
+               f3[3] = { 2, -1, -2 };
+  AddQuad(scene, "stage", f0, f1, f2, f3);
+  const double b0[3] = { -2, -1, -1.5 }, b1[3] = { 2, -1, -1.5 }, b2[3] = { 2, 2, -1.5 },
+               b3[3] = { -2, 2, -1.5 };
+  AddQuad(scene, "backdrop", b0, b1, b2, b3);
+  const double l0[3] = { -0.3, 1.5, -0.3 }, l1[3] = { 0.3, 1.5, -0.3 }, l2[3] = { 0.3, 1.5, 0.3 },
+               l3[3] = { -0.3, 1.5, 0.3 };
+  AddQuad(scene, "lamp", l0, l1, l2, l3, 20.0);
+  if (medium)
+  {
+    const double lower[3] = { -0.6, -1, -0.6 }, upper[3] = { 0.6, 0.2, 0.6 };
+    AddMedium(scene, "mist", lower, upper);
+  }
+  const double eye[3] = { 0, 0.3, 4 }, target[3] = { 0, -0.2, 0 };
+  SetSceneCamera(scene, eye, target, 40);
+  return scene;
+}
+
+#endif

@@ -1,0 +1,152 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// vtkBrumeErrorChart and vtkBrumeStabilitySweep on a tiny budget, on a scene
+// that is not the default one (its own object names and camera).
+//   TestEvaluationOnScene chart|sweep OUTPUT_DIR
+#include "EvaluationTestScenes.h"
+
+#include "vtkBrumeErrorChart.h"
+#include "vtkBrumeReferenceCache.h"
+#include "vtkBrumeStabilitySweep.h"
+#include "vtkDataArray.h"
+#include "vtkExecutive.h"
+#include "vtkStringArray.h"
+#include "vtkTable.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <string>
+
+namespace
+{
+int Failures = 0;
+
+void Expect(bool ok, const std::string& what)
+{
+  if (!ok)
+  {
+    std::cerr << "FAILED: " << what << "\n";
+    ++Failures;
+  }
+}
+
+std::string FirstLine(const std::string& fileName)
+{
+  std::ifstream in(fileName);
+  std::string line;
+  std::getline(in, line);
+  return line;
+}
+
+// Every numeric value of the table is finite.
+bool Finite(vtkTable* table)
+{
+  for (vtkIdType c = 0; c < table->GetNumberOfColumns(); ++c)
+  {
+    auto* column = vtkArrayDownCast<vtkDataArray>(table->GetColumn(c));
+    for (vtkIdType r = 0; column && r < column->GetNumberOfTuples(); ++r)
+    {
+      if (!std::isfinite(column->GetTuple1(r)))
+      {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+double Value(vtkTable* table, const char* column, vtkIdType row)
+{
+  return vtkArrayDownCast<vtkDataArray>(table->GetColumnByName(column))->GetTuple1(row);
+}
+
+void TestChart(const std::string& directory)
+{
+  vtkNew<vtkBrumeErrorChart> chart;
+  chart->SetInputData(Gallery(true));
+  chart->SetSize(16, 16);
+  chart->SetMinParticles(2000);
+  chart->SetMaxParticles(2000);
+  chart->SetMaxSamples(4);
+  chart->SetReferenceSamples(8);
+  chart->SetCacheDirectory((directory + "/evaluation-cache").c_str());
+  chart->SetSceneName("gallery");
+  Expect(chart->GetExecutive()->Update() == 1, "the chart runs");
+  vtkTable* table = chart->GetOutput();
+  // 4 pipeline rows for the one budget, the path tracer at 1 and 4 spp.
+  Expect(table->GetNumberOfRows() == 6, "6 rows, not " + std::to_string(table->GetNumberOfRows()));
+  Expect(Finite(table), "finite errors and times");
+  Expect(Value(table, "rel_mae_medium", 0) > 0, "the mist is in view");
+  Expect(Value(table, "rel_mae", 4) > Value(table, "rel_mae", 5), "more samples, less error");
+  const double first = Value(table, "rel_mae", 4);
+  const std::string csv = directory + "/evaluation-chart.csv";
+  Expect(chart->WriteCsv(csv.c_str()), "the CSV is written");
+  Expect(FirstLine(csv) ==
+      "method,budget,seconds,rel_mae,rel_rmse,rel_mae_medium,rel_rmse_medium,block_error",
+    "the CSV's columns");
+  Expect(chart->WriteImage((directory + "/evaluation-chart.png").c_str()), "the PNG is written");
+
+  // Again: the reference comes from the cache, and so do the same errors.
+  chart->Modified();
+  chart->Update();
+  Expect(chart->GetReferenceCache()->GetReadFromCache(), "the reference is read from the cache");
+  Expect(Value(chart->GetOutput(), "rel_mae", 4) == first, "the same errors from the cache");
+}
+
+void TestSweep(const std::string& directory, bool medium)
+{
+  vtkNew<vtkBrumeStabilitySweep> sweep;
+  sweep->SetInputData(Gallery(medium));
+  sweep->SetSize(16, 16);
+  sweep->SetMinParticles(1000);
+  sweep->SetMaxParticles(1000);
+  sweep->SetReferenceSamples(4);
+  sweep->SetCacheDirectory((directory + "/evaluation-cache").c_str());
+  sweep->SetSceneName(medium ? "gallery" : "gallery without mist");
+  Expect(sweep->GetExecutive()->Update() == 1, "the sweep runs");
+  vtkTable* table = sweep->GetOutput();
+  const std::string surface = sweep->GetChosenSurfaceName();
+  Expect(surface == "stage" || surface == "backdrop", "a surface in view: " + surface);
+  Expect(std::string(sweep->GetChosenMediumName()) == (medium ? "mist" : ""), "the medium");
+  // 17 medium cases (or none), 1 particles case, 2 surface cases.
+  const vtkIdType rows = medium ? 20 : 3;
+  Expect(table->GetNumberOfRows() == rows, "rows: " + std::to_string(table->GetNumberOfRows()));
+  auto* parameter = vtkStringArray::SafeDownCast(table->GetColumnByName("parameter"));
+  Expect(parameter && parameter->GetValue(rows - 1) == surface, "the surface cases name it");
+  Expect(parameter && parameter->GetValue(0) == (medium ? "g" : "particles"), "the first case");
+  Expect(sweep->GetAllFinite() && Finite(table), "finite errors and times");
+  const std::string csv = directory + "/evaluation-sweep.csv";
+  Expect(sweep->WriteCsv(csv.c_str()), "the CSV is written");
+  Expect(FirstLine(csv).rfind("parameter,value,pipeline_seconds,pipeline_rel_mae,pathtracer_spp,"
+                              "pathtracer_seconds,pathtracer_rel_mae,finite,pipeline_sh_rel_mae",
+           0) == 0,
+    "the CSV's columns");
+  Expect(sweep->WriteImage((directory + "/evaluation-sweep.png").c_str()), "the PNG is written");
+}
+}
+
+int TestEvaluationOnScene(int argc, char* argv[])
+{
+  if (argc < 3)
+  {
+    std::cerr << "usage: TestEvaluationOnScene chart|sweep OUTPUT_DIR\n";
+    return EXIT_FAILURE;
+  }
+  if (!std::getenv("DISPLAY"))
+  {
+    std::cerr << "no X display (run ctest under xvfb-run -a): skipped\n";
+    return 125;
+  }
+  const std::string what = argv[1], directory = argv[2];
+  if (what == "chart")
+  {
+    TestChart(directory);
+  }
+  else
+  {
+    TestSweep(directory, true);
+    TestSweep(directory, false);
+  }
+  return Failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}

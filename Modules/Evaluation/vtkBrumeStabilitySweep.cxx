@@ -1,0 +1,570 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkBrumeStabilitySweep.h"
+
+#include "vtkBrumeErrorPlot.h"
+#include "vtkBrumeEvaluationTable.h"
+#include "vtkBrumeEvaluationView.h"
+#include "vtkBrumeImageError.h"
+#include "vtkBrumeReferenceCache.h"
+#include "vtkBrumeSceneConversion.h"
+#include "vtkBrumeTimedPipeline.h"
+#include "vtkCamera.h"
+#include "vtkCompositeDataSet.h"
+#include "vtkDoubleArray.h"
+#include "vtkExecutive.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkObjectFactory.h"
+#include "vtkPartitionedDataSet.h"
+#include "vtkPartitionedDataSetCollection.h"
+#include "vtkPolyData.h"
+#include "vtkStringArray.h"
+#include "vtkTable.h"
+
+#include "brume/RayCaster.h"
+
+#include <algorithm>
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkBrumeStabilitySweep);
+vtkCxxSetObjectMacro(vtkBrumeStabilitySweep, Camera, vtkCamera);
+
+namespace
+{
+using Scene = vtkPartitionedDataSetCollection;
+
+// The reference's seed is apart from the images' (as in vtkBrumeErrorChart).
+constexpr vtkIdType ReferenceSeedOffset = 1000003;
+
+// An object's name as the scene conversion gives it.
+std::string NameOf(Scene* scene, unsigned int i)
+{
+  if (scene->HasMetaData(i) && scene->GetMetaData(i)->Has(vtkCompositeDataSet::NAME()))
+  {
+    return scene->GetMetaData(i)->Get(vtkCompositeDataSet::NAME());
+  }
+  return "object" + std::to_string(i);
+}
+
+vtkDataObject* ObjectData(Scene* scene, unsigned int i)
+{
+  vtkPartitionedDataSet* object = scene->GetPartitionedDataSet(i);
+  return object && object->GetNumberOfPartitions() > 0 ? object->GetPartition(0) : nullptr;
+}
+
+// Sets a field array of the scene object `object`.
+void SetField(Scene* scene, int object, const char* array, const std::vector<double>& values)
+{
+  vtkFieldData* fd = ObjectData(scene, object)->GetFieldData();
+  vtkNew<vtkDoubleArray> a;
+  a->SetName(array);
+  a->SetNumberOfComponents(static_cast<int>(values.size()));
+  a->InsertNextTuple(values.data());
+  fd->RemoveArray(array);
+  fd->AddArray(a);
+}
+
+void SetMaterial(Scene* scene, int object, const char* type)
+{
+  vtkFieldData* fd = ObjectData(scene, object)->GetFieldData();
+  vtkNew<vtkStringArray> a;
+  a->SetName("BrumeMaterial");
+  a->InsertNextValue(type);
+  fd->RemoveArray("BrumeMaterial");
+  fd->AddArray(a);
+}
+
+struct Case
+{
+  std::string Parameter, Value;
+  std::string Object; // the edited medium's name, for the cache key
+  std::function<void(Scene*)> Edit;
+  vtkTypeInt64 Particles;
+};
+
+void AddMediumCases(std::vector<Case>& cases, int medium, const std::string& name, vtkTypeInt64 n)
+{
+  for (double g : { -0.99, -0.5, 0.0, 0.5, 0.9, 0.99 })
+  {
+    cases.push_back(
+      { "g", std::to_string(g), name, [=](Scene* s) { SetField(s, medium, "BrumeG", { g }); }, n });
+  }
+  for (double k : { 0.001, 0.1, 1.0, 10.0, 100.0, 1000.0 })
+  {
+    cases.push_back({ "optical thickness", std::to_string(1.1 * k), name,
+      [=](Scene* s)
+      {
+        SetField(s, medium, "BrumeSigmaS", { k, k, k });
+        SetField(s, medium, "BrumeSigmaA", { 0.1 * k, 0.1 * k, 0.1 * k });
+      },
+      n });
+  }
+  for (double a : { 0.0, 0.5, 0.9, 0.99, 1.0 })
+  {
+    cases.push_back({ "albedo", std::to_string(a), name,
+      [=](Scene* s)
+      {
+        SetField(s, medium, "BrumeSigmaS", { 1.1 * a, 1.1 * a, 1.1 * a });
+        SetField(s, medium, "BrumeSigmaA", { 1.1 * (1 - a), 1.1 * (1 - a), 1.1 * (1 - a) });
+      },
+      n });
+  }
+}
+
+void AddSurfaceCases(std::vector<Case>& cases, int surface, const std::string& name, vtkTypeInt64 n)
+{
+  cases.push_back({ name, "glossy", "",
+    [=](Scene* s)
+    {
+      SetMaterial(s, surface, "phong");
+      SetField(s, surface, "BrumeReflectance", { 0.2, 0.2, 0.2 });
+      SetField(s, surface, "BrumeSpecular", { 0.6, 0.6, 0.6 });
+      SetField(s, surface, "BrumeExponent", { 50 });
+    },
+    n });
+  cases.push_back({ name, "mirror", "",
+    [=](Scene* s)
+    {
+      SetMaterial(s, surface, "mirror");
+      SetField(s, surface, "BrumeReflectance", { 0, 0, 0 });
+      SetField(s, surface, "BrumeSpecular", { 0.9, 0.9, 0.9 });
+    },
+    n });
+}
+
+// The collection index of the non-emissive surface hit by the most pixels'
+// primary rays (ties: the first); -1 when the scene has none.
+int MostVisibleSurface(Scene* collection, const brume::PinholeCamera& camera, std::string& error)
+{
+  brume::Scene scene;
+  std::vector<vtkBrumeSceneConversion::ObjectSource> sources;
+  error = vtkBrumeSceneConversion::ToScene(collection, scene, &sources);
+  if (!error.empty())
+  {
+    return -1;
+  }
+  std::vector<long long> pixels(scene.Surfaces.size(), 0);
+  if (!scene.Surfaces.empty())
+  {
+    const brume::RayCaster caster(scene);
+    if (!caster.GetError().empty())
+    {
+      error = caster.GetError();
+      return -1;
+    }
+    for (int y = 0; y < camera.Height; ++y)
+    {
+      for (int x = 0; x < camera.Width; ++x)
+      {
+        brume::Vec3 o, d;
+        camera.Ray(x + 0.5f, y + 0.5f, o, d);
+        brume::SurfaceHit hit;
+        if (caster.Intersect(o, d, 0.f, std::numeric_limits<float>::infinity(), hit))
+        {
+          ++pixels[hit.Surface];
+        }
+      }
+    }
+  }
+  int best = -1;
+  for (std::size_t s = 0; s < scene.Surfaces.size(); ++s)
+  {
+    if (!scene.Surfaces[s].IsEmitter() && (best < 0 || pixels[s] > pixels[best]))
+    {
+      best = static_cast<int>(s);
+    }
+  }
+  return best < 0 ? -1 : static_cast<int>(sources[best].CollectionIndex);
+}
+
+// What one case needs besides its scene.
+struct Settings
+{
+  vtkCamera* Camera;
+  const int* Size;
+  double Threshold;
+  vtkIdType Seed;
+  int Order;
+  int ReferenceSamples;
+  const char* CacheDirectory;
+  std::string Key;
+};
+
+// One case's measurements.
+struct Row
+{
+  double PipelineSeconds = 0, PipelineMae = 0, PipelineBlock = 0;
+  int Spp = 0;
+  double TracerSeconds = 0, TracerMae = 0, TracerBlock = 0;
+  bool Finite = true;
+  double ShMae = 0, ShBlock = 0;
+};
+
+vtkSmartPointer<vtkBrumeTimedPipeline> Pipeline(
+  const Settings& s, vtkDataObject* scene, vtkTypeInt64 particles, bool directional)
+{
+  auto run = vtkSmartPointer<vtkBrumeTimedPipeline>::New();
+  run->SetInputData(scene);
+  run->SetCamera(s.Camera);
+  run->SetSize(s.Size[0], s.Size[1]);
+  run->SetNumberOfParticles(particles);
+  run->SetRadiosityThreshold(s.Threshold);
+  run->SetSeed(s.Seed);
+  run->SetDirectionalRadiance(directional);
+  run->SetDirectionalOrder(s.Order);
+  return run->GetExecutive()->Update() ? run : nullptr;
+}
+
+// A path-traced image: cached when `directory` is given.
+vtkSmartPointer<vtkBrumeReferenceCache> PathTrace(const Settings& s, vtkDataObject* scene, int spp,
+  vtkIdType seed, const char* directory = nullptr, const std::string& key = "")
+{
+  auto tracer = vtkSmartPointer<vtkBrumeReferenceCache>::New();
+  tracer->SetInputData(scene);
+  tracer->SetCamera(s.Camera);
+  tracer->SetSize(s.Size[0], s.Size[1]);
+  tracer->SetSamplesPerPixel(spp);
+  tracer->SetSeed(seed);
+  tracer->SetCacheDirectory(directory);
+  tracer->SetSceneKey(key.c_str());
+  return tracer->GetExecutive()->Update() ? tracer : nullptr;
+}
+
+// The pipeline and the path tracer given the pipeline's time, against a
+// converged reference of the case.
+bool RunCase(const Settings& s, const Case& k, Scene* scene, Row& row)
+{
+  std::string name = (k.Object.empty() ? "" : k.Object + "-") + k.Parameter + "-" + k.Value;
+  std::replace(name.begin(), name.end(), ' ', '_');
+  const auto converged = PathTrace(s, scene, s.ReferenceSamples, s.Seed + ReferenceSeedOffset,
+    s.CacheDirectory, s.Key + "-sweep-" + name);
+  const auto run = converged ? Pipeline(s, scene, k.Particles, false) : nullptr;
+  vtkNew<vtkBrumeImageError> error;
+  if (!run || !error->Compare(run->GetOutput(), converged->GetOutput()))
+  {
+    return false;
+  }
+  row.PipelineSeconds = run->GetFullSeconds();
+  row.PipelineMae = error->GetRelativeMAE();
+  row.PipelineBlock = error->GetBlockError();
+  // The path tracer given the pipeline's time: its speed from one sample.
+  const auto oneSample = PathTrace(s, scene, 1, s.Seed);
+  if (!oneSample)
+  {
+    return false;
+  }
+  row.Spp = std::max(
+    1, static_cast<int>(row.PipelineSeconds / std::max(oneSample->GetRenderSeconds(), 1e-6)));
+  const auto tracer = PathTrace(s, scene, row.Spp, s.Seed);
+  if (!tracer || !error->Compare(tracer->GetOutput(), converged->GetOutput()))
+  {
+    return false;
+  }
+  row.TracerSeconds = tracer->GetRenderSeconds();
+  row.TracerMae = error->GetRelativeMAE();
+  row.TracerBlock = error->GetBlockError();
+  // The same budget with directional (spherical-harmonics) media.
+  const auto sh = Pipeline(s, scene, k.Particles, true);
+  if (!sh || !error->Compare(sh->GetOutput(), converged->GetOutput()))
+  {
+    return false;
+  }
+  row.ShMae = error->GetRelativeMAE();
+  row.ShBlock = error->GetBlockError();
+  row.Finite = vtkBrumeImageError::IsFinite(run->GetOutput()) &&
+    vtkBrumeImageError::IsFinite(sh->GetOutput()) &&
+    vtkBrumeImageError::IsFinite(tracer->GetOutput()) &&
+    vtkBrumeImageError::IsFinite(converged->GetOutput());
+  return true;
+}
+
+// The table's columns, in the CSV's order.
+struct Columns
+{
+  vtkStringArray *Parameter, *Value;
+  vtkDoubleArray *PipelineSeconds, *PipelineMae, *TracerSeconds, *TracerMae, *ShMae;
+  vtkIntArray *Spp, *Finite;
+  vtkDoubleArray *PipelineBlock, *TracerBlock, *ShBlock;
+
+  explicit Columns(vtkTable* table)
+  {
+    using T = vtkBrumeEvaluationTable;
+    this->Parameter = T::AddColumn<vtkStringArray>(table, "parameter");
+    this->Value = T::AddColumn<vtkStringArray>(table, "value");
+    this->PipelineSeconds = T::AddColumn<vtkDoubleArray>(table, "pipeline_seconds");
+    this->PipelineMae = T::AddColumn<vtkDoubleArray>(table, "pipeline_rel_mae");
+    this->Spp = T::AddColumn<vtkIntArray>(table, "pathtracer_spp");
+    this->TracerSeconds = T::AddColumn<vtkDoubleArray>(table, "pathtracer_seconds");
+    this->TracerMae = T::AddColumn<vtkDoubleArray>(table, "pathtracer_rel_mae");
+    this->Finite = T::AddColumn<vtkIntArray>(table, "finite");
+    this->ShMae = T::AddColumn<vtkDoubleArray>(table, "pipeline_sh_rel_mae");
+    this->PipelineBlock = T::AddColumn<vtkDoubleArray>(table, "pipeline_block_error");
+    this->TracerBlock = T::AddColumn<vtkDoubleArray>(table, "pathtracer_block_error");
+    this->ShBlock = T::AddColumn<vtkDoubleArray>(table, "pipeline_sh_block_error");
+  }
+
+  void Add(const Case& k, const Row& row)
+  {
+    this->Value->InsertNextValue(k.Value);
+    this->PipelineSeconds->InsertNextValue(row.PipelineSeconds);
+    this->PipelineMae->InsertNextValue(row.PipelineMae);
+    this->Spp->InsertNextValue(row.Spp);
+    this->TracerSeconds->InsertNextValue(row.TracerSeconds);
+    this->TracerMae->InsertNextValue(row.TracerMae);
+    this->Finite->InsertNextValue(row.Finite ? 1 : 0);
+    this->ShMae->InsertNextValue(row.ShMae);
+    this->PipelineBlock->InsertNextValue(row.PipelineBlock);
+    this->TracerBlock->InsertNextValue(row.TracerBlock);
+    this->ShBlock->InsertNextValue(row.ShBlock);
+    // Last: the first column counts the table's rows.
+    this->Parameter->InsertNextValue(k.Parameter);
+  }
+};
+}
+
+vtkBrumeStabilitySweep::vtkBrumeStabilitySweep()
+{
+  this->SetSceneName("scene");
+}
+
+vtkBrumeStabilitySweep::~vtkBrumeStabilitySweep()
+{
+  this->SetCamera(nullptr);
+  this->SetMediumName(nullptr);
+  this->SetSurfaceName(nullptr);
+  this->SetCacheDirectory(nullptr);
+  this->SetSceneName(nullptr);
+  this->SetCacheKey(nullptr);
+}
+
+vtkMTimeType vtkBrumeStabilitySweep::GetMTime()
+{
+  vtkMTimeType t = this->Superclass::GetMTime();
+  return this->Camera ? std::max(t, this->Camera->GetMTime()) : t;
+}
+
+int vtkBrumeStabilitySweep::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataObject");
+  return 1;
+}
+
+bool vtkBrumeStabilitySweep::FindMedium(vtkDataObject* input, int& index)
+{
+  index = -1;
+  this->ChosenMedium.clear();
+  const auto scene = vtkBrumeSceneConversion::AsCollection(input);
+  if (!scene)
+  {
+    vtkErrorMacro("The input must be a Brume scene (a vtkPartitionedDataSetCollection).");
+    return false;
+  }
+  const std::string wanted = this->MediumName ? this->MediumName : "";
+  for (unsigned int i = 0; i < scene->GetNumberOfPartitionedDataSets() && index < 0; ++i)
+  {
+    const bool medium = vtkImageData::SafeDownCast(ObjectData(scene, i)) != nullptr;
+    if (!wanted.empty() && NameOf(scene, i) == wanted && !medium)
+    {
+      vtkErrorMacro("The scene object '" << wanted << "' is not a medium (a vtkImageData).");
+      return false;
+    }
+    if (medium && (wanted.empty() || NameOf(scene, i) == wanted))
+    {
+      index = static_cast<int>(i);
+      this->ChosenMedium = NameOf(scene, i);
+    }
+  }
+  if (!wanted.empty() && index < 0)
+  {
+    vtkErrorMacro("The scene has no medium named '" << wanted << "'.");
+    return false;
+  }
+  return true;
+}
+
+bool vtkBrumeStabilitySweep::FindSurface(vtkDataObject* input, int& index)
+{
+  index = -1;
+  this->ChosenSurface.clear();
+  const auto scene = vtkBrumeSceneConversion::AsCollection(input);
+  if (!scene)
+  {
+    vtkErrorMacro("The input must be a Brume scene (a vtkPartitionedDataSetCollection).");
+    return false;
+  }
+  const std::string wanted = this->SurfaceName ? this->SurfaceName : "";
+  if (wanted.empty())
+  {
+    // On a grid 128 rays wide, whatever the image size, so that the choice
+    // does not depend on it.
+    const int width = 128;
+    const int height = std::max(1, static_cast<int>(width * this->Size[1] / this->Size[0]));
+    const brume::PinholeCamera camera = vtkBrumeEvaluationView::Pinhole(
+      vtkBrumeEvaluationView::Camera(scene, this->Camera), width, height);
+    std::string error;
+    index = MostVisibleSurface(scene, camera, error);
+    if (!error.empty())
+    {
+      vtkErrorMacro("Cannot choose a surface: invalid scene: " << error << ".");
+      return false;
+    }
+  }
+  for (unsigned int i = 0; i < scene->GetNumberOfPartitionedDataSets() && !wanted.empty(); ++i)
+  {
+    if (NameOf(scene, i) == wanted)
+    {
+      if (!vtkPolyData::SafeDownCast(ObjectData(scene, i)))
+      {
+        vtkErrorMacro("The scene object '" << wanted << "' is not a surface (a vtkPolyData).");
+        return false;
+      }
+      index = static_cast<int>(i);
+      break;
+    }
+  }
+  if (!wanted.empty() && index < 0)
+  {
+    vtkErrorMacro("The scene has no surface named '" << wanted << "'.");
+    return false;
+  }
+  this->ChosenSurface = index < 0 ? "" : NameOf(scene, index);
+  return true;
+}
+
+const char* vtkBrumeStabilitySweep::ChooseMedium(vtkDataObject* scene)
+{
+  int index = -1;
+  return this->FindMedium(scene, index) ? this->ChosenMedium.c_str() : nullptr;
+}
+
+const char* vtkBrumeStabilitySweep::ChooseSurface(vtkDataObject* scene)
+{
+  int index = -1;
+  return this->FindSurface(scene, index) ? this->ChosenSurface.c_str() : nullptr;
+}
+
+int vtkBrumeStabilitySweep::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  const auto scene =
+    vtkBrumeSceneConversion::AsCollection(vtkDataObject::GetData(inputVector[0], 0));
+  vtkTable* output = vtkTable::GetData(outputVector, 0);
+  this->AllFinite = true;
+  if (this->Size[0] < 1 || this->Size[1] < 1 || this->Size[0] > 16384 || this->Size[1] > 16384 ||
+    this->MaxParticles < 1 || this->Seed < 0)
+  {
+    vtkErrorMacro("Size must be in [1, 16384] on each axis, MaxParticles at least 1 and Seed "
+                  "non-negative.");
+    return 0;
+  }
+  int medium = -1, surface = -1;
+  if (!this->FindMedium(scene, medium) || !this->FindSurface(scene, surface))
+  {
+    return 0;
+  }
+  const vtkTypeInt64 particles = this->MaxParticles;
+  std::vector<Case> cases;
+  if (medium >= 0)
+  {
+    AddMediumCases(cases, medium, this->ChosenMedium, particles);
+  }
+  for (vtkTypeInt64 n = std::max<vtkTypeInt64>(100, this->MinParticles); n <= particles; n *= 10)
+  {
+    cases.push_back({ "particles", std::to_string(n), "", [](Scene*) {}, n });
+  }
+  if (surface >= 0)
+  {
+    AddSurfaceCases(cases, surface, this->ChosenSurface, particles);
+  }
+
+  const vtkSmartPointer<vtkCamera> camera = vtkBrumeEvaluationView::Camera(scene, this->Camera);
+  const Settings settings{ camera, this->Size, this->RadiosityThreshold, this->Seed,
+    this->DirectionalOrder, this->ReferenceSamples, this->CacheDirectory,
+    this->CacheKey && *this->CacheKey ? this->CacheKey : (this->SceneName ? this->SceneName : "") };
+  // One untimed run first: OpenGL start-up and shader compilation.
+  if (!Pipeline(settings, scene, 1000, false))
+  {
+    return 0;
+  }
+  Columns columns(output);
+  for (std::size_t c = 0; c < cases.size(); ++c)
+  {
+    const Case& k = cases[c];
+    auto edited = vtkSmartPointer<Scene>::New();
+    edited->DeepCopy(scene);
+    k.Edit(edited);
+    Row row;
+    if (!RunCase(settings, k, edited, row))
+    {
+      vtkErrorMacro("The case " << k.Parameter << " = " << k.Value << " failed.");
+      return 0;
+    }
+    this->AllFinite = this->AllFinite && row.Finite;
+    columns.Add(k, row);
+    this->UpdateProgress(static_cast<double>(c + 1) / cases.size());
+  }
+  return 1;
+}
+
+bool vtkBrumeStabilitySweep::WriteCsv(const char* fileName)
+{
+  std::string error;
+  if (!vtkBrumeEvaluationTable::WriteCsv(this->GetOutput(), fileName, error))
+  {
+    vtkErrorMacro("The sweep's CSV: " << error << ".");
+    return false;
+  }
+  return true;
+}
+
+bool vtkBrumeStabilitySweep::WriteImage(const char* fileName)
+{
+  vtkTable* table = this->GetOutput();
+  const char* columns[3][2] = { { "pipeline_rel_mae", "pipeline" },
+    { "pipeline_sh_rel_mae", "pipeline, SH media" },
+    { "pathtracer_rel_mae", "path-tracer, same time" } };
+  vtkNew<vtkBrumeErrorPlot> plot;
+  for (const auto& column : columns)
+  {
+    vtkDataArray* mae = vtkArrayDownCast<vtkDataArray>(table->GetColumnByName(column[0]));
+    for (vtkIdType r = 0; mae && r < mae->GetNumberOfTuples(); ++r)
+    {
+      plot->AddPoint(column[1], static_cast<double>(r + 1), mae->GetTuple1(r));
+    }
+  }
+  plot->SetTitle("Brume stability sweep: error per case (see the CSV)");
+  plot->SetXTitle("case");
+  plot->LogXOff();
+  if (!plot->Write(fileName))
+  {
+    vtkErrorMacro("Could not write the chart to " << (fileName ? fileName : "(no file)") << ".");
+    return false;
+  }
+  return true;
+}
+
+void vtkBrumeStabilitySweep::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  auto text = [](const char* s) { return s ? s : ""; };
+  os << indent << "Size: " << this->Size[0] << " x " << this->Size[1] << "\n";
+  os << indent << "MinParticles: " << this->MinParticles << "\n";
+  os << indent << "MaxParticles: " << this->MaxParticles << "\n";
+  os << indent << "ReferenceSamples: " << this->ReferenceSamples << "\n";
+  os << indent << "RadiosityThreshold: " << this->RadiosityThreshold << "\n";
+  os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "DirectionalOrder: " << this->DirectionalOrder << "\n";
+  os << indent << "Camera: " << this->Camera << "\n";
+  os << indent << "MediumName: " << text(this->MediumName) << "\n";
+  os << indent << "SurfaceName: " << text(this->SurfaceName) << "\n";
+  os << indent << "CacheDirectory: " << text(this->CacheDirectory) << "\n";
+  os << indent << "SceneName: " << text(this->SceneName) << "\n";
+  os << indent << "CacheKey: " << text(this->CacheKey) << "\n";
+  os << indent << "AllFinite: " << this->AllFinite << "\n";
+}

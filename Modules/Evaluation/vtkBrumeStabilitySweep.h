@@ -1,0 +1,200 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkBrumeStabilitySweep
+ * @brief   where the pipeline fails: one scene parameter at a time, on any scene
+ *
+ * Varies one parameter of the input scene at a time and measures, for each
+ * case, the pipeline (MaxParticles particles, per-view and
+ * spherical-harmonics media) and the path tracer given the pipeline's time
+ * (its samples per pixel from the time of one sample) against a converged
+ * reference of that case (vtkBrumeReferenceCache, ReferenceSamples samples
+ * per pixel, seed Seed + 1000003). The cases, in this order:
+ *
+ * - `g` = -0.99, -0.5, 0, 0.5, 0.9, 0.99 (the medium's BrumeG);
+ * - `optical thickness` = 1.1 k for k = 0.001, 0.1, 1, 10, 100, 1000
+ *   (BrumeSigmaS = k, BrumeSigmaA = 0.1 k per channel);
+ * - `albedo` = a for a = 0, 0.5, 0.9, 0.99, 1 (BrumeSigmaS = 1.1 a,
+ *   BrumeSigmaA = 1.1 (1 - a));
+ * - `particles` = max(100, MinParticles), then x10 up to MaxParticles (the
+ *   scene as it is);
+ * - the surface's name = `glossy` (Phong: BrumeReflectance 0.2,
+ *   BrumeSpecular 0.6, BrumeExponent 50) and `mirror` (BrumeReflectance 0,
+ *   BrumeSpecular 0.9).
+ *
+ * The medium cases edit one medium: MediumName, or when it is empty the
+ * scene's first medium (its first vtkImageData object). The surface cases
+ * edit one surface: SurfaceName, or when it is empty the surface that
+ * covers the most pixels of the view (the physics core's ray caster casts
+ * one ray through each pixel centre of a grid 128 pixels wide with the
+ * image's aspect, whatever Size is, and counts the first surface each
+ * meets, seen through the media; emissive surfaces are not chosen, since
+ * the cases are about reflection; ties go to the first in the collection).
+ * A scene without a medium skips the medium cases, one without a
+ * (non-emissive) surface the surface cases: GetChosenMediumName() or
+ * GetChosenSurfaceName() is then empty. A name that is not a medium (a
+ * surface) of the scene is an error.
+ *
+ * The output is a vtkTable, one row per case: `parameter`, `value`
+ * (strings), `pipeline_seconds`, `pipeline_rel_mae`, `pathtracer_spp`,
+ * `pathtracer_seconds`, `pathtracer_rel_mae`, `finite` (1 when no image
+ * of the case holds a NaN or an infinity), `pipeline_sh_rel_mae`, then
+ * the block errors (vtkBrumeImageError) `pipeline_block_error`,
+ * `pathtracer_block_error`, `pipeline_sh_block_error`. Rows are appended
+ * as they are measured, each followed by a progress event.
+ *
+ * Converged references are cached under CacheKey (default: SceneName),
+ * followed by `-sweep-`, the medium's name for the medium cases, the
+ * parameter and the value. Needs an OpenGL context (an X display).
+ *
+ * @sa vtkBrumeErrorChart vtkBrumeTimedPipeline
+ */
+#ifndef vtkBrumeStabilitySweep_h
+#define vtkBrumeStabilitySweep_h
+
+#include "vtkBrumeEvaluationModule.h" // For export macro
+#include "vtkTableAlgorithm.h"
+
+#include <string> // For the chosen names
+
+class vtkCamera;
+
+class VTKBRUMEEVALUATION_EXPORT vtkBrumeStabilitySweep : public vtkTableAlgorithm
+{
+public:
+  static vtkBrumeStabilitySweep* New();
+  vtkTypeMacro(vtkBrumeStabilitySweep, vtkTableAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// Image size in pixels (default 64 x 64, each in [1, 16384]).
+  vtkSetVector2Macro(Size, int);
+  vtkGetVector2Macro(Size, int);
+  ///@}
+
+  ///@{
+  /**
+   * The particles cases run from max(100, MinParticles) to MaxParticles in
+   * powers of 10; every other case traces MaxParticles (defaults 100 and
+   * 1,000,000).
+   */
+  vtkSetMacro(MinParticles, vtkTypeInt64);
+  vtkGetMacro(MinParticles, vtkTypeInt64);
+  vtkSetMacro(MaxParticles, vtkTypeInt64);
+  vtkGetMacro(MaxParticles, vtkTypeInt64);
+  ///@}
+
+  ///@{
+  /// Samples per pixel of the converged references (default 4096).
+  vtkSetMacro(ReferenceSamples, int);
+  vtkGetMacro(ReferenceSamples, int);
+  ///@}
+
+  ///@{
+  /// The reconstruction's radiosity threshold (default 128 hits).
+  vtkSetMacro(RadiosityThreshold, double);
+  vtkGetMacro(RadiosityThreshold, double);
+  ///@}
+
+  ///@{
+  /// Seed of the light tracer and the path tracer (default 0, non-negative).
+  vtkSetMacro(Seed, vtkIdType);
+  vtkGetMacro(Seed, vtkIdType);
+  ///@}
+
+  ///@{
+  /// Spherical-harmonics order of the SH media (default 3, in [1, 3]).
+  vtkSetMacro(DirectionalOrder, int);
+  vtkGetMacro(DirectionalOrder, int);
+  ///@}
+
+  ///@{
+  /// The camera; without one, the scene's camera or Brume's default view.
+  void SetCamera(vtkCamera* camera);
+  vtkGetObjectMacro(Camera, vtkCamera);
+  ///@}
+
+  ///@{
+  /// The medium and the surface to edit (default empty: chosen as above).
+  vtkSetStringMacro(MediumName);
+  vtkGetStringMacro(MediumName);
+  vtkSetStringMacro(SurfaceName);
+  vtkGetStringMacro(SurfaceName);
+  ///@}
+
+  ///@{
+  /// Where converged references are kept (default empty: rendered every time).
+  vtkSetStringMacro(CacheDirectory);
+  vtkGetStringMacro(CacheDirectory);
+  ///@}
+
+  ///@{
+  /// The scene's name, and what names it in cache files (default "scene", and empty: SceneName).
+  vtkSetStringMacro(SceneName);
+  vtkGetStringMacro(SceneName);
+  vtkSetStringMacro(CacheKey);
+  vtkGetStringMacro(CacheKey);
+  ///@}
+
+  ///@{
+  /**
+   * The medium and the surface the cases would edit in `scene` with the
+   * current settings: their names, "" when the scene has none (the cases
+   * are skipped), or nullptr, with an error, when MediumName or
+   * SurfaceName names no such object or the scene is not valid. The
+   * returned text lives until the next call.
+   */
+  const char* ChooseMedium(vtkDataObject* scene);
+  const char* ChooseSurface(vtkDataObject* scene);
+  ///@}
+
+  ///@{
+  /// What the last update edited ("" for skipped cases).
+  const char* GetChosenMediumName() { return this->ChosenMedium.c_str(); }
+  const char* GetChosenSurfaceName() { return this->ChosenSurface.c_str(); }
+  ///@}
+
+  /// True when every image of the last update was finite.
+  vtkGetMacro(AllFinite, bool);
+
+  /// Writes the last output as CSV (the columns above); false if it could not.
+  bool WriteCsv(const char* fileName);
+
+  /// Draws the last output (rel. MAE per case, three curves) into a PNG file.
+  bool WriteImage(const char* fileName);
+
+  vtkMTimeType GetMTime() override;
+
+protected:
+  vtkBrumeStabilitySweep();
+  ~vtkBrumeStabilitySweep() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  int Size[2] = { 64, 64 };
+  vtkTypeInt64 MinParticles = 100;
+  vtkTypeInt64 MaxParticles = 1000000;
+  int ReferenceSamples = 4096;
+  double RadiosityThreshold = 128.0;
+  vtkIdType Seed = 0;
+  int DirectionalOrder = 3;
+  vtkCamera* Camera = nullptr;
+  char* MediumName = nullptr;
+  char* SurfaceName = nullptr;
+  char* CacheDirectory = nullptr;
+  char* SceneName = nullptr;
+  char* CacheKey = nullptr;
+  bool AllFinite = true;
+  std::string ChosenMedium;
+  std::string ChosenSurface;
+
+private:
+  vtkBrumeStabilitySweep(const vtkBrumeStabilitySweep&) = delete;
+  void operator=(const vtkBrumeStabilitySweep&) = delete;
+
+  // Collection indices of the chosen objects (-1: none); false on error.
+  bool FindMedium(vtkDataObject* scene, int& index);
+  bool FindSurface(vtkDataObject* scene, int& index);
+};
+
+#endif

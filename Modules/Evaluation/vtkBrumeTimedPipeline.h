@@ -1,0 +1,132 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkBrumeTimedPipeline
+ * @brief   the three phases at one particle budget: their image and their times
+ *
+ * Runs the fast pipeline on the input scene as `brume render` does, and
+ * times it:
+ *
+ * 1. light tracing (vtkBrumeLightTracer, NumberOfParticles, Seed), radiance
+ *    reconstruction (vtkBrumeRadianceReconstruction for the camera, with
+ *    RadiosityThreshold and, when DirectionalRadiance is on, the media's
+ *    spherical harmonics up to DirectionalOrder) and one off-screen frame
+ *    (vtkBrumeSceneActors, read back by vtkBrumeFloatImageCapture): the
+ *    full time, `FullSeconds`;
+ * 2. when MeasureNewView is on, a new viewpoint: the camera turns 2 degrees
+ *    in azimuth and a frame is drawn there (untimed, so that every per-view
+ *    step runs again), then it turns back and the reconstruction's
+ *    incremental update and one frame are timed: `NewViewSeconds`.
+ *
+ * The frame is rendered `Supersampling` times larger on each axis and
+ * averaged down to `Size` (box filter), so that, like the reference path
+ * tracer's pixels, each pixel estimates the radiance averaged over its
+ * area. The output is that image: point data `Radiance` (float RGB, row 0
+ * at the bottom).
+ *
+ * Needs an OpenGL context (an X display; `xvfb-run -a` without one). A
+ * first run in a process also pays OpenGL's start-up and shader
+ * compilation: run one untimed first when the times matter.
+ *
+ * @sa vtkBrumeErrorChart vtkBrumeImageError
+ */
+#ifndef vtkBrumeTimedPipeline_h
+#define vtkBrumeTimedPipeline_h
+
+#include "vtkBrumeEvaluationModule.h" // For export macro
+#include "vtkImageAlgorithm.h"
+
+class vtkCamera;
+
+class VTKBRUMEEVALUATION_EXPORT vtkBrumeTimedPipeline : public vtkImageAlgorithm
+{
+public:
+  static vtkBrumeTimedPipeline* New();
+  vtkTypeMacro(vtkBrumeTimedPipeline, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// Output image size in pixels (default 256 x 256, each in [1, 16384]).
+  vtkSetVector2Macro(Size, int);
+  vtkGetVector2Macro(Size, int);
+  ///@}
+
+  ///@{
+  /// Rendered pixels per output pixel, on each axis (default 4, in [1, 16]).
+  vtkSetClampMacro(Supersampling, int, 1, 16);
+  vtkGetMacro(Supersampling, int);
+  ///@}
+
+  ///@{
+  /// Particles traced (default 1,000,000).
+  vtkSetMacro(NumberOfParticles, vtkTypeInt64);
+  vtkGetMacro(NumberOfParticles, vtkTypeInt64);
+  ///@}
+
+  ///@{
+  /// Seed of the light tracer (default 0).
+  vtkSetMacro(Seed, vtkIdType);
+  vtkGetMacro(Seed, vtkIdType);
+  ///@}
+
+  ///@{
+  /// The reconstruction's radiosity threshold (default 128 hits).
+  vtkSetMacro(RadiosityThreshold, double);
+  vtkGetMacro(RadiosityThreshold, double);
+  ///@}
+
+  ///@{
+  /// Directional (spherical-harmonics) media, and their order (default off, 3).
+  vtkSetMacro(DirectionalRadiance, bool);
+  vtkGetMacro(DirectionalRadiance, bool);
+  vtkBooleanMacro(DirectionalRadiance, bool);
+  vtkSetMacro(DirectionalOrder, int);
+  vtkGetMacro(DirectionalOrder, int);
+  ///@}
+
+  ///@{
+  /// Time a new viewpoint after the full run (default on).
+  vtkSetMacro(MeasureNewView, bool);
+  vtkGetMacro(MeasureNewView, bool);
+  vtkBooleanMacro(MeasureNewView, bool);
+  ///@}
+
+  ///@{
+  /// The camera; without one, the scene's camera or Brume's default view.
+  void SetCamera(vtkCamera* camera);
+  vtkGetObjectMacro(Camera, vtkCamera);
+  ///@}
+
+  ///@{
+  /// Seconds of the last update's full run and of its new viewpoint (0 when not measured).
+  vtkGetMacro(FullSeconds, double);
+  vtkGetMacro(NewViewSeconds, double);
+  ///@}
+
+  vtkMTimeType GetMTime() override;
+
+protected:
+  vtkBrumeTimedPipeline();
+  ~vtkBrumeTimedPipeline() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  int Size[2] = { 256, 256 };
+  int Supersampling = 4;
+  vtkTypeInt64 NumberOfParticles = 1000000;
+  vtkIdType Seed = 0;
+  double RadiosityThreshold = 128.0;
+  bool DirectionalRadiance = false;
+  int DirectionalOrder = 3;
+  bool MeasureNewView = true;
+  vtkCamera* Camera = nullptr;
+  double FullSeconds = 0;
+  double NewViewSeconds = 0;
+
+private:
+  vtkBrumeTimedPipeline(const vtkBrumeTimedPipeline&) = delete;
+  void operator=(const vtkBrumeTimedPipeline&) = delete;
+};
+
+#endif
