@@ -1,0 +1,237 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Binning the hits of an object into its histograms (brume/Reconstruction.h):
+// the cell of every hit, one pass in hit order for view-independent objects,
+// the kept hits grouped by cell for view-dependent ones.
+#include "brume/Reconstruction.h"
+
+#include "brume/Material.h"
+#include "brume/Sampling.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace brume
+{
+
+namespace
+{
+// Barycentric coordinates of p (projected) in the triangle abc.
+void Barycentric(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& p, float& u, float& v)
+{
+  const Vec3 e0 = b - a, e1 = c - a, e2 = p - a;
+  const float d00 = Dot(e0, e0), d01 = Dot(e0, e1), d11 = Dot(e1, e1);
+  const float d20 = Dot(e2, e0), d21 = Dot(e2, e1);
+  const float det = d00 * d11 - d01 * d01;
+  u = det != 0.f ? (d11 * d20 - d01 * d21) / det : 0.f;
+  v = det != 0.f ? (d00 * d21 - d01 * d20) / det : 0.f;
+}
+}
+
+namespace
+{
+// The histogram cell of a hit: its (u, v) on the surface's chart, or its
+// position in the medium's box.
+class CellLocator
+{
+public:
+  CellLocator(const std::array<int, 3>& dims, const Medium* medium, const Surface* surface,
+    const SurfaceChart& chart)
+    : Dims(dims)
+    , MediumRef(medium)
+    , SurfaceRef(surface)
+    , Chart(chart)
+    , Planar(!medium && chart.Type == SurfaceChart::Kind::Planar)
+    , Bounds(medium ? medium->Bounds : Box())
+    , UU(Dot(chart.Frame.U, chart.Frame.U))
+    , VV(Dot(chart.Frame.V, chart.Frame.V))
+  {
+  }
+
+  std::uint32_t operator()(const HitArrays& hits, std::uint32_t i) const
+  {
+    const Vec3 p(hits.Position[3 * i], hits.Position[3 * i + 1], hits.Position[3 * i + 2]);
+    if (this->MediumRef)
+    {
+      const Vec3 q = (p - this->Bounds.lower) / this->Bounds.Extent();
+      return this->Index(q.x, q.y, q.z);
+    }
+    if (this->Planar)
+    {
+      const Vec3 d = p - this->Chart.Frame.Origin;
+      return this->Index(
+        Dot(d, this->Chart.Frame.U) / this->UU, Dot(d, this->Chart.Frame.V) / this->VV, 0.0);
+    }
+    const std::uint32_t t = hits.Triangle[i];
+    const auto& tri = this->SurfaceRef->Triangles[t];
+    float b1, b2;
+    Barycentric(this->SurfaceRef->Vertices[tri[0]], this->SurfaceRef->Vertices[tri[1]],
+      this->SurfaceRef->Vertices[tri[2]], p, b1, b2);
+    const auto& uv = this->Chart.TriangleUV[t];
+    const float b0 = 1.f - b1 - b2;
+    return this->Index(
+      b0 * uv[0] + b1 * uv[2] + b2 * uv[4], b0 * uv[1] + b1 * uv[3] + b2 * uv[5], 0.0);
+  }
+
+private:
+  std::uint32_t Index(double s, double t, double r) const
+  {
+    std::array<int, 3> c{};
+    const double q[3] = { s, t, r };
+    for (int a = 0; a < 3; ++a)
+    {
+      const double x = std::floor(q[a] * this->Dims[a]);
+      c[a] = x >= 0.0 ? static_cast<int>(std::min<double>(x, this->Dims[a] - 1)) : 0;
+    }
+    return static_cast<std::uint32_t>(
+      (static_cast<std::size_t>(c[2]) * this->Dims[1] + c[1]) * this->Dims[0] + c[0]);
+  }
+
+  const std::array<int, 3>& Dims;
+  const Medium* MediumRef;
+  const Surface* SurfaceRef;
+  const SurfaceChart& Chart;
+  bool Planar;
+  Box Bounds;
+  float UU, VV;
+};
+}
+
+void ObjectRadiance::Bin(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
+  const ParallelFor& parallelFor)
+{
+  const CellLocator cellOfHit(this->Dims, this->MediumRef, this->SurfaceRef, this->Chart);
+  if (!this->ViewDependent)
+  {
+    this->BinInPlace(hits, index, count, cellOfHit);
+  }
+  else
+  {
+    this->KeepHits(hits, index, count, cellOfHit, parallelFor);
+  }
+}
+
+template <typename Locator>
+void ObjectRadiance::BinInPlace(
+  const HitArrays& hits, const std::uint32_t* index, std::size_t count, const Locator& cellOfHit)
+{
+  // View-independent objects: one pass in hit order adds every hit to its
+  // cell (deterministic, and the histogram fits in cache); nothing is kept.
+  this->ChainReceive(this->WeightHistogram, &this->ValueHistogram);
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    const std::uint32_t i = index[k];
+    if (!this->MediumRef && !this->FromFront(hits, i))
+    {
+      continue; // light on the back side: reflected, not shown
+    }
+    const std::uint32_t cell = cellOfHit(hits, i);
+    const float* f = hits.Flux + 3 * i;
+    const double w = (static_cast<double>(f[0]) + f[1] + f[2]) / 3.0;
+    this->WeightHistogram.Add(cell, &w);
+    double v[3];
+    if (this->MediumRef)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        v[c] = Inv4Pi * static_cast<double>(f[c]);
+      }
+    }
+    else
+    {
+      const Material& m = this->SurfaceRef->MaterialOf(hits.Triangle ? hits.Triangle[i] : 0);
+      for (int c = 0; c < 3; ++c)
+      {
+        v[c] = m.Reflectance[c] * InvPi * static_cast<double>(f[c]);
+      }
+    }
+    this->ValueHistogram.Add(cell, v);
+  }
+  this->ChainForward(this->WeightHistogram, &this->ValueHistogram);
+}
+
+template <typename Locator>
+void ObjectRadiance::KeepHits(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
+  const Locator& cellOfHit, const ParallelFor& parallelFor)
+{
+  const std::size_t cells = static_cast<std::size_t>(this->Dims[0]) * this->Dims[1] * this->Dims[2];
+  // View-dependent objects keep their hits with their histogram cells,
+  // grouped by ranges of cells: a new eye re-weights them (WeighCells).
+  // Surfaces keep the hits arriving on their front side only.
+  std::vector<std::uint32_t> front;
+  if (!this->MediumRef)
+  {
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      if (this->FromFront(hits, index[k]))
+      {
+        front.push_back(index[k]);
+      }
+    }
+    index = front.data();
+    count = front.size();
+  }
+  std::vector<std::uint32_t> cellOf(count);
+  parallelFor(0, count,
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t k = begin; k < end; ++k)
+      {
+        cellOf[k] = cellOfHit(hits, index[k]);
+      }
+    });
+  // Group the hits by ranges of cells (a coarse, stable counting sort):
+  // each range is then one task, and a cell's sum follows hit order.
+  std::vector<std::size_t> start(Ranges + 1, 0);
+  auto rangeOf = [&](std::uint32_t cell)
+  { return static_cast<std::size_t>(cell) * Ranges / cells; };
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    ++start[rangeOf(cellOf[k]) + 1];
+  }
+  for (std::size_t r = 0; r < Ranges; ++r)
+  {
+    start[r + 1] += start[r];
+  }
+  std::vector<std::uint32_t> order(count);
+  {
+    std::vector<std::size_t> cursor(start.begin(), start.end() - 1);
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      order[cursor[rangeOf(cellOf[k])]++] = static_cast<std::uint32_t>(k);
+    }
+  }
+  // The hits' data in that order, after the hits already kept in each range
+  // (particles added later come later in hit order): every later pass reads
+  // it sequentially.
+  std::vector<KeptHit> merged(this->Kept.size() + count);
+  std::vector<std::size_t> mergedStart(Ranges + 1, 0);
+  for (std::size_t r = 0; r < Ranges; ++r)
+  {
+    mergedStart[r + 1] =
+      mergedStart[r] + (this->RangeStart[r + 1] - this->RangeStart[r]) + (start[r + 1] - start[r]);
+  }
+  parallelFor(0, Ranges,
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t r = begin; r < end; ++r)
+      {
+        KeptHit* out = merged.data() + mergedStart[r];
+        out = std::copy(this->Kept.begin() + static_cast<std::ptrdiff_t>(this->RangeStart[r]),
+          this->Kept.begin() + static_cast<std::ptrdiff_t>(this->RangeStart[r + 1]), out);
+        for (std::size_t k = start[r]; k < start[r + 1]; ++k, ++out)
+        {
+          const std::uint32_t j = order[k];
+          const std::size_t i = index[j];
+          std::copy(hits.Position + 3 * i, hits.Position + 3 * i + 3, out->Position);
+          std::copy(hits.Direction + 3 * i, hits.Direction + 3 * i + 3, out->Direction);
+          std::copy(hits.Flux + 3 * i, hits.Flux + 3 * i + 3, out->Flux);
+          out->Cell = cellOf[j];
+          out->Triangle = hits.Triangle ? hits.Triangle[i] : 0;
+        }
+      }
+    });
+  this->Kept.swap(merged);
+  this->RangeStart.swap(mergedStart);
+}
+
+} // namespace brume
