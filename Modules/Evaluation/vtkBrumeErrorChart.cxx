@@ -22,7 +22,6 @@
 #include <string>
 
 vtkStandardNewMacro(vtkBrumeErrorChart);
-vtkCxxSetObjectMacro(vtkBrumeErrorChart, Camera, vtkCamera);
 
 namespace
 {
@@ -106,40 +105,23 @@ struct Columns
 vtkBrumeErrorChart::vtkBrumeErrorChart()
   : ReferenceCache(vtkSmartPointer<vtkBrumeReferenceCache>::New())
 {
-  this->SetSceneName("scene");
+  this->Size[0] = this->Size[1] = 128;
+  this->MinParticles = 10000;
+  this->MaxParticles = 10000000;
+  this->ReferenceSamples = 16384;
 }
 
-vtkBrumeErrorChart::~vtkBrumeErrorChart()
-{
-  this->SetCamera(nullptr);
-  this->SetCacheDirectory(nullptr);
-  this->SetSceneName(nullptr);
-  this->SetCacheKey(nullptr);
-}
+vtkBrumeErrorChart::~vtkBrumeErrorChart() {}
 
 vtkBrumeReferenceCache* vtkBrumeErrorChart::GetReferenceCache()
 {
   return this->ReferenceCache;
 }
 
-vtkMTimeType vtkBrumeErrorChart::GetMTime()
-{
-  vtkMTimeType t = this->Superclass::GetMTime();
-  return this->Camera ? std::max(t, this->Camera->GetMTime()) : t;
-}
-
-int vtkBrumeErrorChart::FillInputPortInformation(int, vtkInformation* info)
-{
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataObject");
-  return 1;
-}
-
 bool vtkBrumeErrorChart::CheckSettings()
 {
-  if (this->Size[0] < 1 || this->Size[1] < 1 || this->Size[0] > 16384 || this->Size[1] > 16384)
+  if (!this->CheckCommonSettings())
   {
-    vtkErrorMacro("Size must be in [1, 16384] on each axis, not " << this->Size[0] << " x "
-                                                                  << this->Size[1] << ".");
     return false;
   }
   if (this->MinParticles < 1 || this->MaxParticles < this->MinParticles)
@@ -148,9 +130,9 @@ bool vtkBrumeErrorChart::CheckSettings()
       << this->MinParticles << " and " << this->MaxParticles << ".");
     return false;
   }
-  if (this->MaxSamples < 1 || this->Seed < 0)
+  if (this->MaxSamples < 1)
   {
-    vtkErrorMacro("MaxSamples must be at least 1 and Seed non-negative.");
+    vtkErrorMacro("MaxSamples must be at least 1, not " << this->MaxSamples << ".");
     return false;
   }
   return true;
@@ -251,17 +233,6 @@ int vtkBrumeErrorChart::RequestData(
   return 1;
 }
 
-bool vtkBrumeErrorChart::WriteCsv(const char* fileName)
-{
-  std::string error;
-  if (!vtkBrumeEvaluationTable::WriteCsv(this->GetOutput(), fileName, error))
-  {
-    vtkErrorMacro("The chart's CSV: " << error << ".");
-    return false;
-  }
-  return true;
-}
-
 bool vtkBrumeErrorChart::WriteImage(const char* fileName)
 {
   vtkTable* table = this->GetOutput();
@@ -289,16 +260,5 @@ bool vtkBrumeErrorChart::WriteImage(const char* fileName)
 void vtkBrumeErrorChart::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Size: " << this->Size[0] << " x " << this->Size[1] << "\n";
-  os << indent << "MinParticles: " << this->MinParticles << "\n";
-  os << indent << "MaxParticles: " << this->MaxParticles << "\n";
   os << indent << "MaxSamples: " << this->MaxSamples << "\n";
-  os << indent << "ReferenceSamples: " << this->ReferenceSamples << "\n";
-  os << indent << "RadiosityThreshold: " << this->RadiosityThreshold << "\n";
-  os << indent << "Seed: " << this->Seed << "\n";
-  os << indent << "DirectionalOrder: " << this->DirectionalOrder << "\n";
-  os << indent << "Camera: " << this->Camera << "\n";
-  os << indent << "CacheDirectory: " << (this->CacheDirectory ? this->CacheDirectory : "") << "\n";
-  os << indent << "SceneName: " << (this->SceneName ? this->SceneName : "") << "\n";
-  os << indent << "CacheKey: " << (this->CacheKey ? this->CacheKey : "") << "\n";
 }

@@ -48,33 +48,18 @@
 #ifndef vtkBrumeErrorChart_h
 #define vtkBrumeErrorChart_h
 
+#include "vtkBrumeEvaluationAlgorithm.h"
 #include "vtkBrumeEvaluationModule.h" // For export macro
 #include "vtkSmartPointer.h"          // For ReferenceCache
-#include "vtkTableAlgorithm.h"
 
 class vtkBrumeReferenceCache;
-class vtkCamera;
 
-class VTKBRUMEEVALUATION_EXPORT vtkBrumeErrorChart : public vtkTableAlgorithm
+class VTKBRUMEEVALUATION_EXPORT vtkBrumeErrorChart : public vtkBrumeEvaluationAlgorithm
 {
 public:
   static vtkBrumeErrorChart* New();
-  vtkTypeMacro(vtkBrumeErrorChart, vtkTableAlgorithm);
+  vtkTypeMacro(vtkBrumeErrorChart, vtkBrumeEvaluationAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
-
-  ///@{
-  /// Image size in pixels (default 128 x 128, each in [1, 16384]).
-  vtkSetVector2Macro(Size, int);
-  vtkGetVector2Macro(Size, int);
-  ///@}
-
-  ///@{
-  /// The pipeline's particle budgets, in powers of 10 (default 10^4 to 10^7; at least 1).
-  vtkSetMacro(MinParticles, vtkTypeInt64);
-  vtkGetMacro(MinParticles, vtkTypeInt64);
-  vtkSetMacro(MaxParticles, vtkTypeInt64);
-  vtkGetMacro(MaxParticles, vtkTypeInt64);
-  ///@}
 
   ///@{
   /// The path tracer's largest budget, in powers of 4 from 1 (default 1024 samples per pixel).
@@ -82,88 +67,19 @@ public:
   vtkGetMacro(MaxSamples, int);
   ///@}
 
-  ///@{
-  /// Samples per pixel of the converged reference (default 16384).
-  vtkSetMacro(ReferenceSamples, int);
-  vtkGetMacro(ReferenceSamples, int);
-  ///@}
-
-  ///@{
-  /// The reconstruction's radiosity threshold (default 128 hits).
-  vtkSetMacro(RadiosityThreshold, double);
-  vtkGetMacro(RadiosityThreshold, double);
-  ///@}
-
-  ///@{
-  /// Seed of the light tracer and the path tracer (default 0, non-negative).
-  vtkSetMacro(Seed, vtkIdType);
-  vtkGetMacro(Seed, vtkIdType);
-  ///@}
-
-  ///@{
-  /// Spherical-harmonics order of the `pipeline-sh` rows (default 3, in [1, 3]).
-  vtkSetMacro(DirectionalOrder, int);
-  vtkGetMacro(DirectionalOrder, int);
-  ///@}
-
-  ///@{
-  /// The camera; without one, the scene's camera or Brume's default view.
-  void SetCamera(vtkCamera* camera);
-  vtkGetObjectMacro(Camera, vtkCamera);
-  ///@}
-
-  ///@{
-  /// Where converged references are kept (default empty: render it every time).
-  vtkSetStringMacro(CacheDirectory);
-  vtkGetStringMacro(CacheDirectory);
-  ///@}
-
-  ///@{
-  /// The scene's name, in the chart's title (default "scene").
-  vtkSetStringMacro(SceneName);
-  vtkGetStringMacro(SceneName);
-  ///@}
-
-  ///@{
-  /**
-   * What names the scene in the cached references' file names (default
-   * empty: the SceneName). It must change whenever the scene or the
-   * camera does (see vtkBrumeReferenceCache).
-   */
-  vtkSetStringMacro(CacheKey);
-  vtkGetStringMacro(CacheKey);
-  ///@}
-
   /// The converged reference's source: after an update, says whether it was read or rendered.
   vtkBrumeReferenceCache* GetReferenceCache();
 
-  /// Writes the last output as CSV (the columns above); false if it could not.
-  bool WriteCsv(const char* fileName);
-
   /// Draws the last output (rel_mae against seconds per method) into a PNG file.
   bool WriteImage(const char* fileName);
-
-  vtkMTimeType GetMTime() override;
 
 protected:
   vtkBrumeErrorChart();
   ~vtkBrumeErrorChart() override;
 
-  int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  int Size[2] = { 128, 128 };
-  vtkTypeInt64 MinParticles = 10000;
-  vtkTypeInt64 MaxParticles = 10000000;
   int MaxSamples = 1024;
-  int ReferenceSamples = 16384;
-  double RadiosityThreshold = 128.0;
-  vtkIdType Seed = 0;
-  int DirectionalOrder = 3;
-  vtkCamera* Camera = nullptr;
-  char* CacheDirectory = nullptr;
-  char* SceneName = nullptr;
-  char* CacheKey = nullptr;
   vtkSmartPointer<vtkBrumeReferenceCache> ReferenceCache;
 
 private:

@@ -19,7 +19,6 @@
 #include <vector>
 
 vtkStandardNewMacro(vtkBrumeMediumMask);
-vtkCxxSetObjectMacro(vtkBrumeMediumMask, Camera, vtkCamera);
 
 namespace
 {
@@ -46,40 +45,9 @@ std::vector<brume::Box> MediumBoxes(vtkPartitionedDataSetCollection* scene)
 }
 }
 
-vtkBrumeMediumMask::vtkBrumeMediumMask()
-{
-  this->SetNumberOfInputPorts(1);
-}
+vtkBrumeMediumMask::vtkBrumeMediumMask() = default;
 
-vtkBrumeMediumMask::~vtkBrumeMediumMask()
-{
-  this->SetCamera(nullptr);
-}
-
-vtkMTimeType vtkBrumeMediumMask::GetMTime()
-{
-  vtkMTimeType t = this->Superclass::GetMTime();
-  return this->Camera ? std::max(t, this->Camera->GetMTime()) : t;
-}
-
-int vtkBrumeMediumMask::FillInputPortInformation(int, vtkInformation* info)
-{
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataObject");
-  return 1;
-}
-
-int vtkBrumeMediumMask::RequestInformation(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
-{
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  const int extent[6] = { 0, std::max(1, this->Size[0]) - 1, 0, std::max(1, this->Size[1]) - 1, 0,
-    0 };
-  const double origin[3] = { 0, 0, 0 }, spacing[3] = { 1, 1, 1 };
-  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
-  outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
-  outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
-  return 1;
-}
+vtkBrumeMediumMask::~vtkBrumeMediumMask() = default;
 
 int vtkBrumeMediumMask::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
@@ -134,6 +102,4 @@ int vtkBrumeMediumMask::RequestData(
 void vtkBrumeMediumMask::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Size: " << this->Size[0] << " x " << this->Size[1] << "\n";
-  os << indent << "Camera: " << this->Camera << "\n";
 }

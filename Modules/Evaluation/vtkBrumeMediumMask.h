@@ -19,44 +19,20 @@
 #define vtkBrumeMediumMask_h
 
 #include "vtkBrumeEvaluationModule.h" // For export macro
-#include "vtkImageAlgorithm.h"
+#include "vtkBrumeViewImageAlgorithm.h"
 
-class vtkCamera;
-
-class VTKBRUMEEVALUATION_EXPORT vtkBrumeMediumMask : public vtkImageAlgorithm
+class VTKBRUMEEVALUATION_EXPORT vtkBrumeMediumMask : public vtkBrumeViewImageAlgorithm
 {
 public:
   static vtkBrumeMediumMask* New();
-  vtkTypeMacro(vtkBrumeMediumMask, vtkImageAlgorithm);
+  vtkTypeMacro(vtkBrumeMediumMask, vtkBrumeViewImageAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
-
-  ///@{
-  /// Image size in pixels (default 256 x 256, each in [1, 16384]).
-  vtkSetVector2Macro(Size, int);
-  vtkGetVector2Macro(Size, int);
-  ///@}
-
-  ///@{
-  /**
-   * The camera; without one, the scene's camera (its field data), or
-   * Brume's default view from (0, 0, 4) toward the origin, 40 degrees.
-   */
-  void SetCamera(vtkCamera* camera);
-  vtkGetObjectMacro(Camera, vtkCamera);
-  ///@}
-
-  vtkMTimeType GetMTime() override;
 
 protected:
   vtkBrumeMediumMask();
   ~vtkBrumeMediumMask() override;
 
-  int FillInputPortInformation(int port, vtkInformation* info) override;
-  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-
-  int Size[2] = { 256, 256 };
-  vtkCamera* Camera = nullptr;
 
 private:
   vtkBrumeMediumMask(const vtkBrumeMediumMask&) = delete;

@@ -22,7 +22,6 @@
 #include <system_error>
 
 vtkStandardNewMacro(vtkBrumeReferenceCache);
-vtkCxxSetObjectMacro(vtkBrumeReferenceCache, Camera, vtkCamera);
 
 namespace
 {
@@ -62,40 +61,13 @@ vtkSmartPointer<vtkImageData> ReadCached(const std::filesystem::path& path)
 
 vtkBrumeReferenceCache::vtkBrumeReferenceCache()
 {
-  this->SetNumberOfInputPorts(1);
   this->SetSceneKey("scene");
 }
 
 vtkBrumeReferenceCache::~vtkBrumeReferenceCache()
 {
-  this->SetCamera(nullptr);
   this->SetCacheDirectory(nullptr);
   this->SetSceneKey(nullptr);
-}
-
-vtkMTimeType vtkBrumeReferenceCache::GetMTime()
-{
-  vtkMTimeType t = this->Superclass::GetMTime();
-  return this->Camera ? std::max(t, this->Camera->GetMTime()) : t;
-}
-
-int vtkBrumeReferenceCache::FillInputPortInformation(int, vtkInformation* info)
-{
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataObject");
-  return 1;
-}
-
-int vtkBrumeReferenceCache::RequestInformation(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
-{
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  const int extent[6] = { 0, std::max(1, this->Size[0]) - 1, 0, std::max(1, this->Size[1]) - 1, 0,
-    0 };
-  const double origin[3] = { 0, 0, 0 }, spacing[3] = { 1, 1, 1 };
-  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
-  outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
-  outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
-  return 1;
 }
 
 int vtkBrumeReferenceCache::RequestData(

@@ -27,24 +27,16 @@
 #define vtkBrumeReferenceCache_h
 
 #include "vtkBrumeEvaluationModule.h" // For export macro
-#include "vtkImageAlgorithm.h"
+#include "vtkBrumeViewImageAlgorithm.h"
 
 #include <string> // For FileName
 
-class vtkCamera;
-
-class VTKBRUMEEVALUATION_EXPORT vtkBrumeReferenceCache : public vtkImageAlgorithm
+class VTKBRUMEEVALUATION_EXPORT vtkBrumeReferenceCache : public vtkBrumeViewImageAlgorithm
 {
 public:
   static vtkBrumeReferenceCache* New();
-  vtkTypeMacro(vtkBrumeReferenceCache, vtkImageAlgorithm);
+  vtkTypeMacro(vtkBrumeReferenceCache, vtkBrumeViewImageAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
-
-  ///@{
-  /// Image size in pixels (default 256 x 256, each in [1, 16384]).
-  vtkSetVector2Macro(Size, int);
-  vtkGetVector2Macro(Size, int);
-  ///@}
 
   ///@{
   /// Samples per pixel of the reference (default 16384, in [1, 1000000]).
@@ -56,12 +48,6 @@ public:
   /// Seed of the path tracer (default 0, non-negative).
   vtkSetMacro(Seed, vtkIdType);
   vtkGetMacro(Seed, vtkIdType);
-  ///@}
-
-  ///@{
-  /// The camera; without one, the scene's camera or Brume's default view.
-  void SetCamera(vtkCamera* camera);
-  vtkGetObjectMacro(Camera, vtkCamera);
   ///@}
 
   ///@{
@@ -85,20 +71,14 @@ public:
   /// Seconds the last update spent path tracing (0 when it read the cache).
   vtkGetMacro(RenderSeconds, double);
 
-  vtkMTimeType GetMTime() override;
-
 protected:
   vtkBrumeReferenceCache();
   ~vtkBrumeReferenceCache() override;
 
-  int FillInputPortInformation(int port, vtkInformation* info) override;
-  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  int Size[2] = { 256, 256 };
   int SamplesPerPixel = 16384;
   vtkIdType Seed = 0;
-  vtkCamera* Camera = nullptr;
   char* CacheDirectory = nullptr;
   char* SceneKey = nullptr;
   std::string FileName;

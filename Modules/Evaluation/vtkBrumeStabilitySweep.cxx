@@ -33,7 +33,6 @@
 #include <vector>
 
 vtkStandardNewMacro(vtkBrumeStabilitySweep);
-vtkCxxSetObjectMacro(vtkBrumeStabilitySweep, Camera, vtkCamera);
 
 namespace
 {
@@ -328,31 +327,12 @@ struct Columns
 };
 }
 
-vtkBrumeStabilitySweep::vtkBrumeStabilitySweep()
-{
-  this->SetSceneName("scene");
-}
+vtkBrumeStabilitySweep::vtkBrumeStabilitySweep() = default;
 
 vtkBrumeStabilitySweep::~vtkBrumeStabilitySweep()
 {
-  this->SetCamera(nullptr);
   this->SetMediumName(nullptr);
   this->SetSurfaceName(nullptr);
-  this->SetCacheDirectory(nullptr);
-  this->SetSceneName(nullptr);
-  this->SetCacheKey(nullptr);
-}
-
-vtkMTimeType vtkBrumeStabilitySweep::GetMTime()
-{
-  vtkMTimeType t = this->Superclass::GetMTime();
-  return this->Camera ? std::max(t, this->Camera->GetMTime()) : t;
-}
-
-int vtkBrumeStabilitySweep::FillInputPortInformation(int, vtkInformation* info)
-{
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataObject");
-  return 1;
 }
 
 bool vtkBrumeStabilitySweep::FindMedium(vtkDataObject* input, int& index)
@@ -456,11 +436,13 @@ int vtkBrumeStabilitySweep::RequestData(
     vtkBrumeSceneConversion::AsCollection(vtkDataObject::GetData(inputVector[0], 0));
   vtkTable* output = vtkTable::GetData(outputVector, 0);
   this->AllFinite = true;
-  if (this->Size[0] < 1 || this->Size[1] < 1 || this->Size[0] > 16384 || this->Size[1] > 16384 ||
-    this->MaxParticles < 1 || this->Seed < 0)
+  if (!this->CheckCommonSettings())
   {
-    vtkErrorMacro("Size must be in [1, 16384] on each axis, MaxParticles at least 1 and Seed "
-                  "non-negative.");
+    return 0;
+  }
+  if (this->MaxParticles < 1)
+  {
+    vtkErrorMacro("MaxParticles must be at least 1, not " << this->MaxParticles << ".");
     return 0;
   }
   int medium = -1, surface = -1;
@@ -512,17 +494,6 @@ int vtkBrumeStabilitySweep::RequestData(
   return 1;
 }
 
-bool vtkBrumeStabilitySweep::WriteCsv(const char* fileName)
-{
-  std::string error;
-  if (!vtkBrumeEvaluationTable::WriteCsv(this->GetOutput(), fileName, error))
-  {
-    vtkErrorMacro("The sweep's CSV: " << error << ".");
-    return false;
-  }
-  return true;
-}
-
 bool vtkBrumeStabilitySweep::WriteImage(const char* fileName)
 {
   vtkTable* table = this->GetOutput();
@@ -553,18 +524,7 @@ void vtkBrumeStabilitySweep::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   auto text = [](const char* s) { return s ? s : ""; };
-  os << indent << "Size: " << this->Size[0] << " x " << this->Size[1] << "\n";
-  os << indent << "MinParticles: " << this->MinParticles << "\n";
-  os << indent << "MaxParticles: " << this->MaxParticles << "\n";
-  os << indent << "ReferenceSamples: " << this->ReferenceSamples << "\n";
-  os << indent << "RadiosityThreshold: " << this->RadiosityThreshold << "\n";
-  os << indent << "Seed: " << this->Seed << "\n";
-  os << indent << "DirectionalOrder: " << this->DirectionalOrder << "\n";
-  os << indent << "Camera: " << this->Camera << "\n";
   os << indent << "MediumName: " << text(this->MediumName) << "\n";
   os << indent << "SurfaceName: " << text(this->SurfaceName) << "\n";
-  os << indent << "CacheDirectory: " << text(this->CacheDirectory) << "\n";
-  os << indent << "SceneName: " << text(this->SceneName) << "\n";
-  os << indent << "CacheKey: " << text(this->CacheKey) << "\n";
   os << indent << "AllFinite: " << this->AllFinite << "\n";
 }

@@ -51,67 +51,17 @@
 #ifndef vtkBrumeStabilitySweep_h
 #define vtkBrumeStabilitySweep_h
 
+#include "vtkBrumeEvaluationAlgorithm.h"
 #include "vtkBrumeEvaluationModule.h" // For export macro
-#include "vtkTableAlgorithm.h"
 
 #include <string> // For the chosen names
 
-class vtkCamera;
-
-class VTKBRUMEEVALUATION_EXPORT vtkBrumeStabilitySweep : public vtkTableAlgorithm
+class VTKBRUMEEVALUATION_EXPORT vtkBrumeStabilitySweep : public vtkBrumeEvaluationAlgorithm
 {
 public:
   static vtkBrumeStabilitySweep* New();
-  vtkTypeMacro(vtkBrumeStabilitySweep, vtkTableAlgorithm);
+  vtkTypeMacro(vtkBrumeStabilitySweep, vtkBrumeEvaluationAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
-
-  ///@{
-  /// Image size in pixels (default 64 x 64, each in [1, 16384]).
-  vtkSetVector2Macro(Size, int);
-  vtkGetVector2Macro(Size, int);
-  ///@}
-
-  ///@{
-  /**
-   * The particles cases run from max(100, MinParticles) to MaxParticles in
-   * powers of 10; every other case traces MaxParticles (defaults 100 and
-   * 1,000,000).
-   */
-  vtkSetMacro(MinParticles, vtkTypeInt64);
-  vtkGetMacro(MinParticles, vtkTypeInt64);
-  vtkSetMacro(MaxParticles, vtkTypeInt64);
-  vtkGetMacro(MaxParticles, vtkTypeInt64);
-  ///@}
-
-  ///@{
-  /// Samples per pixel of the converged references (default 4096).
-  vtkSetMacro(ReferenceSamples, int);
-  vtkGetMacro(ReferenceSamples, int);
-  ///@}
-
-  ///@{
-  /// The reconstruction's radiosity threshold (default 128 hits).
-  vtkSetMacro(RadiosityThreshold, double);
-  vtkGetMacro(RadiosityThreshold, double);
-  ///@}
-
-  ///@{
-  /// Seed of the light tracer and the path tracer (default 0, non-negative).
-  vtkSetMacro(Seed, vtkIdType);
-  vtkGetMacro(Seed, vtkIdType);
-  ///@}
-
-  ///@{
-  /// Spherical-harmonics order of the SH media (default 3, in [1, 3]).
-  vtkSetMacro(DirectionalOrder, int);
-  vtkGetMacro(DirectionalOrder, int);
-  ///@}
-
-  ///@{
-  /// The camera; without one, the scene's camera or Brume's default view.
-  void SetCamera(vtkCamera* camera);
-  vtkGetObjectMacro(Camera, vtkCamera);
-  ///@}
 
   ///@{
   /// The medium and the surface to edit (default empty: chosen as above).
@@ -119,20 +69,6 @@ public:
   vtkGetStringMacro(MediumName);
   vtkSetStringMacro(SurfaceName);
   vtkGetStringMacro(SurfaceName);
-  ///@}
-
-  ///@{
-  /// Where converged references are kept (default empty: rendered every time).
-  vtkSetStringMacro(CacheDirectory);
-  vtkGetStringMacro(CacheDirectory);
-  ///@}
-
-  ///@{
-  /// The scene's name, and what names it in cache files (default "scene", and empty: SceneName).
-  vtkSetStringMacro(SceneName);
-  vtkGetStringMacro(SceneName);
-  vtkSetStringMacro(CacheKey);
-  vtkGetStringMacro(CacheKey);
   ///@}
 
   ///@{
@@ -156,34 +92,17 @@ public:
   /// True when every image of the last update was finite.
   vtkGetMacro(AllFinite, bool);
 
-  /// Writes the last output as CSV (the columns above); false if it could not.
-  bool WriteCsv(const char* fileName);
-
   /// Draws the last output (rel. MAE per case, three curves) into a PNG file.
   bool WriteImage(const char* fileName);
-
-  vtkMTimeType GetMTime() override;
 
 protected:
   vtkBrumeStabilitySweep();
   ~vtkBrumeStabilitySweep() override;
 
-  int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  int Size[2] = { 64, 64 };
-  vtkTypeInt64 MinParticles = 100;
-  vtkTypeInt64 MaxParticles = 1000000;
-  int ReferenceSamples = 4096;
-  double RadiosityThreshold = 128.0;
-  vtkIdType Seed = 0;
-  int DirectionalOrder = 3;
-  vtkCamera* Camera = nullptr;
   char* MediumName = nullptr;
   char* SurfaceName = nullptr;
-  char* CacheDirectory = nullptr;
-  char* SceneName = nullptr;
-  char* CacheKey = nullptr;
   bool AllFinite = true;
   std::string ChosenMedium;
   std::string ChosenSurface;

@@ -27,7 +27,6 @@
 VTK_MODULE_INIT(vtkBrumeRenderingOpenGL2);
 
 vtkStandardNewMacro(vtkBrumeTimedPipeline);
-vtkCxxSetObjectMacro(vtkBrumeTimedPipeline, Camera, vtkCamera);
 
 namespace
 {
@@ -76,40 +75,9 @@ void Draw(vtkRenderWindow* window)
 }
 }
 
-vtkBrumeTimedPipeline::vtkBrumeTimedPipeline()
-{
-  this->SetNumberOfInputPorts(1);
-}
+vtkBrumeTimedPipeline::vtkBrumeTimedPipeline() = default;
 
-vtkBrumeTimedPipeline::~vtkBrumeTimedPipeline()
-{
-  this->SetCamera(nullptr);
-}
-
-vtkMTimeType vtkBrumeTimedPipeline::GetMTime()
-{
-  vtkMTimeType t = this->Superclass::GetMTime();
-  return this->Camera ? std::max(t, this->Camera->GetMTime()) : t;
-}
-
-int vtkBrumeTimedPipeline::FillInputPortInformation(int, vtkInformation* info)
-{
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataObject");
-  return 1;
-}
-
-int vtkBrumeTimedPipeline::RequestInformation(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
-{
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  const int extent[6] = { 0, std::max(1, this->Size[0]) - 1, 0, std::max(1, this->Size[1]) - 1, 0,
-    0 };
-  const double origin[3] = { 0, 0, 0 }, spacing[3] = { 1, 1, 1 };
-  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
-  outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
-  outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
-  return 1;
-}
+vtkBrumeTimedPipeline::~vtkBrumeTimedPipeline() = default;
 
 int vtkBrumeTimedPipeline::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)

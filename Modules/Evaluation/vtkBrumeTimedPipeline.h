@@ -33,22 +33,14 @@
 #define vtkBrumeTimedPipeline_h
 
 #include "vtkBrumeEvaluationModule.h" // For export macro
-#include "vtkImageAlgorithm.h"
+#include "vtkBrumeViewImageAlgorithm.h"
 
-class vtkCamera;
-
-class VTKBRUMEEVALUATION_EXPORT vtkBrumeTimedPipeline : public vtkImageAlgorithm
+class VTKBRUMEEVALUATION_EXPORT vtkBrumeTimedPipeline : public vtkBrumeViewImageAlgorithm
 {
 public:
   static vtkBrumeTimedPipeline* New();
-  vtkTypeMacro(vtkBrumeTimedPipeline, vtkImageAlgorithm);
+  vtkTypeMacro(vtkBrumeTimedPipeline, vtkBrumeViewImageAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
-
-  ///@{
-  /// Output image size in pixels (default 256 x 256, each in [1, 16384]).
-  vtkSetVector2Macro(Size, int);
-  vtkGetVector2Macro(Size, int);
-  ///@}
 
   ///@{
   /// Rendered pixels per output pixel, on each axis (default 4, in [1, 16]).
@@ -91,28 +83,17 @@ public:
   ///@}
 
   ///@{
-  /// The camera; without one, the scene's camera or Brume's default view.
-  void SetCamera(vtkCamera* camera);
-  vtkGetObjectMacro(Camera, vtkCamera);
-  ///@}
-
-  ///@{
   /// Seconds of the last update's full run and of its new viewpoint (0 when not measured).
   vtkGetMacro(FullSeconds, double);
   vtkGetMacro(NewViewSeconds, double);
   ///@}
 
-  vtkMTimeType GetMTime() override;
-
 protected:
   vtkBrumeTimedPipeline();
   ~vtkBrumeTimedPipeline() override;
 
-  int FillInputPortInformation(int port, vtkInformation* info) override;
-  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  int Size[2] = { 256, 256 };
   int Supersampling = 4;
   vtkTypeInt64 NumberOfParticles = 1000000;
   vtkIdType Seed = 0;
@@ -120,7 +101,6 @@ protected:
   bool DirectionalRadiance = false;
   int DirectionalOrder = 3;
   bool MeasureNewView = true;
-  vtkCamera* Camera = nullptr;
   double FullSeconds = 0;
   double NewViewSeconds = 0;
 
