@@ -198,5 +198,18 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
   auto pds = vtkSmartPointer<vtkPartitionedDataSet>::New();
   pds->SetNumberOfPartitions(1);
   pds->SetPartition(0, texture);
+  if (!radiance.GetNativeExtinction().empty())
+  {
+    // sigma_t at the density's own resolution, over the same box.
+    const auto& native = radiance.GetNativeResolution();
+    vtkNew<vtkImageData> extinction;
+    extinction->SetDimensions(native[0] + 1, native[1] + 1, native[2] + 1);
+    extinction->SetOrigin(medium.Bounds.lower.x, medium.Bounds.lower.y, medium.Bounds.lower.z);
+    extinction->SetSpacing(extent.x / native[0], extent.y / native[1], extent.z / native[2]);
+    extinction->GetCellData()->SetScalars(NewRGB("Extinction", radiance.GetNativeExtinction()));
+    AddString(extinction->GetFieldData(), "BrumeObjectKind", "medium extinction");
+    pds->SetNumberOfPartitions(2);
+    pds->SetPartition(1, extinction);
+  }
   return pds;
 }

@@ -20,7 +20,13 @@
  *   (float[3], sigma_t in m^-1); directional media add `SourceRadianceSH`
  *   (3 (order + 1)^2 components, coefficient-major, RGB within; then
  *   `SourceRadiance` is the mean over directions) and the field value
- *   `BrumePhaseAsymmetry`.
+ *   `BrumePhaseAsymmetry`. The source radiance of a heterogeneous medium is
+ *   its sigma_t-weighted mean over each voxel's region (smooth where the
+ *   light is), and partition 1 is a second 3D vtkImageData over the same
+ *   box with cell data `Extinction` (float[3], m^-1) at the density's own
+ *   resolution (brume::ObjectRadiance::GetNativeExtinction), which
+ *   vtkBrumeSliceVolumeMapper draws the medium's structure with
+ *   (SetExtinctionData).
  *
  * Every partition's field data holds `BrumeObjectKind` ("surface" or
  * "medium").

@@ -28,7 +28,10 @@
  *   coordinates `TextureCoordinates` that map the image with a vtkTexture;
  * - media: partition 0 is a 3D vtkImageData over the medium's box with cell
  *   data `SourceRadiance` (float[3], W m^-2 sr^-1) and `Extinction`
- *   (float[3], sigma_t in m^-1), ready for vtkBrumeSliceVolumeMapper.
+ *   (float[3], sigma_t in m^-1), ready for vtkBrumeSliceVolumeMapper; a
+ *   heterogeneous medium adds partition 1, its extinction at the density's
+ *   own resolution, and its source radiance is the sigma_t-weighted mean
+ *   over each voxel's region (vtkBrumeRadianceConversion has the details).
  *
  * Every partition's field data holds `BrumeObjectKind` ("surface" or
  * "medium").

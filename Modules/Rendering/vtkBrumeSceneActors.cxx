@@ -22,6 +22,14 @@ vtkStandardNewMacro(vtkBrumeSceneActors);
 
 namespace
 {
+// A medium's extinction at the density's own resolution (partition 1 of a
+// heterogeneous medium), or null.
+vtkImageData* NativeExtinction(vtkPartitionedDataSet* pds)
+{
+  return pds->GetNumberOfPartitions() >= 2 ? vtkImageData::SafeDownCast(pds->GetPartition(1))
+                                           : nullptr;
+}
+
 std::string KindOf(vtkDataObject* data)
 {
   auto* kind = data
@@ -125,6 +133,7 @@ bool vtkBrumeSceneActors::AddToRenderer(vtkRenderer* renderer)
       auto* image = vtkImageData::SafeDownCast(first);
       vtkNew<vtkBrumeSliceVolumeMapper> mapper;
       mapper->SetInputData(image);
+      mapper->SetExtinctionData(NativeExtinction(pds));
       vtkNew<vtkVolume> volume;
       volume->SetMapper(mapper);
       volume->GetProperty()->SetInterpolationTypeToLinear();
@@ -180,9 +189,13 @@ bool vtkBrumeSceneActors::UpdateInputs(vtkPartitionedDataSetCollection* textures
         e.Surface->SetInputData(vtkPolyData::SafeDownCast(pds->GetPartition(1)));
       }
     }
-    else if (e.Slices->GetInput() != image)
+    else
     {
-      e.Slices->SetInputData(image);
+      if (e.Slices->GetInput() != image)
+      {
+        e.Slices->SetInputData(image);
+      }
+      e.Slices->SetExtinctionData(NativeExtinction(pds));
     }
   }
   this->Input = textures;

@@ -8,6 +8,7 @@
 #include "vtkInformation.h"
 #include "vtkObjectFactory.h"
 
+#include <algorithm>
 #include <cmath>
 
 vtkAbstractObjectFactoryNewMacro(vtkBrumeSliceVolumeMapper);
@@ -70,6 +71,63 @@ std::string vtkBrumeSliceVolumeMapper::ValidateInput(vtkImageData* image)
   return {};
 }
 
+void vtkBrumeSliceVolumeMapper::SetExtinctionData(vtkImageData* extinction)
+{
+  if (this->ExtinctionData != extinction)
+  {
+    this->ExtinctionData = extinction;
+    this->Modified();
+  }
+}
+
+vtkImageData* vtkBrumeSliceVolumeMapper::GetExtinctionData()
+{
+  return this->ExtinctionData;
+}
+
+vtkMTimeType vtkBrumeSliceVolumeMapper::GetMTime()
+{
+  const vtkMTimeType t = this->Superclass::GetMTime();
+  return this->ExtinctionData ? std::max(t, this->ExtinctionData->GetMTime()) : t;
+}
+
+std::string vtkBrumeSliceVolumeMapper::ValidateExtinction(
+  vtkImageData* image, vtkImageData* extinction)
+{
+  int pointDims[3];
+  extinction->GetDimensions(pointDims);
+  const double* spacing = extinction->GetSpacing();
+  for (int a = 0; a < 3; ++a)
+  {
+    if (pointDims[a] < 2 || !(spacing[a] > 0.0) || !std::isfinite(spacing[a]))
+    {
+      return "the extinction image needs at least one cell and a positive spacing along each axis";
+    }
+  }
+  const vtkIdType cells =
+    static_cast<vtkIdType>(pointDims[0] - 1) * (pointDims[1] - 1) * (pointDims[2] - 1);
+  vtkDataArray* e = extinction->GetCellData()->GetArray("Extinction");
+  if (!e || (e->GetNumberOfComponents() != 1 && e->GetNumberOfComponents() != 3) ||
+    e->GetNumberOfTuples() != cells)
+  {
+    return "the extinction image needs the cell array 'Extinction' (1 or 3 components), one "
+           "tuple per cell";
+  }
+  double a[6], b[6];
+  image->GetBounds(a);
+  extinction->GetBounds(b);
+  for (int k = 0; k < 3; ++k)
+  {
+    const double size = a[2 * k + 1] - a[2 * k];
+    if (std::abs(a[2 * k] - b[2 * k]) > 1e-6 * size ||
+      std::abs(a[2 * k + 1] - b[2 * k + 1]) > 1e-6 * size)
+    {
+      return "the extinction image must cover the medium image's box";
+    }
+  }
+  return {};
+}
+
 int vtkBrumeSliceVolumeMapper::DirectionalOrder(int components)
 {
   for (int order = 1; order <= 3; ++order)
@@ -89,4 +147,5 @@ void vtkBrumeSliceVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "DirectionalEvaluation: "
      << (this->DirectionalEvaluation == PerVoxel ? "PerVoxel" : "PerFragment") << "\n";
   os << indent << "LastNumberOfSlices: " << this->LastNumberOfSlices << "\n";
+  os << indent << "ExtinctionData: " << this->ExtinctionData.GetPointer() << "\n";
 }

@@ -33,7 +33,10 @@
  * `SourceRadiance` (3 components, W m^-2 sr^-1) and `Extinction` (1 or 3
  * components, m^-1), as vtkBrumeRadianceReconstruction produces; they are
  * filtered as J = S sigma_t and sigma_t, which stay bounded where a medium
- * thins out (S alone would not). The
+ * thins out (S alone would not). With ExtinctionData, sigma_t comes from
+ * that grid instead, at its own resolution, and the input's source radiance
+ * is filtered as S itself: the smooth source radiance of a coarse texture
+ * times a sharp sigma_t (heterogeneous media). The
  * volume property's interpolation type (nearest or linear) is honoured; its
  * transfer functions are not used: the data are physical.
  *
@@ -47,6 +50,8 @@
 
 #include "vtkBrumeRenderingModule.h" // For export macro
 #include "vtkVolumeMapper.h"
+
+#include "vtkSmartPointer.h" // For ExtinctionData
 
 #include <string> // For ValidateInput
 
@@ -89,6 +94,30 @@ public:
   vtkGetMacro(DirectionalEvaluation, int);
   ///@}
 
+  ///@{
+  /**
+   * The medium's extinction at another resolution (default none): a
+   * vtkImageData over the same box as the input, with the cell array
+   * `Extinction` (1 or 3 components, m^-1). When set, it replaces the
+   * input's `Extinction`, the input's `SourceRadiance` (and
+   * `SourceRadianceSH`) is taken as the source radiance S itself, and the
+   * default slice spacing is one cell of this grid. vtkBrumeSceneActors sets
+   * it from a medium's partition 1 (vtkBrumeRadianceReconstruction's
+   * extinction at the density's own resolution).
+   */
+  void SetExtinctionData(vtkImageData* extinction);
+  vtkImageData* GetExtinctionData();
+  ///@}
+
+  vtkMTimeType GetMTime() override;
+
+  /**
+   * Empty when `extinction` can serve as the ExtinctionData of `image`:
+   * the array, at least one cell per axis, and the same box (within a
+   * millionth of its size); otherwise why not.
+   */
+  static std::string ValidateExtinction(vtkImageData* image, vtkImageData* extinction);
+
   /// Number of slices of this volume drawn by the last render.
   vtkGetMacro(LastNumberOfSlices, int);
 
@@ -111,6 +140,7 @@ protected:
   double SliceSpacing = 0.0;
   int DirectionalEvaluation = PerVoxel;
   int LastNumberOfSlices = 0;
+  vtkSmartPointer<vtkImageData> ExtinctionData;
 
 private:
   vtkBrumeSliceVolumeMapper(const vtkBrumeSliceVolumeMapper&) = delete;

@@ -121,6 +121,7 @@ struct vtkBrumeOpenGLSliceVolumeMapper::Internals
   float BoundsLower[3] = { 0.f, 0.f, 0.f };
   float BoundsExtent[3] = { 1.f, 1.f, 1.f };
   vtkTimeStamp TextureTime;
+  bool SourceIsRadiance = false; // the source texture holds S (extinction of its own)
   int Interpolation = -1;
   vtkOpenGLRenderWindow* Context = nullptr;
   // The leader's buffers for all volumes of the renderer.
@@ -188,6 +189,9 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadTextures(
   vtkDataArray* extinction = input->GetCellData()->GetArray("Extinction");
   std::vector<float> s(3 * static_cast<std::size_t>(cells)), e(s.size());
   const int ne = extinction->GetNumberOfComponents();
+  // With extinction at its own resolution the source texture holds S, which
+  // the shader multiplies by the fine sigma_t; otherwise it holds J.
+  impl.SourceIsRadiance = this->ExtinctionData != nullptr;
   for (vtkIdType i = 0; i < cells; ++i)
   {
     for (int c = 0; c < 3; ++c)
@@ -195,7 +199,8 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadTextures(
       // The texture holds J = S sigma_t: filtered between voxels, J and
       // sigma_t stay bounded where the medium thins out (S would not).
       e[3 * i + c] = static_cast<float>(extinction->GetComponent(i, ne == 3 ? c : 0));
-      s[3 * i + c] = static_cast<float>(source->GetComponent(i, c)) * e[3 * i + c];
+      s[3 * i + c] = static_cast<float>(source->GetComponent(i, c)) *
+        (impl.SourceIsRadiance ? 1.f : e[3 * i + c]);
       if (!(e[3 * i + c] >= 0.f) || !std::isfinite(e[3 * i + c]) || !std::isfinite(s[3 * i + c]))
       {
         vtkErrorMacro("Cannot draw this medium: its extinction must be finite and "
@@ -208,11 +213,16 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadTextures(
   const int filter = interpolation == VTK_NEAREST_INTERPOLATION ? vtkTextureObject::Nearest
                                                                 : vtkTextureObject::Linear;
   if (!Upload3D(impl.Source, renWin, dims, 3, filter, s.data()) ||
-    !Upload3D(impl.Extinction, renWin, dims, 3, filter, e.data()))
+    !(impl.SourceIsRadiance ? this->UploadExtinction(renWin, filter)
+                            : Upload3D(impl.Extinction, renWin, dims, 3, filter, e.data())))
   {
     vtkErrorMacro("Could not create the 3D textures (" << dims[0] << " x " << dims[1] << " x "
                                                        << dims[2] << "): nothing drawn.");
     return false;
+  }
+  if (impl.SourceIsRadiance)
+  {
+    e.assign(e.size(), 1.f); // directional coefficients: S, like the source
   }
   if (!this->UploadDirectional(input, renWin, dims, filter, e))
   {
@@ -221,6 +231,34 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadTextures(
   impl.Interpolation = interpolation;
   impl.TextureTime.Modified();
   return true;
+}
+
+bool vtkBrumeOpenGLSliceVolumeMapper::UploadExtinction(vtkOpenGLRenderWindow* renWin, int filter)
+{
+  vtkImageData* grid = this->ExtinctionData;
+  int pointDims[3];
+  grid->GetDimensions(pointDims);
+  const int dims[3] = { pointDims[0] - 1, pointDims[1] - 1, pointDims[2] - 1 };
+  const vtkIdType cells = static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2];
+  vtkDataArray* extinction = grid->GetCellData()->GetArray("Extinction");
+  const int ne = extinction->GetNumberOfComponents();
+  std::vector<float> e(3 * static_cast<std::size_t>(cells));
+  for (vtkIdType i = 0; i < cells; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      const float value = static_cast<float>(extinction->GetComponent(i, ne == 3 ? c : 0));
+      if (!(value >= 0.f) || !std::isfinite(value))
+      {
+        vtkErrorMacro("Cannot draw this medium: its extinction must be finite and non-negative "
+                      "(cell "
+          << i << " of the extinction grid).");
+        return false;
+      }
+      e[3 * i + c] = value;
+    }
+  }
+  return Upload3D(this->Impl->Extinction, renWin, dims, 3, filter, e.data());
 }
 
 bool vtkBrumeOpenGLSliceVolumeMapper::UploadDirectional(vtkImageData* input,
@@ -349,7 +387,11 @@ bool vtkBrumeOpenGLSliceVolumeMapper::PrepareSlices(
     this->GetInputAlgorithm()->Update();
   }
   auto* input = vtkImageData::SafeDownCast(this->GetInput());
-  const std::string problem = ValidateInput(input);
+  std::string problem = ValidateInput(input);
+  if (problem.empty() && this->ExtinctionData)
+  {
+    problem = ValidateExtinction(input, this->ExtinctionData);
+  }
   if (!problem.empty())
   {
     vtkErrorMacro("Cannot draw this medium: " << problem << ".");
@@ -438,7 +480,10 @@ void vtkBrumeOpenGLSliceVolumeMapper::CutSlices(
     return; // entirely behind the camera
   }
   double voxel = VTK_DOUBLE_MAX;
-  const double* spacing = input->GetSpacing();
+  // Slices follow the finest structure: the extinction's own grid when it
+  // has one (a cell apart), else half a voxel.
+  vtkImageData* grid = this->ExtinctionData ? this->ExtinctionData.GetPointer() : input;
+  const double* spacing = grid->GetSpacing();
   for (int a = 0; a < 3; ++a)
   {
     const double axis = std::sqrt(model->GetElement(0, a) * model->GetElement(0, a) +
@@ -446,7 +491,9 @@ void vtkBrumeOpenGLSliceVolumeMapper::CutSlices(
       model->GetElement(2, a) * model->GetElement(2, a));
     voxel = std::min(voxel, axis * spacing[a]);
   }
-  const double requested = this->SliceSpacing > 0.0 ? this->SliceSpacing : 0.5 * voxel;
+  const double requested = this->SliceSpacing > 0.0 ? this->SliceSpacing
+    : this->ExtinctionData                           ? voxel
+                                                     : 0.5 * voxel;
   const int count =
     static_cast<int>(std::min(8192.0, std::max(1.0, std::ceil((dmax - dmin) / requested))));
   // An exact partition of [dmin, dmax] into slabs; each slice at its slab's centre.
@@ -657,6 +704,7 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawAll(vtkRenderer* ren)
     program->SetUniformi("sourceTexture", owner.Source->GetTextureUnit());
     program->SetUniformi("extinctionTexture", owner.Extinction->GetTextureUnit());
     program->SetUniformf("sliceSpacing", run.Spacing);
+    program->SetUniformi("sourceIsRadiance", owner.SourceIsRadiance ? 1 : 0);
     if (owner.FragmentOrder > 0)
     {
       for (std::size_t t = 0; t < owner.Coefficients.size(); ++t)

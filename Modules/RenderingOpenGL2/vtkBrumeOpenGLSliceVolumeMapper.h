@@ -59,6 +59,7 @@ private:
   // directional radiance, its evaluation toward the eye, the slice polygons.
   bool UploadTextures(
     vtkImageData* input, vtkOpenGLRenderWindow* renWin, const int dims[3], int interpolation);
+  bool UploadExtinction(vtkOpenGLRenderWindow* renWin, int filter);
   bool UploadDirectional(vtkImageData* input, vtkOpenGLRenderWindow* renWin, const int dims[3],
     int filter, const std::vector<float>& extinction);
   bool EvaluateTowardEye(vtkOpenGLRenderWindow* renWin, const int dims[3], int interpolation);

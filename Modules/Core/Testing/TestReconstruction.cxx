@@ -413,3 +413,74 @@ TEST(Reconstruction, AtlasOfACurvedSurfaceKeepsTheReflectedPower)
   }
   EXPECT_NEAR(integral, 0.5 * power.x, 0.03 * 0.5 * power.x);
 }
+
+// A heterogeneous medium in two resolutions: the source radiance is the
+// sigma_t-weighted mean over a region (RADIOMETRY.md, "Two resolutions in
+// one medium"), so a region that spills into the empty half of the box
+// keeps the dense half's value instead of being diluted by the empty
+// volume; and sigma_t is kept at the density's own resolution.
+TEST(Reconstruction, HeterogeneousMediumIsNormalizedByTheExtinctionIntegral)
+{
+  // The box [0, 1]^3, density 1 on x < 1/2 and 0 beyond (4 x 1 x 1 cells).
+  Medium smoke;
+  smoke.Name = "smoke";
+  smoke.SigmaS = Vec3(2.f);
+  smoke.SigmaA = Vec3(0.5f);
+  smoke.G = 0.f;
+  smoke.SetDensity(std::make_shared<GridDensity>(
+    Box{ Vec3(0.f), Vec3(1.f) }, std::array<int, 3>{ 4, 1, 1 },
+    std::vector<float>{ 1.f, 1.f, 0.f, 0.f }, true));
+  // Hits on a regular lattice of the dense half, each of flux phi.
+  const int n = 10;
+  const float phi = 1e-3f;
+  HitStore store;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+      {
+        const float p[3] = { (i + 0.5f) * 0.5f / n, (j + 0.5f) / n, (k + 0.5f) / n };
+        store.Position.insert(store.Position.end(), p, p + 3);
+        store.Direction.insert(store.Direction.end(), { 0.f, 0.f, 1.f });
+        store.Flux.insert(store.Flux.end(), { phi, phi, phi });
+        store.Object.push_back(0);
+        store.Triangle.push_back(0);
+      }
+  std::vector<std::uint32_t> index(store.Object.size());
+  for (std::size_t i = 0; i < index.size(); ++i)
+  {
+    index[i] = static_cast<std::uint32_t>(i);
+  }
+  // Two texels along x; a threshold above the total flux grows every region
+  // to the whole box, half of it empty.
+  ObjectRadiance radiance(smoke, { 2, 1, 1 }, 2);
+  const double total = static_cast<double>(n) * n * n * phi;
+  ASSERT_EQ(radiance.Build(store.View(), index.data(), index.size(), Vec3(0.f, 0.f, 5.f),
+              2.0 * total, SerialFor()),
+    "");
+  // S = albedo sum(p phi) / integral of sigma_t = (sigma_s/sigma_t) total / (4 pi sigma_t / 2).
+  const double sigmaT = 2.5, albedo = 2.0 / 2.5;
+  const double expected = albedo * total / (4.0 * Pi) / (sigmaT * 0.5);
+  for (int t = 0; t < 2; ++t)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      EXPECT_NEAR(radiance.GetRadiance()[3 * t + c], expected, 1e-5 * expected)
+        << "texel " << t << ", channel " << c;
+    }
+  }
+  // sigma_t at the density's own resolution: 4 x 1 x 1 cells.
+  EXPECT_EQ(radiance.GetNativeResolution(), (std::array<int, 3>{ 4, 1, 1 }));
+  ASSERT_EQ(radiance.GetNativeExtinction().size(), 12u);
+  for (int cell = 0; cell < 4; ++cell)
+  {
+    EXPECT_FLOAT_EQ(radiance.GetNativeExtinction()[3 * cell], cell < 2 ? 2.5f : 0.f);
+  }
+  // A homogeneous medium has no second grid.
+  Medium fog = smoke;
+  fog.SetDensity(nullptr);
+  ObjectRadiance homogeneous(fog, { 2, 1, 1 }, 2);
+  ASSERT_EQ(homogeneous.Build(store.View(), index.data(), index.size(), Vec3(0.f, 0.f, 5.f),
+              2.0 * total, SerialFor()),
+    "");
+  EXPECT_TRUE(homogeneous.GetNativeExtinction().empty());
+}

@@ -18,6 +18,23 @@ std::size_t DensityField::NumberOfOccupiedBlocks() const
     this->Majorants.Max.begin(), this->Majorants.Max.end(), [](float m) { return m > 0.f; }));
 }
 
+std::array<int, 3> DensityField::NativeResolution() const
+{
+  constexpr int Cells = 8; // cells per majorant block
+  return { this->Majorants.Dims[0] * Cells, this->Majorants.Dims[1] * Cells,
+    this->Majorants.Dims[2] * Cells };
+}
+
+std::array<int, 3> GridDensity::NativeResolution() const
+{
+  std::array<int, 3> cells{};
+  for (int a = 0; a < 3; ++a)
+  {
+    cells[a] = this->CellValues ? this->Dims[a] : std::max(1, this->Dims[a] - 1);
+  }
+  return cells;
+}
+
 GridDensity::GridDensity(
   const Box& bounds, std::array<int, 3> dims, std::vector<float> values, bool cellValues)
   : Dims(dims)

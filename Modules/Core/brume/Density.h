@@ -35,6 +35,12 @@ public:
   /// Density at a world point inside GetBounds(); must be thread safe.
   virtual float Evaluate(const Vec3& p) const = 0;
   const Box& GetBounds() const { return this->Bounds; }
+  /**
+   * Cells along each axis of the field's own grid over GetBounds(): the
+   * resolution at which its structure is resolved (the grid's cells, or
+   * the OpenVDB voxels). The default is the majorant blocks' cells.
+   */
+  virtual std::array<int, 3> NativeResolution() const;
   const MajorantGrid& GetMajorants() const { return this->Majorants; }
   /// Number of non-empty majorant blocks (for reporting sparsity).
   std::size_t NumberOfOccupiedBlocks() const;
@@ -58,6 +64,7 @@ public:
   GridDensity(
     const Box& bounds, std::array<int, 3> dims, std::vector<float> values, bool cellValues);
   float Evaluate(const Vec3& p) const override;
+  std::array<int, 3> NativeResolution() const override;
 
 private:
   float Value(int i, int j, int k) const

@@ -278,6 +278,11 @@ void ObjectRadiance::Finish(
           }
         }
       });
+    if (this->MediumRef->Density)
+    {
+      this->BuildDensityTable(parallelFor);
+      this->SampleNativeExtinction(parallelFor);
+    }
   }
   else if (first)
   {
@@ -409,6 +414,21 @@ void ObjectRadiance::ChainForward(Histogram& a, Histogram* b)
 
 void ObjectRadiance::ToRadiance(std::size_t t, const Region& r, const double* sum, float* out) const
 {
+  if (this->MediumRef->Density)
+  {
+    // Heterogeneous: the sigma_t-weighted mean over the region,
+    // S = albedo * sum(p Phi) / integral of sigma_t over the region.
+    double integral = 0.0; // of the density
+    this->DensityTable.RegionSum(r.Lo, r.Hi, &integral);
+    const Vec3 sigmaT = this->MediumRef->SigmaT();
+    for (int c = 0; c < 3; ++c)
+    {
+      const double weight = integral * sigmaT[c];
+      out[c] =
+        weight > 0.0 ? static_cast<float>(this->MediumAlbedo[c] * sum[c] / weight) : 0.f;
+    }
+    return;
+  }
   // J = albedo * sum(p Phi) / V; S = J / sigma_t.
   const double volume = static_cast<double>(r.Cells()) * this->CellVolume;
   for (int c = 0; c < 3; ++c)

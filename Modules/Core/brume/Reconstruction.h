@@ -165,6 +165,19 @@ public:
   const std::vector<float>& GetRadiance() const { return this->Radiance; }
   /// Media: sigma_t (RGB) per voxel.
   const std::vector<float>& GetExtinction() const { return this->Extinction; }
+
+  /**
+   * Heterogeneous media: sigma_t (RGB) per cell of the density's own grid
+   * (brume::DensityField::NativeResolution), x fastest, independent of the
+   * texture's resolution, so that a renderer draws the medium's structure
+   * at its own resolution with the smooth source radiance of the texture.
+   * Each cell holds the mean of the density over the cell. Grids above
+   * MaxNativeCells are coarsened by one integer factor on every axis (the
+   * smallest that fits). Empty for homogeneous media and surfaces.
+   */
+  const std::vector<float>& GetNativeExtinction() const { return this->NativeExtinction; }
+  const std::array<int, 3>& GetNativeResolution() const { return this->NativeDims; }
+  static constexpr std::size_t MaxNativeCells = std::size_t(1) << 22;
   const std::array<int, 3>& GetResolution() const { return this->Resolution; }
   const SurfaceChart& GetChart() const { return this->Chart; }
 
@@ -188,6 +201,11 @@ private:
   void WeighCells(const Vec3& eye, const ParallelFor& parallelFor);
   void Estimate(const ParallelFor& parallelFor);
   void BuildAreaTable();
+  // Heterogeneous media: the density's integral over each histogram cell
+  // (what a region's source radiance is divided by), and sigma_t at the
+  // density's own resolution.
+  void BuildDensityTable(const ParallelFor& parallelFor);
+  void SampleNativeExtinction(const ParallelFor& parallelFor);
 
   const Surface* SurfaceRef = nullptr;
   const Medium* MediumRef = nullptr;
@@ -215,6 +233,9 @@ private:
   SummedAreaTable WeightTable; // incident flux (mean over channels): drives the growth
   SummedAreaTable ValueTable;  // weighted flux, RGB
   SummedAreaTable AreaTable;   // surfaces: world area per cell
+  SummedAreaTable DensityTable; // heterogeneous media: integral of the density per cell
+  std::array<int, 3> NativeDims{ 0, 0, 0 };
+  std::vector<float> NativeExtinction;
   std::vector<Region> Regions; // per texel, view independent
   double ThresholdFlux = 0.0;
 

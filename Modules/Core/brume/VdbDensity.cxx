@@ -184,6 +184,18 @@ std::shared_ptr<VdbDensity> VdbDensity::Load(
   return density;
 }
 
+std::array<int, 3> VdbDensity::NativeResolution() const
+{
+  std::array<int, 3> voxels{};
+  for (int a = 0; a < 3; ++a)
+  {
+    voxels[a] = std::max(1,
+      static_cast<int>(std::lround(
+        static_cast<double>(this->Bounds.Extent()[a]) / this->Impl->VoxelSize[a])));
+  }
+  return voxels;
+}
+
 float VdbDensity::Evaluate(const Vec3& p) const
 {
   const Internals& impl = *this->Impl;

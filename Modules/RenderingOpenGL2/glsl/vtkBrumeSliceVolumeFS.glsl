@@ -9,12 +9,13 @@
 in vec3 positionWC;
 in vec3 texcoord;
 
-uniform sampler3D sourceTexture;     // J = S sigma_t (W m^-3 sr^-1)
+uniform sampler3D sourceTexture;     // J = S sigma_t (W m^-3 sr^-1), or S
 uniform sampler3D extinctionTexture; // sigma_t (m^-1)
 uniform vec3 eyeWC;
 uniform vec3 viewDirectionWC;
 uniform float sliceSpacing;
 uniform int perspective;
+uniform int sourceIsRadiance;        // sourceTexture holds S, not J
 
 //BRUME::Directional::Dec
 
@@ -26,6 +27,11 @@ void main()
   vec3 emission = texture(sourceTexture, texcoord).rgb;
   //BRUME::Directional::Impl
   vec3 sigmaT = texture(extinctionTexture, texcoord).rgb;
+  if (sourceIsRadiance != 0)
+  {
+    // Extinction at its own resolution: J = S sigma_t with the fine sigma_t.
+    emission *= sigmaT;
+  }
   // Distance between two slice planes along this fragment's viewing ray:
   // it grows as 1/cos(angle to the view direction) in perspective.
   float delta = sliceSpacing;

@@ -27,6 +27,7 @@ from .vtkBrumeTracing import *  # noqa: F401,F403
 from .vtkBrumeReconstruction import *  # noqa: F401,F403
 from .vtkBrumeRendering import *  # noqa: F401,F403
 from .vtkBrumeRenderingOpenGL2 import *  # noqa: F401,F403
+from .vtkBrumeIO import *  # noqa: F401,F403
 from .vtkBrumeEvaluation import *  # noqa: F401,F403
 
 __version__ = "0.1.0"

@@ -437,6 +437,61 @@ bool Directional()
   return ok;
 }
 
+bool NativeExtinction()
+{
+  // One coarse voxel of source radiance S over the unit cube, and sigma_t
+  // on a grid of its own (8 x 8 x 1 cells): the left half full, the right
+  // half empty. The image must follow the fine grid (a sharp edge at x = 0)
+  // with S (1 - exp(-sigma_t)) on the left, not the coarse extinction.
+  const double box[6] = { -0.5, 0.5, -0.5, 0.5, -0.5, 0.5 };
+  const Layer coarse{ { 2.0, 1.0, 0.5 }, { 10.0, 10.0, 10.0 } }; // extinction ignored
+  const RGB sigmaT{ 1.5, 0.5, 3.0 };
+  auto grid = vtkSmartPointer<vtkImageData>::New();
+  grid->SetDimensions(9, 9, 2);
+  grid->SetOrigin(box[0], box[2], box[4]);
+  grid->SetSpacing(1.0 / 8.0, 1.0 / 8.0, 1.0);
+  vtkNew<vtkFloatArray> extinction;
+  extinction->SetName("Extinction");
+  extinction->SetNumberOfComponents(3);
+  for (int j = 0; j < 8; ++j)
+  {
+    for (int i = 0; i < 8; ++i)
+    {
+      const RGB zero{ 0.0, 0.0, 0.0 };
+      extinction->InsertNextTuple(i < 4 ? sigmaT.data() : zero.data());
+    }
+  }
+  grid->GetCellData()->AddArray(extinction);
+  bool ok = vtkBrumeSliceVolumeMapper::ValidateExtinction(Medium(box, { coarse }), grid).empty();
+  const Layer full{ coarse.Source, sigmaT };
+  for (bool nearest : { true, false })
+  {
+    auto volume = Volume(Medium(box, { coarse }), 0.0, nearest);
+    auto* mapper = vtkBrumeSliceVolumeMapper::SafeDownCast(volume->GetMapper());
+    mapper->SetExtinctionData(grid);
+    const Frame f = Render({ volume }, true);
+    const std::string what = std::string("native extinction, ") + (nearest ? "nearest" : "linear");
+    for (int i = 0; i < Size; ++i)
+    {
+      const double x = Coordinate(i);
+      // Away from the edge at x = 0 by more than a fine cell (linear
+      // filtering blends over one) and inside the cube.
+      if (std::abs(x) < 0.15 || std::abs(x) > 0.45)
+      {
+        continue;
+      }
+      const RGB expected = x < 0.0 ? Slab(full, 1.0) : RGB{ 0.0, 0.0, 0.0 };
+      ok = Near(f.At(i, Size / 2), expected, 0.01, what) && ok;
+    }
+    // Slices one fine cell apart along the view: the grid is one cell deep.
+    std::cout << what << ": " << mapper->GetLastNumberOfSlices() << " slices\n";
+  }
+  // An extinction grid over another box is refused.
+  grid->SetOrigin(box[0] + 0.25, box[2], box[4]);
+  ok = !vtkBrumeSliceVolumeMapper::ValidateExtinction(Medium(box, { coarse }), grid).empty() && ok;
+  return ok;
+}
+
 int TestSliceVolumeMapper(int, char*[])
 {
   bool ok = true;
@@ -446,5 +501,6 @@ int TestSliceVolumeMapper(int, char*[])
   ok = DepthOrder() && ok;
   ok = BadInput() && ok;
   ok = Directional() && ok;
+  ok = NativeExtinction() && ok;
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }
