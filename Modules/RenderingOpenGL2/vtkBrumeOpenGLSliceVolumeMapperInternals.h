@@ -1,0 +1,47 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The OpenGL slice mapper's state (private to Brume::RenderingOpenGL2):
+// its textures and what they were made from, shared by the drawing
+// (vtkBrumeOpenGLSliceVolumeMapper.cxx) and the texture uploads
+// (vtkBrumeOpenGLSliceVolumeMapperTextures.cxx).
+#ifndef vtkBrumeOpenGLSliceVolumeMapperInternals_h
+#define vtkBrumeOpenGLSliceVolumeMapperInternals_h
+
+#include "vtkBrumeOpenGLSliceVolumeMapper.h"
+#include "vtkNew.h"
+#include "vtkOpenGLBufferObject.h"
+#include "vtkOpenGLVertexArrayObject.h"
+#include "vtkSmartPointer.h"
+#include "vtkTextureObject.h"
+#include "vtkTimeStamp.h"
+
+#include <vector>
+
+class vtkOpenGLRenderWindow;
+
+struct vtkBrumeOpenGLSliceVolumeMapper::Internals
+{
+  vtkNew<vtkTextureObject> Source;
+  vtkNew<vtkTextureObject> Extinction;
+  // Directional radiance: the coefficients (RGBA float 3D textures), the
+  // order (0: none), g, and the eye and box in data coordinates.
+  std::vector<vtkSmartPointer<vtkTextureObject>> Coefficients;
+  int Order = 0;
+  int FragmentOrder = 0;     // the order the shader evaluates (0: none)
+  std::vector<float> Voxels; // per-voxel evaluation: the J-scaled coefficients
+  float EvaluatedEye[3] = { 0.f, 0.f, 0.f };
+  float G = 0.f;
+  float EyeData[3] = { 0.f, 0.f, 0.f };
+  float BoundsLower[3] = { 0.f, 0.f, 0.f };
+  float BoundsExtent[3] = { 1.f, 1.f, 1.f };
+  vtkTimeStamp TextureTime;
+  bool SourceIsRadiance = false; // the source texture holds S (extinction of its own)
+  int Interpolation = -1;
+  vtkOpenGLRenderWindow* Context = nullptr;
+  // The leader's buffers for all volumes of the renderer.
+  vtkNew<vtkOpenGLVertexArrayObject> VAO;
+  vtkNew<vtkOpenGLBufferObject> VBO;
+  std::vector<float> Collected; // x, y, z (world), s, t, r (texture) per vertex
+  std::vector<float> Sorted;
+};
+
+#endif
