@@ -9,6 +9,7 @@
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
+#include "vtkPartitionedDataSet.h"
 #include "vtkPartitionedDataSetCollection.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
@@ -18,6 +19,7 @@
 
 #include "brume/Scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -339,6 +341,52 @@ bool vtkBrumeSceneFileParser::ParseMedium(const json& m, std::size_t i)
   return true;
 }
 
+bool vtkBrumeSceneFileParser::ParseVdb(
+  const json& density, const std::string& at, vtkImageData* image)
+{
+  Parser& p = *this->P;
+  auto relative = [this](const std::string& name) { return this->Relative(name); };
+  std::string file, grid;
+  if (!p.String(density["vdb"], at + ".density.vdb", file))
+  {
+    return false;
+  }
+  if (!std::filesystem::exists(relative(file)))
+  {
+    p.Fail(at + ".density.vdb", "no file '" + relative(file).string() + "'");
+    return false;
+  }
+  AddString(image->GetFieldData(), "BrumeVDBFile", relative(file).string());
+  if (density.contains("grid"))
+  {
+    if (!p.String(density["grid"], at + ".density.grid", grid))
+    {
+      return false;
+    }
+    AddString(image->GetFieldData(), "BrumeVDBGrid", grid);
+  }
+  return true;
+}
+
+void vtkBrumeSceneFileParser::SetBoxesFromGrids(
+  const brume::Scene& scene, const std::vector<vtkBrumeSceneConversion::ObjectSource>& sources)
+{
+  for (std::size_t o = scene.Surfaces.size(); o < sources.size(); ++o)
+  {
+    auto* image = vtkImageData::SafeDownCast(
+      this->Scene->GetPartitionedDataSet(sources[o].CollectionIndex)->GetPartition(0));
+    if (std::find(this->BoxesFromGrids.begin(), this->BoxesFromGrids.end(), image) ==
+      this->BoxesFromGrids.end())
+    {
+      continue;
+    }
+    const brume::Box& box = scene.Media[o - scene.Surfaces.size()].Bounds;
+    image->SetOrigin(box.lower.x, box.lower.y, box.lower.z);
+    const brume::Vec3 extent = box.Extent();
+    image->SetSpacing(extent.x, extent.y, extent.z);
+  }
+}
+
 vtkSmartPointer<vtkImageData> vtkBrumeSceneFileParser::ParseDensity(
   const json& m, const std::string& at)
 {
@@ -386,6 +434,18 @@ vtkSmartPointer<vtkImageData> vtkBrumeSceneFileParser::ParseDensity(
       AddString(image->GetFieldData(), "BrumeDensityArray", array);
     }
   }
+  else if (density.contains("vdb") && !m.contains("box"))
+  {
+    // An OpenVDB medium without a box: the grid's active box, set once the
+    // grid is read (CheckScene).
+    image = vtkSmartPointer<vtkImageData>::New();
+    image->SetDimensions(2, 2, 2);
+    this->BoxesFromGrids.push_back(image);
+    if (!this->ParseVdb(density, at, image))
+    {
+      return nullptr;
+    }
+  }
   else
   {
     double box[6];
@@ -411,27 +471,9 @@ vtkSmartPointer<vtkImageData> vtkBrumeSceneFileParser::ParseDensity(
     image->SetOrigin(box[0], box[1], box[2]);
     image->SetSpacing(box[3] - box[0], box[4] - box[1], box[5] - box[2]);
     image->SetDimensions(2, 2, 2);
-    if (density.contains("vdb"))
+    if (density.contains("vdb") && !this->ParseVdb(density, at, image))
     {
-      std::string file, grid;
-      if (!p.String(density["vdb"], at + ".density.vdb", file))
-      {
-        return nullptr;
-      }
-      if (!std::filesystem::exists(relative(file)))
-      {
-        p.Fail(at + ".density.vdb", "no file '" + relative(file).string() + "'");
-        return nullptr;
-      }
-      AddString(image->GetFieldData(), "BrumeVDBFile", relative(file).string());
-      if (density.contains("grid"))
-      {
-        if (!p.String(density["grid"], at + ".density.grid", grid))
-        {
-          return nullptr;
-        }
-        AddString(image->GetFieldData(), "BrumeVDBGrid", grid);
-      }
+      return nullptr;
     }
   }
   return image;
@@ -581,7 +623,12 @@ bool vtkBrumeSceneFileParser::CheckScene()
   // VTI or VDB files, material energy) is checked here, so that a bad file
   // fails when it is read and the message names the file.
   brume::Scene check;
-  const std::string invalid = vtkBrumeSceneConversion::ToScene(scene, check);
+  std::vector<vtkBrumeSceneConversion::ObjectSource> sources;
+  const std::string invalid = vtkBrumeSceneConversion::ToScene(scene, check, &sources);
+  if (invalid.empty())
+  {
+    this->SetBoxesFromGrids(check, sources);
+  }
   if (!invalid.empty())
   {
     // Name the field: the object the message quotes, else its kind.

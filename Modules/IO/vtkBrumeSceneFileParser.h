@@ -6,6 +6,7 @@
 #ifndef vtkBrumeSceneFileParser_h
 #define vtkBrumeSceneFileParser_h
 
+#include "vtkBrumeSceneConversion.h" // For ObjectSource
 #include "vtkSmartPointer.h"
 
 #include "vtk_nlohmannjson.h"
@@ -45,6 +46,10 @@ private:
   bool ParseMaterial(const json& material, const std::string& m, vtkPolyData* surface);
   bool ParseMedium(const json& m, std::size_t i);
   vtkSmartPointer<vtkImageData> ParseDensity(const json& m, const std::string& at);
+  bool ParseVdb(const json& density, const std::string& at, vtkImageData* image);
+  // OpenVDB media given without a box take the grid's active box.
+  void SetBoxesFromGrids(
+    const brume::Scene& scene, const std::vector<vtkBrumeSceneConversion::ObjectSource>& sources);
   bool ParseLight(const json& l, std::size_t i);
   bool ParseCamera(const json& root);
   bool ParseRender(const json& root);
@@ -56,6 +61,7 @@ private:
   vtkPartitionedDataSetCollection* Scene = nullptr;
   // The field each object came from (name, field), to name it in later messages.
   std::vector<std::pair<std::string, std::string>> ObjectFields;
+  std::vector<vtkImageData*> BoxesFromGrids; // held by the scene
 };
 
 #endif

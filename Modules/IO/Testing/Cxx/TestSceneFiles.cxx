@@ -18,6 +18,8 @@
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkPartitionedDataSet.h"
+#include "vtkPartitionedDataSetCollection.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkStringArray.h"
@@ -188,6 +190,35 @@ int OpenVDB(const std::string& dir, const std::string& shared)
     "the temperature grid reads");
   reader->SetGridName("pressure");
   Check(reader->GetExecutive()->Update() == 0, "a missing grid fails");
+
+  // A scene medium from the grid without a box: the grid's active box,
+  // widened by one voxel (i 2..9, j -3..4, k 0..5; 0.5 wide, moved by (1, 2, 3)).
+  {
+    const std::string scenePath = dir + "/vdb-without-box.json";
+    std::ofstream(scenePath)
+      << R"({ "brume_scene": 1,
+  "surfaces": [ { "name": "floor", "quad": [[0, 0, 0], [0, 0, 8], [8, 0, 8], [8, 0, 0]] } ],
+  "media": [ { "name": "smoke", "sigma_a": [0.1, 0.1, 0.1], "sigma_s": [1, 1, 1],
+               "density": { "vdb": "two-grids.vdb", "grid": "density" } } ],
+  "lights": [ { "type": "point", "position": [4, 8, 4], "intensity": [10, 10, 10] } ] })";
+    vtkNew<vtkBrumeSceneReader> sceneReader;
+    sceneReader->SetFileName(scenePath.c_str());
+    const bool read = sceneReader->GetExecutive()->Update() == 1;
+    Check(read, "an OpenVDB medium needs no box");
+    if (read)
+    {
+      double b[6];
+      vtkImageData::SafeDownCast(sceneReader->GetOutput()->GetPartitionedDataSet(1)->GetPartition(0))
+        ->GetBounds(b);
+      const double expected[6] = { 1.5, 6.0, 0.0, 4.5, 2.5, 6.0 };
+      bool same = true;
+      for (int a = 0; a < 6; ++a)
+      {
+        same = same && std::abs(b[a] - expected[a]) < 1e-5;
+      }
+      Check(same, "the medium's box is the grid's active box");
+    }
+  }
 
   // Corrupt copies: cut, garbage after the header, not a VDB, absent.
   std::ifstream in(file, std::ios::binary);
