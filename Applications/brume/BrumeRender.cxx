@@ -5,22 +5,25 @@
 #include "vtkBrumeDefaultSceneSource.h"
 #include "vtkBrumeFloatImageCapture.h"
 #include "vtkBrumeLightTracer.h"
+#include "vtkBrumeProcesses.h"
 #include "vtkBrumeRadianceReconstruction.h"
 #include "vtkBrumeReferencePathTracer.h"
 #include "vtkBrumeSceneActors.h"
-#include "vtkBrumeProcesses.h"
 #include "vtkBrumeSceneCamera.h"
 #include "vtkBrumeSceneReader.h"
 #include "vtkCamera.h"
 #include "vtkCommunicator.h"
-#include "vtkMultiProcessController.h"
+#include "vtkCompositeDataSet.h"
 #include "vtkDataArray.h"
 #include "vtkExecutive.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkPNGWriter.h"
+#include "vtkPartitionedDataSet.h"
 #include "vtkPartitionedDataSetCollection.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
@@ -188,6 +191,70 @@ int RunReference(RenderOptions options, bool png)
   }
   return WriteImage(reference->GetOutput(), options, png);
 }
+// What `--timings` prints: each phase's time (the paper's Table 1), then
+// the memory of every radiance texture.
+struct PhaseTimes
+{
+  double Tracing, Reconstructing, FirstFrame, Frame, ReductionSeconds;
+  vtkTypeInt64 ReductionBytes;
+};
+
+void PrintTextureMemory(vtkPartitionedDataSetCollection* textures)
+{
+  double total = 0.0;
+  std::printf("texture memory (MB, VTK's count of the arrays' bytes)\n");
+  for (unsigned int i = 0; i < textures->GetNumberOfPartitionedDataSets(); ++i)
+  {
+    vtkPartitionedDataSet* pds = textures->GetPartitionedDataSet(i);
+    const char* name = textures->HasMetaData(i)
+      ? textures->GetMetaData(i)->Get(vtkCompositeDataSet::NAME())
+      : nullptr;
+    for (unsigned int k = 0; pds && k < pds->GetNumberOfPartitions(); ++k)
+    {
+      auto* image = vtkImageData::SafeDownCast(pds->GetPartition(k));
+      if (!image)
+      {
+        continue; // the surfaces' geometry is the scene's
+      }
+      int dims[3];
+      image->GetDimensions(dims);
+      const bool volume = dims[2] > 1;
+      const double megabytes = static_cast<double>(image->GetActualMemorySize()) / 1024.0;
+      total += megabytes;
+      std::printf("  %-28s %-18s %5d x %5d x %5d %9.2f\n", name ? name : "(unnamed)",
+        k == 0 ? (volume ? "source radiance" : "radiance") : "extinction (own)",
+        volume ? dims[0] - 1 : dims[0], volume ? dims[1] - 1 : dims[1], volume ? dims[2] - 1 : 1,
+        megabytes);
+    }
+  }
+  std::printf("  %-28s %-18s %23s %9.2f\n", "all textures", "", "", total);
+}
+
+void PrintTimings(const RenderOptions& options, vtkBrumeLightTracer* tracer,
+  vtkPartitionedDataSetCollection* textures, const PhaseTimes& t, int processes)
+{
+  auto* hits = tracer->GetOutput();
+  std::printf("phase                time (s)\n");
+  std::printf("particle tracing     %8.3f   %lld particles, %lld hits, %lld rays", t.Tracing,
+    options.Particles, static_cast<long long>(hits->GetNumberOfPoints()),
+    static_cast<long long>(tracer->GetLastRayCount()));
+  std::printf(processes > 1 ? " (process 0 of %d; time: the slowest)\n" : "\n", processes);
+  std::printf("reconstruction       %8.3f", t.Reconstructing);
+  if (processes > 1)
+  {
+    std::printf("   histograms summed across processes: %.1f MB sent and received in all, "
+                "%.3f s in the chain (the slowest process)\n",
+      static_cast<double>(t.ReductionBytes) / 1e6, t.ReductionSeconds);
+  }
+  else
+  {
+    std::printf("\n");
+  }
+  std::printf("rendering            %8.3f   per frame at %dx%d (first frame %.3f s, with "
+              "texture upload and shader compilation)\n",
+    t.Frame, options.Width, options.Height, t.FirstFrame);
+  PrintTextureMemory(textures);
+}
 }
 
 int RunRender(RenderOptions options)
@@ -316,26 +383,9 @@ int RunRender(RenderOptions options)
 
   if (options.Timings)
   {
-    auto* hits = tracer->GetOutput();
-    std::printf("phase                time (s)\n");
-    std::printf("particle tracing     %8.3f   %lld particles, %lld hits, %lld rays", tracing,
-      options.Particles, static_cast<long long>(hits->GetNumberOfPoints()),
-      static_cast<long long>(tracer->GetLastRayCount()));
-    std::printf(processes > 1 ? " (process 0 of %d; time: the slowest)\n" : "\n", processes);
-    std::printf("reconstruction       %8.3f", reconstructing);
-    if (processes > 1)
-    {
-      std::printf("   histograms summed across processes: %.1f MB sent and received in all, "
-                  "%.3f s in the chain (the slowest process)\n",
-        static_cast<double>(reductionBytes) / 1e6, reductionSeconds);
-    }
-    else
-    {
-      std::printf("\n");
-    }
-    std::printf("rendering            %8.3f   per frame at %dx%d (first frame %.3f s, with "
-                "texture upload and shader compilation)\n",
-      frame, options.Width, options.Height, firstFrame);
+    PhaseTimes times{ tracing, reconstructing, firstFrame, frame, reductionSeconds,
+      reductionBytes };
+    PrintTimings(options, tracer, reconstruction->GetOutput(), times, processes);
   }
   return 0;
 }
