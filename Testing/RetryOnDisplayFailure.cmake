@@ -2,6 +2,12 @@
 # fails only because the X server refused the connection ("bad X server
 # connection": the display, not the code under test), it is run once more.
 # pvbatch opens its window at start-up and met this now and then under Xvfb.
+# pvbatch (ParaView's VTK, built for X) needs an X display: without one the
+# test says so and is reported as skipped (SKIP_REGULAR_EXPRESSION).
+if ("$ENV{DISPLAY}" STREQUAL "")
+  message(STATUS "skipped: pvbatch needs an X display")
+  return ()
+endif ()
 foreach (attempt RANGE 1 2)
   execute_process(COMMAND ${COMMAND} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   string(FIND "${out}${err}" "bad X server connection" display_failure)

@@ -17,6 +17,7 @@ function (brume_test_driver name)
   if (arg_RENDERING)
     target_link_libraries("${name}" PRIVATE
       VTK::RenderingOpenGL2 VTK::RenderingVolumeOpenGL2 Brume::RenderingOpenGL2)
+    target_compile_definitions("${name}" PRIVATE BRUME_TEST_RENDERING)
     vtk_module_autoinit(TARGETS "${name}"
       MODULES VTK::RenderingOpenGL2 VTK::RenderingVolumeOpenGL2 Brume::RenderingOpenGL2)
   endif ()

@@ -15,8 +15,8 @@ packages=(
   libopenmpi-dev libdouble-conversion-dev libutfcpp-dev liblz4-dev liblzma-dev
   libexpat1-dev libxml2-dev libfreetype-dev libpng-dev libjpeg-dev libtiff-dev
   zlib1g-dev libeigen3-dev
-  # Ray casting, volumes, headless OpenGL.
-  libembree-dev libopenvdb-dev libboost-iostreams-dev libosmesa6-dev xvfb xauth
+  # Ray casting, volumes, OpenGL with no X server (EGL).
+  libembree-dev libopenvdb-dev libboost-iostreams-dev libegl-dev libegl-mesa0
   # The brume command line's parser (header-only).
   libcli11-dev
   # Tools and test frameworks; mpirun for distributed runs and their tests.

@@ -30,6 +30,7 @@
 
 #include <cstdlib>
 
+#include "vtkBrumeRenderWindowSelection.h"
 #include "vtkBrumeSceneCamera.h"
 #include "vtkBrumeSceneConversion.h"
 
@@ -134,10 +135,9 @@ void BenchReconstruction(vtkAlgorithm* source, vtkAlgorithm* tracer)
 // slice mapper and with vtkGPUVolumeRayCastMapper on the same volume.
 void BenchRendering(vtkAlgorithm* source, vtkAlgorithm* tracer)
 {
-  const char* display = std::getenv("DISPLAY");
-  if (!display || !*display)
+  if (!vtkBrumeRenderWindowSelection::Install())
   {
-    std::printf("rendering          skipped: no X display (run under xvfb-run -a)\n");
+    std::printf("rendering          skipped: %s\n", vtkBrumeRenderWindowSelection::GetLastError());
     return;
   }
   vtkNew<vtkBrumeRadianceReconstruction> reconstruction;

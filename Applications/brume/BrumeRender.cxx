@@ -6,6 +6,7 @@
 #include "vtkBrumeFloatImageCapture.h"
 #include "vtkBrumeLightTracer.h"
 #include "vtkBrumeProcesses.h"
+#include "vtkBrumeRenderWindowSelection.h"
 #include "vtkBrumeRadianceReconstruction.h"
 #include "vtkBrumeReferencePathTracer.h"
 #include "vtkBrumeSceneActors.h"
@@ -56,14 +57,19 @@ bool EndsWith(const std::string& s, const std::string& suffix)
 
 }
 
-bool HasDisplay(const char* what)
+bool HasDisplay(const char* what, bool window)
 {
-  const char* display = std::getenv("DISPLAY");
-  if (!display || !*display)
+  // X when DISPLAY names a display, else EGL (BRUME_RENDER_WINDOW chooses).
+  if (!vtkBrumeRenderWindowSelection::Install())
+  {
+    std::cerr << "brume: " << what << ": "
+              << vtkBrumeRenderWindowSelection::GetLastError() << ".\n";
+    return false;
+  }
+  if (window && std::string(vtkBrumeRenderWindowSelection::GetInstalled()) != "x")
   {
     std::cerr << "brume: " << what
-              << " needs an X display (none is set in DISPLAY); on a headless machine run it "
-                 "under 'xvfb-run -a'.\n";
+              << " shows a window and needs an X display (none is set in DISPLAY).\n";
     return false;
   }
   return true;

@@ -38,8 +38,9 @@ int RunRender(RenderOptions options);
  */
 vtkSmartPointer<vtkAlgorithm> LoadScene(RenderOptions& options);
 
-/// True when an X display is set; otherwise says on stderr that `what`
-/// needs one and how to get one (xvfb-run -a).
-bool HasDisplay(const char* what);
+/// True when `what` can render: through X when DISPLAY names a display,
+/// else through EGL (vtkBrumeRenderWindowSelection); with `window`, only
+/// on X (a window on a screen). Otherwise says why on stderr.
+bool HasDisplay(const char* what, bool window = false);
 
 #endif

@@ -383,7 +383,7 @@ int RunView(const ViewOptions& options)
   {
     return 1;
   }
-  if (!HasDisplay("the viewer (or its --orbit)"))
+  if (!HasDisplay("the viewer", resolved.Orbit == 0))
   {
     return 1;
   }

@@ -30,4 +30,11 @@ from .vtkBrumeRenderingOpenGL2 import *  # noqa: F401,F403
 from .vtkBrumeIO import *  # noqa: F401,F403
 from .vtkBrumeEvaluation import *  # noqa: F401,F403
 
+# Render windows on X when DISPLAY names a display, else on EGL (no X
+# server needed); BRUME_RENDER_WINDOW=x|egl|auto chooses.
+if not vtkBrumeRenderWindowSelection.Install():  # noqa: F405
+    import warnings
+
+    warnings.warn("brume: " + vtkBrumeRenderWindowSelection.GetLastError())  # noqa: F405
+
 __version__ = "0.1.0"

@@ -1,0 +1,314 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkBrumeEGLRenderWindow.h"
+
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLState.h"
+#include "vtk_glew.h"
+
+// EGL without X11 types: this window never talks to an X server.
+#define EGL_NO_X11
+#define MESA_EGL_NO_X11_HEADERS
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+
+#include <cstring>
+#include <mutex>
+#include <string>
+
+vtkStandardNewMacro(vtkBrumeEGLRenderWindow);
+
+namespace
+{
+// One EGL display for the process (initialized once, never terminated:
+// other windows' contexts live on it).
+struct EGLState
+{
+  EGLDisplay Handle = EGL_NO_DISPLAY;
+  EGLConfig Config = nullptr;
+  std::string Error;
+};
+
+// The device platform where EGL is NVIDIA's (a GPU without a display),
+// else Mesa's surfaceless platform, else the default display.
+EGLDisplay OpenDisplay()
+{
+  auto getPlatformDisplay = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
+    eglGetProcAddress("eglGetPlatformDisplayEXT"));
+  const char* clientExtensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+  auto has = [&](const char* name)
+  { return clientExtensions && std::strstr(clientExtensions, name) != nullptr; };
+  if (getPlatformDisplay && has("EGL_EXT_platform_device"))
+  {
+    auto queryDevices =
+      reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+    auto queryDeviceString = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(
+      eglGetProcAddress("eglQueryDeviceStringEXT"));
+    EGLDeviceEXT devices[16];
+    EGLint count = 0;
+    if (queryDevices && queryDevices(16, devices, &count))
+    {
+      for (EGLint d = 0; d < count; ++d)
+      {
+        // A hardware device: one that names a DRM node and is not Mesa's
+        // software device (surfaceless is preferred for that one).
+        const char* extensions =
+          queryDeviceString ? queryDeviceString(devices[d], EGL_EXTENSIONS) : nullptr;
+        if (extensions && std::strstr(extensions, "EGL_EXT_device_drm") &&
+          !std::strstr(extensions, "EGL_MESA_device_software"))
+        {
+          EGLDisplay display = getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[d], nullptr);
+          if (display != EGL_NO_DISPLAY)
+          {
+            return display;
+          }
+        }
+      }
+    }
+  }
+  if (getPlatformDisplay && has("EGL_MESA_platform_surfaceless"))
+  {
+    EGLDisplay display =
+      getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    if (display != EGL_NO_DISPLAY)
+    {
+      return display;
+    }
+  }
+  return eglGetDisplay(EGL_DEFAULT_DISPLAY);
+}
+
+EGLState& SharedDisplay()
+{
+  static EGLState display;
+  static std::once_flag once;
+  std::call_once(once,
+    []()
+    {
+      display.Handle = OpenDisplay();
+      EGLint major = 0, minor = 0;
+      if (display.Handle == EGL_NO_DISPLAY || !eglInitialize(display.Handle, &major, &minor))
+      {
+        display.Error = "no EGL display could be initialized (is Mesa's libegl-mesa0, or a "
+                        "GPU driver's EGL, installed?)";
+        display.Handle = EGL_NO_DISPLAY;
+        return;
+      }
+      if (!eglBindAPI(EGL_OPENGL_API))
+      {
+        display.Error = "this EGL does not offer desktop OpenGL";
+        return;
+      }
+      const EGLint attributes[] = { EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RED_SIZE, 8,
+        EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_ALPHA_SIZE, 8, EGL_DEPTH_SIZE, 24,
+        EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE };
+      EGLint count = 0;
+      if (!eglChooseConfig(display.Handle, attributes, &display.Config, 1, &count) || count < 1)
+      {
+        display.Error = "no EGL configuration offers an RGBA, depth-buffered OpenGL pbuffer";
+      }
+    });
+  return display;
+}
+}
+
+struct vtkBrumeEGLRenderWindow::Internals
+{
+  EGLContext Context = EGL_NO_CONTEXT;
+  EGLSurface Surface = EGL_NO_SURFACE;
+};
+
+vtkBrumeEGLRenderWindow::vtkBrumeEGLRenderWindow()
+  : Impl(new Internals)
+{
+  this->SetOffScreenRendering(1);
+  this->OwnContext = 1;
+}
+
+vtkBrumeEGLRenderWindow::~vtkBrumeEGLRenderWindow()
+{
+  this->Finalize();
+}
+
+bool vtkBrumeEGLRenderWindow::IsAvailable()
+{
+  return GetAvailabilityError().empty();
+}
+
+std::string vtkBrumeEGLRenderWindow::GetAvailabilityError()
+{
+  const EGLState& display = SharedDisplay();
+  return display.Error;
+}
+
+bool vtkBrumeEGLRenderWindow::EnsureContext()
+{
+  Internals& impl = *this->Impl;
+  if (impl.Context != EGL_NO_CONTEXT)
+  {
+    return true;
+  }
+  const EGLState& display = SharedDisplay();
+  if (!display.Error.empty())
+  {
+    vtkErrorMacro("Cannot render through EGL: " << display.Error << ".");
+    return false;
+  }
+  // A 1x1 pbuffer gives framebuffer 0 a colour buffer; VTK renders into
+  // framebuffers of its own at the window's size.
+  const EGLint surfaceAttributes[] = { EGL_WIDTH, 1, EGL_HEIGHT, 1, EGL_NONE };
+  impl.Surface = eglCreatePbufferSurface(display.Handle, display.Config, surfaceAttributes);
+  eglBindAPI(EGL_OPENGL_API);
+  const EGLint contextAttributes[] = { EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 2,
+    EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE };
+  impl.Context =
+    eglCreateContext(display.Handle, display.Config, EGL_NO_CONTEXT, contextAttributes);
+  if (impl.Surface == EGL_NO_SURFACE || impl.Context == EGL_NO_CONTEXT)
+  {
+    vtkErrorMacro("Cannot create an EGL OpenGL 3.2 core context (EGL error 0x"
+      << std::hex << eglGetError() << std::dec << ").");
+    this->Finalize();
+    return false;
+  }
+  return true;
+}
+
+void vtkBrumeEGLRenderWindow::Initialize()
+{
+  if (!this->EnsureContext())
+  {
+    return;
+  }
+  this->MakeCurrent();
+  if (!this->Initialized)
+  {
+    this->OpenGLInit();
+  }
+}
+
+void vtkBrumeEGLRenderWindow::Render()
+{
+  if (!this->Initialized)
+  {
+    this->Initialize();
+    if (!this->Initialized)
+    {
+      return; // the error is reported
+    }
+  }
+  this->MakeCurrent();
+  this->Superclass::Render();
+}
+
+void vtkBrumeEGLRenderWindow::OpenGLInitContext()
+{
+  this->ContextCreationTime.Modified();
+  if (this->Initialized)
+  {
+    return;
+  }
+  // GLEW loads every OpenGL entry point, then looks for a GLX display:
+  // GLEW_ERROR_GLX_VERSION_11_ONLY (3) and GLEW_ERROR_NO_GLX_DISPLAY (4)
+  // say only that there is no GLX, which this window does not use.
+  const GLenum result = glewInit();
+  if (result != GLEW_OK && result != GLEW_ERROR_GLX_VERSION_11_ONLY &&
+    result != GLEW_ERROR_NO_GLX_DISPLAY)
+  {
+    vtkErrorMacro("GLEW could not be initialized on the EGL context: "
+      << reinterpret_cast<const char*>(glewGetErrorString(result)));
+    return;
+  }
+  GLint major = 0, minor = 0;
+  glGetIntegerv(GL_MAJOR_VERSION, &major);
+  glGetIntegerv(GL_MINOR_VERSION, &minor);
+  if (major < 3 || (major == 3 && minor < 2))
+  {
+    vtkErrorMacro("The EGL context offers OpenGL " << major << "." << minor
+                                                   << ", and Brume needs 3.2 or later.");
+    return;
+  }
+  this->GlewInitValid = true;
+  this->Initialized = true;
+  GLfloat range[2] = { 1.f, 1.f };
+  glGetFloatv(GL_ALIASED_LINE_WIDTH_RANGE, range);
+  this->MaximumHardwareLineWidth = glGetError() == GL_NO_ERROR ? range[1] : 1.f;
+}
+
+void vtkBrumeEGLRenderWindow::MakeCurrent()
+{
+  const Internals& impl = *this->Impl;
+  if (impl.Context != EGL_NO_CONTEXT && eglGetCurrentContext() != impl.Context)
+  {
+    eglMakeCurrent(SharedDisplay().Handle, impl.Surface, impl.Surface, impl.Context);
+  }
+}
+
+void vtkBrumeEGLRenderWindow::ReleaseCurrent()
+{
+  if (this->Impl->Context != EGL_NO_CONTEXT && eglGetCurrentContext() == this->Impl->Context)
+  {
+    eglMakeCurrent(SharedDisplay().Handle, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+  }
+}
+
+bool vtkBrumeEGLRenderWindow::IsCurrent()
+{
+  return this->Impl->Context != EGL_NO_CONTEXT && eglGetCurrentContext() == this->Impl->Context;
+}
+
+int vtkBrumeEGLRenderWindow::SupportsOpenGL()
+{
+  return IsAvailable() ? 1 : 0;
+}
+
+vtkTypeBool vtkBrumeEGLRenderWindow::IsDirect()
+{
+  return 1;
+}
+
+void vtkBrumeEGLRenderWindow::Frame()
+{
+  // Off screen: VTK's framebuffers hold the image; nothing to swap.
+  this->MakeCurrent();
+  this->Superclass::Frame();
+}
+
+void* vtkBrumeEGLRenderWindow::GetGenericContext()
+{
+  return this->Impl->Context;
+}
+
+void vtkBrumeEGLRenderWindow::Finalize()
+{
+  Internals& impl = *this->Impl;
+  if (impl.Context == EGL_NO_CONTEXT && impl.Surface == EGL_NO_SURFACE)
+  {
+    return;
+  }
+  if (impl.Context != EGL_NO_CONTEXT)
+  {
+    this->MakeCurrent();
+    this->ReleaseGraphicsResources(this);
+  }
+  const EGLDisplay display = SharedDisplay().Handle;
+  if (eglGetCurrentContext() == impl.Context)
+  {
+    eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+  }
+  if (impl.Context != EGL_NO_CONTEXT)
+  {
+    eglDestroyContext(display, impl.Context);
+  }
+  if (impl.Surface != EGL_NO_SURFACE)
+  {
+    eglDestroySurface(display, impl.Surface);
+  }
+  impl.Context = EGL_NO_CONTEXT;
+  impl.Surface = EGL_NO_SURFACE;
+  this->Initialized = false;
+}
+
+void vtkBrumeEGLRenderWindow::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Context: " << this->Impl->Context << "\n";
+}

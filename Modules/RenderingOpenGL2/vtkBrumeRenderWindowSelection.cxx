@@ -1,0 +1,129 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkBrumeRenderWindowSelection.h"
+
+#include "vtkBrumeEGLRenderWindow.h"
+#include "vtkGenericRenderWindowInteractor.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkVersion.h"
+
+#include <cstdlib>
+#include <mutex>
+#include <string>
+
+vtkStandardNewMacro(vtkBrumeRenderWindowSelection);
+
+namespace
+{
+vtkObject* NewEGLWindow()
+{
+  return vtkBrumeEGLRenderWindow::New();
+}
+
+vtkObject* NewInteractor()
+{
+  return vtkGenericRenderWindowInteractor::New();
+}
+
+// Gives vtkRenderWindow::New() the EGL window.
+class EGLWindowFactory : public vtkObjectFactory
+{
+public:
+  static EGLWindowFactory* New()
+  {
+    auto* factory = new EGLWindowFactory;
+    factory->InitializeObjectBase();
+    return factory;
+  }
+  vtkTypeMacro(EGLWindowFactory, vtkObjectFactory);
+  const char* GetVTKSourceVersion() override { return VTK_SOURCE_VERSION; }
+  const char* GetDescription() override { return "Brume: render windows on EGL (no X server)"; }
+
+protected:
+  EGLWindowFactory()
+  {
+    this->RegisterOverride("vtkRenderWindow", "vtkBrumeEGLRenderWindow",
+      "an off-screen OpenGL window on EGL", 1, NewEGLWindow);
+    // Windows that get an interactor (charts' context views) must not open
+    // an X connection for it.
+    this->RegisterOverride("vtkRenderWindowInteractor", "vtkGenericRenderWindowInteractor",
+      "an interactor with no window system", 1, NewInteractor);
+  }
+};
+
+struct Selection
+{
+  std::mutex Mutex;
+  bool Done = false;
+  bool Ok = false;
+  std::string Installed;
+  std::string Error;
+};
+
+Selection& State()
+{
+  static Selection selection;
+  return selection;
+}
+
+bool Choose(const std::string& requested, Selection& s)
+{
+  std::string kind = requested.empty() ? "auto" : requested;
+  if (kind != "auto" && kind != "x" && kind != "egl")
+  {
+    s.Error = "BRUME_RENDER_WINDOW must be 'x', 'egl' or 'auto', not '" + kind + "'";
+    return false;
+  }
+  if (kind == "auto")
+  {
+    const char* display = std::getenv("DISPLAY");
+    kind = display && *display ? "x" : "egl";
+  }
+  if (kind == "x")
+  {
+    s.Installed = "x"; // VTK's own window, as the factory has it
+    return true;
+  }
+  if (!vtkBrumeEGLRenderWindow::IsAvailable())
+  {
+    s.Error = "no X display and no EGL: " + vtkBrumeEGLRenderWindow::GetAvailabilityError();
+    return false;
+  }
+  vtkNew<EGLWindowFactory> factory;
+  vtkObjectFactory::RegisterFactory(factory);
+  // VTK's X window must not come first.
+  vtkObjectFactory::SetAllEnableFlags(0, "vtkRenderWindow", "vtkXOpenGLRenderWindow");
+  vtkObjectFactory::SetAllEnableFlags(
+    0, "vtkRenderWindowInteractor", "vtkXRenderWindowInteractor");
+  s.Installed = "egl";
+  return true;
+}
+}
+
+bool vtkBrumeRenderWindowSelection::Install()
+{
+  const char* kind = std::getenv("BRUME_RENDER_WINDOW");
+  return Install(kind ? kind : "");
+}
+
+bool vtkBrumeRenderWindowSelection::Install(const char* kind)
+{
+  Selection& s = State();
+  std::lock_guard<std::mutex> lock(s.Mutex);
+  if (!s.Done)
+  {
+    s.Done = true;
+    s.Ok = Choose(kind ? kind : "", s);
+  }
+  return s.Ok;
+}
+
+const char* vtkBrumeRenderWindowSelection::GetInstalled()
+{
+  return State().Installed.c_str();
+}
+
+const char* vtkBrumeRenderWindowSelection::GetLastError()
+{
+  return State().Error.c_str();
+}
