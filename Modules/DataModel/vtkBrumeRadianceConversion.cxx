@@ -153,8 +153,28 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromSurface(
   return pds;
 }
 
+vtkSmartPointer<vtkImageData> vtkBrumeRadianceConversion::NativeExtinction(
+  const brume::ObjectRadiance& radiance, const brume::Medium& medium)
+{
+  if (radiance.GetNativeExtinction().empty())
+  {
+    return nullptr;
+  }
+  // sigma_t at the density's own resolution, over the medium's box.
+  const auto& native = radiance.GetNativeResolution();
+  const brume::Vec3 extent = medium.Bounds.Extent();
+  auto extinction = vtkSmartPointer<vtkImageData>::New();
+  extinction->SetDimensions(native[0] + 1, native[1] + 1, native[2] + 1);
+  extinction->SetOrigin(medium.Bounds.lower.x, medium.Bounds.lower.y, medium.Bounds.lower.z);
+  extinction->SetSpacing(extent.x / native[0], extent.y / native[1], extent.z / native[2]);
+  extinction->GetCellData()->SetScalars(NewRGB("Extinction", radiance.GetNativeExtinction()));
+  AddString(extinction->GetFieldData(), "BrumeObjectKind", "medium extinction");
+  return extinction;
+}
+
 vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
-  const brume::ObjectRadiance& radiance, const brume::Medium& medium, bool directional)
+  const brume::ObjectRadiance& radiance, const brume::Medium& medium, bool directional,
+  vtkImageData* nativeExtinction)
 {
   const auto& res = radiance.GetResolution();
   const brume::Vec3 extent = medium.Bounds.Extent();
@@ -198,16 +218,13 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
   auto pds = vtkSmartPointer<vtkPartitionedDataSet>::New();
   pds->SetNumberOfPartitions(1);
   pds->SetPartition(0, texture);
-  if (!radiance.GetNativeExtinction().empty())
+  vtkSmartPointer<vtkImageData> extinction = nativeExtinction;
+  if (!extinction)
   {
-    // sigma_t at the density's own resolution, over the same box.
-    const auto& native = radiance.GetNativeResolution();
-    vtkNew<vtkImageData> extinction;
-    extinction->SetDimensions(native[0] + 1, native[1] + 1, native[2] + 1);
-    extinction->SetOrigin(medium.Bounds.lower.x, medium.Bounds.lower.y, medium.Bounds.lower.z);
-    extinction->SetSpacing(extent.x / native[0], extent.y / native[1], extent.z / native[2]);
-    extinction->GetCellData()->SetScalars(NewRGB("Extinction", radiance.GetNativeExtinction()));
-    AddString(extinction->GetFieldData(), "BrumeObjectKind", "medium extinction");
+    extinction = NativeExtinction(radiance, medium);
+  }
+  if (extinction)
+  {
     pds->SetNumberOfPartitions(2);
     pds->SetPartition(1, extinction);
   }

@@ -41,6 +41,7 @@
 
 #include "brume/Reconstruction.h" // For brume::ObjectRadiance
 
+class vtkImageData;
 class vtkPartitionedDataSet;
 class vtkPolyData;
 
@@ -59,8 +60,17 @@ public:
    * A medium's texture: toward the eye, or the directional projection when
    * `directional` (the object holds one: ObjectRadiance::BuildDirectional).
    */
-  static vtkSmartPointer<vtkPartitionedDataSet> FromMedium(
-    const brume::ObjectRadiance& radiance, const brume::Medium& medium, bool directional);
+  static vtkSmartPointer<vtkPartitionedDataSet> FromMedium(const brume::ObjectRadiance& radiance,
+    const brume::Medium& medium, bool directional, vtkImageData* nativeExtinction = nullptr);
+
+  /**
+   * A heterogeneous medium's extinction at the density's own resolution
+   * (partition 1 of FromMedium), null for other objects. It does not change
+   * with the view or the particles: a caller may keep it and pass it to
+   * FromMedium again, so that renderers do not upload it again.
+   */
+  static vtkSmartPointer<vtkImageData> NativeExtinction(
+    const brume::ObjectRadiance& radiance, const brume::Medium& medium);
 };
 
 #endif

@@ -8,6 +8,7 @@
 #include "vtkCompositeDataSet.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
+#include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkPartitionedDataSet.h"
 #include "vtkPartitionedDataSetCollection.h"
@@ -454,8 +455,18 @@ void vtkBrumeRadianceTextures::Emit(vtkPartitionedDataSetCollection* output)
       }
       else
       {
-        this->Outputs[o] = vtkBrumeRadianceConversion::FromMedium(radiance,
-          this->Scene.Media[o - this->Scene.Surfaces.size()], this->ObjectDirectional[o]);
+        const brume::Medium& medium = this->Scene.Media[o - this->Scene.Surfaces.size()];
+        // The native extinction is made once: renderers keep its texture.
+        if (this->NativeExtinction.size() != this->Objects.size())
+        {
+          this->NativeExtinction.resize(this->Objects.size());
+        }
+        if (!this->NativeExtinction[o])
+        {
+          this->NativeExtinction[o] = vtkBrumeRadianceConversion::NativeExtinction(radiance, medium);
+        }
+        this->Outputs[o] = vtkBrumeRadianceConversion::FromMedium(
+          radiance, medium, this->ObjectDirectional[o], this->NativeExtinction[o]);
       }
     }
     output->SetPartitionedDataSet(source.CollectionIndex, this->Outputs[o]);

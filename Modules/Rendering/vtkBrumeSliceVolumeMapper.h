@@ -101,7 +101,9 @@ public:
    * `Extinction` (1 or 3 components, m^-1). When set, it replaces the
    * input's `Extinction`, the input's `SourceRadiance` (and
    * `SourceRadianceSH`) is taken as the source radiance S itself, and the
-   * default slice spacing is one cell of this grid. vtkBrumeSceneActors sets
+   * default slice spacing is at most one cell of this grid (and at most
+   * half a voxel of the input). The grid is uploaded again only when it is
+   * another one or was modified. vtkBrumeSceneActors sets
    * it from a medium's partition 1 (vtkBrumeRadianceReconstruction's
    * extinction at the density's own resolution).
    */

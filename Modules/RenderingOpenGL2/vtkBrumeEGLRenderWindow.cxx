@@ -13,6 +13,7 @@
 
 #include <cstring>
 #include <mutex>
+#include <sstream>
 #include <string>
 
 vtkStandardNewMacro(vtkBrumeEGLRenderWindow);
@@ -77,6 +78,56 @@ EGLDisplay OpenDisplay()
   return eglGetDisplay(EGL_DEFAULT_DISPLAY);
 }
 
+const EGLint ContextAttributes[] = { EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 2,
+  EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE };
+const EGLint SurfaceAttributes[] = { EGL_WIDTH, 1, EGL_HEIGHT, 1, EGL_NONE };
+
+std::string EGLError(const char* what)
+{
+  std::ostringstream os;
+  os << what << " (EGL error 0x" << std::hex << eglGetError() << ")";
+  return os.str();
+}
+
+// Whether an OpenGL 3.2 core context really starts here: made once, current
+// long enough to ask its version, then destroyed.
+std::string ProbeContext(EGLDisplay display, EGLConfig config)
+{
+  EGLSurface surface = eglCreatePbufferSurface(display, config, SurfaceAttributes);
+  if (surface == EGL_NO_SURFACE)
+  {
+    return EGLError("no EGL pbuffer could be made");
+  }
+  EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, ContextAttributes);
+  std::string error;
+  if (context == EGL_NO_CONTEXT)
+  {
+    error = EGLError("no OpenGL 3.2 core context could be made through EGL");
+  }
+  else if (!eglMakeCurrent(display, surface, surface, context))
+  {
+    error = EGLError("the EGL context could not be made current");
+  }
+  else
+  {
+    GLint major = 0, minor = 0;
+    glGetIntegerv(GL_MAJOR_VERSION, &major);
+    glGetIntegerv(GL_MINOR_VERSION, &minor);
+    if (major < 3 || (major == 3 && minor < 2))
+    {
+      error = "the EGL context offers OpenGL " + std::to_string(major) + "." +
+        std::to_string(minor) + ", and Brume needs 3.2 or later";
+    }
+    eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+  }
+  if (context != EGL_NO_CONTEXT)
+  {
+    eglDestroyContext(display, context);
+  }
+  eglDestroySurface(display, surface);
+  return error;
+}
+
 EGLState& SharedDisplay()
 {
   static EGLState display;
@@ -105,7 +156,9 @@ EGLState& SharedDisplay()
       if (!eglChooseConfig(display.Handle, attributes, &display.Config, 1, &count) || count < 1)
       {
         display.Error = "no EGL configuration offers an RGBA, depth-buffered OpenGL pbuffer";
+        return;
       }
+      display.Error = ProbeContext(display.Handle, display.Config);
     });
   return display;
 }
@@ -155,17 +208,19 @@ bool vtkBrumeEGLRenderWindow::EnsureContext()
   }
   // A 1x1 pbuffer gives framebuffer 0 a colour buffer; VTK renders into
   // framebuffers of its own at the window's size.
-  const EGLint surfaceAttributes[] = { EGL_WIDTH, 1, EGL_HEIGHT, 1, EGL_NONE };
-  impl.Surface = eglCreatePbufferSurface(display.Handle, display.Config, surfaceAttributes);
-  eglBindAPI(EGL_OPENGL_API);
-  const EGLint contextAttributes[] = { EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 2,
-    EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE };
-  impl.Context =
-    eglCreateContext(display.Handle, display.Config, EGL_NO_CONTEXT, contextAttributes);
-  if (impl.Surface == EGL_NO_SURFACE || impl.Context == EGL_NO_CONTEXT)
+  impl.Surface = eglCreatePbufferSurface(display.Handle, display.Config, SurfaceAttributes);
+  if (impl.Surface == EGL_NO_SURFACE)
   {
-    vtkErrorMacro("Cannot create an EGL OpenGL 3.2 core context (EGL error 0x"
-      << std::hex << eglGetError() << std::dec << ").");
+    vtkErrorMacro("Cannot render through EGL: " << EGLError("no pbuffer could be made") << ".");
+    return false;
+  }
+  eglBindAPI(EGL_OPENGL_API);
+  impl.Context =
+    eglCreateContext(display.Handle, display.Config, EGL_NO_CONTEXT, ContextAttributes);
+  if (impl.Context == EGL_NO_CONTEXT)
+  {
+    vtkErrorMacro(
+      "Cannot render through EGL: " << EGLError("no OpenGL 3.2 core context could be made") << ".");
     this->Finalize();
     return false;
   }
@@ -236,7 +291,12 @@ void vtkBrumeEGLRenderWindow::OpenGLInitContext()
 void vtkBrumeEGLRenderWindow::MakeCurrent()
 {
   const Internals& impl = *this->Impl;
-  if (impl.Context != EGL_NO_CONTEXT && eglGetCurrentContext() != impl.Context)
+  if (impl.Context == EGL_NO_CONTEXT)
+  {
+    return;
+  }
+  eglBindAPI(EGL_OPENGL_API); // per thread: this thread may be on another API
+  if (eglGetCurrentContext() != impl.Context)
   {
     eglMakeCurrent(SharedDisplay().Handle, impl.Surface, impl.Surface, impl.Context);
   }
@@ -244,7 +304,7 @@ void vtkBrumeEGLRenderWindow::MakeCurrent()
 
 void vtkBrumeEGLRenderWindow::ReleaseCurrent()
 {
-  if (this->Impl->Context != EGL_NO_CONTEXT && eglGetCurrentContext() == this->Impl->Context)
+  if (this->Impl->Context != EGL_NO_CONTEXT && this->IsCurrent())
   {
     eglMakeCurrent(SharedDisplay().Handle, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
   }
@@ -252,7 +312,12 @@ void vtkBrumeEGLRenderWindow::ReleaseCurrent()
 
 bool vtkBrumeEGLRenderWindow::IsCurrent()
 {
-  return this->Impl->Context != EGL_NO_CONTEXT && eglGetCurrentContext() == this->Impl->Context;
+  if (this->Impl->Context == EGL_NO_CONTEXT)
+  {
+    return false;
+  }
+  eglBindAPI(EGL_OPENGL_API);
+  return eglGetCurrentContext() == this->Impl->Context;
 }
 
 int vtkBrumeEGLRenderWindow::SupportsOpenGL()

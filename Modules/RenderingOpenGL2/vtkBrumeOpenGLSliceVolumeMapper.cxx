@@ -20,7 +20,6 @@
 #include "vtkOpenGLState.h"
 #include "vtkOpenGLVertexArrayObject.h"
 #include "vtkRenderer.h"
-#include "vtkSMPTools.h"
 #include "vtkShaderProgram.h"
 #include "vtkSmartPointer.h"
 #include "vtkTextureObject.h"
@@ -32,8 +31,6 @@
 #include "vtkBrumeOpenGLSliceVolumeMapperInternals.h"
 #include "vtkBrumeSliceVolumeShader.h"
 #include "vtkBrumeSliceVolumeVS.h"
-
-#include "brume/SphericalHarmonics.h"
 
 #include <algorithm>
 #include <array>
@@ -106,6 +103,7 @@ void vtkBrumeOpenGLSliceVolumeMapper::ReleaseGraphicsResources(vtkWindow* window
   this->Impl->VBO->ReleaseGraphicsResources();
   this->Impl->Context = nullptr;
   this->Impl->TextureTime = vtkTimeStamp();
+  this->Impl->ExtinctionGrid = nullptr;
 }
 
 void vtkBrumeOpenGLSliceVolumeMapper::Render(vtkRenderer* ren, vtkVolume*)
@@ -236,21 +234,27 @@ void vtkBrumeOpenGLSliceVolumeMapper::CutSlices(
   {
     return; // entirely behind the camera
   }
-  double voxel = VTK_DOUBLE_MAX;
-  // Slices follow the finest structure: the extinction's own grid when it
-  // has one (a cell apart), else half a voxel.
-  vtkImageData* grid = this->ExtinctionData ? this->ExtinctionData.GetPointer() : input;
-  const double* spacing = grid->GetSpacing();
-  for (int a = 0; a < 3; ++a)
+  // Slices follow the finest structure: half a voxel of the source, and at
+  // most one cell of the extinction's own grid when it has one.
+  auto smallestCell = [&](vtkImageData* grid)
   {
-    const double axis = std::sqrt(model->GetElement(0, a) * model->GetElement(0, a) +
-      model->GetElement(1, a) * model->GetElement(1, a) +
-      model->GetElement(2, a) * model->GetElement(2, a));
-    voxel = std::min(voxel, axis * spacing[a]);
+    double cell = VTK_DOUBLE_MAX;
+    const double* spacing = grid->GetSpacing();
+    for (int a = 0; a < 3; ++a)
+    {
+      const double axis = std::sqrt(model->GetElement(0, a) * model->GetElement(0, a) +
+        model->GetElement(1, a) * model->GetElement(1, a) +
+        model->GetElement(2, a) * model->GetElement(2, a));
+      cell = std::min(cell, axis * spacing[a]);
+    }
+    return cell;
+  };
+  double automatic = 0.5 * smallestCell(input);
+  if (this->ExtinctionData)
+  {
+    automatic = std::min(automatic, smallestCell(this->ExtinctionData));
   }
-  const double requested = this->SliceSpacing > 0.0 ? this->SliceSpacing
-    : this->ExtinctionData                          ? voxel
-                                                    : 0.5 * voxel;
+  const double requested = this->SliceSpacing > 0.0 ? this->SliceSpacing : automatic;
   const int count =
     static_cast<int>(std::min(8192.0, std::max(1.0, std::ceil((dmax - dmin) / requested))));
   // An exact partition of [dmin, dmax] into slabs; each slice at its slab's centre.

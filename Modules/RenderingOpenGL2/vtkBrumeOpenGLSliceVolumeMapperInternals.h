@@ -16,6 +16,7 @@
 
 #include <vector>
 
+class vtkImageData;
 class vtkOpenGLRenderWindow;
 
 struct vtkBrumeOpenGLSliceVolumeMapper::Internals
@@ -35,6 +36,10 @@ struct vtkBrumeOpenGLSliceVolumeMapper::Internals
   float BoundsExtent[3] = { 1.f, 1.f, 1.f };
   vtkTimeStamp TextureTime;
   bool SourceIsRadiance = false; // the source texture holds S (extinction of its own)
+  // The extinction grid of its own last uploaded, and when.
+  vtkImageData* ExtinctionGrid = nullptr;
+  vtkTimeStamp ExtinctionTime;
+  int ExtinctionInterpolation = -1;
   int Interpolation = -1;
   vtkOpenGLRenderWindow* Context = nullptr;
   // The leader's buffers for all volumes of the renderer.

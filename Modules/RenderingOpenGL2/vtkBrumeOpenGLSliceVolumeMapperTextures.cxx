@@ -81,6 +81,10 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadTextures(
   {
     e.assign(e.size(), 1.f); // directional coefficients: S, like the source
   }
+  else
+  {
+    impl.ExtinctionGrid = nullptr; // the extinction texture is the input's
+  }
   if (!this->UploadDirectional(input, renWin, dims, filter, e))
   {
     return false;
@@ -92,7 +96,15 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadTextures(
 
 bool vtkBrumeOpenGLSliceVolumeMapper::UploadExtinction(vtkOpenGLRenderWindow* renWin, int filter)
 {
+  // The grid of its own changes seldom (it is the density's): uploaded only
+  // when it is another grid, was modified, or is filtered otherwise.
+  Internals& impl = *this->Impl;
   vtkImageData* grid = this->ExtinctionData;
+  if (impl.ExtinctionGrid == grid && impl.ExtinctionTime > grid->GetMTime() &&
+    impl.ExtinctionInterpolation == filter && impl.Extinction->GetHandle())
+  {
+    return true;
+  }
   int pointDims[3];
   grid->GetDimensions(pointDims);
   const int dims[3] = { pointDims[0] - 1, pointDims[1] - 1, pointDims[2] - 1 };
@@ -115,7 +127,14 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadExtinction(vtkOpenGLRenderWindow* re
       e[3 * i + c] = value;
     }
   }
-  return Upload3D(this->Impl->Extinction, renWin, dims, 3, filter, e.data());
+  if (!Upload3D(impl.Extinction, renWin, dims, 3, filter, e.data()))
+  {
+    return false;
+  }
+  impl.ExtinctionGrid = grid;
+  impl.ExtinctionInterpolation = filter;
+  impl.ExtinctionTime.Modified();
+  return true;
 }
 
 bool vtkBrumeOpenGLSliceVolumeMapper::UploadDirectional(vtkImageData* input,

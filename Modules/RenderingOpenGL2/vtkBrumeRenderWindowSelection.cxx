@@ -93,8 +93,7 @@ bool Choose(const std::string& requested, Selection& s)
   vtkObjectFactory::RegisterFactory(factory);
   // VTK's X window must not come first.
   vtkObjectFactory::SetAllEnableFlags(0, "vtkRenderWindow", "vtkXOpenGLRenderWindow");
-  vtkObjectFactory::SetAllEnableFlags(
-    0, "vtkRenderWindowInteractor", "vtkXRenderWindowInteractor");
+  vtkObjectFactory::SetAllEnableFlags(0, "vtkRenderWindowInteractor", "vtkXRenderWindowInteractor");
   s.Installed = "egl";
   return true;
 }

@@ -278,10 +278,11 @@ void ObjectRadiance::Finish(
           }
         }
       });
-    if (this->MediumRef->Density)
+    if (this->MediumRef->Density && this->NativeExtinction.empty())
     {
-      this->BuildDensityTable(parallelFor);
-      this->SampleNativeExtinction(parallelFor);
+      // Independent of the particles and the view: made once per object.
+      this->SampleNativeDensity(parallelFor);
+      this->BuildDensityTable();
     }
   }
   else if (first)
@@ -424,8 +425,9 @@ void ObjectRadiance::ToRadiance(std::size_t t, const Region& r, const double* su
     for (int c = 0; c < 3; ++c)
     {
       const double weight = integral * sigmaT[c];
-      out[c] =
-        weight > 0.0 ? static_cast<float>(this->MediumAlbedo[c] * sum[c] / weight) : 0.f;
+      out[c] = integral > this->EmptyIntegral && weight > 0.0
+        ? static_cast<float>(this->MediumAlbedo[c] * sum[c] / weight)
+        : 0.f;
     }
     return;
   }

@@ -172,12 +172,16 @@ public:
    * texture's resolution, so that a renderer draws the medium's structure
    * at its own resolution with the smooth source radiance of the texture.
    * Each cell holds the mean of the density over the cell. Grids above
-   * MaxNativeCells are coarsened by one integer factor on every axis (the
-   * smallest that fits). Empty for homogeneous media and surfaces.
+   * MaxNativeCells cells, or MaxNativeAxis along an axis, are coarsened by
+   * one integer factor on every axis (the smallest that fits; a coarsened
+   * cell averages 2^3 samples). The integral of sigma_t the texture is
+   * normalized by is summed from this grid. Empty for homogeneous media and
+   * surfaces.
    */
   const std::vector<float>& GetNativeExtinction() const { return this->NativeExtinction; }
   const std::array<int, 3>& GetNativeResolution() const { return this->NativeDims; }
   static constexpr std::size_t MaxNativeCells = std::size_t(1) << 22;
+  static constexpr int MaxNativeAxis = 2048; // a 3D texture's usual limit
   const std::array<int, 3>& GetResolution() const { return this->Resolution; }
   const SurfaceChart& GetChart() const { return this->Chart; }
 
@@ -204,8 +208,8 @@ private:
   // Heterogeneous media: the density's integral over each histogram cell
   // (what a region's source radiance is divided by), and sigma_t at the
   // density's own resolution.
-  void BuildDensityTable(const ParallelFor& parallelFor);
-  void SampleNativeExtinction(const ParallelFor& parallelFor);
+  void SampleNativeDensity(const ParallelFor& parallelFor);
+  void BuildDensityTable();
 
   const Surface* SurfaceRef = nullptr;
   const Medium* MediumRef = nullptr;
@@ -230,13 +234,15 @@ private:
   Histogram WeightHistogram; // kept for Add()
   Histogram ValueHistogram;
 
-  SummedAreaTable WeightTable; // incident flux (mean over channels): drives the growth
-  SummedAreaTable ValueTable;  // weighted flux, RGB
-  SummedAreaTable AreaTable;   // surfaces: world area per cell
+  SummedAreaTable WeightTable;  // incident flux (mean over channels): drives the growth
+  SummedAreaTable ValueTable;   // weighted flux, RGB
+  SummedAreaTable AreaTable;    // surfaces: world area per cell
   SummedAreaTable DensityTable; // heterogeneous media: integral of the density per cell
   std::array<int, 3> NativeDims{ 0, 0, 0 };
-  std::vector<float> NativeExtinction;
-  std::vector<Region> Regions; // per texel, view independent
+  std::vector<float> NativeDensity;    // the density's mean per native cell
+  std::vector<float> NativeExtinction; // sigma_t per native cell, RGB
+  double EmptyIntegral = 0.0;          // regions below hold no medium
+  std::vector<Region> Regions;         // per texel, view independent
   double ThresholdFlux = 0.0;
 
   std::vector<float> Radiance;

@@ -3,7 +3,9 @@
 // one medium"): the source radiance S = J / sigma_t is smooth where the light
 // is, so the texture estimates it over adaptive regions as the
 // sigma_t-weighted mean, sum(albedo p Phi) / integral of sigma_t over the
-// region; sigma_t keeps the medium's own resolution for the renderer.
+// region; sigma_t keeps the medium's own resolution for the renderer. Both
+// come from one grid of the density's means, so that what the texture is
+// divided by is what the renderer draws.
 #include "brume/Reconstruction.h"
 
 #include <algorithm>
@@ -34,50 +36,59 @@ double MeanDensity(const DensityField& density, const Vec3& lower, const Vec3& s
   }
   return sum / (static_cast<double>(s) * s * s);
 }
-}
 
-void ObjectRadiance::BuildDensityTable(const ParallelFor& parallelFor)
+// Along one axis of n fine cells and m coarse cells over the same [0, 1]:
+// for each fine cell, the coarse cells it overlaps and the overlap as a
+// fraction of the fine cell.
+struct Overlap
 {
-  // Enough samples per histogram cell to see the density's own cells in
-  // it (at least 2 per axis, at most 8).
-  const DensityField& density = *this->MediumRef->Density;
-  const std::array<int, 3> native = density.NativeResolution();
-  int samples = 2;
-  for (int a = 0; a < 3; ++a)
+  int Coarse;
+  double Fraction;
+};
+std::vector<std::vector<Overlap>> Overlaps(int n, int m)
+{
+  std::vector<std::vector<Overlap>> result(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i)
   {
-    samples = std::max(samples, (native[a] + this->Dims[a] - 1) / this->Dims[a]);
-  }
-  samples = std::min(samples, 8);
-  const Box box = this->MediumRef->Bounds;
-  const Vec3 cell = box.Extent() /
-    Vec3(static_cast<float>(this->Dims[0]), static_cast<float>(this->Dims[1]),
-      static_cast<float>(this->Dims[2]));
-  Histogram integral(this->Dims, 1);
-  const std::size_t nx = this->Dims[0], nxy = nx * this->Dims[1];
-  parallelFor(0, integral.GetNumberOfCells(),
-    [&](std::size_t begin, std::size_t end)
+    const double lo = static_cast<double>(i) / n, hi = static_cast<double>(i + 1) / n;
+    const int first = std::min(m - 1, static_cast<int>(std::floor(lo * m)));
+    const int last = std::min(m - 1, static_cast<int>(std::ceil(hi * m)) - 1);
+    for (int c = std::max(0, first); c <= last; ++c)
     {
-      for (std::size_t c = begin; c < end; ++c)
+      const double overlap =
+        std::min(hi, static_cast<double>(c + 1) / m) - std::max(lo, static_cast<double>(c) / m);
+      if (overlap > 0.0)
       {
-        const Vec3 corner(static_cast<float>(c % nx), static_cast<float>((c % nxy) / nx),
-          static_cast<float>(c / nxy));
-        const double value =
-          MeanDensity(density, box.lower + corner * cell, cell, samples) * this->CellVolume;
-        integral.GetValues()[c] = value; // one writer per cell
+        result[i].push_back({ c, overlap * n });
       }
-    });
-  this->DensityTable = SummedAreaTable(integral);
+    }
+  }
+  return result;
+}
 }
 
-void ObjectRadiance::SampleNativeExtinction(const ParallelFor& parallelFor)
+void ObjectRadiance::SampleNativeDensity(const ParallelFor& parallelFor)
 {
   const DensityField& density = *this->MediumRef->Density;
   const std::array<int, 3> native = density.NativeResolution();
-  const double cells = static_cast<double>(native[0]) * native[1] * native[2];
-  // The smallest integer coarsening that fits, the same on every axis.
+  // The smallest integer coarsening that fits the cell budget and a 3D
+  // texture's usual axis limit, the same on every axis.
   int factor = 1;
-  while (cells / (static_cast<double>(factor) * factor * factor) >
-    static_cast<double>(MaxNativeCells))
+  auto fits = [&](int f)
+  {
+    double cells = 1.0;
+    for (int a = 0; a < 3; ++a)
+    {
+      const int n = (native[a] + f - 1) / f;
+      if (n > MaxNativeAxis)
+      {
+        return false;
+      }
+      cells *= n;
+    }
+    return cells <= static_cast<double>(MaxNativeCells);
+  };
+  while (!fits(factor))
   {
     ++factor;
   }
@@ -91,10 +102,9 @@ void ObjectRadiance::SampleNativeExtinction(const ParallelFor& parallelFor)
       static_cast<float>(this->NativeDims[2]));
   // One sample at the centre of a native cell; a coarsened cell averages 2^3.
   const int samples = factor > 1 ? 2 : 1;
-  const Vec3 sigmaT = this->MediumRef->SigmaT();
   const std::size_t n =
     static_cast<std::size_t>(this->NativeDims[0]) * this->NativeDims[1] * this->NativeDims[2];
-  this->NativeExtinction.assign(3 * n, 0.f);
+  this->NativeDensity.assign(n, 0.f);
   const std::size_t nx = this->NativeDims[0], nxy = nx * this->NativeDims[1];
   parallelFor(0, n,
     [&](std::size_t begin, std::size_t end)
@@ -103,14 +113,64 @@ void ObjectRadiance::SampleNativeExtinction(const ParallelFor& parallelFor)
       {
         const Vec3 corner(static_cast<float>(c % nx), static_cast<float>((c % nxy) / nx),
           static_cast<float>(c / nxy));
-        const auto mean =
+        this->NativeDensity[c] =
           static_cast<float>(MeanDensity(density, box.lower + corner * cell, cell, samples));
-        for (int k = 0; k < 3; ++k)
-        {
-          this->NativeExtinction[3 * c + k] = sigmaT[k] * mean;
-        }
       }
     });
+  const Vec3 sigmaT = this->MediumRef->SigmaT();
+  this->NativeExtinction.resize(3 * n);
+  for (std::size_t c = 0; c < n; ++c)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      this->NativeExtinction[3 * c + k] = sigmaT[k] * this->NativeDensity[c];
+    }
+  }
+}
+
+void ObjectRadiance::BuildDensityTable()
+{
+  // The density's integral over each histogram cell, summed from the native
+  // cells by their exact overlaps (separable along the axes).
+  const auto& nd = this->NativeDims;
+  std::array<std::vector<std::vector<Overlap>>, 3> overlaps;
+  for (int a = 0; a < 3; ++a)
+  {
+    overlaps[a] = Overlaps(nd[a], this->Dims[a]);
+  }
+  const Box box = this->MediumRef->Bounds;
+  const double nativeVolume =
+    static_cast<double>(box.Volume()) / (static_cast<double>(nd[0]) * nd[1] * nd[2]);
+  Histogram integral(this->Dims, 1);
+  std::vector<double>& values = integral.GetValues();
+  double total = 0.0;
+  for (int k = 0; k < nd[2]; ++k)
+  {
+    for (int j = 0; j < nd[1]; ++j)
+    {
+      for (int i = 0; i < nd[0]; ++i)
+      {
+        const double mass =
+          this->NativeDensity[(static_cast<std::size_t>(k) * nd[1] + j) * nd[0] + i] * nativeVolume;
+        if (mass == 0.0)
+        {
+          continue;
+        }
+        total += mass;
+        for (const Overlap& z : overlaps[2][k])
+          for (const Overlap& y : overlaps[1][j])
+            for (const Overlap& x : overlaps[0][i])
+            {
+              values[integral.Index(x.Coarse, y.Coarse, z.Coarse)] +=
+                mass * x.Fraction * y.Fraction * z.Fraction;
+            }
+      }
+    }
+  }
+  this->DensityTable = SummedAreaTable(integral);
+  // Regions whose integral is below this are empty: their source radiance
+  // is 0, not a ratio of two rounding leftovers of the table.
+  this->EmptyIntegral = 1e-9 * total;
 }
 
 } // namespace brume
