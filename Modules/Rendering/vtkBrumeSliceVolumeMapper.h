@@ -101,8 +101,8 @@ public:
    * `Extinction` (1 or 3 components, m^-1). When set, it replaces the
    * input's `Extinction`, the input's `SourceRadiance` (and
    * `SourceRadianceSH`) is taken as the source radiance S itself, and the
-   * default slice spacing is at most one cell of this grid (and at most
-   * half a voxel of the input). The grid is uploaded again only when it is
+   * default slice spacing is half a voxel of the input and at most four
+   * cells of this grid. The grid is uploaded again only when it is
    * another one or was modified. vtkBrumeSceneActors sets
    * it from a medium's partition 1 (vtkBrumeRadianceReconstruction's
    * extinction at the density's own resolution).
