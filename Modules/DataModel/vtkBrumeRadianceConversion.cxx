@@ -156,7 +156,8 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromSurface(
 vtkSmartPointer<vtkImageData> vtkBrumeRadianceConversion::NativeExtinction(
   const brume::ObjectRadiance& radiance, const brume::Medium& medium)
 {
-  if (radiance.GetNativeExtinction().empty())
+  const std::vector<float>& density = radiance.GetNativeDensity();
+  if (density.empty())
   {
     return nullptr;
   }
@@ -167,7 +168,20 @@ vtkSmartPointer<vtkImageData> vtkBrumeRadianceConversion::NativeExtinction(
   extinction->SetDimensions(native[0] + 1, native[1] + 1, native[2] + 1);
   extinction->SetOrigin(medium.Bounds.lower.x, medium.Bounds.lower.y, medium.Bounds.lower.z);
   extinction->SetSpacing(extent.x / native[0], extent.y / native[1], extent.z / native[2]);
-  extinction->GetCellData()->SetScalars(NewRGB("Extinction", radiance.GetNativeExtinction()));
+  vtkNew<vtkFloatArray> sigmaT;
+  sigmaT->SetName("Extinction");
+  sigmaT->SetNumberOfComponents(3);
+  sigmaT->SetNumberOfTuples(static_cast<vtkIdType>(density.size()));
+  const brume::Vec3 base = medium.SigmaT();
+  float* out = sigmaT->GetPointer(0);
+  for (std::size_t c = 0; c < density.size(); ++c)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      out[3 * c + k] = base[k] * density[c];
+    }
+  }
+  extinction->GetCellData()->SetScalars(sigmaT);
   AddString(extinction->GetFieldData(), "BrumeObjectKind", "medium extinction");
   return extinction;
 }

@@ -24,7 +24,7 @@
  *   its sigma_t-weighted mean over each voxel's region (smooth where the
  *   light is), and partition 1 is a second 3D vtkImageData over the same
  *   box with cell data `Extinction` (float[3], m^-1) at the density's own
- *   resolution (brume::ObjectRadiance::GetNativeExtinction), which
+ *   resolution (brume::ObjectRadiance::GetNativeDensity times the medium's sigma_t), which
  *   vtkBrumeSliceVolumeMapper draws the medium's structure with
  *   (SetExtinctionData).
  *

@@ -1,12 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumeSceneCamera.h"
 
+#include "vtkBrumeSceneConversion.h"
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
 #include "vtkDataObject.h"
-#include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
-#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 
 #include "brume/Camera.h"
@@ -28,14 +27,11 @@ bool ReadTuple(vtkFieldData* fd, const char* name, int n, double* values)
   return true;
 }
 
+// Replaces the field array `name` by one tuple (the scene schema's writer).
 void WriteTuple(vtkFieldData* fd, const char* name, const double* values, int n)
 {
-  vtkNew<vtkDoubleArray> a;
-  a->SetName(name);
-  a->SetNumberOfComponents(n);
-  a->InsertNextTuple(values);
   fd->RemoveArray(name);
-  fd->AddArray(a);
+  vtkBrumeSceneConversion::AppendTuple(fd, name, values, n);
 }
 
 void DefaultView(double position[3], double focalPoint[3], double viewUp[3], double& viewAngle)

@@ -278,7 +278,7 @@ void ObjectRadiance::Finish(
           }
         }
       });
-    if (this->MediumRef->Density && this->NativeExtinction.empty())
+    if (this->MediumRef->Density && this->NativeDensity.empty())
     {
       // Independent of the particles and the view: made once per object.
       this->SampleNativeDensity(parallelFor);

@@ -167,18 +167,19 @@ public:
   const std::vector<float>& GetExtinction() const { return this->Extinction; }
 
   /**
-   * Heterogeneous media: sigma_t (RGB) per cell of the density's own grid
+   * Heterogeneous media: the density per cell of its own grid
    * (brume::DensityField::NativeResolution), x fastest, independent of the
    * texture's resolution, so that a renderer draws the medium's structure
-   * at its own resolution with the smooth source radiance of the texture.
-   * Each cell holds the mean of the density over the cell. Grids above
+   * (sigma_t = the medium's SigmaT() times the density) at its own
+   * resolution with the smooth source radiance of the texture. Each cell
+   * holds the mean of the density over the cell. Grids above
    * MaxNativeCells cells, or MaxNativeAxis along an axis, are coarsened by
    * one integer factor on every axis (the smallest that fits; a coarsened
    * cell averages 2^3 samples). The integral of sigma_t the texture is
    * normalized by is summed from this grid. Empty for homogeneous media and
    * surfaces.
    */
-  const std::vector<float>& GetNativeExtinction() const { return this->NativeExtinction; }
+  const std::vector<float>& GetNativeDensity() const { return this->NativeDensity; }
   const std::array<int, 3>& GetNativeResolution() const { return this->NativeDims; }
   static constexpr std::size_t MaxNativeCells = std::size_t(1) << 22;
   static constexpr int MaxNativeAxis = 2048; // a 3D texture's usual limit
@@ -239,8 +240,7 @@ private:
   SummedAreaTable AreaTable;    // surfaces: world area per cell
   SummedAreaTable DensityTable; // heterogeneous media: integral of the density per cell
   std::array<int, 3> NativeDims{ 0, 0, 0 };
-  std::vector<float> NativeDensity;    // the density's mean per native cell
-  std::vector<float> NativeExtinction; // sigma_t per native cell, RGB
+  std::vector<float> NativeDensity; // the density's mean per native cell
   double EmptyIntegral = 0.0;          // regions below hold no medium
   std::vector<Region> Regions;         // per texel, view independent
   double ThresholdFlux = 0.0;

@@ -117,15 +117,6 @@ void ObjectRadiance::SampleNativeDensity(const ParallelFor& parallelFor)
           static_cast<float>(MeanDensity(density, box.lower + corner * cell, cell, samples));
       }
     });
-  const Vec3 sigmaT = this->MediumRef->SigmaT();
-  this->NativeExtinction.resize(3 * n);
-  for (std::size_t c = 0; c < n; ++c)
-  {
-    for (int k = 0; k < 3; ++k)
-    {
-      this->NativeExtinction[3 * c + k] = sigmaT[k] * this->NativeDensity[c];
-    }
-  }
 }
 
 void ObjectRadiance::BuildDensityTable()
