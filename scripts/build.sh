@@ -17,8 +17,9 @@ packages=(
   zlib1g-dev libeigen3-dev
   # Ray casting, volumes, OpenGL with no X server (EGL).
   libembree-dev libopenvdb-dev libboost-iostreams-dev libegl-dev libegl-mesa0
-  # The brume command line's parser (header-only).
-  libcli11-dev
+  # The brume command line's parser and the counter-based random numbers
+  # (both header-only).
+  libcli11-dev librandom123-dev
   # Tools and test frameworks; mpirun for distributed runs and their tests.
   cmake ninja-build g++ git libgtest-dev libbenchmark-dev openmpi-bin
 )

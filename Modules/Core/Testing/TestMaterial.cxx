@@ -98,29 +98,38 @@ void ExpectSamplesFollowPdf(const Material& m, const Vec3& wi)
     << "chi-square " << chi2 << " with " << dof << " dof";
 }
 
-// Directional albedo: the mean sampling weight, and uniform-hemisphere quadrature.
+// Directional albedo two ways: the mean sampling weight, and
+// uniform-hemisphere quadrature. They must agree within four standard
+// errors of their difference (the quadrature of a sharp lobe is the noisy
+// one), and the weights must not exceed the albedo bound.
 void ExpectConsistentAlbedo(const Material& m, const Vec3& wi, double bound)
 {
   const Vec3 n(0, 0, 1);
   Random rng(3, 3);
   const int samples = 400000;
-  double weights = 0.0, quadrature = 0.0;
+  double weights = 0.0, weights2 = 0.0, quadrature = 0.0, quadrature2 = 0.0;
   for (int s = 0; s < samples; ++s)
   {
     Vec3 wo, weight;
     if (SampleBrdf(m, n, wi, rng, wo, weight))
     {
       weights += weight.x;
+      weights2 += static_cast<double>(weight.x) * weight.x;
     }
     // Uniform hemisphere: pdf 1/(2 pi).
     Vec3 u = SampleUniformSphere(rng.NextFloat(), rng.NextFloat());
     u.z = std::abs(u.z);
-    quadrature += EvaluateBrdf(m, n, wi, u).x * u.z * 2 * M_PI;
+    const double q = EvaluateBrdf(m, n, wi, u).x * u.z * 2 * M_PI;
+    quadrature += q;
+    quadrature2 += q * q;
   }
-  weights /= samples;
-  quadrature /= samples;
-  EXPECT_NEAR(weights, quadrature, 0.01 * std::max(0.05, quadrature));
-  EXPECT_LE(weights, bound + 0.005); // energy conservation
+  const double N = samples;
+  weights /= N;
+  quadrature /= N;
+  const double varianceOfMeans =
+    (weights2 / N - weights * weights) / N + (quadrature2 / N - quadrature * quadrature) / N;
+  EXPECT_NEAR(weights, quadrature, 4.0 * std::sqrt(varianceOfMeans));
+  EXPECT_LE(weights, bound + 4.0 * std::sqrt(varianceOfMeans)); // energy conservation
 }
 }
 

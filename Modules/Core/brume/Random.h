@@ -1,11 +1,21 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// PCG32 random number generator (O'Neill 2014, pcg-random.org).
+// Random numbers for Monte Carlo transport: Random123's Philox4x32-10
+// (Salmon et al., "Parallel random numbers: as easy as 1, 2, 3", SC 2011).
 //
-// Every particle owns a generator seeded from (seed, particle index): the
-// index selects the PCG stream, so a particle's random numbers do not depend
-// on which thread traces it or in which order.
+// Philox is counter-based: the n-th block of four 32-bit numbers of a
+// generator is Philox(key, counter = (n, stream)), a keyed bijection that
+// passes TestU01's BigCrush for every key and every counter sequence. The
+// key is the seed, the stream is (for the light tracer) the particle index,
+// so a particle's numbers depend on (seed, index) only — not on the thread
+// that traces it, the order of particles or the number of processes — and
+// distinct particles' numbers are independent. (The PCG32 streams this
+// replaces shared one state and differed only in their increment; such
+// streams are correlated, and long random walks showed it: see the seed
+// spread test, TestSeedSpread.)
 #ifndef brume_Random_h
 #define brume_Random_h
+
+#include <Random123/philox.h>
 
 #include <cstdint>
 
@@ -15,22 +25,30 @@ namespace brume
 class Random
 {
 public:
+  /// The generator of `stream` (for example a particle index) under `seed`.
   Random(std::uint64_t seed, std::uint64_t stream)
   {
-    this->State = 0u;
-    this->Increment = (stream << 1u) | 1u;
-    this->NextUInt();
-    this->State += Mix(seed);
-    this->NextUInt();
+    this->Key[0] = Low(seed);
+    this->Key[1] = High(seed);
+    this->Counter[0] = 0u;
+    this->Counter[1] = 0u;
+    this->Counter[2] = Low(stream);
+    this->Counter[3] = High(stream);
   }
 
   std::uint32_t NextUInt()
   {
-    const std::uint64_t old = this->State;
-    this->State = old * 6364136223846793005ULL + this->Increment;
-    const auto xorshifted = static_cast<std::uint32_t>(((old >> 18u) ^ old) >> 27u);
-    const auto rot = static_cast<std::uint32_t>(old >> 59u);
-    return (xorshifted >> rot) | (xorshifted << ((~rot + 1u) & 31u));
+    if (this->Used == 4)
+    {
+      this->Block = Engine()(this->Counter, this->Key);
+      // 2^64 blocks per stream: the high word carries.
+      if (++this->Counter[0] == 0u)
+      {
+        ++this->Counter[1];
+      }
+      this->Used = 0;
+    }
+    return this->Block[this->Used++];
   }
 
   /// Uniform float in [0, 1).
@@ -49,17 +67,14 @@ public:
   }
 
 private:
-  // SplitMix64 finalizer: decorrelates nearby user seeds.
-  static std::uint64_t Mix(std::uint64_t z)
-  {
-    z += 0x9e3779b97f4a7c15ULL;
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-  }
+  using Engine = r123::Philox4x32;
+  static std::uint32_t Low(std::uint64_t v) { return static_cast<std::uint32_t>(v); }
+  static std::uint32_t High(std::uint64_t v) { return static_cast<std::uint32_t>(v >> 32u); }
 
-  std::uint64_t State;
-  std::uint64_t Increment;
+  Engine::key_type Key;
+  Engine::ctr_type Counter;
+  Engine::ctr_type Block;
+  unsigned Used = 4;
 };
 
 } // namespace brume
