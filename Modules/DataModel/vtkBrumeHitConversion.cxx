@@ -166,6 +166,8 @@ std::string vtkBrumeHitConversion::ReadHits(
   auto* flux = vtkFloatArray::SafeDownCast(pd->GetArray(FluxName));
   auto* objectIds = vtkUnsignedShortArray::SafeDownCast(pd->GetArray(ObjectIdName));
   auto* triangleIds = vtkUnsignedIntArray::SafeDownCast(pd->GetArray(TriangleIdName));
+  auto* emitterIds = vtkUnsignedShortArray::SafeDownCast(pd->GetArray(EmitterIdName));
+  auto* depths = vtkUnsignedCharArray::SafeDownCast(pd->GetArray(DepthName));
   const vtkIdType n = data->GetNumberOfPoints();
   if (n > 0 &&
     (!direction || !flux || !objectIds || direction->GetNumberOfComponents() != 3 ||
@@ -206,6 +208,9 @@ std::string vtkBrumeHitConversion::ReadHits(
     hits.Object = objectIds->GetPointer(0);
     hits.Triangle =
       triangleIds && triangleIds->GetNumberOfTuples() == n ? triangleIds->GetPointer(0) : nullptr;
+    hits.Emitter =
+      emitterIds && emitterIds->GetNumberOfTuples() == n ? emitterIds->GetPointer(0) : nullptr;
+    hits.Depth = depths && depths->GetNumberOfTuples() == n ? depths->GetPointer(0) : nullptr;
   }
   return {};
 }

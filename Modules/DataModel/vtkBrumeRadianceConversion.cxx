@@ -115,13 +115,13 @@ void MapInPlace(
 vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromSurface(
   const brume::ObjectRadiance& radiance, const brume::Surface& surface, vtkPolyData* sceneSurface)
 {
-  const auto& res = radiance.GetResolution();
+  const auto& res = radiance.GetOutputResolution();
   const brume::SurfaceChart& chart = radiance.GetChart();
   vtkNew<vtkImageData> texture;
   texture->SetDimensions(res[0], res[1], 1);
   texture->SetSpacing(1.0 / res[0], 1.0 / res[1], 1.0);
   texture->SetOrigin(0.5 / res[0], 0.5 / res[1], 0.0);
-  texture->GetPointData()->SetScalars(NewRGB("Radiance", radiance.GetRadiance()));
+  texture->GetPointData()->SetScalars(NewRGB("Radiance", radiance.GetOutputRadiance()));
   if (chart.Type == brume::SurfaceChart::Kind::Planar)
   {
     AddVec3(texture->GetFieldData(), "BrumeTextureOrigin", chart.Frame.Origin);
@@ -190,7 +190,9 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
   const brume::ObjectRadiance& radiance, const brume::Medium& medium, bool directional,
   vtkImageData* nativeExtinction)
 {
-  const auto& res = radiance.GetResolution();
+  // Directional radiance stays on the texture's grid; per-view radiance is
+  // on the output grid (finer, with direct light).
+  const auto& res = directional ? radiance.GetResolution() : radiance.GetOutputResolution();
   const brume::Vec3 extent = medium.Bounds.Extent();
   vtkNew<vtkImageData> texture;
   texture->SetDimensions(res[0] + 1, res[1] + 1, res[2] + 1);
@@ -225,9 +227,10 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
   }
   else
   {
-    texture->GetCellData()->SetScalars(NewRGB("SourceRadiance", radiance.GetRadiance()));
+    texture->GetCellData()->SetScalars(NewRGB("SourceRadiance", radiance.GetOutputRadiance()));
   }
-  texture->GetCellData()->AddArray(NewRGB("Extinction", radiance.GetExtinction()));
+  texture->GetCellData()->AddArray(NewRGB(
+    "Extinction", directional ? radiance.GetExtinction() : radiance.GetOutputExtinction()));
   AddString(texture->GetFieldData(), "BrumeObjectKind", "medium");
   auto pds = vtkSmartPointer<vtkPartitionedDataSet>::New();
   pds->SetNumberOfPartitions(1);

@@ -198,7 +198,8 @@ bool vtkBrumeRadianceReconstruction::Plan(const vtkBrumeReconstructionRequest& r
   // hits when they continue the run the textures hold; otherwise only the
   // view-dependent textures follow the viewpoint.
   const vtkBrumeReconstructionSettings settings{ this->RadiosityThreshold,
-    this->SurfaceResolution, this->MediumResolution, this->HistogramRefinement };
+    this->SurfaceResolution, this->MediumResolution, this->HistogramRefinement,
+    this->DirectLighting ? this->DirectLightResolution : 0 };
   vtkBrumeRadianceTextures* textures = this->Textures.get();
   const auto& run = request.Run;
   const bool sameSettings = textures && textures->SameSceneAndSettings(request, settings);
@@ -274,6 +275,8 @@ void vtkBrumeRadianceReconstruction::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastReductionBytes: " << this->LastReductionBytes << "\n";
   os << indent << "DirectionalRadiance: " << this->DirectionalRadiance << "\n";
   os << indent << "DirectionalOrder: " << this->DirectionalOrder << "\n";
+  os << indent << "DirectLighting: " << this->DirectLighting << "\n";
+  os << indent << "DirectLightResolution: " << this->DirectLightResolution << "\n";
   os << indent << "NumberOfParticleAdditions: " << this->NumberOfParticleAdditions << "\n";
   os << indent << "NumberOfDirectionalBuilds: " << this->NumberOfDirectionalBuilds << "\n";
 }

@@ -117,6 +117,29 @@ public:
 
   ///@{
   /**
+   * Deterministic single scattering (default on): the light of point, spot
+   * and directional lights reaching each texel directly is computed with a
+   * shadow ray (through Embree and the media's own density) instead of
+   * being estimated from the particles' first interactions, which are then
+   * left out. Shafts, self-shadowing and shadows are as sharp as the output
+   * grid: media and planar surfaces (of one non-mirror material) are output
+   * at DirectLightResolution texels along their longest axis (heterogeneous
+   * media: at most their density's own resolution; at most 2^18 texels per
+   * object), holding the particles' texture resampled plus the direct light.
+   * Other surfaces, and scenes lit only by emissive surfaces, are as
+   * without it. The hits must carry the tracer's `EmitterId` and `Depth`.
+   * ../shared/RADIOMETRY.md, "Two resolutions in one medium", states the
+   * relations.
+   */
+  vtkSetMacro(DirectLighting, bool);
+  vtkGetMacro(DirectLighting, bool);
+  vtkBooleanMacro(DirectLighting, bool);
+  vtkSetClampMacro(DirectLightResolution, int, 1, 4096);
+  vtkGetMacro(DirectLightResolution, int);
+  ///@}
+
+  ///@{
+  /**
    * Directional radiance for anisotropic media (default off): instead of a
    * texture toward the viewpoint, each voxel holds the spherical-harmonics
    * projection (up to DirectionalOrder, in [1, 3], default 3) of the light
@@ -226,6 +249,8 @@ protected:
   bool AccumulateParticles = false;
   bool DirectionalRadiance = false;
   int DirectionalOrder = 3;
+  bool DirectLighting = true;
+  int DirectLightResolution = 256;
   vtkIdType NumberOfTextureBuilds = 0;
   vtkIdType NumberOfViewUpdates = 0;
   vtkIdType NumberOfParticleAdditions = 0;

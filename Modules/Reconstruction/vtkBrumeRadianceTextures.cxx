@@ -127,11 +127,12 @@ bool vtkBrumeRadianceTextures::Build(const vtkBrumeReconstructionRequest& reques
   {
     return false;
   }
-  if (!this->CreateObjects(settings, groups) || !this->CheckHits(request.Hits, groups) ||
-    !this->BuildObjects(request, groups, work))
+  if (!this->CreateObjects(settings, groups) || !this->CreateDirectLight(settings, request.Hits) ||
+    !this->CheckHits(request.Hits, groups) || !this->BuildObjects(request, groups, work))
   {
     return false;
   }
+  this->ComputeDirect();
   this->SceneData = request.SceneInput;
   this->HitsData = request.HitData;
   this->SceneTime = request.SceneInput->GetMTime();
@@ -229,6 +230,105 @@ bool vtkBrumeRadianceTextures::CreateObjects(
     this->Outputs.push_back(nullptr);
   }
   return true;
+}
+
+std::array<int, 3> vtkBrumeRadianceTextures::DirectResolution(std::size_t o, int n) const
+{
+  // n texels along the longest axis, at most the density's own resolution,
+  // at most MaxDirectTexels in all.
+  std::array<int, 3> res{ 1, 1, 1 };
+  if (this->Scene.IsMedium(o))
+  {
+    const brume::Medium& medium = this->Scene.Media[o - this->Scene.Surfaces.size()];
+    res = FixedResolution(medium.Bounds.Extent(), n);
+    if (medium.Density)
+    {
+      const std::array<int, 3> native = medium.Density->NativeResolution();
+      for (int a = 0; a < 3; ++a)
+      {
+        res[a] = std::max(1, std::min(res[a], native[a]));
+      }
+    }
+  }
+  else
+  {
+    const brume::SurfaceChart& chart = this->Objects[o]->GetChart();
+    res = FixedResolution(brume::Vec3(chart.Width, chart.Height, 0.f), n);
+  }
+  const double texels = static_cast<double>(res[0]) * res[1] * res[2];
+  if (texels > MaxDirectTexels)
+  {
+    const int used = this->Scene.IsMedium(o) ? 3 : 2;
+    const double scale = std::pow(MaxDirectTexels / texels, 1.0 / used);
+    for (int a = 0; a < used; ++a)
+    {
+      res[a] = std::max(1, static_cast<int>(std::floor(res[a] * scale)));
+    }
+  }
+  return res;
+}
+
+bool vtkBrumeRadianceTextures::CreateDirectLight(
+  const vtkBrumeReconstructionSettings& settings, const brume::HitArrays& hits)
+{
+  this->Direct.reset();
+  this->Caster.reset();
+  if (settings.DirectLightResolution <= 0 || this->Scene.Lights.empty())
+  {
+    return true;
+  }
+  if (hits.Count > 0 && (!hits.Emitter || !hits.Depth))
+  {
+    vtkWarningWithObjectMacro(this->Filter,
+      "The particle hits have no 'EmitterId' and 'Depth' arrays: direct light is estimated from "
+      "them, not computed.");
+    return true;
+  }
+  this->Caster.reset(new brume::RayCaster(this->Scene));
+  if (!this->Caster->GetError().empty())
+  {
+    vtkErrorWithObjectMacro(
+      this->Filter, "Cannot cast shadow rays: " << this->Caster->GetError() << ".");
+    return this->Agree(false);
+  }
+  this->Direct.reset(new brume::DirectLight(this->Scene, *this->Caster));
+  for (std::size_t o = 0; o < this->Objects.size(); ++o)
+  {
+    if (this->Objects[o]->SupportsDirect())
+    {
+      this->Objects[o]->EnableDirect(
+        this->Direct.get(), this->DirectResolution(o, settings.DirectLightResolution));
+    }
+  }
+  return this->Agree(true);
+}
+
+void vtkBrumeRadianceTextures::ComputeDirect()
+{
+  if (!this->Direct)
+  {
+    return;
+  }
+  // Shadow rays march the media's grids of density means, made with the
+  // textures.
+  const std::size_t surfaces = this->Scene.Surfaces.size();
+  for (std::size_t o = surfaces; o < this->Objects.size(); ++o)
+  {
+    const brume::ObjectRadiance& medium = *this->Objects[o];
+    if (!medium.GetNativeDensity().empty())
+    {
+      this->Direct->SetMediumGrid(
+        o - surfaces, medium.GetNativeDensity().data(), medium.GetNativeResolution());
+    }
+  }
+  const brume::ParallelFor parallelFor = vtkBrumeSMP::ParallelFor();
+  for (auto& object : this->Objects)
+  {
+    if (object->IsDirectEnabled())
+    {
+      object->ComputeDirect(parallelFor);
+    }
+  }
 }
 
 bool vtkBrumeRadianceTextures::CheckHits(

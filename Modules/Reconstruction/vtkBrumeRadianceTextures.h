@@ -14,8 +14,11 @@
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
 
+#include "brume/DirectLight.h"
+#include "brume/RayCaster.h"
 #include "brume/Reconstruction.h"
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -47,13 +50,15 @@ struct vtkBrumeReconstructionSettings
   int SurfaceResolution = 0;
   int MediumResolution = 0;
   int HistogramRefinement = 0;
+  int DirectLightResolution = 0; // 0: no deterministic single scattering
 
   bool operator==(const vtkBrumeReconstructionSettings& o) const
   {
     return this->RadiosityThreshold == o.RadiosityThreshold &&
       this->SurfaceResolution == o.SurfaceResolution &&
       this->MediumResolution == o.MediumResolution &&
-      this->HistogramRefinement == o.HistogramRefinement;
+      this->HistogramRefinement == o.HistogramRefinement &&
+      this->DirectLightResolution == o.DirectLightResolution;
   }
 };
 
@@ -71,6 +76,8 @@ class vtkBrumeRadianceTextures
 public:
   static constexpr int MaxSurfaceResolution = 4096;
   static constexpr int MaxMediumResolution = 512;
+  /// Texels of an object's output grid with direct light, at most.
+  static constexpr double MaxDirectTexels = 262144.0;
 
   /// Errors and warnings go to `filter`; `controller` may be null.
   vtkBrumeRadianceTextures(vtkAlgorithm* filter, vtkMultiProcessController* controller);
@@ -122,6 +129,12 @@ private:
     vtkBrumeReconstructionWork& work);
   bool Agree(bool ok);
   bool Distributed() const;
+  // Deterministic single scattering: the light, the objects' output grids,
+  // and the shadow rays once every texture is built.
+  bool CreateDirectLight(
+    const vtkBrumeReconstructionSettings& settings, const brume::HitArrays& hits);
+  std::array<int, 3> DirectResolution(std::size_t o, int resolution) const;
+  void ComputeDirect();
 
   vtkAlgorithm* Filter;
   vtkMultiProcessController* Controller;
@@ -134,6 +147,8 @@ private:
   vtkMTimeType HitsTime = 0;
   vtkBrumeReconstructionSettings Settings;
   brume::Scene Scene;
+  std::unique_ptr<brume::RayCaster> Caster;  // direct light's shadow rays
+  std::unique_ptr<brume::DirectLight> Direct; // null: no direct light
   std::vector<vtkBrumeSceneConversion::ObjectSource> Sources;
   std::vector<std::unique_ptr<brume::ObjectRadiance>> Objects;
   std::vector<vtkSmartPointer<vtkPartitionedDataSet>> Outputs;

@@ -180,6 +180,10 @@ std::string ObjectRadiance::Check(
   const HitArrays& hits, const std::uint32_t* index, std::size_t count) const
 {
   const bool planar = !this->MediumRef && this->Chart.Type == SurfaceChart::Kind::Planar;
+  if (this->Direct && count > 0 && (!hits.Emitter || !hits.Depth))
+  {
+    return "the hits have no EmitterId and Depth arrays, which direct lighting needs";
+  }
   if (!this->MediumRef && !planar && !hits.Triangle && count > 0)
   {
     return "the hits have no TriangleId array, which a non-planar surface needs";
@@ -201,6 +205,7 @@ void ObjectRadiance::Finish(
   const Vec3& eye, double thresholdFlux, bool first, const ParallelFor& parallelFor)
 {
   this->ThresholdFlux = thresholdFlux;
+  this->Eye = eye;
   if (!this->ViewDependent)
   {
     this->WeightTable = SummedAreaTable(this->WeightHistogram);
@@ -298,6 +303,7 @@ void ObjectRadiance::UpdateView(const Vec3& eye, const ParallelFor& parallelFor)
   {
     return;
   }
+  this->Eye = eye;
   this->WeighCells(eye, parallelFor);
   this->Estimate(parallelFor);
 }
@@ -471,6 +477,10 @@ void ObjectRadiance::Estimate(const ParallelFor& parallelFor)
         }
       }
     });
+  if (this->HasDirect())
+  {
+    this->CombineDirect(parallelFor);
+  }
 }
 
 } // namespace brume

@@ -48,6 +48,8 @@
 namespace brume
 {
 
+class DirectLight;
+
 /// Hits in structure-of-arrays form (e.g. the arrays of a vtkPolyData).
 struct HitArrays
 {
@@ -56,6 +58,8 @@ struct HitArrays
   const float* Flux = nullptr;      // 3 per hit
   const std::uint16_t* Object = nullptr;
   const std::uint32_t* Triangle = nullptr; // may be null: planar surfaces need none
+  const std::uint16_t* Emitter = nullptr;  // may be null unless direct light is computed
+  const std::uint8_t* Depth = nullptr;     // may be null unless direct light is computed
   std::size_t Count = 0;
 };
 
@@ -106,6 +110,43 @@ public:
 
   /// Glossy surfaces and anisotropic media change with the viewpoint.
   bool IsViewDependent() const { return this->ViewDependent; }
+
+  /**
+   * Deterministic single scattering (brume/DirectLight.h), for media and
+   * for planar surfaces of one non-mirror material (SupportsDirect()).
+   * Call before Build(): the object then leaves out every particle's first
+   * interaction after a point, spot or directional light (the hits must
+   * carry Emitter and Depth), and once ComputeDirect() has run, its output
+   * (GetOutputRadiance()) is the texture resampled on a grid of
+   * `resolution` texels plus, per texel, the direct light of those lights.
+   * `light` is not owned.
+   */
+  void EnableDirect(const DirectLight* light, const std::array<int, 3>& resolution);
+  bool SupportsDirect() const;
+  bool IsDirectEnabled() const { return this->Direct != nullptr; }
+  /**
+   * The shadow ray of every light at every output texel, once per build;
+   * needs the media's grids on the DirectLight (DirectLight::SetMediumGrid)
+   * and the texture built. Re-evaluated toward each new eye by UpdateView().
+   */
+  void ComputeDirect(const ParallelFor& parallelFor);
+  bool HasDirect() const { return !this->Arrivals.empty(); }
+
+  /// What a renderer shows: with direct light, the output grid's texels
+  /// (RGB, x fastest; media: the source radiance and sigma_t), otherwise
+  /// the texture's (GetResolution(), GetRadiance(), GetExtinction()).
+  const std::array<int, 3>& GetOutputResolution() const
+  {
+    return this->HasDirect() ? this->DirectDims : this->Resolution;
+  }
+  const std::vector<float>& GetOutputRadiance() const
+  {
+    return this->HasDirect() ? this->DirectRadiance : this->Radiance;
+  }
+  const std::vector<float>& GetOutputExtinction() const
+  {
+    return this->HasDirect() ? this->DirectExtinction : this->Extinction;
+  }
 
   /**
    * Distributed runs: every histogram this object builds from now on is
@@ -203,6 +244,14 @@ private:
     const Locator& cellOfHit, const ParallelFor& parallelFor);
   void Finish(const Vec3& eye, double thresholdFlux, bool first, const ParallelFor& parallelFor);
   void ToRadiance(std::size_t texel, const Region& region, const double* sum, float* out) const;
+  // Direct light: the output texel's world position (and surface normal),
+  // the texture resampled there, the sum of the texture and the direct
+  // light toward the eye, and the direct light projected on the
+  // directional representation's voxels.
+  Vec3 OutputPosition(std::size_t texel) const;
+  void Resample(const Vec3& position, float* out) const;
+  void CombineDirect(const ParallelFor& parallelFor);
+  void AddDirectToDirectional(int order);
   void WeighCells(const Vec3& eye, const ParallelFor& parallelFor);
   void Estimate(const ParallelFor& parallelFor);
   void BuildAreaTable();
@@ -242,6 +291,13 @@ private:
   std::array<int, 3> NativeDims{ 0, 0, 0 };
   std::vector<float> NativeDensity; // the density's mean per native cell
   double EmptyIntegral = 0.0;          // regions below hold no medium
+  const DirectLight* Direct = nullptr;
+  std::array<int, 3> DirectDims{ 0, 0, 0 };
+  std::vector<float> Arrivals; // per output texel and light: irradiance RGB, direction
+  std::vector<float> DirectRadiance;
+  std::vector<float> DirectExtinction;
+  Vec3 SurfaceNormal; // planar surfaces: the front side
+  Vec3 Eye;
   std::vector<Region> Regions;         // per texel, view independent
   double ThresholdFlux = 0.0;
 

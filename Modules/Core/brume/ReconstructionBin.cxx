@@ -4,6 +4,7 @@
 // the kept hits grouped by cell for view-dependent ones.
 #include "brume/Reconstruction.h"
 
+#include "brume/DirectLight.h"
 #include "brume/Material.h"
 #include "brume/Sampling.h"
 
@@ -100,6 +101,21 @@ void ObjectRadiance::Bin(const HitArrays& hits, const std::uint32_t* index, std:
   const ParallelFor& parallelFor)
 {
   const CellLocator cellOfHit(this->Dims, this->MediumRef, this->SurfaceRef, this->Chart);
+  std::vector<std::uint32_t> scattered;
+  if (this->Direct)
+  {
+    // The first interactions after a delta light are computed, not estimated.
+    scattered.reserve(count);
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      if (!this->Direct->IsFirstInteraction(hits.Emitter[index[k]], hits.Depth[index[k]]))
+      {
+        scattered.push_back(index[k]);
+      }
+    }
+    index = scattered.data();
+    count = scattered.size();
+  }
   if (!this->ViewDependent)
   {
     this->BinInPlace(hits, index, count, cellOfHit);

@@ -73,6 +73,10 @@ std::string ObjectRadiance::BuildDirectional(int order, const ParallelFor& paral
         }
       });
   }
+  if (this->HasDirect())
+  {
+    this->AddDirectToDirectional(order);
+  }
   return {};
 }
 

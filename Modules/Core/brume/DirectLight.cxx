@@ -1,0 +1,178 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "brume/DirectLight.h"
+
+#include "brume/Sampling.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace brume
+{
+
+namespace
+{
+constexpr float DegreesToRadians = Pi / 180.f;
+// Past this optical depth (every channel) the light is gone: e^-30 < 1e-13.
+constexpr double OpaqueDepth = 30.0;
+}
+
+DirectLight::DirectLight(const Scene& scene, const RayCaster& caster)
+  : SceneRef(scene)
+  , Caster(caster)
+  , FirstLightId(scene.LightEmitterId(0))
+  , Grids(scene.Media.size())
+{
+  Box bounds = caster.GetBounds();
+  for (const Medium& m : scene.Media)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      bounds.lower[a] = std::min(bounds.lower[a], m.Bounds.lower[a]);
+      bounds.upper[a] = std::max(bounds.upper[a], m.Bounds.upper[a]);
+    }
+  }
+  const float diagonal = Length(bounds.Extent());
+  this->Epsilon = 1e-4f * (std::isfinite(diagonal) && diagonal > 0.f ? diagonal : 1.f);
+}
+
+void DirectLight::SetMediumGrid(std::size_t m, const float* density, const std::array<int, 3>& dims)
+{
+  if (m < this->Grids.size())
+  {
+    this->Grids[m].Density = density;
+    this->Grids[m].Dims = dims;
+  }
+}
+
+float DirectLight::GridDensity(const Grid& grid, const Medium& medium, const Vec3& p) const
+{
+  if (!grid.Density)
+  {
+    return medium.Density->Evaluate(p);
+  }
+  // Trilinear between the cells' centres, clamped at the faces.
+  const Vec3 q = (p - medium.Bounds.lower) / medium.Bounds.Extent();
+  int i0[3], i1[3];
+  float w[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    const int n = grid.Dims[a];
+    const float x = std::clamp(q[a] * static_cast<float>(n) - 0.5f, 0.f, static_cast<float>(n - 1));
+    i0[a] = std::min(static_cast<int>(x), n - 1);
+    i1[a] = std::min(i0[a] + 1, n - 1);
+    w[a] = x - static_cast<float>(i0[a]);
+  }
+  const std::size_t nx = grid.Dims[0], nxy = nx * grid.Dims[1];
+  auto at = [&](int x, int y, int z)
+  { return grid.Density[static_cast<std::size_t>(z) * nxy + static_cast<std::size_t>(y) * nx + x]; };
+  const float c00 = at(i0[0], i0[1], i0[2]) * (1.f - w[0]) + at(i1[0], i0[1], i0[2]) * w[0];
+  const float c10 = at(i0[0], i1[1], i0[2]) * (1.f - w[0]) + at(i1[0], i1[1], i0[2]) * w[0];
+  const float c01 = at(i0[0], i0[1], i1[2]) * (1.f - w[0]) + at(i1[0], i0[1], i1[2]) * w[0];
+  const float c11 = at(i0[0], i1[1], i1[2]) * (1.f - w[0]) + at(i1[0], i1[1], i1[2]) * w[0];
+  const float c0 = c00 * (1.f - w[1]) + c10 * w[1];
+  const float c1 = c01 * (1.f - w[1]) + c11 * w[1];
+  return c0 * (1.f - w[2]) + c1 * w[2];
+}
+
+Vec3 DirectLight::Transmittance(const Vec3& x, const Vec3& d, float length) const
+{
+  double depth[3] = { 0.0, 0.0, 0.0 };
+  for (std::size_t m = 0; m < this->SceneRef.Media.size(); ++m)
+  {
+    const Medium& medium = this->SceneRef.Media[m];
+    float t0 = 0.f, t1 = length;
+    if (!medium.Bounds.Intersect(x, d, t0, t1) || !(t1 > t0))
+    {
+      continue;
+    }
+    const Vec3 sigmaT = medium.SigmaT();
+    double integral = t1 - t0; // of the density along the segment
+    if (medium.Density)
+    {
+      // Midpoint rule at steps of at most half a cell of the density's grid.
+      const Grid& grid = this->Grids[m];
+      const std::array<int, 3> dims =
+        grid.Density ? grid.Dims : medium.Density->NativeResolution();
+      const Vec3 extent = medium.Bounds.Extent();
+      float cell = extent.x / static_cast<float>(std::max(dims[0], 1));
+      cell = std::min(cell, extent.y / static_cast<float>(std::max(dims[1], 1)));
+      cell = std::min(cell, extent.z / static_cast<float>(std::max(dims[2], 1)));
+      const float step = 0.5f * std::max(cell, 1e-6f);
+      const int n = std::max(1, static_cast<int>(std::ceil((t1 - t0) / step)));
+      const float h = (t1 - t0) / static_cast<float>(n);
+      const double opaque = MinComponent(sigmaT) > 0.f ? OpaqueDepth / MinComponent(sigmaT) / h : 0.0;
+      integral = 0.0;
+      for (int i = 0; i < n; ++i)
+      {
+        integral +=
+          this->GridDensity(grid, medium, x + d * (t0 + (static_cast<float>(i) + 0.5f) * h));
+        if (opaque > 0.0 && integral > opaque)
+        {
+          break; // opaque in every channel
+        }
+      }
+      integral *= h;
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      depth[c] += sigmaT[c] * integral;
+    }
+  }
+  return Vec3(static_cast<float>(std::exp(-depth[0])), static_cast<float>(std::exp(-depth[1])),
+    static_cast<float>(std::exp(-depth[2])));
+}
+
+bool DirectLight::Arrive(std::size_t k, const Vec3& x, const Vec3& bias, LightArrival& a) const
+{
+  const Light& light = this->SceneRef.Lights[k];
+  Vec3 toLight;
+  float distance = 0.f;
+  switch (light.Type)
+  {
+    case LightType::Point:
+    case LightType::Spot:
+    {
+      const Vec3 d = x - light.Position;
+      const float r2 = Dot(d, d);
+      if (!(r2 > 0.f))
+      {
+        return false;
+      }
+      distance = std::sqrt(r2);
+      a.Direction = d / distance;
+      if (light.Type == LightType::Spot &&
+        Dot(a.Direction, light.Direction) < std::cos(light.ConeAngle * DegreesToRadians))
+      {
+        return false;
+      }
+      a.Irradiance = light.Intensity / r2;
+      break;
+    }
+    case LightType::Directional:
+    {
+      // Downstream of the emitting disk and inside the beam.
+      a.Direction = light.Direction;
+      const Vec3 rel = x - light.BeamCenter;
+      distance = Dot(rel, light.Direction);
+      const Vec3 lateral = rel - light.Direction * distance;
+      if (!(distance > 0.f) || Dot(lateral, lateral) > light.BeamRadius * light.BeamRadius)
+      {
+        return false;
+      }
+      a.Irradiance = light.Intensity;
+      break;
+    }
+  }
+  toLight = -a.Direction;
+  const Vec3 start = x + bias;
+  const float length = std::max(0.f, distance - this->Epsilon);
+  SurfaceHit hit;
+  if (this->Caster.Intersect(start, toLight, this->Epsilon, length, hit))
+  {
+    return false;
+  }
+  a.Irradiance = a.Irradiance * this->Transmittance(start, toLight, length);
+  return MaxComponent(a.Irradiance) > 0.f;
+}
+
+} // namespace brume

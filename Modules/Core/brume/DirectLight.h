@@ -1,0 +1,100 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Deterministic single scattering (../RADIOMETRY: "Two resolutions in one
+// medium"): the light of point, spot and directional lights arriving at a
+// point without having interacted with anything, computed with a shadow ray
+// instead of being estimated from particles.
+//
+// A delta light's direct light has sharp edges (a shaft through a window, a
+// cloud's self-shadow, a shadow on the ground) that density estimation over
+// a texel or an adaptive region blurs. So a reconstruction that uses this
+// class leaves out each particle's first interaction after leaving such a
+// light (IsFirstInteraction) and adds, per texel of a finer grid, what the
+// shadow ray gives:
+//   media:    S_1(x, w_o) = albedo * sum_l p(w_l, w_o) E_l(x) T_l(x)
+//   surfaces: L_1(x, w_o) = sum_l f_r(-w_l, w_o) E_l(x) T_l(x) cos(theta_l)
+// with E_l the light's irradiance on a plane normal to its direction of
+// travel w_l (I / r^2 for point and spot lights, the beam's irradiance for
+// a directional light, inside the cone or the beam) and T_l the shadow
+// ray's transmittance: zero past a surface, exp(-optical depth) through the
+// media (exact for homogeneous media, a midpoint march for heterogeneous
+// ones, at steps of half a cell of the density's grid).
+//
+// Area lights (emissive surfaces) are left to the particles.
+#ifndef brume_DirectLight_h
+#define brume_DirectLight_h
+
+#include "brume/RayCaster.h"
+#include "brume/Scene.h"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace brume
+{
+
+/// One light's direct arrival at a point.
+struct LightArrival
+{
+  /// Irradiance on a plane normal to Direction, after the shadow ray (W m^-2).
+  Vec3 Irradiance;
+  /// Unit direction of travel of the light.
+  Vec3 Direction;
+};
+
+class DirectLight
+{
+public:
+  /// The scene (valid) and a caster over its surfaces; both must outlive this.
+  DirectLight(const Scene& scene, const RayCaster& caster);
+
+  /// Point, spot and directional lights of the scene (may be zero).
+  std::size_t NumberOfLights() const { return this->SceneRef.Lights.size(); }
+
+  /// Whether the hit of a particle from `emitter` after `depth` earlier
+  /// interactions is one this class computes (depth 0 from a delta light).
+  bool IsFirstInteraction(std::uint16_t emitter, std::uint8_t depth) const
+  {
+    return depth == 0 && emitter >= this->FirstLightId &&
+      emitter < this->FirstLightId + this->NumberOfLights();
+  }
+
+  /**
+   * Heterogeneous medium `m` (index in Scene::Media): its density as the
+   * mean per cell of a regular grid over its bounds (x fastest), which the
+   * shadow rays march instead of evaluating the density field. Optional;
+   * the data must outlive this object.
+   */
+  void SetMediumGrid(std::size_t m, const float* density, const std::array<int, 3>& dims);
+
+  /**
+   * Light `k`'s direct arrival at `x`; false when none arrives (outside the
+   * cone or the beam, or behind a surface). `bias` lifts the shadow ray's
+   * start (a surface point: its normal times a small distance).
+   */
+  bool Arrive(std::size_t k, const Vec3& x, const Vec3& bias, LightArrival& arrival) const;
+
+  /// Transmittance per channel along the segment x + t d, t in [0, length].
+  Vec3 Transmittance(const Vec3& x, const Vec3& d, float length) const;
+
+  /// A distance small against the scene (shadow-ray offsets).
+  float GetEpsilon() const { return this->Epsilon; }
+
+private:
+  struct Grid
+  {
+    const float* Density = nullptr;
+    std::array<int, 3> Dims{ 0, 0, 0 };
+  };
+  float GridDensity(const Grid& grid, const Medium& medium, const Vec3& p) const;
+
+  const Scene& SceneRef;
+  const RayCaster& Caster;
+  std::size_t FirstLightId;
+  std::vector<Grid> Grids;
+  float Epsilon;
+};
+
+} // namespace brume
+
+#endif

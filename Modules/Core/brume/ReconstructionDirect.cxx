@@ -1,0 +1,273 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Deterministic single scattering in a reconstruction (brume/DirectLight.h):
+// the particles' texture, which no longer holds the first interactions
+// after point, spot and directional lights, resampled on a finer grid, plus
+// the direct light those lights give at each of its texels.
+#include "brume/DirectLight.h"
+#include "brume/Material.h"
+#include "brume/Reconstruction.h"
+#include "brume/Sampling.h"
+#include "brume/SphericalHarmonics.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace brume
+{
+
+namespace
+{
+// Normalized [0, 1]^3 coordinates of the centre of texel t of a grid.
+Vec3 TexelCentre(std::size_t t, const std::array<int, 3>& dims)
+{
+  const std::size_t nx = dims[0], nxy = nx * dims[1];
+  return Vec3((static_cast<float>(t % nx) + 0.5f) / static_cast<float>(dims[0]),
+    (static_cast<float>((t % nxy) / nx) + 0.5f) / static_cast<float>(dims[1]),
+    (static_cast<float>(t / nxy) + 0.5f) / static_cast<float>(dims[2]));
+}
+
+// Floats per light per output texel: irradiance RGB, direction of travel.
+constexpr std::size_t ArrivalFloats = 6;
+}
+
+bool ObjectRadiance::SupportsDirect() const
+{
+  if (this->MediumRef)
+  {
+    return true;
+  }
+  return this->Chart.Type == SurfaceChart::Kind::Planar &&
+    this->SurfaceRef->TriangleMaterials.empty() &&
+    this->SurfaceRef->Mat.Type != MaterialType::Mirror && !this->SurfaceRef->Triangles.empty();
+}
+
+void ObjectRadiance::EnableDirect(const DirectLight* light, const std::array<int, 3>& resolution)
+{
+  this->Arrivals.clear();
+  this->DirectRadiance.clear();
+  this->DirectExtinction.clear();
+  if (!light || !this->SupportsDirect() || light->NumberOfLights() == 0)
+  {
+    this->Direct = nullptr;
+    return;
+  }
+  this->Direct = light;
+  for (int a = 0; a < 3; ++a)
+  {
+    this->DirectDims[a] = std::max(1, resolution[a]);
+  }
+  if (!this->MediumRef)
+  {
+    this->DirectDims[2] = 1;
+    const auto& tri = this->SurfaceRef->Triangles.front();
+    const auto& v = this->SurfaceRef->Vertices;
+    this->SurfaceNormal = Normalize(Cross(v[tri[1]] - v[tri[0]], v[tri[2]] - v[tri[0]]));
+  }
+}
+
+Vec3 ObjectRadiance::OutputPosition(std::size_t t) const
+{
+  const Vec3 q = TexelCentre(t, this->DirectDims);
+  if (this->MediumRef)
+  {
+    return this->MediumRef->Bounds.lower + q * this->MediumRef->Bounds.Extent();
+  }
+  const PlanarFrame& f = this->Chart.Frame;
+  return f.Origin + f.U * q.x + f.V * q.y;
+}
+
+void ObjectRadiance::Resample(const Vec3& q, float* out) const
+{
+  // Linear between the texture's texel centres, clamped at its edges: what
+  // a renderer's linear filtering of the texture itself would show.
+  int i0[3], i1[3];
+  float w[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    const int n = this->Resolution[a];
+    const float x = std::clamp(q[a] * static_cast<float>(n) - 0.5f, 0.f, static_cast<float>(n - 1));
+    i0[a] = std::min(static_cast<int>(x), n - 1);
+    i1[a] = std::min(i0[a] + 1, n - 1);
+    w[a] = x - static_cast<float>(i0[a]);
+  }
+  const std::size_t nx = this->Resolution[0], nxy = nx * this->Resolution[1];
+  for (int c = 0; c < 3; ++c)
+  {
+    float value = 0.f;
+    for (int k = 0; k < 8; ++k)
+    {
+      const int x = (k & 1) ? i1[0] : i0[0], y = (k & 2) ? i1[1] : i0[1], z = (k & 4) ? i1[2] : i0[2];
+      const float weight = ((k & 1) ? w[0] : 1.f - w[0]) * ((k & 2) ? w[1] : 1.f - w[1]) *
+        ((k & 4) ? w[2] : 1.f - w[2]);
+      if (weight > 0.f)
+      {
+        value += weight * this->Radiance[3 * (static_cast<std::size_t>(z) * nxy + y * nx + x) + c];
+      }
+    }
+    out[c] = value;
+  }
+}
+
+void ObjectRadiance::ComputeDirect(const ParallelFor& parallelFor)
+{
+  this->Arrivals.clear();
+  if (!this->Direct || this->Radiance.empty())
+  {
+    return;
+  }
+  const std::size_t lights = this->Direct->NumberOfLights();
+  const std::size_t texels =
+    static_cast<std::size_t>(this->DirectDims[0]) * this->DirectDims[1] * this->DirectDims[2];
+  std::vector<float> arrivals(texels * lights * ArrivalFloats, 0.f);
+  const Vec3 bias = this->MediumRef ? Vec3(0.f) : this->SurfaceNormal * this->Direct->GetEpsilon();
+  parallelFor(0, texels,
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t t = begin; t < end; ++t)
+      {
+        const Vec3 x = this->OutputPosition(t);
+        for (std::size_t l = 0; l < lights; ++l)
+        {
+          float* out = &arrivals[(t * lights + l) * ArrivalFloats];
+          LightArrival a;
+          if (!this->Direct->Arrive(l, x, bias, a))
+          {
+            continue;
+          }
+          // Surfaces store E cos(theta), shown on their front side only.
+          const float weight =
+            this->MediumRef ? 1.f : std::max(0.f, -Dot(a.Direction, this->SurfaceNormal));
+          for (int c = 0; c < 3; ++c)
+          {
+            out[c] = a.Irradiance[c] * weight;
+            out[3 + c] = a.Direction[c];
+          }
+        }
+      }
+    });
+  this->Arrivals.swap(arrivals);
+  if (this->MediumRef)
+  {
+    // sigma_t on the output grid (renderers without the native grid).
+    this->DirectExtinction.resize(3 * texels);
+    parallelFor(0, texels,
+      [&](std::size_t begin, std::size_t end)
+      {
+        for (std::size_t t = begin; t < end; ++t)
+        {
+          const Vec3 s = this->MediumRef->SigmaTAt(this->OutputPosition(t));
+          for (int c = 0; c < 3; ++c)
+          {
+            this->DirectExtinction[3 * t + c] = s[c];
+          }
+        }
+      });
+  }
+  this->CombineDirect(parallelFor);
+  if (this->DirectionalOrder >= 0)
+  {
+    this->BuildDirectional(this->DirectionalOrder, parallelFor);
+  }
+}
+
+void ObjectRadiance::CombineDirect(const ParallelFor& parallelFor)
+{
+  const std::size_t lights = this->Direct->NumberOfLights();
+  const std::size_t texels = this->Arrivals.size() / (lights * ArrivalFloats);
+  this->DirectRadiance.resize(3 * texels);
+  const HenyeyGreenstein phase(this->MediumRef ? this->MediumRef->G : 0.f);
+  parallelFor(0, texels,
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t t = begin; t < end; ++t)
+      {
+        float* out = &this->DirectRadiance[3 * t];
+        this->Resample(TexelCentre(t, this->DirectDims), out);
+        const Vec3 toEye = Normalize(this->Eye - this->OutputPosition(t));
+        for (std::size_t l = 0; l < lights; ++l)
+        {
+          const float* a = &this->Arrivals[(t * lights + l) * ArrivalFloats];
+          if (a[0] == 0.f && a[1] == 0.f && a[2] == 0.f)
+          {
+            continue;
+          }
+          const Vec3 direction(a[3], a[4], a[5]);
+          Vec3 f;
+          if (this->MediumRef)
+          {
+            // S_1 = albedo p E T (the source radiance J_1 / sigma_t).
+            f = this->MediumAlbedo * phase.Evaluate(Dot(direction, toEye));
+          }
+          else
+          {
+            f = EvaluateBrdf(this->SurfaceRef->Mat, this->SurfaceNormal, -direction, toEye);
+          }
+          for (int c = 0; c < 3; ++c)
+          {
+            out[c] += f[c] * a[c];
+          }
+        }
+      }
+    });
+}
+
+void ObjectRadiance::AddDirectToDirectional(int order)
+{
+  // Each output texel's S_1 lobe, albedo E T p(w_l, .), projected as the
+  // particles' light is (coefficient Y_k(w_l) per unit of S) and averaged
+  // over the output texels whose centres fall in each voxel.
+  const std::size_t lights = this->Direct->NumberOfLights();
+  const std::size_t texels = this->Arrivals.size() / (lights * ArrivalFloats);
+  const int nk = ShCoefficients(order);
+  const std::size_t voxels = this->Regions.size();
+  std::vector<double> sums(voxels * nk * 3, 0.0);
+  std::vector<std::size_t> members(voxels, 0);
+  auto voxelOf = [&](std::size_t t)
+  {
+    const Vec3 q = TexelCentre(t, this->DirectDims);
+    std::size_t v = 0;
+    for (int a = 2; a >= 0; --a)
+    {
+      const int i = std::clamp(static_cast<int>(q[a] * static_cast<float>(this->Resolution[a])), 0,
+        this->Resolution[a] - 1);
+      v = v * this->Resolution[a] + i;
+    }
+    return v;
+  };
+  float y[ShCoefficients(MaxShOrder)];
+  for (std::size_t t = 0; t < texels; ++t)
+  {
+    const std::size_t v = voxelOf(t);
+    ++members[v];
+    for (std::size_t l = 0; l < lights; ++l)
+    {
+      const float* a = &this->Arrivals[(t * lights + l) * ArrivalFloats];
+      if (a[0] == 0.f && a[1] == 0.f && a[2] == 0.f)
+      {
+        continue;
+      }
+      EvaluateSh(order, Vec3(a[3], a[4], a[5]), y);
+      for (int k = 0; k < nk; ++k)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          sums[(v * nk + k) * 3 + c] += static_cast<double>(this->MediumAlbedo[c]) * a[c] * y[k];
+        }
+      }
+    }
+  }
+  for (std::size_t v = 0; v < voxels; ++v)
+  {
+    if (members[v] == 0)
+    {
+      continue;
+    }
+    for (std::size_t j = 0; j < static_cast<std::size_t>(nk) * 3; ++j)
+    {
+      this->Directional[v * nk * 3 + j] +=
+        static_cast<float>(sums[v * nk * 3 + j] / static_cast<double>(members[v]));
+    }
+  }
+}
+
+} // namespace brume
