@@ -141,6 +141,12 @@ void AddSceneOptions(CLI::App* command, RenderOptions& o, const SceneHelp& help)
       help.Threshold)
     ->transform(Number(1e-6, 1e12, "a positive number"))
     ->type_name("T");
+  command->add_flag_callback(
+    "--no-direct-light", [&o]() { o.DirectLight = false; },
+    "estimate the direct light of point, spot and\n"
+    "directional lights from the particles too, instead of\n"
+    "computing it with shadow rays (sharper shafts and\n"
+    "shadows; the default)");
 }
 
 void AddRender(CLI::App& app, RenderOptions& o)
@@ -162,6 +168,12 @@ void AddRender(CLI::App& app, RenderOptions& o)
     { "particles traced from the lights (default 1000000)",
       "image size in pixels (default 512x512)", "PNG exposure multiplier (default 1)",
       "radiosity threshold of the density estimation, in\nparticles (default 128)" });
+  render
+    ->add_option("--supersample", o.Supersample,
+      "render K x K pixels per pixel and average them: pixel\n"
+      "areas, as the path tracer integrates (default 1)")
+    ->transform(Integer(1, 8, "an integer in [1, 8]"))
+    ->type_name("K");
   render->add_flag("--timings", o.Timings, "print the time of each phase (as the paper's Table 1)");
   render->add_flag("--reference", o.Reference,
     "render with the unbiased path tracer instead (no\n"

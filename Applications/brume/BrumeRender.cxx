@@ -4,6 +4,7 @@
 
 #include "vtkBrumeDefaultSceneSource.h"
 #include "vtkBrumeFloatImageCapture.h"
+#include "vtkImageShrink3D.h"
 #include "vtkBrumeLightTracer.h"
 #include "vtkBrumeProcesses.h"
 #include "vtkBrumeRenderWindowSelection.h"
@@ -324,6 +325,7 @@ int RunRender(RenderOptions options)
   reconstruction->SetInputConnection(1, tracer->GetOutputPort());
   reconstruction->SetEyePosition(position);
   reconstruction->SetRadiosityThreshold(options.Threshold);
+  reconstruction->SetDirectLighting(options.DirectLight);
   if (rank == 0)
   {
     BrumeShowProgress(reconstruction, "reconstruction");
@@ -353,7 +355,14 @@ int RunRender(RenderOptions options)
   vtkNew<vtkRenderWindow> window;
   window->SetOffScreenRendering(1);
   window->SetMultiSamples(0);
-  window->SetSize(options.Width, options.Height);
+  const int k = options.Supersample;
+  if (options.Width * k > 16384 || options.Height * k > 16384)
+  {
+    std::cerr << "brume: --supersample " << k << " at " << options.Width << "x" << options.Height
+              << " renders more than 16384 pixels along an axis.\n";
+    return 1;
+  }
+  window->SetSize(options.Width * k, options.Height * k);
   window->AddRenderer(renderer);
   vtkNew<vtkBrumeSceneActors> actors;
   actors->SetInputData(reconstruction->GetOutput());
@@ -380,6 +389,17 @@ int RunRender(RenderOptions options)
   if (!radiance)
   {
     return 1;
+  }
+  if (k > 1)
+  {
+    // Each output pixel: the mean of its k x k samples.
+    vtkNew<vtkImageShrink3D> shrink;
+    shrink->SetInputData(radiance);
+    shrink->SetShrinkFactors(k, k, 1);
+    shrink->AveragingOn();
+    shrink->Update();
+    radiance = shrink->GetOutput();
+    radiance->GetPointData()->GetScalars()->SetName("Radiance");
   }
 
   if (const int rc = WriteImage(radiance, options, png))

@@ -19,6 +19,8 @@ struct RenderOptions
   int Height = 512;
   double Exposure = 1.0;
   double Threshold = 128.0;
+  bool DirectLight = true; // deterministic single scattering (vtkBrumeRadianceReconstruction)
+  int Supersample = 1;     // render K x K pixels per output pixel and average them
   bool Timings = false;
   bool Reference = false; // the unbiased path tracer instead of the three phases
   int SamplesPerPixel = 64;

@@ -102,6 +102,7 @@ public:
     this->Reconstruction->SetInputConnection(1, this->Tracer->GetOutputPort());
     this->Reconstruction->SetCamera(camera);
     this->Reconstruction->SetRadiosityThreshold(this->Options.Render.Threshold);
+    this->Reconstruction->SetDirectLighting(this->Options.Render.DirectLight);
     this->Reconstruction->AccumulateParticlesOn();
     this->Reconstruction->SetDirectionalRadiance(this->Options.Directional);
     this->Reconstruction->SetDirectionalOrder(this->Options.Order);

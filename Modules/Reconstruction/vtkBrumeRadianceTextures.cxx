@@ -235,14 +235,17 @@ bool vtkBrumeRadianceTextures::CreateObjects(
 std::array<int, 3> vtkBrumeRadianceTextures::DirectResolution(std::size_t o, int n) const
 {
   // n texels along the longest axis, at most the density's own resolution,
-  // at most MaxDirectTexels in all.
+  // at most MaxDirectTexels in all (MaxDirectTexelsMarched through a
+  // heterogeneous medium, which every shadow ray of it marches).
   std::array<int, 3> res{ 1, 1, 1 };
+  double limit = MaxDirectTexels;
   if (this->Scene.IsMedium(o))
   {
     const brume::Medium& medium = this->Scene.Media[o - this->Scene.Surfaces.size()];
     res = FixedResolution(medium.Bounds.Extent(), n);
     if (medium.Density)
     {
+      limit = MaxDirectTexelsMarched;
       const std::array<int, 3> native = medium.Density->NativeResolution();
       for (int a = 0; a < 3; ++a)
       {
@@ -256,10 +259,10 @@ std::array<int, 3> vtkBrumeRadianceTextures::DirectResolution(std::size_t o, int
     res = FixedResolution(brume::Vec3(chart.Width, chart.Height, 0.f), n);
   }
   const double texels = static_cast<double>(res[0]) * res[1] * res[2];
-  if (texels > MaxDirectTexels)
+  if (texels > limit)
   {
     const int used = this->Scene.IsMedium(o) ? 3 : 2;
-    const double scale = std::pow(MaxDirectTexels / texels, 1.0 / used);
+    const double scale = std::pow(limit / texels, 1.0 / used);
     for (int a = 0; a < used; ++a)
     {
       res[a] = std::max(1, static_cast<int>(std::floor(res[a] * scale)));

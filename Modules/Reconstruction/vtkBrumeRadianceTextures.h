@@ -76,8 +76,11 @@ class vtkBrumeRadianceTextures
 public:
   static constexpr int MaxSurfaceResolution = 4096;
   static constexpr int MaxMediumResolution = 512;
-  /// Texels of an object's output grid with direct light, at most.
-  static constexpr double MaxDirectTexels = 262144.0;
+  /// Texels of an object's output grid with direct light, at most: one
+  /// shadow ray each (2^21: 128^3), and for heterogeneous media, whose
+  /// shadow rays march the density, 2^18 (64^3).
+  static constexpr double MaxDirectTexels = 2097152.0;
+  static constexpr double MaxDirectTexelsMarched = 262144.0;
 
   /// Errors and warnings go to `filter`; `controller` may be null.
   vtkBrumeRadianceTextures(vtkAlgorithm* filter, vtkMultiProcessController* controller);

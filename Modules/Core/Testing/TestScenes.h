@@ -43,6 +43,8 @@ struct HitStore
   std::vector<float> Position, Direction, Flux;
   std::vector<std::uint16_t> Object;
   std::vector<std::uint32_t> Triangle;
+  std::vector<std::uint16_t> Emitter;
+  std::vector<std::uint8_t> Depth;
   HitStore() = default;
   explicit HitStore(const std::vector<Hit>& hits)
   {
@@ -53,6 +55,8 @@ struct HitStore
       Flux.insert(Flux.end(), h.Flux, h.Flux + 3);
       Object.push_back(h.Object);
       Triangle.push_back(h.Triangle);
+      Emitter.push_back(h.Emitter);
+      Depth.push_back(h.Depth);
     }
   }
   HitArrays View() const
@@ -63,6 +67,8 @@ struct HitStore
     a.Flux = Flux.data();
     a.Object = Object.data();
     a.Triangle = Triangle.data();
+    a.Emitter = Emitter.data();
+    a.Depth = Depth.data();
     a.Count = Object.size();
     return a;
   }

@@ -122,6 +122,18 @@ Vec3 DirectLight::Transmittance(const Vec3& x, const Vec3& d, float length) cons
     static_cast<float>(std::exp(-depth[2])));
 }
 
+Vec3 DirectLight::DirectionAt(std::size_t k, const Vec3& x) const
+{
+  const Light& light = this->SceneRef.Lights[k];
+  if (light.Type == LightType::Directional)
+  {
+    return light.Direction;
+  }
+  const Vec3 d = x - light.Position;
+  const float r = Length(d);
+  return r > 0.f ? d / r : light.Direction;
+}
+
 bool DirectLight::Arrive(std::size_t k, const Vec3& x, const Vec3& bias, LightArrival& a) const
 {
   const Light& light = this->SceneRef.Lights[k];
@@ -164,14 +176,15 @@ bool DirectLight::Arrive(std::size_t k, const Vec3& x, const Vec3& bias, LightAr
     }
   }
   toLight = -a.Direction;
+  // Surfaces short of the light occlude; the media count all the way.
   const Vec3 start = x + bias;
-  const float length = std::max(0.f, distance - this->Epsilon);
   SurfaceHit hit;
-  if (this->Caster.Intersect(start, toLight, this->Epsilon, length, hit))
+  if (this->Caster.Intersect(
+        start, toLight, this->Epsilon, std::max(0.f, distance - this->Epsilon), hit))
   {
     return false;
   }
-  a.Irradiance = a.Irradiance * this->Transmittance(start, toLight, length);
+  a.Irradiance = a.Irradiance * this->Transmittance(x, toLight, distance);
   return MaxComponent(a.Irradiance) > 0.f;
 }
 

@@ -74,6 +74,9 @@ public:
    */
   bool Arrive(std::size_t k, const Vec3& x, const Vec3& bias, LightArrival& arrival) const;
 
+  /// Light `k`'s direction of travel at `x` (whether or not it arrives).
+  Vec3 DirectionAt(std::size_t k, const Vec3& x) const;
+
   /// Transmittance per channel along the segment x + t d, t in [0, length].
   Vec3 Transmittance(const Vec3& x, const Vec3& d, float length) const;
 

@@ -28,6 +28,8 @@ Vec3 TexelCentre(std::size_t t, const std::array<int, 3>& dims)
 
 // Floats per light per output texel: irradiance RGB, direction of travel.
 constexpr std::size_t ArrivalFloats = 6;
+// Points per axis of a texel on a shadow's edge.
+constexpr int RefinedSamples = 4;
 }
 
 bool ObjectRadiance::SupportsDirect() const
@@ -116,10 +118,34 @@ void ObjectRadiance::ComputeDirect(const ParallelFor& parallelFor)
     return;
   }
   const std::size_t lights = this->Direct->NumberOfLights();
-  const std::size_t texels =
-    static_cast<std::size_t>(this->DirectDims[0]) * this->DirectDims[1] * this->DirectDims[2];
+  const std::array<int, 3> dims = this->DirectDims;
+  const std::size_t texels = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2];
   std::vector<float> arrivals(texels * lights * ArrivalFloats, 0.f);
   const Vec3 bias = this->MediumRef ? Vec3(0.f) : this->SurfaceNormal * this->Direct->GetEpsilon();
+  // Light l's arrival at x (zero when none), surfaces' weighted by the cosine
+  // (they store E cos(theta), shown on their front side only).
+  auto arrive = [&](std::size_t l, const Vec3& x, Vec3& irradiance)
+  {
+    LightArrival a;
+    if (!this->Direct->Arrive(l, x, bias, a))
+    {
+      irradiance = Vec3(0.f);
+      return;
+    }
+    const float weight =
+      this->MediumRef ? 1.f : std::max(0.f, -Dot(a.Direction, this->SurfaceNormal));
+    irradiance = a.Irradiance * weight;
+  };
+  auto store = [&](std::size_t t, std::size_t l, const Vec3& irradiance, const Vec3& direction)
+  {
+    float* out = &arrivals[(t * lights + l) * ArrivalFloats];
+    for (int c = 0; c < 3; ++c)
+    {
+      out[c] = irradiance[c];
+      out[3 + c] = direction[c];
+    }
+  };
+  // 1. One shadow ray per texel centre.
   parallelFor(0, texels,
     [&](std::size_t begin, std::size_t end)
     {
@@ -128,20 +154,73 @@ void ObjectRadiance::ComputeDirect(const ParallelFor& parallelFor)
         const Vec3 x = this->OutputPosition(t);
         for (std::size_t l = 0; l < lights; ++l)
         {
-          float* out = &arrivals[(t * lights + l) * ArrivalFloats];
-          LightArrival a;
-          if (!this->Direct->Arrive(l, x, bias, a))
+          Vec3 irradiance;
+          arrive(l, x, irradiance);
+          store(t, l, irradiance, this->Direct->DirectionAt(l, x));
+        }
+      }
+    });
+  // 2. Texels on a shadow's or a beam's edge (lit while a face neighbour is
+  // not, or the reverse) hold the mean over RefinedSamples^d stratified
+  // points of the texel instead: the edge then lies where it is, not half
+  // way between two texel centres, once the renderer interpolates.
+  const int used = this->MediumRef ? 3 : 2;
+  const std::size_t nx = dims[0], nxy = nx * dims[1];
+  auto lit = [&](std::size_t t, std::size_t l)
+  {
+    const float* a = &arrivals[(t * lights + l) * ArrivalFloats];
+    return a[0] > 0.f || a[1] > 0.f || a[2] > 0.f;
+  };
+  std::vector<std::uint8_t> edge(texels * lights, 0);
+  for (std::size_t t = 0; t < texels; ++t)
+  {
+    const int c[3] = { static_cast<int>(t % nx), static_cast<int>((t % nxy) / nx),
+      static_cast<int>(t / nxy) };
+    for (std::size_t l = 0; l < lights; ++l)
+    {
+      const bool here = lit(t, l);
+      for (int a = 0; a < used && !edge[t * lights + l]; ++a)
+      {
+        const std::size_t stride = a == 0 ? 1 : (a == 1 ? nx : nxy);
+        if ((c[a] > 0 && lit(t - stride, l) != here) ||
+          (c[a] + 1 < dims[a] && lit(t + stride, l) != here))
+        {
+          edge[t * lights + l] = 1;
+        }
+      }
+    }
+  }
+  const Vec3 texel = (this->MediumRef ? this->MediumRef->Bounds.Extent() : Vec3(1.f)) /
+    Vec3(static_cast<float>(dims[0]), static_cast<float>(dims[1]), static_cast<float>(dims[2]));
+  const PlanarFrame& frame = this->Chart.Frame;
+  parallelFor(0, texels,
+    [&](std::size_t begin, std::size_t end)
+    {
+      constexpr int S = RefinedSamples;
+      for (std::size_t t = begin; t < end; ++t)
+      {
+        for (std::size_t l = 0; l < lights; ++l)
+        {
+          if (!edge[t * lights + l])
           {
             continue;
           }
-          // Surfaces store E cos(theta), shown on their front side only.
-          const float weight =
-            this->MediumRef ? 1.f : std::max(0.f, -Dot(a.Direction, this->SurfaceNormal));
-          for (int c = 0; c < 3; ++c)
+          const Vec3 centre = this->OutputPosition(t);
+          Vec3 sum(0.f);
+          const int n = used == 3 ? S * S * S : S * S;
+          for (int k = 0; k < n; ++k)
           {
-            out[c] = a.Irradiance[c] * weight;
-            out[3 + c] = a.Direction[c];
+            const Vec3 f((static_cast<float>(k % S) + 0.5f) / S - 0.5f,
+              (static_cast<float>((k / S) % S) + 0.5f) / S - 0.5f,
+              used == 3 ? (static_cast<float>(k / (S * S)) + 0.5f) / S - 0.5f : 0.f);
+            const Vec3 x = this->MediumRef
+              ? centre + f * texel
+              : centre + frame.U * (f.x * texel.x) + frame.V * (f.y * texel.y);
+            Vec3 irradiance;
+            arrive(l, x, irradiance);
+            sum += irradiance;
           }
+          store(t, l, sum / static_cast<float>(n), this->Direct->DirectionAt(l, centre));
         }
       }
     });
@@ -155,10 +234,10 @@ void ObjectRadiance::ComputeDirect(const ParallelFor& parallelFor)
       {
         for (std::size_t t = begin; t < end; ++t)
         {
-          const Vec3 s = this->MediumRef->SigmaTAt(this->OutputPosition(t));
+          const Vec3 sigma = this->MediumRef->SigmaTAt(this->OutputPosition(t));
           for (int c = 0; c < 3; ++c)
           {
-            this->DirectExtinction[3 * t + c] = s[c];
+            this->DirectExtinction[3 * t + c] = sigma[c];
           }
         }
       });

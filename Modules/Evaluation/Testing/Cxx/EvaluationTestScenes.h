@@ -70,6 +70,24 @@ inline void AddPointLight(
   vtkBrumeSceneConversion::AppendTuple(fd, "BrumeLightConeAngle", &cone, 1);
 }
 
+/// Adds a directional light (irradiance `irradiance` W/m^2 per channel,
+/// travelling along `direction`) to the scene's field data.
+inline void AddDirectionalLight(
+  vtkPartitionedDataSetCollection* scene, const double direction[3], double irradiance)
+{
+  vtkFieldData* fd = scene->GetFieldData();
+  vtkNew<vtkStringArray> type;
+  type->SetName("BrumeLightType");
+  type->InsertNextValue("directional");
+  fd->AddArray(type);
+  const double origin[3] = { 0, 0, 0 }, power[3] = { irradiance, irradiance, irradiance },
+               cone = 180;
+  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeLightPosition", origin, 3);
+  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeLightDirection", direction, 3);
+  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeLightIntensity", power, 3);
+  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeLightConeAngle", &cone, 1);
+}
+
 /// Names the scene's camera in its field data.
 inline void SetSceneCamera(vtkPartitionedDataSetCollection* scene, const double position[3],
   const double focalPoint[3], double viewAngle)
