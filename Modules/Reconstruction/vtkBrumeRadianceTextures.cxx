@@ -235,17 +235,15 @@ bool vtkBrumeRadianceTextures::CreateObjects(
 std::array<int, 3> vtkBrumeRadianceTextures::DirectResolution(std::size_t o, int n) const
 {
   // n texels along the longest axis, at most the density's own resolution,
-  // at most MaxDirectTexels in all (MaxDirectTexelsMarched through a
-  // heterogeneous medium, which every shadow ray of it marches).
+  // at most MaxDirectTexels in all.
   std::array<int, 3> res{ 1, 1, 1 };
-  double limit = MaxDirectTexels;
+  const double limit = MaxDirectTexels;
   if (this->Scene.IsMedium(o))
   {
     const brume::Medium& medium = this->Scene.Media[o - this->Scene.Surfaces.size()];
     res = FixedResolution(medium.Bounds.Extent(), n);
     if (medium.Density)
     {
-      limit = MaxDirectTexelsMarched;
       const std::array<int, 3> native = medium.Density->NativeResolution();
       for (int a = 0; a < 3; ++a)
       {
