@@ -227,8 +227,8 @@ void AddView(CLI::App& app, ViewOptions& o)
   view->add_flag_callback(
     "--no-overlay", [&o]() { o.Overlay = false; }, "hide the text overlay");
   CLI::Option* orbit = view->add_option("--orbit", o.Orbit,
-    "render N frames around the focal point (no window\n"
-    "interaction, needs a display: xvfb-run -a) and print\n"
+    "render N frames around the focal point (off screen, no\n"
+    "window interaction; X or EGL) and print\n"
     "the median and 95th percentile of the update and\n"
     "render times, and the textures recomputed meanwhile");
   orbit->transform(Integer(1, 100000, "a number of frames in [1, 100000]"))->type_name("N");
@@ -322,8 +322,8 @@ void AddChart(CLI::App& app, ChartOptions& o)
       "at a ladder of particle budgets (media per view, as in the paper, and as\n"
       "spherical harmonics) and with the path tracer at a ladder of samples per\n"
       "pixel, measures each image's error against a converged reference (cached\n"
-      "on disk) and draws error against time, log-log, with VTK's charts. Needs a\n"
-      "display (xvfb-run -a).");
+      "on disk) and draws error against time, log-log, with VTK's charts, off\n"
+      "screen (X, or EGL without a display).");
   chart->add_option("SCENE", o.Scene, "a scene file (default: the built-in scene)");
   chart->add_option("-o,--output", o.Output, "the chart (PNG, default chart.png)")
     ->transform(NotEmpty("a file name"))

@@ -1,0 +1,136 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Writes Data/scenes/cumulus.json's volume: a procedural cumulus cloud as a
+// sparse OpenVDB float grid named "density" (values in [0, 1], one-metre
+// voxels, only the voxels with density active), its base 60 m up.
+//
+//   MakeCumulus OUTPUT.vdb
+//
+// The shape is a union of spheres with a flat base, its surface broken up by
+// four octaves of value noise (a hash of the lattice point, smoothstep
+// interpolated): deterministic, the same file on every machine.
+#include <openvdb/openvdb.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <exception>
+
+namespace
+{
+// A lattice value in [0, 1) from the integer point (i, j, k).
+double Lattice(int i, int j, int k)
+{
+  std::uint64_t h = static_cast<std::uint64_t>(static_cast<std::uint32_t>(i)) * 0x9E3779B97F4A7C15ULL;
+  h ^= static_cast<std::uint64_t>(static_cast<std::uint32_t>(j)) * 0xC2B2AE3D27D4EB4FULL;
+  h ^= static_cast<std::uint64_t>(static_cast<std::uint32_t>(k)) * 0x165667B19E3779F9ULL;
+  h ^= h >> 31;
+  h *= 0xBF58476D1CE4E5B9ULL;
+  h ^= h >> 29;
+  return static_cast<double>(h >> 11) * 0x1p-53;
+}
+
+double Smooth(double t)
+{
+  return t * t * (3.0 - 2.0 * t);
+}
+
+// Value noise in [0, 1).
+double Noise(double x, double y, double z)
+{
+  const int i = static_cast<int>(std::floor(x)), j = static_cast<int>(std::floor(y)),
+            k = static_cast<int>(std::floor(z));
+  const double u = Smooth(x - i), v = Smooth(y - j), w = Smooth(z - k);
+  double result = 0.0;
+  for (int c = 0; c < 8; ++c)
+  {
+    const int a = c & 1, b = (c >> 1) & 1, d = c >> 2;
+    result += (a ? u : 1.0 - u) * (b ? v : 1.0 - v) * (d ? w : 1.0 - w) * Lattice(i + a, j + b, k + d);
+  }
+  return result;
+}
+
+// Four octaves, in [0, 1).
+double Fbm(double x, double y, double z)
+{
+  double sum = 0.0, amplitude = 0.5, total = 0.0;
+  for (int octave = 0; octave < 4; ++octave)
+  {
+    sum += amplitude * Noise(x, y, z);
+    total += amplitude;
+    x *= 2.03;
+    y *= 2.03;
+    z *= 2.03;
+    amplitude *= 0.5;
+  }
+  return sum / total;
+}
+
+// The cloud's density at (x, y, z) metres, the base at y = 0.
+double Density(double x, double y, double z)
+{
+  struct Sphere
+  {
+    double X, Y, Z, R;
+  };
+  static const std::array<Sphere, 6> puffs = { { { 0, 8, 0, 30 }, { -28, 2, 6, 22 },
+    { 26, 4, -4, 24 }, { 8, 24, 4, 20 }, { -12, 18, -10, 17 }, { 40, -2, 8, 14 } } };
+  double shape = -1e30;
+  for (const Sphere& s : puffs)
+  {
+    const double d = std::sqrt((x - s.X) * (x - s.X) + (y - s.Y) * (y - s.Y) + (z - s.Z) * (z - s.Z));
+    shape = std::max(shape, 1.0 - d / s.R);
+  }
+  if (shape < -0.3)
+  {
+    return 0.0; // beyond the noise's reach
+  }
+  const double base = std::clamp(y / 6.0, 0.0, 1.0); // a flat, soft base
+  const double d = shape + 0.45 * (Fbm(x / 14.0, y / 14.0, z / 14.0) - 0.5);
+  return Smooth(std::clamp(d / 0.2, 0.0, 1.0)) * base;
+}
+}
+
+int main(int argc, char* argv[])
+{
+  if (argc != 2)
+  {
+    std::fprintf(stderr, "usage: MakeCumulus OUTPUT.vdb\n");
+    return 2;
+  }
+  try
+  {
+    openvdb::initialize();
+    auto grid = openvdb::FloatGrid::create(0.f);
+    grid->setName("density");
+    grid->setGridClass(openvdb::GRID_FOG_VOLUME);
+    // One-metre voxels; the base 60 m above the ground.
+    auto transform = openvdb::math::Transform::createLinearTransform(1.0);
+    transform->postTranslate(openvdb::Vec3d(0.0, 60.0, 0.0));
+    grid->setTransform(transform);
+    auto accessor = grid->getAccessor();
+    for (int k = -50; k <= 50; ++k)
+      for (int j = -2; j <= 50; ++j)
+        for (int i = -70; i <= 70; ++i)
+        {
+          const double v = Density(i, j, k);
+          if (v > 1e-3)
+          {
+            accessor.setValue(openvdb::Coord(i, j, k), static_cast<float>(v));
+          }
+        }
+    grid->pruneGrid();
+    openvdb::io::File file(argv[1]);
+    file.write({ grid });
+    file.close();
+    std::printf("%s: %llu active voxels\n", argv[1],
+      static_cast<unsigned long long>(grid->activeVoxelCount()));
+  }
+  catch (const std::exception& e)
+  {
+    std::fprintf(stderr, "MakeCumulus: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
