@@ -161,12 +161,14 @@ vtkSmartPointer<vtkImageData> vtkBrumeRadianceConversion::NativeExtinction(
   {
     return nullptr;
   }
-  // sigma_t at the density's own resolution, over the medium's box.
+  // sigma_t at the density's own resolution, over its own box (which holds
+  // the medium's: its cell centres are the density's samples).
   const auto& native = radiance.GetNativeResolution();
-  const brume::Vec3 extent = medium.Bounds.Extent();
+  const brume::Box& box = radiance.GetNativeBox();
+  const brume::Vec3 extent = box.Extent();
   auto extinction = vtkSmartPointer<vtkImageData>::New();
   extinction->SetDimensions(native[0] + 1, native[1] + 1, native[2] + 1);
-  extinction->SetOrigin(medium.Bounds.lower.x, medium.Bounds.lower.y, medium.Bounds.lower.z);
+  extinction->SetOrigin(box.lower.x, box.lower.y, box.lower.z);
   extinction->SetSpacing(extent.x / native[0], extent.y / native[1], extent.z / native[2]);
   vtkNew<vtkFloatArray> sigmaT;
   sigmaT->SetName("Extinction");

@@ -318,8 +318,8 @@ void vtkBrumeRadianceTextures::ComputeDirect()
     const brume::ObjectRadiance& medium = *this->Objects[o];
     if (!medium.GetNativeDensity().empty())
     {
-      this->Direct->SetMediumGrid(
-        o - surfaces, medium.GetNativeDensity().data(), medium.GetNativeResolution());
+      this->Direct->SetMediumGrid(o - surfaces, medium.GetNativeDensity().data(),
+        medium.GetNativeResolution(), medium.GetNativeBox());
     }
   }
   const brume::ParallelFor parallelFor = vtkBrumeSMP::ParallelFor();

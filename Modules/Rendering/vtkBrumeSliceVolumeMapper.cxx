@@ -119,8 +119,7 @@ std::string vtkBrumeSliceVolumeMapper::ValidateExtinction(
   for (int k = 0; k < 3; ++k)
   {
     const double size = a[2 * k + 1] - a[2 * k];
-    if (std::abs(a[2 * k] - b[2 * k]) > 1e-6 * size ||
-      std::abs(a[2 * k + 1] - b[2 * k + 1]) > 1e-6 * size)
+    if (b[2 * k] > a[2 * k] + 1e-6 * size || b[2 * k + 1] < a[2 * k + 1] - 1e-6 * size)
     {
       return "the extinction image must cover the medium image's box";
     }

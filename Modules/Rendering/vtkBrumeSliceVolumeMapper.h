@@ -97,7 +97,9 @@ public:
   ///@{
   /**
    * The medium's extinction at another resolution (default none): a
-   * vtkImageData over the same box as the input, with the cell array
+   * vtkImageData over the input's box or a larger one (a grid whose cell
+   * centres are a density's own samples reaches half a cell beyond the
+   * medium; only the part inside the input's box is drawn), with the cell array
    * `Extinction` (1 or 3 components, m^-1). When set, it replaces the
    * input's `Extinction`, the input's `SourceRadiance` (and
    * `SourceRadianceSH`) is taken as the source radiance S itself, and the

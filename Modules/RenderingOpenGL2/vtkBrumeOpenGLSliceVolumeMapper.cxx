@@ -198,6 +198,19 @@ bool vtkBrumeOpenGLSliceVolumeMapper::PrepareSlices(
       impl.BoundsExtent[a] = static_cast<float>(bounds[2 * a + 1] - bounds[2 * a]);
     }
   }
+  {
+    double e[6] = { bounds[0], bounds[1], bounds[2], bounds[3], bounds[4], bounds[5] };
+    if (this->ExtinctionData)
+    {
+      this->ExtinctionData->GetBounds(e);
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      const double extent = e[2 * a + 1] - e[2 * a];
+      impl.ExtinctionScale[a] = static_cast<float>((bounds[2 * a + 1] - bounds[2 * a]) / extent);
+      impl.ExtinctionOffset[a] = static_cast<float>((bounds[2 * a] - e[2 * a]) / extent);
+    }
+  }
   if (!this->EvaluateTowardEye(renWin, dims, interpolation))
   {
     return false;
@@ -482,6 +495,8 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawAll(vtkRenderer* ren)
     program->SetUniformi("extinctionTexture", owner.Extinction->GetTextureUnit());
     program->SetUniformf("sliceSpacing", run.Spacing);
     program->SetUniformi("sourceIsRadiance", owner.SourceIsRadiance ? 1 : 0);
+    program->SetUniform3f("extinctionScale", owner.ExtinctionScale);
+    program->SetUniform3f("extinctionOffset", owner.ExtinctionOffset);
     if (owner.FragmentOrder > 0)
     {
       for (std::size_t t = 0; t < owner.Coefficients.size(); ++t)

@@ -34,6 +34,10 @@ struct vtkBrumeOpenGLSliceVolumeMapper::Internals
   float EyeData[3] = { 0.f, 0.f, 0.f };
   float BoundsLower[3] = { 0.f, 0.f, 0.f };
   float BoundsExtent[3] = { 1.f, 1.f, 1.f };
+  // From the input's texture coordinates to the extinction grid's (whose
+  // box may be larger): scale, then offset.
+  float ExtinctionScale[3] = { 1.f, 1.f, 1.f };
+  float ExtinctionOffset[3] = { 0.f, 0.f, 0.f };
   vtkTimeStamp TextureTime;
   bool SourceIsRadiance = false; // the source texture holds S (extinction of its own)
   // The extinction grid of its own last uploaded, and when.

@@ -244,7 +244,7 @@ TEST(DirectLight, TransmittanceMarchesTheDensityGrid)
     DirectLight direct(scene, caster);
     if (which == 0)
     {
-      direct.SetMediumGrid(0, values.data(), { 16, 4, 4 });
+      direct.SetMediumGrid(0, values.data(), { 16, 4, 4 }, Box{ Vec3(-1.f), Vec3(1.f) });
     }
     const double depth = which == 0 ? 1.5 * 2.0 * 0.5 : 0.5 * 1.8;
     const Vec3 T = direct.Transmittance(Vec3(-0.9f, 0.1f, -0.2f), Vec3(1.f, 0.f, 0.f), 1.8f);
@@ -262,7 +262,7 @@ TEST(DirectLight, TransmittanceMarchesTheDensityGrid)
   scene.Lights = { PointLight(Vec3(0.f), 1.f) };
   const RayCaster caster(scene);
   DirectLight direct(scene, caster);
-  direct.SetMediumGrid(0, values.data(), { 16, 4, 4 });
+  direct.SetMediumGrid(0, values.data(), { 16, 4, 4 }, Box{ Vec3(-1.f), Vec3(1.f) });
   EXPECT_NEAR(direct.Transmittance(Vec3(-0.9f, 0.f, 0.f), Vec3(1.f, 0.f, 0.f), 0.5f).x, 1.f, 1e-6);
 }
 

@@ -27,12 +27,28 @@ std::array<int, 3> DensityField::NativeResolution() const
 
 std::array<int, 3> GridDensity::NativeResolution() const
 {
-  std::array<int, 3> cells{};
+  // One cell per value: cell values are the cells, point values the
+  // centres of cells around the points.
+  return this->Dims;
+}
+
+Box GridDensity::NativeBox() const
+{
+  if (this->CellValues)
+  {
+    return this->Bounds;
+  }
+  // Half a point spacing beyond the bounds on every side (an axis of one
+  // point: the bounds' extent).
+  Box box = this->Bounds;
   for (int a = 0; a < 3; ++a)
   {
-    cells[a] = this->CellValues ? this->Dims[a] : std::max(1, this->Dims[a] - 1);
+    const float half =
+      this->Dims[a] > 1 ? 0.5f * this->Bounds.Extent()[a] / static_cast<float>(this->Dims[a] - 1) : 0.f;
+    box.lower[a] -= half;
+    box.upper[a] += half;
   }
-  return cells;
+  return box;
 }
 
 GridDensity::GridDensity(

@@ -36,11 +36,17 @@ public:
   virtual float Evaluate(const Vec3& p) const = 0;
   const Box& GetBounds() const { return this->Bounds; }
   /**
-   * Cells along each axis of the field's own grid over GetBounds(): the
-   * resolution at which its structure is resolved (the grid's cells, or
-   * the OpenVDB voxels). The default is the majorant blocks' cells.
+   * The field's own grid: NativeResolution() cells over NativeBox(), the
+   * resolution at which its structure is resolved, placed so that each
+   * cell's centre is one of the field's own samples (a cell value, a point
+   * value, an OpenVDB voxel). Sampling the field at those centres and
+   * interpolating them trilinearly reproduces a trilinear field exactly.
+   * The box holds GetBounds(), and may reach half a cell beyond it (point
+   * values and voxels sit on or beyond the bounds' faces). The default is
+   * the majorant blocks' cells over the bounds.
    */
   virtual std::array<int, 3> NativeResolution() const;
+  virtual Box NativeBox() const { return this->Bounds; }
   const MajorantGrid& GetMajorants() const { return this->Majorants; }
   /// Number of non-empty majorant blocks (for reporting sparsity).
   std::size_t NumberOfOccupiedBlocks() const;
@@ -65,6 +71,7 @@ public:
     const Box& bounds, std::array<int, 3> dims, std::vector<float> values, bool cellValues);
   float Evaluate(const Vec3& p) const override;
   std::array<int, 3> NativeResolution() const override;
+  Box NativeBox() const override;
 
 private:
   float Value(int i, int j, int k) const

@@ -35,12 +35,14 @@ DirectLight::DirectLight(const Scene& scene, const RayCaster& caster)
   this->Epsilon = 1e-4f * (std::isfinite(diagonal) && diagonal > 0.f ? diagonal : 1.f);
 }
 
-void DirectLight::SetMediumGrid(std::size_t m, const float* density, const std::array<int, 3>& dims)
+void DirectLight::SetMediumGrid(
+  std::size_t m, const float* density, const std::array<int, 3>& dims, const Box& box)
 {
   if (m < this->Grids.size())
   {
     this->Grids[m].Density = density;
     this->Grids[m].Dims = dims;
+    this->Grids[m].Bounds = box;
   }
 }
 
@@ -51,7 +53,7 @@ float DirectLight::GridDensity(const Grid& grid, const Medium& medium, const Vec
     return medium.Density->Evaluate(p);
   }
   // Trilinear between the cells' centres, clamped at the faces.
-  const Vec3 q = (p - medium.Bounds.lower) / medium.Bounds.Extent();
+  const Vec3 q = (p - grid.Bounds.lower) / grid.Bounds.Extent();
   int i0[3], i1[3];
   float w[3];
   for (int a = 0; a < 3; ++a)
@@ -93,7 +95,7 @@ Vec3 DirectLight::Transmittance(const Vec3& x, const Vec3& d, float length) cons
       const Grid& grid = this->Grids[m];
       const std::array<int, 3> dims =
         grid.Density ? grid.Dims : medium.Density->NativeResolution();
-      const Vec3 extent = medium.Bounds.Extent();
+      const Vec3 extent = grid.Density ? grid.Bounds.Extent() : medium.Bounds.Extent();
       float cell = extent.x / static_cast<float>(std::max(dims[0], 1));
       cell = std::min(cell, extent.y / static_cast<float>(std::max(dims[1], 1)));
       cell = std::min(cell, extent.z / static_cast<float>(std::max(dims[2], 1)));

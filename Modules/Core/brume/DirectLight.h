@@ -60,12 +60,14 @@ public:
   }
 
   /**
-   * Heterogeneous medium `m` (index in Scene::Media): its density as the
-   * mean per cell of a regular grid over its bounds (x fastest), which the
-   * shadow rays march instead of evaluating the density field. Optional;
-   * the data must outlive this object.
+   * Heterogeneous medium `m` (index in Scene::Media): its density per cell
+   * of a regular grid over `box` (x fastest; ObjectRadiance's native grid),
+   * interpolated between cell centres, which the shadow rays march instead
+   * of evaluating the density field. Optional; the data must outlive this
+   * object.
    */
-  void SetMediumGrid(std::size_t m, const float* density, const std::array<int, 3>& dims);
+  void SetMediumGrid(
+    std::size_t m, const float* density, const std::array<int, 3>& dims, const Box& box);
 
   /**
    * Light `k`'s direct arrival at `x`; false when none arrives (outside the
@@ -88,6 +90,7 @@ private:
   {
     const float* Density = nullptr;
     std::array<int, 3> Dims{ 0, 0, 0 };
+    Box Bounds;
   };
   float GridDensity(const Grid& grid, const Medium& medium, const Vec3& p) const;
 

@@ -209,11 +209,14 @@ public:
 
   /**
    * Heterogeneous media: the density per cell of its own grid
-   * (brume::DensityField::NativeResolution), x fastest, independent of the
+   * (brume::DensityField::NativeResolution over NativeBox, whose cell
+   * centres are the field's own samples), x fastest, independent of the
    * texture's resolution, so that a renderer draws the medium's structure
    * (sigma_t = the medium's SigmaT() times the density) at its own
    * resolution with the smooth source radiance of the texture. Each cell
-   * holds the mean of the density over the cell. Grids above
+   * holds the density at its centre: interpolated trilinearly, the grid is
+   * the field (an OpenVDB grid's trilinear sampler, a point-valued image),
+   * not a smoothed copy. Grids above
    * MaxNativeCells cells, or MaxNativeAxis along an axis, are coarsened by
    * one integer factor on every axis (the smallest that fits; a coarsened
    * cell averages 2^3 samples). The integral of sigma_t the texture is
@@ -222,6 +225,9 @@ public:
    */
   const std::vector<float>& GetNativeDensity() const { return this->NativeDensity; }
   const std::array<int, 3>& GetNativeResolution() const { return this->NativeDims; }
+  /// The box of the native grid's cells (DensityField::NativeBox(), grown
+  /// to whole coarsened cells): it holds the medium's bounds.
+  const Box& GetNativeBox() const { return this->NativeBox; }
   static constexpr std::size_t MaxNativeCells = std::size_t(1) << 22;
   static constexpr int MaxNativeAxis = 2048; // a 3D texture's usual limit
   const std::array<int, 3>& GetResolution() const { return this->Resolution; }
@@ -289,6 +295,7 @@ private:
   SummedAreaTable AreaTable;    // surfaces: world area per cell
   SummedAreaTable DensityTable; // heterogeneous media: integral of the density per cell
   std::array<int, 3> NativeDims{ 0, 0, 0 };
+  Box NativeBox;
   std::vector<float> NativeDensity; // the density's mean per native cell
   double EmptyIntegral = 0.0;          // regions below hold no medium
   const DirectLight* Direct = nullptr;

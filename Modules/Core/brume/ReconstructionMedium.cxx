@@ -17,8 +17,11 @@ namespace brume
 namespace
 {
 // The mean of the density over the box [lower, lower + size], from s^3
-// stratified samples at the centres of a regular subdivision.
-double MeanDensity(const DensityField& density, const Vec3& lower, const Vec3& size, int s)
+// stratified samples at the centres of a regular subdivision; samples
+// beyond the medium's bounds (the half cells of the native box outside
+// them) take the density on the bounds' faces.
+double MeanDensity(
+  const DensityField& density, const Box& bounds, const Vec3& lower, const Vec3& size, int s)
 {
   double sum = 0.0;
   for (int k = 0; k < s; ++k)
@@ -30,36 +33,44 @@ double MeanDensity(const DensityField& density, const Vec3& lower, const Vec3& s
         const Vec3 f((static_cast<float>(i) + 0.5f) / static_cast<float>(s),
           (static_cast<float>(j) + 0.5f) / static_cast<float>(s),
           (static_cast<float>(k) + 0.5f) / static_cast<float>(s));
-        sum += density.Evaluate(lower + size * f);
+        Vec3 p = lower + size * f;
+        for (int a = 0; a < 3; ++a)
+        {
+          p[a] = std::clamp(p[a], bounds.lower[a], bounds.upper[a]);
+        }
+        sum += density.Evaluate(p);
       }
     }
   }
   return sum / (static_cast<double>(s) * s * s);
 }
 
-// Along one axis of n fine cells and m coarse cells over the same [0, 1]:
-// for each fine cell, the coarse cells it overlaps and the overlap as a
-// fraction of the fine cell.
+// Along one axis, n fine cells over [lo, hi] and m coarse cells over
+// [coarseLo, coarseHi] (inside it or equal): for each fine cell, the coarse
+// cells it overlaps and the overlap as a fraction of the fine cell (the part
+// of a fine cell beyond the coarse cells overlaps none).
 struct Overlap
 {
   int Coarse;
   double Fraction;
 };
-std::vector<std::vector<Overlap>> Overlaps(int n, int m)
+std::vector<std::vector<Overlap>> Overlaps(
+  int n, double lo, double hi, int m, double coarseLo, double coarseHi)
 {
   std::vector<std::vector<Overlap>> result(static_cast<std::size_t>(n));
+  const double fine = (hi - lo) / n, coarse = (coarseHi - coarseLo) / m;
   for (int i = 0; i < n; ++i)
   {
-    const double lo = static_cast<double>(i) / n, hi = static_cast<double>(i + 1) / n;
-    const int first = std::min(m - 1, static_cast<int>(std::floor(lo * m)));
-    const int last = std::min(m - 1, static_cast<int>(std::ceil(hi * m)) - 1);
-    for (int c = std::max(0, first); c <= last; ++c)
+    const double a = lo + i * fine, b = lo + (i + 1) * fine;
+    const int first = std::max(0, static_cast<int>(std::floor((a - coarseLo) / coarse)));
+    const int last = std::min(m - 1, static_cast<int>(std::ceil((b - coarseLo) / coarse)) - 1);
+    for (int c = first; c <= last; ++c)
     {
       const double overlap =
-        std::min(hi, static_cast<double>(c + 1) / m) - std::max(lo, static_cast<double>(c) / m);
+        std::min(b, coarseLo + (c + 1) * coarse) - std::max(a, coarseLo + c * coarse);
       if (overlap > 0.0)
       {
-        result[i].push_back({ c, overlap * n });
+        result[i].push_back({ c, overlap / fine });
       }
     }
   }
@@ -92,11 +103,17 @@ void ObjectRadiance::SampleNativeDensity(const ParallelFor& parallelFor)
   {
     ++factor;
   }
+  // Coarsened cells cover whole native cells: the box grows on the far
+  // side to a multiple of the factor.
+  const Box nativeBox = density.NativeBox();
+  Box box = nativeBox;
   for (int a = 0; a < 3; ++a)
   {
     this->NativeDims[a] = std::max(1, (native[a] + factor - 1) / factor);
+    const float nativeCell = nativeBox.Extent()[a] / static_cast<float>(native[a]);
+    box.upper[a] = box.lower[a] + nativeCell * static_cast<float>(this->NativeDims[a] * factor);
   }
-  const Box box = this->MediumRef->Bounds;
+  this->NativeBox = box;
   const Vec3 cell = box.Extent() /
     Vec3(static_cast<float>(this->NativeDims[0]), static_cast<float>(this->NativeDims[1]),
       static_cast<float>(this->NativeDims[2]));
@@ -113,8 +130,8 @@ void ObjectRadiance::SampleNativeDensity(const ParallelFor& parallelFor)
       {
         const Vec3 corner(static_cast<float>(c % nx), static_cast<float>((c % nxy) / nx),
           static_cast<float>(c / nxy));
-        this->NativeDensity[c] =
-          static_cast<float>(MeanDensity(density, box.lower + corner * cell, cell, samples));
+        this->NativeDensity[c] = static_cast<float>(
+          MeanDensity(density, this->MediumRef->Bounds, box.lower + corner * cell, cell, samples));
       }
     });
 }
@@ -123,15 +140,18 @@ void ObjectRadiance::BuildDensityTable()
 {
   // The density's integral over each histogram cell, summed from the native
   // cells by their exact overlaps (separable along the axes).
+  // Native cells beyond the medium's bounds count for the part inside.
   const auto& nd = this->NativeDims;
+  const Box box = this->MediumRef->Bounds;
+  const Box& native = this->NativeBox;
   std::array<std::vector<std::vector<Overlap>>, 3> overlaps;
   for (int a = 0; a < 3; ++a)
   {
-    overlaps[a] = Overlaps(nd[a], this->Dims[a]);
+    overlaps[a] =
+      Overlaps(nd[a], native.lower[a], native.upper[a], this->Dims[a], box.lower[a], box.upper[a]);
   }
-  const Box box = this->MediumRef->Bounds;
   const double nativeVolume =
-    static_cast<double>(box.Volume()) / (static_cast<double>(nd[0]) * nd[1] * nd[2]);
+    static_cast<double>(native.Volume()) / (static_cast<double>(nd[0]) * nd[1] * nd[2]);
   Histogram integral(this->Dims, 1);
   std::vector<double>& values = integral.GetValues();
   double total = 0.0;

@@ -186,14 +186,28 @@ std::shared_ptr<VdbDensity> VdbDensity::Load(
 
 std::array<int, 3> VdbDensity::NativeResolution() const
 {
+  // The voxels of the bounds (the active box and one voxel around it, whose
+  // faces sit on voxel centres) and the half voxels beyond: one cell per
+  // voxel centre.
   std::array<int, 3> voxels{};
   for (int a = 0; a < 3; ++a)
   {
     voxels[a] = std::max(1,
       static_cast<int>(std::lround(
-        static_cast<double>(this->Bounds.Extent()[a]) / this->Impl->VoxelSize[a])));
+        static_cast<double>(this->Bounds.Extent()[a]) / this->Impl->VoxelSize[a])) + 1);
   }
   return voxels;
+}
+
+Box VdbDensity::NativeBox() const
+{
+  Box box = this->Bounds;
+  for (int a = 0; a < 3; ++a)
+  {
+    box.lower[a] -= static_cast<float>(0.5 * this->Impl->VoxelSize[a]);
+    box.upper[a] += static_cast<float>(0.5 * this->Impl->VoxelSize[a]);
+  }
+  return box;
 }
 
 float VdbDensity::Evaluate(const Vec3& p) const

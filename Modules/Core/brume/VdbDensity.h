@@ -28,6 +28,7 @@ public:
   float Evaluate(const Vec3& p) const override;
   /// The voxels of the grid across its (widened) active box.
   std::array<int, 3> NativeResolution() const override;
+  Box NativeBox() const override;
   /// Active voxels of the grid.
   std::size_t GetNumberOfActiveVoxels() const;
 

@@ -16,6 +16,8 @@ uniform vec3 viewDirectionWC;
 uniform float sliceSpacing;
 uniform int perspective;
 uniform int sourceIsRadiance;        // sourceTexture holds S, not J
+uniform vec3 extinctionScale;        // texcoord to the extinction grid's own box
+uniform vec3 extinctionOffset;
 
 //BRUME::Directional::Dec
 
@@ -26,7 +28,7 @@ void main()
 {
   vec3 emission = texture(sourceTexture, texcoord).rgb;
   //BRUME::Directional::Impl
-  vec3 sigmaT = texture(extinctionTexture, texcoord).rgb;
+  vec3 sigmaT = texture(extinctionTexture, texcoord * extinctionScale + extinctionOffset).rgb;
   if (sourceIsRadiance != 0)
   {
     // Extinction at its own resolution: J = S sigma_t with the fine sigma_t.
