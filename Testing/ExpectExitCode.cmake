@@ -1,6 +1,6 @@
 # Runs COMMAND (a list) and fails unless it exits with EXPECTED, its stderr
-# holds every string of EXPECT_ERROR and its stdout every string of
-# EXPECT_OUTPUT (lists, optional).
+# holds every string of EXPECT_ERROR and none of REFUSE_ERROR, and its
+# stdout every string of EXPECT_OUTPUT (lists, optional).
 execute_process(COMMAND ${COMMAND} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if (NOT "${rc}" STREQUAL "${EXPECTED}")
   message(FATAL_ERROR "expected exit code ${EXPECTED}, got '${rc}'\nstdout: ${out}\nstderr: ${err}")
@@ -12,6 +12,12 @@ foreach (expected IN LISTS EXPECT_ERROR)
   string(FIND "${err}" "${expected}" found)
   if (found EQUAL -1)
     message(FATAL_ERROR "missing '${expected}' on stderr\nstderr: ${err}")
+  endif ()
+endforeach ()
+foreach (refused IN LISTS REFUSE_ERROR)
+  string(FIND "${err}" "${refused}" found)
+  if (NOT found EQUAL -1)
+    message(FATAL_ERROR "'${refused}' on stderr\nstderr: ${err}")
   endif ()
 endforeach ()
 foreach (expected IN LISTS EXPECT_OUTPUT)

@@ -2,6 +2,7 @@
 // `brume`: the command line front end of the Brume toolkit. Its commands and
 // their options are declared in BrumeCommandLine.cxx.
 #include "BrumeCommandLine.h"
+#include "BrumeOutputWindow.h"
 
 #include "vtkBrumeProcesses.h"
 #include "vtkBrumeSMP.h"
@@ -19,6 +20,7 @@ int main(int argc, char* argv[])
     return rc;
   }
   vtkBrumeSMP::UseAllCores();
+  BrumeOutputWindow::Install();
   using Command = BrumeCommandLine::Command;
   switch (line.Run)
   {
