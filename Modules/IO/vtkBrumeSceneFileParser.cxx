@@ -100,6 +100,39 @@ public:
     return true;
   }
 
+  /// A whole number in [lo, hi] (2.0 is accepted, 2.5 is not).
+  bool Integer(const json& j, const std::string& path, double& out, double lo, double hi)
+  {
+    if (!this->Number(j, path, out, lo, hi))
+    {
+      return false;
+    }
+    if (out != std::floor(out))
+    {
+      std::ostringstream os;
+      os << "expected a whole number in [" << lo << ", " << hi << "], not " << out;
+      return this->Fail(path, os.str());
+    }
+    return true;
+  }
+
+  bool IntegerVector(
+    const json& j, const std::string& path, double* out, int n, double lo, double hi)
+  {
+    if (!j.is_array() || static_cast<int>(j.size()) != n)
+    {
+      return this->Fail(path, "expected " + std::to_string(n) + " whole numbers");
+    }
+    for (int i = 0; i < n; ++i)
+    {
+      if (!this->Integer(j[i], path + "[" + std::to_string(i) + "]", out[i], lo, hi))
+      {
+        return false;
+      }
+    }
+    return true;
+  }
+
   bool Vector(const json& j, const std::string& path, double* out, int n, double lo, double hi)
   {
     if (!j.is_array() || static_cast<int>(j.size()) != n)
@@ -592,11 +625,12 @@ bool vtkBrumeSceneFileParser::ParseRender(const json& root)
   }
   double particles = 1e6, size[2] = { 512, 512 }, threshold = 128, seed = 0, exposure = 1;
   if ((render.contains("particles") &&
-        !p.Number(render["particles"], "render.particles", particles, 1, 1e10)) ||
-    (render.contains("size") && !p.Vector(render["size"], "render.size", size, 2, 1, 16384)) ||
+        !p.Integer(render["particles"], "render.particles", particles, 1, 1e10)) ||
+    (render.contains("size") &&
+      !p.IntegerVector(render["size"], "render.size", size, 2, 1, 16384)) ||
     (render.contains("threshold") &&
       !p.Number(render["threshold"], "render.threshold", threshold, 1e-6, 1e12)) ||
-    (render.contains("seed") && !p.Number(render["seed"], "render.seed", seed, 0, 9e15)) ||
+    (render.contains("seed") && !p.Integer(render["seed"], "render.seed", seed, 0, 9e15)) ||
     (render.contains("exposure") &&
       !p.Number(render["exposure"], "render.exposure", exposure, 0, 1e12)))
   {
