@@ -25,6 +25,7 @@
 #include "brume/Slab.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -83,8 +84,13 @@ bool ParseSpec(const std::string& text, brume::SlabSpec& spec)
   std::stringstream fields(text);
   std::string f;
   std::vector<double> v;
-  while (std::getline(fields, f, ','))
+  while (v.size() < 3 && std::getline(fields, f, ','))
   {
+    // Tolerate surrounding spaces and a CRLF line ending.
+    while (!f.empty() && std::isspace(static_cast<unsigned char>(f.back())))
+    {
+      f.pop_back();
+    }
     char* end = nullptr;
     v.push_back(std::strtod(f.c_str(), &end));
     if (end == f.c_str() || *end != '\0')
