@@ -8,14 +8,17 @@
 #include "vtkExecutive.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
+#include "vtkInformation.h"
 #include "vtkNew.h"
 #include "vtkPartitionedDataSet.h"
 #include "vtkPartitionedDataSetCollection.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 #include "vtkXMLImageDataReader.h"
+#include <vtksys/SystemInformation.hxx>
 
 #include "brume/Scene.h"
 
@@ -420,6 +423,44 @@ void vtkBrumeSceneFileParser::SetBoxesFromGrids(
   }
 }
 
+namespace
+{
+// Why an image whose header announces `information`'s whole extent cannot
+// be read (empty when it can): more than MaxDensityPoints points, or more
+// bytes of float densities than half this machine's memory.
+std::string CheckAnnouncedExtent(vtkInformation* information, const std::string& file)
+{
+  constexpr double MaxDensityPoints = 1073741824.0; // 2^30
+  int extent[6] = { 0, -1, 0, -1, 0, -1 };
+  if (!information || !information->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    return {};
+  }
+  information->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+  double points = 1.0;
+  std::ostringstream dims;
+  for (int a = 0; a < 3; ++a)
+  {
+    const double n = static_cast<double>(extent[2 * a + 1]) - extent[2 * a] + 1.0;
+    points *= std::max(n, 0.0);
+    dims << (a ? " x " : "") << static_cast<long long>(n);
+  }
+  vtksys::SystemInformation system;
+  system.RunMemoryCheck();
+  const double memory = static_cast<double>(system.GetTotalPhysicalMemory()) * 1048576.0;
+  const double bytes = points * static_cast<double>(sizeof(float));
+  if (points > MaxDensityPoints || (memory > 0.0 && bytes > 0.5 * memory))
+  {
+    std::ostringstream os;
+    os << "'" << file << "' announces " << dims.str() << " points (" << bytes
+       << " bytes of densities): more than a density image may hold here (2^30 points, half of "
+       << memory << " bytes of memory)";
+    return os.str();
+  }
+  return {};
+}
+}
+
 vtkSmartPointer<vtkImageData> vtkBrumeSceneFileParser::ParseDensity(
   const json& m, const std::string& at)
 {
@@ -447,6 +488,16 @@ vtkSmartPointer<vtkImageData> vtkBrumeSceneFileParser::ParseDensity(
     reader->SetFileName(relative(file).string().c_str());
     const bool display = vtkObject::GetGlobalWarningDisplay();
     vtkObject::GlobalWarningDisplayOff();
+    // The extent the header announces, before anything is allocated for it.
+    const std::string tooLarge = reader->GetExecutive()->UpdateInformation() != 0
+      ? CheckAnnouncedExtent(reader->GetOutputInformation(0), relative(file).string())
+      : std::string();
+    if (!tooLarge.empty())
+    {
+      vtkObject::SetGlobalWarningDisplay(display);
+      p.Fail(at + ".density.vti", tooLarge);
+      return nullptr;
+    }
     const int ok = reader->GetExecutive()->Update();
     vtkObject::SetGlobalWarningDisplay(display);
     if (!ok || reader->GetOutput()->GetNumberOfPoints() == 0)

@@ -80,6 +80,7 @@ case("density-vti-nan", setp(["media", 0, "density"], {"vti": "nan-density.vti",
 case("density-vti-negative", setp(["media", 0, "density"], {"vti": "negative-density.vti", "array": "density"}))
 case("density-vti-wrong-array", setp(["media", 0, "density"], {"vti": "nan-density.vti", "array": "temperature"}))
 case("density-vti-garbage", setp(["media", 0, "density"], {"vti": "garbage.vti"}))
+case("density-vti-absurd-extent", setp(["media", 0, "density"], {"vti": "absurd-extent.vti"}))
 case("density-vdb-missing", setp(["media", 0, "density"], {"vdb": "no-such-volume.vdb"}))
 case("density-vdb-truncated", setp(["media", 0, "density"], {"vdb": "truncated.vdb"}))
 case("density-vdb-header-only", setp(["media", 0, "density"], {"vdb": "header-only.vdb"}))
