@@ -444,3 +444,67 @@ TEST(DirectLight, DirectionalMediaProjectTheDirectLight)
   }
   EXPECT_LT(worst, truncation * 2.0 + 1e-5) << "largest difference " << worst;
 }
+
+TEST(DirectLight, ViewUpdatesAndAddedParticlesEqualAFullBuild)
+{
+  // With the direct light computed, a view update equals a build toward the
+  // new eye, and adding the particles that double the count equals a build
+  // with all of them (bitwise: the direct term does not depend on the
+  // particles, the textures are the paths without it).
+  Medium fog;
+  fog.Name = "fog";
+  fog.Bounds = { Vec3(-1.f), Vec3(1.f) };
+  fog.SigmaS = Vec3(0.6f);
+  fog.SigmaA = Vec3(0.1f);
+  fog.G = 0.6f;
+  Scene scene;
+  scene.Media = { fog };
+  scene.Lights = { PointLight(Vec3(0.2f, 0.1f, 0.f), 1.f) };
+  ASSERT_EQ(scene.Validate(), "");
+  const RayCaster caster(scene);
+  DirectLight direct(scene, caster);
+  const std::uint64_t n = 40000;
+  // Particles [0, n) of a run of n, of 2n, and [n, 2n) of 2n.
+  const RayCaster tracerCaster(scene);
+  TraceSettings settings;
+  settings.Seed = 5;
+  const LightTracer tracer(scene, tracerCaster, settings);
+  std::vector<Hit> first, all, second;
+  TraceCounters counters;
+  tracer.TraceParticles(0, n, n, first, counters);
+  tracer.TraceParticles(0, 2 * n, 2 * n, all, counters);
+  tracer.TraceParticles(n, 2 * n, 2 * n, second, counters);
+  const HitStore a(first), b(all), c(second);
+  auto indexOf = [](const HitStore& s)
+  {
+    std::vector<std::uint32_t> index(s.Object.size());
+    for (std::size_t i = 0; i < index.size(); ++i)
+    {
+      index[i] = static_cast<std::uint32_t>(i);
+    }
+    return index;
+  };
+  const auto ia = indexOf(a), ib = indexOf(b), ic = indexOf(c);
+  const double threshold = 1e-3;
+  const Vec3 eye(0.f, 0.f, 5.f), other(0.3f, 0.2f, 5.f);
+  ObjectRadiance progressive(scene.Media[0], { 6, 6, 6 }, 2), full(scene.Media[0], { 6, 6, 6 }, 2),
+    turned(scene.Media[0], { 6, 6, 6 }, 2);
+  for (ObjectRadiance* r : { &progressive, &full, &turned })
+  {
+    r->EnableDirect(&direct, { 12, 12, 12 });
+  }
+  ASSERT_EQ(progressive.Build(a.View(), ia.data(), ia.size(), eye, threshold, SerialFor()), "");
+  progressive.ComputeDirect(SerialFor());
+  const std::vector<float> before = progressive.GetOutputRadiance();
+  // Particles added: the direct term stays, the textures gain the new paths.
+  ASSERT_EQ(progressive.Add(c.View(), ic.data(), ic.size(), 0.5, eye, threshold, SerialFor()), "");
+  ASSERT_EQ(full.Build(b.View(), ib.data(), ib.size(), eye, threshold, SerialFor()), "");
+  full.ComputeDirect(SerialFor());
+  EXPECT_EQ(progressive.GetOutputRadiance(), full.GetOutputRadiance());
+  EXPECT_NE(progressive.GetOutputRadiance(), before);
+  // A new eye: the update equals a build toward it.
+  progressive.UpdateView(other, SerialFor());
+  ASSERT_EQ(turned.Build(b.View(), ib.data(), ib.size(), other, threshold, SerialFor()), "");
+  turned.ComputeDirect(SerialFor());
+  EXPECT_EQ(progressive.GetOutputRadiance(), turned.GetOutputRadiance());
+}
