@@ -251,39 +251,105 @@ void ObjectRadiance::ComputeDirect(const ParallelFor& parallelFor)
 
 void ObjectRadiance::CombineDirect(const ParallelFor& parallelFor)
 {
+  // Once per view for view-dependent objects: per output texel, the
+  // texture resampled (its interpolation weights and the texel's position
+  // are separable, tabulated per axis) plus each light's direct term toward
+  // the eye.
   const std::size_t lights = this->Direct->NumberOfLights();
-  const std::size_t texels = this->Arrivals.size() / (lights * ArrivalFloats);
+  const std::array<int, 3>& dims = this->DirectDims;
+  const std::size_t texels = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2];
   this->DirectRadiance.resize(3 * texels);
+  struct Axis
+  {
+    std::vector<int> I0, I1;
+    std::vector<float> W;
+    std::vector<Vec3> Offset; // the position's part along this axis
+  };
+  Axis axes[3];
+  const PlanarFrame& frame = this->Chart.Frame;
+  for (int a = 0; a < 3; ++a)
+  {
+    const int n = this->Resolution[a];
+    Axis& axis = axes[a];
+    for (int i = 0; i < dims[a]; ++i)
+    {
+      const float q = (static_cast<float>(i) + 0.5f) / static_cast<float>(dims[a]);
+      const float x = std::clamp(q * static_cast<float>(n) - 0.5f, 0.f, static_cast<float>(n - 1));
+      const int i0 = std::min(static_cast<int>(x), n - 1);
+      axis.I0.push_back(i0);
+      axis.I1.push_back(std::min(i0 + 1, n - 1));
+      axis.W.push_back(x - static_cast<float>(i0));
+      Vec3 offset(0.f);
+      if (this->MediumRef)
+      {
+        offset[a] = this->MediumRef->Bounds.lower[a] + q * this->MediumRef->Bounds.Extent()[a];
+      }
+      else if (a == 0)
+      {
+        offset = frame.Origin + frame.U * q;
+      }
+      else if (a == 1)
+      {
+        offset = frame.V * q;
+      }
+      axis.Offset.push_back(offset);
+    }
+  }
   const HenyeyGreenstein phase(this->MediumRef ? this->MediumRef->G : 0.f);
-  parallelFor(0, texels,
+  const std::size_t nx = this->Resolution[0], nxy = nx * this->Resolution[1];
+  const std::size_t rows = static_cast<std::size_t>(dims[1]) * dims[2];
+  parallelFor(0, rows,
     [&](std::size_t begin, std::size_t end)
     {
-      for (std::size_t t = begin; t < end; ++t)
+      for (std::size_t row = begin; row < end; ++row)
       {
-        float* out = &this->DirectRadiance[3 * t];
-        this->Resample(TexelCentre(t, this->DirectDims), out);
-        const Vec3 toEye = Normalize(this->Eye - this->OutputPosition(t));
-        for (std::size_t l = 0; l < lights; ++l)
+        const std::size_t y = row % dims[1], z = row / dims[1];
+        const float wy = axes[1].W[y], wz = axes[2].W[z];
+        const std::size_t base[4] = { axes[2].I0[z] * nxy + axes[1].I0[y] * nx,
+          axes[2].I0[z] * nxy + axes[1].I1[y] * nx, axes[2].I1[z] * nxy + axes[1].I0[y] * nx,
+          axes[2].I1[z] * nxy + axes[1].I1[y] * nx };
+        const float wyz[4] = { (1.f - wy) * (1.f - wz), wy * (1.f - wz), (1.f - wy) * wz, wy * wz };
+        const Vec3 rowOffset = axes[1].Offset[y] + axes[2].Offset[z];
+        for (int x = 0; x < dims[0]; ++x)
         {
-          const float* a = &this->Arrivals[(t * lights + l) * ArrivalFloats];
-          if (a[0] == 0.f && a[1] == 0.f && a[2] == 0.f)
-          {
-            continue;
-          }
-          const Vec3 direction(a[3], a[4], a[5]);
-          Vec3 f;
-          if (this->MediumRef)
-          {
-            // S_1 = albedo p E T (the source radiance J_1 / sigma_t).
-            f = this->MediumAlbedo * phase.Evaluate(Dot(direction, toEye));
-          }
-          else
-          {
-            f = EvaluateBrdf(this->SurfaceRef->Mat, this->SurfaceNormal, -direction, toEye);
-          }
+          const std::size_t t = row * dims[0] + x;
+          float* out = &this->DirectRadiance[3 * t];
+          const std::size_t x0 = axes[0].I0[x], x1 = axes[0].I1[x];
+          const float wx = axes[0].W[x];
           for (int c = 0; c < 3; ++c)
           {
-            out[c] += f[c] * a[c];
+            float value = 0.f;
+            for (int k = 0; k < 4; ++k)
+            {
+              value += wyz[k] *
+                ((1.f - wx) * this->Radiance[3 * (base[k] + x0) + c] +
+                  wx * this->Radiance[3 * (base[k] + x1) + c]);
+            }
+            out[c] = value;
+          }
+          const Vec3 toEye = Normalize(this->Eye - (axes[0].Offset[x] + rowOffset));
+          for (std::size_t l = 0; l < lights; ++l)
+          {
+            const float* a = &this->Arrivals[(t * lights + l) * ArrivalFloats];
+            if (a[0] == 0.f && a[1] == 0.f && a[2] == 0.f)
+            {
+              continue;
+            }
+            const Vec3 direction(a[3], a[4], a[5]);
+            Vec3 f;
+            if (this->MediumRef)
+            {
+              // S_1 = albedo p E T (the source radiance J_1 / sigma_t).
+              f = this->MediumAlbedo * phase.Evaluate(Dot(direction, toEye));
+            }
+            else
+            {
+              f = EvaluateBrdf(this->SurfaceRef->Mat, this->SurfaceNormal, -direction, toEye);
+            }
+            for (int c = 0; c < 3; ++c)
+            {
+              out[c] += f[c] * a[c];
+            }
           }
         }
       }
