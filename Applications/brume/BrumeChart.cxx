@@ -242,8 +242,9 @@ int RunErrorChart(const ChartOptions& options, vtkAlgorithm* scene, const SceneN
 }
 }
 
-int RunChart(const ChartOptions& options)
+int RunChart(const ChartOptions& given)
 {
+  ChartOptions options = given;
   if (!HasDisplay("chart (it renders with OpenGL)"))
   {
     return 1;
@@ -254,6 +255,10 @@ int RunChart(const ChartOptions& options)
   if (!scene)
   {
     return 1;
+  }
+  if (!options.ThresholdSet)
+  {
+    options.Threshold = sceneOptions.Threshold; // the scene file's, or 128
   }
   const SceneNames names = NamesOf(options.Scene);
   return options.Sweep ? RunSweep(options, scene, names) : RunErrorChart(options, scene, names);

@@ -361,6 +361,18 @@ void AddChart(CLI::App& app, ChartOptions& o)
     ->transform(Integer(1, 3, "1, 2 or 3"))
     ->type_name("N");
   chart
+    ->add_option_function<double>(
+      "--threshold",
+      [&o](const double& threshold)
+      {
+        o.Threshold = threshold;
+        o.ThresholdSet = true;
+      },
+      "the pipeline's radiosity threshold, in particles\n"
+      "(default: the scene file's, else 128)")
+    ->transform(Number(1e-6, 1e12, "a positive number"))
+    ->type_name("T");
+  chart
     ->add_option("--reference-spp", o.ReferenceSamples,
       "samples per pixel of the converged reference (default 16384)")
     ->transform(Integer(1, 1000000, "an integer in [1, 1e6]"))

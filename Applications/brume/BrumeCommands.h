@@ -39,6 +39,7 @@ struct ChartOptions
   int MaxSamples = 1024;
   int ReferenceSamples = 16384;
   double Threshold = 128.0;
+  bool ThresholdSet = false; // else the scene file's render.threshold, if any
   std::uint64_t Seed = 0;
   bool Sweep = false;
   int ShOrder = 3;     // spherical-harmonics order of the SH rows
