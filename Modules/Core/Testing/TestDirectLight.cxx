@@ -475,16 +475,7 @@ TEST(DirectLight, ViewUpdatesAndAddedParticlesEqualAFullBuild)
   tracer.TraceParticles(0, 2 * n, 2 * n, all, counters);
   tracer.TraceParticles(n, 2 * n, 2 * n, second, counters);
   const HitStore a(first), b(all), c(second);
-  auto indexOf = [](const HitStore& s)
-  {
-    std::vector<std::uint32_t> index(s.Object.size());
-    for (std::size_t i = 0; i < index.size(); ++i)
-    {
-      index[i] = static_cast<std::uint32_t>(i);
-    }
-    return index;
-  };
-  const auto ia = indexOf(a), ib = indexOf(b), ic = indexOf(c);
+  const auto ia = IndexOf(a, 0), ib = IndexOf(b, 0), ic = IndexOf(c, 0);
   const double threshold = 1e-3;
   const Vec3 eye(0.f, 0.f, 5.f), other(0.3f, 0.2f, 5.f);
   ObjectRadiance progressive(scene.Media[0], { 6, 6, 6 }, 2), full(scene.Media[0], { 6, 6, 6 }, 2),

@@ -46,7 +46,7 @@ void DirectLight::SetMediumGrid(
   }
 }
 
-float DirectLight::GridDensity(const Grid& grid, const Medium& medium, const Vec3& p) const
+float DirectLight::SampleDensity(const Grid& grid, const Medium& medium, const Vec3& p) const
 {
   if (!grid.Density)
   {
@@ -54,26 +54,16 @@ float DirectLight::GridDensity(const Grid& grid, const Medium& medium, const Vec
   }
   // Trilinear between the cells' centres, clamped at the faces.
   const Vec3 q = (p - grid.Bounds.lower) / grid.Bounds.Extent();
-  int i0[3], i1[3];
-  float w[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    const int n = grid.Dims[a];
-    const float x = std::clamp(q[a] * static_cast<float>(n) - 0.5f, 0.f, static_cast<float>(n - 1));
-    i0[a] = std::min(static_cast<int>(x), n - 1);
-    i1[a] = std::min(i0[a] + 1, n - 1);
-    w[a] = x - static_cast<float>(i0[a]);
-  }
+  const CellCentreWeights x(q.x, grid.Dims[0]), y(q.y, grid.Dims[1]), z(q.z, grid.Dims[2]);
   const std::size_t nx = grid.Dims[0], nxy = nx * grid.Dims[1];
-  auto at = [&](int x, int y, int z)
-  { return grid.Density[static_cast<std::size_t>(z) * nxy + static_cast<std::size_t>(y) * nx + x]; };
-  const float c00 = at(i0[0], i0[1], i0[2]) * (1.f - w[0]) + at(i1[0], i0[1], i0[2]) * w[0];
-  const float c10 = at(i0[0], i1[1], i0[2]) * (1.f - w[0]) + at(i1[0], i1[1], i0[2]) * w[0];
-  const float c01 = at(i0[0], i0[1], i1[2]) * (1.f - w[0]) + at(i1[0], i0[1], i1[2]) * w[0];
-  const float c11 = at(i0[0], i1[1], i1[2]) * (1.f - w[0]) + at(i1[0], i1[1], i1[2]) * w[0];
-  const float c0 = c00 * (1.f - w[1]) + c10 * w[1];
-  const float c1 = c01 * (1.f - w[1]) + c11 * w[1];
-  return c0 * (1.f - w[2]) + c1 * w[2];
+  auto row = [&](int j, int k)
+  {
+    const float* r = grid.Density + static_cast<std::size_t>(k) * nxy + static_cast<std::size_t>(j) * nx;
+    return r[x.I0] * (1.f - x.W) + r[x.I1] * x.W;
+  };
+  const float c0 = row(y.I0, z.I0) * (1.f - y.W) + row(y.I1, z.I0) * y.W;
+  const float c1 = row(y.I0, z.I1) * (1.f - y.W) + row(y.I1, z.I1) * y.W;
+  return c0 * (1.f - z.W) + c1 * z.W;
 }
 
 Vec3 DirectLight::Transmittance(const Vec3& x, const Vec3& d, float length) const
@@ -107,7 +97,7 @@ Vec3 DirectLight::Transmittance(const Vec3& x, const Vec3& d, float length) cons
       for (int i = 0; i < n; ++i)
       {
         integral +=
-          this->GridDensity(grid, medium, x + d * (t0 + (static_cast<float>(i) + 0.5f) * h));
+          this->SampleDensity(grid, medium, x + d * (t0 + (static_cast<float>(i) + 0.5f) * h));
         if (opaque > 0.0 && integral > opaque)
         {
           break; // opaque in every channel

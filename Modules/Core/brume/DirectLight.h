@@ -92,7 +92,7 @@ private:
     std::array<int, 3> Dims{ 0, 0, 0 };
     Box Bounds;
   };
-  float GridDensity(const Grid& grid, const Medium& medium, const Vec3& p) const;
+  float SampleDensity(const Grid& grid, const Medium& medium, const Vec3& p) const;
 
   const Scene& SceneRef;
   const RayCaster& Caster;

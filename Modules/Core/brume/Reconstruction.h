@@ -250,12 +250,10 @@ private:
     const Locator& cellOfHit, const ParallelFor& parallelFor);
   void Finish(const Vec3& eye, double thresholdFlux, bool first, const ParallelFor& parallelFor);
   void ToRadiance(std::size_t texel, const Region& region, const double* sum, float* out) const;
-  // Direct light: the output texel's world position (and surface normal),
-  // the texture resampled there, the sum of the texture and the direct
-  // light toward the eye, and the direct light projected on the
-  // directional representation's voxels.
+  // Direct light: the output texel's world position, the sum of the
+  // texture resampled there and the direct light toward the eye, and the
+  // direct light projected on the directional representation's voxels.
   Vec3 OutputPosition(std::size_t texel) const;
-  void Resample(const Vec3& position, float* out) const;
   void CombineDirect(const ParallelFor& parallelFor);
   void AddDirectToDirectional(int order);
   void WeighCells(const Vec3& eye, const ParallelFor& parallelFor);

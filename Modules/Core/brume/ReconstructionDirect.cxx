@@ -78,38 +78,6 @@ Vec3 ObjectRadiance::OutputPosition(std::size_t t) const
   return f.Origin + f.U * q.x + f.V * q.y;
 }
 
-void ObjectRadiance::Resample(const Vec3& q, float* out) const
-{
-  // Linear between the texture's texel centres, clamped at its edges: what
-  // a renderer's linear filtering of the texture itself would show.
-  int i0[3], i1[3];
-  float w[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    const int n = this->Resolution[a];
-    const float x = std::clamp(q[a] * static_cast<float>(n) - 0.5f, 0.f, static_cast<float>(n - 1));
-    i0[a] = std::min(static_cast<int>(x), n - 1);
-    i1[a] = std::min(i0[a] + 1, n - 1);
-    w[a] = x - static_cast<float>(i0[a]);
-  }
-  const std::size_t nx = this->Resolution[0], nxy = nx * this->Resolution[1];
-  for (int c = 0; c < 3; ++c)
-  {
-    float value = 0.f;
-    for (int k = 0; k < 8; ++k)
-    {
-      const int x = (k & 1) ? i1[0] : i0[0], y = (k & 2) ? i1[1] : i0[1], z = (k & 4) ? i1[2] : i0[2];
-      const float weight = ((k & 1) ? w[0] : 1.f - w[0]) * ((k & 2) ? w[1] : 1.f - w[1]) *
-        ((k & 4) ? w[2] : 1.f - w[2]);
-      if (weight > 0.f)
-      {
-        value += weight * this->Radiance[3 * (static_cast<std::size_t>(z) * nxy + y * nx + x) + c];
-      }
-    }
-    out[c] = value;
-  }
-}
-
 void ObjectRadiance::ComputeDirect(const ParallelFor& parallelFor)
 {
   this->Arrivals.clear();
@@ -127,9 +95,13 @@ void ObjectRadiance::ComputeDirect(const ParallelFor& parallelFor)
   auto arrive = [&](std::size_t l, const Vec3& x, Vec3& irradiance)
   {
     LightArrival a;
+    irradiance = Vec3(0.f);
+    if (!this->MediumRef && Dot(this->Direct->DirectionAt(l, x), this->SurfaceNormal) >= 0.f)
+    {
+      return; // light on the back side: no shadow ray
+    }
     if (!this->Direct->Arrive(l, x, bias, a))
     {
-      irradiance = Vec3(0.f);
       return;
     }
     const float weight =
@@ -274,11 +246,10 @@ void ObjectRadiance::CombineDirect(const ParallelFor& parallelFor)
     for (int i = 0; i < dims[a]; ++i)
     {
       const float q = (static_cast<float>(i) + 0.5f) / static_cast<float>(dims[a]);
-      const float x = std::clamp(q * static_cast<float>(n) - 0.5f, 0.f, static_cast<float>(n - 1));
-      const int i0 = std::min(static_cast<int>(x), n - 1);
-      axis.I0.push_back(i0);
-      axis.I1.push_back(std::min(i0 + 1, n - 1));
-      axis.W.push_back(x - static_cast<float>(i0));
+      const CellCentreWeights weights(q, n);
+      axis.I0.push_back(weights.I0);
+      axis.I1.push_back(weights.I1);
+      axis.W.push_back(weights.W);
       Vec3 offset(0.f);
       if (this->MediumRef)
       {

@@ -157,6 +157,23 @@ struct Box
   }
 };
 
+/// Linear interpolation between the centres of n cells over [0, 1], clamped
+/// at the outer centres (as a texture's linear filtering with clamping): the
+/// two cells and the weight of the second for the coordinate q.
+struct CellCentreWeights
+{
+  int I0, I1;
+  float W;
+  CellCentreWeights(float q, int n)
+  {
+    const float x = q * static_cast<float>(n) - 0.5f;
+    const float c = x < 0.f ? 0.f : (x > static_cast<float>(n - 1) ? static_cast<float>(n - 1) : x);
+    this->I0 = static_cast<int>(c) < n - 1 ? static_cast<int>(c) : n - 1;
+    this->I1 = this->I0 + 1 < n - 1 ? this->I0 + 1 : n - 1;
+    this->W = c - static_cast<float>(this->I0);
+  }
+};
+
 } // namespace brume
 
 #endif
