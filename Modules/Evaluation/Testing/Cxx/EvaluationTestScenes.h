@@ -13,6 +13,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkStringArray.h"
+#include "vtkXMLImageDataWriter.h"
 
 #include <string>
 
@@ -54,38 +55,48 @@ inline void AddMedium(vtkPartitionedDataSetCollection* scene, const std::string&
   vtkBrumeSceneConversion::AddObject(scene, box, name);
 }
 
-/// Adds a point light (radiant intensity `intensity` W/sr per channel) to the scene's field data.
-inline void AddPointLight(
-  vtkPartitionedDataSetCollection* scene, const double position[3], double intensity)
+/// Adds a light of `type` ("point", "spot", "directional") to the scene's
+/// field data: `intensity` W/sr per channel (W/m^2 for a directional light),
+/// travelling along `direction` (a directional light's beam covers the
+/// scene, its position is unused), a cone of 180 degrees.
+inline void AddLight(vtkPartitionedDataSetCollection* scene, const char* kind,
+  const double position[3], const double direction[3], double intensity)
 {
   vtkFieldData* fd = scene->GetFieldData();
   vtkNew<vtkStringArray> type;
   type->SetName("BrumeLightType");
-  type->InsertNextValue("point");
+  type->InsertNextValue(kind);
   fd->AddArray(type);
-  const double down[3] = { 0, -1, 0 }, power[3] = { intensity, intensity, intensity }, cone = 180;
+  const double power[3] = { intensity, intensity, intensity }, cone = 180;
   vtkBrumeSceneConversion::AppendTuple(fd, "BrumeLightPosition", position, 3);
-  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeLightDirection", down, 3);
+  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeLightDirection", direction, 3);
   vtkBrumeSceneConversion::AppendTuple(fd, "BrumeLightIntensity", power, 3);
   vtkBrumeSceneConversion::AppendTuple(fd, "BrumeLightConeAngle", &cone, 1);
 }
 
-/// Adds a directional light (irradiance `irradiance` W/m^2 per channel,
-/// travelling along `direction`) to the scene's field data.
+/// Adds a point light (radiant intensity `intensity` W/sr per channel).
+inline void AddPointLight(
+  vtkPartitionedDataSetCollection* scene, const double position[3], double intensity)
+{
+  const double down[3] = { 0, -1, 0 };
+  AddLight(scene, "point", position, down, intensity);
+}
+
+/// Adds a directional light (irradiance `irradiance` W/m^2 per channel).
 inline void AddDirectionalLight(
   vtkPartitionedDataSetCollection* scene, const double direction[3], double irradiance)
 {
-  vtkFieldData* fd = scene->GetFieldData();
-  vtkNew<vtkStringArray> type;
-  type->SetName("BrumeLightType");
-  type->InsertNextValue("directional");
-  fd->AddArray(type);
-  const double origin[3] = { 0, 0, 0 }, power[3] = { irradiance, irradiance, irradiance },
-               cone = 180;
-  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeLightPosition", origin, 3);
-  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeLightDirection", direction, 3);
-  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeLightIntensity", power, 3);
-  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeLightConeAngle", &cone, 1);
+  const double origin[3] = { 0, 0, 0 };
+  AddLight(scene, "directional", origin, direction, irradiance);
+}
+
+/// Writes `image` as DIRECTORY/NAME.vti (test output to look at).
+inline void SaveImage(const std::string& directory, const std::string& name, vtkImageData* image)
+{
+  vtkNew<vtkXMLImageDataWriter> writer;
+  writer->SetFileName((directory + "/" + name + ".vti").c_str());
+  writer->SetInputData(image);
+  writer->Write();
 }
 
 /// Names the scene's camera in its field data.

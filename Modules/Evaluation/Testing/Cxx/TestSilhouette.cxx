@@ -15,7 +15,6 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkPointData.h"
-#include "vtkXMLImageDataWriter.h"
 
 #include <algorithm>
 #include <cmath>
@@ -127,15 +126,8 @@ int TestSilhouette(int argc, char* argv[])
   }
   if (argc > 1)
   {
-    for (auto [name, image] : { std::pair<std::string, vtkImageData*>{ "reference",
-                                  reference->GetOutput() },
-           { "pipeline", pipeline->GetOutput() } })
-    {
-      vtkNew<vtkXMLImageDataWriter> writer;
-      writer->SetFileName((std::string(argv[1]) + "/silhouette-" + name + ".vti").c_str());
-      writer->SetInputData(image);
-      writer->Write();
-    }
+    SaveImage(argv[1], "silhouette-reference", reference->GetOutput());
+    SaveImage(argv[1], "silhouette-pipeline", pipeline->GetOutput());
   }
   double wantLeft, wantRight, gotLeft, gotRight;
   Edges(Profile(reference->GetOutput()), wantLeft, wantRight);

@@ -15,7 +15,6 @@
 #include "vtkExecutive.h"
 #include "vtkImageData.h"
 #include "vtkPointData.h"
-#include "vtkXMLImageDataWriter.h"
 
 #include <algorithm>
 #include <cmath>
@@ -143,15 +142,8 @@ int TestThinShaft(int argc, char* argv[])
   }
   if (argc > 1)
   {
-    for (auto [name, image] : { std::pair<std::string, vtkImageData*>{ "reference",
-                                  reference->GetOutput() },
-           { "pipeline", pipeline->GetOutput() } })
-    {
-      vtkNew<vtkXMLImageDataWriter> writer;
-      writer->SetFileName((std::string(argv[1]) + "/thin-shaft-" + name + ".vti").c_str());
-      writer->SetInputData(image);
-      writer->Write();
-    }
+    SaveImage(argv[1], "thin-shaft-reference", reference->GetOutput());
+    SaveImage(argv[1], "thin-shaft-pipeline", pipeline->GetOutput());
   }
 
   std::vector<double> expected, error, got;
