@@ -2,7 +2,8 @@
 # Builds the libFuzzer targets with clang, AddressSanitizer and
 # UndefinedBehaviorSanitizer in build-fuzz/ and runs each for FUZZ_SECONDS
 # (default 300; FUZZ_TARGETS picks targets) from a seed corpus: the shipped scenes, the malformed scenes of
-# Testing/Data/BadScenes and its VDB files. Findings land in build-fuzz/findings.
+# Testing/Data/BadScenes and its VDB files; for FuzzSceneFiles, the meshes and
+# volumes there and in Data/, each behind the byte that picks its format. Findings land in build-fuzz/findings.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
@@ -20,21 +21,27 @@ CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja \
   -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined" \
   -DBUILD_TESTING=OFF -DBRUME_WRAP_PYTHON=OFF -DBRUME_BUILD_PARAVIEW_PLUGIN=OFF \
   -DBRUME_BUILD_FUZZERS=ON
-cmake --build build-fuzz --parallel "${BUILD_JOBS:-2}" --target FuzzSceneReader FuzzOpenVDBReader
+cmake --build build-fuzz --parallel "${BUILD_JOBS:-2}" --target FuzzSceneReader FuzzSceneFiles FuzzOpenVDBReader
 
 work=build-fuzz/run
 rm -rf build-fuzz/findings
-mkdir -p "$work/scene-corpus" "$work/vdb-corpus" build-fuzz/findings
+mkdir -p "$work/scene-corpus" "$work/vdb-corpus" "$work/file-corpus" build-fuzz/findings
 cp Testing/Data/BadScenes/* "$work/"
 cp Data/scenes/* "$work/"
 cp Testing/Data/BadScenes/*.json Data/scenes/*.json "$work/scene-corpus/"
 cp Testing/Data/BadScenes/*.vdb "$work/vdb-corpus/"
+# FuzzSceneFiles reads its first byte as the format: 0 vti, 1 ply, 2 obj, 3 stl, 4 vtp, 5 vtu.
+for f in Testing/Data/BadScenes/*.{vti,ply,obj,stl,vtp,vtu} Data/models/*.obj; do
+  case "${f##*.}" in vti) b=0 ;; ply) b=1 ;; obj) b=2 ;; stl) b=3 ;; vtp) b=4 ;; vtu) b=5 ;; esac
+  { printf "\\$(printf '%03o' "$b")"; head -c 65535 "$f"; } > "$work/file-corpus/$(basename "$f")"
+done
 export ASAN_OPTIONS="detect_leaks=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 status=0
-for target in ${FUZZ_TARGETS:-FuzzSceneReader FuzzOpenVDBReader}; do
+for target in ${FUZZ_TARGETS:-FuzzSceneReader FuzzSceneFiles FuzzOpenVDBReader}; do
   corpus=scene-corpus
   [ "$target" = FuzzOpenVDBReader ] && corpus=vdb-corpus
+  [ "$target" = FuzzSceneFiles ] && corpus=file-corpus
   echo "== $target, $seconds s"
   (cd "$work" && "$root/build-fuzz/bin/$target" "$corpus" -max_total_time="$seconds" \
     -max_len=65536 -rss_limit_mb=4096 -artifact_prefix="$root/build-fuzz/findings/$target-" \

@@ -18,7 +18,6 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 #include "vtkXMLImageDataReader.h"
-#include <vtksys/SystemInformation.hxx>
 
 #include "brume/Scene.h"
 
@@ -196,6 +195,11 @@ bool vtkBrumeSceneFileParser::Parse(const json& root, vtkPartitionedDataSetColle
   if (!root.contains("brume_scene"))
   {
     return p.Fail("brume_scene", "missing: the format version (1)");
+  }
+  std::string name;
+  if (root.contains("name") && !p.String(root["name"], "name", name))
+  {
+    return false;
   }
   return p.Number(root["brume_scene"], "brume_scene", version, 1, 1) &&
     this->ParseArray(root, "surfaces", &vtkBrumeSceneFileParser::ParseSurface) &&
@@ -445,9 +449,7 @@ std::string CheckAnnouncedExtent(vtkInformation* information, const std::string&
     points *= std::max(n, 0.0);
     dims << (a ? " x " : "") << static_cast<long long>(n);
   }
-  vtksys::SystemInformation system;
-  system.RunMemoryCheck();
-  const double memory = static_cast<double>(system.GetTotalPhysicalMemory()) * 1048576.0;
+  const double memory = 2.0 * vtkBrumeSceneGeometry::UsableMemory();
   const double bytes = points * static_cast<double>(sizeof(float));
   if (points > MaxDensityPoints || (memory > 0.0 && bytes > 0.5 * memory))
   {

@@ -5,7 +5,13 @@
 # three quarters), header-only.vdb (its first 600 bytes), corrupt.vdb (its magic
 # followed by random bytes), huge-lengths.vdb (a fuzzer's find: lengths that
 # made OpenVDB allocate 7 GB), version-zero.vdb (header-only.vdb with version
-# 0), garbage.* (text that is no such file), the two
+# 0), garbage.* (text that is no such file), truncated.stl (a binary STL
+# announcing 1000 triangles, holding one), absurd-count.stl (announcing
+# 4294967280), absurd-count.vt[pu] (4e12 points announced), short-points.vtp
+# (4e8 points announced, three held), malformed-header.ply (a fuzzer's find:
+# an unknown header keyword, then properties VTK's parser attached to no
+# element), malformed-element.ply (another: an element line of four words),
+# the two
 # density volumes (a NaN and a negative voxel) and points.vtp (no cells).
 # Four cases were added by hand: mesh-truncated-binary-ply, mesh-absurd-count-ply,
 # density-vdb-huge-lengths and density-vdb-version-zero.
@@ -56,6 +62,13 @@ case("mesh-unknown-format", lambda s: (delp(["surfaces", 0, "quad"])(s), setp(["
 case("mesh-garbage-obj", lambda s: (delp(["surfaces", 0, "quad"])(s), setp(["surfaces", 0, "file"], "garbage.obj")(s)))
 case("mesh-truncated-ply", lambda s: (delp(["surfaces", 0, "quad"])(s), setp(["surfaces", 0, "file"], "truncated.ply")(s)))
 case("mesh-degenerate-obj", lambda s: (delp(["surfaces", 0, "quad"])(s), setp(["surfaces", 0, "file"], "degenerate.obj")(s)))
+case("name-number", setp(["name"], 5))
+for name, file in [("mesh-truncated-stl", "truncated.stl"), ("mesh-absurd-count-stl", "absurd-count.stl"),
+                   ("mesh-absurd-count-vtp", "absurd-count.vtp"), ("mesh-absurd-count-vtu", "absurd-count.vtu"),
+                   ("mesh-short-points-vtp", "short-points.vtp"),
+                   ("mesh-malformed-ply", "malformed-header.ply"),
+                   ("mesh-malformed-element-ply", "malformed-element.ply")]:
+    case(name, lambda s, file=file: (delp(["surfaces", 0, "quad"])(s), setp(["surfaces", 0, "file"], file)(s)))
 case("mesh-points-only-vtp", lambda s: (delp(["surfaces", 0, "quad"])(s), setp(["surfaces", 0, "file"], "points.vtp")(s)))
 case("material-unknown-type", setp(["surfaces", 0, "material", "type"], "velvet"))
 case("material-unknown-key", setp(["surfaces", 0, "material", "roughness"], 0.2))

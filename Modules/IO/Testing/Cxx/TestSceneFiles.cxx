@@ -6,23 +6,32 @@
 //                                   a grid this test writes, read back voxel by voxel;
 //                                   corrupt copies fail cleanly; the shared samples
 //                                   (when present) read with finite, non-negative values
+//   TestSceneFiles meshes DIR       one quad written in every surface format and encoding
+//                                   the scene files accept reads back as its two triangles
 #include "vtkBrumeDefaultSceneSource.h"
 #include "vtkBrumeLightTracer.h"
 #include "vtkBrumeOpenVDBReader.h"
 #include "vtkBrumeSceneReader.h"
 #include "vtkBrumeSceneWriter.h"
+#include "vtkCellArray.h"
 #include "vtkDataArray.h"
 #include "vtkExecutive.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
+#include "vtkOBJWriter.h"
+#include "vtkPLYWriter.h"
 #include "vtkPointData.h"
 #include "vtkPartitionedDataSet.h"
 #include "vtkPartitionedDataSetCollection.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSTLWriter.h"
 #include "vtkStringArray.h"
+#include "vtkUnstructuredGrid.h"
+#include "vtkXMLPolyDataWriter.h"
+#include "vtkXMLUnstructuredGridWriter.h"
 
 #include <openvdb/openvdb.h>
 
@@ -271,6 +280,101 @@ int OpenVDB(const std::string& dir, const std::string& shared)
   }
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }
+
+// A scene whose only surface is `mesh` (a file beside it) under a point light.
+std::string MeshScene(const std::string& mesh)
+{
+  return R"({"brume_scene": 1,
+  "camera": {"position": [0, 0, 4], "focal_point": [0, 0, 0], "view_up": [0, 1, 0], "view_angle": 40},
+  "surfaces": [{"name": "quad", "file": ")" +
+    mesh + R"(", "material": {"reflectance": [0.5, 0.5, 0.5]}}],
+  "lights": [{"type": "point", "position": [0, 0, 2], "intensity": [1, 1, 1]}]})";
+}
+
+int Meshes(const std::string& dir)
+{
+  // The unit square at z = 0 as two triangles.
+  vtkNew<vtkPoints> points;
+  points->InsertNextPoint(0, 0, 0);
+  points->InsertNextPoint(1, 0, 0);
+  points->InsertNextPoint(1, 1, 0);
+  points->InsertNextPoint(0, 1, 0);
+  vtkNew<vtkCellArray> triangles;
+  const vtkIdType t0[3] = { 0, 1, 2 }, t1[3] = { 0, 2, 3 };
+  triangles->InsertNextCell(3, t0);
+  triangles->InsertNextCell(3, t1);
+  vtkNew<vtkPolyData> quad;
+  quad->SetPoints(points);
+  quad->SetPolys(triangles);
+  vtkNew<vtkUnstructuredGrid> grid;
+  grid->SetPoints(points);
+  grid->InsertNextCell(VTK_TRIANGLE, 3, t0);
+  grid->InsertNextCell(VTK_TRIANGLE, 3, t1);
+
+  auto write = [&](auto& writer, vtkDataObject* data, const std::string& name)
+  {
+    writer->SetInputData(data);
+    writer->SetFileName((dir + "/" + name).c_str());
+    Check(writer->Write() == 1, "writes " + name);
+  };
+  vtkNew<vtkOBJWriter> obj;
+  write(obj, quad, "quad.obj");
+  vtkNew<vtkPLYWriter> plyText, plyBinary;
+  plyText->SetFileTypeToASCII();
+  write(plyText, quad, "quad-ascii.ply");
+  plyBinary->SetFileTypeToBinary();
+  write(plyBinary, quad, "quad-binary.ply");
+  vtkNew<vtkSTLWriter> stlText, stlBinary;
+  stlText->SetFileTypeToASCII();
+  write(stlText, quad, "quad-ascii.stl");
+  stlBinary->SetFileTypeToBinary();
+  write(stlBinary, quad, "quad-binary.stl");
+  vtkNew<vtkXMLPolyDataWriter> vtpText, vtpRaw, vtpZlib;
+  vtpText->SetDataModeToAscii();
+  write(vtpText, quad, "quad-ascii.vtp");
+  vtpRaw->SetDataModeToAppended();
+  vtpRaw->EncodeAppendedDataOff();
+  vtpRaw->SetCompressorTypeToNone();
+  write(vtpRaw, quad, "quad-raw.vtp");
+  vtpZlib->SetCompressorTypeToZLib();
+  write(vtpZlib, quad, "quad-zlib.vtp");
+  vtkNew<vtkXMLUnstructuredGridWriter> vtuText, vtuZlib;
+  vtuText->SetDataModeToAscii();
+  write(vtuText, grid, "quad-ascii.vtu");
+  vtuZlib->SetCompressorTypeToZLib();
+  write(vtuZlib, grid, "quad-zlib.vtu");
+
+  for (const char* mesh : { "quad.obj", "quad-ascii.ply", "quad-binary.ply", "quad-ascii.stl",
+         "quad-binary.stl", "quad-ascii.vtp", "quad-raw.vtp", "quad-zlib.vtp", "quad-ascii.vtu",
+         "quad-zlib.vtu" })
+  {
+    const std::string scene = dir + "/" + mesh + ".json";
+    std::ofstream(scene) << MeshScene(mesh);
+    vtkNew<vtkBrumeSceneReader> reader;
+    reader->SetFileName(scene.c_str());
+    const bool ok = reader->GetExecutive()->Update() == 1;
+    Check(ok, std::string("a scene naming ") + mesh + " reads");
+    auto* collection = vtkPartitionedDataSetCollection::SafeDownCast(reader->GetOutputDataObject(0));
+    vtkPolyData* surface = nullptr;
+    if (ok && collection && collection->GetNumberOfPartitionedDataSets() > 0 &&
+      collection->GetPartitionedDataSet(0)->GetNumberOfPartitions() > 0)
+    {
+      surface = vtkPolyData::SafeDownCast(collection->GetPartitionedDataSet(0)->GetPartition(0));
+    }
+    double bounds[6] = { 0, -1, 0, -1, 0, -1 };
+    if (surface)
+    {
+      surface->GetBounds(bounds);
+    }
+    std::cout << mesh << ": " << (surface ? surface->GetNumberOfPolys() : -1) << " triangles, x "
+              << bounds[0] << " to " << bounds[1] << ", y " << bounds[2] << " to " << bounds[3]
+              << "\n";
+    Check(surface && surface->GetNumberOfPolys() == 2 && bounds[0] == 0.0 && bounds[1] == 1.0 &&
+        bounds[2] == 0.0 && bounds[3] == 1.0 && bounds[4] == 0.0 && bounds[5] == 0.0,
+      std::string(mesh) + " reads back as the quad's two triangles");
+  }
+  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}
 }
 
 int TestSceneFiles(int argc, char* argv[])
@@ -284,6 +388,10 @@ int TestSceneFiles(int argc, char* argv[])
   {
     return OpenVDB(argv[2], argc > 3 ? argv[3] : "");
   }
-  std::cerr << "usage: TestSceneFiles roundtrip DIR SCENE.json | openvdb DIR [SHARED_VDB_DIR]\n";
+  if (mode == "meshes" && argc > 2)
+  {
+    return Meshes(argv[2]);
+  }
+  std::cerr << "usage: TestSceneFiles roundtrip DIR SCENE.json | openvdb DIR [SHARED_VDB_DIR] | meshes DIR\n";
   return EXIT_FAILURE;
 }
