@@ -14,7 +14,11 @@
 
 #include <vtksys/SystemInformation.hxx>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 #include <vector>
@@ -41,6 +45,228 @@ std::string Count(double n)
   return os.str();
 }
 
+struct PlyProperty
+{
+  bool List = false;
+  std::string CountType, Type, Name;
+};
+
+struct PlyElement
+{
+  std::string Name;
+  double Rows = 0;
+  std::vector<PlyProperty> Properties;
+};
+
+// Bytes of a PLY scalar type; 0 for a word that is none.
+double PlyTypeSize(const std::string& type)
+{
+  if (type == "char" || type == "uchar" || type == "int8" || type == "uint8")
+    return 1;
+  if (type == "short" || type == "ushort" || type == "int16" || type == "uint16")
+    return 2;
+  if (type == "int" || type == "uint" || type == "float" || type == "int32" || type == "uint32" ||
+    type == "float32")
+    return 4;
+  if (type == "double" || type == "float64")
+    return 8;
+  return 0;
+}
+
+// Binary PLY values through a buffer (one stream read per value would cost
+// more than VTK's own parse).
+class PlyBytes
+{
+public:
+  PlyBytes(std::istream& in, bool bigEndian)
+    : In(in)
+    , Buffer(1 << 20)
+  {
+    const std::uint16_t probe = 1;
+    this->Swap = bigEndian == (*reinterpret_cast<const unsigned char*>(&probe) == 1);
+  }
+
+  /// The next value of `type` (a PLY scalar type name), as a double.
+  bool Read(const std::string& type, double& value)
+  {
+    const auto n = static_cast<std::size_t>(PlyTypeSize(type));
+    unsigned char b[8] = {};
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      if (this->Position == this->Length && !this->Fill())
+      {
+        return false;
+      }
+      b[i] = static_cast<unsigned char>(this->Buffer[this->Position++]);
+    }
+    if (this->Swap)
+    {
+      std::reverse(b, b + n);
+    }
+    auto as = [&](auto v)
+    {
+      std::memcpy(&v, b, sizeof(v));
+      value = static_cast<double>(v);
+      return true;
+    };
+    if (type == "char" || type == "int8")
+      return as(std::int8_t());
+    if (type == "uchar" || type == "uint8")
+      return as(std::uint8_t());
+    if (type == "short" || type == "int16")
+      return as(std::int16_t());
+    if (type == "ushort" || type == "uint16")
+      return as(std::uint16_t());
+    if (type == "int" || type == "int32")
+      return as(std::int32_t());
+    if (type == "uint" || type == "uint32")
+      return as(std::uint32_t());
+    if (type == "double" || type == "float64")
+      return as(double());
+    return as(float());
+  }
+
+  /// Skips `bytes` bytes.
+  bool Skip(double bytes)
+  {
+    const double buffered = static_cast<double>(this->Length - this->Position);
+    if (bytes <= buffered)
+    {
+      this->Position += static_cast<std::size_t>(bytes);
+      return true;
+    }
+    this->Position = this->Length = 0;
+    this->In.seekg(static_cast<std::streamoff>(bytes - buffered), std::ios::cur);
+    return static_cast<bool>(this->In);
+  }
+
+private:
+  bool Fill()
+  {
+    this->In.read(this->Buffer.data(), static_cast<std::streamsize>(this->Buffer.size()));
+    this->Length = static_cast<std::size_t>(this->In.gcount());
+    this->Position = 0;
+    return this->Length > 0;
+  }
+
+  std::istream& In;
+  std::vector<char> Buffer;
+  std::size_t Position = 0, Length = 0;
+  bool Swap = false;
+};
+
+// Walks a PLY body row by row: every value present, every list's count a
+// whole non-negative number, and every face's vertex index inside the vertex
+// element (VTK's reader indexes the points with them unchecked). Elements
+// without lists are only skipped (binary) or counted as lines (ASCII).
+bool PlyBodyConsistent(std::istream& in, const std::filesystem::path& file,
+  const std::string& format, const std::vector<PlyElement>& elements, std::string& error)
+{
+  double vertices = 0, fileSize = 0;
+  for (const PlyElement& e : elements)
+  {
+    vertices = e.Name == "vertex" ? e.Rows : vertices;
+  }
+  {
+    const auto here = in.tellg();
+    in.seekg(0, std::ios::end);
+    fileSize = static_cast<double>(in.tellg());
+    in.seekg(here);
+  }
+  const bool text = format == "ascii";
+  PlyBytes bytes(in, format == "binary_big_endian");
+  std::string line;
+  std::istringstream words;
+  auto read = [&](const std::string& type, double& value)
+  {
+    if (!text)
+    {
+      return bytes.Read(type, value);
+    }
+    std::string word;
+    if (!(words >> word))
+    {
+      return false;
+    }
+    char* end = nullptr;
+    value = std::strtod(word.c_str(), &end);
+    return end && *end == '\0' && end != word.c_str();
+  };
+  const std::string name = "'" + file.string() + "'";
+  for (const PlyElement& e : elements)
+  {
+    double rowBytes = 0;
+    bool lists = false;
+    for (const PlyProperty& property : e.Properties)
+    {
+      lists = lists || property.List;
+      rowBytes += PlyTypeSize(property.Type);
+    }
+    if (!lists && !text)
+    {
+      if (rowBytes * e.Rows > fileSize || !bytes.Skip(rowBytes * e.Rows))
+      {
+        error = name + " is truncated: element '" + e.Name + "' does not fit in the file";
+        return false;
+      }
+      continue;
+    }
+    for (double row = 0; row < e.Rows; ++row)
+    {
+      if (text)
+      {
+        // VTK reads an ASCII row as one line.
+        do
+        {
+          if (!std::getline(in, line))
+          {
+            error = name + " is truncated: element '" + e.Name + "' has fewer rows than announced";
+            return false;
+          }
+        } while (line.find_first_not_of(" \t\r") == std::string::npos);
+        if (!lists)
+        {
+          continue;
+        }
+        words.clear();
+        words.str(line);
+      }
+      for (const PlyProperty& property : e.Properties)
+      {
+        auto where = [&]
+        {
+          return " (element '" + e.Name + "', row " + Count(row) + ", property '" +
+            property.Name + "')";
+        };
+        double count = 1;
+        if (property.List &&
+          (!read(property.CountType, count) || !(count >= 0) || count != std::floor(count)))
+        {
+          error = name + " is truncated or corrupt: no list count" + where();
+          return false;
+        }
+        const bool indices = e.Name == "face" && property.Name == "vertex_indices";
+        for (double k = 0; k < count; ++k)
+        {
+          double value = 0;
+          if (!read(property.Type, value))
+          {
+            error = name + " is truncated or corrupt: a value is missing" + where();
+            return false;
+          }
+          if (indices && !(value >= 0 && value < vertices && value == std::floor(value)))
+          {
+            error = name + ": vertex index " + Count(value) + " is not one of the " +
+              Count(vertices) + " vertices" + where();
+            return false;
+          }
+        }
+      }
+    }
+  }
+  return true;
+}
+
 // VTK's PLY parser asserts on a file shorter than its header promises: check
 // the header's element counts against what the file holds first.
 bool PlyLooksComplete(const std::filesystem::path& file, std::string& error)
@@ -49,20 +275,8 @@ bool PlyLooksComplete(const std::filesystem::path& file, std::string& error)
   std::string line, format;
   double minimumBytes = 0, rows = 0, rowBytes = 0, allRows = 0;
   bool headerEnded = false;
-  // Bytes of a PLY scalar type; 0 for a word that is none.
-  auto size = [](const std::string& type) -> double
-  {
-    if (type == "char" || type == "uchar" || type == "int8" || type == "uint8")
-      return 1;
-    if (type == "short" || type == "ushort" || type == "int16" || type == "uint16")
-      return 2;
-    if (type == "int" || type == "uint" || type == "float" || type == "int32" ||
-      type == "uint32" || type == "float32")
-      return 4;
-    if (type == "double" || type == "float64")
-      return 8;
-    return 0;
-  };
+  const auto size = PlyTypeSize;
+  std::vector<PlyElement> elements;
   // VTK's parser dereferences what a malformed header leaves out (a property
   // before any element, a property with no type): accept the grammar only.
   auto malformed = [&](const std::string& why)
@@ -124,6 +338,7 @@ bool PlyLooksComplete(const std::filesystem::path& file, std::string& error)
       }
       allRows += rows;
       inElement = true;
+      elements.push_back({ rest[0], rows, {} });
     }
     else if (word == "property")
     {
@@ -138,6 +353,7 @@ bool PlyLooksComplete(const std::filesystem::path& file, std::string& error)
           return malformed("expected 'property list COUNT_TYPE ITEM_TYPE NAME'");
         }
         rowBytes += size(rest[1]); // a list holds at least its count
+        elements.back().Properties.push_back({ true, rest[1], rest[2], rest[3] });
       }
       else
       {
@@ -146,6 +362,7 @@ bool PlyLooksComplete(const std::filesystem::path& file, std::string& error)
           return malformed("expected 'property TYPE NAME'");
         }
         rowBytes += size(rest[0]);
+        elements.back().Properties.push_back({ false, "", rest[0], rest[1] });
       }
     }
     else if (word != "comment" && word != "obj_info" && word != "end_header" && !word.empty())
@@ -169,6 +386,32 @@ bool PlyLooksComplete(const std::filesystem::path& file, std::string& error)
     error = "'" + file.string() + "': the PLY header has no format line";
     return false;
   }
+  // What VTK's reader dereferences without checking: a vertex element with
+  // x, y and z, and the faces' vertex_indices list.
+  auto has = [&](const char* element, const char* property, bool list)
+  {
+    for (const PlyElement& e : elements)
+    {
+      for (const PlyProperty& p : e.Properties)
+      {
+        if (e.Name == element && p.Name == property && p.List == list)
+        {
+          return true;
+        }
+      }
+    }
+    return false;
+  };
+  const bool faces = std::any_of(
+    elements.begin(), elements.end(), [](const PlyElement& e) { return e.Name == "face"; });
+  if (!has("vertex", "x", false) || !has("vertex", "y", false) || !has("vertex", "z", false) ||
+    (faces && !has("face", "vertex_indices", true)))
+  {
+    error = "'" + file.string() +
+      "': the PLY header needs a 'vertex' element with x, y and z, and its 'face' element a "
+      "'vertex_indices' list";
+    return false;
+  }
   double available = 0, lines = 0;
   const auto body = in.tellg();
   in.seekg(0, std::ios::end);
@@ -188,16 +431,17 @@ bool PlyLooksComplete(const std::filesystem::path& file, std::string& error)
         std::to_string(static_cast<long long>(lines));
       return false;
     }
-    return true;
   }
-  if (available < minimumBytes)
+  else if (available < minimumBytes)
   {
     error = "'" + file.string() + "' is truncated: the header needs at least " +
       std::to_string(static_cast<long long>(minimumBytes)) + " bytes of data, the file holds " +
       std::to_string(static_cast<long long>(available));
     return false;
   }
-  return true;
+  in.clear();
+  in.seekg(body);
+  return PlyBodyConsistent(in, file, format, elements, error);
 }
 
 

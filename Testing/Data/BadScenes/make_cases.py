@@ -11,6 +11,8 @@
 # (4e8 points announced, three held), malformed-header.ply (a fuzzer's find:
 # an unknown header keyword, then properties VTK's parser attached to no
 # element), malformed-element.ply (another: an element line of four words),
+# bad-index.ply (a third: a binary face list indexing past the vertices),
+# no-indices.ply (a fourth: a face element without vertex_indices),
 # the two
 # density volumes (a NaN and a negative voxel) and points.vtp (no cells).
 # Four cases were added by hand: mesh-truncated-binary-ply, mesh-absurd-count-ply,
@@ -67,7 +69,9 @@ for name, file in [("mesh-truncated-stl", "truncated.stl"), ("mesh-absurd-count-
                    ("mesh-absurd-count-vtp", "absurd-count.vtp"), ("mesh-absurd-count-vtu", "absurd-count.vtu"),
                    ("mesh-short-points-vtp", "short-points.vtp"),
                    ("mesh-malformed-ply", "malformed-header.ply"),
-                   ("mesh-malformed-element-ply", "malformed-element.ply")]:
+                   ("mesh-malformed-element-ply", "malformed-element.ply"),
+                   ("mesh-bad-index-ply", "bad-index.ply"),
+                   ("mesh-no-indices-ply", "no-indices.ply")]:
     case(name, lambda s, file=file: (delp(["surfaces", 0, "quad"])(s), setp(["surfaces", 0, "file"], file)(s)))
 case("mesh-points-only-vtp", lambda s: (delp(["surfaces", 0, "quad"])(s), setp(["surfaces", 0, "file"], "points.vtp")(s)))
 case("material-unknown-type", setp(["surfaces", 0, "material", "type"], "velvet"))
