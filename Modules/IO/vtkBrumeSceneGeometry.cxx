@@ -445,6 +445,84 @@ bool PlyLooksComplete(const std::filesystem::path& file, std::string& error)
 }
 
 
+// VTK's OBJ reader indexes its points, texture coordinates and normals with
+// the face, line and point entries it reads, unchecked. Every entry must be
+// 'v', 'v/t', 'v//n' or 'v/t/n' with each index nonzero and naming one
+// defined before it (negative indices count back from the last), and every
+// vertex must have three coordinates.
+bool ObjIndicesInRange(const std::filesystem::path& file, std::string& error)
+{
+  std::ifstream in(file, std::ios::binary);
+  if (!in)
+  {
+    error = "cannot read geometry from '" + file.string() + "' (missing, corrupt or empty)";
+    return false;
+  }
+  double defined[3] = { 0, 0, 0 }; // v, vt, vn
+  std::string line;
+  double number = 0;
+  auto fail = [&](const std::string& why)
+  {
+    error = "'" + file.string() + "' line " + Count(number) + ": " + why + " ('" +
+      line.substr(0, 80) + "')";
+    return false;
+  };
+  auto index = [&](const std::string& text, int kind, bool optional)
+  {
+    if (text.empty())
+    {
+      return optional;
+    }
+    char* end = nullptr;
+    const double i = std::strtod(text.c_str(), &end);
+    return *end == '\0' && i == std::floor(i) && i != 0 &&
+      (i > 0 ? i <= defined[kind] : -i <= defined[kind]);
+  };
+  while (std::getline(in, line))
+  {
+    ++number;
+    std::istringstream words(line);
+    std::string word;
+    words >> word;
+    if (word == "v" || word == "vt" || word == "vn")
+    {
+      int values = 0;
+      for (std::string w; words >> w && values < 3; ++values)
+      {
+        char* end = nullptr;
+        std::strtod(w.c_str(), &end);
+        if (*end != '\0' || end == w.c_str())
+        {
+          return fail("'" + w + "' is not a number");
+        }
+      }
+      if (word == "v" && values < 3)
+      {
+        return fail("a vertex needs three coordinates");
+      }
+      ++defined[word == "v" ? 0 : word == "vt" ? 1 : 2];
+    }
+    else if (word == "f" || word == "l" || word == "p")
+    {
+      for (std::string entry; words >> entry;)
+      {
+        const auto a = entry.find('/');
+        const auto b = a == std::string::npos ? a : entry.find('/', a + 1);
+        const std::string v = entry.substr(0, a);
+        const std::string t = a == std::string::npos ? "" : entry.substr(a + 1, b - a - 1);
+        const std::string n = b == std::string::npos ? "" : entry.substr(b + 1);
+        const bool shape = (a == std::string::npos) || (b == std::string::npos && !t.empty()) ||
+          (b != std::string::npos && !n.empty() && entry.find('/', b + 1) == std::string::npos);
+        if (!shape || !index(v, 0, false) || !index(t, 1, true) || !index(n, 2, true))
+        {
+          return fail("'" + entry + "' is not v, v/t, v//n or v/t/n indexing what is defined above it");
+        }
+      }
+    }
+  }
+  return true;
+}
+
 // A binary STL announces its triangle count after an 80-byte header and
 // holds 50 bytes per triangle; VTK's reader trusts whatever is there (a
 // truncated file renders its first triangles). ASCII files (the word 'solid'
@@ -551,6 +629,10 @@ vtkSmartPointer<vtkPolyData> vtkBrumeSceneGeometry::Read(
   vtkSmartPointer<vtkAlgorithm> reader;
   if (ext == ".obj")
   {
+    if (!ObjIndicesInRange(file, error))
+    {
+      return nullptr;
+    }
     auto r = vtkSmartPointer<vtkOBJReader>::New();
     r->SetFileName(file.string().c_str());
     reader = r;
