@@ -210,6 +210,12 @@ bool vtkBrumeOpenGLSliceVolumeMapper::PrepareSlices(
       impl.ExtinctionScale[a] = static_cast<float>((bounds[2 * a + 1] - bounds[2 * a]) / extent);
       impl.ExtinctionOffset[a] = static_cast<float>((bounds[2 * a] - e[2 * a]) / extent);
     }
+    vtkDataArray* factor = input->GetFieldData()->GetArray("BrumeExtinctionFactor");
+    for (int c = 0; c < 3; ++c)
+    {
+      const double f = factor && factor->GetNumberOfComponents() == 3 ? factor->GetComponent(0, c) : 1.0;
+      impl.ExtinctionFactor[c] = f > 0.0 && f <= 1.0 ? static_cast<float>(f) : 1.f;
+    }
   }
   if (!this->EvaluateTowardEye(renWin, dims, interpolation))
   {
@@ -501,6 +507,7 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawAll(vtkRenderer* ren)
     program->SetUniformi("sourceIsRadiance", owner.SourceIsRadiance ? 1 : 0);
     program->SetUniform3f("extinctionScale", owner.ExtinctionScale);
     program->SetUniform3f("extinctionOffset", owner.ExtinctionOffset);
+    program->SetUniform3f("extinctionFactor", owner.ExtinctionFactor);
     if (owner.FragmentOrder > 0)
     {
       for (std::size_t t = 0; t < owner.Coefficients.size(); ++t)

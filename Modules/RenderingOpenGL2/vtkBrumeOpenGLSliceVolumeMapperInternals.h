@@ -38,6 +38,9 @@ struct vtkBrumeOpenGLSliceVolumeMapper::Internals
   // box may be larger): scale, then offset.
   float ExtinctionScale[3] = { 1.f, 1.f, 1.f };
   float ExtinctionOffset[3] = { 0.f, 0.f, 0.f };
+  // sigma_t's factor for a forward peak drawn as transport (field data
+  // BrumeExtinctionFactor; 1 without).
+  float ExtinctionFactor[3] = { 1.f, 1.f, 1.f };
   vtkTimeStamp TextureTime;
   bool SourceIsRadiance = false; // the source texture holds S (extinction of its own)
   // The extinction grid of its own last uploaded, and when.

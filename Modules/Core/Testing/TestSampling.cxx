@@ -152,6 +152,27 @@ TEST(Sampling, ChiSquareRejectsAWrongAsymmetry)
   EXPECT_GT(r.Statistic, r.DegreesOfFreedom + 5.0 * std::sqrt(2.0 * r.DegreesOfFreedom));
 }
 
+TEST(Sampling, ForwardPeakKeepsTheMeanCosine)
+{
+  // Beyond the resolved asymmetry, the peak and the remainder have HG(g)'s
+  // mean cosine: Forward * 1 + (1 - Forward) * G = g.
+  for (float g : { 0.75f, 0.9f, 0.99f, 0.999f })
+  {
+    const ForwardPeak peak = SplitForwardPeak(g, 0.7f);
+    EXPECT_FLOAT_EQ(peak.G, 0.7f) << "g = " << g;
+    EXPECT_GT(peak.Forward, 0.f) << "g = " << g;
+    EXPECT_LT(peak.Forward, 1.f) << "g = " << g;
+    EXPECT_NEAR(peak.Forward + (1.f - peak.Forward) * peak.G, g, 1e-6f) << "g = " << g;
+  }
+  // Up to it, and backward, nothing is set apart.
+  for (float g : { -0.99f, -0.5f, 0.f, 0.5f, 0.7f })
+  {
+    const ForwardPeak peak = SplitForwardPeak(g, 0.7f);
+    EXPECT_EQ(peak.Forward, 0.f) << "g = " << g;
+    EXPECT_EQ(peak.G, g) << "g = " << g;
+  }
+}
+
 TEST(Sampling, CosineHemisphereChiSquare)
 {
   Random rng(3, 9);

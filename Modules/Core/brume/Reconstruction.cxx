@@ -90,6 +90,8 @@ ObjectRadiance::ObjectRadiance(const Medium& medium, std::array<int, 3> resoluti
   , CellVolume(static_cast<double>(medium.Bounds.Volume()) /
       (static_cast<double>(this->Dims[0]) * this->Dims[1] * this->Dims[2]))
   , MediumAlbedo(medium.Albedo())
+  , Peak(SplitForwardPeak(medium.G, ResolvedG))
+  , ViewExtinctionFactor(Vec3(1.f) - medium.Albedo() * Peak.Forward)
 {
 }
 
@@ -315,7 +317,9 @@ void ObjectRadiance::WeighCells(const Vec3& eye, const ParallelFor& parallelFor)
   this->ChainReceive(value);
   const Medium* medium = this->MediumRef;
   const Surface* surface = this->SurfaceRef;
-  const HenyeyGreenstein phase(medium ? medium->G : 0.f);
+  // Media: the remainder of the phase function once its peak is set apart.
+  const HenyeyGreenstein phase(medium ? this->Peak.G : 0.f);
+  const double remainder = 1.0 - this->Peak.Forward;
   parallelFor(0, Ranges,
     [&](std::size_t begin, std::size_t end)
     {
@@ -331,7 +335,7 @@ void ObjectRadiance::WeighCells(const Vec3& eye, const ParallelFor& parallelFor)
         if (medium)
         {
           // Phase function from the direction of travel to the eye.
-          const double p = phase.Evaluate(Dot(dir, toEye));
+          const double p = remainder * phase.Evaluate(Dot(dir, toEye));
           for (int ch = 0; ch < 3; ++ch)
           {
             v[ch] = p * flux[ch];
@@ -419,8 +423,10 @@ void ObjectRadiance::ChainForward(Histogram& a, Histogram* b)
   }
 }
 
-void ObjectRadiance::ToRadiance(std::size_t t, const Region& r, const double* sum, float* out) const
+void ObjectRadiance::ToRadiance(
+  std::size_t t, const Region& r, const double* sum, float* out, bool perView) const
 {
+  const Vec3 factor = perView ? this->ViewExtinctionFactor : Vec3(1.f);
   if (this->MediumRef->Density)
   {
     // Heterogeneous: the sigma_t-weighted mean over the region,
@@ -432,7 +438,7 @@ void ObjectRadiance::ToRadiance(std::size_t t, const Region& r, const double* su
     {
       const double weight = integral * sigmaT[c];
       out[c] = integral > this->EmptyIntegral && weight > 0.0
-        ? static_cast<float>(this->MediumAlbedo[c] * sum[c] / weight)
+        ? static_cast<float>(this->MediumAlbedo[c] * sum[c] / (weight * factor[c]))
         : 0.f;
     }
     return;
@@ -443,7 +449,8 @@ void ObjectRadiance::ToRadiance(std::size_t t, const Region& r, const double* su
   {
     const double sigmaT = this->Extinction[3 * t + c];
     out[c] =
-      sigmaT > 0.0 ? static_cast<float>(this->MediumAlbedo[c] * sum[c] / volume / sigmaT) : 0.f;
+      sigmaT > 0.0 ? static_cast<float>(this->MediumAlbedo[c] * sum[c] / volume / (sigmaT * factor[c]))
+                   : 0.f;
   }
 }
 
@@ -463,7 +470,7 @@ void ObjectRadiance::Estimate(const ParallelFor& parallelFor)
         float* out = &this->Radiance[3 * t];
         if (this->MediumRef)
         {
-          this->ToRadiance(t, r, sum, out);
+          this->ToRadiance(t, r, sum, out, true);
         }
         else
         {

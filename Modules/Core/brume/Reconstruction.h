@@ -37,6 +37,7 @@
 #include "brume/DensityEstimation.h"
 #include "brume/Histogram.h"
 #include "brume/Parallel.h"
+#include "brume/Sampling.h"
 #include "brume/Scene.h"
 #include "brume/SurfaceChart.h"
 
@@ -110,6 +111,22 @@ public:
 
   /// Glossy surfaces and anisotropic media change with the viewpoint.
   bool IsViewDependent() const { return this->ViewDependent; }
+
+  /**
+   * Per-view textures of strongly forward-scattering media: the phase
+   * function's peak beyond an asymmetry of ResolvedG is set apart
+   * (SplitForwardPeak in brume/Sampling.h). The texture then estimates the
+   * light in-scattered by the remainder, HG(GetViewPeak().G), which rests on
+   * many particles where HG(g) rests on the few travelling almost straight at
+   * the eye, and the peak is drawn as transport: a renderer multiplies the
+   * medium's sigma_t by GetViewExtinctionFactor() (1 - Forward albedo per
+   * channel), and the source radiance S of GetOutputRadiance() is per unit of
+   * that reduced extinction. Without a split (g <= ResolvedG, surfaces, the
+   * directional representation) the factor is 1.
+   */
+  static constexpr float ResolvedG = 0.7f;
+  const ForwardPeak& GetViewPeak() const { return this->Peak; }
+  const Vec3& GetViewExtinctionFactor() const { return this->ViewExtinctionFactor; }
 
   /**
    * Deterministic single scattering (brume/DirectLight.h), for media and
@@ -249,7 +266,10 @@ private:
   void KeepHits(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
     const Locator& cellOfHit, const ParallelFor& parallelFor);
   void Finish(const Vec3& eye, double thresholdFlux, bool first, const ParallelFor& parallelFor);
-  void ToRadiance(std::size_t texel, const Region& region, const double* sum, float* out) const;
+  // The source radiance of a medium's region; perView: per unit of the
+  // reduced extinction (GetViewExtinctionFactor()).
+  void ToRadiance(
+    std::size_t texel, const Region& region, const double* sum, float* out, bool perView) const;
   // Direct light: the output texel's world position, the sum of the
   // texture resampled there and the direct light toward the eye, and the
   // direct light projected on the directional representation's voxels.
@@ -274,6 +294,8 @@ private:
   bool ViewDependent = false;
   double CellVolume = 0.0; // media: one histogram cell's volume
   Vec3 MediumAlbedo;       // media: sigma_s / sigma_t
+  ForwardPeak Peak;        // per-view media: the phase function's peak set apart
+  Vec3 ViewExtinctionFactor{ 1.f };
 
   // View-dependent objects keep their hits (44 bytes each), grouped by
   // ranges of histogram cells and in hit order within a range.

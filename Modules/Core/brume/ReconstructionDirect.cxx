@@ -266,7 +266,10 @@ void ObjectRadiance::CombineDirect(const ParallelFor& parallelFor)
       axis.Offset.push_back(offset);
     }
   }
-  const HenyeyGreenstein phase(this->MediumRef ? this->MediumRef->G : 0.f);
+  // Per view, as the particles' light: the phase function's remainder, per
+  // unit of the reduced extinction.
+  const HenyeyGreenstein phase(this->MediumRef ? this->Peak.G : 0.f);
+  const Vec3 scale = this->MediumAlbedo * (1.f - this->Peak.Forward) / this->ViewExtinctionFactor;
   const std::size_t nx = this->Resolution[0], nxy = nx * this->Resolution[1];
   const std::size_t rows = static_cast<std::size_t>(dims[1]) * dims[2];
   parallelFor(0, rows,
@@ -311,7 +314,7 @@ void ObjectRadiance::CombineDirect(const ParallelFor& parallelFor)
             if (this->MediumRef)
             {
               // S_1 = albedo p E T (the source radiance J_1 / sigma_t).
-              f = this->MediumAlbedo * phase.Evaluate(Dot(direction, toEye));
+              f = scale * phase.Evaluate(Dot(direction, toEye));
             }
             else
             {

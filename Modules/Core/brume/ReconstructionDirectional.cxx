@@ -68,7 +68,8 @@ std::string ObjectRadiance::BuildDirectional(int order, const ParallelFor& paral
           table.RegionSum(r.Lo, r.Hi, sum);
           for (int j = 0; j < kn; ++j)
           {
-            this->ToRadiance(t, r, sum + 3 * j, &this->Directional[(t * nk + k0 + j) * 3]);
+            this->ToRadiance(
+              t, r, sum + 3 * j, &this->Directional[(t * nk + k0 + j) * 3], false);
           }
         }
       });

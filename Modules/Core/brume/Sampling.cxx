@@ -57,4 +57,16 @@ Vec3 HenyeyGreenstein::Sample(const Vec3& wi, float u1, float u2) const
   return Normalize(frame.ToWorld({ sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta }));
 }
 
+ForwardPeak SplitForwardPeak(float g, float resolvedG)
+{
+  ForwardPeak peak;
+  peak.G = g;
+  if (g > resolvedG && resolvedG < 1.f)
+  {
+    peak.G = resolvedG;
+    peak.Forward = (g - resolvedG) / (1.f - resolvedG);
+  }
+  return peak;
+}
+
 } // namespace brume

@@ -44,6 +44,29 @@ public:
   Vec3 Sample(const Vec3& wi, float u1, float u2) const;
 };
 
+/**
+ * A strongly forward phase function with its peak set apart:
+ *   HG(g) ~ Forward delta(forward) + (1 - Forward) HG(G),
+ * equal in the first moment: g = Forward + (1 - Forward) G (the delta-M idea
+ * of Wiscombe 1977, with the remainder kept Henyey-Greenstein). Light
+ * scattered into the delta keeps its direction, so along a viewing ray the
+ * peak is transport at the reduced extinction sigma_t - Forward sigma_s, and
+ * only the remainder, smooth enough to estimate from few particles, is
+ * in-scattered. The error is the peak's angular width (about 1 - g radians)
+ * where the radiance behind changes faster than that.
+ */
+struct ForwardPeak
+{
+  float Forward = 0.f;
+  float G = 0.f;
+};
+
+/**
+ * The split of HG(g) that leaves a remainder of asymmetry at most
+ * `resolvedG`; no split (Forward 0, G = g) when g <= resolvedG.
+ */
+ForwardPeak SplitForwardPeak(float g, float resolvedG);
+
 } // namespace brume
 
 #endif

@@ -18,6 +18,7 @@ uniform int perspective;
 uniform int sourceIsRadiance;        // sourceTexture holds S, not J
 uniform vec3 extinctionScale;        // texcoord to the extinction grid's own box
 uniform vec3 extinctionOffset;
+uniform vec3 extinctionFactor;       // forward peak drawn as transport: sigma_t's factor
 
 //BRUME::Directional::Dec
 
@@ -28,11 +29,17 @@ void main()
 {
   vec3 emission = texture(sourceTexture, texcoord).rgb;
   //BRUME::Directional::Impl
-  vec3 sigmaT = texture(extinctionTexture, texcoord * extinctionScale + extinctionOffset).rgb;
+  vec3 sigmaT = extinctionFactor *
+    texture(extinctionTexture, texcoord * extinctionScale + extinctionOffset).rgb;
   if (sourceIsRadiance != 0)
   {
     // Extinction at its own resolution: J = S sigma_t with the fine sigma_t.
     emission *= sigmaT;
+  }
+  else
+  {
+    // J = S sigma_t was filtered with sigma_t unreduced.
+    emission *= extinctionFactor;
   }
   // Distance between two slice planes along this fragment's viewing ray:
   // it grows as 1/cos(angle to the view direction) in perspective.
