@@ -3,6 +3,7 @@
 
 #include "vtkBrumeSceneCamera.h"
 #include "vtkBrumeSceneConversion.h"
+#include "vtkBrumeSceneFileChecks.h"
 #include "vtkBrumeSceneGeometry.h"
 #include "vtkCellArray.h"
 #include "vtkExecutive.h"
@@ -449,7 +450,7 @@ std::string CheckAnnouncedExtent(vtkInformation* information, const std::string&
     points *= std::max(n, 0.0);
     dims << (a ? " x " : "") << static_cast<long long>(n);
   }
-  const double memory = 2.0 * vtkBrumeSceneGeometry::UsableMemory();
+  const double memory = 2.0 * vtkBrumeSceneFileChecks::UsableMemory();
   const double bytes = points * static_cast<double>(sizeof(float));
   if (points > MaxDensityPoints || (memory > 0.0 && bytes > 0.5 * memory))
   {

@@ -1,0 +1,631 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkBrumeSceneFileChecks.h"
+
+#include "vtkExecutive.h"
+#include "vtkXMLUnstructuredDataReader.h"
+
+#include <vtksys/SystemInformation.hxx>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+namespace
+{
+std::string Count(double n)
+{
+  std::ostringstream os;
+  os.precision(15);
+  os << n;
+  return os.str();
+}
+
+struct PlyProperty
+{
+  bool List = false;
+  std::string CountType, Type, Name;
+};
+
+struct PlyElement
+{
+  std::string Name;
+  double Rows = 0;
+  std::vector<PlyProperty> Properties;
+};
+
+// Bytes of a PLY scalar type; 0 for a word that is none.
+double PlyTypeSize(const std::string& type)
+{
+  if (type == "char" || type == "uchar" || type == "int8" || type == "uint8")
+    return 1;
+  if (type == "short" || type == "ushort" || type == "int16" || type == "uint16")
+    return 2;
+  if (type == "int" || type == "uint" || type == "float" || type == "int32" || type == "uint32" ||
+    type == "float32")
+    return 4;
+  if (type == "double" || type == "float64")
+    return 8;
+  return 0;
+}
+
+// Binary PLY values through a buffer (one stream read per value would cost
+// more than VTK's own parse).
+class PlyBytes
+{
+public:
+  PlyBytes(std::istream& in, bool bigEndian)
+    : In(in)
+    , Buffer(1 << 20)
+  {
+    const std::uint16_t probe = 1;
+    this->Swap = bigEndian == (*reinterpret_cast<const unsigned char*>(&probe) == 1);
+  }
+
+  /// The next value of `type` (a PLY scalar type name), as a double.
+  bool Read(const std::string& type, double& value)
+  {
+    const auto n = static_cast<std::size_t>(PlyTypeSize(type));
+    unsigned char b[8] = {};
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      if (this->Position == this->Length && !this->Fill())
+      {
+        return false;
+      }
+      b[i] = static_cast<unsigned char>(this->Buffer[this->Position++]);
+    }
+    if (this->Swap)
+    {
+      std::reverse(b, b + n);
+    }
+    auto as = [&](auto v)
+    {
+      std::memcpy(&v, b, sizeof(v));
+      value = static_cast<double>(v);
+      return true;
+    };
+    if (type == "char" || type == "int8")
+      return as(std::int8_t());
+    if (type == "uchar" || type == "uint8")
+      return as(std::uint8_t());
+    if (type == "short" || type == "int16")
+      return as(std::int16_t());
+    if (type == "ushort" || type == "uint16")
+      return as(std::uint16_t());
+    if (type == "int" || type == "int32")
+      return as(std::int32_t());
+    if (type == "uint" || type == "uint32")
+      return as(std::uint32_t());
+    if (type == "double" || type == "float64")
+      return as(double());
+    return as(float());
+  }
+
+  /// Skips `bytes` bytes.
+  bool Skip(double bytes)
+  {
+    const double buffered = static_cast<double>(this->Length - this->Position);
+    if (bytes <= buffered)
+    {
+      this->Position += static_cast<std::size_t>(bytes);
+      return true;
+    }
+    this->Position = this->Length = 0;
+    this->In.seekg(static_cast<std::streamoff>(bytes - buffered), std::ios::cur);
+    return static_cast<bool>(this->In);
+  }
+
+private:
+  bool Fill()
+  {
+    this->In.read(this->Buffer.data(), static_cast<std::streamsize>(this->Buffer.size()));
+    this->Length = static_cast<std::size_t>(this->In.gcount());
+    this->Position = 0;
+    return this->Length > 0;
+  }
+
+  std::istream& In;
+  std::vector<char> Buffer;
+  std::size_t Position = 0, Length = 0;
+  bool Swap = false;
+};
+
+// Walks a PLY body row by row: every value present, every list's count a
+// whole non-negative number, and every face's vertex index inside the vertex
+// element (VTK's reader indexes the points with them unchecked). Elements
+// without lists are only skipped (binary) or counted as lines (ASCII).
+bool PlyBodyConsistent(std::istream& in, const std::filesystem::path& file,
+  const std::string& format, const std::vector<PlyElement>& elements, std::string& error)
+{
+  double vertices = 0, fileSize = 0;
+  for (const PlyElement& e : elements)
+  {
+    vertices = e.Name == "vertex" ? e.Rows : vertices;
+  }
+  {
+    const auto here = in.tellg();
+    in.seekg(0, std::ios::end);
+    fileSize = static_cast<double>(in.tellg());
+    in.seekg(here);
+  }
+  const bool text = format == "ascii";
+  PlyBytes bytes(in, format == "binary_big_endian");
+  std::string line;
+  std::istringstream words;
+  auto read = [&](const std::string& type, double& value)
+  {
+    if (!text)
+    {
+      return bytes.Read(type, value);
+    }
+    std::string word;
+    if (!(words >> word))
+    {
+      return false;
+    }
+    char* end = nullptr;
+    value = std::strtod(word.c_str(), &end);
+    return end && *end == '\0' && end != word.c_str();
+  };
+  const std::string name = "'" + file.string() + "'";
+  for (const PlyElement& e : elements)
+  {
+    double rowBytes = 0;
+    bool lists = false;
+    for (const PlyProperty& property : e.Properties)
+    {
+      lists = lists || property.List;
+      rowBytes += PlyTypeSize(property.Type);
+    }
+    if (!lists && !text)
+    {
+      if (rowBytes * e.Rows > fileSize || !bytes.Skip(rowBytes * e.Rows))
+      {
+        error = name + " is truncated: element '" + e.Name + "' does not fit in the file";
+        return false;
+      }
+      continue;
+    }
+    for (double row = 0; row < e.Rows; ++row)
+    {
+      if (text)
+      {
+        // VTK reads an ASCII row as one line.
+        do
+        {
+          if (!std::getline(in, line))
+          {
+            error = name + " is truncated: element '" + e.Name + "' has fewer rows than announced";
+            return false;
+          }
+        } while (line.find_first_not_of(" \t\r") == std::string::npos);
+        if (!lists)
+        {
+          continue;
+        }
+        words.clear();
+        words.str(line);
+      }
+      for (const PlyProperty& property : e.Properties)
+      {
+        auto where = [&]
+        {
+          return " (element '" + e.Name + "', row " + Count(row) + ", property '" +
+            property.Name + "')";
+        };
+        double count = 1;
+        if (property.List &&
+          (!read(property.CountType, count) || !(count >= 0) || count != std::floor(count)))
+        {
+          error = name + " is truncated or corrupt: no list count" + where();
+          return false;
+        }
+        const bool indices = e.Name == "face" && property.Name == "vertex_indices";
+        for (double k = 0; k < count; ++k)
+        {
+          double value = 0;
+          if (!read(property.Type, value))
+          {
+            error = name + " is truncated or corrupt: a value is missing" + where();
+            return false;
+          }
+          if (indices && !(value >= 0 && value < vertices && value == std::floor(value)))
+          {
+            error = name + ": vertex index " + Count(value) + " is not one of the " +
+              Count(vertices) + " vertices" + where();
+            return false;
+          }
+        }
+      }
+    }
+  }
+  return true;
+}
+
+// VTK's PLY parser asserts on a file shorter than its header promises: check
+// the header's element counts against what the file holds first.
+bool PlyLooksComplete(const std::filesystem::path& file, std::string& error)
+{
+  std::ifstream in(file, std::ios::binary);
+  std::string line, format;
+  double minimumBytes = 0, rows = 0, rowBytes = 0, allRows = 0;
+  bool headerEnded = false;
+  const auto size = PlyTypeSize;
+  std::vector<PlyElement> elements;
+  // VTK's parser dereferences what a malformed header leaves out (a property
+  // before any element, a property with no type): accept the grammar only.
+  auto malformed = [&](const std::string& why)
+  {
+    error = "'" + file.string() + "': malformed PLY header line '" + line + "' (" + why + ")";
+    return false;
+  };
+  bool inElement = false;
+  if (!in)
+  {
+    error = "cannot open '" + file.string() + "'";
+    return false;
+  }
+  if (!std::getline(in, line) || line.rfind("ply", 0) != 0)
+  {
+    error = "'" + file.string() + "' is not a PLY file (no 'ply' magic)";
+    return false;
+  }
+  while (std::getline(in, line))
+  {
+    if (!line.empty() && line.back() == '\r')
+    {
+      line.pop_back();
+    }
+    // The line's first word, then the others.
+    std::istringstream words(line);
+    std::string word;
+    words >> word;
+    std::vector<std::string> rest;
+    for (std::string w; words >> w;)
+    {
+      rest.push_back(w);
+    }
+    if (word == "format")
+    {
+      if (rest.size() != 2 ||
+        (rest[0] != "ascii" && rest[0] != "binary_little_endian" &&
+          rest[0] != "binary_big_endian"))
+      {
+        return malformed(
+          "expected 'format ascii|binary_little_endian|binary_big_endian VERSION'");
+      }
+      format = rest[0];
+    }
+    else if (word == "element")
+    {
+      minimumBytes += rows * rowBytes;
+      rowBytes = 0;
+      if (rest.size() != 2 || rest[1].empty() ||
+        rest[1].find_first_not_of("0123456789") != std::string::npos)
+      {
+        return malformed("expected 'element NAME COUNT'");
+      }
+      rows = std::stod(rest[1]);
+      if (rows > 1e10)
+      {
+        error = "'" + file.string() + "': bad element count in '" + line + "'";
+        return false;
+      }
+      allRows += rows;
+      inElement = true;
+      elements.push_back({ rest[0], rows, {} });
+    }
+    else if (word == "property")
+    {
+      if (!inElement)
+      {
+        return malformed("a property before any element");
+      }
+      if (!rest.empty() && rest[0] == "list")
+      {
+        if (rest.size() != 4 || size(rest[1]) == 0 || size(rest[2]) == 0)
+        {
+          return malformed("expected 'property list COUNT_TYPE ITEM_TYPE NAME'");
+        }
+        rowBytes += size(rest[1]); // a list holds at least its count
+        elements.back().Properties.push_back({ true, rest[1], rest[2], rest[3] });
+      }
+      else
+      {
+        if (rest.size() != 2 || size(rest[0]) == 0)
+        {
+          return malformed("expected 'property TYPE NAME'");
+        }
+        rowBytes += size(rest[0]);
+        elements.back().Properties.push_back({ false, "", rest[0], rest[1] });
+      }
+    }
+    else if (word != "comment" && word != "obj_info" && word != "end_header" && !word.empty())
+    {
+      return malformed("not a PLY header keyword");
+    }
+    else if (word == "end_header")
+    {
+      minimumBytes += rows * rowBytes;
+      headerEnded = true;
+      break;
+    }
+  }
+  if (!headerEnded)
+  {
+    error = "'" + file.string() + "': the PLY header has no end_header";
+    return false;
+  }
+  if (format.empty())
+  {
+    error = "'" + file.string() + "': the PLY header has no format line";
+    return false;
+  }
+  // What VTK's reader dereferences without checking: a vertex element with
+  // x, y and z, and the faces' vertex_indices list.
+  auto has = [&](const char* element, const char* property, bool list)
+  {
+    for (const PlyElement& e : elements)
+    {
+      for (const PlyProperty& p : e.Properties)
+      {
+        if (e.Name == element && p.Name == property && p.List == list)
+        {
+          return true;
+        }
+      }
+    }
+    return false;
+  };
+  const bool faces = std::any_of(
+    elements.begin(), elements.end(), [](const PlyElement& e) { return e.Name == "face"; });
+  if (!has("vertex", "x", false) || !has("vertex", "y", false) || !has("vertex", "z", false) ||
+    (faces && !has("face", "vertex_indices", true)))
+  {
+    error = "'" + file.string() +
+      "': the PLY header needs a 'vertex' element with x, y and z, and its 'face' element a "
+      "'vertex_indices' list";
+    return false;
+  }
+  double available = 0, lines = 0;
+  const auto body = in.tellg();
+  in.seekg(0, std::ios::end);
+  available = static_cast<double>(in.tellg() - body);
+  if (format == "ascii")
+  {
+    in.seekg(body);
+    while (std::getline(in, line))
+    {
+      lines += line.find_first_not_of(" \t\r") != std::string::npos ? 1 : 0;
+    }
+    // One line per element row.
+    if (lines < allRows)
+    {
+      error = "'" + file.string() + "' is truncated: the header announces " +
+        std::to_string(static_cast<long long>(allRows)) + " rows, the file holds " +
+        std::to_string(static_cast<long long>(lines));
+      return false;
+    }
+  }
+  else if (available < minimumBytes)
+  {
+    error = "'" + file.string() + "' is truncated: the header needs at least " +
+      std::to_string(static_cast<long long>(minimumBytes)) + " bytes of data, the file holds " +
+      std::to_string(static_cast<long long>(available));
+    return false;
+  }
+  in.clear();
+  in.seekg(body);
+  return PlyBodyConsistent(in, file, format, elements, error);
+}
+
+
+// VTK's OBJ reader indexes its points, texture coordinates and normals with
+// the face, line and point entries it reads, unchecked. Every entry must be
+// 'v', 'v/t', 'v//n' or 'v/t/n' with each index nonzero and naming one
+// defined before it (negative indices count back from the last), and every
+// vertex must have three coordinates.
+bool ObjIndicesInRange(const std::filesystem::path& file, std::string& error)
+{
+  std::ifstream in(file, std::ios::binary);
+  if (!in)
+  {
+    error = "cannot read geometry from '" + file.string() + "' (missing, corrupt or empty)";
+    return false;
+  }
+  double defined[3] = { 0, 0, 0 }; // v, vt, vn
+  std::string line;
+  double number = 0;
+  auto fail = [&](const std::string& why)
+  {
+    error = "'" + file.string() + "' line " + Count(number) + ": " + why + " ('" +
+      line.substr(0, 80) + "')";
+    return false;
+  };
+  auto index = [&](const std::string& text, int kind, bool optional)
+  {
+    if (text.empty())
+    {
+      return optional;
+    }
+    char* end = nullptr;
+    const double i = std::strtod(text.c_str(), &end);
+    return *end == '\0' && i == std::floor(i) && i != 0 &&
+      (i > 0 ? i <= defined[kind] : -i <= defined[kind]);
+  };
+  while (std::getline(in, line))
+  {
+    ++number;
+    std::istringstream words(line);
+    std::string word;
+    words >> word;
+    if (word == "v" || word == "vt" || word == "vn")
+    {
+      int values = 0;
+      for (std::string w; words >> w && values < 3; ++values)
+      {
+        char* end = nullptr;
+        std::strtod(w.c_str(), &end);
+        if (*end != '\0' || end == w.c_str())
+        {
+          return fail("'" + w + "' is not a number");
+        }
+      }
+      if (word == "v" && values < 3)
+      {
+        return fail("a vertex needs three coordinates");
+      }
+      ++defined[word == "v" ? 0 : word == "vt" ? 1 : 2];
+    }
+    else if (word == "f" || word == "l" || word == "p")
+    {
+      for (std::string entry; words >> entry;)
+      {
+        const auto a = entry.find('/');
+        const auto b = a == std::string::npos ? a : entry.find('/', a + 1);
+        const std::string v = entry.substr(0, a);
+        const std::string t = a == std::string::npos ? "" : entry.substr(a + 1, b - a - 1);
+        const std::string n = b == std::string::npos ? "" : entry.substr(b + 1);
+        const bool shape = (a == std::string::npos) || (b == std::string::npos && !t.empty()) ||
+          (b != std::string::npos && !n.empty() && entry.find('/', b + 1) == std::string::npos);
+        if (!shape || !index(v, 0, false) || !index(t, 1, true) || !index(n, 2, true))
+        {
+          return fail("'" + entry + "' is not v, v/t, v//n or v/t/n indexing what is defined above it");
+        }
+      }
+    }
+  }
+  return true;
+}
+
+// A binary STL announces its triangle count after an 80-byte header and
+// holds 50 bytes per triangle; VTK's reader trusts whatever is there (a
+// truncated file renders its first triangles). ASCII files (the word 'solid'
+// followed by text only) have no count to check.
+bool StlLooksComplete(const std::filesystem::path& file, std::string& error)
+{
+  std::ifstream in(file, std::ios::binary);
+  if (!in)
+  {
+    error = "cannot open '" + file.string() + "'";
+    return false;
+  }
+  in.seekg(0, std::ios::end);
+  const double size = static_cast<double>(in.tellg());
+  in.seekg(0);
+  char head[512] = {};
+  in.read(head, sizeof(head));
+  const std::streamsize got = in.gcount();
+  bool text = got >= 5 && std::string(head, 5) == "solid";
+  for (std::streamsize i = 0; text && i < got; ++i)
+  {
+    const auto c = static_cast<unsigned char>(head[i]);
+    text = c == '\n' || c == '\r' || c == '\t' || (c >= 32 && c < 127);
+  }
+  if (text)
+  {
+    return true;
+  }
+  if (size < 84)
+  {
+    error = "'" + file.string() + "' is truncated: a binary STL file has an 84-byte header, the file holds " + Count(size) + " bytes";
+    return false;
+  }
+  const auto* b = reinterpret_cast<const unsigned char*>(head + 80);
+  const double triangles = static_cast<double>(static_cast<std::uint32_t>(b[0]) |
+    static_cast<std::uint32_t>(b[1]) << 8 | static_cast<std::uint32_t>(b[2]) << 16 |
+    static_cast<std::uint32_t>(b[3]) << 24);
+  const double needed = 84.0 + 50.0 * triangles;
+  if (size < needed)
+  {
+    error = "'" + file.string() + "' is truncated: its header announces " + Count(triangles) +
+      " triangles (" + Count(needed) + " bytes), the file holds " + Count(size) + " bytes";
+    return false;
+  }
+  return true;
+}
+
+// A VTK XML file announces its points and cells in its Piece elements; VTK
+// allocates them before it reads a value (an absurd count aborts the
+// process). After the reader has parsed the header (UpdateInformation), the
+// counts must fit in memory and, unless the data are compressed, in the file:
+// every coordinate and every cell takes at least one byte in any encoding.
+bool XmlCountsFit(vtkXMLUnstructuredDataReader* reader, const std::filesystem::path& file,
+  std::string& error)
+{
+  if (!reader->GetExecutive()->UpdateInformation())
+  {
+    error = "cannot read geometry from '" + file.string() + "' (missing, corrupt or empty)";
+    return false;
+  }
+  reader->SetupUpdateExtent(0, 1, 0);
+  const double points = static_cast<double>(reader->GetNumberOfPoints());
+  const double cells = static_cast<double>(reader->GetNumberOfCells());
+  std::ifstream in(file, std::ios::binary);
+  in.seekg(0, std::ios::end);
+  const double size = static_cast<double>(in.tellg());
+  in.seekg(0);
+  char head[1024] = {};
+  in.read(head, sizeof(head));
+  const std::string start(head, static_cast<std::size_t>(in.gcount()));
+  const auto root = start.find("<VTKFile");
+  const bool compressed = root != std::string::npos &&
+    start.find("compressor=", root) < start.find('>', root);
+  // In memory: float coordinates, and per cell an offset and one index.
+  const double bytes = 12.0 * points + 16.0 * cells;
+  const double memory = vtkBrumeSceneFileChecks::UsableMemory();
+  const std::string announced = "'" + file.string() + "' announces " + Count(points) +
+    " points and " + Count(cells) + " cells";
+  if (points < 0 || cells < 0)
+  {
+    error = announced + ": counts cannot be negative";
+    return false;
+  }
+  if (memory > 0.0 && bytes > memory)
+  {
+    error = announced + " (at least " + Count(bytes) +
+      " bytes): more than half of this machine's memory (" + Count(memory) + " bytes)";
+    return false;
+  }
+  if (!compressed && size < 3.0 * points + cells)
+  {
+    error = announced + " (at least " + Count(3.0 * points + cells) +
+      " bytes of data), the file holds " + Count(size) + " bytes";
+    return false;
+  }
+  return true;
+}
+}
+
+bool vtkBrumeSceneFileChecks::Ply(const std::filesystem::path& file, std::string& error)
+{
+  return PlyLooksComplete(file, error);
+}
+
+bool vtkBrumeSceneFileChecks::Obj(const std::filesystem::path& file, std::string& error)
+{
+  return ObjIndicesInRange(file, error);
+}
+
+bool vtkBrumeSceneFileChecks::Stl(const std::filesystem::path& file, std::string& error)
+{
+  return StlLooksComplete(file, error);
+}
+
+bool vtkBrumeSceneFileChecks::VtkXml(
+  vtkXMLUnstructuredDataReader* reader, const std::filesystem::path& file, std::string& error)
+{
+  return XmlCountsFit(reader, file, error);
+}
+
+double vtkBrumeSceneFileChecks::UsableMemory()
+{
+  vtksys::SystemInformation system;
+  system.RunMemoryCheck();
+  return 0.5 * static_cast<double>(system.GetTotalPhysicalMemory()) * 1048576.0;
+}

@@ -1,0 +1,36 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// What Brume checks in a file a scene names before VTK's reader sees it
+// (private to Brume::IO): VTK's readers trust the sizes and indices a file
+// announces, and a malformed file crashes them or makes them allocate what
+// no machine holds. Each check is true when the file may be read, otherwise
+// false with `error` saying what is wrong (the file's name, then why).
+#ifndef vtkBrumeSceneFileChecks_h
+#define vtkBrumeSceneFileChecks_h
+
+#include <filesystem>
+#include <string>
+
+class vtkXMLUnstructuredDataReader;
+
+class vtkBrumeSceneFileChecks
+{
+public:
+  /// PLY: the header's grammar, the elements VTK's reader assumes (vertex
+  /// x, y, z; the faces' vertex_indices), the bytes its counts need, and,
+  /// row by row, that every face indexes only the vertices.
+  static bool Ply(const std::filesystem::path& file, std::string& error);
+  /// OBJ: three numeric coordinates per vertex, and every face, line and
+  /// point entry v, v/t, v//n or v/t/n naming what is defined above it.
+  static bool Obj(const std::filesystem::path& file, std::string& error);
+  /// Binary STL: 84 + 50 n bytes for the n triangles its header announces.
+  static bool Stl(const std::filesystem::path& file, std::string& error);
+  /// VTP and VTU, through `reader`'s own header parse (it is given the file
+  /// name): the points and cells fit in memory and, uncompressed, in the file.
+  static bool VtkXml(
+    vtkXMLUnstructuredDataReader* reader, const std::filesystem::path& file, std::string& error);
+  /// What a file's announced sizes may ask for: half of this machine's
+  /// physical memory, in bytes (0 when it cannot be told).
+  static double UsableMemory();
+};
+
+#endif
