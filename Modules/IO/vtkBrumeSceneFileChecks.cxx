@@ -137,8 +137,8 @@ private:
 
 // Walks a PLY body row by row: every value present, every list's count a
 // whole non-negative number, and every face's vertex index inside the vertex
-// element (VTK's reader indexes the points with them unchecked). Elements
-// without lists are only skipped (binary) or counted as lines (ASCII).
+// element (VTK's reader indexes the points with them unchecked). Binary
+// elements without lists are skipped; every ASCII row is read.
 bool PlyBodyConsistent(std::istream& in, const std::filesystem::path& file,
   const std::string& format, const std::vector<PlyElement>& elements, std::string& error)
 {
@@ -204,10 +204,8 @@ bool PlyBodyConsistent(std::istream& in, const std::filesystem::path& file,
             return false;
           }
         } while (line.find_first_not_of(" \t\r") == std::string::npos);
-        if (!lists)
-        {
-          continue;
-        }
+        // VTK's parser indexes the line's words unchecked: each row's line
+        // must hold every value of the row.
         words.clear();
         words.str(line);
       }

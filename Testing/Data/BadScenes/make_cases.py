@@ -14,6 +14,7 @@
 # bad-index.ply (a third: a binary face list indexing past the vertices),
 # no-indices.ply (a fourth: a face element without vertex_indices),
 # bad-entry.obj (a fifth: a vertex that is no number, a face index 0),
+# short-row.ply (a sixth: an ASCII row with fewer values than properties),
 # the two
 # density volumes (a NaN and a negative voxel) and points.vtp (no cells).
 # Four cases were added by hand: mesh-truncated-binary-ply, mesh-absurd-count-ply,
@@ -73,7 +74,8 @@ for name, file in [("mesh-truncated-stl", "truncated.stl"), ("mesh-absurd-count-
                    ("mesh-malformed-element-ply", "malformed-element.ply"),
                    ("mesh-bad-index-ply", "bad-index.ply"),
                    ("mesh-no-indices-ply", "no-indices.ply"),
-                   ("mesh-bad-entry-obj", "bad-entry.obj")]:
+                   ("mesh-bad-entry-obj", "bad-entry.obj"),
+                   ("mesh-short-row-ply", "short-row.ply")]:
     case(name, lambda s, file=file: (delp(["surfaces", 0, "quad"])(s), setp(["surfaces", 0, "file"], file)(s)))
 case("mesh-points-only-vtp", lambda s: (delp(["surfaces", 0, "quad"])(s), setp(["surfaces", 0, "file"], "points.vtp")(s)))
 case("material-unknown-type", setp(["surfaces", 0, "material", "type"], "velvet"))
