@@ -259,7 +259,22 @@ bool PlyLooksComplete(const std::filesystem::path& file, std::string& error)
   // before any element, a property with no type): accept the grammar only.
   auto malformed = [&](const std::string& why)
   {
-    error = "'" + file.string() + "': malformed PLY header line '" + line + "' (" + why + ")";
+    // The line as printable text (control and non-ASCII bytes as \xHH).
+    std::string shown;
+    for (const char c : line.substr(0, 120))
+    {
+      const auto b = static_cast<unsigned char>(c);
+      if (b >= 32 && b < 127)
+      {
+        shown += c;
+      }
+      else
+      {
+        const char* hex = "0123456789abcdef";
+        shown += std::string("\\x") + hex[b >> 4] + hex[b & 15];
+      }
+    }
+    error = "'" + file.string() + "': malformed PLY header line '" + shown + "' (" + why + ")";
     return false;
   };
   bool inElement = false;
@@ -278,6 +293,13 @@ bool PlyLooksComplete(const std::filesystem::path& file, std::string& error)
     if (!line.empty() && line.back() == '\r')
     {
       line.pop_back();
+    }
+    // Words are split at spaces and tabs only, as VTK's parser does: any
+    // other control character would make the two read different headers.
+    if (std::any_of(line.begin(), line.end(), [](char c)
+          { return c != '\t' && (static_cast<unsigned char>(c) < 32 || c == 127); }))
+    {
+      return malformed("a control character in the header");
     }
     // The line's first word, then the others.
     std::istringstream words(line);

@@ -15,6 +15,7 @@
 # no-indices.ply (a fourth: a face element without vertex_indices),
 # bad-entry.obj (a fifth: a vertex that is no number, a face index 0),
 # short-row.ply (a sixth: an ASCII row with fewer values than properties),
+# control-char.ply (a seventh: end_header followed by a form feed and a NUL),
 # the two
 # density volumes (a NaN and a negative voxel) and points.vtp (no cells).
 # Four cases were added by hand: mesh-truncated-binary-ply, mesh-absurd-count-ply,
@@ -75,7 +76,8 @@ for name, file in [("mesh-truncated-stl", "truncated.stl"), ("mesh-absurd-count-
                    ("mesh-bad-index-ply", "bad-index.ply"),
                    ("mesh-no-indices-ply", "no-indices.ply"),
                    ("mesh-bad-entry-obj", "bad-entry.obj"),
-                   ("mesh-short-row-ply", "short-row.ply")]:
+                   ("mesh-short-row-ply", "short-row.ply"),
+                   ("mesh-control-char-ply", "control-char.ply")]:
     case(name, lambda s, file=file: (delp(["surfaces", 0, "quad"])(s), setp(["surfaces", 0, "file"], file)(s)))
 case("mesh-points-only-vtp", lambda s: (delp(["surfaces", 0, "quad"])(s), setp(["surfaces", 0, "file"], "points.vtp")(s)))
 case("material-unknown-type", setp(["surfaces", 0, "material", "type"], "velvet"))
