@@ -224,23 +224,23 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
     texture->GetCellData()->AddArray(sh);
     vtkNew<vtkDoubleArray> g;
     g->SetName("BrumePhaseAsymmetry");
-    g->InsertNextValue(medium.G);
+    g->InsertNextValue(radiance.GetPeak().G); // the remainder's, past ResolvedG
     texture->GetFieldData()->AddArray(g);
   }
   else
   {
     texture->GetCellData()->SetScalars(NewRGB("SourceRadiance", radiance.GetOutputRadiance()));
-    // A strongly forward medium's peak is drawn as transport: at the
-    // extinction times this factor, with S per unit of it.
-    const brume::Vec3& factor = radiance.GetViewExtinctionFactor();
-    if (factor.x != 1.f || factor.y != 1.f || factor.z != 1.f)
-    {
-      vtkNew<vtkDoubleArray> f;
-      f->SetName("BrumeExtinctionFactor");
-      f->SetNumberOfComponents(3);
-      f->InsertNextTuple3(factor.x, factor.y, factor.z);
-      texture->GetFieldData()->AddArray(f);
-    }
+  }
+  // A strongly forward medium's peak is drawn as transport: at the
+  // extinction times this factor, with S per unit of it.
+  const brume::Vec3& factor = radiance.GetExtinctionFactor();
+  if (factor.x != 1.f || factor.y != 1.f || factor.z != 1.f)
+  {
+    vtkNew<vtkDoubleArray> f;
+    f->SetName("BrumeExtinctionFactor");
+    f->SetNumberOfComponents(3);
+    f->InsertNextTuple3(factor.x, factor.y, factor.z);
+    texture->GetFieldData()->AddArray(f);
   }
   texture->GetCellData()->AddArray(NewRGB(
     "Extinction", directional ? radiance.GetExtinction() : radiance.GetOutputExtinction()));

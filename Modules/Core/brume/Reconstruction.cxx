@@ -91,7 +91,7 @@ ObjectRadiance::ObjectRadiance(const Medium& medium, std::array<int, 3> resoluti
       (static_cast<double>(this->Dims[0]) * this->Dims[1] * this->Dims[2]))
   , MediumAlbedo(medium.Albedo())
   , Peak(SplitForwardPeak(medium.G, ResolvedG))
-  , ViewExtinctionFactor(Vec3(1.f) - medium.Albedo() * Peak.Forward)
+  , ExtinctionFactor(Vec3(1.f) - medium.Albedo() * Peak.Forward)
 {
 }
 
@@ -423,10 +423,9 @@ void ObjectRadiance::ChainForward(Histogram& a, Histogram* b)
   }
 }
 
-void ObjectRadiance::ToRadiance(
-  std::size_t t, const Region& r, const double* sum, float* out, bool perView) const
+void ObjectRadiance::ToRadiance(std::size_t t, const Region& r, const double* sum, float* out) const
 {
-  const Vec3 factor = perView ? this->ViewExtinctionFactor : Vec3(1.f);
+  const Vec3& factor = this->ExtinctionFactor;
   if (this->MediumRef->Density)
   {
     // Heterogeneous: the sigma_t-weighted mean over the region,
@@ -470,7 +469,7 @@ void ObjectRadiance::Estimate(const ParallelFor& parallelFor)
         float* out = &this->Radiance[3 * t];
         if (this->MediumRef)
         {
-          this->ToRadiance(t, r, sum, out, true);
+          this->ToRadiance(t, r, sum, out);
         }
         else
         {

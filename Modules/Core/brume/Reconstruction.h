@@ -113,20 +113,21 @@ public:
   bool IsViewDependent() const { return this->ViewDependent; }
 
   /**
-   * Per-view textures of strongly forward-scattering media: the phase
-   * function's peak beyond an asymmetry of ResolvedG is set apart
-   * (SplitForwardPeak in brume/Sampling.h). The texture then estimates the
-   * light in-scattered by the remainder, HG(GetViewPeak().G), which rests on
-   * many particles where HG(g) rests on the few travelling almost straight at
-   * the eye, and the peak is drawn as transport: a renderer multiplies the
-   * medium's sigma_t by GetViewExtinctionFactor() (1 - Forward albedo per
-   * channel), and the source radiance S of GetOutputRadiance() is per unit of
-   * that reduced extinction. Without a split (g <= ResolvedG, surfaces, the
-   * directional representation) the factor is 1.
+   * Strongly forward-scattering media: the phase function's peak beyond an
+   * asymmetry of ResolvedG is set apart (SplitForwardPeak in
+   * brume/Sampling.h). The per-view textures and the directional
+   * representation then hold the light in-scattered by the remainder,
+   * HG(GetPeak().G), which rests on many particles where HG(g) rests on the
+   * few travelling almost straight at the eye, and the peak is drawn as
+   * transport: a renderer multiplies the medium's sigma_t by
+   * GetExtinctionFactor() (1 - Forward albedo per channel), and the source
+   * radiance (GetOutputRadiance(), or GetDirectional() evaluated with
+   * GetPeak().G) is per unit of that reduced extinction. Without a split
+   * (g <= ResolvedG, surfaces) the factor is 1.
    */
   static constexpr float ResolvedG = 0.7f;
-  const ForwardPeak& GetViewPeak() const { return this->Peak; }
-  const Vec3& GetViewExtinctionFactor() const { return this->ViewExtinctionFactor; }
+  const ForwardPeak& GetPeak() const { return this->Peak; }
+  const Vec3& GetExtinctionFactor() const { return this->ExtinctionFactor; }
 
   /**
    * Deterministic single scattering (brume/DirectLight.h), for media and
@@ -203,7 +204,8 @@ public:
    * `order` (at most MaxShOrder) of the directions of travel of the light
    * received, normalized as the source radiance, so that the source radiance
    * toward any direction w_o is sum_lm g^l c_lm Y_lm(w_o) (see
-   * brume/SphericalHarmonics.h) without reconstructing again. Regions are
+   * brume/SphericalHarmonics.h) without reconstructing again; past
+   * ResolvedG, g is GetPeak().G and S is per unit of the reduced extinction. Regions are
    * those of the per-view textures. Kept up to date by Add().
    */
   std::string BuildDirectional(int order, const ParallelFor& parallelFor);
@@ -266,10 +268,9 @@ private:
   void KeepHits(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
     const Locator& cellOfHit, const ParallelFor& parallelFor);
   void Finish(const Vec3& eye, double thresholdFlux, bool first, const ParallelFor& parallelFor);
-  // The source radiance of a medium's region; perView: per unit of the
-  // reduced extinction (GetViewExtinctionFactor()).
-  void ToRadiance(
-    std::size_t texel, const Region& region, const double* sum, float* out, bool perView) const;
+  // The source radiance of a medium's region, per unit of the reduced
+  // extinction (GetExtinctionFactor()).
+  void ToRadiance(std::size_t texel, const Region& region, const double* sum, float* out) const;
   // Direct light: the output texel's world position, the sum of the
   // texture resampled there and the direct light toward the eye, and the
   // direct light projected on the directional representation's voxels.
@@ -294,8 +295,8 @@ private:
   bool ViewDependent = false;
   double CellVolume = 0.0; // media: one histogram cell's volume
   Vec3 MediumAlbedo;       // media: sigma_s / sigma_t
-  ForwardPeak Peak;        // per-view media: the phase function's peak set apart
-  Vec3 ViewExtinctionFactor{ 1.f };
+  ForwardPeak Peak;        // media: the phase function's peak set apart
+  Vec3 ExtinctionFactor{ 1.f };
 
   // View-dependent objects keep their hits (44 bytes each), grouped by
   // ranges of histogram cells and in hit order within a range.

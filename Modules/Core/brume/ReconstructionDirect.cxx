@@ -266,10 +266,10 @@ void ObjectRadiance::CombineDirect(const ParallelFor& parallelFor)
       axis.Offset.push_back(offset);
     }
   }
-  // Per view, as the particles' light: the phase function's remainder, per
-  // unit of the reduced extinction.
+  // As the particles' light: the phase function's remainder, per unit of
+  // the reduced extinction.
   const HenyeyGreenstein phase(this->MediumRef ? this->Peak.G : 0.f);
-  const Vec3 scale = this->MediumAlbedo * (1.f - this->Peak.Forward) / this->ViewExtinctionFactor;
+  const Vec3 scale = this->MediumAlbedo * (1.f - this->Peak.Forward) / this->ExtinctionFactor;
   const std::size_t nx = this->Resolution[0], nxy = nx * this->Resolution[1];
   const std::size_t rows = static_cast<std::size_t>(dims[1]) * dims[2];
   parallelFor(0, rows,
@@ -353,6 +353,8 @@ void ObjectRadiance::AddDirectToDirectional(int order)
     }
     return v;
   };
+  // The remainder of the phase function, per unit of the reduced extinction.
+  const Vec3 scale = this->MediumAlbedo * (1.f - this->Peak.Forward) / this->ExtinctionFactor;
   float y[ShCoefficients(MaxShOrder)];
   for (std::size_t t = 0; t < texels; ++t)
   {
@@ -370,7 +372,7 @@ void ObjectRadiance::AddDirectToDirectional(int order)
       {
         for (int c = 0; c < 3; ++c)
         {
-          sums[(v * nk + k) * 3 + c] += static_cast<double>(this->MediumAlbedo[c]) * a[c] * y[k];
+          sums[(v * nk + k) * 3 + c] += static_cast<double>(scale[c]) * a[c] * y[k];
         }
       }
     }

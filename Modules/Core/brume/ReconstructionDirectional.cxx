@@ -42,6 +42,8 @@ std::string ObjectRadiance::BuildDirectional(int order, const ParallelFor& paral
       {
         float y[ShCoefficients(MaxShOrder)];
         double v[3 * PerPass];
+        // The light in-scattered by the phase function's remainder.
+        const double remainder = 1.0 - this->Peak.Forward;
         for (std::size_t k = this->RangeStart[begin]; k < this->RangeStart[end]; ++k)
         {
           const KeptHit& h = this->Kept[k];
@@ -50,7 +52,7 @@ std::string ObjectRadiance::BuildDirectional(int order, const ParallelFor& paral
           {
             for (int c = 0; c < 3; ++c)
             {
-              v[3 * j + c] = static_cast<double>(y[k0 + j]) * h.Flux[c];
+              v[3 * j + c] = remainder * y[k0 + j] * h.Flux[c];
             }
           }
           projected.Add(h.Cell, v);
@@ -68,8 +70,7 @@ std::string ObjectRadiance::BuildDirectional(int order, const ParallelFor& paral
           table.RegionSum(r.Lo, r.Hi, sum);
           for (int j = 0; j < kn; ++j)
           {
-            this->ToRadiance(
-              t, r, sum + 3 * j, &this->Directional[(t * nk + k0 + j) * 3], false);
+            this->ToRadiance(t, r, sum + 3 * j, &this->Directional[(t * nk + k0 + j) * 3]);
           }
         }
       });
@@ -106,7 +107,7 @@ void ObjectRadiance::EvaluateDirectional(const Vec3& eye, std::vector<float>& ra
     for (int c = 0; c < 3; ++c)
     {
       radiance[3 * t + c] = std::max(0.f,
-        EvaluateHgFromSh(this->DirectionalOrder, this->MediumRef->G,
+        EvaluateHgFromSh(this->DirectionalOrder, this->Peak.G,
           &this->Directional[t * nk * 3 + c], 3, toEye));
     }
   }
