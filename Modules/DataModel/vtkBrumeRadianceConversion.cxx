@@ -85,8 +85,7 @@ void MapAtlas(const brume::Surface& surface, const brume::SurfaceChart& chart,
 
 // The scene's surface itself, with its plane's (u, v) or its own texture
 // coordinates.
-void MapInPlace(
-  const brume::SurfaceChart& chart, vtkPolyData* sceneSurface, vtkPolyData* mapped,
+void MapInPlace(const brume::SurfaceChart& chart, vtkPolyData* sceneSurface, vtkPolyData* mapped,
   vtkFloatArray* tcoords)
 {
   mapped->ShallowCopy(sceneSurface);
@@ -99,8 +98,8 @@ void MapInPlace(
     {
       double p[3];
       mapped->GetPoint(i, p);
-      const brume::Vec3 d = brume::Vec3(static_cast<float>(p[0]), static_cast<float>(p[1]),
-                              static_cast<float>(p[2])) -
+      const brume::Vec3 d =
+        brume::Vec3(static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2])) -
         chart.Frame.Origin;
       tcoords->SetTuple2(i, Dot(d, chart.Frame.U) / uu, Dot(d, chart.Frame.V) / vv);
     }
@@ -224,7 +223,7 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
     texture->GetCellData()->AddArray(sh);
     vtkNew<vtkDoubleArray> g;
     g->SetName("BrumePhaseAsymmetry");
-    g->InsertNextValue(radiance.GetPeak().G); // the remainder's, past ResolvedG
+    g->InsertNextValue(radiance.GetPeak(true).G); // the remainder's, past DirectionalResolvedG
     texture->GetFieldData()->AddArray(g);
   }
   else
@@ -233,7 +232,7 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
   }
   // A strongly forward medium's peak is drawn as transport: at the
   // extinction times this factor, with S per unit of it.
-  const brume::Vec3& factor = radiance.GetExtinctionFactor();
+  const brume::Vec3& factor = radiance.GetExtinctionFactor(directional);
   if (factor.x != 1.f || factor.y != 1.f || factor.z != 1.f)
   {
     vtkNew<vtkDoubleArray> f;
@@ -242,8 +241,8 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
     f->InsertNextTuple3(factor.x, factor.y, factor.z);
     texture->GetFieldData()->AddArray(f);
   }
-  texture->GetCellData()->AddArray(NewRGB(
-    "Extinction", directional ? radiance.GetExtinction() : radiance.GetOutputExtinction()));
+  texture->GetCellData()->AddArray(
+    NewRGB("Extinction", directional ? radiance.GetExtinction() : radiance.GetOutputExtinction()));
   AddString(texture->GetFieldData(), "BrumeObjectKind", "medium");
   auto pds = vtkSmartPointer<vtkPartitionedDataSet>::New();
   pds->SetNumberOfPartitions(1);

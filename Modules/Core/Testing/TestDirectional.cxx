@@ -132,10 +132,14 @@ TEST(Directional, MatchesThePerViewReconstruction)
   // directional mode evaluated toward two eyes against the per-view texture
   // of the same hits and regions, and both against a per-view texture of
   // 5x more particles (the reference). Exact (up to rounding) for g = 0;
-  // the truncation error grows with |g|.
+  // the truncation error grows with |g|. Up to DirectionalResolvedG only:
+  // beyond, the two set different parts of the phase function's peak apart
+  // (ObjectRadiance::GetPeak), so their voxels hold different quantities and
+  // only their images compare (Brume.Evaluation.ForwardPeak, the sweep).
   std::printf("g     order  directional vs per view   vs reference: directional  per view\n");
   double previous = -1.0;
-  for (const float g : { 0.f, 0.3f, 0.6f, 0.7f, 0.9f })
+  static_assert(ObjectRadiance::DirectionalResolvedG >= 0.6f, "g = 0.6 must not be split");
+  for (const float g : { 0.f, 0.3f, 0.6f })
   {
     Scene scene = MakeDefaultScene();
     scene.Media[0].G = g;

@@ -90,8 +90,9 @@ ObjectRadiance::ObjectRadiance(const Medium& medium, std::array<int, 3> resoluti
   , CellVolume(static_cast<double>(medium.Bounds.Volume()) /
       (static_cast<double>(this->Dims[0]) * this->Dims[1] * this->Dims[2]))
   , MediumAlbedo(medium.Albedo())
-  , Peak(SplitForwardPeak(medium.G, ResolvedG))
-  , ExtinctionFactor(Vec3(1.f) - medium.Albedo() * Peak.Forward)
+  , Peaks{ SplitForwardPeak(medium.G, ResolvedG), SplitForwardPeak(medium.G, DirectionalResolvedG) }
+  , ExtinctionFactors{ Vec3(1.f) - medium.Albedo() * Peaks[0].Forward,
+    Vec3(1.f) - medium.Albedo() * Peaks[1].Forward }
 {
 }
 
@@ -318,8 +319,8 @@ void ObjectRadiance::WeighCells(const Vec3& eye, const ParallelFor& parallelFor)
   const Medium* medium = this->MediumRef;
   const Surface* surface = this->SurfaceRef;
   // Media: the remainder of the phase function once its peak is set apart.
-  const HenyeyGreenstein phase(medium ? this->Peak.G : 0.f);
-  const double remainder = 1.0 - this->Peak.Forward;
+  const HenyeyGreenstein phase(medium ? this->Peaks[0].G : 0.f);
+  const double remainder = 1.0 - this->Peaks[0].Forward;
   parallelFor(0, Ranges,
     [&](std::size_t begin, std::size_t end)
     {
@@ -423,9 +424,10 @@ void ObjectRadiance::ChainForward(Histogram& a, Histogram* b)
   }
 }
 
-void ObjectRadiance::ToRadiance(std::size_t t, const Region& r, const double* sum, float* out) const
+void ObjectRadiance::ToRadiance(
+  std::size_t t, const Region& r, const double* sum, float* out, bool directional) const
 {
-  const Vec3& factor = this->ExtinctionFactor;
+  const Vec3& factor = this->GetExtinctionFactor(directional);
   if (this->MediumRef->Density)
   {
     // Heterogeneous: the sigma_t-weighted mean over the region,
@@ -447,9 +449,9 @@ void ObjectRadiance::ToRadiance(std::size_t t, const Region& r, const double* su
   for (int c = 0; c < 3; ++c)
   {
     const double sigmaT = this->Extinction[3 * t + c];
-    out[c] =
-      sigmaT > 0.0 ? static_cast<float>(this->MediumAlbedo[c] * sum[c] / volume / (sigmaT * factor[c]))
-                   : 0.f;
+    out[c] = sigmaT > 0.0
+      ? static_cast<float>(this->MediumAlbedo[c] * sum[c] / volume / (sigmaT * factor[c]))
+      : 0.f;
   }
 }
 
@@ -469,7 +471,7 @@ void ObjectRadiance::Estimate(const ParallelFor& parallelFor)
         float* out = &this->Radiance[3 * t];
         if (this->MediumRef)
         {
-          this->ToRadiance(t, r, sum, out);
+          this->ToRadiance(t, r, sum, out, false);
         }
         else
         {

@@ -114,20 +114,27 @@ public:
 
   /**
    * Strongly forward-scattering media: the phase function's peak beyond an
-   * asymmetry of ResolvedG is set apart (SplitForwardPeak in
-   * brume/Sampling.h). The per-view textures and the directional
-   * representation then hold the light in-scattered by the remainder,
-   * HG(GetPeak().G), which rests on many particles where HG(g) rests on the
-   * few travelling almost straight at the eye, and the peak is drawn as
-   * transport: a renderer multiplies the medium's sigma_t by
-   * GetExtinctionFactor() (1 - Forward albedo per channel), and the source
-   * radiance (GetOutputRadiance(), or GetDirectional() evaluated with
-   * GetPeak().G) is per unit of that reduced extinction. Without a split
-   * (g <= ResolvedG, surfaces) the factor is 1.
+   * asymmetry the representation resolves is set apart (SplitForwardPeak in
+   * brume/Sampling.h): ResolvedG for the per-view textures (directional
+   * false), DirectionalResolvedG for the directional representation (true),
+   * whose three bands lose more of a peaked phase function than the delta
+   * approximation does. The texture then holds the light in-scattered by
+   * the remainder, HG(GetPeak(directional).G), which rests on many particles
+   * where HG(g) rests on the few travelling almost straight at the eye, and
+   * the peak is drawn as transport: a renderer multiplies the medium's
+   * sigma_t by GetExtinctionFactor(directional) (1 - Forward albedo per
+   * channel), and the source radiance (GetOutputRadiance(), or
+   * GetDirectional() evaluated with that G) is per unit of that reduced
+   * extinction. Without a split (g at most the resolved asymmetry,
+   * surfaces) the factor is 1.
    */
   static constexpr float ResolvedG = 0.7f;
-  const ForwardPeak& GetPeak() const { return this->Peak; }
-  const Vec3& GetExtinctionFactor() const { return this->ExtinctionFactor; }
+  static constexpr float DirectionalResolvedG = 0.6f;
+  const ForwardPeak& GetPeak(bool directional) const { return this->Peaks[directional ? 1 : 0]; }
+  const Vec3& GetExtinctionFactor(bool directional) const
+  {
+    return this->ExtinctionFactors[directional ? 1 : 0];
+  }
 
   /**
    * Deterministic single scattering (brume/DirectLight.h), for media and
@@ -205,8 +212,9 @@ public:
    * received, normalized as the source radiance, so that the source radiance
    * toward any direction w_o is sum_lm g^l c_lm Y_lm(w_o) (see
    * brume/SphericalHarmonics.h) without reconstructing again; past
-   * ResolvedG, g is GetPeak().G and S is per unit of the reduced extinction. Regions are
-   * those of the per-view textures. Kept up to date by Add().
+   * DirectionalResolvedG, g is GetPeak(true).G and S is per unit of the
+   * reduced extinction. Regions are those of the per-view textures. Kept up
+   * to date by Add().
    */
   std::string BuildDirectional(int order, const ParallelFor& parallelFor);
   /// -1 before BuildDirectional().
@@ -269,8 +277,9 @@ private:
     const Locator& cellOfHit, const ParallelFor& parallelFor);
   void Finish(const Vec3& eye, double thresholdFlux, bool first, const ParallelFor& parallelFor);
   // The source radiance of a medium's region, per unit of the reduced
-  // extinction (GetExtinctionFactor()).
-  void ToRadiance(std::size_t texel, const Region& region, const double* sum, float* out) const;
+  // extinction (GetExtinctionFactor(directional)).
+  void ToRadiance(
+    std::size_t texel, const Region& region, const double* sum, float* out, bool directional) const;
   // Direct light: the output texel's world position, the sum of the
   // texture resampled there and the direct light toward the eye, and the
   // direct light projected on the directional representation's voxels.
@@ -295,8 +304,9 @@ private:
   bool ViewDependent = false;
   double CellVolume = 0.0; // media: one histogram cell's volume
   Vec3 MediumAlbedo;       // media: sigma_s / sigma_t
-  ForwardPeak Peak;        // media: the phase function's peak set apart
-  Vec3 ExtinctionFactor{ 1.f };
+  // Media: the phase function's peak set apart, per view and directional.
+  ForwardPeak Peaks[2];
+  Vec3 ExtinctionFactors[2] = { Vec3(1.f), Vec3(1.f) };
 
   // View-dependent objects keep their hits (44 bytes each), grouped by
   // ranges of histogram cells and in hit order within a range.
@@ -318,7 +328,7 @@ private:
   std::array<int, 3> NativeDims{ 0, 0, 0 };
   Box NativeBox;
   std::vector<float> NativeDensity; // the density's mean per native cell
-  double EmptyIntegral = 0.0;          // regions below hold no medium
+  double EmptyIntegral = 0.0;       // regions below hold no medium
   const DirectLight* Direct = nullptr;
   std::array<int, 3> DirectDims{ 0, 0, 0 };
   std::vector<float> Arrivals; // per output texel and light: irradiance RGB, direction
@@ -326,7 +336,7 @@ private:
   std::vector<float> DirectExtinction;
   Vec3 SurfaceNormal; // planar surfaces: the front side
   Vec3 Eye;
-  std::vector<Region> Regions;         // per texel, view independent
+  std::vector<Region> Regions; // per texel, view independent
   double ThresholdFlux = 0.0;
 
   std::vector<float> Radiance;

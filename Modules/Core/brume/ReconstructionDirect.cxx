@@ -268,8 +268,9 @@ void ObjectRadiance::CombineDirect(const ParallelFor& parallelFor)
   }
   // As the particles' light: the phase function's remainder, per unit of
   // the reduced extinction.
-  const HenyeyGreenstein phase(this->MediumRef ? this->Peak.G : 0.f);
-  const Vec3 scale = this->MediumAlbedo * (1.f - this->Peak.Forward) / this->ExtinctionFactor;
+  const HenyeyGreenstein phase(this->MediumRef ? this->Peaks[0].G : 0.f);
+  const Vec3 scale =
+    this->MediumAlbedo * (1.f - this->Peaks[0].Forward) / this->ExtinctionFactors[0];
   const std::size_t nx = this->Resolution[0], nxy = nx * this->Resolution[1];
   const std::size_t rows = static_cast<std::size_t>(dims[1]) * dims[2];
   parallelFor(0, rows,
@@ -354,7 +355,8 @@ void ObjectRadiance::AddDirectToDirectional(int order)
     return v;
   };
   // The remainder of the phase function, per unit of the reduced extinction.
-  const Vec3 scale = this->MediumAlbedo * (1.f - this->Peak.Forward) / this->ExtinctionFactor;
+  const Vec3 scale =
+    this->MediumAlbedo * (1.f - this->Peaks[1].Forward) / this->ExtinctionFactors[1];
   float y[ShCoefficients(MaxShOrder)];
   for (std::size_t t = 0; t < texels; ++t)
   {

@@ -43,7 +43,7 @@ std::string ObjectRadiance::BuildDirectional(int order, const ParallelFor& paral
         float y[ShCoefficients(MaxShOrder)];
         double v[3 * PerPass];
         // The light in-scattered by the phase function's remainder.
-        const double remainder = 1.0 - this->Peak.Forward;
+        const double remainder = 1.0 - this->Peaks[1].Forward;
         for (std::size_t k = this->RangeStart[begin]; k < this->RangeStart[end]; ++k)
         {
           const KeptHit& h = this->Kept[k];
@@ -70,7 +70,7 @@ std::string ObjectRadiance::BuildDirectional(int order, const ParallelFor& paral
           table.RegionSum(r.Lo, r.Hi, sum);
           for (int j = 0; j < kn; ++j)
           {
-            this->ToRadiance(t, r, sum + 3 * j, &this->Directional[(t * nk + k0 + j) * 3]);
+            this->ToRadiance(t, r, sum + 3 * j, &this->Directional[(t * nk + k0 + j) * 3], true);
           }
         }
       });
@@ -107,8 +107,8 @@ void ObjectRadiance::EvaluateDirectional(const Vec3& eye, std::vector<float>& ra
     for (int c = 0; c < 3; ++c)
     {
       radiance[3 * t + c] = std::max(0.f,
-        EvaluateHgFromSh(this->DirectionalOrder, this->Peak.G,
-          &this->Directional[t * nk * 3 + c], 3, toEye));
+        EvaluateHgFromSh(
+          this->DirectionalOrder, this->Peaks[1].G, &this->Directional[t * nk * 3 + c], 3, toEye));
     }
   }
 }
