@@ -336,6 +336,11 @@ bool PlyLooksComplete(const std::filesystem::path& file, std::string& error)
         error = "'" + file.string() + "': bad element count in '" + line + "'";
         return false;
       }
+      if (std::any_of(elements.begin(), elements.end(),
+            [&](const PlyElement& e) { return e.Name == rest[0]; }))
+      {
+        return malformed("a second element of that name");
+      }
       allRows += rows;
       inElement = true;
       elements.push_back({ rest[0], rows, {} });
@@ -345,6 +350,13 @@ bool PlyLooksComplete(const std::filesystem::path& file, std::string& error)
       if (!inElement)
       {
         return malformed("a property before any element");
+      }
+      const std::string& name = rest.empty() ? line : rest.back();
+      const auto& properties = elements.back().Properties;
+      if (std::any_of(properties.begin(), properties.end(),
+            [&](const PlyProperty& p) { return p.Name == name; }))
+      {
+        return malformed("a second property of that name in its element");
       }
       if (!rest.empty() && rest[0] == "list")
       {

@@ -16,6 +16,7 @@
 # bad-entry.obj (a fifth: a vertex that is no number, a face index 0),
 # short-row.ply (a sixth: an ASCII row with fewer values than properties),
 # control-char.ply (a seventh: end_header followed by a form feed and a NUL),
+# twice.ply (an eighth: two vertex and two face elements),
 # the two
 # density volumes (a NaN and a negative voxel) and points.vtp (no cells).
 # Four cases were added by hand: mesh-truncated-binary-ply, mesh-absurd-count-ply,
@@ -77,7 +78,8 @@ for name, file in [("mesh-truncated-stl", "truncated.stl"), ("mesh-absurd-count-
                    ("mesh-no-indices-ply", "no-indices.ply"),
                    ("mesh-bad-entry-obj", "bad-entry.obj"),
                    ("mesh-short-row-ply", "short-row.ply"),
-                   ("mesh-control-char-ply", "control-char.ply")]:
+                   ("mesh-control-char-ply", "control-char.ply"),
+                   ("mesh-twice-ply", "twice.ply")]:
     case(name, lambda s, file=file: (delp(["surfaces", 0, "quad"])(s), setp(["surfaces", 0, "file"], file)(s)))
 case("mesh-points-only-vtp", lambda s: (delp(["surfaces", 0, "quad"])(s), setp(["surfaces", 0, "file"], "points.vtp")(s)))
 case("material-unknown-type", setp(["surfaces", 0, "material", "type"], "velvet"))
