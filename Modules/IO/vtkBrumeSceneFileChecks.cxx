@@ -211,10 +211,9 @@ bool PlyBodyConsistent(std::istream& in, const std::filesystem::path& file,
       }
       for (const PlyProperty& property : e.Properties)
       {
-        auto where = [&]
-        {
-          return " (element '" + e.Name + "', row " + Count(row) + ", property '" +
-            property.Name + "')";
+        auto where = [&] {
+          return " (element '" + e.Name + "', row " + Count(row) + ", property '" + property.Name +
+            "')";
         };
         double count = 1;
         if (property.List &&
@@ -296,10 +295,16 @@ bool PlyLooksComplete(const std::filesystem::path& file, std::string& error)
     }
     // Words are split at spaces and tabs only, as VTK's parser does: any
     // other control character would make the two read different headers.
-    if (std::any_of(line.begin(), line.end(), [](char c)
-          { return c != '\t' && (static_cast<unsigned char>(c) < 32 || c == 127); }))
+    // Names and keywords are ASCII (comments may hold any text).
+    const bool comment = line.rfind("comment", 0) == 0 || line.rfind("obj_info", 0) == 0;
+    if (std::any_of(line.begin(), line.end(),
+          [&](char c)
+          {
+            const auto b = static_cast<unsigned char>(c);
+            return c != '\t' && (b < 32 || b == 127 || (b > 127 && !comment));
+          }))
     {
-      return malformed("a control character in the header");
+      return malformed("a control character, or a non-ASCII byte outside a comment");
     }
     // The line's first word, then the others.
     std::istringstream words(line);
@@ -313,11 +318,9 @@ bool PlyLooksComplete(const std::filesystem::path& file, std::string& error)
     if (word == "format")
     {
       if (rest.size() != 2 ||
-        (rest[0] != "ascii" && rest[0] != "binary_little_endian" &&
-          rest[0] != "binary_big_endian"))
+        (rest[0] != "ascii" && rest[0] != "binary_little_endian" && rest[0] != "binary_big_endian"))
       {
-        return malformed(
-          "expected 'format ascii|binary_little_endian|binary_big_endian VERSION'");
+        return malformed("expected 'format ascii|binary_little_endian|binary_big_endian VERSION'");
       }
       format = rest[0];
     }
@@ -340,6 +343,10 @@ bool PlyLooksComplete(const std::filesystem::path& file, std::string& error)
             [&](const PlyElement& e) { return e.Name == rest[0]; }))
       {
         return malformed("a second element of that name");
+      }
+      if (!elements.empty() && elements.back().Properties.empty())
+      {
+        return malformed("the element before has no property");
       }
       allRows += rows;
       inElement = true;
@@ -383,6 +390,10 @@ bool PlyLooksComplete(const std::filesystem::path& file, std::string& error)
     }
     else if (word == "end_header")
     {
+      if (!elements.empty() && elements.back().Properties.empty())
+      {
+        return malformed("the element before has no property");
+      }
       minimumBytes += rows * rowBytes;
       headerEnded = true;
       break;
@@ -456,7 +467,6 @@ bool PlyLooksComplete(const std::filesystem::path& file, std::string& error)
   return PlyBodyConsistent(in, file, format, elements, error);
 }
 
-
 // VTK's OBJ reader indexes its points, texture coordinates and normals with
 // the face, line and point entries it reads, unchecked. Every entry must be
 // 'v', 'v/t', 'v//n' or 'v/t/n' with each index nonzero and naming one
@@ -527,7 +537,8 @@ bool ObjIndicesInRange(const std::filesystem::path& file, std::string& error)
           (b != std::string::npos && !n.empty() && entry.find('/', b + 1) == std::string::npos);
         if (!shape || !index(v, 0, false) || !index(t, 1, true) || !index(n, 2, true))
         {
-          return fail("'" + entry + "' is not v, v/t, v//n or v/t/n indexing what is defined above it");
+          return fail(
+            "'" + entry + "' is not v, v/t, v//n or v/t/n indexing what is defined above it");
         }
       }
     }
@@ -565,13 +576,15 @@ bool StlLooksComplete(const std::filesystem::path& file, std::string& error)
   }
   if (size < 84)
   {
-    error = "'" + file.string() + "' is truncated: a binary STL file has an 84-byte header, the file holds " + Count(size) + " bytes";
+    error = "'" + file.string() +
+      "' is truncated: a binary STL file has an 84-byte header, the file holds " + Count(size) +
+      " bytes";
     return false;
   }
   const auto* b = reinterpret_cast<const unsigned char*>(head + 80);
-  const double triangles = static_cast<double>(static_cast<std::uint32_t>(b[0]) |
-    static_cast<std::uint32_t>(b[1]) << 8 | static_cast<std::uint32_t>(b[2]) << 16 |
-    static_cast<std::uint32_t>(b[3]) << 24);
+  const double triangles =
+    static_cast<double>(static_cast<std::uint32_t>(b[0]) | static_cast<std::uint32_t>(b[1]) << 8 |
+      static_cast<std::uint32_t>(b[2]) << 16 | static_cast<std::uint32_t>(b[3]) << 24);
   const double needed = 84.0 + 50.0 * triangles;
   if (size < needed)
   {
@@ -587,8 +600,8 @@ bool StlLooksComplete(const std::filesystem::path& file, std::string& error)
 // process). After the reader has parsed the header (UpdateInformation), the
 // counts must fit in memory and, unless the data are compressed, in the file:
 // every coordinate and every cell takes at least one byte in any encoding.
-bool XmlCountsFit(vtkXMLUnstructuredDataReader* reader, const std::filesystem::path& file,
-  std::string& error)
+bool XmlCountsFit(
+  vtkXMLUnstructuredDataReader* reader, const std::filesystem::path& file, std::string& error)
 {
   if (!reader->GetExecutive()->UpdateInformation())
   {
@@ -606,13 +619,13 @@ bool XmlCountsFit(vtkXMLUnstructuredDataReader* reader, const std::filesystem::p
   in.read(head, sizeof(head));
   const std::string start(head, static_cast<std::size_t>(in.gcount()));
   const auto root = start.find("<VTKFile");
-  const bool compressed = root != std::string::npos &&
-    start.find("compressor=", root) < start.find('>', root);
+  const bool compressed =
+    root != std::string::npos && start.find("compressor=", root) < start.find('>', root);
   // In memory: float coordinates, and per cell an offset and one index.
   const double bytes = 12.0 * points + 16.0 * cells;
   const double memory = vtkBrumeSceneFileChecks::UsableMemory();
-  const std::string announced = "'" + file.string() + "' announces " + Count(points) +
-    " points and " + Count(cells) + " cells";
+  const std::string announced =
+    "'" + file.string() + "' announces " + Count(points) + " points and " + Count(cells) + " cells";
   if (points < 0 || cells < 0)
   {
     error = announced + ": counts cannot be negative";

@@ -17,6 +17,9 @@
 # short-row.ply (a sixth: an ASCII row with fewer values than properties),
 # control-char.ply (a seventh: end_header followed by a form feed and a NUL),
 # twice.ply (an eighth: two vertex and two face elements),
+# non-ascii.ply (a ninth: a byte 0xaf in an element's name, which left VTK an
+# element without properties), no-property.ply (such an element, by hand),
+# face-without-indices.ply (by hand: faces whose list is not vertex_indices),
 # the two
 # density volumes (a NaN and a negative voxel) and points.vtp (no cells).
 # Four cases were added by hand: mesh-truncated-binary-ply, mesh-absurd-count-ply,
@@ -79,7 +82,10 @@ for name, file in [("mesh-truncated-stl", "truncated.stl"), ("mesh-absurd-count-
                    ("mesh-bad-entry-obj", "bad-entry.obj"),
                    ("mesh-short-row-ply", "short-row.ply"),
                    ("mesh-control-char-ply", "control-char.ply"),
-                   ("mesh-twice-ply", "twice.ply")]:
+                   ("mesh-twice-ply", "twice.ply"),
+                   ("mesh-non-ascii-ply", "non-ascii.ply"),
+                   ("mesh-no-property-ply", "no-property.ply"),
+                   ("mesh-face-without-indices-ply", "face-without-indices.ply")]:
     case(name, lambda s, file=file: (delp(["surfaces", 0, "quad"])(s), setp(["surfaces", 0, "file"], file)(s)))
 case("mesh-points-only-vtp", lambda s: (delp(["surfaces", 0, "quad"])(s), setp(["surfaces", 0, "file"], "points.vtp")(s)))
 case("material-unknown-type", setp(["surfaces", 0, "material", "type"], "velvet"))

@@ -22,9 +22,9 @@
 #include "vtkNew.h"
 #include "vtkOBJWriter.h"
 #include "vtkPLYWriter.h"
-#include "vtkPointData.h"
 #include "vtkPartitionedDataSet.h"
 #include "vtkPartitionedDataSetCollection.h"
+#include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSTLWriter.h"
@@ -204,8 +204,7 @@ int OpenVDB(const std::string& dir, const std::string& shared)
   // widened by one voxel (i 2..9, j -3..4, k 0..5; 0.5 wide, moved by (1, 2, 3)).
   {
     const std::string scenePath = dir + "/vdb-without-box.json";
-    std::ofstream(scenePath)
-      << R"({ "brume_scene": 1,
+    std::ofstream(scenePath) << R"({ "brume_scene": 1,
   "surfaces": [ { "name": "floor", "quad": [[0, 0, 0], [0, 0, 8], [8, 0, 8], [8, 0, 0]] } ],
   "media": [ { "name": "smoke", "sigma_a": [0.1, 0.1, 0.1], "sigma_s": [1, 1, 1],
                "density": { "vdb": "two-grids.vdb", "grid": "density" } } ],
@@ -217,7 +216,8 @@ int OpenVDB(const std::string& dir, const std::string& shared)
     if (read)
     {
       double b[6];
-      vtkImageData::SafeDownCast(sceneReader->GetOutput()->GetPartitionedDataSet(1)->GetPartition(0))
+      vtkImageData::SafeDownCast(
+        sceneReader->GetOutput()->GetPartitionedDataSet(1)->GetPartition(0))
         ->GetBounds(b);
       const double expected[6] = { 1.5, 6.0, 0.0, 4.5, 2.5, 6.0 };
       bool same = true;
@@ -344,9 +344,15 @@ int Meshes(const std::string& dir)
   vtuZlib->SetCompressorTypeToZLib();
   write(vtuZlib, grid, "quad-zlib.vtu");
 
-  for (const char* mesh : { "quad.obj", "quad-ascii.ply", "quad-binary.ply", "quad-ascii.stl",
-         "quad-binary.stl", "quad-ascii.vtp", "quad-raw.vtp", "quad-zlib.vtp", "quad-ascii.vtu",
-         "quad-zlib.vtu" })
+  // A header comment in UTF-8 (names and keywords must be ASCII, comments not).
+  std::ofstream(dir + "/quad-comment.ply")
+    << "ply\nformat ascii 1.0\ncomment cr\xc3\xa9\xc3\xa9 par Brume\nelement vertex 4\n"
+       "property float x\nproperty float y\nproperty float z\nelement face 2\n"
+       "property list uchar int vertex_indices\nend_header\n"
+       "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n";
+  for (const char* mesh : { "quad.obj", "quad-ascii.ply", "quad-binary.ply", "quad-comment.ply",
+         "quad-ascii.stl", "quad-binary.stl", "quad-ascii.vtp", "quad-raw.vtp", "quad-zlib.vtp",
+         "quad-ascii.vtu", "quad-zlib.vtu" })
   {
     const std::string scene = dir + "/" + mesh + ".json";
     std::ofstream(scene) << MeshScene(mesh);
@@ -354,7 +360,8 @@ int Meshes(const std::string& dir)
     reader->SetFileName(scene.c_str());
     const bool ok = reader->GetExecutive()->Update() == 1;
     Check(ok, std::string("a scene naming ") + mesh + " reads");
-    auto* collection = vtkPartitionedDataSetCollection::SafeDownCast(reader->GetOutputDataObject(0));
+    auto* collection =
+      vtkPartitionedDataSetCollection::SafeDownCast(reader->GetOutputDataObject(0));
     vtkPolyData* surface = nullptr;
     if (ok && collection && collection->GetNumberOfPartitionedDataSets() > 0 &&
       collection->GetPartitionedDataSet(0)->GetNumberOfPartitions() > 0)
@@ -392,6 +399,7 @@ int TestSceneFiles(int argc, char* argv[])
   {
     return Meshes(argv[2]);
   }
-  std::cerr << "usage: TestSceneFiles roundtrip DIR SCENE.json | openvdb DIR [SHARED_VDB_DIR] | meshes DIR\n";
+  std::cerr << "usage: TestSceneFiles roundtrip DIR SCENE.json | openvdb DIR [SHARED_VDB_DIR] | "
+               "meshes DIR\n";
   return EXIT_FAILURE;
 }
