@@ -1,6 +1,10 @@
 # Runs COMMAND (a list) and fails unless it exits with EXPECTED, its stderr
 # holds every string of EXPECT_ERROR and none of REFUSE_ERROR, and its
-# stdout every string of EXPECT_OUTPUT (lists, optional).
+# stdout every string of EXPECT_OUTPUT (lists, optional); REFUSE_FILE, if
+# given, must not exist afterwards (no partial output).
+if (DEFINED REFUSE_FILE)
+  file(REMOVE "${REFUSE_FILE}")
+endif ()
 execute_process(COMMAND ${COMMAND} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if (NOT "${rc}" STREQUAL "${EXPECTED}")
   message(FATAL_ERROR "expected exit code ${EXPECTED}, got '${rc}'\nstdout: ${out}\nstderr: ${err}")
@@ -26,3 +30,6 @@ foreach (expected IN LISTS EXPECT_OUTPUT)
     message(FATAL_ERROR "missing '${expected}' on stdout\nstdout: ${out}")
   endif ()
 endforeach ()
+if (DEFINED REFUSE_FILE AND EXISTS "${REFUSE_FILE}")
+  message(FATAL_ERROR "the failing command left ${REFUSE_FILE}")
+endif ()

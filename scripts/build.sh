@@ -15,8 +15,9 @@ packages=(
   libopenmpi-dev libdouble-conversion-dev libutfcpp-dev liblz4-dev liblzma-dev
   libexpat1-dev libxml2-dev libfreetype-dev libpng-dev libjpeg-dev libtiff-dev
   zlib1g-dev libeigen3-dev
-  # Ray casting, volumes, OpenGL with no X server (EGL).
+  # Ray casting, volumes, OpenGL with no X server (EGL or OSMesa).
   libembree-dev libopenvdb-dev libboost-iostreams-dev libegl-dev libegl-mesa0
+  libosmesa6-dev
   # The brume command line's parser and the counter-based random numbers
   # (both header-only).
   libcli11-dev librandom123-dev

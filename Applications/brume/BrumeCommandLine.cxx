@@ -462,6 +462,15 @@ int ParseCommandLine(
   AddValidate(app, line.Slab);
   AddBench(app, line.Bench);
   AddChart(app, line.Chart);
+  for (const char* name : { "render", "view", "bench", "chart" })
+  {
+    app.get_subcommand(name)
+      ->add_option("--window", line.Window,
+        "the render window: x, egl, osmesa or auto (default:\n"
+        "BRUME_RENDER_WINDOW, else X with a DISPLAY, else EGL)")
+      ->transform(OneOf({ "auto", "x", "egl", "osmesa" }))
+      ->type_name("KIND");
+  }
 
   // Help and version as the first argument, and a command's help wherever
   // -h or --help is among its arguments (whatever else they hold).

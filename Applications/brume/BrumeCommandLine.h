@@ -9,6 +9,7 @@
 #include "BrumeView.h"
 
 #include <iostream>
+#include <string>
 
 struct BrumeCommandLine
 {
@@ -23,6 +24,7 @@ struct BrumeCommandLine
     Chart
   };
   Command Run = Command::None;
+  std::string Window; // --window: the render window's kind, "" for BRUME_RENDER_WINDOW
   RenderOptions Render;
   ViewOptions View;
   SlabOptions Slab;

@@ -5,6 +5,7 @@
 #include "BrumeOutputWindow.h"
 
 #include "vtkBrumeProcesses.h"
+#include "vtkBrumeRenderWindowSelection.h"
 #include "vtkBrumeSMP.h"
 #include "vtkVersion.h"
 
@@ -21,6 +22,13 @@ int main(int argc, char* argv[])
   }
   vtkBrumeSMP::UseAllCores();
   BrumeOutputWindow::Install();
+  // --window chooses the render window before anything renders; without it
+  // the first render chooses (BRUME_RENDER_WINDOW, else X or EGL).
+  if (!line.Window.empty() && !vtkBrumeRenderWindowSelection::Install(line.Window.c_str()))
+  {
+    std::cerr << "brume: " << vtkBrumeRenderWindowSelection::GetLastError() << ".\n";
+    return 1;
+  }
   using Command = BrumeCommandLine::Command;
   switch (line.Run)
   {

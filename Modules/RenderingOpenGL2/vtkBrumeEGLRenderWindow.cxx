@@ -2,7 +2,6 @@
 #include "vtkBrumeEGLRenderWindow.h"
 
 #include "vtkObjectFactory.h"
-#include "vtkOpenGLState.h"
 #include "vtk_glew.h"
 
 // EGL without X11 types: this window never talks to an X server.
@@ -144,6 +143,7 @@ EGLState& SharedDisplay()
         display.Handle = EGL_NO_DISPLAY;
         return;
       }
+      vtkBrumeHeadlessRenderWindow::WatchForExit(); // after Mesa's own exit handler
       if (!eglBindAPI(EGL_OPENGL_API))
       {
         display.Error = "this EGL does not offer desktop OpenGL";
@@ -173,8 +173,6 @@ struct vtkBrumeEGLRenderWindow::Internals
 vtkBrumeEGLRenderWindow::vtkBrumeEGLRenderWindow()
   : Impl(new Internals)
 {
-  this->SetOffScreenRendering(1);
-  this->OwnContext = 1;
 }
 
 vtkBrumeEGLRenderWindow::~vtkBrumeEGLRenderWindow()
@@ -193,13 +191,15 @@ std::string vtkBrumeEGLRenderWindow::GetAvailabilityError()
   return display.Error;
 }
 
-bool vtkBrumeEGLRenderWindow::EnsureContext()
+bool vtkBrumeEGLRenderWindow::HasContext()
+{
+  // After EGL's exit handler, no context is left to use.
+  return this->Impl->Context != EGL_NO_CONTEXT && !IsExiting();
+}
+
+bool vtkBrumeEGLRenderWindow::CreateContext()
 {
   Internals& impl = *this->Impl;
-  if (impl.Context != EGL_NO_CONTEXT)
-  {
-    return true;
-  }
   const EGLState& display = SharedDisplay();
   if (!display.Error.empty())
   {
@@ -221,120 +221,37 @@ bool vtkBrumeEGLRenderWindow::EnsureContext()
   {
     vtkErrorMacro(
       "Cannot render through EGL: " << EGLError("no OpenGL 3.2 core context could be made") << ".");
-    this->Finalize();
+    this->DestroyContext();
     return false;
   }
   return true;
 }
 
-void vtkBrumeEGLRenderWindow::Initialize()
-{
-  if (!this->EnsureContext())
-  {
-    return;
-  }
-  this->MakeCurrent();
-  if (!this->Initialized)
-  {
-    this->OpenGLInit();
-  }
-}
-
-void vtkBrumeEGLRenderWindow::Render()
-{
-  if (!this->Initialized)
-  {
-    this->Initialize();
-    if (!this->Initialized)
-    {
-      return; // the error is reported
-    }
-  }
-  this->MakeCurrent();
-  this->Superclass::Render();
-}
-
-void vtkBrumeEGLRenderWindow::OpenGLInitContext()
-{
-  this->ContextCreationTime.Modified();
-  if (this->Initialized)
-  {
-    return;
-  }
-  // GLEW loads every OpenGL entry point, then looks for a GLX display:
-  // GLEW_ERROR_GLX_VERSION_11_ONLY (3) and GLEW_ERROR_NO_GLX_DISPLAY (4)
-  // say only that there is no GLX, which this window does not use.
-  const GLenum result = glewInit();
-  if (result != GLEW_OK && result != GLEW_ERROR_GLX_VERSION_11_ONLY &&
-    result != GLEW_ERROR_NO_GLX_DISPLAY)
-  {
-    vtkErrorMacro("GLEW could not be initialized on the EGL context: "
-      << reinterpret_cast<const char*>(glewGetErrorString(result)));
-    return;
-  }
-  GLint major = 0, minor = 0;
-  glGetIntegerv(GL_MAJOR_VERSION, &major);
-  glGetIntegerv(GL_MINOR_VERSION, &minor);
-  if (major < 3 || (major == 3 && minor < 2))
-  {
-    vtkErrorMacro("The EGL context offers OpenGL " << major << "." << minor
-                                                   << ", and Brume needs 3.2 or later.");
-    return;
-  }
-  this->GlewInitValid = true;
-  this->Initialized = true;
-  GLfloat range[2] = { 1.f, 1.f };
-  glGetFloatv(GL_ALIASED_LINE_WIDTH_RANGE, range);
-  this->MaximumHardwareLineWidth = glGetError() == GL_NO_ERROR ? range[1] : 1.f;
-}
-
-void vtkBrumeEGLRenderWindow::MakeCurrent()
+bool vtkBrumeEGLRenderWindow::MakeContextCurrent()
 {
   const Internals& impl = *this->Impl;
-  if (impl.Context == EGL_NO_CONTEXT)
-  {
-    return;
-  }
   eglBindAPI(EGL_OPENGL_API); // per thread: this thread may be on another API
-  if (eglGetCurrentContext() != impl.Context)
+  if (eglGetCurrentContext() != impl.Context &&
+    !eglMakeCurrent(SharedDisplay().Handle, impl.Surface, impl.Surface, impl.Context))
   {
-    eglMakeCurrent(SharedDisplay().Handle, impl.Surface, impl.Surface, impl.Context);
-  }
-}
-
-void vtkBrumeEGLRenderWindow::ReleaseCurrent()
-{
-  if (this->Impl->Context != EGL_NO_CONTEXT && this->IsCurrent())
-  {
-    eglMakeCurrent(SharedDisplay().Handle, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-  }
-}
-
-bool vtkBrumeEGLRenderWindow::IsCurrent()
-{
-  if (this->Impl->Context == EGL_NO_CONTEXT)
-  {
+    vtkErrorMacro("Cannot make the EGL context current: "
+      << EGLError("eglMakeCurrent failed; is another API's context (OSMesa, GLX) current on "
+                  "this thread?")
+      << ".");
     return false;
   }
+  return true;
+}
+
+void vtkBrumeEGLRenderWindow::ReleaseContext()
+{
+  eglMakeCurrent(SharedDisplay().Handle, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+}
+
+bool vtkBrumeEGLRenderWindow::IsContextCurrent()
+{
   eglBindAPI(EGL_OPENGL_API);
   return eglGetCurrentContext() == this->Impl->Context;
-}
-
-int vtkBrumeEGLRenderWindow::SupportsOpenGL()
-{
-  return IsAvailable() ? 1 : 0;
-}
-
-vtkTypeBool vtkBrumeEGLRenderWindow::IsDirect()
-{
-  return 1;
-}
-
-void vtkBrumeEGLRenderWindow::Frame()
-{
-  // Off screen: VTK's framebuffers hold the image; nothing to swap.
-  this->MakeCurrent();
-  this->Superclass::Frame();
 }
 
 void* vtkBrumeEGLRenderWindow::GetGenericContext()
@@ -342,20 +259,17 @@ void* vtkBrumeEGLRenderWindow::GetGenericContext()
   return this->Impl->Context;
 }
 
-void vtkBrumeEGLRenderWindow::Finalize()
+void vtkBrumeEGLRenderWindow::DestroyContext()
 {
   Internals& impl = *this->Impl;
-  if (impl.Context == EGL_NO_CONTEXT && impl.Surface == EGL_NO_SURFACE)
+  if ((impl.Context == EGL_NO_CONTEXT && impl.Surface == EGL_NO_SURFACE) || IsExiting())
   {
+    impl.Context = EGL_NO_CONTEXT; // EGL is gone with the process
+    impl.Surface = EGL_NO_SURFACE;
     return;
   }
-  if (impl.Context != EGL_NO_CONTEXT)
-  {
-    this->MakeCurrent();
-    this->ReleaseGraphicsResources(this);
-  }
   const EGLDisplay display = SharedDisplay().Handle;
-  if (eglGetCurrentContext() == impl.Context)
+  if (impl.Context != EGL_NO_CONTEXT && eglGetCurrentContext() == impl.Context)
   {
     eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
   }
@@ -369,7 +283,6 @@ void vtkBrumeEGLRenderWindow::Finalize()
   }
   impl.Context = EGL_NO_CONTEXT;
   impl.Surface = EGL_NO_SURFACE;
-  this->Initialized = false;
 }
 
 void vtkBrumeEGLRenderWindow::PrintSelf(ostream& os, vtkIndent indent)

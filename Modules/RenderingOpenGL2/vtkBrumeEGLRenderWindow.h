@@ -7,10 +7,8 @@
  * 3.2 core context through EGL instead (Mesa's surfaceless platform, or
  * the device platform where EGL is NVIDIA's), with a 1x1 pbuffer as its
  * default framebuffer, and renders off screen into VTK's own framebuffers
- * at any size: the same pixels as a window on X with the same driver.
- * VTK's GLEW looks for a GLX display after loading every OpenGL entry
- * point; that last step's failure is accepted here (OpenGL 3.2 is still
- * required).
+ * at any size: the same pixels as a window on X with the same driver
+ * (vtkBrumeHeadlessRenderWindow).
  *
  * Programs get it through the object factory: vtkBrumeRenderWindowSelection
  * makes vtkRenderWindow::New() return it when there is no DISPLAY (or when
@@ -22,17 +20,17 @@
 #ifndef vtkBrumeEGLRenderWindow_h
 #define vtkBrumeEGLRenderWindow_h
 
+#include "vtkBrumeHeadlessRenderWindow.h"
 #include "vtkBrumeRenderingOpenGL2Module.h" // For export macro
-#include "vtkGenericOpenGLRenderWindow.h"
 
 #include <memory> // For the EGL state
-#include <string> // For IsAvailable
+#include <string> // For GetAvailabilityError
 
-class VTKBRUMERENDERINGOPENGL2_EXPORT vtkBrumeEGLRenderWindow : public vtkGenericOpenGLRenderWindow
+class VTKBRUMERENDERINGOPENGL2_EXPORT vtkBrumeEGLRenderWindow : public vtkBrumeHeadlessRenderWindow
 {
 public:
   static vtkBrumeEGLRenderWindow* New();
-  vtkTypeMacro(vtkBrumeEGLRenderWindow, vtkGenericOpenGLRenderWindow);
+  vtkTypeMacro(vtkBrumeEGLRenderWindow, vtkBrumeHeadlessRenderWindow);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   /**
@@ -42,29 +40,25 @@ public:
   static bool IsAvailable();
   static std::string GetAvailabilityError();
 
-  void Initialize() override;
-  void Finalize() override;
-  void Render() override;
-  void MakeCurrent() override;
-  void ReleaseCurrent() override;
-  bool IsCurrent() override;
-  int SupportsOpenGL() override;
-  vtkTypeBool IsDirect() override;
-  void Frame() override;
   void* GetGenericContext() override;
 
 protected:
   vtkBrumeEGLRenderWindow();
   ~vtkBrumeEGLRenderWindow() override;
 
-  /// GLEW's GLX-only failures are accepted: the context is EGL's.
-  void OpenGLInitContext() override;
+  const char* GetContextAPI() override { return "EGL"; }
+  bool CanCreateContext() override { return IsAvailable(); }
+  bool HasContext() override;
+  bool CreateContext() override;
+  void DestroyContext() override;
+  bool MakeContextCurrent() override;
+  void ReleaseContext() override;
+  bool IsContextCurrent() override;
 
 private:
   vtkBrumeEGLRenderWindow(const vtkBrumeEGLRenderWindow&) = delete;
   void operator=(const vtkBrumeEGLRenderWindow&) = delete;
 
-  bool EnsureContext();
   struct Internals;
   std::unique_ptr<Internals> Impl;
 };

@@ -2,6 +2,7 @@
 #include "vtkBrumeRenderWindowSelection.h"
 
 #include "vtkBrumeEGLRenderWindow.h"
+#include "vtkBrumeOSMesaRenderWindow.h"
 #include "vtkGenericRenderWindowInteractor.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -20,35 +21,53 @@ vtkObject* NewEGLWindow()
   return vtkBrumeEGLRenderWindow::New();
 }
 
+vtkObject* NewOSMesaWindow()
+{
+  return vtkBrumeOSMesaRenderWindow::New();
+}
+
 vtkObject* NewInteractor()
 {
   return vtkGenericRenderWindowInteractor::New();
 }
 
-// Gives vtkRenderWindow::New() the EGL window.
-class EGLWindowFactory : public vtkObjectFactory
+// Gives vtkRenderWindow::New() a window with no window system.
+class HeadlessWindowFactory : public vtkObjectFactory
 {
 public:
-  static EGLWindowFactory* New()
+  static HeadlessWindowFactory* New()
   {
-    auto* factory = new EGLWindowFactory;
+    auto* factory = new HeadlessWindowFactory;
     factory->InitializeObjectBase();
     return factory;
   }
-  vtkTypeMacro(EGLWindowFactory, vtkObjectFactory);
+  vtkTypeMacro(HeadlessWindowFactory, vtkObjectFactory);
   const char* GetVTKSourceVersion() override { return VTK_SOURCE_VERSION; }
-  const char* GetDescription() override { return "Brume: render windows on EGL (no X server)"; }
-
-protected:
-  EGLWindowFactory()
+  const char* GetDescription() override
   {
-    this->RegisterOverride("vtkRenderWindow", "vtkBrumeEGLRenderWindow",
-      "an off-screen OpenGL window on EGL", 1, NewEGLWindow);
+    return "Brume: render windows with no window system (EGL or OSMesa)";
+  }
+
+  void Override(bool osmesa)
+  {
+    if (osmesa)
+    {
+      this->RegisterOverride("vtkRenderWindow", "vtkBrumeOSMesaRenderWindow",
+        "an off-screen OpenGL window on OSMesa", 1, NewOSMesaWindow);
+    }
+    else
+    {
+      this->RegisterOverride("vtkRenderWindow", "vtkBrumeEGLRenderWindow",
+        "an off-screen OpenGL window on EGL", 1, NewEGLWindow);
+    }
     // Windows that get an interactor (charts' context views) must not open
     // an X connection for it.
     this->RegisterOverride("vtkRenderWindowInteractor", "vtkGenericRenderWindowInteractor",
       "an interactor with no window system", 1, NewInteractor);
   }
+
+protected:
+  HeadlessWindowFactory() = default;
 };
 
 struct Selection
@@ -69,9 +88,9 @@ Selection& State()
 bool Choose(const std::string& requested, Selection& s)
 {
   std::string kind = requested.empty() ? "auto" : requested;
-  if (kind != "auto" && kind != "x" && kind != "egl")
+  if (kind != "auto" && kind != "x" && kind != "egl" && kind != "osmesa")
   {
-    s.Error = "BRUME_RENDER_WINDOW must be 'x', 'egl' or 'auto', not '" + kind + "'";
+    s.Error = "the render window must be 'x', 'egl', 'osmesa' or 'auto', not '" + kind + "'";
     return false;
   }
   if (kind == "auto")
@@ -84,17 +103,26 @@ bool Choose(const std::string& requested, Selection& s)
     s.Installed = "x"; // VTK's own window, as the factory has it
     return true;
   }
-  if (!vtkBrumeEGLRenderWindow::IsAvailable())
+  const bool osmesa = kind == "osmesa";
+  if (osmesa && !vtkBrumeOSMesaRenderWindow::IsAvailable())
   {
-    s.Error = "no X display and no EGL: " + vtkBrumeEGLRenderWindow::GetAvailabilityError();
+    s.Error = "OSMesa cannot render here: " + vtkBrumeOSMesaRenderWindow::GetAvailabilityError();
     return false;
   }
-  vtkNew<EGLWindowFactory> factory;
+  if (!osmesa && !vtkBrumeEGLRenderWindow::IsAvailable())
+  {
+    s.Error = requested == "egl"
+      ? "EGL cannot render here: " + vtkBrumeEGLRenderWindow::GetAvailabilityError()
+      : "no X display and no EGL: " + vtkBrumeEGLRenderWindow::GetAvailabilityError();
+    return false;
+  }
+  vtkNew<HeadlessWindowFactory> factory;
+  factory->Override(osmesa);
   vtkObjectFactory::RegisterFactory(factory);
   // VTK's X window must not come first.
   vtkObjectFactory::SetAllEnableFlags(0, "vtkRenderWindow", "vtkXOpenGLRenderWindow");
   vtkObjectFactory::SetAllEnableFlags(0, "vtkRenderWindowInteractor", "vtkXRenderWindowInteractor");
-  s.Installed = "egl";
+  s.Installed = kind;
   return true;
 }
 }

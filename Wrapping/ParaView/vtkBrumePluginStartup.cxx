@@ -1,0 +1,28 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// When ParaView loads the plugin, the process's render windows are chosen
+// as in every Brume program (vtkBrumeRenderWindowSelection): on a machine
+// with no X display, pvbatch and pvpython render through EGL (or OSMesa
+// with BRUME_RENDER_WINDOW=osmesa) instead of failing to open an X window.
+// ParaView 5.11 makes its batch render windows through
+// vtkRenderWindow::New(), after the script's LoadPlugin().
+#include "vtkBrumeRenderWindowSelection.h"
+
+#include "vtkOutputWindow.h"
+
+#include <string>
+
+namespace
+{
+struct ChooseRenderWindows
+{
+  ChooseRenderWindows()
+  {
+    if (!vtkBrumeRenderWindowSelection::Install())
+    {
+      vtkOutputWindow::GetInstance()->DisplayWarningText(
+        ("Brume: " + std::string(vtkBrumeRenderWindowSelection::GetLastError()) + ".\n").c_str());
+    }
+  }
+};
+const ChooseRenderWindows Choice;
+}
