@@ -4,7 +4,7 @@ vtkImageData, the three phases (particle tracing, reconstruction, slice
 rendering), a PNG.
 
     PYTHONPATH=build/lib/python3.11/site-packages \
-        xvfb-run -a python3 Examples/Python/obj_fog.py -o obj_fog.png
+        python3 Examples/Python/obj_fog.py -o obj_fog.png
 """
 import argparse
 import math

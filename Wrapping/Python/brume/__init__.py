@@ -31,7 +31,7 @@ from .vtkBrumeIO import *  # noqa: F401,F403
 from .vtkBrumeEvaluation import *  # noqa: F401,F403
 
 # Render windows on X when DISPLAY names a display, else on EGL (no X
-# server needed); BRUME_RENDER_WINDOW=x|egl|auto chooses.
+# server needed); BRUME_RENDER_WINDOW=x|egl|osmesa|auto chooses.
 if not vtkBrumeRenderWindowSelection.Install():  # noqa: F405
     import warnings
 
