@@ -6,9 +6,13 @@
 #include "vtkBrumeRadianceTextures.h"
 #include "vtkBrumeSceneConversion.h"
 #include "vtkCamera.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkIntArray.h"
 #include "vtkMultiProcessController.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPartitionedDataSetCollection.h"
 #include "vtkPolyData.h"
@@ -69,7 +73,8 @@ int vtkBrumeRadianceReconstruction::RequestData(
   this->LastReductionSeconds = 0.0;
   const bool planned = this->Plan(request);
   if (!planned ||
-    !this->Textures->SetDirectional(this->DirectionalRadiance, this->DirectionalOrder, *this->WorkDone))
+    !this->Textures->SetDirectional(
+      this->DirectionalRadiance, this->DirectionalOrder, *this->WorkDone))
   {
     if (planned)
     {
@@ -90,6 +95,17 @@ int vtkBrumeRadianceReconstruction::RequestData(
   else
   {
     this->Textures->Emit(output);
+    // Where the textures radiate toward, and whether any depends on it:
+    // what a renderer that follows its camera compares with.
+    vtkNew<vtkDoubleArray> eye;
+    eye->SetName("BrumeEyePosition");
+    eye->SetNumberOfComponents(3);
+    eye->InsertNextTuple3(request.Eye.x, request.Eye.y, request.Eye.z);
+    output->GetFieldData()->AddArray(eye);
+    vtkNew<vtkIntArray> viewDependent;
+    viewDependent->SetName("BrumeViewDependentObjects");
+    viewDependent->InsertNextValue(this->Textures->NumberOfViewDependentOutputs());
+    output->GetFieldData()->AddArray(viewDependent);
   }
   this->UpdateProgress(1.0);
   return 1;
@@ -197,8 +213,8 @@ bool vtkBrumeRadianceReconstruction::Plan(const vtkBrumeReconstructionRequest& r
   // Rebuild everything when the inputs or the settings changed; add the
   // hits when they continue the run the textures hold; otherwise only the
   // view-dependent textures follow the viewpoint.
-  const vtkBrumeReconstructionSettings settings{ this->RadiosityThreshold,
-    this->SurfaceResolution, this->MediumResolution, this->HistogramRefinement,
+  const vtkBrumeReconstructionSettings settings{ this->RadiosityThreshold, this->SurfaceResolution,
+    this->MediumResolution, this->HistogramRefinement,
     this->DirectLighting ? this->DirectLightResolution : 0 };
   vtkBrumeRadianceTextures* textures = this->Textures.get();
   const auto& run = request.Run;

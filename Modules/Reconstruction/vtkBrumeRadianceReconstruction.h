@@ -34,7 +34,12 @@
  *   over each voxel's region (vtkBrumeRadianceConversion has the details).
  *
  * Every partition's field data holds `BrumeObjectKind` ("surface" or
- * "medium").
+ * "medium"). The collection's field data holds `BrumeEyePosition` (the
+ * viewpoint the textures radiate toward, double[3]) and
+ * `BrumeViewDependentObjects` (how many textures depend on it: glossy
+ * surfaces, anisotropic media held per view); a renderer that follows its
+ * camera updates the filter when the two positions differ and that count
+ * is not 0 (ParaView's "Brume Radiance" representation does).
  *
  * Surfaces are parameterized by their plane when planar, else by their
  * texture coordinates, else by an automatic atlas of one chart per triangle

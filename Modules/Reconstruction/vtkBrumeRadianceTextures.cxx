@@ -347,8 +347,8 @@ bool vtkBrumeRadianceTextures::CheckHits(
       hits, groups.Index.data() + groups.Offset[o], groups.Offset[o + 1] - groups.Offset[o]);
     if (!problem.empty())
     {
-      vtkErrorWithObjectMacro(this->Filter,
-        "Cannot reconstruct '" << this->Sources[o].Name << "': " << problem << ".");
+      vtkErrorWithObjectMacro(
+        this->Filter, "Cannot reconstruct '" << this->Sources[o].Name << "': " << problem << ".");
       hitsOk = false;
     }
   }
@@ -423,10 +423,10 @@ bool vtkBrumeRadianceTextures::Add(
     brume::GroupHitsByObject(request.Hits, this->Scene.NumberOfObjects(), groups);
   for (std::size_t o = 0; o < this->Objects.size() && groupError.empty(); ++o)
   {
-    const std::string error = this->Objects[o]->Add(request.Hits,
-      groups.Index.data() + groups.Offset[o], groups.Offset[o + 1] - groups.Offset[o],
-      this->Particles / request.Run.Particles, this->ObjectEye[o], request.ThresholdFlux,
-      parallelFor);
+    const std::string error =
+      this->Objects[o]->Add(request.Hits, groups.Index.data() + groups.Offset[o],
+        groups.Offset[o + 1] - groups.Offset[o], this->Particles / request.Run.Particles,
+        this->ObjectEye[o], request.ThresholdFlux, parallelFor);
     if (!error.empty())
     {
       vtkErrorWithObjectMacro(this->Filter,
@@ -485,8 +485,8 @@ bool vtkBrumeRadianceTextures::SetDirectional(
   return true;
 }
 
-void vtkBrumeRadianceTextures::FollowView(const vtkBrumeReconstructionRequest& request,
-  bool incremental, vtkBrumeReconstructionWork& work)
+void vtkBrumeRadianceTextures::FollowView(
+  const vtkBrumeReconstructionRequest& request, bool incremental, vtkBrumeReconstructionWork& work)
 {
   // A new viewpoint: only view-dependent textures change.
   const brume::ParallelFor parallelFor = vtkBrumeSMP::ParallelFor();
@@ -536,6 +536,16 @@ void vtkBrumeRadianceTextures::TakeReduction(vtkTypeInt64& bytes, double& second
   }
 }
 
+int vtkBrumeRadianceTextures::NumberOfViewDependentOutputs() const
+{
+  int count = 0;
+  for (std::size_t o = 0; o < this->Objects.size(); ++o)
+  {
+    count += this->Objects[o]->IsViewDependent() && !this->ObjectDirectional[o] ? 1 : 0;
+  }
+  return count;
+}
+
 void vtkBrumeRadianceTextures::Emit(vtkPartitionedDataSetCollection* output)
 {
   // New datasets for the textures that changed, the same ones otherwise.
@@ -551,8 +561,8 @@ void vtkBrumeRadianceTextures::Emit(vtkPartitionedDataSetCollection* output)
       {
         auto* sceneSurface = vtkPolyData::SafeDownCast(
           scene->GetPartitionedDataSet(source.CollectionIndex)->GetPartition(0));
-        this->Outputs[o] = vtkBrumeRadianceConversion::FromSurface(
-          radiance, this->Scene.Surfaces[o], sceneSurface);
+        this->Outputs[o] =
+          vtkBrumeRadianceConversion::FromSurface(radiance, this->Scene.Surfaces[o], sceneSurface);
       }
       else
       {
@@ -564,7 +574,8 @@ void vtkBrumeRadianceTextures::Emit(vtkPartitionedDataSetCollection* output)
         }
         if (!this->NativeExtinction[o])
         {
-          this->NativeExtinction[o] = vtkBrumeRadianceConversion::NativeExtinction(radiance, medium);
+          this->NativeExtinction[o] =
+            vtkBrumeRadianceConversion::NativeExtinction(radiance, medium);
         }
         this->Outputs[o] = vtkBrumeRadianceConversion::FromMedium(
           radiance, medium, this->ObjectDirectional[o], this->NativeExtinction[o]);

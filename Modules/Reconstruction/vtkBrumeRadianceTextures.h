@@ -8,8 +8,8 @@
 #ifndef vtkBrumeRadianceTextures_h
 #define vtkBrumeRadianceTextures_h
 
-#include "vtkBrumeHitConversion.h"   // For RunInfo
 #include "vtkBrumeHistogramChain.h"  // For the distributed reduction
+#include "vtkBrumeHitConversion.h"   // For RunInfo
 #include "vtkBrumeSceneConversion.h" // For ObjectSource
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
@@ -33,7 +33,7 @@ class vtkPolyData;
 /// One execution's validated inputs.
 struct vtkBrumeReconstructionRequest
 {
-  vtkDataObject* SceneInput = nullptr; // as given
+  vtkDataObject* SceneInput = nullptr;                    // as given
   vtkSmartPointer<vtkPartitionedDataSetCollection> Scene; // as a collection
   vtkPolyData* HitData = nullptr;
   brume::HitArrays Hits; // views of HitData's arrays
@@ -120,14 +120,18 @@ public:
   /// The textures as the output collection (unchanged textures: the same datasets).
   void Emit(vtkPartitionedDataSetCollection* output);
 
+  /// Objects whose output texture depends on the viewpoint (glossy
+  /// surfaces, anisotropic media held per view).
+  int NumberOfViewDependentOutputs() const;
+
   /// Bytes moved and seconds spent summing histograms since the last call.
   void TakeReduction(vtkTypeInt64& bytes, double& seconds);
 
 private:
   bool CreateObjects(
     const vtkBrumeReconstructionSettings& settings, const brume::ObjectHits& groups);
-  std::unique_ptr<brume::ObjectRadiance> CreateObject(std::size_t o, std::size_t hitCount,
-    const vtkBrumeReconstructionSettings& settings);
+  std::unique_ptr<brume::ObjectRadiance> CreateObject(
+    std::size_t o, std::size_t hitCount, const vtkBrumeReconstructionSettings& settings);
   bool CheckHits(const brume::HitArrays& hits, const brume::ObjectHits& groups);
   bool BuildObjects(const vtkBrumeReconstructionRequest& request, const brume::ObjectHits& groups,
     vtkBrumeReconstructionWork& work);
@@ -151,7 +155,7 @@ private:
   vtkMTimeType HitsTime = 0;
   vtkBrumeReconstructionSettings Settings;
   brume::Scene Scene;
-  std::unique_ptr<brume::RayCaster> Caster;  // direct light's shadow rays
+  std::unique_ptr<brume::RayCaster> Caster;   // direct light's shadow rays
   std::unique_ptr<brume::DirectLight> Direct; // null: no direct light
   std::vector<vtkBrumeSceneConversion::ObjectSource> Sources;
   std::vector<std::unique_ptr<brume::ObjectRadiance>> Objects;

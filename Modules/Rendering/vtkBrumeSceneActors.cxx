@@ -43,10 +43,10 @@ std::string KindOf(vtkDataObject* data)
 struct vtkBrumeSceneActors::Entry
 {
   unsigned int Index;
-  vtkSmartPointer<vtkTexture> Texture;            // surfaces
-  vtkSmartPointer<vtkPolyDataMapper> Surface;     // surfaces
+  vtkSmartPointer<vtkTexture> Texture;               // surfaces
+  vtkSmartPointer<vtkPolyDataMapper> Surface;        // surfaces
   vtkSmartPointer<vtkBrumeSliceVolumeMapper> Slices; // media
-  vtkSmartPointer<vtkVolume> Volume;              // media
+  vtkSmartPointer<vtkVolume> Volume;                 // media
 };
 
 vtkBrumeSceneActors::vtkBrumeSceneActors()
@@ -134,6 +134,7 @@ bool vtkBrumeSceneActors::AddToRenderer(vtkRenderer* renderer)
       vtkNew<vtkBrumeSliceVolumeMapper> mapper;
       mapper->SetInputData(image);
       mapper->SetExtinctionData(NativeExtinction(pds));
+      mapper->SetSliceSpacing(this->SliceSpacing);
       vtkNew<vtkVolume> volume;
       volume->SetMapper(mapper);
       volume->GetProperty()->SetInterpolationTypeToLinear();
@@ -213,10 +214,55 @@ void vtkBrumeSceneActors::SetMediaVisibility(bool visible)
   }
 }
 
+void vtkBrumeSceneActors::SetSurfaceVisibility(bool visible)
+{
+  // The surfaces' props are the actors; the media's are volumes.
+  this->Props->InitTraversal();
+  while (vtkProp* prop = this->Props->GetNextProp())
+  {
+    if (vtkActor::SafeDownCast(prop))
+    {
+      prop->SetVisibility(visible);
+    }
+  }
+}
+
+void vtkBrumeSceneActors::SetSliceSpacing(double spacing)
+{
+  if (this->SliceSpacing == spacing)
+  {
+    return;
+  }
+  this->SliceSpacing = spacing;
+  for (const Entry& e : this->Entries)
+  {
+    if (e.Slices)
+    {
+      e.Slices->SetSliceSpacing(spacing);
+    }
+  }
+  this->Modified();
+}
+
+void vtkBrumeSceneActors::RemoveFromRenderer(vtkRenderer* renderer)
+{
+  if (renderer)
+  {
+    this->Props->InitTraversal();
+    while (vtkProp* prop = this->Props->GetNextProp())
+    {
+      renderer->RemoveViewProp(prop);
+    }
+  }
+  this->Props->RemoveAllItems();
+  this->Entries.clear();
+}
+
 void vtkBrumeSceneActors::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "ShowMedia: " << this->ShowMedia << "\n";
   os << indent << "BackfaceCulling: " << this->BackfaceCulling << "\n";
+  os << indent << "SliceSpacing: " << this->SliceSpacing << "\n";
   os << indent << "Input: " << this->Input.Get() << "\n";
 }

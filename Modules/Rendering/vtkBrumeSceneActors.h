@@ -85,6 +85,21 @@ public:
   /// Shows or hides the media's volumes made by AddToRenderer().
   void SetMediaVisibility(bool visible);
 
+  /// Shows or hides the surfaces' actors made by AddToRenderer().
+  void SetSurfaceVisibility(bool visible);
+
+  ///@{
+  /**
+   * The slice spacing of the media's mappers (vtkBrumeSliceVolumeMapper;
+   * default 0: half the smallest voxel), those made already included.
+   */
+  void SetSliceSpacing(double spacing);
+  vtkGetMacro(SliceSpacing, double);
+  ///@}
+
+  /// Removes the props made by AddToRenderer() from `renderer`, and forgets them.
+  void RemoveFromRenderer(vtkRenderer* renderer);
+
 protected:
   vtkBrumeSceneActors();
   ~vtkBrumeSceneActors() override;
@@ -93,6 +108,7 @@ protected:
   vtkSmartPointer<vtkPropCollection> Props;
   bool ShowMedia = true;
   bool BackfaceCulling = true;
+  double SliceSpacing = 0.0;
 
 private:
   struct Entry;

@@ -5,24 +5,18 @@
 // with BRUME_RENDER_WINDOW=osmesa) instead of failing to open an X window.
 // ParaView 5.11 makes its batch render windows through
 // vtkRenderWindow::New(), after the script's LoadPlugin().
-#include "vtkBrumeRenderWindowSelection.h"
+#include "vtkBrumePluginStartup.h"
 
+#include "vtkBrumeRenderWindowSelection.h"
 #include "vtkOutputWindow.h"
 
 #include <string>
 
-namespace
+void BrumePluginStartup()
 {
-struct ChooseRenderWindows
-{
-  ChooseRenderWindows()
+  if (!vtkBrumeRenderWindowSelection::Install())
   {
-    if (!vtkBrumeRenderWindowSelection::Install())
-    {
-      vtkOutputWindow::GetInstance()->DisplayWarningText(
-        ("Brume: " + std::string(vtkBrumeRenderWindowSelection::GetLastError()) + ".\n").c_str());
-    }
+    vtkOutputWindow::GetInstance()->DisplayWarningText(
+      ("Brume: " + std::string(vtkBrumeRenderWindowSelection::GetLastError()) + ".\n").c_str());
   }
-};
-const ChooseRenderWindows Choice;
 }

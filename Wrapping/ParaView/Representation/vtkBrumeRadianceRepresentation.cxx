@@ -1,0 +1,438 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkBrumeRadianceRepresentation.h"
+
+#include "vtkActor.h"
+#include "vtkBoundingBox.h"
+#include "vtkBrumeRadianceReconstruction.h"
+#include "vtkBrumeSceneActors.h"
+#include "vtkCamera.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkMath.h"
+#include "vtkMultiProcessController.h"
+#include "vtkObjectFactory.h"
+#include "vtkPVRenderView.h"
+#include "vtkPartitionedDataSet.h"
+#include "vtkPartitionedDataSetCollection.h"
+#include "vtkPolyData.h"
+#include "vtkPropCollection.h"
+#include "vtkProperty.h"
+#include "vtkRenderer.h"
+#include "vtkStringArray.h"
+
+vtkStandardNewMacro(vtkBrumeRadianceRepresentation);
+
+namespace
+{
+std::string KindOf(vtkDataObject* data)
+{
+  auto* kind = data
+    ? vtkStringArray::SafeDownCast(data->GetFieldData()->GetAbstractArray("BrumeObjectKind"))
+    : nullptr;
+  return kind && kind->GetNumberOfValues() > 0 ? kind->GetValue(0) : std::string();
+}
+
+// "" when `data` is a collection of Brume textures, else why not. Also
+// the objects' kinds in order (the props' layout) and their world bounds:
+// surfaces' geometry and media's boxes, not the texture-space images.
+std::string Inspect(vtkDataObject* data, std::string& layout, vtkBoundingBox& box)
+{
+  auto* textures = vtkPartitionedDataSetCollection::SafeDownCast(data);
+  const std::string intro = "Brume Radiance shows the output of Brume Radiance Reconstruction";
+  if (!textures)
+  {
+    return intro + "; this input is a " + std::string(data ? data->GetClassName() : "nothing");
+  }
+  layout.clear();
+  for (unsigned int i = 0; i < textures->GetNumberOfPartitionedDataSets(); ++i)
+  {
+    vtkPartitionedDataSet* pds = textures->GetPartitionedDataSet(i);
+    vtkDataObject* first = pds && pds->GetNumberOfPartitions() > 0 ? pds->GetPartition(0) : nullptr;
+    const std::string kind = KindOf(first);
+    auto* image = vtkImageData::SafeDownCast(first);
+    auto* surface = pds && pds->GetNumberOfPartitions() > 1
+      ? vtkPolyData::SafeDownCast(pds->GetPartition(1))
+      : nullptr;
+    if (kind == "surface" && image && surface)
+    {
+      box.AddBounds(surface->GetBounds());
+    }
+    else if (kind == "medium" && image)
+    {
+      box.AddBounds(image->GetBounds());
+    }
+    else
+    {
+      return intro + "; object " + std::to_string(i) +
+        " of this collection is not a radiance texture (no BrumeObjectKind)";
+    }
+    layout += kind + ";";
+  }
+  return std::string();
+}
+
+std::string LayoutOf(vtkDataObject* data)
+{
+  std::string layout;
+  vtkBoundingBox box;
+  return Inspect(data, layout, box).empty() ? layout : std::string("?");
+}
+
+bool EyeOf(vtkPartitionedDataSetCollection* textures, double eye[3])
+{
+  auto* array = vtkDoubleArray::SafeDownCast(
+    textures ? textures->GetFieldData()->GetArray("BrumeEyePosition") : nullptr);
+  if (!array || array->GetNumberOfComponents() != 3 || array->GetNumberOfTuples() < 1)
+  {
+    return false;
+  }
+  array->GetTypedTuple(0, eye);
+  return true;
+}
+
+// The reconstruction holds its viewpoint in single precision.
+bool SameEye(const double textures[3], const double camera[3])
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    if (static_cast<float>(textures[a]) != static_cast<float>(camera[a]))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+// The reconstruction upstream of `algorithm`, through algorithms that
+// pass their one input on (ParaView may put such producers in between).
+vtkBrumeRadianceReconstruction* FindReconstruction(vtkAlgorithm* algorithm)
+{
+  for (int depth = 0; algorithm && depth < 8; ++depth)
+  {
+    if (auto* reconstruction = vtkBrumeRadianceReconstruction::SafeDownCast(algorithm))
+    {
+      return reconstruction;
+    }
+    algorithm =
+      algorithm->GetNumberOfInputPorts() == 1 && algorithm->GetNumberOfInputConnections(0) == 1
+      ? algorithm->GetInputAlgorithm(0, 0)
+      : nullptr;
+  }
+  return nullptr;
+}
+
+int ViewDependentObjects(vtkPartitionedDataSetCollection* textures)
+{
+  auto* array = vtkIntArray::SafeDownCast(
+    textures ? textures->GetFieldData()->GetArray("BrumeViewDependentObjects") : nullptr);
+  return array && array->GetNumberOfValues() > 0 ? array->GetValue(0) : 0;
+}
+}
+
+vtkBrumeRadianceRepresentation::vtkBrumeRadianceRepresentation()
+  : Actors(vtkSmartPointer<vtkBrumeSceneActors>::New())
+{
+  vtkMath::UninitializeBounds(this->Bounds);
+}
+
+vtkBrumeRadianceRepresentation::~vtkBrumeRadianceRepresentation()
+{
+  this->Hide();
+}
+
+int vtkBrumeRadianceRepresentation::FillInputPortInformation(int, vtkInformation* info)
+{
+  // Any data object: a composite representation connects every input to
+  // each of its representations; what is not Brume's is refused at render.
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataObject");
+  info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  return 1;
+}
+
+int vtkBrumeRadianceRepresentation::RequestData(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkMath::UninitializeBounds(this->Bounds);
+  this->InputProblem.clear();
+  this->Cache = vtkSmartPointer<vtkPartitionedDataSetCollection>::New();
+  if (inputVector[0]->GetNumberOfInformationObjects() == 1)
+  {
+    vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
+    std::string layout;
+    vtkBoundingBox box;
+    this->InputProblem = Inspect(input, layout, box);
+    if (this->InputProblem.empty())
+    {
+      this->Cache->ShallowCopy(input);
+      if (box.IsValid())
+      {
+        box.GetBounds(this->Bounds);
+      }
+    }
+  }
+  // else: a process without the data (the client of a remote server).
+  return this->Superclass::RequestData(request, inputVector, outputVector);
+}
+
+int vtkBrumeRadianceRepresentation::ProcessViewRequest(
+  vtkInformationRequestKey* request, vtkInformation* inInfo, vtkInformation* outInfo)
+{
+  if (!this->Superclass::ProcessViewRequest(request, inInfo, outInfo))
+  {
+    return 0;
+  }
+  if (request == vtkPVView::REQUEST_UPDATE())
+  {
+    // One process draws the textures, with their per-channel
+    // transmittance: nothing is composited.
+    vtkPVView::SetPiece(inInfo, this, this->Cache);
+    vtkPVRenderView::SetGeometryBounds(inInfo, this, this->Bounds);
+    vtkPVRenderView::SetRequiresDistributedRendering(inInfo, this, false);
+  }
+  else if (request == vtkPVView::REQUEST_RENDER())
+  {
+    if (!this->InputProblem.empty())
+    {
+      this->Hide();
+      this->Warn(this->InputProblem + ": nothing is drawn.");
+      return 1;
+    }
+    auto* delivered =
+      vtkPartitionedDataSetCollection::SafeDownCast(vtkPVView::GetDeliveredPiece(inInfo, this));
+    if (!delivered || delivered->GetNumberOfPartitionedDataSets() == 0)
+    {
+      this->Hide(); // a process without the textures
+      return 1;
+    }
+    auto* view = vtkPVRenderView::SafeDownCast(inInfo->Get(vtkPVView::VIEW()));
+    this->Show(this->FollowCamera ? this->Follow(view, delivered) : delivered);
+  }
+  return 1;
+}
+
+vtkPartitionedDataSetCollection* vtkBrumeRadianceRepresentation::Follow(
+  vtkPVRenderView* view, vtkPartitionedDataSetCollection* textures)
+{
+  double eye[3];
+  if (!view || ViewDependentObjects(textures) == 0 || !EyeOf(textures, eye))
+  {
+    return textures; // nothing depends on the viewpoint
+  }
+  vtkCamera* camera = view->GetActiveCamera();
+  double position[3];
+  camera->GetPosition(position);
+  if (SameEye(eye, position))
+  {
+    return textures;
+  }
+  // The reconstruction must run here, in one process.
+  auto* reconstruction = FindReconstruction(this->GetInputAlgorithm(0, 0));
+  vtkMultiProcessController* controller =
+    reconstruction ? reconstruction->GetController() : nullptr;
+  if (!reconstruction || (controller && controller->GetNumberOfProcesses() > 1))
+  {
+    this->Warn("Brume Radiance follows the camera only where the reconstruction runs in the "
+               "rendering process, alone (pvbatch, pvpython, the GUI's built-in server): "
+               "the view-dependent textures stay at the reconstruction's EyePosition.");
+    return textures;
+  }
+  if (reconstruction->GetCamera() != camera)
+  {
+    reconstruction->SetCamera(camera);
+  }
+  this->FollowedReconstruction = reconstruction;
+  reconstruction->Update();
+  vtkPartitionedDataSetCollection* output = reconstruction->GetOutput();
+  double followed[3];
+  if (!EyeOf(output, followed) || !SameEye(followed, position) ||
+    LayoutOf(output) != LayoutOf(textures))
+  {
+    this->Warn("Brume Radiance could not update the textures toward the camera (the "
+               "reconstruction failed): they stay where they were.");
+    return textures;
+  }
+  return output;
+}
+
+void vtkBrumeRadianceRepresentation::Show(vtkPartitionedDataSetCollection* textures)
+{
+  if (!this->Renderer)
+  {
+    return;
+  }
+  // The same objects: point the props at the new textures (only new images
+  // are uploaded again). Other objects: new props.
+  const std::string layout = LayoutOf(textures);
+  if (!this->Shown || LayoutOf(this->Shown) != layout || !this->Actors->UpdateInputs(textures))
+  {
+    this->Actors->RemoveFromRenderer(this->Renderer);
+    this->Actors->SetInputData(textures);
+    this->Actors->SetBackfaceCulling(this->BackfaceCulling);
+    this->Actors->SetSliceSpacing(this->SliceSpacing);
+    if (!this->Actors->AddToRenderer(this->Renderer))
+    {
+      this->Actors->RemoveFromRenderer(this->Renderer);
+      this->Shown = nullptr;
+      return; // the error is reported
+    }
+  }
+  this->Shown = textures;
+  this->ApplyVisibility();
+}
+
+void vtkBrumeRadianceRepresentation::Hide()
+{
+  this->Actors->RemoveFromRenderer(this->Renderer);
+  this->Shown = nullptr;
+}
+
+void vtkBrumeRadianceRepresentation::Warn(const std::string& message)
+{
+  if (message != this->LastWarning)
+  {
+    this->LastWarning = message;
+    vtkWarningMacro(<< message);
+  }
+}
+
+void vtkBrumeRadianceRepresentation::ApplyVisibility()
+{
+  const bool visible = this->GetVisibility();
+  this->Actors->SetSurfaceVisibility(visible && this->ShowSurfaces);
+  this->Actors->SetMediaVisibility(visible && this->ShowMedia);
+}
+
+void vtkBrumeRadianceRepresentation::SetVisibility(bool visible)
+{
+  this->Superclass::SetVisibility(visible);
+  this->ApplyVisibility();
+}
+
+void vtkBrumeRadianceRepresentation::SetShowSurfaces(bool show)
+{
+  if (this->ShowSurfaces != show)
+  {
+    this->ShowSurfaces = show;
+    this->ApplyVisibility();
+    this->Modified();
+  }
+}
+
+void vtkBrumeRadianceRepresentation::SetShowMedia(bool show)
+{
+  if (this->ShowMedia != show)
+  {
+    this->ShowMedia = show;
+    this->ApplyVisibility();
+    this->Modified();
+  }
+}
+
+void vtkBrumeRadianceRepresentation::SetSliceSpacing(double spacing)
+{
+  if (this->SliceSpacing != spacing)
+  {
+    this->SliceSpacing = spacing;
+    this->Actors->SetSliceSpacing(spacing);
+    this->Modified();
+  }
+}
+
+void vtkBrumeRadianceRepresentation::SetBackfaceCulling(bool cull)
+{
+  if (this->BackfaceCulling != cull)
+  {
+    this->BackfaceCulling = cull;
+    this->Actors->SetBackfaceCulling(cull);
+    vtkPropCollection* props = this->Actors->GetProps();
+    props->InitTraversal();
+    while (vtkProp* prop = props->GetNextProp())
+    {
+      if (auto* actor = vtkActor::SafeDownCast(prop))
+      {
+        actor->GetProperty()->SetBackfaceCulling(cull);
+      }
+    }
+    this->Modified();
+  }
+}
+
+void vtkBrumeRadianceRepresentation::SetFollowCamera(bool follow)
+{
+  if (this->FollowCamera == follow)
+  {
+    return;
+  }
+  this->FollowCamera = follow;
+  // Off: the reconstruction goes back to its EyePosition at its next update.
+  auto* reconstruction =
+    vtkBrumeRadianceReconstruction::SafeDownCast(this->FollowedReconstruction.GetPointer());
+  if (!follow && reconstruction)
+  {
+    reconstruction->SetCamera(nullptr);
+    this->FollowedReconstruction = nullptr;
+  }
+  this->MarkModified();
+}
+
+int vtkBrumeRadianceRepresentation::GetNumberOfProps()
+{
+  return this->Shown ? this->Actors->GetProps()->GetNumberOfItems() : 0;
+}
+
+void vtkBrumeRadianceRepresentation::GetShownEyePosition(double eye[3])
+{
+  if (!EyeOf(this->Shown, eye))
+  {
+    eye[0] = eye[1] = eye[2] = vtkMath::Nan();
+  }
+}
+
+bool vtkBrumeRadianceRepresentation::AddToView(vtkView* view)
+{
+  auto* renderView = vtkPVRenderView::SafeDownCast(view);
+  if (!renderView)
+  {
+    return false;
+  }
+  if (this->Renderer != renderView->GetRenderer())
+  {
+    this->Hide();
+    this->Renderer = renderView->GetRenderer();
+  }
+  return this->Superclass::AddToView(view);
+}
+
+bool vtkBrumeRadianceRepresentation::RemoveFromView(vtkView* view)
+{
+  auto* renderView = vtkPVRenderView::SafeDownCast(view);
+  if (!renderView)
+  {
+    return false;
+  }
+  this->Hide();
+  this->Renderer = nullptr;
+  // The reconstruction no longer follows this view's camera.
+  auto* reconstruction =
+    vtkBrumeRadianceReconstruction::SafeDownCast(this->FollowedReconstruction.GetPointer());
+  if (reconstruction && reconstruction->GetCamera() == renderView->GetActiveCamera())
+  {
+    reconstruction->SetCamera(nullptr);
+  }
+  this->FollowedReconstruction = nullptr;
+  return this->Superclass::RemoveFromView(view);
+}
+
+void vtkBrumeRadianceRepresentation::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "ShowSurfaces: " << this->ShowSurfaces << "\n";
+  os << indent << "ShowMedia: " << this->ShowMedia << "\n";
+  os << indent << "SliceSpacing: " << this->SliceSpacing << "\n";
+  os << indent << "BackfaceCulling: " << this->BackfaceCulling << "\n";
+  os << indent << "FollowCamera: " << this->FollowCamera << "\n";
+}

@@ -1,0 +1,133 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkBrumeRadianceRepresentation
+ * @brief   ParaView's "Brume Radiance": the reconstruction's textures in a
+ *          render view, following its camera
+ *
+ * The representation ParaView gives the output of Brume's Radiance
+ * Reconstruction (the default in render views; any Brume texture
+ * collection can be shown with it): textured surfaces and media drawn by
+ * vtkBrumeSliceVolumeMapper, the props of vtkBrumeSceneActors, in the
+ * view's renderer. The surfaces show radiance unlit (W m^-2 sr^-1, clamped
+ * to [0, 1] by the framebuffer, as VTK shows float textures).
+ *
+ * Camera following (FollowCamera, default on): when the textures depend on
+ * the viewpoint (glossy surfaces, anisotropic media held per view: the
+ * collection's `BrumeViewDependentObjects`) and the view's camera is not
+ * where they radiate toward (`BrumeEyePosition`), each render gives the
+ * reconstruction the view's camera (vtkBrumeRadianceReconstruction's
+ * SetCamera) and updates it: only the view-dependent textures are
+ * recomputed, only their images are uploaded again. This needs the
+ * reconstruction in the rendering process, with one process: pvbatch and
+ * pvpython, and the GUI with its built-in server. Elsewhere (a remote
+ * server, mpirun) the textures stay at the reconstruction's EyePosition and
+ * a warning says so once; directional media (spherical harmonics) need no
+ * update at all. Two views of one reconstruction each get their own view,
+ * at the cost of an update whenever the other one rendered last.
+ *
+ * Shown with anything but a Brume texture collection, it draws nothing and
+ * says why once.
+ *
+ * @sa vtkBrumeSceneActors vtkBrumeRadianceReconstruction
+ */
+#ifndef vtkBrumeRadianceRepresentation_h
+#define vtkBrumeRadianceRepresentation_h
+
+#include "vtkBrumeParaViewRepresentationModule.h" // For export macro
+#include "vtkPVDataRepresentation.h"
+#include "vtkSmartPointer.h" // For members
+#include "vtkWeakPointer.h"  // For members
+
+#include <string> // For members
+
+class vtkBrumeSceneActors;
+class vtkPartitionedDataSetCollection;
+class vtkPVRenderView;
+class vtkRenderer;
+
+class VTKBRUMEPARAVIEWREPRESENTATION_EXPORT vtkBrumeRadianceRepresentation
+  : public vtkPVDataRepresentation
+{
+public:
+  static vtkBrumeRadianceRepresentation* New();
+  vtkTypeMacro(vtkBrumeRadianceRepresentation, vtkPVDataRepresentation);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  void SetVisibility(bool visible) override;
+  int ProcessViewRequest(
+    vtkInformationRequestKey* request, vtkInformation* inInfo, vtkInformation* outInfo) override;
+
+  ///@{
+  /// Show the surfaces, the media (default on).
+  void SetShowSurfaces(bool show);
+  vtkGetMacro(ShowSurfaces, bool);
+  void SetShowMedia(bool show);
+  vtkGetMacro(ShowMedia, bool);
+  ///@}
+
+  ///@{
+  /// Slice spacing of the media, in world units (default 0: half the smallest voxel).
+  void SetSliceSpacing(double spacing);
+  vtkGetMacro(SliceSpacing, double);
+  ///@}
+
+  ///@{
+  /// Cull the back of surfaces (default on; see vtkBrumeSceneActors).
+  void SetBackfaceCulling(bool cull);
+  vtkGetMacro(BackfaceCulling, bool);
+  ///@}
+
+  ///@{
+  /// Update view-dependent textures toward the view's camera (default on).
+  void SetFollowCamera(bool follow);
+  vtkGetMacro(FollowCamera, bool);
+  ///@}
+
+  ///@{
+  /**
+   * What the last render showed: the number of props, and the viewpoint the
+   * textures radiate toward (for tests and the curious).
+   */
+  int GetNumberOfProps();
+  void GetShownEyePosition(double eye[3]);
+  ///@}
+
+protected:
+  vtkBrumeRadianceRepresentation();
+  ~vtkBrumeRadianceRepresentation() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  bool AddToView(vtkView* view) override;
+  bool RemoveFromView(vtkView* view) override;
+
+private:
+  vtkBrumeRadianceRepresentation(const vtkBrumeRadianceRepresentation&) = delete;
+  void operator=(const vtkBrumeRadianceRepresentation&) = delete;
+
+  // The textures to show this frame: the delivered ones, or the
+  // reconstruction's output updated toward the view's camera.
+  vtkPartitionedDataSetCollection* Follow(
+    vtkPVRenderView* view, vtkPartitionedDataSetCollection* textures);
+  // Points the props at `textures`, made anew when the objects changed.
+  void Show(vtkPartitionedDataSetCollection* textures);
+  void Hide();
+  void Warn(const std::string& message);
+  void ApplyVisibility();
+
+  vtkSmartPointer<vtkPartitionedDataSetCollection> Cache;
+  std::string InputProblem; // why the input cannot be shown, "" if it can
+  double Bounds[6];
+  vtkSmartPointer<vtkBrumeSceneActors> Actors;
+  vtkWeakPointer<vtkRenderer> Renderer;
+  vtkWeakPointer<vtkPartitionedDataSetCollection> Shown;
+  vtkWeakPointer<vtkObject> FollowedReconstruction; // given the view's camera
+  std::string LastWarning;
+  bool ShowSurfaces = true;
+  bool ShowMedia = true;
+  double SliceSpacing = 0.0;
+  bool BackfaceCulling = true;
+  bool FollowCamera = true;
+};
+
+#endif

@@ -1,0 +1,180 @@
+"""pvbatch: the "Brume Radiance" representation.
+
+Show(reconstruction) in a render view gives the representation by default;
+its screenshot equals vtkBrumeSceneActors' render of the same textures,
+camera and size, and the baseline. Moving the camera updates the
+view-dependent textures once (the reconstruction's eye follows the camera)
+and the image equals the one made from scratch at that camera. Shown with a
+dataset that is not Brume's, it draws nothing and says why. Prints the
+frame time of the representation (camera moves included) at the view size.
+
+usage: pvbatch TestBrumeRadianceRepresentation.py PLUGIN BASELINE OUTPUT_DIR [SIZE]
+"""
+import os
+import sys
+import time
+
+from paraview.simple import *  # noqa: F401,F403
+from vtkmodules.vtkImagingCore import vtkImageDifference
+from vtkmodules.vtkIOImage import vtkPNGReader, vtkPNGWriter
+from vtkmodules.vtkRenderingCore import vtkRenderer, vtkRenderWindow, vtkWindowToImageFilter
+from vtkmodules.util.misc import calldata_type
+from vtkmodules.util.vtkConstants import VTK_STRING
+
+import brume  # the same modules, for the reference render
+
+plugin, baseline, output_dir = sys.argv[1:4]
+size = int(sys.argv[4]) if len(sys.argv) > 4 else 200
+LoadPlugin(plugin, ns=globals())
+failures = []
+
+
+def check(ok, what):
+    print(("ok: " if ok else "FAILED: ") + what)
+    if not ok:
+        failures.append(what)
+
+
+def compare(test_png, reference_png, threshold=0):
+    """vtkImageDifference's thresholded error (0: equal images)."""
+    readers = []
+    for name in (test_png, reference_png):
+        reader = vtkPNGReader()
+        reader.SetFileName(name)
+        readers.append(reader)
+    difference = vtkImageDifference()
+    difference.SetInputConnection(readers[0].GetOutputPort())
+    difference.SetImageConnection(readers[1].GetOutputPort())
+    difference.SetThreshold(threshold)
+    difference.AllowShiftOff()
+    difference.AveragingOff()
+    difference.Update()
+    return difference.GetThresholdedError()
+
+
+def reference(textures, camera, png):
+    """The textures drawn by vtkBrumeSceneActors alone, as a VTK user would."""
+    renderer = vtkRenderer()
+    renderer.SetBackground(0, 0, 0)
+    renderer.SetUseFXAA(bool(view.UseFXAA))  # as the view, with its options
+    options = renderer.GetFXAAOptions()
+    options.SetRelativeContrastThreshold(view.FXAARelativeContrastThreshold)
+    options.SetHardContrastThreshold(view.FXAAHardContrastThreshold)
+    options.SetSubpixelBlendLimit(view.FXAASubpixelBlendLimit)
+    options.SetSubpixelContrastThreshold(view.FXAASubpixelContrastThreshold)
+    options.SetUseHighQualityEndpoints(bool(view.FXAAUseHighQualityEndpoints))
+    options.SetEndpointSearchIterations(view.FXAAEndpointSearchIterations)
+    actors = brume.vtkBrumeSceneActors()
+    actors.SetInputData(textures)
+    assert actors.AddToRenderer(renderer)
+    window = vtkRenderWindow()
+    window.SetMultiSamples(0)  # as ParaView's windows
+    window.SetSize(size, size)
+    window.AddRenderer(renderer)
+    own = renderer.GetActiveCamera()
+    own.SetPosition(camera.GetPosition())
+    own.SetFocalPoint(camera.GetFocalPoint())
+    own.SetViewUp(camera.GetViewUp())
+    own.SetViewAngle(camera.GetViewAngle())
+    own.SetClippingRange(camera.GetClippingRange())
+    window.Render()
+    capture = vtkWindowToImageFilter()
+    capture.SetInput(window)
+    capture.ReadFrontBufferOff()
+    writer = vtkPNGWriter()
+    writer.SetFileName(png)
+    writer.SetInputConnection(capture.GetOutputPort())
+    writer.Write()
+    window.Finalize()
+
+
+scene = BrumeDefaultScene()
+tracer = BrumeLightTracer(Input=scene, NumberOfParticles=200000, Seed=1)
+reconstruction = BrumeRadianceReconstruction(Scene=scene, Hits=tracer)
+reconstruction.UpdatePipeline()
+
+view = CreateView("RenderView")
+view.ViewSize = [size, size]
+view.UseColorPaletteForBackground = 0
+view.Background = [0, 0, 0]
+view.OrientationAxesVisibility = 0
+print("FXAA in the view:", view.UseFXAA)
+display = Show(reconstruction, view)
+check(display.Representation == "Brume Radiance",
+      "Show() gives 'Brume Radiance' (got '%s')" % display.Representation)
+view.CameraPosition = [0, 0, 4]
+view.CameraFocalPoint = [0, 0, 0]
+view.CameraViewUp = [0, 1, 0]
+view.CameraViewAngle = 40
+Render(view)
+shown = os.path.join(output_dir, "TestBrumeRadianceRepresentation.png")
+SaveScreenshot(shown, view, ImageResolution=[size, size])
+
+algorithm = reconstruction.GetClientSideObject()
+camera = view.GetActiveCamera()
+first = os.path.join(output_dir, "TestBrumeRadianceRepresentation-actors.png")
+reference(algorithm.GetOutput(), camera, first)
+error = compare(shown, first)
+check(error <= 0.5, "the render view shows what vtkBrumeSceneActors draws (error %g)" % error)
+if os.path.exists(baseline):
+    error = compare(shown, baseline, threshold=16)
+    check(error <= 10, "the baseline (error %g, limit 10)" % error)
+else:
+    check(False, "no baseline %s; the image is %s" % (baseline, shown))
+
+# The camera moves: the fog (forward scattering, per view) follows it.
+updates = algorithm.GetNumberOfViewUpdates()
+view.CameraPosition = [1.2, 0.6, 3.6]
+Render(view)
+moved = os.path.join(output_dir, "TestBrumeRadianceRepresentation-moved.png")
+SaveScreenshot(moved, view, ImageResolution=[size, size])
+eye = algorithm.GetOutput().GetFieldData().GetArray("BrumeEyePosition").GetTuple3(0)
+check(max(abs(a - b) for a, b in zip(eye, camera.GetPosition())) < 1e-6,  # single precision
+      "the textures radiate toward the camera (%s, camera %s)" % (eye, camera.GetPosition()))
+check(algorithm.GetNumberOfViewUpdates() == updates + 1,
+      "one view update (%d)" % (algorithm.GetNumberOfViewUpdates() - updates))
+scratch = BrumeRadianceReconstruction(Scene=scene, Hits=tracer)
+scratch.EyePosition = list(camera.GetPosition())
+scratch.UpdatePipeline()
+again = os.path.join(output_dir, "TestBrumeRadianceRepresentation-scratch.png")
+reference(scratch.GetClientSideObject().GetOutput(), camera, again)
+error = compare(moved, again)
+check(error <= 0.5, "after the move, the image made from scratch at the camera (error %g)" % error)
+
+# Frame time at this size: a camera step and a render, view updates included.
+frames = 10
+start = time.time()
+for k in range(frames):
+    view.CameraPosition = [1.2 - 0.1 * k, 0.6, 3.6]
+    Render(view)
+print("frame %.1f ms at %dx%d (a camera step each, view updates included)"
+      % (1000 * (time.time() - start) / frames, size, size))
+
+# Not Brume's data: nothing drawn, a message.
+Hide(reconstruction, view)
+sphere = Sphere()
+bad = Show(sphere, view)
+bad.SetRepresentationType("Brume Radiance")
+warnings = []
+
+
+@calldata_type(VTK_STRING)
+def on_warning(obj, event, message):
+    warnings.append(message)
+
+
+bad.GetClientSideObject().GetActiveRepresentation().AddObserver("WarningEvent", on_warning)
+Render(view)
+empty = os.path.join(output_dir, "TestBrumeRadianceRepresentation-sphere.png")
+SaveScreenshot(empty, view, ImageResolution=[size, size])
+reader = vtkPNGReader()
+reader.SetFileName(empty)
+reader.Update()
+drawn = max(reader.GetOutput().GetPointData().GetScalars().GetRange(c)[1] for c in range(3))
+check(drawn == 0, "a sphere: nothing drawn (brightest value %g)" % drawn)
+check(len(warnings) == 1 and "shows the output of Brume Radiance Reconstruction" in warnings[0],
+      "a sphere: one warning saying why (%s)" % warnings)
+
+Delete(view)
+del view
+sys.exit(1 if failures else 0)
