@@ -175,6 +175,20 @@ int vtkBrumeRadianceRepresentation::RequestData(
     }
   }
   // else: a process without the data (the client of a remote server).
+  // Among several processes (mpirun pvbatch, a parallel server) only
+  // process 0 holds the textures, and ParaView 5.11 cannot gather a
+  // collection of images from pieces of different structures: nothing is
+  // drawn, and the render says so.
+  vtkMultiProcessController* processes = vtkMultiProcessController::GetGlobalController();
+  if (processes && processes->GetNumberOfProcesses() > 1)
+  {
+    this->Cache = vtkSmartPointer<vtkPartitionedDataSetCollection>::New();
+    vtkMath::UninitializeBounds(this->Bounds);
+    this->InputProblem = "Brume Radiance draws in one process; with " +
+      std::to_string(processes->GetNumberOfProcesses()) +
+      " (mpirun, a parallel server) fetch the reconstruction's output to process 0 "
+      "(servermanager.Fetch) and draw it with vtkBrumeSceneActors";
+  }
   return this->Superclass::RequestData(request, inputVector, outputVector);
 }
 
