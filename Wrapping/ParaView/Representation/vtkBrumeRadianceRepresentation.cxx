@@ -231,27 +231,32 @@ int vtkBrumeRadianceRepresentation::ProcessViewRequest(
 vtkPartitionedDataSetCollection* vtkBrumeRadianceRepresentation::Follow(
   vtkPVRenderView* view, vtkPartitionedDataSetCollection* textures)
 {
+  // Textures that came from a server lose the collection's field data on
+  // the way: no eye to compare with, and no reconstruction here either.
   double eye[3];
-  if (!view || ViewDependentObjects(textures) == 0 || !EyeOf(textures, eye))
+  const bool known = EyeOf(textures, eye);
+  if (!view || (known && ViewDependentObjects(textures) == 0))
   {
     return textures; // nothing depends on the viewpoint
   }
   vtkCamera* camera = view->GetActiveCamera();
   double position[3];
   camera->GetPosition(position);
-  if (SameEye(eye, position))
+  if (known && SameEye(eye, position))
   {
     return textures;
   }
   // The reconstruction must run here, in one process.
-  auto* reconstruction = FindReconstruction(this->GetInputAlgorithm(0, 0));
+  auto* reconstruction = this->GetNumberOfInputConnections(0) == 1
+    ? FindReconstruction(this->GetInputAlgorithm(0, 0))
+    : nullptr;
   vtkMultiProcessController* controller =
     reconstruction ? reconstruction->GetController() : nullptr;
-  if (!reconstruction || (controller && controller->GetNumberOfProcesses() > 1))
+  if (!reconstruction || !known || (controller && controller->GetNumberOfProcesses() > 1))
   {
     this->Warn("Brume Radiance follows the camera only where the reconstruction runs in the "
                "rendering process, alone (pvbatch, pvpython, the GUI's built-in server): "
-               "the view-dependent textures stay at the reconstruction's EyePosition.");
+               "view-dependent textures stay at the reconstruction's EyePosition.");
     return textures;
   }
   if (reconstruction->GetCamera() != camera)

@@ -1,0 +1,77 @@
+"""pvpython: "Brume Radiance" through a pvserver on this machine (client and
+server over the loopback) and in the built-in session: the same image.
+
+The textures travel from the server to the client, which renders them
+(ParaView 5.11 renders small data on the client). FollowCamera is off in
+both sessions (only the built-in one can follow), so both show the
+textures toward the reconstruction's EyePosition.
+
+usage: pvpython TestBrumeRadianceClientServer.py PVSERVER PLUGIN OUTPUT_DIR PORT
+"""
+import os
+import subprocess
+import sys
+
+from paraview.simple import *  # noqa: F401,F403
+from vtkmodules.vtkImagingCore import vtkImageDifference
+from vtkmodules.vtkIOImage import vtkPNGReader
+
+pvserver, plugin, output_dir, port = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4])
+
+
+def render(png):
+    """The default scene's textures at a fixed camera, in the active session."""
+    LoadPlugin(plugin, remote=False, ns=globals())
+    if servermanager.ActiveConnection.IsRemote():
+        LoadPlugin(plugin, remote=True, ns=globals())
+    scene = BrumeDefaultScene()
+    tracer = BrumeLightTracer(Input=scene, NumberOfParticles=100000, Seed=1)
+    reconstruction = BrumeRadianceReconstruction(Scene=scene, Hits=tracer)
+    view = CreateView("RenderView")
+    view.ViewSize = [160, 160]
+    view.UseColorPaletteForBackground = 0
+    view.Background = [0, 0, 0]
+    view.OrientationAxesVisibility = 0
+    display = Show(reconstruction, view)
+    assert display.Representation == "Brume Radiance", display.Representation
+    display.FollowCamera = 0
+    Render(view)  # the first render frames the scene; then the camera is set
+    view.CameraPosition = [0.4, 0.3, 3.8]
+    view.CameraFocalPoint = [0, 0, 0]
+    view.CameraViewUp = [0, 1, 0]
+    view.CameraViewAngle = 40
+    Render(view)
+    SaveScreenshot(png, view, ImageResolution=[160, 160])
+    Delete(view)
+
+
+server = subprocess.Popen([pvserver, "--server-port=%d" % port], stdout=subprocess.PIPE,
+                          stderr=subprocess.STDOUT, text=True)
+for line in server.stdout:
+    if "Accepting connection" in line:
+        break
+else:
+    sys.exit("pvserver did not start")
+# The server stays connected to the end: it exits when this client does.
+Connect("localhost", port)
+remote = os.path.join(output_dir, "TestBrumeRadianceClientServer-remote.png")
+render(remote)
+Connect()  # a built-in session, now the active one
+local = os.path.join(output_dir, "TestBrumeRadianceClientServer-builtin.png")
+render(local)
+
+readers = []
+for name in (remote, local):
+    reader = vtkPNGReader()
+    reader.SetFileName(name)
+    readers.append(reader)
+difference = vtkImageDifference()
+difference.SetInputConnection(readers[0].GetOutputPort())
+difference.SetImageConnection(readers[1].GetOutputPort())
+difference.SetThreshold(0)
+difference.AllowShiftOff()
+difference.AveragingOff()
+difference.Update()
+error = difference.GetThresholdedError()
+print("client-server against built-in: error %g (limit 0.5)" % error)
+sys.exit(0 if error <= 0.5 else 1)
