@@ -8,8 +8,9 @@ import sys
 import time
 
 from paraview.simple import *  # noqa: F401,F403
-from vtkmodules.vtkImagingCore import vtkImageDifference
-from vtkmodules.vtkIOImage import vtkPNGReader
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from brume_testing import black_view, default_camera, image_error  # noqa: E402
 
 plugin, baseline, output_dir = sys.argv[1:4]
 start = time.time()
@@ -35,19 +36,12 @@ points.OnRatio = 1
 points.MaximumNumberofPoints = 10000000
 points.GenerateVertices = 1
 points.SingleVertexPerCell = 1
-view = CreateView("RenderView")
-view.ViewSize = [300, 300]
-view.UseColorPaletteForBackground = 0
-view.Background = [0, 0, 0]
-view.OrientationAxesVisibility = 0
+view = black_view(300)
 display = Show(points, view)
 display.SetRepresentationType("Points")
 ColorBy(display, ("POINTS", "ObjectId"))
 display.LookupTable.RescaleTransferFunction(0, 6)
-view.CameraPosition = [0, 0, 4]
-view.CameraFocalPoint = [0, 0, 0]
-view.CameraViewUp = [0, 1, 0]
-view.CameraViewAngle = 40
+default_camera(view)
 Render(view)
 output = os.path.join(output_dir, "TestBrumePlugin.png")
 SaveScreenshot(output, view)
@@ -57,17 +51,6 @@ del view
 if not os.path.exists(baseline):
     print("no baseline", baseline, "- the image is", output)
     sys.exit(1)
-reader = vtkPNGReader()
-reader.SetFileName(baseline)
-test = vtkPNGReader()
-test.SetFileName(output)
-difference = vtkImageDifference()
-difference.SetInputConnection(test.GetOutputPort())
-difference.SetImageConnection(reader.GetOutputPort())
-difference.SetThreshold(16)
-difference.AllowShiftOff()
-difference.AveragingOff()
-difference.Update()
-error = difference.GetThresholdedError()
+error = image_error(output, baseline, threshold=16)
 print("strict image error", error, "(limit 10)")
 sys.exit(0 if error <= 10.0 else 1)

@@ -13,8 +13,9 @@ import subprocess
 import sys
 
 from paraview.simple import *  # noqa: F401,F403
-from vtkmodules.vtkImagingCore import vtkImageDifference
-from vtkmodules.vtkIOImage import vtkPNGReader
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from brume_testing import black_view, image_error  # noqa: E402
 
 pvserver, plugin, output_dir, port = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4])
 
@@ -27,11 +28,7 @@ def render(png):
     scene = BrumeDefaultScene()
     tracer = BrumeLightTracer(Input=scene, NumberOfParticles=100000, Seed=1)
     reconstruction = BrumeRadianceReconstruction(Scene=scene, Hits=tracer)
-    view = CreateView("RenderView")
-    view.ViewSize = [160, 160]
-    view.UseColorPaletteForBackground = 0
-    view.Background = [0, 0, 0]
-    view.OrientationAxesVisibility = 0
+    view = black_view(160)
     display = Show(reconstruction, view)
     assert display.Representation == "Brume Radiance", display.Representation
     display.FollowCamera = 0
@@ -60,18 +57,6 @@ Connect()  # a built-in session, now the active one
 local = os.path.join(output_dir, "TestBrumeRadianceClientServer-builtin.png")
 render(local)
 
-readers = []
-for name in (remote, local):
-    reader = vtkPNGReader()
-    reader.SetFileName(name)
-    readers.append(reader)
-difference = vtkImageDifference()
-difference.SetInputConnection(readers[0].GetOutputPort())
-difference.SetImageConnection(readers[1].GetOutputPort())
-difference.SetThreshold(0)
-difference.AllowShiftOff()
-difference.AveragingOff()
-difference.Update()
-error = difference.GetThresholdedError()
+error = image_error(remote, local)
 print("client-server against built-in: error %g (limit 0.5)" % error)
 sys.exit(0 if error <= 0.5 else 1)

@@ -15,13 +15,15 @@ import sys
 import time
 
 from paraview.simple import *  # noqa: F401,F403
-from vtkmodules.vtkImagingCore import vtkImageDifference
 from vtkmodules.vtkIOImage import vtkPNGReader, vtkPNGWriter
 from vtkmodules.vtkRenderingCore import vtkRenderer, vtkRenderWindow, vtkWindowToImageFilter
 from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.vtkConstants import VTK_STRING
 
 import brume  # the same modules, for the reference render
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from brume_testing import black_view, default_camera, image_error  # noqa: E402
 
 plugin, baseline, output_dir = sys.argv[1:4]
 size = int(sys.argv[4]) if len(sys.argv) > 4 else 200
@@ -33,23 +35,6 @@ def check(ok, what):
     print(("ok: " if ok else "FAILED: ") + what)
     if not ok:
         failures.append(what)
-
-
-def compare(test_png, reference_png, threshold=0):
-    """vtkImageDifference's thresholded error (0: equal images)."""
-    readers = []
-    for name in (test_png, reference_png):
-        reader = vtkPNGReader()
-        reader.SetFileName(name)
-        readers.append(reader)
-    difference = vtkImageDifference()
-    difference.SetInputConnection(readers[0].GetOutputPort())
-    difference.SetImageConnection(readers[1].GetOutputPort())
-    difference.SetThreshold(threshold)
-    difference.AllowShiftOff()
-    difference.AveragingOff()
-    difference.Update()
-    return difference.GetThresholdedError()
 
 
 def reference(textures, camera, png):
@@ -93,20 +78,12 @@ tracer = BrumeLightTracer(Input=scene, NumberOfParticles=200000, Seed=1)
 reconstruction = BrumeRadianceReconstruction(Scene=scene, Hits=tracer)
 reconstruction.UpdatePipeline()
 
-view = CreateView("RenderView")
-view.ViewSize = [size, size]
-view.UseColorPaletteForBackground = 0
-view.Background = [0, 0, 0]
-view.OrientationAxesVisibility = 0
-print("FXAA in the view:", view.UseFXAA)
+view = black_view(size)
 display = Show(reconstruction, view)
 check(display.Representation == "Brume Radiance",
       "Show() gives 'Brume Radiance' (got '%s')" % display.Representation)
-view.CameraPosition = [0, 0, 4]
-view.CameraFocalPoint = [0, 0, 0]
-view.CameraViewUp = [0, 1, 0]
-view.CameraViewAngle = 40
-Render(view)
+default_camera(view)
+Render(view)  # paraview.simple's first render frames the scene: the camera moves
 shown = os.path.join(output_dir, "TestBrumeRadianceRepresentation.png")
 SaveScreenshot(shown, view, ImageResolution=[size, size])
 
@@ -114,10 +91,10 @@ algorithm = reconstruction.GetClientSideObject()
 camera = view.GetActiveCamera()
 first = os.path.join(output_dir, "TestBrumeRadianceRepresentation-actors.png")
 reference(algorithm.GetOutput(), camera, first)
-error = compare(shown, first)
+error = image_error(shown, first)
 check(error <= 0.5, "the render view shows what vtkBrumeSceneActors draws (error %g)" % error)
 if os.path.exists(baseline):
-    error = compare(shown, baseline, threshold=16)
+    error = image_error(shown, baseline, threshold=16)
     check(error <= 10, "the baseline (error %g, limit 10)" % error)
 else:
     check(False, "no baseline %s; the image is %s" % (baseline, shown))
@@ -138,7 +115,7 @@ scratch.EyePosition = list(camera.GetPosition())
 scratch.UpdatePipeline()
 again = os.path.join(output_dir, "TestBrumeRadianceRepresentation-scratch.png")
 reference(scratch.GetClientSideObject().GetOutput(), camera, again)
-error = compare(moved, again)
+error = image_error(moved, again)
 check(error <= 0.5, "after the move, the image made from scratch at the camera (error %g)" % error)
 
 # Frame time at this size: a camera step and a render, view updates included.
