@@ -100,7 +100,7 @@ bool vtkBrumeSceneActors::AddToRenderer(vtkRenderer* renderer)
       }
       vtkNew<vtkTexture> texture;
       texture->SetInputData(image);
-      texture->InterpolateOn();
+      texture->SetInterpolate(this->Interpolate);
       texture->RepeatOff();
       texture->EdgeClampOn();
       // Float radiance goes to the texture unchanged (no lookup table).
@@ -137,7 +137,8 @@ bool vtkBrumeSceneActors::AddToRenderer(vtkRenderer* renderer)
       mapper->SetSliceSpacing(this->SliceSpacing);
       vtkNew<vtkVolume> volume;
       volume->SetMapper(mapper);
-      volume->GetProperty()->SetInterpolationTypeToLinear();
+      volume->GetProperty()->SetInterpolationType(
+        this->Interpolate ? VTK_LINEAR_INTERPOLATION : VTK_NEAREST_INTERPOLATION);
       renderer->AddVolume(volume);
       this->Props->AddItem(volume);
       this->Entries.push_back({ i, nullptr, nullptr, mapper.Get(), volume.Get() });
@@ -244,6 +245,28 @@ void vtkBrumeSceneActors::SetSliceSpacing(double spacing)
   this->Modified();
 }
 
+void vtkBrumeSceneActors::SetInterpolate(bool interpolate)
+{
+  if (this->Interpolate == interpolate)
+  {
+    return;
+  }
+  this->Interpolate = interpolate;
+  for (const Entry& e : this->Entries)
+  {
+    if (e.Texture)
+    {
+      e.Texture->SetInterpolate(interpolate);
+    }
+    if (e.Volume)
+    {
+      e.Volume->GetProperty()->SetInterpolationType(
+        interpolate ? VTK_LINEAR_INTERPOLATION : VTK_NEAREST_INTERPOLATION);
+    }
+  }
+  this->Modified();
+}
+
 void vtkBrumeSceneActors::RemoveFromRenderer(vtkRenderer* renderer)
 {
   if (renderer)
@@ -264,5 +287,6 @@ void vtkBrumeSceneActors::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ShowMedia: " << this->ShowMedia << "\n";
   os << indent << "BackfaceCulling: " << this->BackfaceCulling << "\n";
   os << indent << "SliceSpacing: " << this->SliceSpacing << "\n";
+  os << indent << "Interpolate: " << this->Interpolate << "\n";
   os << indent << "Input: " << this->Input.Get() << "\n";
 }

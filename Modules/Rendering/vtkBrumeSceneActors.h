@@ -97,6 +97,15 @@ public:
   vtkGetMacro(SliceSpacing, double);
   ///@}
 
+  ///@{
+  /**
+   * Interpolate the textures linearly (default on) or show their texels
+   * and voxels as they are (nearest), those made already included.
+   */
+  void SetInterpolate(bool interpolate);
+  vtkGetMacro(Interpolate, bool);
+  ///@}
+
   /// Removes the props made by AddToRenderer() from `renderer`, and forgets them.
   void RemoveFromRenderer(vtkRenderer* renderer);
 
@@ -109,6 +118,7 @@ protected:
   bool ShowMedia = true;
   bool BackfaceCulling = true;
   double SliceSpacing = 0.0;
+  bool Interpolate = true;
 
 private:
   struct Entry;

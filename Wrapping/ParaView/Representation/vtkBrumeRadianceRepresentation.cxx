@@ -292,6 +292,7 @@ void vtkBrumeRadianceRepresentation::Show(vtkPartitionedDataSetCollection* textu
     this->Actors->SetInputData(textures);
     this->Actors->SetBackfaceCulling(this->BackfaceCulling);
     this->Actors->SetSliceSpacing(this->SliceSpacing);
+    this->Actors->SetInterpolate(this->TextureInterpolation);
     if (!this->Actors->AddToRenderer(this->Renderer))
     {
       this->Actors->RemoveFromRenderer(this->Renderer);
@@ -357,6 +358,16 @@ void vtkBrumeRadianceRepresentation::SetSliceSpacing(double spacing)
   {
     this->SliceSpacing = spacing;
     this->Actors->SetSliceSpacing(spacing);
+    this->Modified();
+  }
+}
+
+void vtkBrumeRadianceRepresentation::SetTextureInterpolation(bool interpolate)
+{
+  if (this->TextureInterpolation != interpolate)
+  {
+    this->TextureInterpolation = interpolate;
+    this->Actors->SetInterpolate(interpolate);
     this->Modified();
   }
 }
@@ -453,5 +464,6 @@ void vtkBrumeRadianceRepresentation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ShowMedia: " << this->ShowMedia << "\n";
   os << indent << "SliceSpacing: " << this->SliceSpacing << "\n";
   os << indent << "BackfaceCulling: " << this->BackfaceCulling << "\n";
+  os << indent << "TextureInterpolation: " << this->TextureInterpolation << "\n";
   os << indent << "FollowCamera: " << this->FollowCamera << "\n";
 }

@@ -72,6 +72,12 @@ public:
   ///@}
 
   ///@{
+  /// Interpolate textures and voxels linearly (default on) or show them as they are.
+  void SetTextureInterpolation(bool interpolate);
+  vtkGetMacro(TextureInterpolation, bool);
+  ///@}
+
+  ///@{
   /// Cull the back of surfaces (default on; see vtkBrumeSceneActors).
   void SetBackfaceCulling(bool cull);
   vtkGetMacro(BackfaceCulling, bool);
@@ -127,6 +133,7 @@ private:
   bool ShowMedia = true;
   double SliceSpacing = 0.0;
   bool BackfaceCulling = true;
+  bool TextureInterpolation = true;
   bool FollowCamera = true;
 };
 

@@ -37,7 +37,7 @@ def check(ok, what):
         failures.append(what)
 
 
-def reference(textures, camera, png):
+def reference(textures, camera, png, interpolate=True):
     """The textures drawn by vtkBrumeSceneActors alone, as a VTK user would."""
     renderer = vtkRenderer()
     renderer.SetBackground(0, 0, 0)
@@ -51,6 +51,7 @@ def reference(textures, camera, png):
     options.SetEndpointSearchIterations(view.FXAAEndpointSearchIterations)
     actors = brume.vtkBrumeSceneActors()
     actors.SetInputData(textures)
+    actors.SetInterpolate(interpolate)
     assert actors.AddToRenderer(renderer)
     window = vtkRenderWindow()
     window.SetMultiSamples(0)  # as ParaView's windows
@@ -117,6 +118,18 @@ again = os.path.join(output_dir, "TestBrumeRadianceRepresentation-scratch.png")
 reference(scratch.GetClientSideObject().GetOutput(), camera, again)
 error = image_error(moved, again)
 check(error <= 0.5, "after the move, the image made from scratch at the camera (error %g)" % error)
+
+# Nearest texels and voxels: vtkBrumeSceneActors' image with Interpolate off.
+display.TextureInterpolation = 0
+Render(view)
+nearest = os.path.join(output_dir, "TestBrumeRadianceRepresentation-nearest.png")
+SaveScreenshot(nearest, view, ImageResolution=[size, size])
+blocky = os.path.join(output_dir, "TestBrumeRadianceRepresentation-nearest-actors.png")
+reference(algorithm.GetOutput(), camera, blocky, interpolate=False)
+error = image_error(nearest, blocky)
+check(error <= 0.5 and image_error(nearest, moved) > 0.5,
+      "Interpolation off: nearest texels, as vtkBrumeSceneActors draws them (error %g)" % error)
+display.TextureInterpolation = 1
 
 # Frame time at this size: a camera step and a render, view updates included.
 frames = 10
