@@ -224,6 +224,14 @@ int vtkBrumeRadianceRepresentation::ProcessViewRequest(
     }
     auto* view = vtkPVRenderView::SafeDownCast(inInfo->Get(vtkPVView::VIEW()));
     this->Show(this->FollowCamera ? this->Follow(view, delivered) : delivered);
+    // With translucent geometry in the view, the render view's default
+    // (DepthPeelingForVolumes) would draw the media inside VTK's dual depth
+    // peeling, once per peel; Brume's slices blend themselves, once.
+    // The README says so; the view's property shows the old value.
+    if (this->Renderer && this->ShowMedia)
+    {
+      this->Renderer->SetUseDepthPeelingForVolumes(false);
+    }
   }
   return 1;
 }

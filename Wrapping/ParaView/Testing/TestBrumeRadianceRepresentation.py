@@ -37,10 +37,15 @@ def check(ok, what):
         failures.append(what)
 
 
-def reference(textures, camera, png, interpolate=True):
-    """The textures drawn by vtkBrumeSceneActors alone, as a VTK user would."""
+def reference(textures, camera, png, interpolate=True, extra=None):
+    """The textures drawn by vtkBrumeSceneActors alone, as a VTK user would
+    (with `extra`, a translucent actor, through depth peeling as ParaView)."""
     renderer = vtkRenderer()
     renderer.SetBackground(0, 0, 0)
+    if extra:
+        renderer.AddActor(extra)
+        renderer.SetUseDepthPeeling(True)
+        renderer.SetUseDepthPeelingForVolumes(False)
     renderer.SetUseFXAA(bool(view.UseFXAA))  # as the view, with its options
     options = renderer.GetFXAAOptions()
     options.SetRelativeContrastThreshold(view.FXAARelativeContrastThreshold)
@@ -130,6 +135,41 @@ error = image_error(nearest, blocky)
 check(error <= 0.5 and image_error(nearest, moved) > 0.5,
       "Interpolation off: nearest texels, as vtkBrumeSceneActors draws them (error %g)" % error)
 display.TextureInterpolation = 1
+
+# A translucent sphere in front of the fog: ParaView peels translucent
+# geometry; the representation keeps the media out of the peeling passes.
+ball = Sphere(Center=[0.25, -0.2, 0.6], Radius=0.3, ThetaResolution=24, PhiResolution=24)
+ballDisplay = Show(ball, view)
+ballDisplay.Opacity = 0.4
+ballDisplay.Ambient = 1.0
+ballDisplay.Diffuse = 0.0
+ballDisplay.AmbientColor = [0.2, 0.4, 0.8]
+ballDisplay.DiffuseColor = [0.2, 0.4, 0.8]
+Render(view)
+peeled = os.path.join(output_dir, "TestBrumeRadianceRepresentation-translucent.png")
+SaveScreenshot(peeled, view, ImageResolution=[size, size])
+from vtkmodules.vtkFiltersSources import vtkSphereSource  # noqa: E402
+from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper  # noqa: E402
+source = vtkSphereSource()
+source.SetCenter(0.25, -0.2, 0.6)
+source.SetRadius(0.3)
+source.SetThetaResolution(24)
+source.SetPhiResolution(24)
+mapper = vtkPolyDataMapper()
+mapper.SetInputConnection(source.GetOutputPort())
+actor = vtkActor()
+actor.SetMapper(mapper)
+actor.GetProperty().SetOpacity(0.4)
+actor.GetProperty().SetAmbient(1.0)
+actor.GetProperty().SetDiffuse(0.0)
+actor.GetProperty().SetAmbientColor(0.2, 0.4, 0.8)
+actor.GetProperty().SetDiffuseColor(0.2, 0.4, 0.8)
+expected = os.path.join(output_dir, "TestBrumeRadianceRepresentation-translucent-actors.png")
+reference(algorithm.GetOutput(), camera, expected, extra=actor)
+error = image_error(peeled, expected)
+check(error <= 0.5, "with translucent geometry, the media once, outside the peeling (error %g)"
+      % error)
+Hide(ball, view)
 
 # Frame time at this size: a camera step and a render, view updates included.
 frames = 10
