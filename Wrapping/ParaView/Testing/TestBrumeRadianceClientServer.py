@@ -6,9 +6,10 @@ The textures travel from the server to the client, which renders them
 both sessions (only the built-in one can follow), so both show the
 textures toward the reconstruction's EyePosition.
 
-usage: pvpython TestBrumeRadianceClientServer.py PVSERVER PLUGIN OUTPUT_DIR PORT
+usage: pvpython TestBrumeRadianceClientServer.py PVSERVER PLUGIN OUTPUT_DIR PORT (0: a free one)
 """
 import os
+import socket
 import subprocess
 import sys
 
@@ -42,20 +43,30 @@ def render(png):
     Delete(view)
 
 
+if port == 0:  # a free port of this machine
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        port = probe.getsockname()[1]
 server = subprocess.Popen([pvserver, "--server-port=%d" % port], stdout=subprocess.PIPE,
                           stderr=subprocess.STDOUT, text=True)
-for line in server.stdout:
-    if "Accepting connection" in line:
-        break
-else:
-    sys.exit("pvserver did not start")
-# The server stays connected to the end: it exits when this client does.
-Connect("localhost", port)
-remote = os.path.join(output_dir, "TestBrumeRadianceClientServer-remote.png")
-render(remote)
-Connect()  # a built-in session, now the active one
-local = os.path.join(output_dir, "TestBrumeRadianceClientServer-builtin.png")
-render(local)
+try:
+    for line in server.stdout:
+        if "Accepting connection" in line:
+            break
+    else:
+        raise RuntimeError("pvserver did not start")
+    # The server stays connected to the end: it exits when this client does.
+    # 127.0.0.1: a minimal root may not resolve "localhost".
+    if not Connect("127.0.0.1", port) or not servermanager.ActiveConnection.IsRemote():
+        raise RuntimeError("no connection to pvserver on port %d" % port)
+    remote = os.path.join(output_dir, "TestBrumeRadianceClientServer-remote.png")
+    render(remote)
+    Connect()  # a built-in session, now the active one
+    local = os.path.join(output_dir, "TestBrumeRadianceClientServer-builtin.png")
+    render(local)
+except BaseException:
+    server.kill()  # no server left behind by a failure
+    raise
 
 error = image_error(remote, local)
 print("client-server against built-in: error %g (limit 0.5)" % error)
