@@ -113,7 +113,7 @@ bool vtkBrumeSceneActors::AddToRenderer(vtkRenderer* renderer)
       actor->SetTexture(texture);
       // Unlit: the fragment is the texture's radiance.
       actor->GetProperty()->LightingOff();
-      actor->GetProperty()->SetColor(1.0, 1.0, 1.0);
+      actor->GetProperty()->SetColor(this->Exposure, this->Exposure, this->Exposure);
       actor->GetProperty()->SetAmbient(1.0);
       actor->GetProperty()->SetDiffuse(0.0);
       actor->GetProperty()->SetSpecular(0.0);
@@ -135,6 +135,7 @@ bool vtkBrumeSceneActors::AddToRenderer(vtkRenderer* renderer)
       mapper->SetInputData(image);
       mapper->SetExtinctionData(NativeExtinction(pds));
       mapper->SetSliceSpacing(this->SliceSpacing);
+      mapper->SetRadianceScale(this->Exposure);
       vtkNew<vtkVolume> volume;
       volume->SetMapper(mapper);
       volume->GetProperty()->SetInterpolationType(
@@ -267,6 +268,32 @@ void vtkBrumeSceneActors::SetInterpolate(bool interpolate)
   this->Modified();
 }
 
+void vtkBrumeSceneActors::SetExposure(double exposure)
+{
+  exposure = exposure > 0.0 ? exposure : 0.0;
+  if (this->Exposure == exposure)
+  {
+    return;
+  }
+  this->Exposure = exposure;
+  this->Props->InitTraversal();
+  while (vtkProp* prop = this->Props->GetNextProp())
+  {
+    if (auto* actor = vtkActor::SafeDownCast(prop))
+    {
+      actor->GetProperty()->SetColor(exposure, exposure, exposure);
+    }
+  }
+  for (const Entry& e : this->Entries)
+  {
+    if (e.Slices)
+    {
+      e.Slices->SetRadianceScale(exposure);
+    }
+  }
+  this->Modified();
+}
+
 void vtkBrumeSceneActors::RemoveFromRenderer(vtkRenderer* renderer)
 {
   if (renderer)
@@ -288,5 +315,6 @@ void vtkBrumeSceneActors::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BackfaceCulling: " << this->BackfaceCulling << "\n";
   os << indent << "SliceSpacing: " << this->SliceSpacing << "\n";
   os << indent << "Interpolate: " << this->Interpolate << "\n";
+  os << indent << "Exposure: " << this->Exposure << "\n";
   os << indent << "Input: " << this->Input.Get() << "\n";
 }

@@ -106,6 +106,16 @@ public:
   vtkGetMacro(Interpolate, bool);
   ///@}
 
+  ///@{
+  /**
+   * Multiplies the radiance shown (default 1, at least 0): the surfaces'
+   * colour and the media's emitted radiance (not their transmittance), an
+   * exposure for windows that show linear radiance, those made included.
+   */
+  void SetExposure(double exposure);
+  vtkGetMacro(Exposure, double);
+  ///@}
+
   /// Removes the props made by AddToRenderer() from `renderer`, and forgets them.
   void RemoveFromRenderer(vtkRenderer* renderer);
 
@@ -119,6 +129,7 @@ protected:
   bool BackfaceCulling = true;
   double SliceSpacing = 0.0;
   bool Interpolate = true;
+  double Exposure = 1.0;
 
 private:
   struct Entry;

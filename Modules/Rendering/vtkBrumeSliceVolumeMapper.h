@@ -74,6 +74,17 @@ public:
   vtkGetMacro(SliceSpacing, double);
   ///@}
 
+  ///@{
+  /**
+   * Multiplies the radiance the slices emit, not their transmittance
+   * (default 1, at least 0): an exposure for displays of linear radiance
+   * (the "Brume Radiance" representation's Exposure). Light from behind a
+   * medium is attenuated as before; scale it with its own props.
+   */
+  vtkSetClampMacro(RadianceScale, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(RadianceScale, double);
+  ///@}
+
   /// Where directional radiance is evaluated toward the eye.
   enum DirectionalEvaluationModes
   {
@@ -142,6 +153,7 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
 
   double SliceSpacing = 0.0;
+  double RadianceScale = 1.0;
   int DirectionalEvaluation = PerVoxel;
   int LastNumberOfSlices = 0;
   vtkSmartPointer<vtkImageData> ExtinctionData;

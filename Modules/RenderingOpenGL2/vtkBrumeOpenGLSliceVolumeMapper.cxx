@@ -213,7 +213,8 @@ bool vtkBrumeOpenGLSliceVolumeMapper::PrepareSlices(
     vtkDataArray* factor = input->GetFieldData()->GetArray("BrumeExtinctionFactor");
     for (int c = 0; c < 3; ++c)
     {
-      const double f = factor && factor->GetNumberOfComponents() == 3 ? factor->GetComponent(0, c) : 1.0;
+      const double f =
+        factor && factor->GetNumberOfComponents() == 3 ? factor->GetComponent(0, c) : 1.0;
       impl.ExtinctionFactor[c] = f > 0.0 && f <= 1.0 ? static_cast<float>(f) : 1.f;
     }
   }
@@ -508,6 +509,7 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawAll(vtkRenderer* ren)
     program->SetUniform3f("extinctionScale", owner.ExtinctionScale);
     program->SetUniform3f("extinctionOffset", owner.ExtinctionOffset);
     program->SetUniform3f("extinctionFactor", owner.ExtinctionFactor);
+    program->SetUniformf("radianceScale", static_cast<float>(run.Owner->GetRadianceScale()));
     if (owner.FragmentOrder > 0)
     {
       for (std::size_t t = 0; t < owner.Coefficients.size(); ++t)

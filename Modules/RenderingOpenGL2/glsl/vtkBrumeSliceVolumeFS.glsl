@@ -19,6 +19,7 @@ uniform int sourceIsRadiance;        // sourceTexture holds S, not J
 uniform vec3 extinctionScale;        // texcoord to the extinction grid's own box
 uniform vec3 extinctionOffset;
 uniform vec3 extinctionFactor;       // forward peak drawn as transport: sigma_t's factor
+uniform float radianceScale;         // an exposure: the emitted radiance only, not T
 
 //BRUME::Directional::Dec
 
@@ -55,6 +56,6 @@ void main()
   vec3 thick = emission * (vec3(1.0) - transmittance) / max(sigmaT, vec3(1e-30));
   vec3 thin = emission * delta;
   vec3 radiance = mix(thin, thick, step(vec3(1e-4), sigmaT * delta));
-  fragColor = vec4(radiance, 1.0 - meanTransmittance);
+  fragColor = vec4(radiance * radianceScale, 1.0 - meanTransmittance);
   fragTransmittance = vec4(transmittance, meanTransmittance);
 }

@@ -301,6 +301,7 @@ void vtkBrumeRadianceRepresentation::Show(vtkPartitionedDataSetCollection* textu
     this->Actors->SetBackfaceCulling(this->BackfaceCulling);
     this->Actors->SetSliceSpacing(this->SliceSpacing);
     this->Actors->SetInterpolate(this->TextureInterpolation);
+    this->Actors->SetExposure(this->Exposure);
     if (!this->Actors->AddToRenderer(this->Renderer))
     {
       this->Actors->RemoveFromRenderer(this->Renderer);
@@ -366,6 +367,16 @@ void vtkBrumeRadianceRepresentation::SetSliceSpacing(double spacing)
   {
     this->SliceSpacing = spacing;
     this->Actors->SetSliceSpacing(spacing);
+    this->Modified();
+  }
+}
+
+void vtkBrumeRadianceRepresentation::SetExposure(double exposure)
+{
+  if (this->Exposure != exposure)
+  {
+    this->Exposure = exposure;
+    this->Actors->SetExposure(exposure);
     this->Modified();
   }
 }
@@ -473,5 +484,6 @@ void vtkBrumeRadianceRepresentation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SliceSpacing: " << this->SliceSpacing << "\n";
   os << indent << "BackfaceCulling: " << this->BackfaceCulling << "\n";
   os << indent << "TextureInterpolation: " << this->TextureInterpolation << "\n";
+  os << indent << "Exposure: " << this->Exposure << "\n";
   os << indent << "FollowCamera: " << this->FollowCamera << "\n";
 }

@@ -72,6 +72,12 @@ public:
   ///@}
 
   ///@{
+  /// Multiplies the radiance shown (default 1): see vtkBrumeSceneActors::SetExposure.
+  void SetExposure(double exposure);
+  vtkGetMacro(Exposure, double);
+  ///@}
+
+  ///@{
   /// Interpolate textures and voxels linearly (default on) or show them as they are.
   void SetTextureInterpolation(bool interpolate);
   vtkGetMacro(TextureInterpolation, bool);
@@ -134,6 +140,7 @@ private:
   double SliceSpacing = 0.0;
   bool BackfaceCulling = true;
   bool TextureInterpolation = true;
+  double Exposure = 1.0;
   bool FollowCamera = true;
 };
 

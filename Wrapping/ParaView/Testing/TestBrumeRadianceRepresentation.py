@@ -37,7 +37,7 @@ def check(ok, what):
         failures.append(what)
 
 
-def reference(textures, camera, png, interpolate=True, extra=None):
+def reference(textures, camera, png, interpolate=True, extra=None, exposure=1.0):
     """The textures drawn by vtkBrumeSceneActors alone, as a VTK user would
     (with `extra`, a translucent actor, through depth peeling as ParaView)."""
     renderer = vtkRenderer()
@@ -57,6 +57,7 @@ def reference(textures, camera, png, interpolate=True, extra=None):
     actors = brume.vtkBrumeSceneActors()
     actors.SetInputData(textures)
     actors.SetInterpolate(interpolate)
+    actors.SetExposure(exposure)
     assert actors.AddToRenderer(renderer)
     window = vtkRenderWindow()
     window.SetMultiSamples(0)  # as ParaView's windows
@@ -135,6 +136,18 @@ error = image_error(nearest, blocky)
 check(error <= 0.5 and image_error(nearest, moved) > 0.5,
       "Interpolation off: nearest texels, as vtkBrumeSceneActors draws them (error %g)" % error)
 display.TextureInterpolation = 1
+
+# Exposure 2.5: surfaces and media brighter, as vtkBrumeSceneActors draws them.
+display.Exposure = 2.5
+Render(view)
+bright = os.path.join(output_dir, "TestBrumeRadianceRepresentation-exposure.png")
+SaveScreenshot(bright, view, ImageResolution=[size, size])
+expected = os.path.join(output_dir, "TestBrumeRadianceRepresentation-exposure-actors.png")
+reference(algorithm.GetOutput(), camera, expected, exposure=2.5)
+error = image_error(bright, expected)
+check(error <= 0.5 and image_error(bright, moved) > 0.5,
+      "Exposure 2.5: as vtkBrumeSceneActors draws it, brighter (error %g)" % error)
+display.Exposure = 1.0
 
 # A translucent sphere in front of the fog: ParaView peels translucent
 # geometry; the representation keeps the media out of the peeling passes.

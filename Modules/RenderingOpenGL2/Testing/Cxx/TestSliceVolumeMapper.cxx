@@ -8,9 +8,9 @@
 #include "vtkBrumeSliceVolumeMapper.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
+#include "vtkCellData.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
-#include "vtkCellData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
@@ -233,11 +233,13 @@ bool Layers()
   return ok;
 }
 
-bool Occlusion()
+bool Occlusion(double scale)
 {
   // A sphere of radius 0.3 centred on the medium's side face x = 0.5: half
   // inside. Unlit colour c; the medium between the front face z = 0.5 and the
-  // sphere is all that lies in front of it; nothing behind it shows.
+  // sphere is all that lies in front of it; nothing behind it shows. The
+  // mapper's RadianceScale multiplies the medium's radiance, not what it
+  // lets through.
   const double box[6] = { -0.5, 0.5, -0.5, 0.5, -0.5, 0.5 };
   const Layer fog{ { 1.0, 2.0, 0.5 }, { 2.0, 1.0, 3.0 } };
   vtkNew<vtkSphereSource> sphere;
@@ -252,7 +254,9 @@ bool Occlusion()
   actor->GetProperty()->LightingOff();
   actor->GetProperty()->SetColor(0.25, 0.5, 0.75);
   const RGB c{ 0.25, 0.5, 0.75 };
-  const Frame f = Render({ actor, Volume(Medium(box, { fog }), 0.002, false) }, true);
+  vtkSmartPointer<vtkVolume> volume = Volume(Medium(box, { fog }), 0.002, false);
+  vtkBrumeSliceVolumeMapper::SafeDownCast(volume->GetMapper())->SetRadianceScale(scale);
+  const Frame f = Render({ actor, volume }, true);
   bool ok = true;
   int checked = 0;
   for (int j = 0; j < Size; ++j)
@@ -277,12 +281,16 @@ bool Occlusion()
         const RGB l = Slab(fog, d);
         for (int k = 0; k < 3; ++k)
         {
-          expected[k] = l[k] + std::exp(-fog.SigmaT[k] * d) * c[k];
+          expected[k] = scale * l[k] + std::exp(-fog.SigmaT[k] * d) * c[k];
         }
       }
       else if (rho2 > 0.32 * 0.32 && x < 0.45)
       {
         expected = Slab(fog, 1.0);
+        for (double& e : expected)
+        {
+          e *= scale;
+        }
       }
       else
       {
@@ -293,7 +301,7 @@ bool Occlusion()
         ok;
       ++checked;
     }
-  std::cout << "occlusion: " << checked << " pixels checked\n";
+  std::cout << "occlusion, radiance scale " << scale << ": " << checked << " pixels checked\n";
   return ok && checked > 500;
 }
 
@@ -429,7 +437,8 @@ bool Directional()
         expected[c] = phi[c] * p * (1.0 - std::exp(-sigmaT[c]));
       }
       ok = Near(f.At(Size / 2, Size / 2), expected, 0.015,
-             std::string(evaluation == vtkBrumeSliceVolumeMapper::PerVoxel ? "per voxel" : "per fragment") +
+             std::string(
+               evaluation == vtkBrumeSliceVolumeMapper::PerVoxel ? "per voxel" : "per fragment") +
                ", order " + std::to_string(order) + ", w_p . z = " + std::to_string(wp.z)) &&
         ok;
     }
@@ -497,7 +506,8 @@ int TestSliceVolumeMapper(int, char*[])
   bool ok = true;
   ok = Exactness() && ok;
   ok = Layers() && ok;
-  ok = Occlusion() && ok;
+  ok = Occlusion(1.0) && ok;
+  ok = Occlusion(2.5) && ok;
   ok = DepthOrder() && ok;
   ok = BadInput() && ok;
   ok = Directional() && ok;
