@@ -184,6 +184,34 @@ check(error <= 0.5, "with translucent geometry, the media once, outside the peel
       % error)
 Hide(ball, view)
 
+# Two views of one reconstruction, each with its own camera: each render
+# updates the textures toward its own view (one update per switch), and a
+# view's image does not change when the other one renders.
+other = black_view(size)
+Show(reconstruction, other)
+Render(other)  # the first render frames the scene
+other.CameraPosition = [-1.0, 0.4, 3.7]
+other.CameraFocalPoint = [0, 0, 0]
+other.CameraViewUp = [0, 1, 0]
+other.CameraViewAngle = 40
+updates = algorithm.GetNumberOfViewUpdates()
+Render(other)
+second = os.path.join(output_dir, "TestBrumeRadianceRepresentation-second.png")
+SaveScreenshot(second, other, ImageResolution=[size, size])
+expected = os.path.join(output_dir, "TestBrumeRadianceRepresentation-second-actors.png")
+reference(algorithm.GetOutput(), other.GetActiveCamera(), expected)
+error = image_error(second, expected)
+check(error <= 0.5, "a second view shows its own camera's textures (error %g)" % error)
+Render(view)
+first = os.path.join(output_dir, "TestBrumeRadianceRepresentation-first-again.png")
+SaveScreenshot(first, view, ImageResolution=[size, size])
+error = image_error(first, moved)
+check(error <= 0.5, "the first view, rendered again, is as before (error %g)" % error)
+check(algorithm.GetNumberOfViewUpdates() == updates + 2,
+      "one view update per switch of view (%d)" % (algorithm.GetNumberOfViewUpdates() - updates))
+Delete(other)
+del other
+
 # Frame time at this size: a camera step and a render, view updates included.
 frames = 10
 start = time.time()
