@@ -32,10 +32,7 @@ vtkImageData* NativeExtinction(vtkPartitionedDataSet* pds)
 
 std::string KindOf(vtkDataObject* data)
 {
-  auto* kind = data
-    ? vtkStringArray::SafeDownCast(data->GetFieldData()->GetAbstractArray("BrumeObjectKind"))
-    : nullptr;
-  return kind && kind->GetNumberOfValues() > 0 ? kind->GetValue(0) : std::string();
+  return vtkBrumeSceneActors::GetObjectKind(data);
 }
 }
 
@@ -48,6 +45,14 @@ struct vtkBrumeSceneActors::Entry
   vtkSmartPointer<vtkBrumeSliceVolumeMapper> Slices; // media
   vtkSmartPointer<vtkVolume> Volume;                 // media
 };
+
+std::string vtkBrumeSceneActors::GetObjectKind(vtkDataObject* texture)
+{
+  auto* kind = texture
+    ? vtkStringArray::SafeDownCast(texture->GetFieldData()->GetAbstractArray("BrumeObjectKind"))
+    : nullptr;
+  return kind && kind->GetNumberOfValues() > 0 ? kind->GetValue(0) : std::string();
+}
 
 vtkBrumeSceneActors::vtkBrumeSceneActors()
   : Props(vtkSmartPointer<vtkPropCollection>::New())
@@ -263,6 +268,24 @@ void vtkBrumeSceneActors::SetInterpolate(bool interpolate)
     {
       e.Volume->GetProperty()->SetInterpolationType(
         interpolate ? VTK_LINEAR_INTERPOLATION : VTK_NEAREST_INTERPOLATION);
+    }
+  }
+  this->Modified();
+}
+
+void vtkBrumeSceneActors::SetBackfaceCulling(bool cull)
+{
+  if (this->BackfaceCulling == cull)
+  {
+    return;
+  }
+  this->BackfaceCulling = cull;
+  this->Props->InitTraversal();
+  while (vtkProp* prop = this->Props->GetNextProp())
+  {
+    if (auto* actor = vtkActor::SafeDownCast(prop))
+    {
+      actor->GetProperty()->SetBackfaceCulling(cull);
     }
   }
   this->Modified();

@@ -25,8 +25,10 @@
 #include "vtkObject.h"
 #include "vtkSmartPointer.h" // For members
 
+#include <string> // For GetObjectKind
 #include <vector> // For the entries
 
+class vtkDataObject;
 class vtkPartitionedDataSetCollection;
 class vtkPropCollection;
 class vtkRenderer;
@@ -51,6 +53,12 @@ public:
   vtkBooleanMacro(ShowMedia, bool);
   ///@}
 
+  /**
+   * The kind a reconstructed texture declares (its field data's
+   * `BrumeObjectKind`): "surface", "medium", or "" when it is none.
+   */
+  static std::string GetObjectKind(vtkDataObject* texture);
+
   ///@{
   /**
    * Cull the back of surfaces (default on). Their textures hold the light
@@ -59,7 +67,7 @@ public:
    * the inside stays visible from outside. Off shows the front's texture on
    * both sides.
    */
-  vtkSetMacro(BackfaceCulling, bool);
+  void SetBackfaceCulling(bool cull);
   vtkGetMacro(BackfaceCulling, bool);
   vtkBooleanMacro(BackfaceCulling, bool);
   ///@}

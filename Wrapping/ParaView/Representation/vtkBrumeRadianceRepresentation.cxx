@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumeRadianceRepresentation.h"
 
-#include "vtkActor.h"
 #include "vtkBoundingBox.h"
 #include "vtkBrumeRadianceReconstruction.h"
 #include "vtkBrumeSceneActors.h"
@@ -20,22 +19,12 @@
 #include "vtkPartitionedDataSetCollection.h"
 #include "vtkPolyData.h"
 #include "vtkPropCollection.h"
-#include "vtkProperty.h"
 #include "vtkRenderer.h"
-#include "vtkStringArray.h"
 
 vtkStandardNewMacro(vtkBrumeRadianceRepresentation);
 
 namespace
 {
-std::string KindOf(vtkDataObject* data)
-{
-  auto* kind = data
-    ? vtkStringArray::SafeDownCast(data->GetFieldData()->GetAbstractArray("BrumeObjectKind"))
-    : nullptr;
-  return kind && kind->GetNumberOfValues() > 0 ? kind->GetValue(0) : std::string();
-}
-
 // "" when `data` is a collection of Brume textures, else why not. Also
 // the objects' kinds in order (the props' layout) and their world bounds:
 // surfaces' geometry and media's boxes, not the texture-space images.
@@ -52,7 +41,7 @@ std::string Inspect(vtkDataObject* data, std::string& layout, vtkBoundingBox& bo
   {
     vtkPartitionedDataSet* pds = textures->GetPartitionedDataSet(i);
     vtkDataObject* first = pds && pds->GetNumberOfPartitions() > 0 ? pds->GetPartition(0) : nullptr;
-    const std::string kind = KindOf(first);
+    const std::string kind = vtkBrumeSceneActors::GetObjectKind(first);
     auto* image = vtkImageData::SafeDownCast(first);
     auto* surface = pds && pds->GetNumberOfPartitions() > 1
       ? vtkPolyData::SafeDownCast(pds->GetPartition(1))
@@ -293,15 +282,12 @@ void vtkBrumeRadianceRepresentation::Show(vtkPartitionedDataSetCollection* textu
   }
   // The same objects: point the props at the new textures (only new images
   // are uploaded again). Other objects: new props.
+  // The actors keep the representation's settings (its setters pass them on).
   const std::string layout = LayoutOf(textures);
-  if (!this->Shown || LayoutOf(this->Shown) != layout || !this->Actors->UpdateInputs(textures))
+  if (!this->Shown || this->ShownLayout != layout || !this->Actors->UpdateInputs(textures))
   {
     this->Actors->RemoveFromRenderer(this->Renderer);
     this->Actors->SetInputData(textures);
-    this->Actors->SetBackfaceCulling(this->BackfaceCulling);
-    this->Actors->SetSliceSpacing(this->SliceSpacing);
-    this->Actors->SetInterpolate(this->TextureInterpolation);
-    this->Actors->SetExposure(this->Exposure);
     if (!this->Actors->AddToRenderer(this->Renderer))
     {
       this->Actors->RemoveFromRenderer(this->Renderer);
@@ -310,6 +296,7 @@ void vtkBrumeRadianceRepresentation::Show(vtkPartitionedDataSetCollection* textu
     }
   }
   this->Shown = textures;
+  this->ShownLayout = layout;
   this->ApplyVisibility();
 }
 
@@ -397,15 +384,6 @@ void vtkBrumeRadianceRepresentation::SetBackfaceCulling(bool cull)
   {
     this->BackfaceCulling = cull;
     this->Actors->SetBackfaceCulling(cull);
-    vtkPropCollection* props = this->Actors->GetProps();
-    props->InitTraversal();
-    while (vtkProp* prop = props->GetNextProp())
-    {
-      if (auto* actor = vtkActor::SafeDownCast(prop))
-      {
-        actor->GetProperty()->SetBackfaceCulling(cull);
-      }
-    }
     this->Modified();
   }
 }

@@ -133,6 +133,7 @@ private:
   vtkSmartPointer<vtkBrumeSceneActors> Actors;
   vtkWeakPointer<vtkRenderer> Renderer;
   vtkWeakPointer<vtkPartitionedDataSetCollection> Shown;
+  std::string ShownLayout;                          // the objects' kinds of Shown, in order
   vtkWeakPointer<vtkObject> FollowedReconstruction; // given the view's camera
   std::string LastWarning;
   bool ShowSurfaces = true;
