@@ -228,10 +228,20 @@ void PrintTextureMemory(vtkPartitionedDataSetCollection* textures)
       const bool volume = dims[2] > 1;
       const double megabytes = static_cast<double>(image->GetActualMemorySize()) / 1024.0;
       total += megabytes;
-      std::printf("  %-28s %-18s %5d x %5d x %5d %9.2f\n", name ? name : "(unnamed)",
+      std::printf("  %-28s %-18s %5d x %5d x %5d %9.2f", name ? name : "(unnamed)",
         k == 0 ? (volume ? "source radiance" : "radiance") : "extinction (own)",
         volume ? dims[0] - 1 : dims[0], volume ? dims[1] - 1 : dims[1], volume ? dims[2] - 1 : 1,
         megabytes);
+      // A sparse grid: the bricks it stores of those its box holds.
+      vtkDataArray* slots = image->GetFieldData()->GetArray("ExtinctionBrickSlots");
+      vtkDataArray* samples = image->GetFieldData()->GetArray("ExtinctionBrickSamples");
+      if (slots && samples)
+      {
+        std::printf("   sparse: %lld of %lld bricks",
+          static_cast<long long>(samples->GetNumberOfTuples() / 512),
+          static_cast<long long>(slots->GetNumberOfTuples()));
+      }
+      std::printf("\n");
     }
   }
   std::printf("  %-28s %-18s %23s %9.2f\n", "all textures", "", "", total);

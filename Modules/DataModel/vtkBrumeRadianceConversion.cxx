@@ -8,6 +8,7 @@
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkPartitionedDataSet.h"
 #include "vtkPointData.h"
@@ -155,36 +156,104 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromSurface(
 vtkSmartPointer<vtkImageData> vtkBrumeRadianceConversion::NativeExtinction(
   const brume::ObjectRadiance& radiance, const brume::Medium& medium)
 {
-  const std::vector<float>& density = radiance.GetNativeDensity();
-  if (density.empty())
+  const brume::BrickedGrid& density = radiance.GetNativeDensity();
+  if (density.Empty())
   {
     return nullptr;
   }
   // sigma_t at the density's own resolution, over its own box (which holds
-  // the medium's: its cell centres are the density's samples).
-  const auto& native = radiance.GetNativeResolution();
-  const brume::Box& box = radiance.GetNativeBox();
+  // the medium's: its cell centres are the density's samples), in the
+  // density's bricks: the sparse form of vtkBrumeSliceVolumeMapper's
+  // ExtinctionData, sigma_t per unit density beside it.
+  const auto& native = density.GetDims();
+  const brume::Box& box = density.GetBox();
   const brume::Vec3 extent = box.Extent();
   auto extinction = vtkSmartPointer<vtkImageData>::New();
   extinction->SetDimensions(native[0] + 1, native[1] + 1, native[2] + 1);
   extinction->SetOrigin(box.lower.x, box.lower.y, box.lower.z);
   extinction->SetSpacing(extent.x / native[0], extent.y / native[1], extent.z / native[2]);
+  vtkFieldData* fd = extinction->GetFieldData();
+  vtkNew<vtkIntArray> slots;
+  slots->SetName("ExtinctionBrickSlots");
+  slots->SetNumberOfValues(static_cast<vtkIdType>(density.GetSlots().size()));
+  std::copy(density.GetSlots().begin(), density.GetSlots().end(), slots->GetPointer(0));
+  fd->AddArray(slots);
+  vtkNew<vtkFloatArray> values;
+  values->SetName("ExtinctionBrickValues");
+  values->SetNumberOfValues(static_cast<vtkIdType>(density.GetConstants().size()));
+  std::copy(density.GetConstants().begin(), density.GetConstants().end(), values->GetPointer(0));
+  fd->AddArray(values);
+  vtkNew<vtkFloatArray> samples;
+  samples->SetName("ExtinctionBrickSamples");
+  samples->SetNumberOfValues(static_cast<vtkIdType>(density.GetSamples().size()));
+  std::copy(density.GetSamples().begin(), density.GetSamples().end(), samples->GetPointer(0));
+  fd->AddArray(samples);
+  vtkNew<vtkDoubleArray> scale;
+  scale->SetName("ExtinctionScale");
+  scale->SetNumberOfComponents(3);
+  const brume::Vec3 sigmaT = medium.SigmaT();
+  scale->InsertNextTuple3(sigmaT.x, sigmaT.y, sigmaT.z);
+  fd->AddArray(scale);
+  AddString(fd, "BrumeObjectKind", "medium extinction");
+  return extinction;
+}
+
+vtkSmartPointer<vtkImageData> vtkBrumeRadianceConversion::DenseExtinction(vtkImageData* sparse)
+{
+  vtkFieldData* fd = sparse ? sparse->GetFieldData() : nullptr;
+  vtkDataArray* slots = fd ? fd->GetArray("ExtinctionBrickSlots") : nullptr;
+  vtkDataArray* values = fd ? fd->GetArray("ExtinctionBrickValues") : nullptr;
+  vtkDataArray* samples = fd ? fd->GetArray("ExtinctionBrickSamples") : nullptr;
+  vtkDataArray* scale = fd ? fd->GetArray("ExtinctionScale") : nullptr;
+  if (!slots || !values || !samples || !scale || scale->GetNumberOfComponents() != 3)
+  {
+    return nullptr;
+  }
+  int pointDims[3];
+  sparse->GetDimensions(pointDims);
+  int dims[3], bricks[3];
+  vtkIdType count = 1;
+  for (int a = 0; a < 3; ++a)
+  {
+    dims[a] = pointDims[a] - 1;
+    bricks[a] = brume::BrickedGrid::BricksAlong(dims[a]);
+    count *= bricks[a];
+  }
+  constexpr int B = brume::BrickedGrid::Size, S = brume::BrickedGrid::Stride;
+  if (dims[0] < 1 || dims[1] < 1 || dims[2] < 1 || slots->GetNumberOfTuples() != count ||
+    values->GetNumberOfTuples() != count)
+  {
+    return nullptr;
+  }
+  auto dense = vtkSmartPointer<vtkImageData>::New();
+  dense->SetDimensions(pointDims);
+  dense->SetOrigin(sparse->GetOrigin());
+  dense->SetSpacing(sparse->GetSpacing());
   vtkNew<vtkFloatArray> sigmaT;
   sigmaT->SetName("Extinction");
   sigmaT->SetNumberOfComponents(3);
-  sigmaT->SetNumberOfTuples(static_cast<vtkIdType>(density.size()));
-  const brume::Vec3 base = medium.SigmaT();
-  float* out = sigmaT->GetPointer(0);
-  for (std::size_t c = 0; c < density.size(); ++c)
-  {
-    for (int k = 0; k < 3; ++k)
-    {
-      out[3 * c + k] = base[k] * density[c];
-    }
-  }
-  extinction->GetCellData()->SetScalars(sigmaT);
-  AddString(extinction->GetFieldData(), "BrumeObjectKind", "medium extinction");
-  return extinction;
+  sigmaT->SetNumberOfTuples(static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2]);
+  for (int k = 0; k < dims[2]; ++k)
+    for (int j = 0; j < dims[1]; ++j)
+      for (int i = 0; i < dims[0]; ++i)
+      {
+        const int b[3] = { std::min(i / S, bricks[0] - 1), std::min(j / S, bricks[1] - 1),
+          std::min(k / S, bricks[2] - 1) };
+        const vtkIdType brick = (static_cast<vtkIdType>(b[2]) * bricks[1] + b[1]) * bricks[0] + b[0];
+        const vtkIdType slot = static_cast<vtkIdType>(slots->GetTuple1(brick));
+        const double v = slot < 0
+          ? values->GetTuple1(brick)
+          : samples->GetTuple1(slot * B * B * B +
+              ((k - S * b[2]) * B + (j - S * b[1])) * B + (i - S * b[0]));
+        const vtkIdType cell = (static_cast<vtkIdType>(k) * dims[1] + j) * dims[0] + i;
+        for (int c = 0; c < 3; ++c)
+        {
+          sigmaT->SetTypedComponent(cell, c, static_cast<float>(v * scale->GetComponent(0, c)));
+        }
+      }
+  dense->GetCellData()->SetScalars(sigmaT);
+  AddString(dense->GetFieldData(), "BrumeObjectKind", "medium extinction");
+  return dense;
 }
 
 vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(

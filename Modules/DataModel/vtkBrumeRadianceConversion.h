@@ -22,11 +22,15 @@
  *   `SourceRadiance` is the mean over directions) and the field value
  *   `BrumePhaseAsymmetry`. The source radiance of a heterogeneous medium is
  *   its sigma_t-weighted mean over each voxel's region (smooth where the
- *   light is), and partition 1 is a second 3D vtkImageData over the same
- *   box with cell data `Extinction` (float[3], m^-1) at the density's own
- *   resolution (brume::ObjectRadiance::GetNativeDensity times the medium's sigma_t), which
- *   vtkBrumeSliceVolumeMapper draws the medium's structure with
- *   (SetExtinctionData).
+ *   light is), and partition 1 is a second 3D vtkImageData over the
+ *   density's own grid (its box holds the medium's) with the extinction at
+ *   the density's own resolution (brume::ObjectRadiance::GetNativeDensity
+ *   times the medium's sigma_t) in vtkBrumeSliceVolumeMapper's sparse form
+ *   (field arrays `ExtinctionBrickSlots`, `ExtinctionBrickValues`,
+ *   `ExtinctionBrickSamples`, `ExtinctionScale`; see
+ *   vtkBrumeSliceVolumeMapper::SetExtinctionData): memory follows the
+ *   bricks where the density varies, not the box. The mapper draws the
+ *   medium's structure with it; DenseExtinction() expands it.
  *
  * Every partition's field data holds `BrumeObjectKind` ("surface" or
  * "medium").
@@ -71,6 +75,14 @@ public:
    */
   static vtkSmartPointer<vtkImageData> NativeExtinction(
     const brume::ObjectRadiance& radiance, const brume::Medium& medium);
+
+  /**
+   * The sparse extinction of NativeExtinction() as a dense image: cell data
+   * `Extinction` (float[3], m^-1) on the same grid, for filters that need
+   * every cell (and to check the sparse form). Null when `sparse` is not
+   * in that form.
+   */
+  static vtkSmartPointer<vtkImageData> DenseExtinction(vtkImageData* sparse);
 };
 
 #endif

@@ -316,10 +316,9 @@ void vtkBrumeRadianceTextures::ComputeDirect()
   for (std::size_t o = surfaces; o < this->Objects.size(); ++o)
   {
     const brume::ObjectRadiance& medium = *this->Objects[o];
-    if (!medium.GetNativeDensity().empty())
+    if (!medium.GetNativeDensity().Empty())
     {
-      this->Direct->SetMediumGrid(o - surfaces, medium.GetNativeDensity().data(),
-        medium.GetNativeResolution(), medium.GetNativeBox());
+      this->Direct->SetMediumGrid(o - surfaces, &medium.GetNativeDensity());
     }
   }
   const brume::ParallelFor parallelFor = vtkBrumeSMP::ParallelFor();

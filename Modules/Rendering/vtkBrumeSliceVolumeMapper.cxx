@@ -91,6 +91,42 @@ vtkMTimeType vtkBrumeSliceVolumeMapper::GetMTime()
   return this->ExtinctionData ? std::max(t, this->ExtinctionData->GetMTime()) : t;
 }
 
+std::string vtkBrumeSliceVolumeMapper::ValidateBricks(
+  const int pointDims[3], vtkFieldData* fd, vtkDataArray* samples)
+{
+  vtkDataArray* slots = fd->GetArray("ExtinctionBrickSlots");
+  vtkDataArray* values = fd->GetArray("ExtinctionBrickValues");
+  vtkDataArray* scale = fd->GetArray("ExtinctionScale");
+  vtkIdType bricks = 1;
+  for (int a = 0; a < 3; ++a)
+  {
+    bricks *= ExtinctionBricksAlong(pointDims[a] - 1);
+  }
+  const vtkIdType brickCells =
+    static_cast<vtkIdType>(ExtinctionBrickSize) * ExtinctionBrickSize * ExtinctionBrickSize;
+  if (!slots || !values || !scale || slots->GetNumberOfComponents() != 1 ||
+    values->GetNumberOfComponents() != 1 || samples->GetNumberOfComponents() != 1 ||
+    scale->GetNumberOfComponents() != 3 || scale->GetNumberOfTuples() < 1 ||
+    slots->GetNumberOfTuples() != bricks || values->GetNumberOfTuples() != bricks ||
+    samples->GetNumberOfTuples() % brickCells != 0)
+  {
+    return "the sparse extinction needs the field arrays 'ExtinctionBrickSlots' and "
+           "'ExtinctionBrickValues' (one value per brick), 'ExtinctionBrickSamples' (" +
+      std::to_string(brickCells) + " values per slot) and 'ExtinctionScale' (3 components)";
+  }
+  const vtkIdType slotCount = samples->GetNumberOfTuples() / brickCells;
+  for (vtkIdType b = 0; b < bricks; ++b)
+  {
+    const double slot = slots->GetTuple1(b);
+    if (!(slot >= -1.0 && slot < static_cast<double>(slotCount)) || slot != std::floor(slot))
+    {
+      return "the sparse extinction's brick " + std::to_string(b) +
+        " names a slot that 'ExtinctionBrickSamples' does not hold";
+    }
+  }
+  return {};
+}
+
 std::string vtkBrumeSliceVolumeMapper::ValidateExtinction(
   vtkImageData* image, vtkImageData* extinction)
 {
@@ -106,12 +142,24 @@ std::string vtkBrumeSliceVolumeMapper::ValidateExtinction(
   }
   const vtkIdType cells =
     static_cast<vtkIdType>(pointDims[0] - 1) * (pointDims[1] - 1) * (pointDims[2] - 1);
-  vtkDataArray* e = extinction->GetCellData()->GetArray("Extinction");
-  if (!e || (e->GetNumberOfComponents() != 1 && e->GetNumberOfComponents() != 3) ||
-    e->GetNumberOfTuples() != cells)
+  vtkFieldData* fd = extinction->GetFieldData();
+  if (vtkDataArray* samples = fd->GetArray("ExtinctionBrickSamples"))
   {
-    return "the extinction image needs the cell array 'Extinction' (1 or 3 components), one "
-           "tuple per cell";
+    const std::string problem = ValidateBricks(pointDims, fd, samples);
+    if (!problem.empty())
+    {
+      return problem;
+    }
+  }
+  else
+  {
+    vtkDataArray* e = extinction->GetCellData()->GetArray("Extinction");
+    if (!e || (e->GetNumberOfComponents() != 1 && e->GetNumberOfComponents() != 3) ||
+      e->GetNumberOfTuples() != cells)
+    {
+      return "the extinction image needs the cell array 'Extinction' (1 or 3 components), one "
+             "tuple per cell, or the sparse form's field arrays";
+    }
   }
   double a[6], b[6];
   image->GetBounds(a);

@@ -55,6 +55,8 @@
 
 #include <string> // For ValidateInput
 
+class vtkDataArray;
+class vtkFieldData;
 class vtkImageData;
 
 class VTKBRUMERENDERING_EXPORT vtkBrumeSliceVolumeMapper : public vtkVolumeMapper
@@ -110,26 +112,52 @@ public:
    * The medium's extinction at another resolution (default none): a
    * vtkImageData over the input's box or a larger one (a grid whose cell
    * centres are a density's own samples reaches half a cell beyond the
-   * medium; only the part inside the input's box is drawn), with the cell array
-   * `Extinction` (1 or 3 components, m^-1). When set, it replaces the
-   * input's `Extinction`, the input's `SourceRadiance` (and
-   * `SourceRadianceSH`) is taken as the source radiance S itself, and the
-   * default slice spacing is half a voxel of the input and at most four
-   * cells of this grid. The grid is uploaded again only when it is
-   * another one or was modified. vtkBrumeSceneActors sets
-   * it from a medium's partition 1 (vtkBrumeRadianceReconstruction's
-   * extinction at the density's own resolution).
+   * medium; only the part inside the input's box is drawn), whose cells'
+   * extinction (m^-1) is interpolated between their centres. Given densely,
+   * as the cell array `Extinction` (1 or 3 components), or sparsely, in
+   * bricks (below). When set, it replaces the input's `Extinction`, the
+   * input's `SourceRadiance` (and `SourceRadianceSH`) is taken as the
+   * source radiance S itself, and the default slice spacing is half a voxel
+   * of the input and at most four cells of this grid. The grid is uploaded
+   * again only when it is another one or was modified.
+   * vtkBrumeSceneActors sets it from a medium's partition 1
+   * (vtkBrumeRadianceReconstruction's extinction at the density's own
+   * resolution, which is sparse).
+   *
+   * The sparse form (no cell arrays; field arrays): the cells' values are
+   * grouped in bricks of ExtinctionBrickSize^3 cells, brick b along an axis
+   * holding cells (ExtinctionBrickSize - 1) b ... (ExtinctionBrickSize - 1) b
+   * + ExtinctionBrickSize - 1 (neighbours share a layer, so the cells any
+   * point interpolates lie in one brick; cells past the last repeat it),
+   * ExtinctionBricksAlong(n) bricks along an axis of n cells, x fastest:
+   * - `ExtinctionBrickSlots` (integers, one per brick): the brick's slot in
+   *   `ExtinctionBrickSamples`, or -1 when all its cells hold one value;
+   * - `ExtinctionBrickValues` (one per brick): that value (brick slot -1);
+   * - `ExtinctionBrickSamples` (1 component): ExtinctionBrickSize^3 values
+   *   per slot, x fastest within a brick;
+   * - `ExtinctionScale` (3 components): the extinction per unit of the
+   *   values, per colour channel (a density's sigma_t).
+   * The GPU holds the same: the slots in one 3D atlas texture and the brick
+   * table, so memory follows the bricks where the medium varies, not its box.
    */
   void SetExtinctionData(vtkImageData* extinction);
   vtkImageData* GetExtinctionData();
   ///@}
 
+  /// The sparse extinction's bricks: cells per side, and bricks along an axis of `cells`.
+  static constexpr int ExtinctionBrickSize = 8;
+  static int ExtinctionBricksAlong(int cells)
+  {
+    return cells > 1 ? (cells - 2) / (ExtinctionBrickSize - 1) + 1 : 1;
+  }
+
   vtkMTimeType GetMTime() override;
 
   /**
    * Empty when `extinction` can serve as the ExtinctionData of `image`:
-   * the array, at least one cell per axis, and the same box (within a
-   * millionth of its size); otherwise why not.
+   * the arrays (dense or sparse, their sizes and slots consistent), at
+   * least one cell per axis, and the same box (within a millionth of its
+   * size); otherwise why not.
    */
   static std::string ValidateExtinction(vtkImageData* image, vtkImageData* extinction);
 
@@ -159,6 +187,10 @@ protected:
   vtkSmartPointer<vtkImageData> ExtinctionData;
 
 private:
+  // ValidateExtinction's sparse form: the brick arrays against the grid.
+  static std::string ValidateBricks(
+    const int pointDims[3], vtkFieldData* fd, vtkDataArray* samples);
+
   vtkBrumeSliceVolumeMapper(const vtkBrumeSliceVolumeMapper&) = delete;
   void operator=(const vtkBrumeSliceVolumeMapper&) = delete;
 };

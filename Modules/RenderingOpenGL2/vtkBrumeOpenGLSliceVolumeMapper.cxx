@@ -95,6 +95,7 @@ void vtkBrumeOpenGLSliceVolumeMapper::ReleaseGraphicsResources(vtkWindow* window
 {
   this->Impl->Source->ReleaseGraphicsResources(window);
   this->Impl->Extinction->ReleaseGraphicsResources(window);
+  this->Impl->BrickTable->ReleaseGraphicsResources(window);
   for (auto& texture : this->Impl->Coefficients)
   {
     texture->ReleaseGraphicsResources(window);
@@ -509,6 +510,21 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawAll(vtkRenderer* ren)
     program->SetUniform3f("extinctionScale", owner.ExtinctionScale);
     program->SetUniform3f("extinctionOffset", owner.ExtinctionOffset);
     program->SetUniform3f("extinctionFactor", owner.ExtinctionFactor);
+    program->SetUniformi("extinctionBricked", owner.Bricked ? 1 : 0);
+    if (owner.Bricked)
+    {
+      owner.BrickTable->Activate();
+      program->SetUniformi("brickTable", owner.BrickTable->GetTextureUnit());
+      program->SetUniform3f("gridCells", owner.GridCells);
+      program->SetUniform3f("brickCount", owner.BrickCount);
+      program->SetUniform3f("atlasSize", owner.AtlasSize);
+      program->SetUniform3f("brickScale", owner.BrickScale);
+    }
+    else
+    {
+      // Unused; a 3D texture's unit all the same.
+      program->SetUniformi("brickTable", owner.Extinction->GetTextureUnit());
+    }
     program->SetUniformf("radianceScale", static_cast<float>(run.Owner->GetRadianceScale()));
     if (owner.FragmentOrder > 0)
     {
@@ -526,6 +542,10 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawAll(vtkRenderer* ren)
     glDrawArrays(GL_TRIANGLES, run.FirstVertex, run.Vertices);
     owner.Source->Deactivate();
     owner.Extinction->Deactivate();
+    if (owner.Bricked)
+    {
+      owner.BrickTable->Deactivate();
+    }
     if (owner.FragmentOrder > 0)
     {
       for (auto& texture : owner.Coefficients)

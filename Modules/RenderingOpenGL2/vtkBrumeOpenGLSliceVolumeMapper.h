@@ -60,6 +60,11 @@ private:
   bool UploadTextures(
     vtkImageData* input, vtkOpenGLRenderWindow* renWin, const int dims[3], int interpolation);
   bool UploadExtinction(vtkOpenGLRenderWindow* renWin, int filter);
+  // UploadExtinction's two forms of the grid: dense cell values, or bricks.
+  bool UploadDenseExtinction(
+    vtkImageData* grid, const int dims[3], vtkOpenGLRenderWindow* renWin, int filter);
+  bool UploadBricks(
+    vtkImageData* grid, const int dims[3], vtkOpenGLRenderWindow* renWin, int filter);
   bool UploadDirectional(vtkImageData* input, vtkOpenGLRenderWindow* renWin, const int dims[3],
     int filter, const std::vector<float>& extinction);
   bool EvaluateTowardEye(vtkOpenGLRenderWindow* renWin, const int dims[3], int interpolation);

@@ -22,7 +22,16 @@ class vtkOpenGLRenderWindow;
 struct vtkBrumeOpenGLSliceVolumeMapper::Internals
 {
   vtkNew<vtkTextureObject> Source;
-  vtkNew<vtkTextureObject> Extinction;
+  vtkNew<vtkTextureObject> Extinction; // RGB per cell, or a sparse grid's atlas of bricks
+  // A sparse extinction grid: per brick, the atlas texel of its slot (xyz,
+  // w = 1) or its one value (x, w = -1); the grid's cells, bricks and atlas
+  // size, and the extinction per unit of its values.
+  vtkNew<vtkTextureObject> BrickTable;
+  bool Bricked = false;
+  float GridCells[3] = { 1.f, 1.f, 1.f };
+  float BrickCount[3] = { 1.f, 1.f, 1.f };
+  float AtlasSize[3] = { 1.f, 1.f, 1.f };
+  float BrickScale[3] = { 1.f, 1.f, 1.f };
   // Directional radiance: the coefficients (RGBA float 3D textures), the
   // order (0: none), g, and the eye and box in data coordinates.
   std::vector<vtkSmartPointer<vtkTextureObject>> Coefficients;

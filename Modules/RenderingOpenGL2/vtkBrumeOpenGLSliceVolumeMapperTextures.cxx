@@ -10,6 +10,7 @@
 #include "vtkImageData.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkSMPTools.h"
+#include "vtk_glew.h"
 
 #include "brume/SphericalHarmonics.h"
 
@@ -84,6 +85,7 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadTextures(
   else
   {
     impl.ExtinctionGrid = nullptr; // the extinction texture is the input's
+    impl.Bricked = false;
   }
   if (!this->UploadDirectional(input, renWin, dims, filter, e))
   {
@@ -108,6 +110,21 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadExtinction(vtkOpenGLRenderWindow* re
   int pointDims[3];
   grid->GetDimensions(pointDims);
   const int dims[3] = { pointDims[0] - 1, pointDims[1] - 1, pointDims[2] - 1 };
+  impl.Bricked = grid->GetFieldData()->GetArray("ExtinctionBrickSamples") != nullptr;
+  if (impl.Bricked ? !this->UploadBricks(grid, dims, renWin, filter)
+                   : !this->UploadDenseExtinction(grid, dims, renWin, filter))
+  {
+    return false;
+  }
+  impl.ExtinctionGrid = grid;
+  impl.ExtinctionInterpolation = filter;
+  impl.ExtinctionTime.Modified();
+  return true;
+}
+
+bool vtkBrumeOpenGLSliceVolumeMapper::UploadDenseExtinction(
+  vtkImageData* grid, const int dims[3], vtkOpenGLRenderWindow* renWin, int filter)
+{
   const vtkIdType cells = static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2];
   vtkDataArray* extinction = grid->GetCellData()->GetArray("Extinction");
   const int ne = extinction->GetNumberOfComponents();
@@ -127,14 +144,105 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadExtinction(vtkOpenGLRenderWindow* re
       e[3 * i + c] = value;
     }
   }
-  if (!Upload3D(impl.Extinction, renWin, dims, 3, filter, e.data()))
+  return Upload3D(this->Impl->Extinction, renWin, dims, 3, filter, e.data());
+}
+
+bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
+  vtkImageData* grid, const int dims[3], vtkOpenGLRenderWindow* renWin, int filter)
+{
+  // The slots side by side in a 3D atlas (at least one, so that the
+  // sampler has a texture), about cubic in slots; the brick table beside it.
+  Internals& impl = *this->Impl;
+  vtkFieldData* fd = grid->GetFieldData();
+  vtkDataArray* slots = fd->GetArray("ExtinctionBrickSlots");
+  vtkDataArray* values = fd->GetArray("ExtinctionBrickValues");
+  vtkDataArray* samples = fd->GetArray("ExtinctionBrickSamples");
+  vtkDataArray* scale = fd->GetArray("ExtinctionScale");
+  constexpr int B = ExtinctionBrickSize;
+  constexpr vtkIdType BrickCells = B * B * B;
+  const vtkIdType slotCount = samples->GetNumberOfTuples() / BrickCells;
+  int atlas[3];
+  atlas[0] = std::max(1, static_cast<int>(std::ceil(std::cbrt(static_cast<double>(slotCount)))));
+  atlas[1] = std::max(1,
+    static_cast<int>(std::ceil(std::sqrt(static_cast<double>(slotCount) / atlas[0]))));
+  atlas[2] = std::max(1, static_cast<int>((slotCount + atlas[0] * atlas[1] - 1) /
+                           (static_cast<vtkIdType>(atlas[0]) * atlas[1])));
+  const int texels[3] = { B * atlas[0], B * atlas[1], B * atlas[2] };
+  int maxSize = 0;
+  glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxSize);
+  if (texels[0] > maxSize || texels[1] > maxSize || texels[2] > maxSize)
   {
+    vtkErrorMacro("Cannot draw this medium: its " << slotCount
+                                                  << " bricks of extinction need a 3D texture of "
+                                                  << texels[0] << " x " << texels[1] << " x "
+                                                  << texels[2] << ", beyond this GPU's "
+                                                  << maxSize << ".");
     return false;
   }
-  impl.ExtinctionGrid = grid;
-  impl.ExtinctionInterpolation = filter;
-  impl.ExtinctionTime.Modified();
-  return true;
+  std::vector<float> packed(static_cast<std::size_t>(texels[0]) * texels[1] * texels[2], 0.f);
+  auto invalid = [](double v) { return !(v >= 0.0) || !std::isfinite(v); };
+  for (vtkIdType slot = 0; slot < slotCount; ++slot)
+  {
+    const int sx = static_cast<int>(slot % atlas[0]), sy = static_cast<int>((slot / atlas[0]) % atlas[1]),
+              sz = static_cast<int>(slot / (static_cast<vtkIdType>(atlas[0]) * atlas[1]));
+    for (int k = 0; k < B; ++k)
+      for (int j = 0; j < B; ++j)
+        for (int i = 0; i < B; ++i)
+        {
+          const double v = samples->GetTuple1(slot * BrickCells + (k * B + j) * B + i);
+          if (invalid(v))
+          {
+            vtkErrorMacro("Cannot draw this medium: its extinction must be finite and "
+                          "non-negative (brick slot "
+              << slot << " of the extinction grid).");
+            return false;
+          }
+          packed[(static_cast<std::size_t>(sz * B + k) * texels[1] + (sy * B + j)) * texels[0] +
+            (sx * B + i)] = static_cast<float>(v);
+        }
+  }
+  const vtkIdType bricks = slots->GetNumberOfTuples();
+  const int brickDims[3] = { ExtinctionBricksAlong(dims[0]), ExtinctionBricksAlong(dims[1]),
+    ExtinctionBricksAlong(dims[2]) };
+  std::vector<float> table(4 * static_cast<std::size_t>(bricks));
+  for (vtkIdType b = 0; b < bricks; ++b)
+  {
+    const vtkIdType slot = static_cast<vtkIdType>(slots->GetTuple1(b));
+    float* entry = &table[4 * static_cast<std::size_t>(b)];
+    if (slot < 0)
+    {
+      const double v = values->GetTuple1(b);
+      if (invalid(v))
+      {
+        vtkErrorMacro("Cannot draw this medium: its extinction must be finite and non-negative "
+                      "(brick "
+          << b << " of the extinction grid).");
+        return false;
+      }
+      entry[0] = static_cast<float>(v);
+      entry[3] = -1.f;
+      continue;
+    }
+    entry[0] = static_cast<float>(B * (slot % atlas[0]));
+    entry[1] = static_cast<float>(B * ((slot / atlas[0]) % atlas[1]));
+    entry[2] = static_cast<float>(B * (slot / (static_cast<vtkIdType>(atlas[0]) * atlas[1])));
+    entry[3] = 1.f;
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    const double f = scale->GetComponent(0, c);
+    if (invalid(f))
+    {
+      vtkErrorMacro("Cannot draw this medium: 'ExtinctionScale' must be finite and non-negative.");
+      return false;
+    }
+    impl.BrickScale[c] = static_cast<float>(f);
+    impl.GridCells[c] = static_cast<float>(dims[c]);
+    impl.BrickCount[c] = static_cast<float>(brickDims[c]);
+    impl.AtlasSize[c] = static_cast<float>(texels[c]);
+  }
+  return Upload3D(impl.Extinction, renWin, texels, 1, filter, packed.data()) &&
+    Upload3D(impl.BrickTable, renWin, brickDims, 4, vtkTextureObject::Nearest, table.data());
 }
 
 bool vtkBrumeOpenGLSliceVolumeMapper::UploadDirectional(vtkImageData* input,

@@ -225,6 +225,10 @@ TEST(DirectLight, TransmittanceMarchesTheDensityGrid)
       }
   slab.SetDensity(std::make_shared<GridDensity>(
     Box{ Vec3(-1.f), Vec3(1.f) }, std::array<int, 3>{ 16, 4, 4 }, values, true));
+  const BrickedGrid grid = BrickedGrid::Sample(
+    { 16, 4, 4 }, Box{ Vec3(-1.f), Vec3(1.f) },
+    [&](int i, int j, int k) { return values[(k * 4 + j) * 16 + i]; },
+    [](const std::array<int, 3>&, const std::array<int, 3>&) { return false; }, SerialFor());
   // A ramp, density x + 1, as point values (trilinear): what the field
   // itself gives when no grid is set; its integral from -0.9 to 0.9 is 1.8.
   Medium ramp;
@@ -244,7 +248,7 @@ TEST(DirectLight, TransmittanceMarchesTheDensityGrid)
     DirectLight direct(scene, caster);
     if (which == 0)
     {
-      direct.SetMediumGrid(0, values.data(), { 16, 4, 4 }, Box{ Vec3(-1.f), Vec3(1.f) });
+      direct.SetMediumGrid(0, &grid);
     }
     const double depth = which == 0 ? 1.5 * 2.0 * 0.5 : 0.5 * 1.8;
     const Vec3 T = direct.Transmittance(Vec3(-0.9f, 0.1f, -0.2f), Vec3(1.f, 0.f, 0.f), 1.8f);
@@ -262,7 +266,7 @@ TEST(DirectLight, TransmittanceMarchesTheDensityGrid)
   scene.Lights = { PointLight(Vec3(0.f), 1.f) };
   const RayCaster caster(scene);
   DirectLight direct(scene, caster);
-  direct.SetMediumGrid(0, values.data(), { 16, 4, 4 }, Box{ Vec3(-1.f), Vec3(1.f) });
+  direct.SetMediumGrid(0, &grid);
   EXPECT_NEAR(direct.Transmittance(Vec3(-0.9f, 0.f, 0.f), Vec3(1.f, 0.f, 0.f), 0.5f).x, 1.f, 1e-6);
 }
 

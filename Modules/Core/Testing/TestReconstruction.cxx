@@ -470,10 +470,10 @@ TEST(Reconstruction, HeterogeneousMediumIsNormalizedByTheExtinctionIntegral)
   }
   // The density at its own resolution: 4 x 1 x 1 cells.
   EXPECT_EQ(radiance.GetNativeResolution(), (std::array<int, 3>{ 4, 1, 1 }));
-  ASSERT_EQ(radiance.GetNativeDensity().size(), 4u);
+  ASSERT_FALSE(radiance.GetNativeDensity().Empty());
   for (int cell = 0; cell < 4; ++cell)
   {
-    EXPECT_FLOAT_EQ(radiance.GetNativeDensity()[cell], cell < 2 ? 1.f : 0.f);
+    EXPECT_FLOAT_EQ(radiance.GetNativeDensity().At(cell, 0, 0), cell < 2 ? 1.f : 0.f);
   }
   // A homogeneous medium has no second grid.
   Medium fog = smoke;
@@ -482,5 +482,5 @@ TEST(Reconstruction, HeterogeneousMediumIsNormalizedByTheExtinctionIntegral)
   ASSERT_EQ(homogeneous.Build(store.View(), index.data(), index.size(), Vec3(0.f, 0.f, 5.f),
               2.0 * total, SerialFor()),
     "");
-  EXPECT_TRUE(homogeneous.GetNativeDensity().empty());
+  EXPECT_TRUE(homogeneous.GetNativeDensity().Empty());
 }

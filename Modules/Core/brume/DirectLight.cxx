@@ -35,35 +35,12 @@ DirectLight::DirectLight(const Scene& scene, const RayCaster& caster)
   this->Epsilon = 1e-4f * (std::isfinite(diagonal) && diagonal > 0.f ? diagonal : 1.f);
 }
 
-void DirectLight::SetMediumGrid(
-  std::size_t m, const float* density, const std::array<int, 3>& dims, const Box& box)
+void DirectLight::SetMediumGrid(std::size_t m, const BrickedGrid* density)
 {
   if (m < this->Grids.size())
   {
-    this->Grids[m].Density = density;
-    this->Grids[m].Dims = dims;
-    this->Grids[m].Bounds = box;
+    this->Grids[m] = density;
   }
-}
-
-float DirectLight::SampleDensity(const Grid& grid, const Medium& medium, const Vec3& p) const
-{
-  if (!grid.Density)
-  {
-    return medium.Density->Evaluate(p);
-  }
-  // Trilinear between the cells' centres, clamped at the faces.
-  const Vec3 q = (p - grid.Bounds.lower) / grid.Bounds.Extent();
-  const CellCentreWeights x(q.x, grid.Dims[0]), y(q.y, grid.Dims[1]), z(q.z, grid.Dims[2]);
-  const std::size_t nx = grid.Dims[0], nxy = nx * grid.Dims[1];
-  auto row = [&](int j, int k)
-  {
-    const float* r = grid.Density + static_cast<std::size_t>(k) * nxy + static_cast<std::size_t>(j) * nx;
-    return r[x.I0] * (1.f - x.W) + r[x.I1] * x.W;
-  };
-  const float c0 = row(y.I0, z.I0) * (1.f - y.W) + row(y.I1, z.I0) * y.W;
-  const float c1 = row(y.I0, z.I1) * (1.f - y.W) + row(y.I1, z.I1) * y.W;
-  return c0 * (1.f - z.W) + c1 * z.W;
 }
 
 Vec3 DirectLight::Transmittance(const Vec3& x, const Vec3& d, float length) const
@@ -82,10 +59,9 @@ Vec3 DirectLight::Transmittance(const Vec3& x, const Vec3& d, float length) cons
     if (medium.Density)
     {
       // Midpoint rule at steps of at most half a cell of the density's grid.
-      const Grid& grid = this->Grids[m];
-      const std::array<int, 3> dims =
-        grid.Density ? grid.Dims : medium.Density->NativeResolution();
-      const Vec3 extent = grid.Density ? grid.Bounds.Extent() : medium.Bounds.Extent();
+      const BrickedGrid* grid = this->Grids[m];
+      const std::array<int, 3> dims = grid ? grid->GetDims() : medium.Density->NativeResolution();
+      const Vec3 extent = grid ? grid->GetBox().Extent() : medium.Bounds.Extent();
       float cell = extent.x / static_cast<float>(std::max(dims[0], 1));
       cell = std::min(cell, extent.y / static_cast<float>(std::max(dims[1], 1)));
       cell = std::min(cell, extent.z / static_cast<float>(std::max(dims[2], 1)));
@@ -96,8 +72,8 @@ Vec3 DirectLight::Transmittance(const Vec3& x, const Vec3& d, float length) cons
       integral = 0.0;
       for (int i = 0; i < n; ++i)
       {
-        integral +=
-          this->SampleDensity(grid, medium, x + d * (t0 + (static_cast<float>(i) + 0.5f) * h));
+        const Vec3 p = x + d * (t0 + (static_cast<float>(i) + 0.5f) * h);
+        integral += grid ? grid->Interpolate(p) : medium.Density->Evaluate(p);
         if (opaque > 0.0 && integral > opaque)
         {
           break; // opaque in every channel

@@ -23,6 +23,7 @@
 #ifndef brume_DirectLight_h
 #define brume_DirectLight_h
 
+#include "brume/BrickedGrid.h"
 #include "brume/RayCaster.h"
 #include "brume/Scene.h"
 
@@ -61,13 +62,11 @@ public:
 
   /**
    * Heterogeneous medium `m` (index in Scene::Media): its density per cell
-   * of a regular grid over `box` (x fastest; ObjectRadiance's native grid),
-   * interpolated between cell centres, which the shadow rays march instead
-   * of evaluating the density field. Optional; the data must outlive this
-   * object.
+   * of a grid (ObjectRadiance's native grid), interpolated between cell
+   * centres, which the shadow rays march instead of evaluating the density
+   * field. Optional; the grid must outlive this object.
    */
-  void SetMediumGrid(
-    std::size_t m, const float* density, const std::array<int, 3>& dims, const Box& box);
+  void SetMediumGrid(std::size_t m, const BrickedGrid* density);
 
   /**
    * Light `k`'s direct arrival at `x`; false when none arrives (outside the
@@ -86,18 +85,10 @@ public:
   float GetEpsilon() const { return this->Epsilon; }
 
 private:
-  struct Grid
-  {
-    const float* Density = nullptr;
-    std::array<int, 3> Dims{ 0, 0, 0 };
-    Box Bounds;
-  };
-  float SampleDensity(const Grid& grid, const Medium& medium, const Vec3& p) const;
-
   const Scene& SceneRef;
   const RayCaster& Caster;
   std::size_t FirstLightId;
-  std::vector<Grid> Grids;
+  std::vector<const BrickedGrid*> Grids; // per medium: its grid, or null: the field
   float Epsilon;
 };
 

@@ -286,7 +286,7 @@ void ObjectRadiance::Finish(
           }
         }
       });
-    if (this->MediumRef->Density && this->NativeDensity.empty())
+    if (this->MediumRef->Density && this->NativeDensity.Empty())
     {
       // Independent of the particles and the view: made once per object.
       this->SampleNativeDensity(parallelFor);

@@ -34,6 +34,7 @@
 #ifndef brume_Reconstruction_h
 #define brume_Reconstruction_h
 
+#include "brume/BrickedGrid.h"
 #include "brume/DensityEstimation.h"
 #include "brume/Histogram.h"
 #include "brume/Parallel.h"
@@ -237,26 +238,30 @@ public:
   /**
    * Heterogeneous media: the density per cell of its own grid
    * (brume::DensityField::NativeResolution over NativeBox, whose cell
-   * centres are the field's own samples), x fastest, independent of the
-   * texture's resolution, so that a renderer draws the medium's structure
-   * (sigma_t = the medium's SigmaT() times the density) at its own
-   * resolution with the smooth source radiance of the texture. Each cell
-   * holds the density at its centre: interpolated trilinearly, the grid is
-   * the field (an OpenVDB grid's trilinear sampler, a point-valued image),
-   * not a smoothed copy. Grids above
-   * MaxNativeCells cells, or MaxNativeAxis along an axis, are coarsened by
-   * one integer factor on every axis (the smallest that fits; a coarsened
-   * cell averages 2^3 samples). The integral of sigma_t the texture is
-   * normalized by is summed from this grid. Empty for homogeneous media and
-   * surfaces.
+   * centres are the field's own samples), independent of the texture's
+   * resolution, so that a renderer draws the medium's structure (sigma_t =
+   * the medium's SigmaT() times the density) at its own resolution with the
+   * smooth source radiance of the texture. Each cell holds the density at
+   * its centre: interpolated trilinearly, the grid is the field (an OpenVDB
+   * grid's trilinear sampler, a point-valued image), not a smoothed copy.
+   * Stored in bricks (brume::BrickedGrid): bricks where the density's
+   * majorant is 0 are not evaluated and, with bricks of one value, not
+   * stored, so memory follows the medium's occupied bricks, not its box.
+   * Grids whose occupied bricks would store more than MaxNativeSamples
+   * samples, or whose box holds more than MaxNativeBricks bricks or
+   * MaxNativeAxis cells along an axis, are coarsened by one integer factor
+   * on every axis (the smallest that fits; a coarsened cell averages 2^3
+   * samples). The integral of sigma_t the texture is normalized by is summed
+   * from this grid. Empty for homogeneous media and surfaces.
    */
-  const std::vector<float>& GetNativeDensity() const { return this->NativeDensity; }
-  const std::array<int, 3>& GetNativeResolution() const { return this->NativeDims; }
+  const BrickedGrid& GetNativeDensity() const { return this->NativeDensity; }
+  const std::array<int, 3>& GetNativeResolution() const { return this->NativeDensity.GetDims(); }
   /// The box of the native grid's cells (DensityField::NativeBox(), grown
   /// to whole coarsened cells): it holds the medium's bounds.
-  const Box& GetNativeBox() const { return this->NativeBox; }
-  static constexpr std::size_t MaxNativeCells = std::size_t(1) << 22;
-  static constexpr int MaxNativeAxis = 2048; // a 3D texture's usual limit
+  const Box& GetNativeBox() const { return this->NativeDensity.GetBox(); }
+  static constexpr std::size_t MaxNativeSamples = std::size_t(1) << 23; // 32 MB
+  static constexpr std::size_t MaxNativeBricks = std::size_t(1) << 21;  // 16 MB of table
+  static constexpr int MaxNativeAxis = 2048;
   const std::array<int, 3>& GetResolution() const { return this->Resolution; }
   const SurfaceChart& GetChart() const { return this->Chart; }
 
@@ -325,9 +330,7 @@ private:
   SummedAreaTable ValueTable;   // weighted flux, RGB
   SummedAreaTable AreaTable;    // surfaces: world area per cell
   SummedAreaTable DensityTable; // heterogeneous media: integral of the density per cell
-  std::array<int, 3> NativeDims{ 0, 0, 0 };
-  Box NativeBox;
-  std::vector<float> NativeDensity; // the density's mean per native cell
+  BrickedGrid NativeDensity; // the density's mean per native cell
   double EmptyIntegral = 0.0;       // regions below hold no medium
   const DirectLight* Direct = nullptr;
   std::array<int, 3> DirectDims{ 0, 0, 0 };

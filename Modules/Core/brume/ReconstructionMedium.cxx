@@ -76,64 +76,128 @@ std::vector<std::vector<Overlap>> Overlaps(
   }
   return result;
 }
+
+// Whether the density's majorants are 0 over the world box [lower, upper]
+// (clamped to the medium's bounds, as the samples are): then the density is
+// 0 there, since it is never negative.
+bool ZeroOver(const DensityField& density, const Box& bounds, Vec3 lower, Vec3 upper)
+{
+  const MajorantGrid& mg = density.GetMajorants();
+  const Vec3 block = mg.Bounds.Extent() /
+    Vec3(static_cast<float>(mg.Dims[0]), static_cast<float>(mg.Dims[1]),
+      static_cast<float>(mg.Dims[2]));
+  int b0[3], b1[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    lower[a] = std::clamp(lower[a], bounds.lower[a], bounds.upper[a]);
+    upper[a] = std::clamp(upper[a], bounds.lower[a], bounds.upper[a]);
+    auto index = [&](float x)
+    {
+      const float f = std::floor((x - mg.Bounds.lower[a]) / block[a]);
+      return f < 0.f ? 0 : (f >= static_cast<float>(mg.Dims[a]) ? mg.Dims[a] - 1 : static_cast<int>(f));
+    };
+    // Points on a block's face belong to both blocks.
+    b0[a] = index(lower[a] - 1e-4f * block[a]);
+    b1[a] = index(upper[a] + 1e-4f * block[a]);
+  }
+  for (int k = b0[2]; k <= b1[2]; ++k)
+    for (int j = b0[1]; j <= b1[1]; ++j)
+      for (int i = b0[0]; i <= b1[0]; ++i)
+      {
+        if (mg.At(i, j, k) != 0.f)
+        {
+          return false;
+        }
+      }
+  return true;
+}
 }
 
 void ObjectRadiance::SampleNativeDensity(const ParallelFor& parallelFor)
 {
   const DensityField& density = *this->MediumRef->Density;
+  const Box& bounds = this->MediumRef->Bounds;
   const std::array<int, 3> native = density.NativeResolution();
-  // The smallest integer coarsening that fits the cell budget and a 3D
-  // texture's usual axis limit, the same on every axis.
-  int factor = 1;
-  auto fits = [&](int f)
+  const Box nativeBox = density.NativeBox();
+  // At coarsening `factor`: the cells, their box (coarsened cells cover
+  // whole native cells: the box grows on the far side to a multiple of the
+  // factor) and which cells' samples are 0 by the majorants.
+  std::array<int, 3> dims{};
+  Box box;
+  Vec3 cell;
+  auto layout = [&](int factor)
   {
-    double cells = 1.0;
+    box = nativeBox;
     for (int a = 0; a < 3; ++a)
     {
-      const int n = (native[a] + f - 1) / f;
-      if (n > MaxNativeAxis)
+      dims[a] = std::max(1, (native[a] + factor - 1) / factor);
+      const float nativeCell = nativeBox.Extent()[a] / static_cast<float>(native[a]);
+      box.upper[a] = box.lower[a] + nativeCell * static_cast<float>(dims[a] * factor);
+    }
+    cell = box.Extent() /
+      Vec3(static_cast<float>(dims[0]), static_cast<float>(dims[1]), static_cast<float>(dims[2]));
+  };
+  auto zeroOver = [&](const std::array<int, 3>& lower, const std::array<int, 3>& upper)
+  {
+    const Vec3 lo(static_cast<float>(lower[0]), static_cast<float>(lower[1]),
+      static_cast<float>(lower[2]));
+    const Vec3 hi(static_cast<float>(upper[0] + 1), static_cast<float>(upper[1] + 1),
+      static_cast<float>(upper[2] + 1));
+    return ZeroOver(density, bounds, box.lower + lo * cell, box.lower + hi * cell);
+  };
+  // The smallest integer coarsening, the same on every axis, whose box and
+  // occupied bricks fit the budgets (bricks of one value other than 0 count
+  // as stored here: only sampling tells them apart).
+  auto fits = [&](int factor)
+  {
+    layout(factor);
+    double bricks = 1.0;
+    for (int a = 0; a < 3; ++a)
+    {
+      if (dims[a] > MaxNativeAxis)
       {
         return false;
       }
-      cells *= n;
+      bricks *= BrickedGrid::BricksAlong(dims[a]);
     }
-    return cells <= static_cast<double>(MaxNativeCells);
+    if (bricks > static_cast<double>(MaxNativeBricks))
+    {
+      return false;
+    }
+    std::size_t occupied = 0;
+    const int bx = BrickedGrid::BricksAlong(dims[0]), by = BrickedGrid::BricksAlong(dims[1]),
+              bz = BrickedGrid::BricksAlong(dims[2]);
+    for (int k = 0; k < bz; ++k)
+      for (int j = 0; j < by; ++j)
+        for (int i = 0; i < bx; ++i)
+        {
+          const std::array<int, 3> lower{ i * BrickedGrid::Stride, j * BrickedGrid::Stride,
+            k * BrickedGrid::Stride };
+          const std::array<int, 3> upper{ std::min(lower[0] + BrickedGrid::Size, dims[0]) - 1,
+            std::min(lower[1] + BrickedGrid::Size, dims[1]) - 1,
+            std::min(lower[2] + BrickedGrid::Size, dims[2]) - 1 };
+          occupied += zeroOver(lower, upper) ? 0 : 1;
+        }
+    return static_cast<double>(occupied) * BrickedGrid::BrickSamples <=
+      static_cast<double>(MaxNativeSamples);
   };
+  int factor = 1;
   while (!fits(factor))
   {
     ++factor;
   }
-  // Coarsened cells cover whole native cells: the box grows on the far
-  // side to a multiple of the factor.
-  const Box nativeBox = density.NativeBox();
-  Box box = nativeBox;
-  for (int a = 0; a < 3; ++a)
-  {
-    this->NativeDims[a] = std::max(1, (native[a] + factor - 1) / factor);
-    const float nativeCell = nativeBox.Extent()[a] / static_cast<float>(native[a]);
-    box.upper[a] = box.lower[a] + nativeCell * static_cast<float>(this->NativeDims[a] * factor);
-  }
-  this->NativeBox = box;
-  const Vec3 cell = box.Extent() /
-    Vec3(static_cast<float>(this->NativeDims[0]), static_cast<float>(this->NativeDims[1]),
-      static_cast<float>(this->NativeDims[2]));
+  layout(factor);
   // One sample at the centre of a native cell; a coarsened cell averages 2^3.
   const int samples = factor > 1 ? 2 : 1;
-  const std::size_t n =
-    static_cast<std::size_t>(this->NativeDims[0]) * this->NativeDims[1] * this->NativeDims[2];
-  this->NativeDensity.assign(n, 0.f);
-  const std::size_t nx = this->NativeDims[0], nxy = nx * this->NativeDims[1];
-  parallelFor(0, n,
-    [&](std::size_t begin, std::size_t end)
+  this->NativeDensity = BrickedGrid::Sample(
+    dims, box,
+    [&](int i, int j, int k)
     {
-      for (std::size_t c = begin; c < end; ++c)
-      {
-        const Vec3 corner(static_cast<float>(c % nx), static_cast<float>((c % nxy) / nx),
-          static_cast<float>(c / nxy));
-        this->NativeDensity[c] = static_cast<float>(
-          MeanDensity(density, this->MediumRef->Bounds, box.lower + corner * cell, cell, samples));
-      }
-    });
+      const Vec3 corner(static_cast<float>(i), static_cast<float>(j), static_cast<float>(k));
+      return static_cast<float>(
+        MeanDensity(density, bounds, box.lower + corner * cell, cell, samples));
+    },
+    zeroOver, parallelFor);
 }
 
 void ObjectRadiance::BuildDensityTable()
@@ -141,9 +205,10 @@ void ObjectRadiance::BuildDensityTable()
   // The density's integral over each histogram cell, summed from the native
   // cells by their exact overlaps (separable along the axes).
   // Native cells beyond the medium's bounds count for the part inside.
-  const auto& nd = this->NativeDims;
+  const BrickedGrid& grid = this->NativeDensity;
+  const auto& nd = grid.GetDims();
   const Box box = this->MediumRef->Bounds;
-  const Box& native = this->NativeBox;
+  const Box& native = grid.GetBox();
   std::array<std::vector<std::vector<Overlap>>, 3> overlaps;
   for (int a = 0; a < 3; ++a)
   {
@@ -155,29 +220,23 @@ void ObjectRadiance::BuildDensityTable()
   Histogram integral(this->Dims, 1);
   std::vector<double>& values = integral.GetValues();
   double total = 0.0;
-  for (int k = 0; k < nd[2]; ++k)
-  {
-    for (int j = 0; j < nd[1]; ++j)
+  grid.ForEachNonZeroCell(
+    [&](int i, int j, int k, float density)
     {
-      for (int i = 0; i < nd[0]; ++i)
+      const double mass = density * nativeVolume;
+      if (mass == 0.0)
       {
-        const double mass =
-          this->NativeDensity[(static_cast<std::size_t>(k) * nd[1] + j) * nd[0] + i] * nativeVolume;
-        if (mass == 0.0)
-        {
-          continue;
-        }
-        total += mass;
-        for (const Overlap& z : overlaps[2][k])
-          for (const Overlap& y : overlaps[1][j])
-            for (const Overlap& x : overlaps[0][i])
-            {
-              values[integral.Index(x.Coarse, y.Coarse, z.Coarse)] +=
-                mass * x.Fraction * y.Fraction * z.Fraction;
-            }
+        return;
       }
-    }
-  }
+      total += mass;
+      for (const Overlap& z : overlaps[2][k])
+        for (const Overlap& y : overlaps[1][j])
+          for (const Overlap& x : overlaps[0][i])
+          {
+            values[integral.Index(x.Coarse, y.Coarse, z.Coarse)] +=
+              mass * x.Fraction * y.Fraction * z.Fraction;
+          }
+    });
   this->DensityTable = SummedAreaTable(integral);
   // Regions whose integral is below this are empty: their source radiance
   // is 0, not a ratio of two rounding leftovers of the table.

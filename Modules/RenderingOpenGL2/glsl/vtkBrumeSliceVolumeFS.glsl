@@ -10,7 +10,7 @@ in vec3 positionWC;
 in vec3 texcoord;
 
 uniform sampler3D sourceTexture;     // J = S sigma_t (W m^-3 sr^-1), or S
-uniform sampler3D extinctionTexture; // sigma_t (m^-1)
+uniform sampler3D extinctionTexture; // sigma_t (m^-1), or a sparse grid's atlas of bricks
 uniform vec3 eyeWC;
 uniform vec3 viewDirectionWC;
 uniform float sliceSpacing;
@@ -20,6 +20,34 @@ uniform vec3 extinctionScale;        // texcoord to the extinction grid's own bo
 uniform vec3 extinctionOffset;
 uniform vec3 extinctionFactor;       // forward peak drawn as transport: sigma_t's factor
 uniform float radianceScale;         // an exposure: the emitted radiance only, not T
+// A sparse extinction grid (vtkBrumeSliceVolumeMapper::SetExtinctionData):
+// bricks of 8^3 cells, 7 apart, so that the cells a point interpolates lie
+// in one brick; the table gives a brick's place in the atlas or its value.
+uniform int extinctionBricked;
+uniform sampler3D brickTable;
+uniform vec3 gridCells;
+uniform vec3 brickCount;
+uniform vec3 atlasSize;
+uniform vec3 brickScale;             // sigma_t per unit of the grid's values
+
+// sigma_t at t in [0, 1]^3 over the extinction grid's box.
+vec3 extinctionAt(vec3 t)
+{
+  if (extinctionBricked == 0)
+  {
+    return texture(extinctionTexture, t).rgb;
+  }
+  // u: in cells, their centres at whole numbers, clamped as at the edges.
+  vec3 u = clamp(t * gridCells - 0.5, vec3(0.0), gridCells - 1.0);
+  vec3 brick = min(floor(u / 7.0), brickCount - 1.0);
+  vec4 entry = texelFetch(brickTable, ivec3(brick), 0);
+  if (entry.w < 0.0)
+  {
+    return entry.x * brickScale;
+  }
+  vec3 local = min(u - 7.0 * brick, vec3(7.0));
+  return texture(extinctionTexture, (entry.xyz + local + 0.5) / atlasSize).r * brickScale;
+}
 
 //BRUME::Directional::Dec
 
@@ -30,8 +58,7 @@ void main()
 {
   vec3 emission = texture(sourceTexture, texcoord).rgb;
   //BRUME::Directional::Impl
-  vec3 sigmaT = extinctionFactor *
-    texture(extinctionTexture, texcoord * extinctionScale + extinctionOffset).rgb;
+  vec3 sigmaT = extinctionFactor * extinctionAt(texcoord * extinctionScale + extinctionOffset);
   if (sourceIsRadiance != 0)
   {
     // Extinction at its own resolution: J = S sigma_t with the fine sigma_t.

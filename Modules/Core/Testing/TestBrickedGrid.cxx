@@ -1,0 +1,197 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The sparse grid of a medium's native density: the dense grid's values and
+// interpolation, memory only where the values vary.
+#include "brume/BrickedGrid.h"
+#include "brume/Random.h"
+#include "brume/Vec3.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+
+using namespace brume;
+
+namespace
+{
+const auto Never = [](const std::array<int, 3>&, const std::array<int, 3>&) { return false; };
+
+// A ParallelFor that hands out ranges of three, last first: the result
+// must not depend on how the work is split.
+void Scrambled(
+  std::size_t begin, std::size_t end, const std::function<void(std::size_t, std::size_t)>& body)
+{
+  for (std::size_t b = end; b > begin;)
+  {
+    const std::size_t a = b - std::min<std::size_t>(3, b - begin);
+    body(a, b);
+    b = a;
+  }
+}
+
+// Trilinear between cell centres of a dense x-fastest grid, clamped at the
+// faces: what a cell-data 3D texture with linear filtering gives.
+float DenseTrilinear(
+  const std::vector<float>& v, const std::array<int, 3>& n, const Box& box, const Vec3& p)
+{
+  const Vec3 q = (p - box.lower) / box.Extent();
+  const CellCentreWeights x(q.x, n[0]), y(q.y, n[1]), z(q.z, n[2]);
+  auto at = [&](int i, int j, int k)
+  { return v[(static_cast<std::size_t>(k) * n[1] + j) * n[0] + i]; };
+  auto row = [&](int j, int k) { return at(x.I0, j, k) * (1.f - x.W) + at(x.I1, j, k) * x.W; };
+  const float c0 = row(y.I0, z.I0) * (1.f - y.W) + row(y.I1, z.I0) * y.W;
+  const float c1 = row(y.I0, z.I1) * (1.f - y.W) + row(y.I1, z.I1) * y.W;
+  return c0 * (1.f - z.W) + c1 * z.W;
+}
+}
+
+TEST(BrickedGrid, InterpolatesAsTheDenseGrid)
+{
+  // Sizes that are not multiples of the stride, and an axis of one cell.
+  for (const std::array<int, 3>& n : { std::array<int, 3>{ 23, 9, 15 },
+         std::array<int, 3>{ 8, 1, 2 }, std::array<int, 3>{ 1, 1, 1 } })
+  {
+    const Box box{ Vec3(-1.f, 0.f, 2.f), Vec3(3.f, 0.5f, 2.5f) };
+    std::vector<float> dense(static_cast<std::size_t>(n[0]) * n[1] * n[2]);
+    for (std::size_t c = 0; c < dense.size(); ++c)
+    {
+      dense[c] = static_cast<float>((c * 2654435761u) % 1000u) / 100.f;
+    }
+    auto value = [&](int i, int j, int k)
+    { return dense[(static_cast<std::size_t>(k) * n[1] + j) * n[0] + i]; };
+    const BrickedGrid grid = BrickedGrid::Sample(n, box, value, Never, SerialFor());
+    EXPECT_EQ(grid.GetDims(), n);
+    for (int k = 0; k < n[2]; ++k)
+      for (int j = 0; j < n[1]; ++j)
+        for (int i = 0; i < n[0]; ++i)
+        {
+          ASSERT_EQ(grid.At(i, j, k), value(i, j, k)) << i << " " << j << " " << k;
+        }
+    // Points everywhere, beyond the outer centres and on brick boundaries.
+    Random random(7, 0);
+    for (int s = 0; s < 20000; ++s)
+    {
+      Vec3 p;
+      for (int a = 0; a < 3; ++a)
+      {
+        const float u = s < 10000 ? random.NextFloat()
+                                  : (static_cast<float>(s % (n[a] + 1)) + 0.5f * (s % 2)) / n[a];
+        p[a] = box.lower[a] + box.Extent()[a] * u;
+      }
+      const float expected = DenseTrilinear(dense, n, box, p);
+      ASSERT_NEAR(grid.Interpolate(p), expected, 2e-6f * (1.f + std::abs(expected)))
+        << p.x << " " << p.y << " " << p.z;
+    }
+  }
+}
+
+TEST(BrickedGrid, StoresOnlyTheBricksWhereValuesVary)
+{
+  // A ball of 5 cells' radius in a 64^3 box whose left half holds 1: the
+  // majorants say the right half is 0 away from the ball.
+  const std::array<int, 3> n{ 64, 64, 64 };
+  const Box box{ Vec3(0.f), Vec3(64.f) };
+  auto value = [](int i, int j, int k)
+  {
+    const float dx = static_cast<float>(i) - 48.f, dy = static_cast<float>(j) - 32.f,
+                dz = static_cast<float>(k) - 32.f;
+    return i < 16 ? 1.f : (dx * dx + dy * dy + dz * dz < 25.f ? 2.f : 0.f);
+  };
+  std::atomic<int> evaluated{ 0 };
+  auto counted = [&](int i, int j, int k)
+  {
+    ++evaluated;
+    return value(i, j, k);
+  };
+  auto zeroOver = [](const std::array<int, 3>& lo, const std::array<int, 3>& hi)
+  {
+    // Bricks away from the slab and the ball's box.
+    const bool slab = lo[0] < 16;
+    const bool ball = hi[0] >= 43 && lo[0] <= 53 && hi[1] >= 27 && lo[1] <= 37 && hi[2] >= 27 &&
+      lo[2] <= 37;
+    return !slab && !ball;
+  };
+  const BrickedGrid grid = BrickedGrid::Sample(n, box, counted, zeroOver, SerialFor());
+  ASSERT_EQ(grid.GetBrickDims(), (std::array<int, 3>{ 9, 9, 9 }));
+  // Stored: the bricks whose 8^3 samples are not all equal (the slab's
+  // face, the ball's bricks); evaluated: only those zeroOver leaves.
+  std::size_t varying = 0, candidates = 0;
+  for (int bk = 0; bk < 9; ++bk)
+    for (int bj = 0; bj < 9; ++bj)
+      for (int bi = 0; bi < 9; ++bi)
+      {
+        const std::array<int, 3> lo{ 7 * bi, 7 * bj, 7 * bk };
+        const std::array<int, 3> hi{ std::min(lo[0] + 7, 63), std::min(lo[1] + 7, 63),
+          std::min(lo[2] + 7, 63) };
+        candidates += zeroOver(lo, hi) ? 0 : 1;
+        bool same = true;
+        for (int k = lo[2]; k <= hi[2]; ++k)
+          for (int j = lo[1]; j <= hi[1]; ++j)
+            for (int i = lo[0]; i <= hi[0]; ++i)
+              same = same && value(i, j, k) == value(lo[0], lo[1], lo[2]);
+        varying += same ? 0 : 1;
+      }
+  EXPECT_EQ(grid.NumberOfStoredBricks(), varying);
+  EXPECT_GE(varying, 81u + 8u); // the slab's face, at least 2^3 around the ball
+  EXPECT_LT(varying, 729u / 5);
+  EXPECT_EQ(grid.GetSamples().size(), grid.NumberOfStoredBricks() * 512u);
+  EXPECT_EQ(grid.GetMemorySize(), 729u * 8u + grid.GetSamples().size() * 4u);
+  EXPECT_EQ(static_cast<std::size_t>(evaluated.load()), candidates * 512u);
+  EXPECT_LT(candidates, 729u / 2);
+  for (int k = 0; k < n[2]; k += 3)
+    for (int j = 0; j < n[1]; j += 5)
+      for (int i = 0; i < n[0]; ++i)
+      {
+        ASSERT_EQ(grid.At(i, j, k), value(i, j, k)) << i << " " << j << " " << k;
+      }
+  // The cells the callback visits: every cell of every brick not 0.
+  double sum = 0.0;
+  std::size_t visited = 0;
+  grid.ForEachNonZeroCell(
+    [&](int i, int j, int k, float v)
+    {
+      EXPECT_EQ(v, value(i, j, k));
+      sum += v;
+      ++visited;
+    });
+  double expected = 0.0;
+  for (int k = 0; k < n[2]; ++k)
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i)
+        expected += value(i, j, k);
+  EXPECT_EQ(sum, expected);
+  EXPECT_LT(visited, static_cast<std::size_t>(n[0]) * n[1] * n[2] / 2);
+}
+
+TEST(BrickedGrid, SameWhateverTheThreadsAndTheBox)
+{
+  // The same ball in a box twice as wide, moved by a whole number of
+  // bricks: the same stored bricks and samples; any split of the work
+  // gives the same bytes.
+  auto ball = [](int ox)
+  {
+    return [ox](int i, int j, int k)
+    {
+      const float dx = static_cast<float>(i - ox) - 10.f, dy = static_cast<float>(j) - 10.f,
+                  dz = static_cast<float>(k) - 10.f;
+      return std::max(0.f, 36.f - (dx * dx + dy * dy + dz * dz));
+    };
+  };
+  auto zeroFar = [](int ox)
+  {
+    return [ox](const std::array<int, 3>& lo, const std::array<int, 3>& hi)
+    { return hi[0] < ox + 4 || lo[0] > ox + 16 || hi[1] < 4 || hi[2] < 4 || lo[1] > 16 || lo[2] > 16; };
+  };
+  const BrickedGrid small = BrickedGrid::Sample(
+    { 22, 22, 22 }, Box{ Vec3(0.f), Vec3(22.f) }, ball(0), zeroFar(0), SerialFor());
+  const BrickedGrid wide = BrickedGrid::Sample(
+    { 22 + 70, 22, 22 }, Box{ Vec3(0.f), Vec3(92.f, 22.f, 22.f) }, ball(70), zeroFar(70), Scrambled);
+  EXPECT_EQ(small.NumberOfStoredBricks(), wide.NumberOfStoredBricks());
+  EXPECT_EQ(small.GetSamples(), wide.GetSamples());
+  EXPECT_GT(wide.NumberOfBricks(), 3 * small.NumberOfBricks());
+  const BrickedGrid serial = BrickedGrid::Sample(
+    { 22 + 70, 22, 22 }, Box{ Vec3(0.f), Vec3(92.f, 22.f, 22.f) }, ball(70), zeroFar(70), SerialFor());
+  EXPECT_EQ(serial.GetSamples(), wide.GetSamples());
+  EXPECT_EQ(serial.GetSlots(), wide.GetSlots());
+  EXPECT_EQ(serial.GetConstants(), wide.GetConstants());
+}

@@ -1,0 +1,188 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "brume/BrickedGrid.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace brume
+{
+
+BrickedGrid BrickedGrid::Sample(const std::array<int, 3>& dims, const Box& box,
+  const std::function<float(int, int, int)>& value,
+  const std::function<bool(const std::array<int, 3>&, const std::array<int, 3>&)>& zeroOver,
+  const ParallelFor& parallelFor)
+{
+  BrickedGrid grid;
+  grid.Dims = dims;
+  grid.Bounds = box;
+  for (int a = 0; a < 3; ++a)
+  {
+    grid.BrickDims[a] = BricksAlong(dims[a]);
+  }
+  const std::size_t bricks =
+    static_cast<std::size_t>(grid.BrickDims[0]) * grid.BrickDims[1] * grid.BrickDims[2];
+  grid.Slots.assign(bricks, -1);
+  grid.Constants.assign(bricks, 0.f);
+  const std::size_t bx = grid.BrickDims[0], bxy = bx * grid.BrickDims[1];
+  auto brickOrigin = [&](std::size_t b)
+  {
+    return std::array<int, 3>{ static_cast<int>(b % bx) * Stride,
+      static_cast<int>((b % bxy) / bx) * Stride, static_cast<int>(b / bxy) * Stride };
+  };
+  // The bricks that may hold a sample other than 0, in brick order.
+  std::vector<char> candidate(bricks, 0);
+  parallelFor(0, bricks,
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t b = begin; b < end; ++b)
+      {
+        const std::array<int, 3> lower = brickOrigin(b);
+        std::array<int, 3> upper{};
+        for (int a = 0; a < 3; ++a)
+        {
+          upper[a] = std::min(lower[a] + Size - 1, dims[a] - 1);
+        }
+        candidate[b] = zeroOver(lower, upper) ? 0 : 1;
+      }
+    });
+  std::vector<std::size_t> sampled;
+  for (std::size_t b = 0; b < bricks; ++b)
+  {
+    if (candidate[b])
+    {
+      sampled.push_back(b);
+    }
+  }
+  // Sample them all, then keep those that vary, compacted in brick order.
+  std::vector<float> samples(sampled.size() * BrickSamples);
+  parallelFor(0, sampled.size(),
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t s = begin; s < end; ++s)
+      {
+        const std::array<int, 3> lower = brickOrigin(sampled[s]);
+        float* out = samples.data() + s * BrickSamples;
+        for (int k = 0; k < Size; ++k)
+        {
+          const int z = std::min(lower[2] + k, dims[2] - 1);
+          for (int j = 0; j < Size; ++j)
+          {
+            const int y = std::min(lower[1] + j, dims[1] - 1);
+            for (int i = 0; i < Size; ++i)
+            {
+              *out++ = value(std::min(lower[0] + i, dims[0] - 1), y, z);
+            }
+          }
+        }
+      }
+    });
+  std::int32_t slots = 0;
+  for (std::size_t s = 0; s < sampled.size(); ++s)
+  {
+    const float* in = samples.data() + s * BrickSamples;
+    const std::size_t b = sampled[s];
+    if (std::all_of(in, in + BrickSamples, [&](float v) { return v == in[0]; }))
+    {
+      grid.Constants[b] = in[0];
+      continue;
+    }
+    if (static_cast<std::size_t>(slots) != s)
+    {
+      std::copy(in, in + BrickSamples, samples.data() + static_cast<std::size_t>(slots) * BrickSamples);
+    }
+    grid.Slots[b] = slots++;
+  }
+  samples.resize(static_cast<std::size_t>(slots) * BrickSamples);
+  samples.shrink_to_fit();
+  grid.Samples = std::move(samples);
+  return grid;
+}
+
+std::size_t BrickedGrid::GetMemorySize() const
+{
+  return this->Slots.size() * sizeof(std::int32_t) + this->Constants.size() * sizeof(float) +
+    this->Samples.size() * sizeof(float);
+}
+
+float BrickedGrid::At(int i, int j, int k) const
+{
+  const int b[3] = { std::min(i / Stride, this->BrickDims[0] - 1),
+    std::min(j / Stride, this->BrickDims[1] - 1), std::min(k / Stride, this->BrickDims[2] - 1) };
+  const std::size_t brick = this->BrickIndex(b[0], b[1], b[2]);
+  const std::int32_t slot = this->Slots[brick];
+  if (slot < 0)
+  {
+    return this->Constants[brick];
+  }
+  const int l[3] = { i - Stride * b[0], j - Stride * b[1], k - Stride * b[2] };
+  return this->Samples[static_cast<std::size_t>(slot) * BrickSamples +
+    static_cast<std::size_t>((l[2] * Size + l[1]) * Size + l[0])];
+}
+
+float BrickedGrid::Interpolate(const Vec3& p) const
+{
+  // u: the position in samples (cell centres at integers), clamped.
+  const Vec3 q = (p - this->Bounds.lower) / this->Bounds.Extent();
+  int b[3], i0[3];
+  float w[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    const float n = static_cast<float>(this->Dims[a]);
+    float u = q[a] * n - 0.5f;
+    u = u < 0.f ? 0.f : (u > n - 1.f ? n - 1.f : u);
+    b[a] = std::min(static_cast<int>(u / static_cast<float>(Stride)), this->BrickDims[a] - 1);
+    b[a] = std::max(b[a], 0);
+    const float local = u - static_cast<float>(Stride * b[a]);
+    i0[a] = std::min(std::max(static_cast<int>(local), 0), Size - 2);
+    w[a] = local - static_cast<float>(i0[a]);
+  }
+  const std::size_t brick = this->BrickIndex(b[0], b[1], b[2]);
+  const std::int32_t slot = this->Slots[brick];
+  if (slot < 0)
+  {
+    return this->Constants[brick];
+  }
+  const float* s = this->Samples.data() + static_cast<std::size_t>(slot) * BrickSamples +
+    (i0[2] * Size + i0[1]) * Size + i0[0];
+  auto row = [&](int dj, int dk)
+  {
+    const float* r = s + (dk * Size + dj) * Size;
+    return r[0] * (1.f - w[0]) + r[1] * w[0];
+  };
+  const float c0 = row(0, 0) * (1.f - w[1]) + row(1, 0) * w[1];
+  const float c1 = row(0, 1) * (1.f - w[1]) + row(1, 1) * w[1];
+  return c0 * (1.f - w[2]) + c1 * w[2];
+}
+
+void BrickedGrid::ForEachNonZeroCell(const std::function<void(int, int, int, float)>& f) const
+{
+  for (int bk = 0; bk < this->BrickDims[2]; ++bk)
+  {
+    for (int bj = 0; bj < this->BrickDims[1]; ++bj)
+    {
+      for (int bi = 0; bi < this->BrickDims[0]; ++bi)
+      {
+        const std::size_t brick = this->BrickIndex(bi, bj, bk);
+        if (this->Slots[brick] < 0 && this->Constants[brick] == 0.f)
+        {
+          continue;
+        }
+        const int b[3] = { bi, bj, bk };
+        int lower[3], upper[3];
+        for (int a = 0; a < 3; ++a)
+        {
+          lower[a] = Stride * b[a];
+          upper[a] = b[a] == this->BrickDims[a] - 1 ? this->Dims[a] : lower[a] + Stride;
+        }
+        for (int k = lower[2]; k < upper[2]; ++k)
+          for (int j = lower[1]; j < upper[1]; ++j)
+            for (int i = lower[0]; i < upper[0]; ++i)
+            {
+              f(i, j, k, this->At(i, j, k));
+            }
+      }
+    }
+  }
+}
+
+} // namespace brume

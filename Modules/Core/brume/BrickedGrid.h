@@ -1,0 +1,100 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// A scalar grid stored sparsely in bricks: memory follows the bricks where
+// the values vary, not the grid's box.
+#ifndef brume_BrickedGrid_h
+#define brume_BrickedGrid_h
+
+#include "brume/Parallel.h"
+#include "brume/Vec3.h"
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace brume
+{
+
+/**
+ * Samples at the centres of Dims cells over a box, interpolated trilinearly
+ * between the centres and clamped at the outer ones (a cell-data 3D texture
+ * with linear filtering and clamp-to-edge), stored in bricks of Size^3
+ * samples. Brick b along an axis holds samples Stride*b ... Stride*b + Size - 1
+ * (neighbours share one layer), so that the eight samples any point
+ * interpolates lie in one brick: the trilinear lookup is one brick-table
+ * read and a fetch inside one brick, on the CPU and in a GPU atlas alike.
+ * Samples past the last one repeat it.
+ *
+ * A brick whose samples are all equal keeps only that value: memory is
+ * Size^3 floats per brick where the values vary, plus 8 bytes per brick of
+ * the box. The layout is the one vtkBrumeSliceVolumeMapper draws (see its
+ * ExtinctionData).
+ */
+class BrickedGrid
+{
+public:
+  static constexpr int Size = 8;
+  static constexpr int Stride = Size - 1;
+  static constexpr int BrickSamples = Size * Size * Size;
+
+  /// The number of bricks along an axis of n samples.
+  static int BricksAlong(int n) { return n > 1 ? (n - 2) / Stride + 1 : 1; }
+
+  /**
+   * Samples a grid of `dims` cells over `box`: `value(i, j, k)` gives the
+   * sample of cell (i, j, k) (thread safe); `zeroOver(lower, upper)` may say
+   * that every sample of cells lower..upper (inclusive) is 0 without
+   * evaluating them (a majorant of 0), so that empty space costs no
+   * evaluation. Deterministic whatever the threads.
+   */
+  static BrickedGrid Sample(const std::array<int, 3>& dims, const Box& box,
+    const std::function<float(int, int, int)>& value,
+    const std::function<bool(const std::array<int, 3>&, const std::array<int, 3>&)>& zeroOver,
+    const ParallelFor& parallelFor);
+
+  bool Empty() const { return this->Slots.empty(); }
+  const std::array<int, 3>& GetDims() const { return this->Dims; }
+  const Box& GetBox() const { return this->Bounds; }
+  const std::array<int, 3>& GetBrickDims() const { return this->BrickDims; }
+  std::size_t NumberOfBricks() const { return this->Slots.size(); }
+  /// Bricks that store their samples.
+  std::size_t NumberOfStoredBricks() const { return this->Samples.size() / BrickSamples; }
+
+  /// Per brick (x fastest): its slot in GetSamples(), or -1 when constant.
+  const std::vector<std::int32_t>& GetSlots() const { return this->Slots; }
+  /// Per brick: the value of a constant brick (0 for a stored one).
+  const std::vector<float>& GetConstants() const { return this->Constants; }
+  /// Size^3 samples per stored brick, x fastest within a brick.
+  const std::vector<float>& GetSamples() const { return this->Samples; }
+  /// The bytes of the three arrays above.
+  std::size_t GetMemorySize() const;
+
+  /// The sample of cell (i, j, k), 0 <= i < Dims[0] ...
+  float At(int i, int j, int k) const;
+  /// Trilinear between the cells' centres at world point `p`, clamped at the faces.
+  float Interpolate(const Vec3& p) const;
+
+  /**
+   * Calls `f(i, j, k, value)` once for every cell whose brick is not a
+   * constant 0, brick by brick (each brick's own cells: Stride per axis,
+   * the last brick the rest), in brick order.
+   */
+  void ForEachNonZeroCell(const std::function<void(int, int, int, float)>& f) const;
+
+private:
+  std::size_t BrickIndex(int bi, int bj, int bk) const
+  {
+    return (static_cast<std::size_t>(bk) * this->BrickDims[1] + bj) * this->BrickDims[0] + bi;
+  }
+
+  std::array<int, 3> Dims{ 0, 0, 0 };
+  std::array<int, 3> BrickDims{ 0, 0, 0 };
+  Box Bounds;
+  std::vector<std::int32_t> Slots;
+  std::vector<float> Constants;
+  std::vector<float> Samples;
+};
+
+} // namespace brume
+
+#endif
