@@ -4,12 +4,11 @@
 
 #include "vtkBrumeDefaultSceneSource.h"
 #include "vtkBrumeFloatImageCapture.h"
-#include "vtkImageShrink3D.h"
 #include "vtkBrumeLightTracer.h"
 #include "vtkBrumeProcesses.h"
-#include "vtkBrumeRenderWindowSelection.h"
 #include "vtkBrumeRadianceReconstruction.h"
 #include "vtkBrumeReferencePathTracer.h"
+#include "vtkBrumeRenderWindowSelection.h"
 #include "vtkBrumeSceneActors.h"
 #include "vtkBrumeSceneCamera.h"
 #include "vtkBrumeSceneReader.h"
@@ -21,6 +20,7 @@
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkImageShrink3D.h"
 #include "vtkInformation.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
@@ -63,8 +63,8 @@ bool HasDisplay(const char* what, bool window)
   // X when DISPLAY names a display, else EGL (BRUME_RENDER_WINDOW chooses).
   if (!vtkBrumeRenderWindowSelection::Install())
   {
-    std::cerr << "brume: " << what << ": "
-              << vtkBrumeRenderWindowSelection::GetLastError() << ".\n";
+    std::cerr << "brume: " << what << ": " << vtkBrumeRenderWindowSelection::GetLastError()
+              << ".\n";
     return false;
   }
   if (window && std::string(vtkBrumeRenderWindowSelection::GetInstalled()) != "x")

@@ -239,12 +239,12 @@ vtkSmartPointer<vtkImageData> vtkBrumeRadianceConversion::DenseExtinction(vtkIma
       {
         const int b[3] = { std::min(i / S, bricks[0] - 1), std::min(j / S, bricks[1] - 1),
           std::min(k / S, bricks[2] - 1) };
-        const vtkIdType brick = (static_cast<vtkIdType>(b[2]) * bricks[1] + b[1]) * bricks[0] + b[0];
+        const vtkIdType brick =
+          (static_cast<vtkIdType>(b[2]) * bricks[1] + b[1]) * bricks[0] + b[0];
         const vtkIdType slot = static_cast<vtkIdType>(slots->GetTuple1(brick));
-        const double v = slot < 0
-          ? values->GetTuple1(brick)
-          : samples->GetTuple1(slot * B * B * B +
-              ((k - S * b[2]) * B + (j - S * b[1])) * B + (i - S * b[0]));
+        const double v = slot < 0 ? values->GetTuple1(brick)
+                                  : samples->GetTuple1(slot * B * B * B +
+                                      ((k - S * b[2]) * B + (j - S * b[1])) * B + (i - S * b[0]));
         const vtkIdType cell = (static_cast<vtkIdType>(k) * dims[1] + j) * dims[0] + i;
         for (int c = 0; c < 3; ++c)
         {

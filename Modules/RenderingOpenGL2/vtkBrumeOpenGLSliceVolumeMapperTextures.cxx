@@ -163,27 +163,27 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   const vtkIdType slotCount = samples->GetNumberOfTuples() / BrickCells;
   int atlas[3];
   atlas[0] = std::max(1, static_cast<int>(std::ceil(std::cbrt(static_cast<double>(slotCount)))));
-  atlas[1] = std::max(1,
-    static_cast<int>(std::ceil(std::sqrt(static_cast<double>(slotCount) / atlas[0]))));
-  atlas[2] = std::max(1, static_cast<int>((slotCount + atlas[0] * atlas[1] - 1) /
-                           (static_cast<vtkIdType>(atlas[0]) * atlas[1])));
+  atlas[1] =
+    std::max(1, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(slotCount) / atlas[0]))));
+  atlas[2] = std::max(1,
+    static_cast<int>(
+      (slotCount + atlas[0] * atlas[1] - 1) / (static_cast<vtkIdType>(atlas[0]) * atlas[1])));
   const int texels[3] = { B * atlas[0], B * atlas[1], B * atlas[2] };
   int maxSize = 0;
   glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxSize);
   if (texels[0] > maxSize || texels[1] > maxSize || texels[2] > maxSize)
   {
-    vtkErrorMacro("Cannot draw this medium: its " << slotCount
-                                                  << " bricks of extinction need a 3D texture of "
-                                                  << texels[0] << " x " << texels[1] << " x "
-                                                  << texels[2] << ", beyond this GPU's "
-                                                  << maxSize << ".");
+    vtkErrorMacro("Cannot draw this medium: its "
+      << slotCount << " bricks of extinction need a 3D texture of " << texels[0] << " x "
+      << texels[1] << " x " << texels[2] << ", beyond this GPU's " << maxSize << ".");
     return false;
   }
   std::vector<float> packed(static_cast<std::size_t>(texels[0]) * texels[1] * texels[2], 0.f);
   auto invalid = [](double v) { return !(v >= 0.0) || !std::isfinite(v); };
   for (vtkIdType slot = 0; slot < slotCount; ++slot)
   {
-    const int sx = static_cast<int>(slot % atlas[0]), sy = static_cast<int>((slot / atlas[0]) % atlas[1]),
+    const int sx = static_cast<int>(slot % atlas[0]),
+              sy = static_cast<int>((slot / atlas[0]) % atlas[1]),
               sz = static_cast<int>(slot / (static_cast<vtkIdType>(atlas[0]) * atlas[1]));
     for (int k = 0; k < B; ++k)
       for (int j = 0; j < B; ++j)

@@ -107,8 +107,8 @@ TEST(BrickedGrid, StoresOnlyTheBricksWhereValuesVary)
   {
     // Bricks away from the slab and the ball's box.
     const bool slab = lo[0] < 16;
-    const bool ball = hi[0] >= 43 && lo[0] <= 53 && hi[1] >= 27 && lo[1] <= 37 && hi[2] >= 27 &&
-      lo[2] <= 37;
+    const bool ball =
+      hi[0] >= 43 && lo[0] <= 53 && hi[1] >= 27 && lo[1] <= 37 && hi[2] >= 27 && lo[2] <= 37;
     return !slab && !ball;
   };
   const BrickedGrid grid = BrickedGrid::Sample(n, box, counted, zeroOver, SerialFor());
@@ -179,18 +179,20 @@ TEST(BrickedGrid, SameWhateverTheThreadsAndTheBox)
   };
   auto zeroFar = [](int ox)
   {
-    return [ox](const std::array<int, 3>& lo, const std::array<int, 3>& hi)
-    { return hi[0] < ox + 4 || lo[0] > ox + 16 || hi[1] < 4 || hi[2] < 4 || lo[1] > 16 || lo[2] > 16; };
+    return [ox](const std::array<int, 3>& lo, const std::array<int, 3>& hi) {
+      return hi[0] < ox + 4 || lo[0] > ox + 16 || hi[1] < 4 || hi[2] < 4 || lo[1] > 16 ||
+        lo[2] > 16;
+    };
   };
   const BrickedGrid small = BrickedGrid::Sample(
     { 22, 22, 22 }, Box{ Vec3(0.f), Vec3(22.f) }, ball(0), zeroFar(0), SerialFor());
-  const BrickedGrid wide = BrickedGrid::Sample(
-    { 22 + 70, 22, 22 }, Box{ Vec3(0.f), Vec3(92.f, 22.f, 22.f) }, ball(70), zeroFar(70), Scrambled);
+  const BrickedGrid wide = BrickedGrid::Sample({ 22 + 70, 22, 22 },
+    Box{ Vec3(0.f), Vec3(92.f, 22.f, 22.f) }, ball(70), zeroFar(70), Scrambled);
   EXPECT_EQ(small.NumberOfStoredBricks(), wide.NumberOfStoredBricks());
   EXPECT_EQ(small.GetSamples(), wide.GetSamples());
   EXPECT_GT(wide.NumberOfBricks(), 3 * small.NumberOfBricks());
-  const BrickedGrid serial = BrickedGrid::Sample(
-    { 22 + 70, 22, 22 }, Box{ Vec3(0.f), Vec3(92.f, 22.f, 22.f) }, ball(70), zeroFar(70), SerialFor());
+  const BrickedGrid serial = BrickedGrid::Sample({ 22 + 70, 22, 22 },
+    Box{ Vec3(0.f), Vec3(92.f, 22.f, 22.f) }, ball(70), zeroFar(70), SerialFor());
   EXPECT_EQ(serial.GetSamples(), wide.GetSamples());
   EXPECT_EQ(serial.GetSlots(), wide.GetSlots());
   EXPECT_EQ(serial.GetConstants(), wide.GetConstants());

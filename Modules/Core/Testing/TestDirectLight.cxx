@@ -2,12 +2,12 @@
 // Deterministic single scattering (brume/DirectLight.h) against analytic
 // direct light, shadows and transmittance, and against the particles it
 // replaces.
+#include "TestScenes.h"
 #include "brume/DirectLight.h"
 #include "brume/LightTracer.h"
 #include "brume/Reconstruction.h"
 #include "brume/Sampling.h"
 #include "brume/SphericalHarmonics.h"
-#include "TestScenes.h"
 
 #include <gtest/gtest.h>
 
@@ -98,7 +98,8 @@ TEST(DirectLight, WallUnderAPointLightIsRhoIHOverPiR3WithAShadow)
   wall.EnableDirect(&direct, { 64, 64, 1 });
   const auto index = IndexOf(store, 0);
   ASSERT_FALSE(index.empty());
-  ASSERT_EQ(wall.Build(store.View(), index.data(), index.size(), { 0, 0, 5 }, 1e-3, SerialFor()), "");
+  ASSERT_EQ(
+    wall.Build(store.View(), index.data(), index.size(), { 0, 0, 5 }, 1e-3, SerialFor()), "");
   wall.ComputeDirect(SerialFor());
   ASSERT_TRUE(wall.HasDirect());
   ASSERT_EQ(wall.GetOutputResolution(), (std::array<int, 3>{ 64, 64, 1 }));
@@ -235,9 +236,9 @@ TEST(DirectLight, TransmittanceMarchesTheDensityGrid)
   ramp.Name = "ramp";
   ramp.SigmaA = Vec3(0.f);
   ramp.SigmaS = Vec3(0.5f);
-  ramp.SetDensity(std::make_shared<GridDensity>(Box{ Vec3(-1.f), Vec3(1.f) },
-    std::array<int, 3>{ 3, 2, 2 },
-    std::vector<float>{ 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2 }, false));
+  ramp.SetDensity(
+    std::make_shared<GridDensity>(Box{ Vec3(-1.f), Vec3(1.f) }, std::array<int, 3>{ 3, 2, 2 },
+      std::vector<float>{ 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2 }, false));
   for (int which = 0; which < 2; ++which)
   {
     Scene scene;
@@ -346,9 +347,10 @@ TEST(DirectLight, AgreesWithTheParticlesItReplaces)
     const bool surface = o < scene.Surfaces.size();
     auto make = [&]()
     {
-      return surface ? std::make_unique<ObjectRadiance>(
-                         scene.Surfaces[o], MakeChart(scene.Surfaces[o], nullptr), std::array<int, 2>{ 8, 8 }, 2)
-                     : std::make_unique<ObjectRadiance>(scene.Media[0], std::array<int, 3>{ 8, 8, 8 }, 1);
+      return surface
+        ? std::make_unique<ObjectRadiance>(
+            scene.Surfaces[o], MakeChart(scene.Surfaces[o], nullptr), std::array<int, 2>{ 8, 8 }, 2)
+        : std::make_unique<ObjectRadiance>(scene.Media[0], std::array<int, 3>{ 8, 8, 8 }, 1);
     };
     auto mean = [](const std::vector<float>& v)
     {
@@ -365,8 +367,10 @@ TEST(DirectLight, AgreesWithTheParticlesItReplaces)
       auto p = make(), s = make();
       s->EnableDirect(&direct, { 32, 32, surface ? 1 : 32 });
       const auto index = IndexOf(batches[b], o);
-      ASSERT_EQ(p->Build(batches[b].View(), index.data(), index.size(), eye, threshold, SerialFor()), "");
-      ASSERT_EQ(s->Build(batches[b].View(), index.data(), index.size(), eye, threshold, SerialFor()), "");
+      ASSERT_EQ(
+        p->Build(batches[b].View(), index.data(), index.size(), eye, threshold, SerialFor()), "");
+      ASSERT_EQ(
+        s->Build(batches[b].View(), index.data(), index.size(), eye, threshold, SerialFor()), "");
       s->ComputeDirect(SerialFor());
       plain[b] = mean(p->GetRadiance());
       split[b] = mean(s->GetOutputRadiance());

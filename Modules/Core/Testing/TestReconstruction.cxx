@@ -2,11 +2,11 @@
 // Phase 2 against known answers: exact summed-area tables at large counts,
 // density estimation of known distributions, and radiometry against analytic
 // irradiance and single scattering.
+#include "TestScenes.h"
 #include "brume/LightTracer.h"
 #include "brume/Random.h"
 #include "brume/Reconstruction.h"
 #include "brume/Sampling.h"
-#include "TestScenes.h"
 
 #include <gtest/gtest.h>
 
@@ -427,9 +427,8 @@ TEST(Reconstruction, HeterogeneousMediumIsNormalizedByTheExtinctionIntegral)
   smoke.SigmaS = Vec3(2.f);
   smoke.SigmaA = Vec3(0.5f);
   smoke.G = 0.f;
-  smoke.SetDensity(std::make_shared<GridDensity>(
-    Box{ Vec3(0.f), Vec3(1.f) }, std::array<int, 3>{ 4, 1, 1 },
-    std::vector<float>{ 1.f, 1.f, 0.f, 0.f }, true));
+  smoke.SetDensity(std::make_shared<GridDensity>(Box{ Vec3(0.f), Vec3(1.f) },
+    std::array<int, 3>{ 4, 1, 1 }, std::vector<float>{ 1.f, 1.f, 0.f, 0.f }, true));
   // Hits on a regular lattice of the dense half, each of flux phi.
   const int n = 10;
   const float phi = 1e-3f;

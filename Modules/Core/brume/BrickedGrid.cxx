@@ -88,7 +88,8 @@ BrickedGrid BrickedGrid::Sample(const std::array<int, 3>& dims, const Box& box,
     }
     if (static_cast<std::size_t>(slots) != s)
     {
-      std::copy(in, in + BrickSamples, samples.data() + static_cast<std::size_t>(slots) * BrickSamples);
+      std::copy(
+        in, in + BrickSamples, samples.data() + static_cast<std::size_t>(slots) * BrickSamples);
     }
     grid.Slots[b] = slots++;
   }

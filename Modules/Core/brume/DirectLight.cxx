@@ -68,7 +68,8 @@ Vec3 DirectLight::Transmittance(const Vec3& x, const Vec3& d, float length) cons
       const float step = 0.5f * std::max(cell, 1e-6f);
       const int n = std::max(1, static_cast<int>(std::ceil((t1 - t0) / step)));
       const float h = (t1 - t0) / static_cast<float>(n);
-      const double opaque = MinComponent(sigmaT) > 0.f ? OpaqueDepth / MinComponent(sigmaT) / h : 0.0;
+      const double opaque =
+        MinComponent(sigmaT) > 0.f ? OpaqueDepth / MinComponent(sigmaT) / h : 0.0;
       integral = 0.0;
       for (int i = 0; i < n; ++i)
       {

@@ -330,8 +330,8 @@ private:
   SummedAreaTable ValueTable;   // weighted flux, RGB
   SummedAreaTable AreaTable;    // surfaces: world area per cell
   SummedAreaTable DensityTable; // heterogeneous media: integral of the density per cell
-  BrickedGrid NativeDensity; // the density's mean per native cell
-  double EmptyIntegral = 0.0;       // regions below hold no medium
+  BrickedGrid NativeDensity;    // the density's mean per native cell
+  double EmptyIntegral = 0.0;   // regions below hold no medium
   const DirectLight* Direct = nullptr;
   std::array<int, 3> DirectDims{ 0, 0, 0 };
   std::vector<float> Arrivals; // per output texel and light: irradiance RGB, direction

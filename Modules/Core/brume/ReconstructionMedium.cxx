@@ -94,7 +94,8 @@ bool ZeroOver(const DensityField& density, const Box& bounds, Vec3 lower, Vec3 u
     auto index = [&](float x)
     {
       const float f = std::floor((x - mg.Bounds.lower[a]) / block[a]);
-      return f < 0.f ? 0 : (f >= static_cast<float>(mg.Dims[a]) ? mg.Dims[a] - 1 : static_cast<int>(f));
+      return f < 0.f ? 0
+                     : (f >= static_cast<float>(mg.Dims[a]) ? mg.Dims[a] - 1 : static_cast<int>(f));
     };
     // Points on a block's face belong to both blocks.
     b0[a] = index(lower[a] - 1e-4f * block[a]);
@@ -139,8 +140,8 @@ void ObjectRadiance::SampleNativeDensity(const ParallelFor& parallelFor)
   };
   auto zeroOver = [&](const std::array<int, 3>& lower, const std::array<int, 3>& upper)
   {
-    const Vec3 lo(static_cast<float>(lower[0]), static_cast<float>(lower[1]),
-      static_cast<float>(lower[2]));
+    const Vec3 lo(
+      static_cast<float>(lower[0]), static_cast<float>(lower[1]), static_cast<float>(lower[2]));
     const Vec3 hi(static_cast<float>(upper[0] + 1), static_cast<float>(upper[1] + 1),
       static_cast<float>(upper[2] + 1));
     return ZeroOver(density, bounds, box.lower + lo * cell, box.lower + hi * cell);

@@ -1,0 +1,164 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// A medium's extinction at its own resolution costs memory in proportion to
+// where its density is, not to its box: two OpenVDB grids with the same
+// active voxels, one in a box eight times as large, cost the same (within
+// 10 %), and the sparse grid expands to the density's own values.
+//   TestSparseTextures DIR
+#include "vtkBrumeLightTracer.h"
+#include "vtkBrumeRadianceConversion.h"
+#include "vtkBrumeRadianceReconstruction.h"
+#include "vtkBrumeSceneReader.h"
+#include "vtkCellData.h"
+#include "vtkDataArray.h"
+#include "vtkExecutive.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPartitionedDataSet.h"
+#include "vtkPartitionedDataSetCollection.h"
+#include "vtkSmartPointer.h"
+
+#include <openvdb/openvdb.h>
+
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <string>
+
+namespace
+{
+int failures = 0;
+void Check(bool ok, const std::string& what)
+{
+  if (!ok)
+  {
+    std::cerr << "FAILED: " << what << "\n";
+    ++failures;
+  }
+}
+
+// Two balls of radius 6 voxels (density falling to 0 at the edge), their
+// centres `apart` voxels apart along x; voxels of 1 m.
+void WriteBalls(const std::string& path, int apart)
+{
+  openvdb::initialize();
+  auto grid = openvdb::FloatGrid::create(0.f);
+  grid->setName("density");
+  auto accessor = grid->getAccessor();
+  for (int centre : { 0, apart })
+    for (int k = -6; k <= 6; ++k)
+      for (int j = -6; j <= 6; ++j)
+        for (int i = -6; i <= 6; ++i)
+        {
+          const float r2 = static_cast<float>(i * i + j * j + k * k);
+          if (r2 < 36.f)
+          {
+            accessor.setValue(openvdb::Coord(centre + i, j, k), 0.5f * (1.f - r2 / 36.f));
+          }
+        }
+  openvdb::io::File file(path);
+  file.write({ grid });
+  file.close();
+}
+
+void WriteScene(const std::string& path, const std::string& vdb)
+{
+  std::ofstream out(path);
+  out << R"({ "brume_scene": 1, "name": "balls",
+  "camera": { "position": [0, 0, 400], "focal_point": [0, 0, 0], "view_up": [0, 1, 0], "view_angle": 30 },
+  "render": { "particles": 20000, "size": [64, 64], "threshold": 32 },
+  "media": [ { "name": "balls", "density": { "vdb": ")"
+      << vdb << R"(" }, "sigma_a": [0.01, 0.01, 0.01], "sigma_s": [0.3, 0.3, 0.3] } ],
+  "lights": [ { "type": "directional", "direction": [0, -1, 0], "irradiance": [1, 1, 1] } ] })";
+}
+
+struct Textures
+{
+  vtkSmartPointer<vtkImageData> Extinction;
+  vtkIdType Bytes = 0; // the extinction grid's arrays, as brume render --timings counts them
+};
+
+Textures Reconstruct(const std::string& scene)
+{
+  vtkNew<vtkBrumeSceneReader> reader;
+  reader->SetFileName(scene.c_str());
+  vtkNew<vtkBrumeLightTracer> tracer;
+  tracer->SetInputConnection(reader->GetOutputPort());
+  tracer->SetNumberOfParticles(20000);
+  vtkNew<vtkBrumeRadianceReconstruction> reconstruction;
+  reconstruction->SetInputConnection(0, reader->GetOutputPort());
+  reconstruction->SetInputConnection(1, tracer->GetOutputPort());
+  Textures t;
+  if (!reconstruction->GetExecutive()->Update())
+  {
+    Check(false, scene + ": reconstruction");
+    return t;
+  }
+  auto* out = vtkPartitionedDataSetCollection::SafeDownCast(reconstruction->GetOutputDataObject(0));
+  vtkPartitionedDataSet* medium = out->GetPartitionedDataSet(0);
+  t.Extinction = vtkImageData::SafeDownCast(medium->GetPartition(1));
+  Check(t.Extinction != nullptr, scene + ": the medium's extinction at its own resolution");
+  if (t.Extinction)
+  {
+    t.Bytes = t.Extinction->GetActualMemorySize();
+  }
+  return t;
+}
+}
+
+int TestSparseTextures(int argc, char* argv[])
+{
+  if (argc < 2)
+  {
+    std::cerr << "usage: TestSparseTextures DIR\n";
+    return 2;
+  }
+  const std::string dir = argv[1];
+  WriteBalls(dir + "/near.vdb", 28);
+  WriteBalls(dir + "/far.vdb", 28 * 12);
+  WriteScene(dir + "/near.json", dir + "/near.vdb");
+  WriteScene(dir + "/far.json", dir + "/far.vdb");
+  const Textures near = Reconstruct(dir + "/near.json");
+  const Textures far = Reconstruct(dir + "/far.json");
+  if (!near.Extinction || !far.Extinction)
+  {
+    return 1;
+  }
+  int nd[3], fd[3];
+  near.Extinction->GetDimensions(nd);
+  far.Extinction->GetDimensions(fd);
+  const double boxRatio = static_cast<double>(fd[0] - 1) * (fd[1] - 1) * (fd[2] - 1) /
+    (static_cast<double>(nd[0] - 1) * (nd[1] - 1) * (nd[2] - 1));
+  std::cout << "cells in the box: near " << (nd[0] - 1) * (nd[1] - 1) * (nd[2] - 1) << ", far "
+            << (fd[0] - 1) * (fd[1] - 1) * (fd[2] - 1) << " (" << boxRatio << "x); extinction "
+            << near.Bytes << " KiB and " << far.Bytes << " KiB\n";
+  Check(boxRatio > 8.0, "the far grid's box is many times the near one's");
+  const double ratio = static_cast<double>(far.Bytes) / static_cast<double>(near.Bytes);
+  Check(std::abs(ratio - 1.0) <= 0.10,
+    "the same active voxels cost the same within 10 % (far / near = " + std::to_string(ratio) +
+      ")");
+
+  // The sparse grid holds the density's own values: at the ball's centre
+  // voxel, sigma_t = 0.31 * 0.5; far from both balls, 0.
+  vtkSmartPointer<vtkImageData> dense = vtkBrumeRadianceConversion::DenseExtinction(far.Extinction);
+  Check(dense != nullptr, "the sparse grid expands");
+  if (dense)
+  {
+    double centre[3] = { 0.0, 0.0, 0.0 };
+    int ijk[3];
+    double pcoords[3];
+    Check(dense->ComputeStructuredCoordinates(centre, ijk, pcoords) != 0, "the centre is inside");
+    const vtkIdType id = dense->ComputeCellId(ijk);
+    vtkDataArray* sigmaT = dense->GetCellData()->GetArray("Extinction");
+    Check(std::abs(sigmaT->GetComponent(id, 0) - 0.31 * 0.5) < 1e-6,
+      "sigma_t at a ball's centre voxel is 0.31 * 0.5, not " +
+        std::to_string(sigmaT->GetComponent(id, 0)));
+    double middle[3] = { 168.0, 0.0, 0.0 };
+    Check(dense->ComputeStructuredCoordinates(middle, ijk, pcoords) != 0, "the middle is inside");
+    Check(
+      sigmaT->GetComponent(dense->ComputeCellId(ijk), 0) == 0.0, "sigma_t between the balls is 0");
+    Check(static_cast<vtkIdType>(dense->GetActualMemorySize()) > 8 * far.Bytes,
+      "the dense grid costs many times the sparse one");
+  }
+  return failures == 0 ? 0 : 1;
+}
