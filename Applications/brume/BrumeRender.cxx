@@ -260,7 +260,7 @@ void PrintTimings(const RenderOptions& options, vtkBrumeLightTracer* tracer,
   if (processes > 1)
   {
     std::printf("   histograms summed across processes: %.1f MB sent and received in all, "
-                "%.3f s in the chain (the slowest process)\n",
+                "%.3f s in the reduction (the slowest process)\n",
       static_cast<double>(t.ReductionBytes) / 1e6, t.ReductionSeconds);
   }
   else

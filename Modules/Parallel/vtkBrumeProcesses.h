@@ -5,15 +5,14 @@
  *
  * Brume runs under MPI (`mpirun -np R brume render`, or pvbatch with the
  * plugin): every process traces its share of the particles, the histograms
- * are summed across processes (vtkBrumeHistogramChain), process 0 renders.
+ * are summed across processes (vtkBrumeHistogramReduction), process 0
+ * renders.
  * Every step that can fail is followed by an agreement (Agree), so that a
  * failure on any process stops all of them at the same point and no process
  * is left waiting in a collective call. Without MPI, or with one process,
  * every function here is the trivial single-process answer.
  *
- * The message tags Brume uses on a controller are listed here, once.
- *
- * @sa vtkBrumeHistogramChain vtkBrumeRadianceReconstruction
+ * @sa vtkBrumeHistogramReduction vtkBrumeRadianceReconstruction
  */
 #ifndef vtkBrumeProcesses_h
 #define vtkBrumeProcesses_h
@@ -28,12 +27,6 @@ class vtkMultiProcessController;
 class VTKBRUMEPARALLEL_EXPORT vtkBrumeProcesses
 {
 public:
-  /// Message tags of Brume's point-to-point messages.
-  enum Tags
-  {
-    HistogramChainTag = 24101
-  };
-
   /**
    * The program's MPI session: when an MPI launcher (Open MPI, MPICH, PMIx)
    * started the program, a vtkMPIController becomes VTK's global controller

@@ -204,6 +204,7 @@ bool vtkBrumeRadianceReconstruction::Validate(
   }
   const double* power = run.TotalPower;
   const double particleFlux = (power[0] + power[1] + power[2]) / 3.0 / run.Particles;
+  request.ParticleFlux = particleFlux;
   request.ThresholdFlux = this->RadiosityThreshold * particleFlux;
   return true;
 }

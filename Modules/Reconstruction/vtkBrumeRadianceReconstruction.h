@@ -168,10 +168,10 @@ public:
   /**
    * Distributed runs (default: the global controller). With more than one
    * process, each holds a piece of the run's hits (vtkBrumeLightTracer
-   * pieces: process r the r-th consecutive share of the particles) and
-   * every histogram is summed across the processes along a chain in rank
-   * order (process r starts from the sums of the processes before it, adds
-   * its hits, passes them on; the last one broadcasts), so that the
+   * pieces: process r the r-th consecutive share of the particles); every
+   * process bins its own hits into exact fixed-point histograms, whose sums
+   * do not depend on the order of their terms, and one all-reduce gives
+   * every process the totals (vtkBrumeHistogramReduction), so that the
    * textures are bitwise those of one process with all the hits. Hits are
    * never shipped, only histograms: the view-independent ones once, those
    * of view-dependent objects at every view change. Every process must
@@ -185,8 +185,8 @@ public:
   ///@{
   /**
    * Bytes this process sent and received summing histograms in the last
-   * execution, and the seconds it spent doing so (waiting for the processes
-   * before it along the chain included).
+   * execution, and the seconds it spent doing so (waiting for the slowest
+   * process included).
    */
   vtkGetMacro(LastReductionBytes, vtkTypeInt64);
   vtkGetMacro(LastReductionSeconds, double);

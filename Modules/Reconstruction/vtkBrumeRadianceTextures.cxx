@@ -216,7 +216,7 @@ bool vtkBrumeRadianceTextures::CreateObjects(
   if (this->Distributed() && !counts.empty())
   {
     vtkBrumeProcesses::Sum(this->Controller, counts);
-    this->Chain.reset(new vtkBrumeHistogramChain(this->Controller));
+    this->Reduction.reset(new vtkBrumeHistogramReduction(this->Controller));
   }
   for (std::size_t o = 0; o < counts.size(); ++o)
   {
@@ -225,7 +225,7 @@ bool vtkBrumeRadianceTextures::CreateObjects(
     {
       return false;
     }
-    radiance->SetChain(this->Chain.get());
+    radiance->SetReduction(this->Reduction.get());
     this->Objects.push_back(std::move(radiance));
     this->Outputs.push_back(nullptr);
   }
@@ -334,7 +334,7 @@ void vtkBrumeRadianceTextures::ComputeDirect()
 bool vtkBrumeRadianceTextures::CheckHits(
   const brume::HitArrays& hits, const brume::ObjectHits& groups)
 {
-  // Every process checks its hits before any enters the chain.
+  // Every process checks its hits before any enters a reduction.
   if (!this->Distributed())
   {
     return true;
@@ -372,6 +372,7 @@ bool vtkBrumeRadianceTextures::BuildObjects(const vtkBrumeReconstructionRequest&
   const brume::ParallelFor serialFor = brume::SerialFor();
   auto build = [&](std::size_t o, const brume::ParallelFor& parallelFor)
   {
+    this->Objects[o]->SetParticleFlux(request.ParticleFlux);
     errors[o] = this->Objects[o]->Build(hits, groups.Index.data() + groups.Offset[o],
       groups.Offset[o + 1] - groups.Offset[o], request.Eye, request.ThresholdFlux, parallelFor);
   };
@@ -384,7 +385,7 @@ bool vtkBrumeRadianceTextures::BuildObjects(const vtkBrumeReconstructionRequest&
   };
   if (this->Distributed())
   {
-    // One object at a time: the chain's messages follow the objects' order.
+    // One object at a time: the reductions follow the objects' order.
     buildIndependent(0, static_cast<vtkIdType>(independent.size()));
   }
   else
@@ -422,6 +423,7 @@ bool vtkBrumeRadianceTextures::Add(
     brume::GroupHitsByObject(request.Hits, this->Scene.NumberOfObjects(), groups);
   for (std::size_t o = 0; o < this->Objects.size() && groupError.empty(); ++o)
   {
+    this->Objects[o]->SetParticleFlux(request.ParticleFlux);
     const std::string error =
       this->Objects[o]->Add(request.Hits, groups.Index.data() + groups.Offset[o],
         groups.Offset[o + 1] - groups.Offset[o], this->Particles / request.Run.Particles,
@@ -513,6 +515,7 @@ void vtkBrumeRadianceTextures::FollowView(
       {
         brume::GroupHitsByObject(request.Hits, this->Scene.NumberOfObjects(), groups);
       }
+      radiance.SetParticleFlux(request.ParticleFlux);
       radiance.Build(request.Hits, groups.Index.data() + groups.Offset[o],
         groups.Offset[o + 1] - groups.Offset[o], eye, request.ThresholdFlux, parallelFor);
       ++work.TextureBuilds;
@@ -526,12 +529,12 @@ void vtkBrumeRadianceTextures::TakeReduction(vtkTypeInt64& bytes, double& second
 {
   bytes = 0;
   seconds = 0.0;
-  if (this->Chain)
+  if (this->Reduction)
   {
-    bytes = static_cast<vtkTypeInt64>(this->Chain->Bytes);
-    seconds = this->Chain->Seconds;
-    this->Chain->Bytes = 0;
-    this->Chain->Seconds = 0.0;
+    bytes = static_cast<vtkTypeInt64>(this->Reduction->Bytes);
+    seconds = this->Reduction->Seconds;
+    this->Reduction->Bytes = 0;
+    this->Reduction->Seconds = 0.0;
   }
 }
 

@@ -8,9 +8,9 @@
 #ifndef vtkBrumeRadianceTextures_h
 #define vtkBrumeRadianceTextures_h
 
-#include "vtkBrumeHistogramChain.h"  // For the distributed reduction
-#include "vtkBrumeHitConversion.h"   // For RunInfo
-#include "vtkBrumeSceneConversion.h" // For ObjectSource
+#include "vtkBrumeHistogramReduction.h" // For the distributed reduction
+#include "vtkBrumeHitConversion.h"      // For RunInfo
+#include "vtkBrumeSceneConversion.h"    // For ObjectSource
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
 
@@ -40,6 +40,7 @@ struct vtkBrumeReconstructionRequest
   std::vector<float> PositionCopy;
   vtkBrumeHitConversion::RunInfo Run;
   brume::Vec3 Eye;
+  double ParticleFlux = 0.0;  // one particle's flux: the run's mean power / particles
   double ThresholdFlux = 0.0; // RadiosityThreshold x one particle's flux
 };
 
@@ -146,7 +147,7 @@ private:
 
   vtkAlgorithm* Filter;
   vtkMultiProcessController* Controller;
-  std::unique_ptr<vtkBrumeHistogramChain> Chain; // distributed runs
+  std::unique_ptr<vtkBrumeHistogramReduction> Reduction; // distributed runs
 
   vtkDataObject* SceneData = nullptr; // the input as given
   vtkSmartPointer<vtkPartitionedDataSetCollection> SceneCollection;

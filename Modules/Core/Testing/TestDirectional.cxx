@@ -3,12 +3,12 @@
 // progressive refinement. The basis against the addition theorem, the
 // directional mode against the per-view reconstruction of the same hits, and
 // progressively added particles against one run with all of them (bitwise).
+#include "TestScenes.h"
 #include "brume/LightTracer.h"
 #include "brume/Random.h"
 #include "brume/Reconstruction.h"
 #include "brume/Sampling.h"
 #include "brume/SphericalHarmonics.h"
-#include "TestScenes.h"
 
 #include <gtest/gtest.h>
 
@@ -155,8 +155,7 @@ TEST(Directional, MatchesThePerViewReconstruction)
       ObjectHits groups;
       ASSERT_EQ(GroupHitsByObject(hits.View(), scene.NumberOfObjects(), groups), "");
       ASSERT_EQ(fog.Build(hits.View(), groups.Index.data() + groups.Offset[o],
-                  groups.Offset[o + 1] - groups.Offset[o], eyes[0], 64 * 3.0 / 200000,
-                  SerialFor()),
+                  groups.Offset[o + 1] - groups.Offset[o], eyes[0], 64 * 3.0 / 200000, SerialFor()),
         "");
     };
     ObjectRadiance fog(anisotropic, { 10, 10, 10 }, 2), reference(anisotropic, { 10, 10, 10 }, 2);
@@ -232,15 +231,15 @@ TEST(Progressive, AddedParticlesEqualOneRunBitwise)
     {
       sawViewDependent = true;
       ASSERT_EQ(p.BuildDirectional(2, SerialFor()), "");
-      ASSERT_EQ(s.Build(all.View(), ga.Index.data() + ga.Offset[o], range(ga), eye, threshold,
-                  SerialFor()),
+      ASSERT_EQ(
+        s.Build(all.View(), ga.Index.data() + ga.Offset[o], range(ga), eye, threshold, SerialFor()),
         "");
       ASSERT_EQ(s.BuildDirectional(2, SerialFor()), "");
     }
     else
     {
-      ASSERT_EQ(s.Build(all.View(), ga.Index.data() + ga.Offset[o], range(ga), eye, threshold,
-                  SerialFor()),
+      ASSERT_EQ(
+        s.Build(all.View(), ga.Index.data() + ga.Offset[o], range(ga), eye, threshold, SerialFor()),
         "");
     }
     const std::vector<float> before = p.GetRadiance();
@@ -270,7 +269,8 @@ TEST(Progressive, RejectsAddBeforeBuildAndBadScales)
   ASSERT_EQ(objects[0]->Build(hits.View(), none.data(), 0, Vec3(0.f), 1.0, SerialFor()), "");
   EXPECT_NE(objects[0]->Add(hits.View(), none.data(), 0, -1.0, Vec3(0.f), 1.0, SerialFor()), "");
   EXPECT_NE(objects[0]->Add(hits.View(), none.data(), 0, NAN, Vec3(0.f), 1.0, SerialFor()), "");
-  EXPECT_NE(objects[0]->BuildDirectional(2, SerialFor()), "") << "surfaces have no directional mode";
+  EXPECT_NE(objects[0]->BuildDirectional(2, SerialFor()), "")
+    << "surfaces have no directional mode";
   EXPECT_NE(objects.back()->BuildDirectional(2, SerialFor()), "") << "the fog is not built yet";
   // A hit refers to a triangle the surface lacks: refused before anything changes.
   Hits bad = hits;
@@ -302,82 +302,99 @@ TEST(Progressive, RejectsAddBeforeBuildAndBadScales)
 
 namespace
 {
-// Two "processes" as threads: process 0 passes its running sums to process
-// 1, which gives the totals back.
-struct Mailbox
+// R "processes" as threads meeting at every reduction: each brings its
+// values, the last to arrive finds the totals, every one takes them.
+struct Meeting
 {
+  explicit Meeting(int processes)
+    : Processes(processes)
+  {
+  }
   std::mutex Mutex;
-  std::condition_variable Ready;
-  std::deque<std::vector<double>> ToNext, Totals;
+  std::condition_variable Changed;
+  int Processes;
+  int Arrived = 0;
+  int Left = 0;
+  std::vector<std::int64_t> Totals;
 };
 
-class ThreadChain : public HistogramChain
+class ThreadReduction : public HistogramReduction
 {
 public:
-  ThreadChain(Mailbox& box, int rank)
-    : Box(box)
-    , Rank(rank)
+  explicit ThreadReduction(Meeting& meeting)
+    : Place(meeting)
   {
   }
-  void Receive(std::vector<double>& values) override
+  int NumberOfProcesses() const override { return this->Place.Processes; }
+  std::int64_t Max(std::int64_t value) override
   {
-    if (this->Rank == 1)
-    {
-      values = Take(this->Box.ToNext);
-      this->Bytes += values.size() * sizeof(double);
-    }
+    std::vector<std::int64_t> v{ value };
+    this->Meet(v, true);
+    return v[0];
   }
-  void Forward(std::vector<double>& values) override
+  void Sum(std::vector<std::int64_t>& values) override
   {
-    std::unique_lock<std::mutex> lock(this->Box.Mutex);
-    this->Bytes += values.size() * sizeof(double);
-    if (this->Rank == 0)
-    {
-      this->Box.ToNext.push_back(values);
-      this->Box.Ready.notify_all();
-      lock.unlock();
-      values = Take(this->Box.Totals);
-    }
-    else
-    {
-      this->Box.Totals.push_back(values);
-      this->Box.Ready.notify_all();
-    }
+    this->Meet(values, false);
+    this->Bytes += 2 * values.size() * sizeof(std::int64_t);
   }
 
 private:
-  std::vector<double> Take(std::deque<std::vector<double>>& queue)
+  void Meet(std::vector<std::int64_t>& values, bool max)
   {
-    std::unique_lock<std::mutex> lock(this->Box.Mutex);
-    this->Box.Ready.wait(lock, [&] { return !queue.empty(); });
-    std::vector<double> v = std::move(queue.front());
-    queue.pop_front();
-    return v;
+    Meeting& m = this->Place;
+    std::unique_lock<std::mutex> lock(m.Mutex);
+    m.Changed.wait(lock, [&] { return m.Left == 0; }); // the last round is read
+    if (m.Arrived == 0)
+    {
+      m.Totals = values;
+    }
+    else
+    {
+      for (std::size_t i = 0; i < values.size(); ++i)
+      {
+        m.Totals[i] = max ? std::max(m.Totals[i], values[i]) : m.Totals[i] + values[i];
+      }
+    }
+    if (++m.Arrived == m.Processes)
+    {
+      m.Left = m.Processes;
+      m.Changed.notify_all();
+    }
+    else
+    {
+      m.Changed.wait(lock, [&] { return m.Left > 0; });
+    }
+    values = m.Totals;
+    if (--m.Left == 0)
+    {
+      m.Arrived = 0;
+      m.Changed.notify_all();
+    }
   }
-  Mailbox& Box;
-  int Rank;
+  Meeting& Place;
 };
 }
 
-TEST(Distributed, ChainedHistogramsEqualOneProcessBitwise)
+TEST(Distributed, ReducedHistogramsEqualOneProcessBitwise)
 {
-  // Particles [0, 10000) on process 0 and [10000, 20000) on process 1 of a
-  // run of 20,000, against one process with all of them: every histogram,
-  // texture and projection, after a build, a view change and a projection.
+  // Particles [0, 5000), [5000, 12000) and [12000, 20000) of a run of
+  // 20,000 on three processes, against one process with all of them: every
+  // histogram, texture and projection, after a build, a view change and a
+  // projection. The exact sums do not depend on which process adds what.
   const Scene scene = MakeDefaultScene();
   const std::uint64_t n = 20000;
-  const Hits part[2] = { Trace(scene, 0, n / 2, n), Trace(scene, n / 2, n, n) };
+  const std::uint64_t cut[4] = { 0, 5000, 12000, n };
   const Hits all = Trace(scene, 0, n, n);
   const double threshold = 16 * 3.0 / n;
   const Vec3 eye(0.f, 0.f, 3.f), other(1.f, 0.5f, 3.f);
-  auto run = [&](const Hits& hits, HistogramChain* chain)
+  auto run = [&](const Hits& hits, HistogramReduction* reduction)
   {
     auto objects = Objects(scene);
     ObjectHits groups;
     EXPECT_EQ(GroupHitsByObject(hits.View(), scene.NumberOfObjects(), groups), "");
     for (std::size_t o = 0; o < objects.size(); ++o)
     {
-      objects[o]->SetChain(chain);
+      objects[o]->SetReduction(reduction);
       EXPECT_EQ(objects[o]->Build(hits.View(), groups.Index.data() + groups.Offset[o],
                   groups.Offset[o + 1] - groups.Offset[o], eye, threshold, SerialFor()),
         "");
@@ -389,19 +406,32 @@ TEST(Distributed, ChainedHistogramsEqualOneProcessBitwise)
     }
     return objects;
   };
-  Mailbox box;
-  ThreadChain chain0(box, 0), chain1(box, 1);
-  std::vector<std::unique_ptr<ObjectRadiance>> distributed[2];
-  std::thread second([&] { distributed[1] = run(part[1], &chain1); });
-  distributed[0] = run(part[0], &chain0);
-  second.join();
+  Meeting meeting(3);
+  std::vector<std::unique_ptr<ThreadReduction>> reductions;
+  std::vector<Hits> parts;
+  for (int r = 0; r < 3; ++r)
+  {
+    reductions.push_back(std::make_unique<ThreadReduction>(meeting));
+    parts.push_back(Trace(scene, cut[r], cut[r + 1], n));
+  }
+  std::vector<std::unique_ptr<ObjectRadiance>> distributed[3];
+  std::vector<std::thread> threads;
+  for (int r = 1; r < 3; ++r)
+  {
+    threads.emplace_back([&, r] { distributed[r] = run(parts[r], reductions[r].get()); });
+  }
+  distributed[0] = run(parts[0], reductions[0].get());
+  for (auto& t : threads)
+  {
+    t.join();
+  }
   const auto single = run(all, nullptr);
   for (std::size_t o = 0; o < single.size(); ++o)
   {
     for (const auto& process : distributed)
     {
-      EXPECT_EQ(process[o]->GetWeightHistogram().GetValues(),
-        single[o]->GetWeightHistogram().GetValues())
+      EXPECT_EQ(
+        process[o]->GetWeightHistogram().GetValues(), single[o]->GetWeightHistogram().GetValues())
         << o;
       EXPECT_EQ(
         process[o]->GetValueHistogram().GetValues(), single[o]->GetValueHistogram().GetValues())
@@ -410,5 +440,44 @@ TEST(Distributed, ChainedHistogramsEqualOneProcessBitwise)
       EXPECT_EQ(process[o]->GetDirectional(), single[o]->GetDirectional()) << o;
     }
   }
-  EXPECT_GT(chain0.Bytes + chain1.Bytes, 0u) << "nothing went through the chain";
+  EXPECT_GT(reductions[0]->Bytes, 0u) << "nothing was reduced";
+}
+
+TEST(Distributed, ExactSumsAreTheDoubleSumsToRounding)
+{
+  // The fog's incident-flux histogram of the default scene, summed over
+  // its cells, against its hits' terms summed in long double: each term is
+  // rounded once by at most half a quantum (2^-41 of a particle's flux).
+  const Scene scene = MakeDefaultScene();
+  const std::uint64_t n = 20000;
+  const Hits all = Trace(scene, 0, n, n);
+  ObjectHits groups;
+  ASSERT_EQ(GroupHitsByObject(all.View(), scene.NumberOfObjects(), groups), "");
+  auto objects = Objects(scene);
+  const std::size_t fog = scene.Surfaces.size();
+  ASSERT_TRUE(scene.IsMedium(fog));
+  const std::uint32_t* index = groups.Index.data() + groups.Offset[fog];
+  const std::size_t count = groups.Offset[fog + 1] - groups.Offset[fog];
+  const double particle = 15.0 * 0.25 * Pi / static_cast<double>(n); // the emitter's power / n
+  objects[fog]->SetParticleFlux(particle);
+  ASSERT_EQ(
+    objects[fog]->Build(all.View(), index, count, Vec3(0.f, 0.f, 3.f), 16 * particle, SerialFor()),
+    "");
+  long double expected = 0.0L;
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    const float* f = all.View().Flux + 3 * index[k];
+    expected += (static_cast<long double>(f[0]) + f[1] + f[2]) / 3.0L;
+  }
+  long double total = 0.0L;
+  for (double v : objects[fog]->GetWeightHistogram().GetValues())
+  {
+    total += v;
+  }
+  const double difference = static_cast<double>(std::abs(total - expected) / expected);
+  std::printf("%zu terms: exact sums %.17Lg, long double %.17Lg, relative difference %g\n", count,
+    total, expected, difference);
+  EXPECT_GT(count, 1000u);
+  EXPECT_LE(std::abs(total - expected),
+    static_cast<long double>(count) * std::ldexp(particle, -40) + 1e-15L * expected);
 }

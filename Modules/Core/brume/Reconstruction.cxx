@@ -112,18 +112,51 @@ std::string ObjectRadiance::Build(const HitArrays& hits, const std::uint32_t* in
 {
   this->Kept.clear();
   this->RangeStart.assign(Ranges + 1, 0);
-  this->WeightHistogram = Histogram(this->Dims, 1);
-  this->ValueHistogram = Histogram(this->Dims, 3);
-  this->Regions.clear();
-  this->Directional.clear();
-  this->DirectionalOrder = -1;
+  this->ThresholdFlux = thresholdFlux;
   const std::string error = this->Check(hits, index, count);
   if (!error.empty())
   {
     return error;
   }
+  // The quantum of the exact sums: from the particle flux, or the largest
+  // hit's, the same on every process.
+  double flux = this->ParticleFlux;
+  if (!(flux > 0.0))
+  {
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      const float* f = hits.Flux + 3 * index[k];
+      flux = std::max(
+        { flux, static_cast<double>(f[0]), static_cast<double>(f[1]), static_cast<double>(f[2]) });
+    }
+  }
+  this->SumsExponent = ExactHistogram::QuantumExponent(flux);
+  if (this->Reduction && !(this->ParticleFlux > 0.0))
+  {
+    this->SumsExponent = static_cast<int>(this->Reduction->Max(this->SumsExponent));
+  }
+  // View-independent objects keep exact sums (for Add()); the others keep hits.
+  this->WeightSums = this->ViewDependent ? ExactHistogram() : this->NewSums(1);
+  this->ValueSums = this->ViewDependent ? ExactHistogram() : this->NewSums(3);
+  this->WeightHistogram = Histogram(this->Dims, 1);
+  this->ValueHistogram = Histogram(this->Dims, 3);
+  this->SumsClamped = false;
+  this->Regions.clear();
+  this->Directional.clear();
+  this->DirectionalOrder = -1;
   this->Bin(hits, index, count, parallelFor);
   this->Finish(eye, thresholdFlux, true, parallelFor);
+  return this->Saturation();
+}
+
+std::string ObjectRadiance::Saturation() const
+{
+  if (this->SumsClamped)
+  {
+    return "a hit's weighted flux exceeds 2^" +
+      std::to_string(ExactHistogram::MaxTermBits - ExactHistogram::FractionBits) +
+      " times a particle's: the histograms' exact sums cannot hold it";
+  }
   return {};
 }
 
@@ -135,7 +168,7 @@ std::string ObjectRadiance::Add(const HitArrays& hits, const std::uint32_t* inde
   {
     return "particles can only be added to a texture already built";
   }
-  if (this->Chain)
+  if (this->Reduction)
   {
     return "particles cannot be added to a texture summed across processes";
   }
@@ -167,16 +200,24 @@ std::string ObjectRadiance::Add(const HitArrays& hits, const std::uint32_t* inde
   }
   else
   {
-    this->WeightHistogram.Scale(scale);
-    this->ValueHistogram.Scale(scale);
+    // Exactly, as a change of quantum, when the scale is a power of two.
+    this->WeightSums.Scale(scale);
+    this->ValueSums.Scale(scale);
   }
+  this->SumsExponent = this->ParticleFlux > 0.0
+    ? ExactHistogram::QuantumExponent(this->ParticleFlux)
+    : this->SumsExponent + static_cast<int>(std::lround(std::log2(scale)));
   this->Bin(hits, index, count, parallelFor);
   this->Finish(eye, thresholdFlux, false, parallelFor);
   if (this->DirectionalOrder >= 0)
   {
-    return this->BuildDirectional(this->DirectionalOrder, parallelFor);
+    const std::string directional = this->BuildDirectional(this->DirectionalOrder, parallelFor);
+    if (!directional.empty())
+    {
+      return directional;
+    }
   }
-  return {};
+  return this->Saturation();
 }
 
 std::string ObjectRadiance::Check(
@@ -216,8 +257,7 @@ void ObjectRadiance::Finish(
   }
   else
   {
-    this->WeightHistogram = Histogram(this->Dims, 1);
-    this->ChainReceive(this->WeightHistogram);
+    ExactHistogram weights = this->NewSums(1);
     parallelFor(0, Ranges,
       [&](std::size_t begin, std::size_t end)
       {
@@ -225,10 +265,10 @@ void ObjectRadiance::Finish(
         {
           const float* f = this->Kept[k].Flux;
           const double w = (static_cast<double>(f[0]) + f[1] + f[2]) / 3.0;
-          this->WeightHistogram.Add(this->Kept[k].Cell, &w);
+          weights.Add(this->Kept[k].Cell, &w);
         }
       });
-    this->ChainForward(this->WeightHistogram);
+    this->Reduce(weights, this->WeightHistogram);
     this->WeightTable = SummedAreaTable(this->WeightHistogram);
     this->WeighCells(eye, parallelFor);
   }
@@ -313,9 +353,7 @@ void ObjectRadiance::UpdateView(const Vec3& eye, const ParallelFor& parallelFor)
 
 void ObjectRadiance::WeighCells(const Vec3& eye, const ParallelFor& parallelFor)
 {
-  this->ValueHistogram = Histogram(this->Dims, 3);
-  Histogram& value = this->ValueHistogram;
-  this->ChainReceive(value);
+  ExactHistogram value = this->NewSums(3);
   const Medium* medium = this->MediumRef;
   const Surface* surface = this->SurfaceRef;
   // Media: the remainder of the phase function once its peak is set apart.
@@ -363,8 +401,8 @@ void ObjectRadiance::WeighCells(const Vec3& eye, const ParallelFor& parallelFor)
         value.Add(cell, v);
       }
     });
-  this->ChainForward(value);
-  this->ValueTable = SummedAreaTable(value);
+  this->Reduce(value, this->ValueHistogram);
+  this->ValueTable = SummedAreaTable(this->ValueHistogram);
 }
 
 void ObjectRadiance::BuildAreaTable()
@@ -374,53 +412,53 @@ void ObjectRadiance::BuildAreaTable()
   this->AreaTable = SummedAreaTable(area);
 }
 
-namespace
+ExactHistogram ObjectRadiance::NewSums(int channels) const
 {
-// One buffer for one or two histograms: each chain step is one message.
-std::vector<double> Joined(Histogram& a, Histogram* b)
-{
-  std::vector<double> v;
-  if (!b)
-  {
-    v.swap(a.GetValues());
-    return v;
-  }
-  v.reserve(a.GetValues().size() + b->GetValues().size());
-  v.insert(v.end(), a.GetValues().begin(), a.GetValues().end());
-  v.insert(v.end(), b->GetValues().begin(), b->GetValues().end());
-  return v;
+  return ExactHistogram(this->Dims, channels, this->SumsExponent);
 }
 
-void Split(std::vector<double>& v, Histogram& a, Histogram* b)
+void ObjectRadiance::Reduce(ExactHistogram& a, Histogram& da, ExactHistogram* b, Histogram* db)
 {
-  if (!b)
+  this->SumsClamped = this->SumsClamped || a.Saturated() || (b && b->Saturated());
+  if (this->Reduction)
   {
-    a.GetValues().swap(v);
-    return;
+    // One 64-bit integer per value when every process's sums fit in it
+    // (the usual case), otherwise three limbs; all processes agree.
+    Int128 largest = a.MaxMagnitude();
+    if (b)
+    {
+      const Int128 mb = b->MaxMagnitude();
+      largest = mb > largest ? mb : largest;
+    }
+    std::int64_t bits = 0;
+    while (bits < 127 && (largest >> bits) != 0)
+    {
+      ++bits;
+    }
+    bits = this->Reduction->Max(bits);
+    const int limbs = bits < 62 &&
+        ExactHistogram::FitsOneLimb(
+          static_cast<Int128>(1) << bits, this->Reduction->NumberOfProcesses())
+      ? 1
+      : 3;
+    std::vector<std::int64_t> v;
+    v.reserve(limbs * (a.GetNumberOfValues() + (b ? b->GetNumberOfValues() : 0)));
+    a.ToLimbs(limbs, v);
+    if (b)
+    {
+      b->ToLimbs(limbs, v);
+    }
+    this->Reduction->Sum(v);
+    const std::size_t offset = a.FromLimbs(limbs, v, 0);
+    if (b)
+    {
+      b->FromLimbs(limbs, v, offset);
+    }
   }
-  const auto middle = v.begin() + static_cast<std::ptrdiff_t>(a.GetValues().size());
-  std::copy(v.begin(), middle, a.GetValues().begin());
-  std::copy(middle, v.end(), b->GetValues().begin());
-}
-}
-
-void ObjectRadiance::ChainReceive(Histogram& a, Histogram* b)
-{
-  if (this->Chain)
+  a.ToHistogram(da);
+  if (b && db)
   {
-    std::vector<double> v = Joined(a, b);
-    this->Chain->Receive(v);
-    Split(v, a, b);
-  }
-}
-
-void ObjectRadiance::ChainForward(Histogram& a, Histogram* b)
-{
-  if (this->Chain)
-  {
-    std::vector<double> v = Joined(a, b);
-    this->Chain->Forward(v);
-    Split(v, a, b);
+    b->ToHistogram(*db);
   }
 }
 

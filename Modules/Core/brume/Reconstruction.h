@@ -36,6 +36,7 @@
 
 #include "brume/BrickedGrid.h"
 #include "brume/DensityEstimation.h"
+#include "brume/ExactHistogram.h"
 #include "brume/Histogram.h"
 #include "brume/Parallel.h"
 #include "brume/Sampling.h"
@@ -83,21 +84,22 @@ std::array<int, 3> ChooseResolution(
   const Vec3& extent, std::size_t hitCount, double hitsPerTexel, int minimum, int maximum);
 
 /**
- * Sums histograms across processes that hold consecutive parts of one run
- * (process r: the particles after those of process r - 1), in an order that
- * makes the result bitwise that of one process adding every hit: each
- * process starts from the running sums of the processes before it, adds its
- * own hits in order, and passes the sums on; the last one gives the totals
- * to all. Every process must make the same calls in the same order.
+ * Sums histograms across the processes of one run. Every process bins its
+ * own hits into exact histograms (brume::ExactHistogram: fixed-point sums,
+ * which do not depend on the order of their terms), then one all-reduce
+ * gives every process the totals: bitwise those of one process holding
+ * every hit, whatever the number of processes and threads. Every process
+ * must make the same calls in the same order.
  */
-class HistogramChain
+class HistogramReduction
 {
 public:
-  virtual ~HistogramChain() = default;
-  /// Before this process adds its hits: the running sums so far (in place).
-  virtual void Receive(std::vector<double>& values) = 0;
-  /// After: passes the sums on; on return `values` holds the totals.
-  virtual void Forward(std::vector<double>& values) = 0;
+  virtual ~HistogramReduction() = default;
+  virtual int NumberOfProcesses() const = 0;
+  /// The largest of `value` over the processes, on every process.
+  virtual std::int64_t Max(std::int64_t value) = 0;
+  /// Sums `values` elementwise over the processes, in place, on every process.
+  virtual void Sum(std::vector<std::int64_t>& values) = 0;
   /// Bytes this process has sent and received so far.
   std::size_t Bytes = 0;
 };
@@ -176,10 +178,21 @@ public:
 
   /**
    * Distributed runs: every histogram this object builds from now on is
-   * summed across processes through `chain` (not owned; null: this process
-   * holds every hit). Progressive Add() is not supported with a chain.
+   * summed across processes through `reduction` (not owned; null: this
+   * process holds every hit). Progressive Add() is not supported with one.
    */
-  void SetChain(HistogramChain* chain) { this->Chain = chain; }
+  void SetReduction(HistogramReduction* reduction) { this->Reduction = reduction; }
+
+  /**
+   * The flux one particle of the run carries (the run's emitted power per
+   * particle), which sets the quantum of the histograms' exact sums to
+   * about 2^-40 of it (ExactHistogram::QuantumExponent) at the next Build()
+   * or Add(). 0 (the default): the largest flux among the hits of Build()
+   * (of all processes' hits, with a reduction), scaled by Add(); then a
+   * Build() and Add()s are bitwise one Build() only when the largest flux
+   * is among the first hits. vtkBrumeRadianceReconstruction sets it.
+   */
+  void SetParticleFlux(double flux) { this->ParticleFlux = flux; }
 
   /**
    * Bins the object's hits (`count` indices into `hits`) and estimates the
@@ -323,7 +336,10 @@ private:
   std::vector<KeptHit> Kept;
   std::vector<std::size_t> RangeStart;
 
-  Histogram WeightHistogram; // kept for Add()
+  // The sums, exact (kept for Add()), and as doubles for the tables.
+  ExactHistogram WeightSums;
+  ExactHistogram ValueSums;
+  Histogram WeightHistogram;
   Histogram ValueHistogram;
 
   SummedAreaTable WeightTable;  // incident flux (mean over channels): drives the growth
@@ -346,12 +362,19 @@ private:
   std::vector<float> Extinction;
   std::vector<float> Directional;
   int DirectionalOrder = -1;
-  HistogramChain* Chain = nullptr;
+  HistogramReduction* Reduction = nullptr;
+  double ParticleFlux = 0.0; // as set
+  int SumsExponent = 0;      // the exact sums' quantum, 2^SumsExponent
+  bool SumsClamped = false;  // a term beyond the exact sums' bound since Build()
 
-  // The chain's Receive / Forward, when there is one, of one histogram or
-  // of two as one message.
-  void ChainReceive(Histogram& a, Histogram* b = nullptr);
-  void ChainForward(Histogram& a, Histogram* b = nullptr);
+  // Empty unless a term was clamped in the exact sums: why.
+  std::string Saturation() const;
+  // A new exact histogram of this run's quantum (from the threshold flux).
+  ExactHistogram NewSums(int channels) const;
+  // Sums one histogram, or two as one message, across the processes when
+  // there is a reduction; then `da` (and `db`) hold them as doubles.
+  void Reduce(
+    ExactHistogram& a, Histogram& da, ExactHistogram* b = nullptr, Histogram* db = nullptr);
 };
 
 } // namespace brume

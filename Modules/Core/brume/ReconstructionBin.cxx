@@ -130,9 +130,8 @@ template <typename Locator>
 void ObjectRadiance::BinInPlace(
   const HitArrays& hits, const std::uint32_t* index, std::size_t count, const Locator& cellOfHit)
 {
-  // View-independent objects: one pass in hit order adds every hit to its
-  // cell (deterministic, and the histogram fits in cache); nothing is kept.
-  this->ChainReceive(this->WeightHistogram, &this->ValueHistogram);
+  // View-independent objects: one pass adds every hit to its cell (exact
+  // sums: any order gives the same bits); nothing is kept.
   for (std::size_t k = 0; k < count; ++k)
   {
     const std::uint32_t i = index[k];
@@ -143,7 +142,7 @@ void ObjectRadiance::BinInPlace(
     const std::uint32_t cell = cellOfHit(hits, i);
     const float* f = hits.Flux + 3 * i;
     const double w = (static_cast<double>(f[0]) + f[1] + f[2]) / 3.0;
-    this->WeightHistogram.Add(cell, &w);
+    this->WeightSums.Add(cell, &w);
     double v[3];
     if (this->MediumRef)
     {
@@ -160,9 +159,9 @@ void ObjectRadiance::BinInPlace(
         v[c] = m.Reflectance[c] * InvPi * static_cast<double>(f[c]);
       }
     }
-    this->ValueHistogram.Add(cell, v);
+    this->ValueSums.Add(cell, v);
   }
-  this->ChainForward(this->WeightHistogram, &this->ValueHistogram);
+  this->Reduce(this->WeightSums, this->WeightHistogram, &this->ValueSums, &this->ValueHistogram);
 }
 
 template <typename Locator>

@@ -35,8 +35,7 @@ std::string ObjectRadiance::BuildDirectional(int order, const ParallelFor& paral
   for (int k0 = 0; k0 < nk; k0 += PerPass)
   {
     const int kn = std::min(PerPass, nk - k0);
-    Histogram projected(this->Dims, 3 * kn);
-    this->ChainReceive(projected);
+    ExactHistogram sums = this->NewSums(3 * kn);
     parallelFor(0, Ranges,
       [&](std::size_t begin, std::size_t end)
       {
@@ -55,10 +54,11 @@ std::string ObjectRadiance::BuildDirectional(int order, const ParallelFor& paral
               v[3 * j + c] = remainder * y[k0 + j] * h.Flux[c];
             }
           }
-          projected.Add(h.Cell, v);
+          sums.Add(h.Cell, v);
         }
       });
-    this->ChainForward(projected);
+    Histogram projected;
+    this->Reduce(sums, projected);
     const SummedAreaTable table(projected);
     parallelFor(0, texels,
       [&](std::size_t begin, std::size_t end)
