@@ -250,7 +250,8 @@ TEST(Progressive, AddedParticlesEqualOneRunBitwise)
     EXPECT_EQ(p.GetValueHistogram().GetValues(), s.GetValueHistogram().GetValues()) << o;
     EXPECT_EQ(p.GetRadiance(), s.GetRadiance()) << o;
     EXPECT_EQ(p.GetDirectional(), s.GetDirectional()) << o;
-    const auto& values = s.GetValueHistogram().GetValues();
+    const Histogram valueHistogram = s.GetValueHistogram();
+    const auto& values = valueHistogram.GetValues();
     if (std::any_of(values.begin(), values.end(), [](double v) { return v != 0.0; }))
     {
       EXPECT_NE(p.GetRadiance(), before) << o;
@@ -470,7 +471,8 @@ TEST(Distributed, ExactSumsAreTheDoubleSumsToRounding)
     expected += (static_cast<long double>(f[0]) + f[1] + f[2]) / 3.0L;
   }
   long double total = 0.0L;
-  for (double v : objects[fog]->GetWeightHistogram().GetValues())
+  const Histogram weights = objects[fog]->GetWeightHistogram();
+  for (double v : weights.GetValues())
   {
     total += v;
   }

@@ -104,7 +104,7 @@ TEST(ExactHistogram, WorstCaseSumsStayExact)
   const double negative = -largest;
   h.Add(1, &negative);
   EXPECT_FALSE(h.Saturated());
-  const Int128 term = h.GetSums()[0];
+  const Int128 term = h.GetSum(0);
   EXPECT_EQ(term, static_cast<Int128>(std::ldexp(1.0, 62) - 1024.0));
   for (int k = 0; k < 64; ++k)
   {

@@ -9,7 +9,6 @@ namespace brume
 namespace
 {
 __extension__ typedef unsigned __int128 UInt128;
-constexpr double TermBound = 4611686018427387904.0; // 2^62
 }
 
 ExactHistogram::ExactHistogram(const std::array<int, 3>& dims, int channels, int exponent)
@@ -17,8 +16,51 @@ ExactHistogram::ExactHistogram(const std::array<int, 3>& dims, int channels, int
   , Channels(channels)
   , Exponent(exponent)
   , InverseQuantum(std::ldexp(1.0, -exponent))
-  , Sums(static_cast<std::size_t>(dims[0]) * dims[1] * dims[2] * channels, 0)
+  , Quantum(std::ldexp(1.0, exponent))
+  , Low(static_cast<std::size_t>(dims[0]) * dims[1] * dims[2] * channels, 0)
 {
+}
+
+void ExactHistogram::MoveHigh(std::size_t i, std::int64_t step)
+{
+  std::lock_guard<std::mutex> lock(*this->HighLock.Mutex);
+  if (this->High.empty())
+  {
+    this->High.assign(this->Low.size(), 0);
+  }
+  this->High[i] += step;
+}
+
+Int128 ExactHistogram::GetSum(std::size_t i) const
+{
+  const UInt128 high =
+    this->High.empty() ? 0 : static_cast<UInt128>(static_cast<Int128>(this->High[i]));
+  return static_cast<Int128>((high << 64) + this->Low[i]);
+}
+
+std::vector<Int128> ExactHistogram::GetSums() const
+{
+  std::vector<Int128> sums(this->Low.size());
+  for (std::size_t i = 0; i < sums.size(); ++i)
+  {
+    sums[i] = this->GetSum(i);
+  }
+  return sums;
+}
+
+void ExactHistogram::SetSum(std::size_t i, Int128 sum)
+{
+  const UInt128 u = static_cast<UInt128>(sum);
+  this->Low[i] = static_cast<std::uint64_t>(u);
+  const std::int64_t high = static_cast<std::int64_t>(sum >> 64);
+  if (high != 0 && this->High.empty())
+  {
+    this->High.assign(this->Low.size(), 0);
+  }
+  if (!this->High.empty())
+  {
+    this->High[i] = high;
+  }
 }
 
 int ExactHistogram::QuantumExponent(double particleFlux)
@@ -28,27 +70,21 @@ int ExactHistogram::QuantumExponent(double particleFlux)
   return e - FractionBits; // particleFlux in [2^(e-1), 2^e)
 }
 
-std::int64_t ExactHistogram::Quantize(double v)
+std::int64_t ExactHistogram::Clamp(double x)
 {
-  const double x = v * this->InverseQuantum; // exact: a power of two
-  if (std::abs(x) < TermBound)
-  {
-    return std::llround(x);
-  }
   this->Clamped.Value.store(true, std::memory_order_relaxed);
   if (std::isnan(x))
   {
     return 0;
   }
-  return x > 0.0 ? static_cast<std::int64_t>(TermBound) - 1
-                 : 1 - static_cast<std::int64_t>(TermBound);
+  return x > 0.0 ? static_cast<std::int64_t>(TermBound) - 1 : 1 - static_cast<std::int64_t>(TermBound);
 }
 
 void ExactHistogram::Merge(const ExactHistogram& other)
 {
-  for (std::size_t i = 0; i < this->Sums.size(); ++i)
+  for (std::size_t i = 0; i < this->Low.size(); ++i)
   {
-    this->Sums[i] += other.Sums[i];
+    this->SetSum(i, this->GetSum(i) + other.GetSum(i));
   }
   if (other.Saturated())
   {
@@ -65,17 +101,19 @@ void ExactHistogram::Scale(double factor)
     // factor = 2^(e - 1): the same integers of a quantum 2^(e - 1) times larger.
     this->Exponent += e - 1;
     this->InverseQuantum = std::ldexp(1.0, -this->Exponent);
+    this->Quantum = std::ldexp(1.0, this->Exponent);
     return;
   }
-  for (Int128& s : this->Sums)
+  for (std::size_t i = 0; i < this->Low.size(); ++i)
   {
-    s = static_cast<Int128>(std::round(static_cast<double>(s) * factor));
+    this->SetSum(
+      i, static_cast<Int128>(std::round(static_cast<double>(this->GetSum(i)) * factor)));
   }
 }
 
-double ExactHistogram::GetValue(std::size_t i) const
+double ExactHistogram::ExactValue(std::size_t i) const
 {
-  return std::ldexp(static_cast<double>(this->Sums[i]), this->Exponent);
+  return std::ldexp(static_cast<double>(this->GetSum(i)), this->Exponent);
 }
 
 void ExactHistogram::ToHistogram(Histogram& out) const
@@ -85,7 +123,7 @@ void ExactHistogram::ToHistogram(Histogram& out) const
     out = Histogram(this->Dims, this->Channels);
   }
   std::vector<double>& values = out.GetValues();
-  for (std::size_t i = 0; i < this->Sums.size(); ++i)
+  for (std::size_t i = 0; i < this->Low.size(); ++i)
   {
     values[i] = this->GetValue(i);
   }
@@ -94,8 +132,9 @@ void ExactHistogram::ToHistogram(Histogram& out) const
 Int128 ExactHistogram::MaxMagnitude() const
 {
   Int128 m = 0;
-  for (const Int128& s : this->Sums)
+  for (std::size_t i = 0; i < this->Low.size(); ++i)
   {
+    const Int128 s = this->GetSum(i);
     const Int128 a = s < 0 ? -s : s;
     m = a > m ? a : m;
   }
@@ -110,8 +149,9 @@ bool ExactHistogram::FitsOneLimb(Int128 maxMagnitude, int processes)
 void ExactHistogram::ToLimbs(int limbs, std::vector<std::int64_t>& out) const
 {
   constexpr UInt128 Mask = (static_cast<UInt128>(1) << LimbBits) - 1;
-  for (const Int128& s : this->Sums)
+  for (std::size_t i = 0; i < this->Low.size(); ++i)
   {
+    const Int128 s = this->GetSum(i);
     if (limbs == 1)
     {
       out.push_back(static_cast<std::int64_t>(s));
@@ -127,18 +167,18 @@ void ExactHistogram::ToLimbs(int limbs, std::vector<std::int64_t>& out) const
 std::size_t ExactHistogram::FromLimbs(
   int limbs, const std::vector<std::int64_t>& in, std::size_t offset)
 {
-  for (Int128& s : this->Sums)
+  for (std::size_t i = 0; i < this->Low.size(); ++i)
   {
     if (limbs == 1)
     {
-      s = in[offset++];
+      this->SetSum(i, in[offset++]);
       continue;
     }
     // Modulo 2^128 (unsigned): the total fits, the partial sums may wrap.
     const UInt128 u = static_cast<UInt128>(static_cast<Int128>(in[offset])) +
       (static_cast<UInt128>(static_cast<Int128>(in[offset + 1])) << LimbBits) +
       (static_cast<UInt128>(static_cast<Int128>(in[offset + 2])) << (2 * LimbBits));
-    s = static_cast<Int128>(u);
+    this->SetSum(i, static_cast<Int128>(u));
     offset += 3;
   }
   return offset;

@@ -138,8 +138,6 @@ std::string ObjectRadiance::Build(const HitArrays& hits, const std::uint32_t* in
   // View-independent objects keep exact sums (for Add()); the others keep hits.
   this->WeightSums = this->ViewDependent ? ExactHistogram() : this->NewSums(1);
   this->ValueSums = this->ViewDependent ? ExactHistogram() : this->NewSums(3);
-  this->WeightHistogram = Histogram(this->Dims, 1);
-  this->ValueHistogram = Histogram(this->Dims, 3);
   this->SumsClamped = false;
   this->Regions.clear();
   this->Directional.clear();
@@ -252,24 +250,25 @@ void ObjectRadiance::Finish(
   this->Eye = eye;
   if (!this->ViewDependent)
   {
-    this->WeightTable = SummedAreaTable(this->WeightHistogram);
-    this->ValueTable = SummedAreaTable(this->ValueHistogram);
+    this->WeightTable = SummedAreaTable(this->WeightSums);
+    this->ValueTable = SummedAreaTable(this->ValueSums);
   }
   else
   {
-    ExactHistogram weights = this->NewSums(1);
+    this->WeightSums = this->NewSums(1);
+    ExactHistogram& weights = this->WeightSums;
     parallelFor(0, Ranges,
       [&](std::size_t begin, std::size_t end)
       {
         for (std::size_t k = this->RangeStart[begin]; k < this->RangeStart[end]; ++k)
         {
           const float* f = this->Kept[k].Flux;
-          const double w = (static_cast<double>(f[0]) + f[1] + f[2]) / 3.0;
-          weights.Add(this->Kept[k].Cell, &w);
+          const double w[1] = { (static_cast<double>(f[0]) + f[1] + f[2]) / 3.0 };
+          weights.AddNonNegative(this->Kept[k].Cell, w);
         }
       });
-    this->Reduce(weights, this->WeightHistogram);
-    this->WeightTable = SummedAreaTable(this->WeightHistogram);
+    this->Reduce(weights);
+    this->WeightTable = SummedAreaTable(weights);
     this->WeighCells(eye, parallelFor);
   }
 
@@ -353,7 +352,8 @@ void ObjectRadiance::UpdateView(const Vec3& eye, const ParallelFor& parallelFor)
 
 void ObjectRadiance::WeighCells(const Vec3& eye, const ParallelFor& parallelFor)
 {
-  ExactHistogram value = this->NewSums(3);
+  this->ValueSums = this->NewSums(3);
+  ExactHistogram& value = this->ValueSums;
   const Medium* medium = this->MediumRef;
   const Surface* surface = this->SurfaceRef;
   // Media: the remainder of the phase function once its peak is set apart.
@@ -398,11 +398,11 @@ void ObjectRadiance::WeighCells(const Vec3& eye, const ParallelFor& parallelFor)
             v[ch] = static_cast<double>(f[ch]) * flux[ch];
           }
         }
-        value.Add(cell, v);
+        value.AddNonNegative(cell, v);
       }
     });
-  this->Reduce(value, this->ValueHistogram);
-  this->ValueTable = SummedAreaTable(this->ValueHistogram);
+  this->Reduce(value);
+  this->ValueTable = SummedAreaTable(value);
 }
 
 void ObjectRadiance::BuildAreaTable()
@@ -417,7 +417,21 @@ ExactHistogram ObjectRadiance::NewSums(int channels) const
   return ExactHistogram(this->Dims, channels, this->SumsExponent);
 }
 
-void ObjectRadiance::Reduce(ExactHistogram& a, Histogram& da, ExactHistogram* b, Histogram* db)
+Histogram ObjectRadiance::GetWeightHistogram() const
+{
+  Histogram h;
+  this->WeightSums.ToHistogram(h);
+  return h;
+}
+
+Histogram ObjectRadiance::GetValueHistogram() const
+{
+  Histogram h;
+  this->ValueSums.ToHistogram(h);
+  return h;
+}
+
+void ObjectRadiance::Reduce(ExactHistogram& a, ExactHistogram* b)
 {
   this->SumsClamped = this->SumsClamped || a.Saturated() || (b && b->Saturated());
   if (this->Reduction)
@@ -454,11 +468,6 @@ void ObjectRadiance::Reduce(ExactHistogram& a, Histogram& da, ExactHistogram* b,
     {
       b->FromLimbs(limbs, v, offset);
     }
-  }
-  a.ToHistogram(da);
-  if (b && db)
-  {
-    b->ToHistogram(*db);
   }
 }
 

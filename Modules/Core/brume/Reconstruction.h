@@ -240,8 +240,8 @@ public:
   void EvaluateDirectional(const Vec3& eye, std::vector<float>& radiance) const;
 
   /// The histograms behind the current textures (incident flux; weighted flux, RGB).
-  const Histogram& GetWeightHistogram() const { return this->WeightHistogram; }
-  const Histogram& GetValueHistogram() const { return this->ValueHistogram; }
+  Histogram GetWeightHistogram() const;
+  Histogram GetValueHistogram() const;
 
   /// RGB per texel, x fastest: surfaces L_o, media the source radiance S.
   const std::vector<float>& GetRadiance() const { return this->Radiance; }
@@ -336,11 +336,9 @@ private:
   std::vector<KeptHit> Kept;
   std::vector<std::size_t> RangeStart;
 
-  // The sums, exact (kept for Add()), and as doubles for the tables.
+  // The histograms' exact sums (view-independent objects: kept for Add()).
   ExactHistogram WeightSums;
   ExactHistogram ValueSums;
-  Histogram WeightHistogram;
-  Histogram ValueHistogram;
 
   SummedAreaTable WeightTable;  // incident flux (mean over channels): drives the growth
   SummedAreaTable ValueTable;   // weighted flux, RGB
@@ -369,12 +367,11 @@ private:
 
   // Empty unless a term was clamped in the exact sums: why.
   std::string Saturation() const;
-  // A new exact histogram of this run's quantum (from the threshold flux).
+  // A new exact histogram of this run's quantum (SumsExponent).
   ExactHistogram NewSums(int channels) const;
   // Sums one histogram, or two as one message, across the processes when
-  // there is a reduction; then `da` (and `db`) hold them as doubles.
-  void Reduce(
-    ExactHistogram& a, Histogram& da, ExactHistogram* b = nullptr, Histogram* db = nullptr);
+  // there is a reduction.
+  void Reduce(ExactHistogram& a, ExactHistogram* b = nullptr);
 };
 
 } // namespace brume

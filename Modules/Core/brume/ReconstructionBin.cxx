@@ -141,8 +141,8 @@ void ObjectRadiance::BinInPlace(
     }
     const std::uint32_t cell = cellOfHit(hits, i);
     const float* f = hits.Flux + 3 * i;
-    const double w = (static_cast<double>(f[0]) + f[1] + f[2]) / 3.0;
-    this->WeightSums.Add(cell, &w);
+    const double w[1] = { (static_cast<double>(f[0]) + f[1] + f[2]) / 3.0 };
+    this->WeightSums.AddNonNegative(cell, w);
     double v[3];
     if (this->MediumRef)
     {
@@ -159,9 +159,9 @@ void ObjectRadiance::BinInPlace(
         v[c] = m.Reflectance[c] * InvPi * static_cast<double>(f[c]);
       }
     }
-    this->ValueSums.Add(cell, v);
+    this->ValueSums.AddNonNegative(cell, v);
   }
-  this->Reduce(this->WeightSums, this->WeightHistogram, &this->ValueSums, &this->ValueHistogram);
+  this->Reduce(this->WeightSums, &this->ValueSums);
 }
 
 template <typename Locator>

@@ -57,9 +57,8 @@ std::string ObjectRadiance::BuildDirectional(int order, const ParallelFor& paral
           sums.Add(h.Cell, v);
         }
       });
-    Histogram projected;
-    this->Reduce(sums, projected);
-    const SummedAreaTable table(projected);
+    this->Reduce(sums);
+    const SummedAreaTable table(sums);
     parallelFor(0, texels,
       [&](std::size_t begin, std::size_t end)
       {

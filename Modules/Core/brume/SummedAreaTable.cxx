@@ -9,6 +9,21 @@ SummedAreaTable::SummedAreaTable(const Histogram& histogram)
   , Channels(histogram.GetNumberOfChannels())
   , Table(static_cast<std::size_t>(Dims[0] + 1) * (Dims[1] + 1) * (Dims[2] + 1) * Channels, 0.0)
 {
+  this->Build([&](std::size_t cell, int c) { return histogram.Get(cell)[c]; });
+}
+
+SummedAreaTable::SummedAreaTable(const ExactHistogram& histogram)
+  : Dims(histogram.GetDimensions())
+  , Channels(histogram.GetNumberOfChannels())
+  , Table(static_cast<std::size_t>(Dims[0] + 1) * (Dims[1] + 1) * (Dims[2] + 1) * Channels, 0.0)
+{
+  const std::size_t nc = static_cast<std::size_t>(this->Channels);
+  this->Build([&](std::size_t cell, int c) { return histogram.GetValue(cell * nc + c); });
+}
+
+template <typename Value>
+void SummedAreaTable::Build(const Value& value)
+{
   const int nc = this->Channels;
   // Separable prefix sums: one pass per axis.
   for (int k = 0; k < this->Dims[2]; ++k)
@@ -17,12 +32,13 @@ SummedAreaTable::SummedAreaTable(const Histogram& histogram)
     {
       for (int i = 0; i < this->Dims[0]; ++i)
       {
-        const double* h = histogram.Get(histogram.Index(i, j, k));
+        const std::size_t cell =
+          (static_cast<std::size_t>(k) * this->Dims[1] + j) * this->Dims[0] + i;
         double* dst = &this->Table[this->Index(i + 1, j + 1, k + 1)];
         const double* left = &this->Table[this->Index(i, j + 1, k + 1)];
         for (int c = 0; c < nc; ++c)
         {
-          dst[c] = left[c] + h[c];
+          dst[c] = left[c] + value(cell, c);
         }
       }
     }

@@ -8,6 +8,7 @@
 #ifndef brume_SummedAreaTable_h
 #define brume_SummedAreaTable_h
 
+#include "brume/ExactHistogram.h"
 #include "brume/Histogram.h"
 
 #include <array>
@@ -21,6 +22,8 @@ class SummedAreaTable
 public:
   SummedAreaTable() = default;
   explicit SummedAreaTable(const Histogram& histogram);
+  /// From exact sums, each converted to a double once.
+  explicit SummedAreaTable(const ExactHistogram& histogram);
 
   int GetNumberOfChannels() const { return this->Channels; }
 
@@ -28,6 +31,9 @@ public:
   void RegionSum(const std::array<int, 3>& lo, const std::array<int, 3>& hi, double* sum) const;
 
 private:
+  // The prefix sums of the cells' values, value(cell, channel).
+  template <typename Value>
+  void Build(const Value& value);
   std::size_t Index(int i, int j, int k) const
   {
     return ((static_cast<std::size_t>(k) * (this->Dims[1] + 1) + j) * (this->Dims[0] + 1) + i) *
