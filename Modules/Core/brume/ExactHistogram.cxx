@@ -77,7 +77,8 @@ std::int64_t ExactHistogram::Clamp(double x)
   {
     return 0;
   }
-  return x > 0.0 ? static_cast<std::int64_t>(TermBound) - 1 : 1 - static_cast<std::int64_t>(TermBound);
+  return x > 0.0 ? static_cast<std::int64_t>(TermBound) - 1
+                 : 1 - static_cast<std::int64_t>(TermBound);
 }
 
 void ExactHistogram::Merge(const ExactHistogram& other)
@@ -106,8 +107,7 @@ void ExactHistogram::Scale(double factor)
   }
   for (std::size_t i = 0; i < this->Low.size(); ++i)
   {
-    this->SetSum(
-      i, static_cast<Int128>(std::round(static_cast<double>(this->GetSum(i)) * factor)));
+    this->SetSum(i, static_cast<Int128>(std::round(static_cast<double>(this->GetSum(i)) * factor)));
   }
 }
 
