@@ -20,6 +20,19 @@ vtkBrumeSceneReader::vtkBrumeSceneReader()
   this->SetNumberOfInputPorts(0);
 }
 
+int vtkBrumeSceneReader::CanReadFile(const char* fileName)
+{
+  std::ifstream in(fileName ? fileName : "", std::ios::binary);
+  if (!in)
+  {
+    return 0;
+  }
+  std::string head(4096, '\0');
+  in.read(&head[0], static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  return head.find("\"brume_scene\"") != std::string::npos ? 1 : 0;
+}
+
 int vtkBrumeSceneReader::RequestInformation(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {

@@ -44,6 +44,13 @@ public:
   /// The format version this reader writes and reads.
   static constexpr int FormatVersion = 1;
 
+  /**
+   * 1 when `fileName` looks like a Brume scene file: its first 4 KiB name
+   * the "brume_scene" key (ParaView's reader factory asks, so that other
+   * JSON files are not offered to this reader); 0 otherwise.
+   */
+  static int CanReadFile(const char* fileName);
+
 protected:
   vtkBrumeSceneReader();
   ~vtkBrumeSceneReader() override = default;

@@ -15,15 +15,14 @@ import sys
 import time
 
 from paraview.simple import *  # noqa: F401,F403
-from vtkmodules.vtkIOImage import vtkPNGReader, vtkPNGWriter
-from vtkmodules.vtkRenderingCore import vtkRenderer, vtkRenderWindow, vtkWindowToImageFilter
+from vtkmodules.vtkIOImage import vtkPNGReader
 from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.vtkConstants import VTK_STRING
 
-import brume  # the same modules, for the reference render
+import brume  # noqa: F401  the Brume classes' wrappers (GetClientSideObject())
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from brume_testing import black_view, default_camera, image_error  # noqa: E402
+from brume_testing import actors_image, black_view, default_camera, image_error  # noqa: E402
 
 plugin, baseline, output_dir = sys.argv[1:4]
 size = int(sys.argv[4]) if len(sys.argv) > 4 else 200
@@ -38,46 +37,8 @@ def check(ok, what):
 
 
 def reference(textures, camera, png, interpolate=True, extra=None, exposure=1.0):
-    """The textures drawn by vtkBrumeSceneActors alone, as a VTK user would
-    (with `extra`, a translucent actor, through depth peeling as ParaView)."""
-    renderer = vtkRenderer()
-    renderer.SetBackground(0, 0, 0)
-    if extra:
-        renderer.AddActor(extra)
-        renderer.SetUseDepthPeeling(True)
-        renderer.SetUseDepthPeelingForVolumes(False)
-    renderer.SetUseFXAA(bool(view.UseFXAA))  # as the view, with its options
-    options = renderer.GetFXAAOptions()
-    options.SetRelativeContrastThreshold(view.FXAARelativeContrastThreshold)
-    options.SetHardContrastThreshold(view.FXAAHardContrastThreshold)
-    options.SetSubpixelBlendLimit(view.FXAASubpixelBlendLimit)
-    options.SetSubpixelContrastThreshold(view.FXAASubpixelContrastThreshold)
-    options.SetUseHighQualityEndpoints(bool(view.FXAAUseHighQualityEndpoints))
-    options.SetEndpointSearchIterations(view.FXAAEndpointSearchIterations)
-    actors = brume.vtkBrumeSceneActors()
-    actors.SetInputData(textures)
-    actors.SetInterpolate(interpolate)
-    actors.SetExposure(exposure)
-    assert actors.AddToRenderer(renderer)
-    window = vtkRenderWindow()
-    window.SetMultiSamples(0)  # as ParaView's windows
-    window.SetSize(size, size)
-    window.AddRenderer(renderer)
-    own = renderer.GetActiveCamera()
-    own.SetPosition(camera.GetPosition())
-    own.SetFocalPoint(camera.GetFocalPoint())
-    own.SetViewUp(camera.GetViewUp())
-    own.SetViewAngle(camera.GetViewAngle())
-    own.SetClippingRange(camera.GetClippingRange())
-    window.Render()
-    capture = vtkWindowToImageFilter()
-    capture.SetInput(window)
-    capture.ReadFrontBufferOff()
-    writer = vtkPNGWriter()
-    writer.SetFileName(png)
-    writer.SetInputConnection(capture.GetOutputPort())
-    writer.Write()
-    window.Finalize()
+    """vtkBrumeSceneActors alone, with this test's view and size."""
+    actors_image(view, size, textures, camera, png, interpolate, extra, exposure)
 
 
 scene = BrumeDefaultScene()

@@ -1,9 +1,11 @@
 """What the plugin's test scripts share: a black render view looking at the
-default scene as `brume render` does, and vtkImageDifference's error
+default scene as `brume render` does, vtkBrumeSceneActors' image of
+textures as a VTK user would draw them, and vtkImageDifference's error
 between two PNG files."""
 from paraview.simple import CreateView, Render
 from vtkmodules.vtkImagingCore import vtkImageDifference
-from vtkmodules.vtkIOImage import vtkPNGReader
+from vtkmodules.vtkIOImage import vtkPNGReader, vtkPNGWriter
+from vtkmodules.vtkRenderingCore import vtkRenderer, vtkRenderWindow, vtkWindowToImageFilter
 
 
 def default_camera(view):
@@ -48,3 +50,48 @@ def image_error(test_png, reference_png, threshold=0):
     difference.AveragingOff()
     difference.Update()
     return difference.GetThresholdedError()
+
+
+def actors_image(view, size, textures, camera, png, interpolate=True, extra=None, exposure=1.0):
+    """The textures drawn by vtkBrumeSceneActors alone, as a VTK user would,
+    at `camera` and size x size pixels, with `view`'s anti-aliasing options
+    (with `extra`, a translucent actor, through depth peeling as ParaView)."""
+    import brume  # the same modules as the plugin
+    renderer = vtkRenderer()
+    renderer.SetBackground(0, 0, 0)
+    if extra:
+        renderer.AddActor(extra)
+        renderer.SetUseDepthPeeling(True)
+        renderer.SetUseDepthPeelingForVolumes(False)
+    renderer.SetUseFXAA(bool(view.UseFXAA))  # as the view, with its options
+    options = renderer.GetFXAAOptions()
+    options.SetRelativeContrastThreshold(view.FXAARelativeContrastThreshold)
+    options.SetHardContrastThreshold(view.FXAAHardContrastThreshold)
+    options.SetSubpixelBlendLimit(view.FXAASubpixelBlendLimit)
+    options.SetSubpixelContrastThreshold(view.FXAASubpixelContrastThreshold)
+    options.SetUseHighQualityEndpoints(bool(view.FXAAUseHighQualityEndpoints))
+    options.SetEndpointSearchIterations(view.FXAAEndpointSearchIterations)
+    actors = brume.vtkBrumeSceneActors()
+    actors.SetInputData(textures)
+    actors.SetInterpolate(interpolate)
+    actors.SetExposure(exposure)
+    assert actors.AddToRenderer(renderer)
+    window = vtkRenderWindow()
+    window.SetMultiSamples(0)  # as ParaView's windows
+    window.SetSize(size, size)
+    window.AddRenderer(renderer)
+    own = renderer.GetActiveCamera()
+    own.SetPosition(camera.GetPosition())
+    own.SetFocalPoint(camera.GetFocalPoint())
+    own.SetViewUp(camera.GetViewUp())
+    own.SetViewAngle(camera.GetViewAngle())
+    own.SetClippingRange(camera.GetClippingRange())
+    window.Render()
+    capture = vtkWindowToImageFilter()
+    capture.SetInput(window)
+    capture.ReadFrontBufferOff()
+    writer = vtkPNGWriter()
+    writer.SetFileName(png)
+    writer.SetInputConnection(capture.GetOutputPort())
+    writer.Write()
+    window.Finalize()

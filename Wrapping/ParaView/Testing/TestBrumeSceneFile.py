@@ -1,0 +1,105 @@
+"""pvbatch: a Brume scene file and an OpenVDB grid opened as a ParaView user
+opens files.
+
+OpenDataFile() picks the plugin's scene reader for a Brume scene and not for
+another JSON file, and its OpenVDB reader for a .vdb grid. The project's own
+cloud (cumulus.json: an OpenVDB medium in sunlight over a plain, whose
+extinction at the grid's own resolution travels in bricks) is traced,
+reconstructed and shown with "Brume Radiance" at the scene file's camera;
+the screenshot equals vtkBrumeSceneActors' image of the same textures.
+
+usage: pvbatch TestBrumeSceneFile.py PLUGIN SCENE_DIR OUTPUT_DIR
+(SCENE_DIR: the build's Data/scenes, with cumulus.json and cumulus.vdb)
+"""
+import json
+import os
+import sys
+
+from paraview.simple import *  # noqa: F401,F403
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from brume_testing import actors_image, black_view, image_error  # noqa: E402
+
+plugin, scene_dir, output_dir = sys.argv[1:4]
+LoadPlugin(plugin, ns=globals())
+failures = []
+
+
+def check(ok, what):
+    print(("ok: " if ok else "FAILED: ") + what)
+    if not ok:
+        failures.append(what)
+
+
+scene_file = os.path.join(scene_dir, "cumulus.json")
+reader = OpenDataFile(scene_file)
+check(reader is not None and reader.GetXMLName() == "BrumeSceneReader",
+      "OpenDataFile(cumulus.json) uses the Brume scene reader (%s)"
+      % (reader.GetXMLName() if reader else None))
+
+# A JSON file that is not a Brume scene is not offered to it.
+other = os.path.join(output_dir, "TestBrumeSceneFile-other.json")
+with open(other, "w") as f:
+    json.dump({"not": "a scene"}, f)
+factory = servermanager.vtkSMProxyManager.GetProxyManager().GetReaderFactory()
+session = servermanager.ActiveConnection.Session
+check(factory.CanReadFile(scene_file, "sources", "BrumeSceneReader", session),
+      "the scene reader can read cumulus.json")
+check(not factory.CanReadFile(other, "sources", "BrumeSceneReader", session),
+      "a JSON file without 'brume_scene' is not offered to the scene reader")
+
+grid = OpenDataFile(os.path.join(scene_dir, "cumulus.vdb"))
+check(grid is not None and grid.GetXMLName() == "BrumeOpenVDBReader",
+      "OpenDataFile(cumulus.vdb) uses the Brume OpenVDB reader")
+if grid is not None:
+    grid.UpdatePipeline()
+    density = grid.PointData["density"] if "density" in grid.PointData.keys() else None
+    check(density is not None and density.GetRange()[1] > 0.0,
+          "the grid's density reaches the image (%s)" % (density.GetRange() if density else None,))
+
+with open(scene_file) as f:
+    camera_settings = json.load(f)["camera"]
+size = 160
+tracer = BrumeLightTracer(Input=reader, NumberOfParticles=100000, Seed=1)
+reconstruction = BrumeRadianceReconstruction(Scene=reader, Hits=tracer)
+reconstruction.UpdatePipeline()
+textures = reconstruction.GetClientSideObject().GetOutput()
+bricked = 0
+for i in range(textures.GetNumberOfPartitionedDataSets()):
+    pds = textures.GetPartitionedDataSet(i)
+    for k in range(pds.GetNumberOfPartitions()):
+        fd = pds.GetPartition(k).GetFieldData()
+        bricked += 1 if fd.GetArray("ExtinctionBrickSamples") is not None else 0
+check(bricked == 1, "the cloud's extinction travels in bricks (%d sparse grids)" % bricked)
+
+view = black_view(size)
+display = Show(reconstruction, view)
+check(display.Representation == "Brume Radiance",
+      "Show() gives 'Brume Radiance' (got '%s')" % display.Representation)
+Render(view)  # the first render frames the scene; then the scene's camera
+view.CameraPosition = camera_settings["position"]
+view.CameraFocalPoint = camera_settings["focal_point"]
+view.CameraViewUp = camera_settings["view_up"]
+view.CameraViewAngle = camera_settings["view_angle"]
+Render(view)
+shown = os.path.join(output_dir, "TestBrumeSceneFile.png")
+SaveScreenshot(shown, view, ImageResolution=[size, size])
+expected = os.path.join(output_dir, "TestBrumeSceneFile-actors.png")
+actors_image(view, size, reconstruction.GetClientSideObject().GetOutput(),
+             view.GetActiveCamera(), expected)
+error = image_error(shown, expected)
+check(error <= 0.5, "the render view shows what vtkBrumeSceneActors draws (error %g)" % error)
+
+# Without the medium's bricks drawn, the image would be the plain's alone:
+# the cloud must change it.
+display.ShowMedia = 0
+Render(view)
+plain = os.path.join(output_dir, "TestBrumeSceneFile-plain.png")
+SaveScreenshot(plain, view, ImageResolution=[size, size])
+error = image_error(shown, plain)
+check(error > 10, "the cloud is drawn (error %g against the plain alone)" % error)
+
+if failures:
+    print("%d check(s) failed" % len(failures))
+    sys.exit(1)
+print("all checks passed")
