@@ -120,6 +120,17 @@ int RoundTrip(const std::string& dir, const std::string& shippedScene)
   shipped->SetFileName(shippedScene.c_str());
   Check(shipped->GetExecutive()->Update() == 1, "Data/scenes/cornell-fog.json reads");
   Check(SameHits(expected, Trace(shipped)), "cornell-fog.json traces the built-in scene's hits");
+
+  // What ParaView's reader factory asks: scene files yes, other JSON no.
+  Check(vtkBrumeSceneReader::CanReadFile(file.c_str()) == 1, "CanReadFile: a written scene");
+  Check(
+    vtkBrumeSceneReader::CanReadFile(shippedScene.c_str()) == 1, "CanReadFile: cornell-fog.json");
+  const std::string other = dir + "/not-a-scene.json";
+  std::ofstream(other) << R"({ "name": "a JSON file of another program", "size": [1, 2] })";
+  Check(vtkBrumeSceneReader::CanReadFile(other.c_str()) == 0, "CanReadFile: another JSON file");
+  Check(vtkBrumeSceneReader::CanReadFile((dir + "/missing.json").c_str()) == 0,
+    "CanReadFile: a missing file");
+  Check(vtkBrumeSceneReader::CanReadFile(nullptr) == 0, "CanReadFile: no name");
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }
 
