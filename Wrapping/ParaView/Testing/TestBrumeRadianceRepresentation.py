@@ -22,18 +22,11 @@ from vtkmodules.util.vtkConstants import VTK_STRING
 import brume  # noqa: F401  the Brume classes' wrappers (GetClientSideObject())
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from brume_testing import actors_image, black_view, default_camera, image_error  # noqa: E402
+from brume_testing import actors_image, black_view, check, default_camera, finish, image_error  # noqa: E402,E501
 
 plugin, baseline, output_dir = sys.argv[1:4]
 size = int(sys.argv[4]) if len(sys.argv) > 4 else 200
 LoadPlugin(plugin, ns=globals())
-failures = []
-
-
-def check(ok, what):
-    print(("ok: " if ok else "FAILED: ") + what)
-    if not ok:
-        failures.append(what)
 
 
 def reference(textures, camera, png, interpolate=True, extra=None, exposure=1.0):
@@ -209,4 +202,4 @@ check(len(warnings) == 1 and "shows the output of Brume Radiance Reconstruction"
 
 Delete(view)
 del view
-sys.exit(1 if failures else 0)
+finish()

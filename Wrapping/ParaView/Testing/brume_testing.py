@@ -1,11 +1,31 @@
-"""What the plugin's test scripts share: a black render view looking at the
-default scene as `brume render` does, vtkBrumeSceneActors' image of
-textures as a VTK user would draw them, and vtkImageDifference's error
-between two PNG files."""
+"""What the plugin's test scripts share: named checks and the exit status
+they give, a black render view looking at the default scene as `brume
+render` does, vtkBrumeSceneActors' image of textures as a VTK user would
+draw them, and vtkImageDifference's error between two PNG files."""
+import sys
+
 from paraview.simple import CreateView, Render
 from vtkmodules.vtkImagingCore import vtkImageDifference
 from vtkmodules.vtkIOImage import vtkPNGReader, vtkPNGWriter
 from vtkmodules.vtkRenderingCore import vtkRenderer, vtkRenderWindow, vtkWindowToImageFilter
+
+failures = []
+
+
+def check(ok, what):
+    """Prints one named check; a failed one makes finish() exit 1."""
+    print(("ok: " if ok else "FAILED: ") + what)
+    if not ok:
+        failures.append(what)
+
+
+def finish():
+    """Exits 1 when a check failed; otherwise the script ends normally (a
+    sys.exit(0) can leave pvbatch to tear down live proxies after OpenVDB's
+    and TBB's own exit handlers, and abort)."""
+    print("%d check(s) failed" % len(failures) if failures else "all checks passed")
+    if failures:
+        sys.exit(1)
 
 
 def default_camera(view):
