@@ -127,6 +127,15 @@ void AddSurfaceCases(std::vector<Case>& cases, int surface, const std::string& n
       SetField(s, surface, "BrumeExponent", { 50 });
     },
     n });
+  cases.push_back({ name, "glossy e=1000", "",
+    [=](Scene* s)
+    {
+      SetMaterial(s, surface, "phong");
+      SetField(s, surface, "BrumeReflectance", { 0.2, 0.2, 0.2 });
+      SetField(s, surface, "BrumeSpecular", { 0.6, 0.6, 0.6 });
+      SetField(s, surface, "BrumeExponent", { 1000 });
+    },
+    n });
   cases.push_back({ name, "mirror", "",
     [=](Scene* s)
     {

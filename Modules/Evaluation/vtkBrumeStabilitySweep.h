@@ -18,8 +18,9 @@
  * - `particles` = max(100, MinParticles), then x10 up to MaxParticles (the
  *   scene as it is);
  * - the surface's name = `glossy` (Phong: BrumeReflectance 0.2,
- *   BrumeSpecular 0.6, BrumeExponent 50) and `mirror` (BrumeReflectance 0,
- *   BrumeSpecular 0.9).
+ *   BrumeSpecular 0.6, BrumeExponent 50), `glossy e=1000` (the same with
+ *   BrumeExponent 1000: its lobe is cast, brume::MirrorReflection) and
+ *   `mirror` (BrumeReflectance 0, BrumeSpecular 0.9).
  *
  * The medium cases edit one medium: MediumName, or when it is empty the
  * scene's first medium (its first vtkImageData object). The surface cases

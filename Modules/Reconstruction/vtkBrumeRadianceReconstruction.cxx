@@ -138,6 +138,12 @@ bool vtkBrumeRadianceReconstruction::ValidateSettings()
       << maxSurface << "] and MediumResolution in [0, " << maxMedium << "].");
     return false;
   }
+  if (this->MirrorResolution < 1 || this->MirrorResolution > maxSurface)
+  {
+    vtkErrorMacro("MirrorResolution must be in [1, " << maxSurface << "], not "
+                                                     << this->MirrorResolution << ".");
+    return false;
+  }
   if (this->HistogramRefinement < 1 || this->HistogramRefinement > 16)
   {
     vtkErrorMacro(
@@ -216,7 +222,7 @@ bool vtkBrumeRadianceReconstruction::Plan(const vtkBrumeReconstructionRequest& r
   // view-dependent textures follow the viewpoint.
   const vtkBrumeReconstructionSettings settings{ this->RadiosityThreshold, this->SurfaceResolution,
     this->MediumResolution, this->HistogramRefinement,
-    this->DirectLighting ? this->DirectLightResolution : 0 };
+    this->DirectLighting ? this->DirectLightResolution : 0, this->MirrorResolution };
   vtkBrumeRadianceTextures* textures = this->Textures.get();
   const auto& run = request.Run;
   const bool sameSettings = textures && textures->SameSceneAndSettings(request, settings);
@@ -282,6 +288,7 @@ void vtkBrumeRadianceReconstruction::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Camera: " << this->Camera << "\n";
   os << indent << "RadiosityThreshold: " << this->RadiosityThreshold << "\n";
   os << indent << "SurfaceResolution: " << this->SurfaceResolution << "\n";
+  os << indent << "MirrorResolution: " << this->MirrorResolution << "\n";
   os << indent << "MediumResolution: " << this->MediumResolution << "\n";
   os << indent << "HistogramRefinement: " << this->HistogramRefinement << "\n";
   os << indent << "IncrementalUpdate: " << this->IncrementalUpdate << "\n";

@@ -229,6 +229,17 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Texels along the longer axis of a mirror's texture (default 512, at
+   * most 4096): its reflection toward the eye, cast from every texel
+   * through the scene's textures and media (brume::MirrorReflection), is
+   * recast at each new eye.
+   */
+  vtkSetMacro(MirrorResolution, int);
+  vtkGetMacro(MirrorResolution, int);
+  ///@}
+
+  ///@{
   /// Histogram cells per texel along each axis (default 2, in [1, 16]).
   vtkSetMacro(HistogramRefinement, int);
   vtkGetMacro(HistogramRefinement, int);
@@ -245,6 +256,7 @@ protected:
   double RadiosityThreshold = 128.0;
   int SurfaceResolution = 0;
   int MediumResolution = 0;
+  int MirrorResolution = 512;
   int HistogramRefinement = 2;
   vtkCamera* Camera = nullptr;
   vtkMultiProcessController* Controller = nullptr;

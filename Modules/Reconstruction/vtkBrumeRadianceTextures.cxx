@@ -16,6 +16,8 @@
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
 
+#include "brume/Reflection.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -128,7 +130,8 @@ bool vtkBrumeRadianceTextures::Build(const vtkBrumeReconstructionRequest& reques
     return false;
   }
   if (!this->CreateObjects(settings, groups) || !this->CreateDirectLight(settings, request.Hits) ||
-    !this->CheckHits(request.Hits, groups) || !this->BuildObjects(request, groups, work))
+    !this->PlanReflections() || !this->CheckHits(request.Hits, groups) ||
+    !this->BuildObjects(request, groups, work))
   {
     return false;
   }
@@ -447,6 +450,7 @@ bool vtkBrumeRadianceTextures::Add(
   this->Particles = request.Run.Particles;
   this->LastFirstParticle = request.Run.FirstParticle;
   this->Accumulated = true;
+  this->MirrorsCurrent = false;
   return true;
 }
 
@@ -482,6 +486,7 @@ bool vtkBrumeRadianceTextures::SetDirectional(
     }
     this->ObjectDirectional[o] = directional;
     this->Outputs[o] = nullptr;
+    this->MirrorsCurrent = false;
   }
   return true;
 }
@@ -492,6 +497,9 @@ void vtkBrumeRadianceTextures::FollowView(
   // A new viewpoint: only view-dependent textures change.
   const brume::ParallelFor parallelFor = vtkBrumeSMP::ParallelFor();
   const brume::Vec3& eye = request.Eye;
+  // The mirrors first: the objects they saw from elsewhere are turned to
+  // the eye below, or back to where they were.
+  const std::vector<bool> moved = this->ReflectMirrors(eye);
   brume::ObjectHits groups;
   for (std::size_t o = 0; o < this->Objects.size(); ++o)
   {
@@ -500,6 +508,10 @@ void vtkBrumeRadianceTextures::FollowView(
     if (!radiance.IsViewDependent() || this->ObjectDirectional[o] ||
       (last.x == eye.x && last.y == eye.y && last.z == eye.z))
     {
+      if (moved[o])
+      {
+        radiance.UpdateView(last, parallelFor);
+      }
       continue;
     }
     // Textures that hold added particles have no single hits input to be
@@ -523,6 +535,109 @@ void vtkBrumeRadianceTextures::FollowView(
     this->Outputs[o] = nullptr;
     this->ObjectEye[o] = eye;
   }
+}
+
+bool vtkBrumeRadianceTextures::PlanReflections()
+{
+  // Mirrors and sharp glossy lobes are cast; a glossy lobe only where the
+  // delta lights' direct light is computed (cast rays cannot meet them).
+  this->Mirrors.clear();
+  this->MirrorsCurrent = false;
+  for (std::size_t s = 0; s < this->Scene.Surfaces.size(); ++s)
+  {
+    const brume::Surface& surface = this->Scene.Surfaces[s];
+    if (!brume::MirrorReflection::Casts(surface))
+    {
+      continue;
+    }
+    const bool lobes = this->Scene.Lights.empty() || this->Objects[s]->IsDirectEnabled();
+    this->Objects[s]->SetLobeCast(lobes);
+    bool mirror = false;
+    for (std::size_t t = 0; t < surface.Triangles.size() && !mirror; ++t)
+    {
+      mirror = surface.MaterialOf(t).Type == brume::MaterialType::Mirror &&
+        brume::MirrorReflection::Casts(surface.MaterialOf(t));
+    }
+    if (mirror || lobes)
+    {
+      this->Mirrors.push_back(s);
+    }
+  }
+  if (this->Mirrors.empty() || this->Caster)
+  {
+    return true;
+  }
+  this->Caster.reset(new brume::RayCaster(this->Scene));
+  if (!this->Caster->GetError().empty())
+  {
+    vtkErrorWithObjectMacro(
+      this->Filter, "Cannot cast the mirrors' rays: " << this->Caster->GetError() << ".");
+    this->Caster.reset();
+    return false;
+  }
+  return true;
+}
+
+std::vector<bool> vtkBrumeRadianceTextures::ReflectMirrors(const brume::Vec3& eye)
+{
+  std::vector<bool> moved(this->Objects.size(), false);
+  const brume::Vec3& last = this->MirrorEye;
+  if (this->Mirrors.empty() ||
+    (this->MirrorsCurrent && last.x == eye.x && last.y == eye.y && last.z == eye.z))
+  {
+    return moved;
+  }
+  const brume::ParallelFor parallelFor = vtkBrumeSMP::ParallelFor();
+  std::vector<const brume::ObjectRadiance*> objects;
+  for (const auto& object : this->Objects)
+  {
+    objects.push_back(object.get());
+  }
+  brume::MirrorReflection reflection(this->Scene, *this->Caster, objects);
+  // View-dependent objects other than mirrors are looked up in textures
+  // toward the point the reflected rays come from: a planar mirror's
+  // mirrored eye (a curved one's: the eye itself).
+  std::vector<std::size_t> seen;
+  for (std::size_t o = 0; o < this->Objects.size(); ++o)
+  {
+    if (this->Objects[o]->IsViewDependent() &&
+      std::find(this->Mirrors.begin(), this->Mirrors.end(), o) == this->Mirrors.end())
+    {
+      seen.push_back(o);
+    }
+  }
+  std::vector<std::vector<float>> views(this->Objects.size());
+  for (const std::size_t m : this->Mirrors)
+  {
+    brume::Vec3 from = eye;
+    brume::MirrorReflection::MirroredEye(this->Scene.Surfaces[m], eye, from);
+    for (const std::size_t o : seen)
+    {
+      this->Objects[o]->UpdateView(from, parallelFor);
+      moved[o] = true;
+      views[o] = this->Objects[o]->GetOutputRadiance();
+      reflection.SetTexture(o, { views[o].data(), this->Objects[o]->GetOutputResolution() });
+    }
+    // A glossy surface casts LobeSamples rays per texel and blurs what it
+    // reflects: half the texels along each axis.
+    const brume::Surface& surface = this->Scene.Surfaces[m];
+    bool mirror = false;
+    for (std::size_t t = 0; t < surface.Triangles.size() && !mirror; ++t)
+    {
+      mirror = surface.MaterialOf(t).Type == brume::MaterialType::Mirror;
+    }
+    const int n =
+      mirror ? this->Settings.MirrorResolution : std::max(1, this->Settings.MirrorResolution / 2);
+    const brume::SurfaceChart& chart = this->Objects[m]->GetChart();
+    const std::array<int, 3> dims = FixedResolution(brume::Vec3(chart.Width, chart.Height, 0.f), n);
+    std::vector<float> radiance;
+    reflection.Reflect(m, eye, { dims[0], dims[1] }, radiance, parallelFor);
+    this->Objects[m]->SetReflected(std::move(radiance), dims);
+    this->Outputs[m] = nullptr;
+  }
+  this->MirrorEye = eye;
+  this->MirrorsCurrent = true;
+  return moved;
 }
 
 void vtkBrumeRadianceTextures::TakeReduction(vtkTypeInt64& bytes, double& seconds)

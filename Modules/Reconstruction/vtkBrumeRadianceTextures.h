@@ -52,6 +52,7 @@ struct vtkBrumeReconstructionSettings
   int MediumResolution = 0;
   int HistogramRefinement = 0;
   int DirectLightResolution = 0; // 0: no deterministic single scattering
+  int MirrorResolution = 0;
 
   bool operator==(const vtkBrumeReconstructionSettings& o) const
   {
@@ -59,7 +60,8 @@ struct vtkBrumeReconstructionSettings
       this->SurfaceResolution == o.SurfaceResolution &&
       this->MediumResolution == o.MediumResolution &&
       this->HistogramRefinement == o.HistogramRefinement &&
-      this->DirectLightResolution == o.DirectLightResolution;
+      this->DirectLightResolution == o.DirectLightResolution &&
+      this->MirrorResolution == o.MirrorResolution;
   }
 };
 
@@ -113,7 +115,8 @@ public:
   /**
    * View-dependent textures toward `request.Eye`: incrementally, or rebuilt
    * from the hits (textures holding added particles are always updated
-   * incrementally: no single hits input holds them).
+   * incrementally: no single hits input holds them); then the mirrors'
+   * reflections toward it (brume::MirrorReflection).
    */
   void FollowView(const vtkBrumeReconstructionRequest& request, bool incremental,
     vtkBrumeReconstructionWork& work);
@@ -144,6 +147,12 @@ private:
     const vtkBrumeReconstructionSettings& settings, const brume::HitArrays& hits);
   std::array<int, 3> DirectResolution(std::size_t o, int resolution) const;
   void ComputeDirect();
+  // Mirrors and sharp glossy surfaces (brume::MirrorReflection::Casts):
+  // which are cast, before the build; then their reflections toward `eye`,
+  // for which view-dependent objects are seen from a planar mirror's
+  // mirrored eye: those it turned (true) must be turned back.
+  bool PlanReflections();
+  std::vector<bool> ReflectMirrors(const brume::Vec3& eye);
 
   vtkAlgorithm* Filter;
   vtkMultiProcessController* Controller;
@@ -156,7 +165,7 @@ private:
   vtkMTimeType HitsTime = 0;
   vtkBrumeReconstructionSettings Settings;
   brume::Scene Scene;
-  std::unique_ptr<brume::RayCaster> Caster;   // direct light's shadow rays
+  std::unique_ptr<brume::RayCaster> Caster;   // shadow rays and mirrors' rays
   std::unique_ptr<brume::DirectLight> Direct; // null: no direct light
   std::vector<vtkBrumeSceneConversion::ObjectSource> Sources;
   std::vector<std::unique_ptr<brume::ObjectRadiance>> Objects;
@@ -165,8 +174,11 @@ private:
   std::vector<brume::Vec3> ObjectEye;  // the eye each texture was estimated toward
   std::vector<bool> ObjectDirectional; // whose output holds directional radiance
   double Particles = 0.0, Seed = 0.0;
-  bool Accumulated = false;       // particles were added after the build
-  double LastFirstParticle = 0.0; // the first particle of the last step added
+  bool Accumulated = false;         // particles were added after the build
+  double LastFirstParticle = 0.0;   // the first particle of the last step added
+  std::vector<std::size_t> Mirrors; // the surfaces whose reflections are cast
+  brume::Vec3 MirrorEye;            // the eye their reflections were cast from
+  bool MirrorsCurrent = false;      // false: cast again at the next FollowView
 };
 
 #endif

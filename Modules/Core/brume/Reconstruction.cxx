@@ -2,6 +2,7 @@
 #include "brume/Reconstruction.h"
 
 #include "brume/Material.h"
+#include "brume/Reflection.h"
 #include "brume/Sampling.h"
 
 #include <algorithm>
@@ -384,7 +385,11 @@ void ObjectRadiance::WeighCells(const Vec3& eye, const ParallelFor& parallelFor)
         {
           // The BRDF from the incoming direction to the eye.
           const std::uint32_t t = h.Triangle;
-          const Material& m = surface->MaterialOf(t);
+          Material m = surface->MaterialOf(t);
+          if (this->LobeCast && m.Type == MaterialType::Phong && MirrorReflection::Casts(m))
+          {
+            m.Type = MaterialType::Lambertian; // the lobe is cast
+          }
           const auto& tri = surface->Triangles[t];
           Vec3 n = Normalize(Cross(surface->Vertices[tri[1]] - surface->Vertices[tri[0]],
             surface->Vertices[tri[2]] - surface->Vertices[tri[0]]));
@@ -536,6 +541,12 @@ void ObjectRadiance::Estimate(const ParallelFor& parallelFor)
   {
     this->CombineDirect(parallelFor);
   }
+}
+
+void ObjectRadiance::SetReflected(std::vector<float> radiance, const std::array<int, 3>& dims)
+{
+  this->Reflected = std::move(radiance);
+  this->ReflectedDims = this->Reflected.empty() ? std::array<int, 3>{ 0, 0, 0 } : dims;
 }
 
 } // namespace brume

@@ -160,16 +160,49 @@ public:
   void ComputeDirect(const ParallelFor& parallelFor);
   bool HasDirect() const { return !this->Arrivals.empty(); }
 
-  /// What a renderer shows: with direct light, the output grid's texels
-  /// (RGB, x fastest; media: the source radiance and sigma_t), otherwise
-  /// the texture's (GetResolution(), GetRadiance(), GetExtinction()).
-  const std::array<int, 3>& GetOutputResolution() const
+  /**
+   * Mirrors: the texture toward the eye that brume::MirrorReflection cast
+   * (RGB per texel of `dims`, x fastest), which the output then is; an
+   * empty `radiance` removes it. The object's own texture (GetRadiance())
+   * keeps what the particles give it: its emission.
+   */
+  void SetReflected(std::vector<float> radiance, const std::array<int, 3>& dims);
+  bool HasReflected() const { return !this->Reflected.empty(); }
+  /// The output without the reflection: with direct light, the output
+  /// grid's texels, otherwise the texture's.
+  const std::vector<float>& GetUnreflectedRadiance() const
+  {
+    return this->HasDirect() ? this->DirectRadiance : this->Radiance;
+  }
+  const std::array<int, 3>& GetUnreflectedResolution() const
   {
     return this->HasDirect() ? this->DirectDims : this->Resolution;
   }
+
+  /**
+   * Sharp glossy surfaces: the Phong lobes that brume::MirrorReflection
+   * casts (exponent at least its CastExponent) are left out of the
+   * particles' estimate, which keeps the diffuse part; the direct light of
+   * delta lights (ComputeDirect()) keeps the whole BRDF, since cast rays
+   * cannot meet a point. Call before Build(); only where every delta
+   * light's direct light is computed (or there is none).
+   */
+  void SetLobeCast(bool cast) { this->LobeCast = cast; }
+  bool IsLobeCast() const { return this->LobeCast; }
+
+  /// What a renderer shows: a mirror's reflection; with direct light, the
+  /// output grid's texels (RGB, x fastest; media: the source radiance and
+  /// sigma_t); otherwise the texture's (GetResolution(), GetRadiance(),
+  /// GetExtinction()).
+  const std::array<int, 3>& GetOutputResolution() const
+  {
+    return this->HasReflected() ? this->ReflectedDims
+                                : (this->HasDirect() ? this->DirectDims : this->Resolution);
+  }
   const std::vector<float>& GetOutputRadiance() const
   {
-    return this->HasDirect() ? this->DirectRadiance : this->Radiance;
+    return this->HasReflected() ? this->Reflected
+                                : (this->HasDirect() ? this->DirectRadiance : this->Radiance);
   }
   const std::vector<float>& GetOutputExtinction() const
   {
@@ -351,6 +384,9 @@ private:
   std::vector<float> Arrivals; // per output texel and light: irradiance RGB, direction
   std::vector<float> DirectRadiance;
   std::vector<float> DirectExtinction;
+  std::vector<float> Reflected; // mirrors
+  bool LobeCast = false;
+  std::array<int, 3> ReflectedDims{ 0, 0, 0 };
   Vec3 SurfaceNormal; // planar surfaces: the front side
   Vec3 Eye;
   std::vector<Region> Regions; // per texel, view independent

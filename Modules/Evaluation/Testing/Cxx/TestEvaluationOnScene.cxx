@@ -110,8 +110,8 @@ void TestSweep(const std::string& directory, bool medium)
   const std::string surface = sweep->GetChosenSurfaceName();
   Expect(surface == "stage" || surface == "backdrop", "a surface in view: " + surface);
   Expect(std::string(sweep->GetChosenMediumName()) == (medium ? "mist" : ""), "the medium");
-  // 17 medium cases (or none), 1 particles case, 2 surface cases.
-  const vtkIdType rows = medium ? 20 : 3;
+  // 17 medium cases (or none), 1 particles case, 3 surface cases.
+  const vtkIdType rows = medium ? 21 : 4;
   Expect(table->GetNumberOfRows() == rows, "rows: " + std::to_string(table->GetNumberOfRows()));
   auto* parameter = vtkStringArray::SafeDownCast(table->GetColumnByName("parameter"));
   Expect(parameter && parameter->GetValue(rows - 1) == surface, "the surface cases name it");

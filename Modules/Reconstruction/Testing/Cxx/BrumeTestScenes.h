@@ -4,20 +4,20 @@
 #define BrumeTestScenes_h
 
 #include "vtkBrumeDefaultSceneSource.h"
+#include "vtkCellData.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDataArray.h"
 #include "vtkDataSet.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
+#include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkNew.h"
 #include "vtkPartitionedDataSet.h"
 #include "vtkPartitionedDataSetCollection.h"
+#include "vtkPointData.h"
 #include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
-#include "vtkCellData.h"
-#include "vtkImageData.h"
-#include "vtkPointData.h"
 
 #include <cstring>
 #include <iostream>
@@ -52,9 +52,26 @@ inline vtkSmartPointer<vtkPartitionedDataSetCollection> DefaultSceneWithGlossyFl
   return scene;
 }
 
+/// The default scene with a mirror floor (rho_s 0.9, no diffuse part).
+inline vtkSmartPointer<vtkPartitionedDataSetCollection> DefaultSceneWithMirrorFloor()
+{
+  auto scene = DefaultSceneWithGlossyFloor();
+  for (unsigned int i = 0; i < scene->GetNumberOfPartitionedDataSets(); ++i)
+  {
+    if (std::string(scene->GetMetaData(i)->Get(vtkCompositeDataSet::NAME())) == "floor")
+    {
+      vtkFieldData* fd = scene->GetPartitionedDataSet(i)->GetPartition(0)->GetFieldData();
+      vtkStringArray::SafeDownCast(fd->GetAbstractArray("BrumeMaterial"))->SetValue(0, "mirror");
+      fd->GetArray("BrumeSpecular")->SetTuple3(0, 0.9, 0.9, 0.9);
+      fd->GetArray("BrumeReflectance")->SetTuple3(0, 0, 0, 0);
+    }
+  }
+  return scene;
+}
+
 // Every array of every texture (partition 0) of `a` has the bits of `b`'s.
-inline bool SameTextures(vtkPartitionedDataSetCollection* a, vtkPartitionedDataSetCollection* b,
-  const std::string& what)
+inline bool SameTextures(
+  vtkPartitionedDataSetCollection* a, vtkPartitionedDataSetCollection* b, const std::string& what)
 {
   bool ok = a->GetNumberOfPartitionedDataSets() == b->GetNumberOfPartitionedDataSets();
   for (unsigned int i = 0; ok && i < a->GetNumberOfPartitionedDataSets(); ++i)
