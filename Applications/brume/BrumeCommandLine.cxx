@@ -386,7 +386,8 @@ void AddChart(CLI::App& app, ChartOptions& o)
   chart->add_flag("--sweep", o.Sweep,
     "the stability sweep instead: g, optical thickness,\n"
     "albedo, particle count (up to the --particles maximum),\n"
-    "glossy and mirror floor, one at a time; per case the\n"
+    "glossy (exponents 50 and 1000) and mirror floor, one at\n"
+    "a time; per case the\n"
     "pipeline's error and the path tracer's at the same time\n"
     "(CSV: parameter, value, pipeline_seconds,\n"
     "pipeline_rel_mae, pathtracer_spp, pathtracer_seconds,\n"
