@@ -24,6 +24,32 @@ int vtkBrumeHistogramReduction::NumberOfProcesses() const
   return this->Controller->GetNumberOfProcesses();
 }
 
+int vtkBrumeHistogramReduction::Rank() const
+{
+  return this->Controller->GetLocalProcessId();
+}
+
+void vtkBrumeHistogramReduction::Gather(const std::vector<std::int32_t>& mine,
+  const std::vector<std::size_t>& counts, std::vector<std::int32_t>& all)
+{
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<vtkIdType> lengths(counts.begin(), counts.end()), offsets(counts.size(), 0);
+  std::size_t total = 0;
+  for (std::size_t r = 0; r < counts.size(); ++r)
+  {
+    offsets[r] = static_cast<vtkIdType>(total);
+    total += counts[r];
+  }
+  all.resize(total);
+  std::vector<int> in(mine.begin(), mine.end()), out(total);
+  this->Controller->AllGatherV(in.data(), out.data(), static_cast<vtkIdType>(in.size()),
+    lengths.data(), offsets.data());
+  std::copy(out.begin(), out.end(), all.begin());
+  // What an all-gather moves per process, about: its values out and all of them in.
+  this->Bytes += (mine.size() + total) * sizeof(std::int32_t);
+  this->Seconds += Since(start);
+}
+
 std::int64_t vtkBrumeHistogramReduction::Max(std::int64_t value)
 {
   const auto start = std::chrono::steady_clock::now();

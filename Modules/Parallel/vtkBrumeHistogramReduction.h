@@ -9,8 +9,10 @@
  * terms; one all-reduce (MPI_Allreduce through vtkMultiProcessController,
  * a tree: about 2 log2 R steps) then gives every process the totals,
  * bitwise those of one process holding every hit, whatever the number of
- * processes and threads. It counts the bytes it moves and the seconds it
- * spends (waiting for the slowest process included).
+ * processes and threads. The processes share out the per-texel work of
+ * the regions, which one all-gather (MPI_Allgatherv) gives back to all. It
+ * counts the bytes it moves and the seconds it spends (waiting for the
+ * slowest process included).
  *
  * @sa vtkBrumeProcesses brume::ObjectRadiance::SetReduction
  */
@@ -29,8 +31,11 @@ public:
   explicit vtkBrumeHistogramReduction(vtkMultiProcessController* controller);
 
   int NumberOfProcesses() const override;
+  int Rank() const override;
   std::int64_t Max(std::int64_t value) override;
   void Sum(std::vector<std::int64_t>& values) override;
+  void Gather(const std::vector<std::int32_t>& mine, const std::vector<std::size_t>& counts,
+    std::vector<std::int32_t>& all) override;
 
   /// Time spent in the reductions so far.
   double Seconds = 0.0;

@@ -322,11 +322,28 @@ struct Meeting
 class ThreadReduction : public HistogramReduction
 {
 public:
-  explicit ThreadReduction(Meeting& meeting)
+  ThreadReduction(Meeting& meeting, int rank)
     : Place(meeting)
+    , Index(rank)
   {
   }
   int NumberOfProcesses() const override { return this->Place.Processes; }
+  int Rank() const override { return this->Index; }
+  // Each process's values at its offset in zeros, summed: the concatenation.
+  void Gather(const std::vector<std::int32_t>& mine, const std::vector<std::size_t>& counts,
+    std::vector<std::int32_t>& all) override
+  {
+    std::size_t offset = 0, total = 0;
+    for (std::size_t r = 0; r < counts.size(); ++r)
+    {
+      offset += r < static_cast<std::size_t>(this->Index) ? counts[r] : 0;
+      total += counts[r];
+    }
+    std::vector<std::int64_t> v(total, 0);
+    std::copy(mine.begin(), mine.end(), v.begin() + static_cast<std::ptrdiff_t>(offset));
+    this->Meet(v, false);
+    all.assign(v.begin(), v.end());
+  }
   std::int64_t Max(std::int64_t value) override
   {
     std::vector<std::int64_t> v{ value };
@@ -373,6 +390,7 @@ private:
     }
   }
   Meeting& Place;
+  int Index;
 };
 }
 
@@ -412,7 +430,7 @@ TEST(Distributed, ReducedHistogramsEqualOneProcessBitwise)
   std::vector<Hits> parts;
   for (int r = 0; r < 3; ++r)
   {
-    reductions.push_back(std::make_unique<ThreadReduction>(meeting));
+    reductions.push_back(std::make_unique<ThreadReduction>(meeting, r));
     parts.push_back(Trace(scene, cut[r], cut[r + 1], n));
   }
   std::vector<std::unique_ptr<ObjectRadiance>> distributed[3];

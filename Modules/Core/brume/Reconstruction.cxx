@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 
 namespace brume
 {
@@ -547,6 +548,39 @@ void ObjectRadiance::SetReflected(std::vector<float> radiance, const std::array<
 {
   this->Reflected = std::move(radiance);
   this->ReflectedDims = this->Reflected.empty() ? std::array<int, 3>{ 0, 0, 0 } : dims;
+}
+
+std::array<std::size_t, 2> ObjectRadiance::Share(std::size_t n) const
+{
+  const int processes = this->Reduction ? this->Reduction->NumberOfProcesses() : 1;
+  const int rank = processes > 1 ? this->Reduction->Rank() : 0;
+  auto start = [&](int r)
+  { return static_cast<std::size_t>(static_cast<unsigned long long>(n) * r / processes); };
+  return { start(rank), start(rank + 1) };
+}
+
+void ObjectRadiance::GatherShares(std::size_t n, std::size_t floats, std::vector<float>& data)
+{
+  const int processes = this->Reduction ? this->Reduction->NumberOfProcesses() : 1;
+  if (processes < 2)
+  {
+    return;
+  }
+  // Floats travel as their bits: every process ends with the same values.
+  const auto mine = this->Share(n);
+  std::vector<std::int32_t> sent((mine[1] - mine[0]) * floats), all;
+  std::memcpy(sent.data(), data.data() + mine[0] * floats, sent.size() * sizeof(float));
+  std::vector<std::size_t> counts(processes);
+  for (int r = 0; r < processes; ++r)
+  {
+    const std::size_t first =
+      static_cast<std::size_t>(static_cast<unsigned long long>(n) * r / processes);
+    const std::size_t last =
+      static_cast<std::size_t>(static_cast<unsigned long long>(n) * (r + 1) / processes);
+    counts[r] = (last - first) * floats;
+  }
+  this->Reduction->Gather(sent, counts, all);
+  std::memcpy(data.data(), all.data(), n * floats * sizeof(float));
 }
 
 } // namespace brume

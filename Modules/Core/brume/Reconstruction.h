@@ -96,10 +96,19 @@ class HistogramReduction
 public:
   virtual ~HistogramReduction() = default;
   virtual int NumberOfProcesses() const = 0;
+  /// This process's place, 0 .. NumberOfProcesses() - 1.
+  virtual int Rank() const = 0;
   /// The largest of `value` over the processes, on every process.
   virtual std::int64_t Max(std::int64_t value) = 0;
   /// Sums `values` elementwise over the processes, in place, on every process.
   virtual void Sum(std::vector<std::int64_t>& values) = 0;
+  /**
+   * Every process's `mine` (process r brings counts[r] values; every
+   * process passes the same counts), concatenated in rank order into `all`
+   * on every process.
+   */
+  virtual void Gather(const std::vector<std::int32_t>& mine, const std::vector<std::size_t>& counts,
+    std::vector<std::int32_t>& all) = 0;
   /// Bytes this process has sent and received so far.
   std::size_t Bytes = 0;
 };
@@ -405,6 +414,11 @@ private:
   std::string Saturation() const;
   // A new exact histogram of this run's quantum (SumsExponent).
   ExactHistogram NewSums(int channels) const;
+  // Distributed runs: this process's share [first, last) of n items (all
+  // of them without a reduction), and every process's shares of `data`
+  // (`floats` per item) gathered on every process.
+  std::array<std::size_t, 2> Share(std::size_t n) const;
+  void GatherShares(std::size_t n, std::size_t floats, std::vector<float>& data);
   // Sums one histogram, or two as one message, across the processes when
   // there is a reduction.
   void Reduce(ExactHistogram& a, ExactHistogram* b = nullptr);

@@ -117,8 +117,13 @@ void ObjectRadiance::ComputeDirect(const ParallelFor& parallelFor)
       out[3 + c] = direction[c];
     }
   };
+  // Distributed runs: each process casts the shadow rays of its share of
+  // the texels, and every process gathers all of them (a texel's rays
+  // depend on the texel only).
+  const auto mine = this->Share(texels);
+  const std::size_t floats = lights * ArrivalFloats;
   // 1. One shadow ray per texel centre.
-  parallelFor(0, texels,
+  parallelFor(mine[0], mine[1],
     [&](std::size_t begin, std::size_t end)
     {
       for (std::size_t t = begin; t < end; ++t)
@@ -132,6 +137,7 @@ void ObjectRadiance::ComputeDirect(const ParallelFor& parallelFor)
         }
       }
     });
+  this->GatherShares(texels, floats, arrivals);
   // 2. Texels on a shadow's or a beam's edge (lit while a face neighbour is
   // not, or the reverse) hold the mean over RefinedSamples^d stratified
   // points of the texel instead: the edge then lies where it is, not half
@@ -165,7 +171,7 @@ void ObjectRadiance::ComputeDirect(const ParallelFor& parallelFor)
   const Vec3 texel = (this->MediumRef ? this->MediumRef->Bounds.Extent() : Vec3(1.f)) /
     Vec3(static_cast<float>(dims[0]), static_cast<float>(dims[1]), static_cast<float>(dims[2]));
   const PlanarFrame& frame = this->Chart.Frame;
-  parallelFor(0, texels,
+  parallelFor(mine[0], mine[1],
     [&](std::size_t begin, std::size_t end)
     {
       constexpr int S = RefinedSamples;
@@ -196,6 +202,7 @@ void ObjectRadiance::ComputeDirect(const ParallelFor& parallelFor)
         }
       }
     });
+  this->GatherShares(texels, floats, arrivals);
   this->Arrivals.swap(arrivals);
   if (this->MediumRef)
   {
