@@ -87,12 +87,8 @@ int vtkBrumeRadianceReconstruction::RequestData(
   this->CountWork();
   this->Textures->TakeReduction(this->LastReductionBytes, this->LastReductionSeconds);
   auto* output = vtkPartitionedDataSetCollection::GetData(outputVector, 0);
-  if (vtkBrumeProcesses::GetRank(this->Controller) != 0)
-  {
-    // The textures are the same on every process; process 0 gives them.
-    output->SetNumberOfPartitionedDataSets(0);
-  }
-  else
+  // The textures are the same on every process, and every process gives
+  // them: renderers that composite (IceT under mpirun) draw on each.
   {
     this->Textures->Emit(output);
     // Where the textures radiate toward, and whether any depends on it:

@@ -175,8 +175,11 @@ public:
    * textures are bitwise those of one process with all the hits. Hits are
    * never shipped, only histograms: the view-independent ones once, those
    * of view-dependent objects at every view change. Every process must
-   * execute the filter; process 0 outputs the textures, the others an empty
-   * collection. AccumulateParticles is not supported across processes.
+   * execute the filter; every process outputs the textures (the same on
+   * each: renderers that composite, as IceT under mpirun pvbatch, draw them
+   * on every process). The shadow rays of the direct light are shared out
+   * among the processes and gathered. AccumulateParticles is not supported
+   * across processes.
    */
   void SetController(vtkMultiProcessController* controller);
   vtkGetObjectMacro(Controller, vtkMultiProcessController);

@@ -141,6 +141,7 @@ bool vtkBrumeSceneActors::AddToRenderer(vtkRenderer* renderer)
       mapper->SetExtinctionData(NativeExtinction(pds));
       mapper->SetSliceSpacing(this->SliceSpacing);
       mapper->SetRadianceScale(this->Exposure);
+      mapper->SetWriteDepth(this->MediaWriteDepth);
       vtkNew<vtkVolume> volume;
       volume->SetMapper(mapper);
       volume->GetProperty()->SetInterpolationType(
@@ -251,6 +252,23 @@ void vtkBrumeSceneActors::SetSliceSpacing(double spacing)
   this->Modified();
 }
 
+void vtkBrumeSceneActors::SetMediaWriteDepth(bool write)
+{
+  if (this->MediaWriteDepth == write)
+  {
+    return;
+  }
+  this->MediaWriteDepth = write;
+  for (const Entry& e : this->Entries)
+  {
+    if (e.Slices)
+    {
+      e.Slices->SetWriteDepth(write);
+    }
+  }
+  this->Modified();
+}
+
 void vtkBrumeSceneActors::SetInterpolate(bool interpolate)
 {
   if (this->Interpolate == interpolate)
@@ -337,6 +355,7 @@ void vtkBrumeSceneActors::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ShowMedia: " << this->ShowMedia << "\n";
   os << indent << "BackfaceCulling: " << this->BackfaceCulling << "\n";
   os << indent << "SliceSpacing: " << this->SliceSpacing << "\n";
+  os << indent << "MediaWriteDepth: " << this->MediaWriteDepth << "\n";
   os << indent << "Interpolate: " << this->Interpolate << "\n";
   os << indent << "Exposure: " << this->Exposure << "\n";
   os << indent << "Input: " << this->Input.Get() << "\n";

@@ -124,6 +124,15 @@ public:
   vtkGetMacro(Exposure, double);
   ///@}
 
+  ///@{
+  /**
+   * The media's slices write their depth (vtkBrumeSliceVolumeMapper::
+   * SetWriteDepth; default off), those made already included.
+   */
+  void SetMediaWriteDepth(bool write);
+  vtkGetMacro(MediaWriteDepth, bool);
+  ///@}
+
   /// Removes the props made by AddToRenderer() from `renderer`, and forgets them.
   void RemoveFromRenderer(vtkRenderer* renderer);
 
@@ -138,6 +147,7 @@ protected:
   double SliceSpacing = 0.0;
   bool Interpolate = true;
   double Exposure = 1.0;
+  bool MediaWriteDepth = false;
 
 private:
   struct Entry;

@@ -191,6 +191,7 @@ void vtkBrumeSliceVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "SliceSpacing: " << this->SliceSpacing << "\n";
+  os << indent << "WriteDepth: " << this->WriteDepth << "\n";
   os << indent << "RadianceScale: " << this->RadianceScale << "\n";
   os << indent << "DirectionalEvaluation: "
      << (this->DirectionalEvaluation == PerVoxel ? "PerVoxel" : "PerFragment") << "\n";

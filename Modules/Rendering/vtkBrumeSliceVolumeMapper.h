@@ -87,6 +87,19 @@ public:
   vtkGetMacro(RadianceScale, double);
   ///@}
 
+  ///@{
+  /**
+   * The slices write their depth (default off: they blend without it).
+   * For sort-last compositing, as ParaView's IceT does under mpirun, which
+   * counts a pixel at the far plane as background: a medium drawn over the
+   * background would be dropped. With identical images on every process
+   * and the slices' depth written, the composite is each process's image.
+   */
+  vtkSetMacro(WriteDepth, bool);
+  vtkGetMacro(WriteDepth, bool);
+  vtkBooleanMacro(WriteDepth, bool);
+  ///@}
+
   /// Where directional radiance is evaluated toward the eye.
   enum DirectionalEvaluationModes
   {
@@ -183,6 +196,7 @@ protected:
   double SliceSpacing = 0.0;
   double RadianceScale = 1.0;
   int DirectionalEvaluation = PerVoxel;
+  bool WriteDepth = false;
   int LastNumberOfSlices = 0;
   vtkSmartPointer<vtkImageData> ExtinctionData;
 

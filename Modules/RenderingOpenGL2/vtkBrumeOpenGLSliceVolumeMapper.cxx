@@ -468,7 +468,9 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawAll(vtkRenderer* ren)
   // Dual-source blending: C = C_slice + T * C_behind, T per channel.
   state->vtkglBlendFuncSeparate(GL_ONE, GL_SRC1_COLOR, GL_ONE, GL_SRC1_ALPHA);
   state->vtkglEnable(GL_DEPTH_TEST);
-  state->vtkglDepthMask(GL_FALSE);
+  // Back to front, each slice nearer than the last: written depths never
+  // hide a later slice, only what comes after the media.
+  state->vtkglDepthMask(this->WriteDepth ? GL_TRUE : GL_FALSE);
   state->vtkglDisable(GL_CULL_FACE);
   // One program per kind of volume (plain, or directional of an order).
   vtkShaderProgram* bound = nullptr;

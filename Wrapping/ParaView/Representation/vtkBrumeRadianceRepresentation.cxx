@@ -18,6 +18,7 @@
 #include "vtkPartitionedDataSet.h"
 #include "vtkPartitionedDataSetCollection.h"
 #include "vtkPolyData.h"
+#include "vtkProcessModule.h"
 #include "vtkPropCollection.h"
 #include "vtkRenderer.h"
 
@@ -142,6 +143,24 @@ int vtkBrumeRadianceRepresentation::FillInputPortInformation(int, vtkInformation
   return 1;
 }
 
+namespace
+{
+// Several processes that each render (mpirun pvbatch): every process holds
+// the textures (the reconstruction gives them on each), draws them, and
+// IceT composites identical images. A parallel server that sends its data
+// to a client would gather the copies instead: not supported.
+int Processes()
+{
+  vtkMultiProcessController* processes = vtkMultiProcessController::GetGlobalController();
+  return processes ? processes->GetNumberOfProcesses() : 1;
+}
+
+bool ParallelBatch()
+{
+  return Processes() > 1 && vtkProcessModule::GetProcessType() == vtkProcessModule::PROCESS_BATCH;
+}
+}
+
 int vtkBrumeRadianceRepresentation::RequestData(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -164,19 +183,18 @@ int vtkBrumeRadianceRepresentation::RequestData(
     }
   }
   // else: a process without the data (the client of a remote server).
-  // Among several processes (mpirun pvbatch, a parallel server) only
-  // process 0 holds the textures, and ParaView 5.11 cannot gather a
-  // collection of images from pieces of different structures: nothing is
-  // drawn, and the render says so.
-  vtkMultiProcessController* processes = vtkMultiProcessController::GetGlobalController();
-  if (processes && processes->GetNumberOfProcesses() > 1)
+  // A parallel server would gather every process's copy of the textures
+  // for its client, which ParaView 5.11 cannot merge: nothing is drawn,
+  // and the render says so. mpirun pvbatch draws on every process.
+  if (Processes() > 1 && !ParallelBatch())
   {
     this->Cache = vtkSmartPointer<vtkPartitionedDataSetCollection>::New();
     vtkMath::UninitializeBounds(this->Bounds);
-    this->InputProblem = "Brume Radiance draws in one process; with " +
-      std::to_string(processes->GetNumberOfProcesses()) +
-      " (mpirun, a parallel server) fetch the reconstruction's output to process 0 "
-      "(servermanager.Fetch) and draw it with vtkBrumeSceneActors";
+    this->InputProblem = "Brume Radiance draws in one process or in mpirun pvbatch; a parallel "
+                         "server (" +
+      std::to_string(Processes()) +
+      " processes) would gather every process's copy for its client: fetch the "
+      "reconstruction's output (servermanager.Fetch) and draw it with vtkBrumeSceneActors";
   }
   return this->Superclass::RequestData(request, inputVector, outputVector);
 }
@@ -194,7 +212,12 @@ int vtkBrumeRadianceRepresentation::ProcessViewRequest(
     // transmittance: nothing is composited.
     vtkPVView::SetPiece(inInfo, this, this->Cache);
     vtkPVRenderView::SetGeometryBounds(inInfo, this, this->Bounds);
-    vtkPVRenderView::SetRequiresDistributedRendering(inInfo, this, false);
+    // Under mpirun every process draws its own copy (and its slices write
+    // their depth, for IceT's z-buffer compositing).
+    if (!ParallelBatch())
+    {
+      vtkPVRenderView::SetRequiresDistributedRendering(inInfo, this, false);
+    }
   }
   else if (request == vtkPVView::REQUEST_RENDER())
   {
@@ -212,6 +235,7 @@ int vtkBrumeRadianceRepresentation::ProcessViewRequest(
       return 1;
     }
     auto* view = vtkPVRenderView::SafeDownCast(inInfo->Get(vtkPVView::VIEW()));
+    this->Actors->SetMediaWriteDepth(ParallelBatch());
     this->Show(this->FollowCamera ? this->Follow(view, delivered) : delivered);
     // With translucent geometry in the view, the render view's default
     // (DepthPeelingForVolumes) would draw the media inside VTK's dual depth
@@ -243,16 +267,20 @@ vtkPartitionedDataSetCollection* vtkBrumeRadianceRepresentation::Follow(
   {
     return textures;
   }
-  // The reconstruction must run here, in one process.
+  // The reconstruction must run here, in one process: under mpirun its
+  // update is a collective step, and at this point of a render the other
+  // processes have not yet received the camera (it comes with the render).
   auto* reconstruction = this->GetNumberOfInputConnections(0) == 1
     ? FindReconstruction(this->GetInputAlgorithm(0, 0))
     : nullptr;
   vtkMultiProcessController* controller =
     reconstruction ? reconstruction->GetController() : nullptr;
-  if (!reconstruction || !known || (controller && controller->GetNumberOfProcesses() > 1))
+  if (!reconstruction || !known || Processes() > 1 ||
+    (controller && controller->GetNumberOfProcesses() > 1))
   {
     this->Warn("Brume Radiance follows the camera only where the reconstruction runs in the "
-               "rendering process, alone (pvbatch, pvpython, the GUI's built-in server): "
+               "rendering process, alone (pvbatch, pvpython, the GUI's built-in server); "
+               "under mpirun set the reconstruction's EyePosition to the camera's position: "
                "view-dependent textures stay at the reconstruction's EyePosition.");
     return textures;
   }

@@ -10,11 +10,11 @@
 #include "vtkBrumeRadianceReconstruction.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
+#include "vtkCommunicator.h"
 #include "vtkExecutive.h"
+#include "vtkMPIController.h"
 #include "vtkPolyData.h"
 #include "vtkUnsignedShortArray.h"
-#include "vtkCommunicator.h"
-#include "vtkMPIController.h"
 
 #include <cstdlib>
 
@@ -42,7 +42,7 @@ int TestDistributedReconstruction(int argc, char* argv[])
   distributed->SetInputConnection(1, tracer->GetOutputPort());
   distributed->SetCamera(camera);
 
-  // The one-process run, on process 0 only.
+  // The one-process run, on every process.
   vtkNew<vtkBrumeLightTracer> allTracer;
   allTracer->SetInputData(scene);
   allTracer->SetNumberOfParticles(50000);
@@ -52,20 +52,17 @@ int TestDistributedReconstruction(int argc, char* argv[])
   single->SetInputConnection(1, allTracer->GetOutputPort());
   single->SetCamera(camera);
 
+  // Every process gives the textures (renderers that composite draw on
+  // each): those of one process holding every hit.
   auto compare = [&](const char* what)
   {
     ok = distributed->UpdatePiece(rank, size, 0) != 0 && ok;
+    single->Update();
+    ok = SameTextures(distributed->GetOutput(), single->GetOutput(), what) && ok;
     if (rank == 0)
     {
-      single->Update();
-      ok = SameTextures(distributed->GetOutput(), single->GetOutput(), what) && ok;
       std::cout << what << ": " << distributed->GetLastReductionBytes()
                 << " bytes sent and received by process 0\n";
-    }
-    else if (distributed->GetOutput()->GetNumberOfPartitionedDataSets() != 0)
-    {
-      std::cerr << "process " << rank << " gave textures\n";
-      ok = false;
     }
   };
   compare("after the build");
