@@ -10,6 +10,7 @@
 
 #include "brume/LightTracer.h"
 
+#include "vtkAlgorithmOutput.h"
 #include "vtkBrumeRadianceReconstruction.h"
 #include "vtkBrumeSceneActors.h"
 #include "vtkBrumeSliceVolumeMapper.h"
@@ -106,18 +107,18 @@ vtkNew<vtkRenderWindow> MakeWindow(vtkRenderer* renderer)
   return window;
 }
 
-// Phase 2: a full reconstruction, then the update after a 2 degree turn of
-// the camera (only the anisotropic medium follows the view).
-void BenchReconstruction(vtkAlgorithm* source, vtkAlgorithm* tracer)
+// A full reconstruction of `scene` from the hits, then the update after a 2
+// degree turn of the camera, best of 3 (seconds); the last run's filter.
+vtkSmartPointer<vtkBrumeRadianceReconstruction> TimeReconstruction(
+  vtkDataObject* scene, vtkAlgorithmOutput* hits, double& full, double& update)
 {
   vtkNew<vtkCamera> camera;
-  double full = 1e30, update = 1e30;
-  vtkIdType builds = 0, updates = 0;
+  vtkSmartPointer<vtkBrumeRadianceReconstruction> reconstruction;
   for (int run = 0; run < 3; ++run)
   {
-    vtkNew<vtkBrumeRadianceReconstruction> reconstruction;
-    reconstruction->SetInputConnection(0, source->GetOutputPort());
-    reconstruction->SetInputConnection(1, tracer->GetOutputPort());
+    reconstruction = vtkSmartPointer<vtkBrumeRadianceReconstruction>::New();
+    reconstruction->SetInputDataObject(0, scene);
+    reconstruction->SetInputConnection(1, hits);
     vtkBrumeSceneCamera::SetToDefault(camera);
     reconstruction->SetCamera(camera);
     auto start = std::chrono::steady_clock::now();
@@ -127,9 +128,19 @@ void BenchReconstruction(vtkAlgorithm* source, vtkAlgorithm* tracer)
     start = std::chrono::steady_clock::now();
     reconstruction->Update();
     update = std::min(update, Seconds(start));
-    builds = reconstruction->GetNumberOfTextureBuilds();
-    updates = reconstruction->GetNumberOfViewUpdates();
   }
+  return reconstruction;
+}
+
+// Phase 2: a full reconstruction, then the update after a 2 degree turn of
+// the camera (only the anisotropic medium follows the view).
+void BenchReconstruction(vtkAlgorithm* source, vtkAlgorithm* tracer)
+{
+  double full = 1e30, update = 1e30;
+  const auto reconstruction =
+    TimeReconstruction(source->GetOutputDataObject(0), tracer->GetOutputPort(), full, update);
+  const vtkIdType builds = reconstruction->GetNumberOfTextureBuilds();
+  const vtkIdType updates = reconstruction->GetNumberOfViewUpdates();
   std::printf("reconstruction     %8.1f ms full (%lld object textures; the paper: 1.14 s), %.1f ms "
               "after a 2 degree turn (%lld view-dependent update), best of 3\n",
     1e3 * full, static_cast<long long>(builds), 1e3 * update, static_cast<long long>(updates));
@@ -166,24 +177,8 @@ void BenchMirror(vtkDataObject* defaultScene, vtkIdType particles, std::uint64_t
   tracer->SetNumberOfParticles(particles);
   tracer->SetSeed(seed);
   tracer->Update();
-  vtkNew<vtkCamera> camera;
   double full = 1e30, update = 1e30;
-  vtkSmartPointer<vtkBrumeRadianceReconstruction> reconstruction;
-  for (int run = 0; run < 3; ++run)
-  {
-    reconstruction = vtkSmartPointer<vtkBrumeRadianceReconstruction>::New();
-    reconstruction->SetInputDataObject(0, scene);
-    reconstruction->SetInputConnection(1, tracer->GetOutputPort());
-    vtkBrumeSceneCamera::SetToDefault(camera);
-    reconstruction->SetCamera(camera);
-    auto start = std::chrono::steady_clock::now();
-    reconstruction->Update();
-    full = std::min(full, Seconds(start));
-    camera->Azimuth(2.0);
-    start = std::chrono::steady_clock::now();
-    reconstruction->Update();
-    update = std::min(update, Seconds(start));
-  }
+  const auto reconstruction = TimeReconstruction(scene, tracer->GetOutputPort(), full, update);
   std::printf("mirror floor       %8.1f ms full reconstruction, %.1f ms after a 2 degree turn "
               "(the anisotropic medium seen from the eye and from its mirror image, and the "
               "floor's %d x %d texels cast), best of 3\n",

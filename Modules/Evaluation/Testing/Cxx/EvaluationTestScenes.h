@@ -10,12 +10,43 @@
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPartitionedDataSetCollection.h"
+#include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkStringArray.h"
 #include "vtkXMLImageDataWriter.h"
 
+#include <cmath>
 #include <string>
+
+/// The channels' mean of `image`'s Radiance over the block of block x block
+/// pixels at (bx, by), and (with a Variance array) its standard error.
+inline double BlockMean(vtkImageData* image, int bx, int by, int block, double* error)
+{
+  vtkDataArray* radiance = image->GetPointData()->GetArray("Radiance");
+  vtkDataArray* variance = image->GetPointData()->GetArray("Variance");
+  const int width = image->GetDimensions()[0];
+  double sum = 0.0, v2 = 0.0;
+  for (int y = by; y < by + block; ++y)
+  {
+    for (int x = bx; x < bx + block; ++x)
+    {
+      const vtkIdType p = static_cast<vtkIdType>(y) * width + x;
+      for (int c = 0; c < 3; ++c)
+      {
+        sum += radiance->GetComponent(p, c) / 3.0;
+        // The channels' mean has at most their mean variance (correlated).
+        v2 += variance ? variance->GetComponent(p, c) / 3.0 : 0.0;
+      }
+    }
+  }
+  const double n = static_cast<double>(block) * block;
+  if (error)
+  {
+    *error = std::sqrt(v2) / n;
+  }
+  return sum / n;
+}
 
 /// Appends the quad p0 p1 p2 p3 (its front: counter-clockwise seen from it),
 /// Lambertian of reflectance 0.6, emitting `emission` from its front.

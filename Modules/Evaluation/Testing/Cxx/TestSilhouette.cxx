@@ -27,7 +27,7 @@
 namespace
 {
 constexpr int Size = 64;
-constexpr int Points = 33;        // density samples per axis over [-1, 1]
+constexpr int Points = 33;         // density samples per axis over [-1, 1]
 constexpr double ViewAngle = 30.0; // degrees
 constexpr double Distance = 4.0;   // eye to the ball's centre
 
