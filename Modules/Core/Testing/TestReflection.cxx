@@ -255,6 +255,39 @@ TEST(Reflection, CurvedMirrorAtlasTexelsAreReflectionsUpToTheSeams)
   EXPECT_GT(reflected, static_cast<std::size_t>(n * n / 8));
 }
 
+TEST(Reflection, AnEyeOnTheMirrorGivesFiniteTexels)
+{
+  // The eye exactly at a texel's centre: no direction to reflect there, and
+  // no index may come of a NaN (a fog above the mirror would be marched
+  // along it). The texel shows the mirror's own texture (0), the others
+  // their reflection.
+  Scene scene;
+  scene.Surfaces.push_back(Square("mirror", 1.f, 0.f, true, MirrorOf(Vec3(0.9f))));
+  scene.Surfaces.push_back(Square("sky", 8.f, 2.f, false, Emitter(Vec3(1.f))));
+  Medium fog;
+  fog.Name = "fog";
+  fog.Bounds = { { -0.5f, -0.5f, 0.2f }, { 0.5f, 0.5f, 0.8f } };
+  scene.Media.push_back(fog);
+  const RayCaster caster(scene);
+  const PlanarFrame frame = [&]
+  {
+    PlanarFrame f;
+    scene.Surfaces[0].ComputePlanarFrame(f);
+    return f;
+  }();
+  const int n = 4;
+  const Vec3 eye = frame.Origin + frame.U * (1.5f / n) + frame.V * (2.5f / n);
+  const Reconstructed r(scene, eye);
+  const MirrorReflection reflection(scene, caster, r.Pointers);
+  std::vector<float> rgb;
+  reflection.Reflect(0, eye, { n, n }, rgb, SerialFor());
+  for (float v : rgb)
+  {
+    EXPECT_TRUE(std::isfinite(v));
+  }
+  EXPECT_EQ(TexelOf(rgb, 2 * n + 1).x, 0.f);
+}
+
 TEST(Reflection, MirroredEyeAndThreads)
 {
   const Vec3 eye(0.3f, -0.4f, 2.5f);

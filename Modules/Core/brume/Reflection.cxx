@@ -15,13 +15,19 @@ namespace
 {
 constexpr float Infinity = std::numeric_limits<float>::infinity();
 
+// x clamped to [0, n - 1]; 0 for a NaN (an index must never come of one).
+float ClampIndex(float x, int n)
+{
+  return x > 0.f ? std::min(x, static_cast<float>(n - 1)) : 0.f;
+}
+
 // Bilinear between texel centres, clamped at the outer ones (a renderer's
 // linear filtering with clamp-to-edge), of an RGB texture over [0, 1]^2.
 Vec3 Sample2D(const TextureLookup& t, float u, float v)
 {
   const int nx = t.Dims[0], ny = t.Dims[1];
-  const float x = std::clamp(u * nx - 0.5f, 0.f, static_cast<float>(nx - 1));
-  const float y = std::clamp(v * ny - 0.5f, 0.f, static_cast<float>(ny - 1));
+  const float x = ClampIndex(u * nx - 0.5f, nx);
+  const float y = ClampIndex(v * ny - 0.5f, ny);
   const int i = std::min(static_cast<int>(x), nx - 1), j = std::min(static_cast<int>(y), ny - 1);
   const int i1 = std::min(i + 1, nx - 1), j1 = std::min(j + 1, ny - 1);
   const float fx = x - i, fy = y - j;
@@ -43,7 +49,7 @@ Vec3 Sample3D(const TextureLookup& t, const Box& box, const Vec3& p)
   for (int a = 0; a < 3; ++a)
   {
     const int n = t.Dims[a];
-    const float x = std::clamp(q[a] * n - 0.5f, 0.f, static_cast<float>(n - 1));
+    const float x = ClampIndex(q[a] * n - 0.5f, n);
     i0[a] = std::min(static_cast<int>(x), n - 1);
     i1[a] = std::min(i0[a] + 1, n - 1);
     f[a] = x - i0[a];
@@ -302,6 +308,10 @@ void MirrorReflection::MarchMedia(
 
 Vec3 MirrorReflection::Incoming(const Vec3& origin, const Vec3& d, int depth) const
 {
+  if (!IsFinite(origin) || !IsFinite(d))
+  {
+    return Vec3(0.f); // a degenerate reflection (the eye on the mirror itself)
+  }
   SurfaceHit hit;
   const bool hitSurface = this->Caster.Intersect(origin, d, 0.f, Infinity, hit);
   const float tEnd = hitSurface ? hit.T : Infinity;
