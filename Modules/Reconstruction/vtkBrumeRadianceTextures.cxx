@@ -606,11 +606,34 @@ std::vector<bool> vtkBrumeRadianceTextures::ReflectMirrors(const brume::Vec3& ey
       seen.push_back(o);
     }
   }
-  std::vector<std::vector<float>> views(this->Objects.size());
-  for (const std::size_t m : this->Mirrors)
+  // A glossy surface casts LobeSamples rays per texel and blurs what it
+  // reflects: half the texels along each axis.
+  auto isMirror = [&](std::size_t s)
   {
-    brume::Vec3 from = eye;
-    brume::MirrorReflection::MirroredEye(this->Scene.Surfaces[m], eye, from);
+    const brume::Surface& surface = this->Scene.Surfaces[s];
+    for (std::size_t t = 0; t < surface.Triangles.size(); ++t)
+    {
+      if (surface.MaterialOf(t).Type == brume::MaterialType::Mirror)
+      {
+        return true;
+      }
+    }
+    return false;
+  };
+  auto dimsOf = [&](std::size_t s)
+  {
+    const int n = isMirror(s) ? this->Settings.MirrorResolution
+                              : std::max(1, this->Settings.MirrorResolution / 2);
+    const brume::SurfaceChart& chart = this->Objects[s]->GetChart();
+    return FixedResolution(brume::Vec3(chart.Width, chart.Height, 0.f), n);
+  };
+  std::vector<std::vector<float>> views(this->Objects.size());
+  // The rays a planar surface reflects come from the eye mirrored by its
+  // plane: the view-dependent objects are looked up toward that point.
+  auto lookFrom = [&](std::size_t s, const brume::Vec3& viewer)
+  {
+    brume::Vec3 from = viewer;
+    brume::MirrorReflection::MirroredEye(this->Scene.Surfaces[s], viewer, from);
     for (const std::size_t o : seen)
     {
       this->Objects[o]->UpdateView(from, parallelFor);
@@ -618,18 +641,38 @@ std::vector<bool> vtkBrumeRadianceTextures::ReflectMirrors(const brume::Vec3& ey
       views[o] = this->Objects[o]->GetOutputRadiance();
       reflection.SetTexture(o, { views[o].data(), this->Objects[o]->GetOutputResolution() });
     }
-    // A glossy surface casts LobeSamples rays per texel and blurs what it
-    // reflects: half the texels along each axis.
-    const brume::Surface& surface = this->Scene.Surfaces[m];
-    bool mirror = false;
-    for (std::size_t t = 0; t < surface.Triangles.size() && !mirror; ++t)
+    return from;
+  };
+  for (const std::size_t m : this->Mirrors)
+  {
+    // Surfaces that cast start from their own texture (without what they
+    // reflect); a mirror shows the sharp glossy ones with their lobes cast
+    // toward its mirrored eye, their rays looking from that point mirrored
+    // by their own plane.
+    for (const std::size_t c : this->Mirrors)
     {
-      mirror = surface.MaterialOf(t).Type == brume::MaterialType::Mirror;
+      const brume::ObjectRadiance& own = *this->Objects[c];
+      reflection.SetTexture(
+        c, { own.GetUnreflectedRadiance().data(), own.GetUnreflectedResolution() });
     }
-    const int n =
-      mirror ? this->Settings.MirrorResolution : std::max(1, this->Settings.MirrorResolution / 2);
-    const brume::SurfaceChart& chart = this->Objects[m]->GetChart();
-    const std::array<int, 3> dims = FixedResolution(brume::Vec3(chart.Width, chart.Height, 0.f), n);
+    brume::Vec3 mirrored = eye;
+    brume::MirrorReflection::MirroredEye(this->Scene.Surfaces[m], eye, mirrored);
+    if (isMirror(m))
+    {
+      for (const std::size_t c : this->Mirrors)
+      {
+        if (c == m || !this->Objects[c]->IsLobeCast() || isMirror(c))
+        {
+          continue;
+        }
+        lookFrom(c, mirrored);
+        const std::array<int, 3> dims = dimsOf(c);
+        reflection.Reflect(c, mirrored, { dims[0], dims[1] }, views[c], parallelFor);
+        reflection.SetTexture(c, { views[c].data(), dims });
+      }
+    }
+    lookFrom(m, eye);
+    const std::array<int, 3> dims = dimsOf(m);
     std::vector<float> radiance;
     reflection.Reflect(m, eye, { dims[0], dims[1] }, radiance, parallelFor);
     this->Objects[m]->SetReflected(std::move(radiance), dims);

@@ -71,7 +71,9 @@ public:
    * its output texture (GetOutputRadiance()); a surface that Casts(), in
    * its own texture (GetRadiance(), or with direct light the output grid's
    * before any reflection), which holds what it emits and, for a glossy
-   * one, its diffuse light: a glossy lobe seen in a mirror is left out.
+   * one, its diffuse light; SetTexture() gives a glossy one seen in a
+   * mirror its lobe cast toward the mirror's mirrored eye
+   * (vtkBrumeRadianceReconstruction does).
    */
   MirrorReflection(
     const Scene& scene, const RayCaster& caster, const std::vector<const ObjectRadiance*>& objects);
