@@ -552,13 +552,7 @@ bool vtkBrumeRadianceTextures::PlanReflections()
     }
     const bool lobes = this->Scene.Lights.empty() || this->Objects[s]->IsDirectEnabled();
     this->Objects[s]->SetLobeCast(lobes);
-    bool mirror = false;
-    for (std::size_t t = 0; t < surface.Triangles.size() && !mirror; ++t)
-    {
-      mirror = surface.MaterialOf(t).Type == brume::MaterialType::Mirror &&
-        brume::MirrorReflection::Casts(surface.MaterialOf(t));
-    }
-    if (mirror || lobes)
+    if (lobes || brume::MirrorReflection::HasMirror(surface))
     {
       this->Mirrors.push_back(s);
     }
@@ -609,17 +603,7 @@ std::vector<bool> vtkBrumeRadianceTextures::ReflectMirrors(const brume::Vec3& ey
   // A glossy surface casts LobeSamples rays per texel and blurs what it
   // reflects: half the texels along each axis.
   auto isMirror = [&](std::size_t s)
-  {
-    const brume::Surface& surface = this->Scene.Surfaces[s];
-    for (std::size_t t = 0; t < surface.Triangles.size(); ++t)
-    {
-      if (surface.MaterialOf(t).Type == brume::MaterialType::Mirror)
-      {
-        return true;
-      }
-    }
-    return false;
-  };
+  { return brume::MirrorReflection::HasMirror(this->Scene.Surfaces[s]); };
   auto dimsOf = [&](std::size_t s)
   {
     const int n = isMirror(s) ? this->Settings.MirrorResolution

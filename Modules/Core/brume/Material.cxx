@@ -51,6 +51,15 @@ std::string Material::Validate() const
   return {};
 }
 
+Vec3 EvaluateDiffuseBrdf(const Material& m, const Vec3& n, const Vec3& wi, const Vec3& wo)
+{
+  if (Dot(wi, n) <= 0.f || Dot(wo, n) <= 0.f || m.Type == MaterialType::Mirror)
+  {
+    return Vec3(0.f);
+  }
+  return m.Reflectance * InvPi;
+}
+
 Vec3 EvaluateBrdf(const Material& m, const Vec3& n, const Vec3& wi, const Vec3& wo)
 {
   if (Dot(wi, n) <= 0.f || Dot(wo, n) <= 0.f)

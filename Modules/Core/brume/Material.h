@@ -52,6 +52,10 @@ struct Material
 /// BRDF value f_r(wi, wo) (per channel); zero for the mirror's delta lobe.
 Vec3 EvaluateBrdf(const Material& m, const Vec3& n, const Vec3& wi, const Vec3& wo);
 
+/// Its diffuse part alone, rho_d / pi (zero below the surface): what is
+/// left when a lobe is rendered another way (brume::MirrorReflection).
+Vec3 EvaluateDiffuseBrdf(const Material& m, const Vec3& n, const Vec3& wi, const Vec3& wo);
+
 /// Density (solid angle) with which SampleBrdf picks wo given wi.
 float BrdfPdf(const Material& m, const Vec3& n, const Vec3& wi, const Vec3& wo);
 

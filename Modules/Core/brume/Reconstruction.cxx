@@ -386,11 +386,10 @@ void ObjectRadiance::WeighCells(const Vec3& eye, const ParallelFor& parallelFor)
         {
           // The BRDF from the incoming direction to the eye.
           const std::uint32_t t = h.Triangle;
-          Material m = surface->MaterialOf(t);
-          if (this->LobeCast && m.Type == MaterialType::Phong && MirrorReflection::Casts(m))
-          {
-            m.Type = MaterialType::Lambertian; // the lobe is cast
-          }
+          const Material& m = surface->MaterialOf(t);
+          // A cast lobe is left out: the diffuse part alone.
+          const bool diffuseOnly =
+            this->LobeCast && m.Type == MaterialType::Phong && MirrorReflection::Casts(m);
           const auto& tri = surface->Triangles[t];
           Vec3 n = Normalize(Cross(surface->Vertices[tri[1]] - surface->Vertices[tri[0]],
             surface->Vertices[tri[2]] - surface->Vertices[tri[0]]));
@@ -398,7 +397,8 @@ void ObjectRadiance::WeighCells(const Vec3& eye, const ParallelFor& parallelFor)
           {
             n = -n;
           }
-          const Vec3 f = EvaluateBrdf(m, n, -dir, toEye);
+          const Vec3 f =
+            diffuseOnly ? EvaluateDiffuseBrdf(m, n, -dir, toEye) : EvaluateBrdf(m, n, -dir, toEye);
           for (int ch = 0; ch < 3; ++ch)
           {
             v[ch] = static_cast<double>(f[ch]) * flux[ch];
@@ -550,13 +550,20 @@ void ObjectRadiance::SetReflected(std::vector<float> radiance, const std::array<
   this->ReflectedDims = this->Reflected.empty() ? std::array<int, 3>{ 0, 0, 0 } : dims;
 }
 
+namespace
+{
+// Where process r of R starts its share of n items.
+std::size_t ShareStart(std::size_t n, int r, int processes)
+{
+  return static_cast<std::size_t>(static_cast<unsigned long long>(n) * r / processes);
+}
+}
+
 std::array<std::size_t, 2> ObjectRadiance::Share(std::size_t n) const
 {
   const int processes = this->Reduction ? this->Reduction->NumberOfProcesses() : 1;
   const int rank = processes > 1 ? this->Reduction->Rank() : 0;
-  auto start = [&](int r)
-  { return static_cast<std::size_t>(static_cast<unsigned long long>(n) * r / processes); };
-  return { start(rank), start(rank + 1) };
+  return { ShareStart(n, rank, processes), ShareStart(n, rank + 1, processes) };
 }
 
 void ObjectRadiance::GatherShares(std::size_t n, std::size_t floats, std::vector<float>& data)
@@ -573,11 +580,7 @@ void ObjectRadiance::GatherShares(std::size_t n, std::size_t floats, std::vector
   std::vector<std::size_t> counts(processes);
   for (int r = 0; r < processes; ++r)
   {
-    const std::size_t first =
-      static_cast<std::size_t>(static_cast<unsigned long long>(n) * r / processes);
-    const std::size_t last =
-      static_cast<std::size_t>(static_cast<unsigned long long>(n) * (r + 1) / processes);
-    counts[r] = (last - first) * floats;
+    counts[r] = (ShareStart(n, r + 1, processes) - ShareStart(n, r, processes)) * floats;
   }
   this->Reduction->Gather(sent, counts, all);
   std::memcpy(data.data(), all.data(), n * floats * sizeof(float));

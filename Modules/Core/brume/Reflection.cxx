@@ -141,6 +141,7 @@ MirrorReflection::MirrorReflection(
   , Caster(caster)
   , Objects(objects)
   , Textures(objects.size())
+  , Steps(scene.Media.size(), 0.f)
 {
   for (std::size_t o = 0; o < objects.size(); ++o)
   {
@@ -149,6 +150,7 @@ MirrorReflection::MirrorReflection(
     this->Textures[o].Radiance =
       casts ? r.GetUnreflectedRadiance().data() : r.GetOutputRadiance().data();
     this->Textures[o].Dims = casts ? r.GetUnreflectedResolution() : r.GetOutputResolution();
+    this->UpdateStep(o);
   }
   const Vec3 extent = caster.GetBounds().Extent();
   const float diagonal = Length(extent);
@@ -172,6 +174,18 @@ bool MirrorReflection::Casts(const Surface& surface)
     [](const Material& m) { return Casts(m); });
 }
 
+bool MirrorReflection::HasMirror(const Surface& surface)
+{
+  for (std::size_t t = 0; t < surface.Triangles.size(); ++t)
+  {
+    if (surface.MaterialOf(t).Type == MaterialType::Mirror)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 bool MirrorReflection::MirroredEye(const Surface& surface, const Vec3& eye, Vec3& mirrored)
 {
   PlanarFrame frame;
@@ -186,6 +200,31 @@ bool MirrorReflection::MirroredEye(const Surface& surface, const Vec3& eye, Vec3
 void MirrorReflection::SetTexture(std::size_t o, const TextureLookup& texture)
 {
   this->Textures[o] = texture;
+  this->UpdateStep(o);
+}
+
+void MirrorReflection::UpdateStep(std::size_t o)
+{
+  // A medium is marched at half its finest cell: of its density's grid, or
+  // of its texture.
+  const std::size_t surfaces = this->SceneRef.Surfaces.size();
+  if (o < surfaces)
+  {
+    return;
+  }
+  const Medium& medium = this->SceneRef.Media[o - surfaces];
+  const ObjectRadiance& r = *this->Objects[o];
+  float cell = Infinity;
+  for (int a = 0; a < 3; ++a)
+  {
+    cell =
+      std::min(cell, medium.Bounds.Extent()[a] / static_cast<float>(this->Textures[o].Dims[a]));
+    if (!r.GetNativeDensity().Empty())
+    {
+      cell = std::min(cell, r.GetNativeBox().Extent()[a] / r.GetNativeResolution()[a]);
+    }
+  }
+  this->Steps[o - surfaces] = 0.5f * cell;
 }
 
 Vec3 MirrorReflection::SurfaceTexture(std::size_t s, unsigned int triangle, const Vec3& p) const
@@ -227,31 +266,19 @@ void MirrorReflection::MarchMedia(
     std::size_t Object;
   };
   const std::size_t surfaces = this->SceneRef.Surfaces.size();
-  Segment segments[16];
+  const std::size_t media = this->SceneRef.Media.size();
+  // On the stack for the usual few media, on the heap past them.
+  constexpr std::size_t Few = 16;
+  Segment few[Few];
+  std::vector<Segment> many(media > Few ? media : 0);
+  Segment* segments = media > Few ? many.data() : few;
   std::size_t count = 0;
-  for (std::size_t m = 0; m < this->SceneRef.Media.size(); ++m)
+  for (std::size_t m = 0; m < media; ++m)
   {
-    const Medium& medium = this->SceneRef.Media[m];
     float t0 = 0.f, t1 = tEnd;
-    if (!ClipToBox(medium.Bounds, origin, d, t0, t1))
+    if (ClipToBox(this->SceneRef.Media[m].Bounds, origin, d, t0, t1))
     {
-      continue;
-    }
-    // Half the finest cell: of the density's grid, or of the texture.
-    const ObjectRadiance& r = *this->Objects[surfaces + m];
-    const TextureLookup& tex = this->Textures[surfaces + m];
-    float cell = Infinity;
-    for (int a = 0; a < 3; ++a)
-    {
-      cell = std::min(cell, medium.Bounds.Extent()[a] / static_cast<float>(tex.Dims[a]));
-      if (!r.GetNativeDensity().Empty())
-      {
-        cell = std::min(cell, r.GetNativeBox().Extent()[a] / r.GetNativeResolution()[a]);
-      }
-    }
-    if (count < sizeof(segments) / sizeof(segments[0]))
-    {
-      segments[count++] = { t0, t1, 0.5f * cell, surfaces + m };
+      segments[count++] = { t0, t1, this->Steps[m], surfaces + m };
     }
   }
   std::sort(
@@ -381,11 +408,14 @@ void MirrorReflection::Reflect(std::size_t s, const Vec3& eye, const std::array<
   // chart's triangles (within two texels) the nearest point of the nearest
   // one, so that a renderer's interpolation at the seams meets reflected
   // light, not the gutter's.
-  std::vector<std::int32_t> triangleOf(texels, -1);
-  std::vector<float> weights(2 * texels, 0.f);
+  // A planar chart of one material needs none of it: its frame gives every
+  // texel's point.
+  const bool rasterize = !planar || !surface.TriangleMaterials.empty();
+  std::vector<std::int32_t> triangleOf(rasterize ? texels : 0, -1);
+  std::vector<float> weights(rasterize ? 2 * texels : 0, 0.f);
   std::vector<float> distance(planar ? 0 : texels, Infinity);
   const float reach = 2.f / static_cast<float>(std::min(nx, ny));
-  for (int pass = 0; pass < (planar ? 1 : 2); ++pass)
+  for (int pass = 0; pass < (!rasterize ? 0 : (planar ? 1 : 2)); ++pass)
   {
     for (std::size_t k = 0; k < surface.Triangles.size(); ++k)
     {
@@ -462,7 +492,7 @@ void MirrorReflection::Reflect(std::size_t s, const Vec3& eye, const std::array<
           const std::size_t t = j * nx + i;
           const float u = (i + 0.5f) / nx, v = (j + 0.5f) / ny;
           Vec3 L = Sample2D(this->Textures[s], u, v);
-          const std::int32_t k = triangleOf[t];
+          const std::int32_t k = rasterize ? triangleOf[t] : -1;
           // Planar mirrors reflect over their whole chart (what a renderer
           // interpolates at their edges); others where a triangle lies.
           const Material& m = k >= 0 ? surface.MaterialOf(k) : surface.Mat;

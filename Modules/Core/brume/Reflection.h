@@ -83,6 +83,8 @@ public:
   static bool Casts(const Material& m);
   /// Whether some triangle of `surface` does (see Casts()).
   static bool Casts(const Surface& surface);
+  /// Whether some triangle of `surface` is a mirror (of any rho_s).
+  static bool HasMirror(const Surface& surface);
 
   /// A planar surface's eye mirrored by its plane; false for a curved one.
   static bool MirroredEye(const Surface& surface, const Vec3& eye, Vec3& mirrored);
@@ -114,11 +116,14 @@ private:
   // The media between t = 0 and `tEnd` along origin + t d: the light they
   // send toward the origin (added to L) and their transmittance (T).
   void MarchMedia(const Vec3& origin, const Vec3& d, float tEnd, Vec3& L, Vec3& T) const;
+  // Object o's march step, when it is a medium (from its texture and grid).
+  void UpdateStep(std::size_t o);
 
   const Scene& SceneRef;
   const RayCaster& Caster;
   std::vector<const ObjectRadiance*> Objects;
   std::vector<TextureLookup> Textures;
+  std::vector<float> Steps; // per medium
   float Epsilon;
 };
 
