@@ -146,6 +146,8 @@ private:
   bool CreateDirectLight(
     const vtkBrumeReconstructionSettings& settings, const brume::HitArrays& hits);
   std::array<int, 3> DirectResolution(std::size_t o, int resolution) const;
+  // Resolution along the longer axis `n` of `extent`, the others in proportion.
+  static std::array<int, 3> FixedResolution(const brume::Vec3& extent, int n);
   void ComputeDirect();
   // Mirrors and sharp glossy surfaces (brume::MirrorReflection::Casts):
   // which are cast, before the build; then their reflections toward `eye`,
