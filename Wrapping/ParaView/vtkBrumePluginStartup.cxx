@@ -5,8 +5,12 @@
 // with BRUME_RENDER_WINDOW=osmesa) instead of failing to open an X window.
 // ParaView 5.11 makes its batch render windows through
 // vtkRenderWindow::New(), after the script's LoadPlugin().
+// Where the process has a server manager (the GUI, pvpython, pvbatch), the
+// "Brume Radiance" representations follow their views' cameras from the
+// client side (vtkBrumeCameraFollower).
 #include "vtkBrumePluginStartup.h"
 
+#include "vtkBrumeCameraFollower.h"
 #include "vtkBrumeRenderWindowSelection.h"
 #include "vtkOutputWindow.h"
 
@@ -19,4 +23,5 @@ void BrumePluginStartup()
     vtkOutputWindow::GetInstance()->DisplayWarningText(
       ("Brume: " + std::string(vtkBrumeRenderWindowSelection::GetLastError()) + ".\n").c_str());
   }
+  vtkBrumeCameraFollower::Install();
 }

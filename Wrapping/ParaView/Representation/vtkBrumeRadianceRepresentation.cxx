@@ -252,36 +252,36 @@ int vtkBrumeRadianceRepresentation::ProcessViewRequest(
 vtkPartitionedDataSetCollection* vtkBrumeRadianceRepresentation::Follow(
   vtkPVRenderView* view, vtkPartitionedDataSetCollection* textures)
 {
+  // The plugin's client side (vtkBrumeCameraFollower) has already moved the
+  // reconstruction's EyePosition to the camera before this render's update,
+  // wherever the reconstruction runs. What is left here is the built-in
+  // session's case of a camera moved without its view proxy (a VTK render
+  // of the view's window): the reconstruction runs here, and follows.
   // Textures that came from a server lose the collection's field data on
-  // the way: no eye to compare with, and no reconstruction here either.
+  // the way: no eye to compare with, and no reconstruction here.
   double eye[3];
   const bool known = EyeOf(textures, eye);
-  if (!view || (known && ViewDependentObjects(textures) == 0))
+  if (!view || !known || ViewDependentObjects(textures) == 0)
   {
-    return textures; // nothing depends on the viewpoint
+    return textures;
   }
   vtkCamera* camera = view->GetActiveCamera();
   double position[3];
   camera->GetPosition(position);
-  if (known && SameEye(eye, position))
+  if (SameEye(eye, position))
   {
     return textures;
   }
-  // The reconstruction must run here, in one process: under mpirun its
-  // update is a collective step, and at this point of a render the other
-  // processes have not yet received the camera (it comes with the render).
+  // Under mpirun the reconstruction's update is a collective step, and at
+  // this point of a render the other processes may not have the camera
+  // yet: only the client-side follower moves it there.
   auto* reconstruction = this->GetNumberOfInputConnections(0) == 1
     ? FindReconstruction(this->GetInputAlgorithm(0, 0))
     : nullptr;
   vtkMultiProcessController* controller =
     reconstruction ? reconstruction->GetController() : nullptr;
-  if (!reconstruction || !known || Processes() > 1 ||
-    (controller && controller->GetNumberOfProcesses() > 1))
+  if (!reconstruction || Processes() > 1 || (controller && controller->GetNumberOfProcesses() > 1))
   {
-    this->Warn("Brume Radiance follows the camera only where the reconstruction runs in the "
-               "rendering process, alone (pvbatch, pvpython, the GUI's built-in server); "
-               "under mpirun set the reconstruction's EyePosition to the camera's position: "
-               "view-dependent textures stay at the reconstruction's EyePosition.");
     return textures;
   }
   if (reconstruction->GetCamera() != camera)

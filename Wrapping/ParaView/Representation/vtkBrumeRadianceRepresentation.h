@@ -13,17 +13,18 @@
  *
  * Camera following (FollowCamera, default on): when the textures depend on
  * the viewpoint (glossy surfaces, anisotropic media held per view: the
- * collection's `BrumeViewDependentObjects`) and the view's camera is not
- * where they radiate toward (`BrumeEyePosition`), each render gives the
- * reconstruction the view's camera (vtkBrumeRadianceReconstruction's
- * SetCamera) and updates it: only the view-dependent textures are
- * recomputed, only their images are uploaded again. This needs the
- * reconstruction in the rendering process, with one process: pvbatch and
- * pvpython, and the GUI with its built-in server. Elsewhere (a remote
- * server, mpirun) the textures stay at the reconstruction's EyePosition and
- * a warning says so once; directional media (spherical harmonics) need no
- * update at all. Two views of one reconstruction each get their own view,
- * at the cost of an update whenever the other one rendered last.
+ * collection's `BrumeViewDependentObjects`), the plugin's client side
+ * (vtkBrumeCameraFollower) sets the reconstruction's EyePosition to the
+ * view's camera before each render, so that the render's update
+ * recomputes the view-dependent textures wherever the reconstruction runs
+ * (built-in session, pvserver, every process under mpirun). What is left
+ * here: in one process, textures that do not radiate toward the camera
+ * (`BrumeEyePosition`) at render time (a camera moved without its view
+ * proxy) give the reconstruction the view's camera (its SetCamera) and
+ * update it; only the images that changed are uploaded again. Directional
+ * media (spherical harmonics) need no update at all. Two views of one
+ * reconstruction each get their own view, at the cost of an update
+ * whenever the other one rendered last.
  *
  * Shown with anything but a Brume texture collection, it draws nothing and
  * says why once.

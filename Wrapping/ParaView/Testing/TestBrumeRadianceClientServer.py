@@ -1,10 +1,11 @@
 """pvpython: "Brume Radiance" through a pvserver on this machine (client and
-server over the loopback) and in the built-in session: the same image.
+server over the loopback) and in the built-in session: the same image, with
+the textures following the camera in both.
 
 The textures travel from the server to the client, which renders them
-(ParaView 5.11 renders small data on the client). FollowCamera is off in
-both sessions (only the built-in one can follow), so both show the
-textures toward the reconstruction's EyePosition.
+(ParaView 5.11 renders small data on the client). Before each render the
+plugin's client side sets the reconstruction's EyePosition to the camera's
+position, so that the server updates the view-dependent textures toward it.
 
 usage: pvpython TestBrumeRadianceClientServer.py PVSERVER PLUGIN OUTPUT_DIR PORT (0: a free one)
 """
@@ -32,13 +33,17 @@ def render(png):
     view = black_view(160)
     display = Show(reconstruction, view)
     assert display.Representation == "Brume Radiance", display.Representation
-    display.FollowCamera = 0
+    assert display.FollowCamera == 1, "FollowCamera is on by default"
     Render(view)  # the first render frames the scene; then the camera is set
-    view.CameraPosition = [0.4, 0.3, 3.8]
-    view.CameraFocalPoint = [0, 0, 0]
-    view.CameraViewUp = [0, 1, 0]
-    view.CameraViewAngle = 40
-    Render(view)
+    for position in ([0.4, 0.3, 3.8], [-0.5, 0.2, 3.9]):
+        view.CameraPosition = position
+        view.CameraFocalPoint = [0, 0, 0]
+        view.CameraViewUp = [0, 1, 0]
+        view.CameraViewAngle = 40
+        Render(view)
+        eye = list(reconstruction.EyePosition)
+        if any(abs(a - b) > 1e-6 for a, b in zip(eye, position)):
+            raise RuntimeError("EyePosition %s did not follow the camera to %s" % (eye, position))
     SaveScreenshot(png, view, ImageResolution=[160, 160])
     Delete(view)
 

@@ -3,7 +3,9 @@ project's own cloud over an empty sky, the same image on one process and on
 several. Under mpirun every process holds the textures and draws them, and
 IceT composites the processes' images by depth: the slices write theirs, or
 the cloud, drawn over pixels at the far plane, would be dropped as
-background.
+background. The textures follow the camera: before each render the
+plugin's client side (process 0) sets the reconstruction's EyePosition,
+which reaches every process, and the update runs on all of them in step.
 
 usage: pvbatch TestBrumeRadianceMPI.py PLUGIN SCENE_DIR OUTPUT_DIR
 (one process writes TestBrumeRadianceMPI-one.png; several compare theirs with it)
@@ -32,9 +34,6 @@ eye, focus = [60.0, 45.0, 170.0], [-5.0, 62.0, 0.0]
 scene = OpenDataFile(os.path.join(scene_dir, "cumulus.json"))
 tracer = BrumeLightTracer(Input=scene, NumberOfParticles=100000, Seed=1)
 reconstruction = BrumeRadianceReconstruction(Scene=scene, Hits=tracer)
-# Under mpirun the textures do not follow the camera: they radiate toward
-# EyePosition, set to the camera's position.
-reconstruction.EyePosition = eye
 view = black_view(size)
 display = Show(reconstruction, view)
 check(display.Representation == "Brume Radiance", "Show() gives 'Brume Radiance'")
@@ -44,6 +43,8 @@ for _ in range(2):  # paraview.simple's first render frames the scene
     view.CameraViewUp = [0, 1, 0]
     view.CameraViewAngle = 45
     Render(view)
+check(all(abs(a - b) < 1e-6 for a, b in zip(reconstruction.EyePosition, eye)),
+      "EyePosition follows the camera (%s)" % list(reconstruction.EyePosition))
 one = os.path.join(output_dir, "TestBrumeRadianceMPI-one.png")
 if processes == 1:
     SaveScreenshot(one, view, ImageResolution=[size, size])
