@@ -145,10 +145,10 @@ int vtkBrumeRadianceRepresentation::FillInputPortInformation(int, vtkInformation
 
 namespace
 {
-// Several processes that each render (mpirun pvbatch): every process holds
-// the textures (the reconstruction gives them on each), draws them, and
-// IceT composites identical images. A parallel server that sends its data
-// to a client would gather the copies instead: not supported.
+// Several processes that each render (mpirun pvbatch, a parallel server
+// rendering remotely): every process holds the textures (the
+// reconstruction gives them on each), draws them, and IceT composites
+// identical images; a parallel server's client gets process 0's copy.
 int Processes()
 {
   vtkMultiProcessController* processes = vtkMultiProcessController::GetGlobalController();
@@ -183,19 +183,6 @@ int vtkBrumeRadianceRepresentation::RequestData(
     }
   }
   // else: a process without the data (the client of a remote server).
-  // A parallel server would gather every process's copy of the textures
-  // for its client, which ParaView 5.11 cannot merge: nothing is drawn,
-  // and the render says so. mpirun pvbatch draws on every process.
-  if (Processes() > 1 && !ParallelBatch())
-  {
-    this->Cache = vtkSmartPointer<vtkPartitionedDataSetCollection>::New();
-    vtkMath::UninitializeBounds(this->Bounds);
-    this->InputProblem = "Brume Radiance draws in one process or in mpirun pvbatch; a parallel "
-                         "server (" +
-      std::to_string(Processes()) +
-      " processes) would gather every process's copy for its client: fetch the "
-      "reconstruction's output (servermanager.Fetch) and draw it with vtkBrumeSceneActors";
-  }
   return this->Superclass::RequestData(request, inputVector, outputVector);
 }
 
@@ -212,9 +199,15 @@ int vtkBrumeRadianceRepresentation::ProcessViewRequest(
     // transmittance: nothing is composited.
     vtkPVView::SetPiece(inInfo, this, this->Cache);
     vtkPVRenderView::SetGeometryBounds(inInfo, this, this->Bounds);
-    // Under mpirun every process draws its own copy (and its slices write
-    // their depth, for IceT's z-buffer compositing).
-    if (!ParallelBatch())
+    // Several processes (mpirun pvbatch, a parallel server) hold the same
+    // textures: each draws its own copy (and its slices write their depth,
+    // for IceT's z-buffer compositing), and a client gets process 0's copy
+    // alone, not a gather of all of them.
+    if (Processes() > 1 && !ParallelBatch())
+    {
+      vtkPVRenderView::SetDeliverToClientAndRenderingProcesses(inInfo, this, true, false);
+    }
+    else if (Processes() == 1)
     {
       vtkPVRenderView::SetRequiresDistributedRendering(inInfo, this, false);
     }
@@ -235,7 +228,7 @@ int vtkBrumeRadianceRepresentation::ProcessViewRequest(
       return 1;
     }
     auto* view = vtkPVRenderView::SafeDownCast(inInfo->Get(vtkPVView::VIEW()));
-    this->Actors->SetMediaWriteDepth(ParallelBatch());
+    this->Actors->SetMediaWriteDepth(Processes() > 1);
     this->Show(this->FollowCamera ? this->Follow(view, delivered) : delivered);
     // With translucent geometry in the view, the render view's default
     // (DepthPeelingForVolumes) would draw the media inside VTK's dual depth

@@ -7,12 +7,19 @@ The textures travel from the server to the client, which renders them
 plugin's client side sets the reconstruction's EyePosition to the camera's
 position, so that the server updates the view-dependent textures toward it.
 
-usage: pvpython TestBrumeRadianceClientServer.py PVSERVER PLUGIN OUTPUT_DIR PORT (0: a free one)
+With a launcher (for example `mpirun --oversubscribe -np 2`), the server
+runs in parallel: every server process holds the same textures, and the
+client gets process 0's copy alone (the server's processes run without a
+display).
+
+usage: pvpython TestBrumeRadianceClientServer.py PVSERVER PLUGIN OUTPUT_DIR PORT [LAUNCHER...]
+(PORT 0: a free one)
 """
 import os
 import socket
 import subprocess
 import sys
+import threading
 
 from paraview.simple import *  # noqa: F401,F403
 
@@ -20,6 +27,8 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from brume_testing import black_view, image_error  # noqa: E402
 
 pvserver, plugin, output_dir, port = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4])
+launcher = sys.argv[5:]
+name = "TestBrumeRadianceClientServer" + ("-parallel" if launcher else "")
 
 
 def render(png):
@@ -52,27 +61,47 @@ if port == 0:  # a free port of this machine
     with socket.socket() as probe:
         probe.bind(("127.0.0.1", 0))
         port = probe.getsockname()[1]
-server = subprocess.Popen([pvserver, "--server-port=%d" % port], stdout=subprocess.PIPE,
-                          stderr=subprocess.STDOUT, text=True)
+command = [pvserver, "--server-port=%d" % port]
+environment = dict(os.environ)
+if launcher:
+    # The server's processes print through the launcher: line-buffered, so
+    # that its "Accepting connection" arrives. This client is an MPI process
+    # of its own (a singleton): the launcher must not see its variables.
+    command = launcher + ["stdbuf", "-oL"] + command
+    environment = {k: v for k, v in environment.items()
+                   if k.startswith("OMPI_ALLOW") or not k.startswith(("OMPI_", "PMIX_", "OPAL_"))}
+    # The client renders (the textures are small): the server's processes
+    # need no window but the one ParaView makes to probe their rendering,
+    # which the plugin makes through EGL without a display. (Xvfb refused
+    # one of several processes' windows now and then.)
+    environment.pop("DISPLAY", None)
+server_output = []
+server = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                          env=environment)
 try:
     for line in server.stdout:
         if "Accepting connection" in line:
             break
     else:
         raise RuntimeError("pvserver did not start")
+    # The rest of the server's output is read as it comes (a full pipe would
+    # stop the server) and shown if the test fails.
+    threading.Thread(target=lambda: server_output.extend(server.stdout), daemon=True).start()
     # The server stays connected to the end: it exits when this client does.
     # 127.0.0.1: a minimal root may not resolve "localhost".
     if not Connect("127.0.0.1", port) or not servermanager.ActiveConnection.IsRemote():
         raise RuntimeError("no connection to pvserver on port %d" % port)
-    remote = os.path.join(output_dir, "TestBrumeRadianceClientServer-remote.png")
+    remote = os.path.join(output_dir, name + "-remote.png")
     render(remote)
     Connect()  # a built-in session, now the active one
-    local = os.path.join(output_dir, "TestBrumeRadianceClientServer-builtin.png")
+    local = os.path.join(output_dir, name + "-builtin.png")
     render(local)
 except BaseException:
     server.kill()  # no server left behind by a failure
+    print("the server's output:\n" + "".join(server_output[-300:]))
     raise
 
 error = image_error(remote, local)
-print("client-server against built-in: error %g (limit 0.5)" % error)
+print("%s against built-in: error %g (limit 0.5)"
+      % ("parallel server" if launcher else "client-server", error))
 sys.exit(0 if error <= 0.5 else 1)
