@@ -35,6 +35,7 @@
 #define vtkBrumeRadianceRepresentation_h
 
 #include "vtkBrumeParaViewRepresentationModule.h" // For export macro
+#include "vtkCommand.h"                           // For TexturesShownEvent
 #include "vtkPVDataRepresentation.h"
 #include "vtkSmartPointer.h" // For members
 #include "vtkWeakPointer.h"  // For members
@@ -105,6 +106,18 @@ public:
   void GetShownEyePosition(double eye[3]);
   ///@}
 
+  /**
+   * How many of the textures' data sets (images, surfaces, extinction
+   * grids) the last new textures changed, of those shown before: the props
+   * upload only these again. Textures delivered from a server are new
+   * objects each time; those equal to what is shown (same geometry, same
+   * bytes) keep the shown ones. -1 before textures were shown twice.
+   * Each such render also fires TexturesShownEvent with this number (an
+   * int) as call data.
+   */
+  vtkGetMacro(NumberOfChangedDataSets, int);
+  static constexpr unsigned long TexturesShownEvent = vtkCommand::UserEvent + 1;
+
 protected:
   vtkBrumeRadianceRepresentation();
   ~vtkBrumeRadianceRepresentation() override;
@@ -134,6 +147,10 @@ private:
   vtkSmartPointer<vtkBrumeSceneActors> Actors;
   vtkWeakPointer<vtkRenderer> Renderer;
   vtkWeakPointer<vtkPartitionedDataSetCollection> Shown;
+  // The textures shown when some delivered data sets were replaced by the
+  // equal ones shown before.
+  vtkSmartPointer<vtkPartitionedDataSetCollection> Merged;
+  int NumberOfChangedDataSets = -1;
   std::string ShownLayout;                          // the objects' kinds of Shown, in order
   vtkWeakPointer<vtkObject> FollowedReconstruction; // given the view's camera
   std::string LastWarning;

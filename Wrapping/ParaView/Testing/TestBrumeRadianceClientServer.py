@@ -22,6 +22,9 @@ import sys
 import threading
 
 from paraview.simple import *  # noqa: F401,F403
+from vtkmodules.util.misc import calldata_type
+from vtkmodules.util.vtkConstants import VTK_INT
+from vtkmodules.vtkCommonCore import vtkCommand
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from brume_testing import black_view, image_error  # noqa: E402
@@ -44,6 +47,17 @@ def render(png):
     assert display.Representation == "Brume Radiance", display.Representation
     assert display.FollowCamera == 1, "FollowCamera is on by default"
     Render(view)  # the first render frames the scene; then the camera is set
+    changed = []
+
+    @calldata_type(VTK_INT)
+    def on_update(obj, event, count):
+        changed.append(count)
+
+    # The client's representation (it draws) fires its TexturesShownEvent
+    # (vtkCommand.UserEvent + 1) with the number of data sets the new
+    # textures changed.
+    display.GetClientSideObject().GetActiveRepresentation().AddObserver(
+        vtkCommand.UserEvent + 1, on_update)
     for position in ([0.4, 0.3, 3.8], [-0.5, 0.2, 3.9]):
         view.CameraPosition = position
         view.CameraFocalPoint = [0, 0, 0]
@@ -53,6 +67,11 @@ def render(png):
         eye = list(reconstruction.EyePosition)
         if any(abs(a - b) > 1e-6 for a, b in zip(eye, position)):
             raise RuntimeError("EyePosition %s did not follow the camera to %s" % (eye, position))
+        # Only the fog's texture radiates toward the eye: the walls' and the
+        # box's textures and geometry keep what was uploaded.
+        print("data sets changed by the move: %s" % changed[-1:])
+        if changed[-1:] != [1]:
+            raise RuntimeError("data sets changed by the camera's move: %s (expected 1)" % changed)
     SaveScreenshot(png, view, ImageResolution=[160, 160])
     Delete(view)
 
