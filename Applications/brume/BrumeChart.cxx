@@ -109,10 +109,10 @@ struct SweepPrinter
     for (; this->Printed < t->GetNumberOfRows(); ++this->Printed)
     {
       const vtkIdType r = this->Printed;
-      std::printf("| %s | %s | %.3f | %.3f | %.3f | %.2f |\n", parameter->GetValue(r).c_str(),
-        value->GetValue(r).c_str(), Value(t, "pipeline_rel_mae", r),
+      std::printf("| %s | %s | %.3f | %.3f | %.3f | %.2f | %.3f |\n",
+        parameter->GetValue(r).c_str(), value->GetValue(r).c_str(), Value(t, "pipeline_rel_mae", r),
         Value(t, "pipeline_sh_rel_mae", r), Value(t, "pathtracer_rel_mae", r),
-        Value(t, "pipeline_seconds", r));
+        Value(t, "pipeline_seconds", r), Value(t, "reference_noise", r));
     }
     std::fflush(stdout);
   }
@@ -160,6 +160,7 @@ int RunSweep(const ChartOptions& options, vtkAlgorithm* scene, const SceneNames&
   sweep->SetSceneName(names.Name.c_str());
   sweep->SetCacheKey(names.CacheKey.c_str());
   sweep->SetMediumName(options.Medium.c_str());
+  sweep->SetParameter(options.Parameter.c_str());
   // The built-in scene keeps the documented sweep (Data/doc/sweep-default-scene.csv):
   // its floor, where the automatic choice would take the back wall.
   const bool builtIn = options.Scene.empty() || options.Scene == "default";
@@ -174,13 +175,14 @@ int RunSweep(const ChartOptions& options, vtkAlgorithm* scene, const SceneNames&
     return 1;
   }
   std::printf("| parameter | value | pipeline rel. MAE | SH media rel. MAE | path tracer rel. MAE "
-              "(same time) | time (s) |\n");
-  std::printf("|---|---|---:|---:|---:|---:|\n");
+              "(same time) | time (s) | reference's own noise |\n");
+  std::printf("|---|---|---:|---:|---:|---:|---:|\n");
   SweepPrinter printer{ sweep };
   sweep->AddObserver(vtkCommand::ProgressEvent, &printer, &SweepPrinter::Print);
   if (!sweep->GetExecutive()->Update())
   {
     std::cerr << "brume: the sweep failed (see the error above).\n";
+    std::remove(options.Csv.c_str()); // made empty by the check above: no partial output
     return 1;
   }
   if (!sweep->WriteCsv(options.Csv.c_str()))
@@ -227,6 +229,7 @@ int RunErrorChart(const ChartOptions& options, vtkAlgorithm* scene, const SceneN
   if (!chart->GetExecutive()->Update())
   {
     std::cerr << "brume: the chart failed (see the error above).\n";
+    std::remove(options.Csv.c_str()); // made empty by the check above: no partial output
     return 1;
   }
   if (!chart->WriteCsv(options.Csv.c_str()))

@@ -391,7 +391,9 @@ void AddChart(CLI::App& app, ChartOptions& o)
     "pipeline's error and the path tracer's at the same time\n"
     "(CSV: parameter, value, pipeline_seconds,\n"
     "pipeline_rel_mae, pathtracer_spp, pathtracer_seconds,\n"
-    "pathtracer_rel_mae, finite, pipeline_sh_rel_mae)");
+    "pathtracer_rel_mae, finite, pipeline_sh_rel_mae, the\n"
+    "block errors, reference_noise: what an image equal to\n"
+    "the truth would score against the reference)");
   chart
     ->add_option(
       "--medium", o.Medium, "the medium the sweep edits (default: the scene's\nfirst medium)")
@@ -401,6 +403,12 @@ void AddChart(CLI::App& app, ChartOptions& o)
     ->add_option("--surface", o.Surface,
       "the surface the sweep makes glossy and mirror\n(default: chosen automatically)")
     ->transform(NotEmpty("a surface's name"))
+    ->type_name("NAME");
+  chart
+    ->add_option("--parameter", o.Parameter,
+      "the sweep runs only this parameter's cases: g, optical\n"
+      "thickness, albedo, particles, or the surface's name")
+    ->transform(NotEmpty("a parameter's name"))
     ->type_name("NAME");
 }
 

@@ -42,10 +42,11 @@ struct ChartOptions
   bool ThresholdSet = false; // else the scene file's render.threshold, if any
   std::uint64_t Seed = 0;
   bool Sweep = false;
-  int ShOrder = 3;     // spherical-harmonics order of the SH rows
-  std::string Scene;   // a scene file; empty: the built-in default scene
-  std::string Medium;  // the medium the stability sweep edits; empty: the scene's first medium
-  std::string Surface; // the surface the sweep makes glossy/mirror; empty: chosen automatically
+  int ShOrder = 3;       // spherical-harmonics order of the SH rows
+  std::string Scene;     // a scene file; empty: the built-in default scene
+  std::string Medium;    // the medium the stability sweep edits; empty: the scene's first medium
+  std::string Surface;   // the surface the sweep makes glossy/mirror; empty: chosen automatically
+  std::string Parameter; // the sweep's only parameter; empty: every case
 };
 
 /// `brume chart`: error against time for the pipeline and the path tracer.

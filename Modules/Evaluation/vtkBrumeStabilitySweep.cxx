@@ -17,9 +17,11 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
+#include "vtkMath.h"
 #include "vtkObjectFactory.h"
 #include "vtkPartitionedDataSet.h"
 #include "vtkPartitionedDataSetCollection.h"
+#include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkStringArray.h"
 #include "vtkTable.h"
@@ -27,6 +29,7 @@
 #include "brume/RayCaster.h"
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <string>
@@ -212,7 +215,33 @@ struct Row
   double TracerSeconds = 0, TracerMae = 0, TracerBlock = 0;
   bool Finite = true;
   double ShMae = 0, ShBlock = 0;
+  double ReferenceNoise = 0;
 };
+
+// The reference's own noise, as a relative MAE would see it: the mean
+// absolute deviation of a normal error of the pixels' standard errors
+// (sqrt(2/pi) of them; the Variance array: of each pixel's mean), over the
+// mean radiance. An image equal to the truth would score about this much.
+double ReferenceNoise(vtkImageData* reference)
+{
+  vtkDataArray* radiance = reference->GetPointData()->GetArray("Radiance");
+  vtkDataArray* variance = reference->GetPointData()->GetArray("Variance");
+  if (!radiance || !variance || variance->GetNumberOfTuples() != radiance->GetNumberOfTuples())
+  {
+    return 0.0;
+  }
+  double deviation = 0.0, mean = 0.0;
+  const int channels = std::min(3, radiance->GetNumberOfComponents());
+  for (vtkIdType i = 0; i < radiance->GetNumberOfTuples(); ++i)
+  {
+    for (int c = 0; c < channels; ++c)
+    {
+      deviation += std::sqrt(std::max(0.0, variance->GetComponent(i, c)));
+      mean += radiance->GetComponent(i, c);
+    }
+  }
+  return mean > 0.0 ? std::sqrt(2.0 / vtkMath::Pi()) * deviation / mean : 0.0;
+}
 
 vtkSmartPointer<vtkBrumeTimedPipeline> Pipeline(
   const Settings& s, vtkDataObject* scene, vtkTypeInt64 particles, bool directional)
@@ -260,6 +289,7 @@ bool RunCase(const Settings& s, const Case& k, Scene* scene, Row& row)
   }
   row.PipelineSeconds = run->GetFullSeconds();
   row.PipelineMae = error->GetRelativeMAE();
+  row.ReferenceNoise = ReferenceNoise(converged->GetOutput());
   row.PipelineBlock = error->GetBlockError();
   // The path tracer given the pipeline's time: its speed from one sample.
   const auto oneSample = PathTrace(s, scene, 1, s.Seed);
@@ -298,7 +328,7 @@ struct Columns
   vtkStringArray *Parameter, *Value;
   vtkDoubleArray *PipelineSeconds, *PipelineMae, *TracerSeconds, *TracerMae, *ShMae;
   vtkIntArray *Spp, *Finite;
-  vtkDoubleArray *PipelineBlock, *TracerBlock, *ShBlock;
+  vtkDoubleArray *PipelineBlock, *TracerBlock, *ShBlock, *ReferenceNoise;
 
   explicit Columns(vtkTable* table)
   {
@@ -315,6 +345,7 @@ struct Columns
     this->PipelineBlock = T::AddColumn<vtkDoubleArray>(table, "pipeline_block_error");
     this->TracerBlock = T::AddColumn<vtkDoubleArray>(table, "pathtracer_block_error");
     this->ShBlock = T::AddColumn<vtkDoubleArray>(table, "pipeline_sh_block_error");
+    this->ReferenceNoise = T::AddColumn<vtkDoubleArray>(table, "reference_noise");
   }
 
   void Add(const Case& k, const Row& row)
@@ -330,6 +361,7 @@ struct Columns
     this->PipelineBlock->InsertNextValue(row.PipelineBlock);
     this->TracerBlock->InsertNextValue(row.TracerBlock);
     this->ShBlock->InsertNextValue(row.ShBlock);
+    this->ReferenceNoise->InsertNextValue(row.ReferenceNoise);
     // Last: the first column counts the table's rows.
     this->Parameter->InsertNextValue(k.Parameter);
   }
@@ -342,6 +374,7 @@ vtkBrumeStabilitySweep::~vtkBrumeStabilitySweep()
 {
   this->SetMediumName(nullptr);
   this->SetSurfaceName(nullptr);
+  this->SetParameter(nullptr);
 }
 
 bool vtkBrumeStabilitySweep::FindMedium(vtkDataObject* input, int& index)
@@ -473,6 +506,19 @@ int vtkBrumeStabilitySweep::RequestData(
   {
     AddSurfaceCases(cases, surface, this->ChosenSurface, particles);
   }
+  if (this->Parameter && *this->Parameter)
+  {
+    const std::string wanted = this->Parameter;
+    cases.erase(std::remove_if(
+                  cases.begin(), cases.end(), [&](const Case& k) { return k.Parameter != wanted; }),
+      cases.end());
+    if (cases.empty())
+    {
+      vtkErrorMacro("No case of the sweep varies '"
+        << wanted << "' (g, optical thickness, albedo, particles, or the surface's name).");
+      return 0;
+    }
+  }
 
   const vtkSmartPointer<vtkCamera> camera = vtkBrumeEvaluationView::Camera(scene, this->Camera);
   const Settings settings{ camera, this->Size, this->RadiosityThreshold, this->Seed,
@@ -535,5 +581,6 @@ void vtkBrumeStabilitySweep::PrintSelf(ostream& os, vtkIndent indent)
   auto text = [](const char* s) { return s ? s : ""; };
   os << indent << "MediumName: " << text(this->MediumName) << "\n";
   os << indent << "SurfaceName: " << text(this->SurfaceName) << "\n";
+  os << indent << "Parameter: " << text(this->Parameter) << "\n";
   os << indent << "AllFinite: " << this->AllFinite << "\n";
 }

@@ -40,8 +40,15 @@
  * `pathtracer_seconds`, `pathtracer_rel_mae`, `finite` (1 when no image
  * of the case holds a NaN or an infinity), `pipeline_sh_rel_mae`, then
  * the block errors (vtkBrumeImageError) `pipeline_block_error`,
- * `pathtracer_block_error`, `pipeline_sh_block_error`. Rows are appended
- * as they are measured, each followed by a progress event.
+ * `pathtracer_block_error`, `pipeline_sh_block_error`, and
+ * `reference_noise`: the reference's own noise as a relative MAE sees it
+ * (sqrt(2/pi) times its pixels' standard errors over its mean radiance),
+ * about what an image equal to the truth would score; a case whose errors
+ * come near it needs a reference with more samples (ReferenceSamples).
+ * Rows are appended as they are measured, each followed by a progress
+ * event. With Parameter set, only that parameter's cases run (the
+ * `parameter` column's value: `g`, `optical thickness`, `albedo`,
+ * `particles`, or the surface's name).
  *
  * Converged references are cached under CacheKey (default: SceneName),
  * followed by `-sweep-`, the medium's name for the medium cases, the
@@ -70,6 +77,12 @@ public:
   vtkGetStringMacro(MediumName);
   vtkSetStringMacro(SurfaceName);
   vtkGetStringMacro(SurfaceName);
+  ///@}
+
+  ///@{
+  /// Only the cases of this parameter (default empty: every case).
+  vtkSetStringMacro(Parameter);
+  vtkGetStringMacro(Parameter);
   ///@}
 
   ///@{
@@ -104,6 +117,7 @@ protected:
 
   char* MediumName = nullptr;
   char* SurfaceName = nullptr;
+  char* Parameter = nullptr;
   bool AllFinite = true;
   std::string ChosenMedium;
   std::string ChosenSurface;
