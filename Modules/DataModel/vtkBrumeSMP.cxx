@@ -4,6 +4,7 @@
 #include "vtkSMPTools.h"
 
 #include <cstdlib>
+#include <cstring>
 
 void vtkBrumeSMP::UseAllCores()
 {
@@ -13,6 +14,17 @@ void vtkBrumeSMP::UseAllCores()
   }
   const char* max = std::getenv("VTK_SMP_MAX_THREADS");
   vtkSMPTools::Initialize(max ? std::atoi(max) : 0);
+}
+
+bool vtkBrumeSMP::UseAllCoresUnlessChosen()
+{
+  const char* backend = vtkSMPTools::GetBackend();
+  if (std::getenv("VTK_SMP_BACKEND_IN_USE") || !backend || std::strcmp(backend, "Sequential") != 0)
+  {
+    return false;
+  }
+  vtkBrumeSMP::UseAllCores();
+  return std::strcmp(vtkSMPTools::GetBackend(), "Sequential") != 0;
 }
 
 brume::ParallelFor vtkBrumeSMP::ParallelFor()

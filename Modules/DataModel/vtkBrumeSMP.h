@@ -27,6 +27,15 @@ public:
    * VTK_SMP_MAX_THREADS).
    */
   static void UseAllCores();
+
+  /**
+   * For libraries (the Python package, the ParaView plugin), which share
+   * the process with their user: UseAllCores() only when the user has not
+   * chosen (no VTK_SMP_BACKEND_IN_USE) and the backend is still VTK's
+   * Sequential default, which would run every phase on one core. Returns
+   * whether it switched.
+   */
+  static bool UseAllCoresUnlessChosen();
 };
 
 #endif

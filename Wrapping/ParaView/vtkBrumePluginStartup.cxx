@@ -12,6 +12,7 @@
 
 #include "vtkBrumeCameraFollower.h"
 #include "vtkBrumeRenderWindowSelection.h"
+#include "vtkBrumeSMP.h"
 #include "vtkOutputWindow.h"
 
 #include <string>
@@ -24,4 +25,7 @@ void BrumePluginStartup()
       ("Brume: " + std::string(vtkBrumeRenderWindowSelection::GetLastError()) + ".\n").c_str());
   }
   vtkBrumeCameraFollower::Install();
+  // Debian's ParaView leaves vtkSMPTools on its Sequential backend: every
+  // phase would run on one core.
+  vtkBrumeSMP::UseAllCoresUnlessChosen();
 }

@@ -1,5 +1,7 @@
 """pvbatch: load the Brume plugin, build the default scene's pipeline from
-proxies, render the particle hits and compare with a baseline image.
+proxies, render the particle hits and compare with a baseline image. The
+plugin leaves VTK's Sequential default backend for STDThread (every core),
+unless VTK_SMP_BACKEND_IN_USE chose one.
 
 usage: pvbatch TestBrumePlugin.py PLUGIN BASELINE OUTPUT_DIR
 """
@@ -16,6 +18,11 @@ plugin, baseline, output_dir = sys.argv[1:4]
 start = time.time()
 LoadPlugin(plugin, ns=globals())
 print("plugin loaded in %.3f s" % (time.time() - start))
+from vtkmodules.vtkCommonCore import vtkSMPTools  # noqa: E402
+
+backend = vtkSMPTools.GetBackend()
+print("vtkSMPTools backend", backend, "threads", vtkSMPTools.GetEstimatedNumberOfThreads())
+assert backend != "Sequential" or os.environ.get("VTK_SMP_BACKEND_IN_USE"), backend
 
 scene = BrumeDefaultScene()
 tracer = BrumeLightTracer(Input=scene)

@@ -37,4 +37,23 @@ if not vtkBrumeRenderWindowSelection.Install():  # noqa: F405
 
     warnings.warn("brume: " + vtkBrumeRenderWindowSelection.GetLastError())  # noqa: F405
 
+# VTK's default vtkSMPTools backend here is Sequential, which would run every
+# phase on one core: unless the user chose one (VTK_SMP_BACKEND_IN_USE, or
+# vtkSMPTools.SetBackend after this import), Brume's filters use the
+# STDThread backend on every core (VTK_SMP_MAX_THREADS caps the count), as
+# the brume program does. Results do not depend on the number of threads.
+def _use_all_cores():
+    import os
+
+    from vtkmodules.vtkCommonCore import vtkSMPTools
+
+    if os.environ.get("VTK_SMP_BACKEND_IN_USE") or vtkSMPTools.GetBackend() != "Sequential":
+        return
+    if vtkSMPTools.SetBackend("STDThread"):
+        maximum = os.environ.get("VTK_SMP_MAX_THREADS", "")
+        vtkSMPTools.Initialize(int(maximum) if maximum.isdigit() else 0)
+
+
+_use_all_cores()
+
 __version__ = "0.1.0"
