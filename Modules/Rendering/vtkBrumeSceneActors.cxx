@@ -3,11 +3,15 @@
 
 #include "vtkActor.h"
 #include "vtkBrumeSliceVolumeMapper.h"
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkObjectFactory.h"
 #include "vtkPartitionedDataSet.h"
 #include "vtkPartitionedDataSetCollection.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkPropCollection.h"
@@ -17,6 +21,8 @@
 #include "vtkTexture.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
+
+#include <cstring>
 
 vtkStandardNewMacro(vtkBrumeSceneActors);
 
@@ -28,6 +34,83 @@ vtkImageData* NativeExtinction(vtkPartitionedDataSet* pds)
 {
   return pds->GetNumberOfPartitions() >= 2 ? vtkImageData::SafeDownCast(pds->GetPartition(1))
                                            : nullptr;
+}
+
+bool SameArray(vtkDataArray* x, vtkDataArray* y)
+{
+  return x && y && x->GetDataType() == y->GetDataType() &&
+    x->GetNumberOfComponents() == y->GetNumberOfComponents() &&
+    x->GetNumberOfTuples() == y->GetNumberOfTuples() &&
+    (x->GetNumberOfValues() == 0 ||
+      std::memcmp(x->GetVoidPointer(0), y->GetVoidPointer(0),
+        static_cast<std::size_t>(x->GetNumberOfValues()) * x->GetDataTypeSize()) == 0);
+}
+
+bool SameArrays(vtkFieldData* a, vtkFieldData* b)
+{
+  if (!a || !b || a->GetNumberOfArrays() != b->GetNumberOfArrays())
+  {
+    return a == b;
+  }
+  for (int i = 0; i < a->GetNumberOfArrays(); ++i)
+  {
+    vtkDataArray* x = a->GetArray(i);
+    if (!x)
+    {
+      continue; // string arrays (the objects' kinds) are the layout's
+    }
+    if (!SameArray(x, x->GetName() ? b->GetArray(x->GetName()) : nullptr))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+// Whether two data sets of a texture collection hold the same geometry
+// and the same bytes (images: extent, origin, spacing; surfaces: points
+// and polygons; every point, cell and field data array).
+bool SameDataSet(vtkDataObject* a, vtkDataObject* b)
+{
+  if (a == b)
+  {
+    return true;
+  }
+  auto* x = vtkDataSet::SafeDownCast(a);
+  auto* y = vtkDataSet::SafeDownCast(b);
+  if (!x || !y || x->GetDataObjectType() != y->GetDataObjectType() ||
+    !SameArrays(x->GetPointData(), y->GetPointData()) ||
+    !SameArrays(x->GetCellData(), y->GetCellData()) ||
+    !SameArrays(x->GetFieldData(), y->GetFieldData()))
+  {
+    return false;
+  }
+  if (auto* image = vtkImageData::SafeDownCast(x))
+  {
+    auto* other = vtkImageData::SafeDownCast(y);
+    for (int i = 0; i < 6; ++i)
+    {
+      if (image->GetExtent()[i] != other->GetExtent()[i] ||
+        (i < 3 &&
+          (image->GetOrigin()[i] != other->GetOrigin()[i] ||
+            image->GetSpacing()[i] != other->GetSpacing()[i])))
+      {
+        return false;
+      }
+    }
+    return true;
+  }
+  auto* surface = vtkPolyData::SafeDownCast(x);
+  auto* other = vtkPolyData::SafeDownCast(y);
+  if (!surface || !surface->GetPoints() || !other->GetPoints() || !surface->GetPolys() ||
+    !other->GetPolys())
+  {
+    return false;
+  }
+  return SameArray(surface->GetPoints()->GetData(), other->GetPoints()->GetData()) &&
+    SameArray(
+      surface->GetPolys()->GetConnectivityArray(), other->GetPolys()->GetConnectivityArray()) &&
+    SameArray(surface->GetPolys()->GetOffsetsArray(), other->GetPolys()->GetOffsetsArray());
 }
 
 std::string KindOf(vtkDataObject* data)
@@ -183,30 +266,49 @@ bool vtkBrumeSceneActors::UpdateInputs(vtkPartitionedDataSetCollection* textures
       return false;
     }
   }
+  // A prop keeps the data set it shows when the new one holds the same
+  // geometry and bytes (textures delivered from a ParaView server are new
+  // objects every time): only changed data sets are uploaded again.
+  int changed = 0;
+  auto take = [&changed](vtkDataObject* shown, vtkDataObject* next)
+  {
+    if (shown != next && !(shown && next && SameDataSet(next, shown)))
+    {
+      ++changed;
+      return true;
+    }
+    return false;
+  };
   for (const Entry& e : this->Entries)
   {
     vtkPartitionedDataSet* pds = textures->GetPartitionedDataSet(e.Index);
     auto* image = vtkImageData::SafeDownCast(pds->GetPartition(0));
     if (e.Texture)
     {
-      if (e.Texture->GetInput() != image)
+      if (take(e.Texture->GetInput(), image))
       {
         e.Texture->SetInputData(image);
       }
-      if (e.Surface->GetInput() != pds->GetPartition(1))
+      auto* surface = vtkPolyData::SafeDownCast(pds->GetPartition(1));
+      if (take(e.Surface->GetInput(), surface))
       {
-        e.Surface->SetInputData(vtkPolyData::SafeDownCast(pds->GetPartition(1)));
+        e.Surface->SetInputData(surface);
       }
     }
     else
     {
-      if (e.Slices->GetInput() != image)
+      if (take(e.Slices->GetInput(), image))
       {
         e.Slices->SetInputData(image);
       }
-      e.Slices->SetExtinctionData(NativeExtinction(pds));
+      vtkImageData* extinction = NativeExtinction(pds);
+      if (take(e.Slices->GetExtinctionData(), extinction))
+      {
+        e.Slices->SetExtinctionData(extinction);
+      }
     }
   }
+  this->NumberOfChangedDataSets = changed;
   this->Input = textures;
   return true;
 }

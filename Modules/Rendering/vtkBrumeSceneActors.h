@@ -84,11 +84,17 @@ public:
   /**
    * Points the props made by AddToRenderer() at `textures`, a newer output
    * of the same reconstruction (same objects, in the same order), and makes
-   * it the input. Only the textures that are new objects are uploaded again:
-   * after a view change, those of the view-dependent objects. Returns false,
-   * with an error, when the objects do not match the props.
+   * it the input. Only the data sets that changed are uploaded again: after
+   * a view change, those of the view-dependent objects. A new object that
+   * holds the same geometry and bytes as the one a prop shows (the same
+   * textures sent again by a ParaView server) leaves the prop as it is.
+   * Returns false, with an error, when the objects do not match the props.
    */
   bool UpdateInputs(vtkPartitionedDataSetCollection* textures);
+
+  /// The data sets (images, surfaces, extinction grids) the last
+  /// UpdateInputs() changed in the props; -1 before the first.
+  vtkGetMacro(NumberOfChangedDataSets, int);
 
   /// Shows or hides the media's volumes made by AddToRenderer().
   void SetMediaVisibility(bool visible);
@@ -141,6 +147,7 @@ protected:
   ~vtkBrumeSceneActors() override;
 
   vtkSmartPointer<vtkPartitionedDataSetCollection> Input;
+  int NumberOfChangedDataSets = -1;
   vtkSmartPointer<vtkPropCollection> Props;
   bool ShowMedia = true;
   bool BackfaceCulling = true;

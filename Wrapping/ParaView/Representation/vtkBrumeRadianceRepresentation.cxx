@@ -5,8 +5,6 @@
 #include "vtkBrumeRadianceReconstruction.h"
 #include "vtkBrumeSceneActors.h"
 #include "vtkCamera.h"
-#include "vtkCellArray.h"
-#include "vtkCellData.h"
 #include "vtkCommand.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -20,14 +18,10 @@
 #include "vtkPVRenderView.h"
 #include "vtkPartitionedDataSet.h"
 #include "vtkPartitionedDataSetCollection.h"
-#include "vtkPointData.h"
-#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkProcessModule.h"
 #include "vtkPropCollection.h"
 #include "vtkRenderer.h"
-
-#include <cstring>
 
 vtkStandardNewMacro(vtkBrumeRadianceRepresentation);
 
@@ -120,83 +114,6 @@ vtkBrumeRadianceReconstruction* FindReconstruction(vtkAlgorithm* algorithm)
       : nullptr;
   }
   return nullptr;
-}
-
-bool SameArray(vtkDataArray* x, vtkDataArray* y)
-{
-  return x && y && x->GetDataType() == y->GetDataType() &&
-    x->GetNumberOfComponents() == y->GetNumberOfComponents() &&
-    x->GetNumberOfTuples() == y->GetNumberOfTuples() &&
-    (x->GetNumberOfValues() == 0 ||
-      std::memcmp(x->GetVoidPointer(0), y->GetVoidPointer(0),
-        static_cast<std::size_t>(x->GetNumberOfValues()) * x->GetDataTypeSize()) == 0);
-}
-
-bool SameArrays(vtkFieldData* a, vtkFieldData* b)
-{
-  if (!a || !b || a->GetNumberOfArrays() != b->GetNumberOfArrays())
-  {
-    return a == b;
-  }
-  for (int i = 0; i < a->GetNumberOfArrays(); ++i)
-  {
-    vtkDataArray* x = a->GetArray(i);
-    if (!x)
-    {
-      continue; // string arrays (the objects' kinds) are the layout's
-    }
-    if (!SameArray(x, x->GetName() ? b->GetArray(x->GetName()) : nullptr))
-    {
-      return false;
-    }
-  }
-  return true;
-}
-
-// Whether two data sets of a texture collection hold the same geometry
-// and the same bytes (images: extent, origin, spacing; surfaces: points
-// and polygons; every point, cell and field data array).
-bool SameDataSet(vtkDataObject* a, vtkDataObject* b)
-{
-  if (a == b)
-  {
-    return true;
-  }
-  auto* x = vtkDataSet::SafeDownCast(a);
-  auto* y = vtkDataSet::SafeDownCast(b);
-  if (!x || !y || x->GetDataObjectType() != y->GetDataObjectType() ||
-    !SameArrays(x->GetPointData(), y->GetPointData()) ||
-    !SameArrays(x->GetCellData(), y->GetCellData()) ||
-    !SameArrays(x->GetFieldData(), y->GetFieldData()))
-  {
-    return false;
-  }
-  if (auto* image = vtkImageData::SafeDownCast(x))
-  {
-    auto* other = vtkImageData::SafeDownCast(y);
-    for (int i = 0; i < 6; ++i)
-    {
-      if (image->GetExtent()[i] != other->GetExtent()[i] ||
-        (i < 3 &&
-          (image->GetOrigin()[i] != other->GetOrigin()[i] ||
-            image->GetSpacing()[i] != other->GetSpacing()[i])))
-      {
-        return false;
-      }
-    }
-    return true;
-  }
-  auto* surface = vtkPolyData::SafeDownCast(x);
-  auto* other = vtkPolyData::SafeDownCast(y);
-  if (!surface || !surface->GetPoints() || !other->GetPoints() || !surface->GetPolys() ||
-    !other->GetPolys())
-  {
-    return false;
-  }
-  return SameArray(surface->GetPoints()->GetData(), other->GetPoints()->GetData()) &&
-    SameArray(
-      surface->GetPolys()->GetConnectivityArray(), other->GetPolys()->GetConnectivityArray()) &&
-    SameArray(surface->GetPolys()->GetOffsetsArray(), other->GetPolys()->GetOffsetsArray());
 }
 
 int ViewDependentObjects(vtkPartitionedDataSetCollection* textures)
@@ -389,38 +306,16 @@ void vtkBrumeRadianceRepresentation::Show(vtkPartitionedDataSetCollection* textu
   // are uploaded again). Other objects: new props.
   // The actors keep the representation's settings (its setters pass them on).
   const std::string layout = LayoutOf(textures);
-  if (this->Shown && this->Shown != textures && this->ShownLayout == layout)
+  const bool newTextures = this->Shown && this->Shown != textures;
+  if (this->Shown && this->ShownLayout == layout && this->Actors->UpdateInputs(textures))
   {
-    // Data sets equal to those shown keep the shown objects (textures
-    // delivered from a server are new objects every time).
-    auto merged = vtkSmartPointer<vtkPartitionedDataSetCollection>::New();
-    merged->ShallowCopy(textures);
-    int changed = 0;
-    for (unsigned int i = 0; i < merged->GetNumberOfPartitionedDataSets(); ++i)
+    if (newTextures)
     {
-      vtkPartitionedDataSet* now = merged->GetPartitionedDataSet(i);
-      vtkPartitionedDataSet* before = this->Shown->GetPartitionedDataSet(i);
-      for (unsigned int j = 0; j < now->GetNumberOfPartitions(); ++j)
-      {
-        vtkDataObject* shown = before && j < before->GetNumberOfPartitions()
-          ? before->GetPartitionAsDataObject(j)
-          : nullptr;
-        if (shown && SameDataSet(now->GetPartitionAsDataObject(j), shown))
-        {
-          now->SetPartition(j, shown);
-        }
-        else
-        {
-          ++changed;
-        }
-      }
+      int changed = this->Actors->GetNumberOfChangedDataSets();
+      this->InvokeEvent(TexturesShownEvent, &changed);
     }
-    this->NumberOfChangedDataSets = changed;
-    this->InvokeEvent(TexturesShownEvent, &changed);
-    this->Merged = merged;
-    textures = merged;
   }
-  if (!this->Shown || this->ShownLayout != layout || !this->Actors->UpdateInputs(textures))
+  else
   {
     this->Actors->RemoveFromRenderer(this->Renderer);
     this->Actors->SetInputData(textures);
@@ -440,7 +335,6 @@ void vtkBrumeRadianceRepresentation::Hide()
 {
   this->Actors->RemoveFromRenderer(this->Renderer);
   this->Shown = nullptr;
-  this->Merged = nullptr;
 }
 
 void vtkBrumeRadianceRepresentation::Warn(const std::string& message)

@@ -107,15 +107,12 @@ public:
   ///@}
 
   /**
-   * How many of the textures' data sets (images, surfaces, extinction
-   * grids) the last new textures changed, of those shown before: the props
-   * upload only these again. Textures delivered from a server are new
-   * objects each time; those equal to what is shown (same geometry, same
-   * bytes) keep the shown ones. -1 before textures were shown twice.
-   * Each such render also fires TexturesShownEvent with this number (an
-   * int) as call data.
+   * Fired by a render that shows new textures in the props already made,
+   * with the number of data sets they changed (an int, call data:
+   * vtkBrumeSceneActors::GetNumberOfChangedDataSets): only those are
+   * uploaded again. Textures delivered from a server are new objects each
+   * time; those equal to what is shown keep the shown ones.
    */
-  vtkGetMacro(NumberOfChangedDataSets, int);
   static constexpr unsigned long TexturesShownEvent = vtkCommand::UserEvent + 1;
 
 protected:
@@ -147,10 +144,6 @@ private:
   vtkSmartPointer<vtkBrumeSceneActors> Actors;
   vtkWeakPointer<vtkRenderer> Renderer;
   vtkWeakPointer<vtkPartitionedDataSetCollection> Shown;
-  // The textures shown when some delivered data sets were replaced by the
-  // equal ones shown before.
-  vtkSmartPointer<vtkPartitionedDataSetCollection> Merged;
-  int NumberOfChangedDataSets = -1;
   std::string ShownLayout;                          // the objects' kinds of Shown, in order
   vtkWeakPointer<vtkObject> FollowedReconstruction; // given the view's camera
   std::string LastWarning;

@@ -1,0 +1,67 @@
+"""vtkBrumeSceneActors.UpdateInputs: a prop keeps the data set it shows when
+the new one holds the same geometry and bytes, and takes any that differ.
+
+usage: python3 TestSceneActorsUpdate.py
+"""
+import sys
+
+import brume
+from vtkmodules.vtkCommonDataModel import vtkPartitionedDataSetCollection
+from vtkmodules.vtkRenderingCore import vtkCamera, vtkRenderer
+
+failures = []
+
+
+def check(ok, what):
+    print(("ok: " if ok else "FAILED: ") + what)
+    if not ok:
+        failures.append(what)
+
+
+scene = brume.vtkBrumeDefaultSceneSource()
+tracer = brume.vtkBrumeLightTracer()
+tracer.SetInputConnection(scene.GetOutputPort())
+tracer.SetNumberOfParticles(20000)
+reconstruction = brume.vtkBrumeRadianceReconstruction()
+reconstruction.SetInputConnection(0, scene.GetOutputPort())
+reconstruction.SetInputConnection(1, tracer.GetOutputPort())
+camera = vtkCamera()
+brume.vtkBrumeSceneCamera.SetToDefault(camera)
+reconstruction.SetCamera(camera)
+reconstruction.Update()
+first = vtkPartitionedDataSetCollection()
+first.ShallowCopy(reconstruction.GetOutput())
+
+actors = brume.vtkBrumeSceneActors()
+actors.SetInputData(first)
+renderer = vtkRenderer()
+check(actors.AddToRenderer(renderer), "the props are made")
+check(actors.GetNumberOfChangedDataSets() == -1, "no update yet")
+
+# The same textures as new objects (as a ParaView server sends them again).
+copy = vtkPartitionedDataSetCollection()
+copy.DeepCopy(first)
+check(actors.UpdateInputs(copy), "a copy is accepted")
+check(actors.GetNumberOfChangedDataSets() == 0,
+      "a copy changes nothing (%d)" % actors.GetNumberOfChangedDataSets())
+
+# One texel of one surface's texture differs: that image alone is taken.
+edited = vtkPartitionedDataSetCollection()
+edited.DeepCopy(first)
+radiance = edited.GetPartitionedDataSet(0).GetPartition(0).GetPointData().GetArray("Radiance")
+radiance.SetComponent(0, 0, radiance.GetComponent(0, 0) + 1.0)
+check(actors.UpdateInputs(edited), "an edited copy is accepted")
+check(actors.GetNumberOfChangedDataSets() == 1,
+      "one edited texel changes one data set (%d)" % actors.GetNumberOfChangedDataSets())
+
+# The camera turns: the fog's texture (per view) alone changes.
+camera.Azimuth(10.0)
+reconstruction.Update()
+turned = vtkPartitionedDataSetCollection()
+turned.DeepCopy(reconstruction.GetOutput())
+check(actors.UpdateInputs(turned), "the turned textures are accepted")
+check(actors.GetNumberOfChangedDataSets() == 2,
+      "the turn changes the edited surface back and the fog (%d)"
+      % actors.GetNumberOfChangedDataSets())
+print("%d check(s) failed" % len(failures) if failures else "all checks passed")
+sys.exit(1 if failures else 0)
