@@ -226,6 +226,14 @@ void AddView(CLI::App& app, ViewOptions& o)
   exitAfter->transform(Integer(1, 100000, "a number of frames in [1, 100000]"))->type_name("N");
   view->add_flag_callback(
     "--no-overlay", [&o]() { o.Overlay = false; }, "hide the text overlay");
+  view
+    ->add_option("--moving-sample-distance", o.MovingSampleDistance,
+      "while the camera moves (and during --orbit), draw the\n"
+      "media D times coarser along each axis, then upsample\n"
+      "them (1 to 16; default 2; 1: full resolution); at\n"
+      "rest they are drawn at full resolution")
+    ->transform(Number(1.0, 16.0, "a number in [1, 16]"))
+    ->type_name("D");
   CLI::Option* orbit = view->add_option("--orbit", o.Orbit,
     "render N frames around the focal point (off screen, no\n"
     "window interaction; X or EGL) and print\n"

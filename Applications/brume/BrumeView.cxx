@@ -26,8 +26,8 @@
 #include "vtkWindowToImageFilter.h"
 
 #include <algorithm>
-#include <cmath>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -269,6 +269,24 @@ public:
     }
   }
 
+  // The image sample distance the media were last drawn at (1 without media).
+  double DrawnSampleDistance()
+  {
+    double distance = 1.0;
+    vtkPropCollection* props = this->Actors->GetProps();
+    props->InitTraversal();
+    while (vtkProp* prop = props->GetNextProp())
+    {
+      if (auto* volume = vtkVolume::SafeDownCast(prop))
+      {
+        distance = std::max(distance,
+          static_cast<vtkBrumeSliceVolumeMapper*>(volume->GetMapper())
+            ->GetLastImageSampleDistance());
+      }
+    }
+    return distance;
+  }
+
   void ShowOverlay()
   {
     char text[512];
@@ -310,6 +328,8 @@ int Orbit(Viewer& viewer, const ViewOptions& options)
       return 1;
     }
   }
+  // The camera moves all along: the media at the moving sample distance.
+  viewer.Actors->SetImageSampleDistance(options.MovingSampleDistance);
   // The first frame compiles shaders and uploads every texture: not counted.
   if (!viewer.Frame())
   {
@@ -357,12 +377,12 @@ int Orbit(Viewer& viewer, const ViewOptions& options)
     }
     viewer.ShowOverlay();
   }
-  std::printf("orbit: %d frames at %dx%d, media %s, %s particles\n", options.Orbit,
-    options.Render.Width, options.Render.Height,
+  std::printf("orbit: %d frames at %dx%d, media %s at image sample distance %g, %s particles\n",
+    options.Orbit, options.Render.Width, options.Render.Height,
     !reconstruction->GetDirectionalRadiance() ? "per view (paper)"
       : options.PerFragment                   ? "spherical harmonics (per fragment)"
                                               : "spherical harmonics (per voxel)",
-    Thousands(viewer.Particles).c_str());
+    viewer.DrawnSampleDistance(), Thousands(viewer.Particles).c_str());
   std::printf("per frame        median (ms)   95th percentile (ms)\n");
   std::printf("update           %11.2f   %20.2f\n", Quantile(update, 0.5), Quantile(update, 0.95));
   std::printf("render           %11.2f   %20.2f\n", Quantile(render, 0.5), Quantile(render, 0.95));
@@ -460,6 +480,21 @@ int RunView(const ViewOptions& options)
     });
   viewer.Window->AddObserver(vtkCommand::StartEvent, before);
   viewer.Window->AddObserver(vtkCommand::EndEvent, after);
+  // While the camera moves the media are drawn coarser; the style renders
+  // once more at full resolution when the button is released.
+  vtkNew<vtkCallbackCommand> moving, still;
+  moving->SetClientData(&viewer);
+  moving->SetCallback(
+    [](vtkObject*, unsigned long, void* data, void*)
+    {
+      auto* view = static_cast<Viewer*>(data);
+      view->Actors->SetImageSampleDistance(view->Options.MovingSampleDistance);
+    });
+  still->SetClientData(&viewer);
+  still->SetCallback([](vtkObject*, unsigned long, void* data, void*)
+    { static_cast<Viewer*>(data)->Actors->SetImageSampleDistance(1.0); });
+  style->AddObserver(vtkCommand::StartInteractionEvent, moving);
+  style->AddObserver(vtkCommand::EndInteractionEvent, still);
   // Before the style's own keys (p picks, s shows surfaces).
   interactor->AddObserver(vtkCommand::CharEvent, keys, 1.0);
   interactor->Initialize();

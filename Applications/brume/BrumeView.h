@@ -9,7 +9,7 @@
 
 struct ViewOptions
 {
-  RenderOptions Render;    // scene, particles, seed, size, exposure, threshold
+  RenderOptions Render;     // scene, particles, seed, size, exposure, threshold
   bool Directional = false; // spherical-harmonics media instead of per-view textures
   int Order = 3;            // their order
   bool PerFragment = false; // evaluated in the slice shader rather than per voxel
@@ -19,6 +19,7 @@ struct ViewOptions
   std::string Keys;         // keys pressed before the orbit or the interaction
   bool Overlay = true;      // the text overlay
   int ExitAfter = 0;        // interactive: quit after so many timer-driven frames (0: never)
+  double MovingSampleDistance = 2.0; // the media's image sample distance while the camera moves
 };
 
 /// Runs the viewer; returns the process exit code.

@@ -22,6 +22,7 @@
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 
+#include <algorithm>
 #include <cstring>
 
 vtkStandardNewMacro(vtkBrumeSceneActors);
@@ -225,6 +226,7 @@ bool vtkBrumeSceneActors::AddToRenderer(vtkRenderer* renderer)
       mapper->SetSliceSpacing(this->SliceSpacing);
       mapper->SetRadianceScale(this->Exposure);
       mapper->SetWriteDepth(this->MediaWriteDepth);
+      mapper->SetImageSampleDistance(this->ImageSampleDistance);
       vtkNew<vtkVolume> volume;
       volume->SetMapper(mapper);
       volume->GetProperty()->SetInterpolationType(
@@ -337,38 +339,44 @@ void vtkBrumeSceneActors::SetSurfaceVisibility(bool visible)
   }
 }
 
-void vtkBrumeSceneActors::SetSliceSpacing(double spacing)
+void vtkBrumeSceneActors::ApplyToMedia(const std::function<void(vtkBrumeSliceVolumeMapper*)>& apply)
 {
-  if (this->SliceSpacing == spacing)
-  {
-    return;
-  }
-  this->SliceSpacing = spacing;
   for (const Entry& e : this->Entries)
   {
     if (e.Slices)
     {
-      e.Slices->SetSliceSpacing(spacing);
+      apply(e.Slices);
     }
   }
   this->Modified();
 }
 
+void vtkBrumeSceneActors::SetSliceSpacing(double spacing)
+{
+  if (this->SliceSpacing != spacing)
+  {
+    this->SliceSpacing = spacing;
+    this->ApplyToMedia([=](vtkBrumeSliceVolumeMapper* m) { m->SetSliceSpacing(spacing); });
+  }
+}
+
 void vtkBrumeSceneActors::SetMediaWriteDepth(bool write)
 {
-  if (this->MediaWriteDepth == write)
+  if (this->MediaWriteDepth != write)
   {
-    return;
+    this->MediaWriteDepth = write;
+    this->ApplyToMedia([=](vtkBrumeSliceVolumeMapper* m) { m->SetWriteDepth(write); });
   }
-  this->MediaWriteDepth = write;
-  for (const Entry& e : this->Entries)
+}
+
+void vtkBrumeSceneActors::SetImageSampleDistance(double distance)
+{
+  distance = std::min(16.0, std::max(1.0, distance));
+  if (this->ImageSampleDistance != distance)
   {
-    if (e.Slices)
-    {
-      e.Slices->SetWriteDepth(write);
-    }
+    this->ImageSampleDistance = distance;
+    this->ApplyToMedia([=](vtkBrumeSliceVolumeMapper* m) { m->SetImageSampleDistance(distance); });
   }
-  this->Modified();
 }
 
 void vtkBrumeSceneActors::SetInterpolate(bool interpolate)
@@ -458,6 +466,7 @@ void vtkBrumeSceneActors::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BackfaceCulling: " << this->BackfaceCulling << "\n";
   os << indent << "SliceSpacing: " << this->SliceSpacing << "\n";
   os << indent << "MediaWriteDepth: " << this->MediaWriteDepth << "\n";
+  os << indent << "ImageSampleDistance: " << this->ImageSampleDistance << "\n";
   os << indent << "Interpolate: " << this->Interpolate << "\n";
   os << indent << "Exposure: " << this->Exposure << "\n";
   os << indent << "Input: " << this->Input.Get() << "\n";

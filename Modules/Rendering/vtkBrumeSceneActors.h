@@ -25,8 +25,11 @@
 #include "vtkObject.h"
 #include "vtkSmartPointer.h" // For members
 
-#include <string> // For GetObjectKind
-#include <vector> // For the entries
+#include <functional> // For ApplyToMedia
+#include <string>     // For GetObjectKind
+#include <vector>     // For the entries
+
+class vtkBrumeSliceVolumeMapper;
 
 class vtkDataObject;
 class vtkPartitionedDataSetCollection;
@@ -132,6 +135,16 @@ public:
 
   ///@{
   /**
+   * The media's resolution on screen (vtkBrumeSliceVolumeMapper::
+   * SetImageSampleDistance; default 1, the window's), those made already
+   * included: 2 draws a quarter of the slices' fragments, for interaction.
+   */
+  void SetImageSampleDistance(double distance);
+  vtkGetMacro(ImageSampleDistance, double);
+  ///@}
+
+  ///@{
+  /**
    * The media's slices write their depth (vtkBrumeSliceVolumeMapper::
    * SetWriteDepth; default off), those made already included.
    */
@@ -155,10 +168,13 @@ protected:
   bool Interpolate = true;
   double Exposure = 1.0;
   bool MediaWriteDepth = false;
+  double ImageSampleDistance = 1.0;
 
 private:
   struct Entry;
   std::vector<Entry> Entries;
+  // Calls `apply` on the mapper of every medium made, then Modified().
+  void ApplyToMedia(const std::function<void(vtkBrumeSliceVolumeMapper*)>& apply);
 
   vtkBrumeSceneActors(const vtkBrumeSceneActors&) = delete;
   void operator=(const vtkBrumeSceneActors&) = delete;

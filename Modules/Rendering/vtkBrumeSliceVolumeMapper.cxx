@@ -195,6 +195,8 @@ void vtkBrumeSliceVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RadianceScale: " << this->RadianceScale << "\n";
   os << indent << "DirectionalEvaluation: "
      << (this->DirectionalEvaluation == PerVoxel ? "PerVoxel" : "PerFragment") << "\n";
+  os << indent << "ImageSampleDistance: " << this->ImageSampleDistance << "\n";
+  os << indent << "LastImageSampleDistance: " << this->LastImageSampleDistance << "\n";
   os << indent << "LastNumberOfSlices: " << this->LastNumberOfSlices << "\n";
   os << indent << "ExtinctionData: " << this->ExtinctionData.GetPointer() << "\n";
 }

@@ -78,6 +78,31 @@ public:
 
   ///@{
   /**
+   * The media's resolution on screen, as vtkGPUVolumeRayCastMapper's
+   * ImageSampleDistance: 1 (the default) draws the slices at the window's
+   * own resolution; D > 1 (at most 16) draws them into a buffer D times
+   * coarser along each axis (about 1/D^2 of the fragments, which the
+   * slices' cost follows), then upsamples it over the window: each pixel
+   * takes the four nearest coarse pixels bilinearly where their depths
+   * agree with its own, else the one nearest in depth, so opaque objects'
+   * silhouettes in front of or inside a medium stay sharp. What the medium
+   * itself holds finer than D pixels is blurred. For interaction, as
+   * `brume view` does while the camera moves; images to compare keep 1.
+   *
+   * All the slice volumes of a renderer are drawn together, at the largest
+   * distance any of them asks for. Drawn at full resolution all the same
+   * (GetLastImageSampleDistance() tells): media whose extinction differs
+   * between colour channels (their transmittance is three numbers a pixel),
+   * WriteDepth on, or a context where the coarse buffer fails (a warning,
+   * once).
+   */
+  vtkSetClampMacro(ImageSampleDistance, double, 1.0, 16.0);
+  vtkGetMacro(ImageSampleDistance, double);
+  /// The image sample distance the last render drew this volume at.
+  vtkGetMacro(LastImageSampleDistance, double);
+  ///@}
+  ///@{
+  /**
    * Multiplies the radiance the slices emit, not their transmittance
    * (default 1, at least 0): an exposure for displays of linear radiance
    * (the "Brume Radiance" representation's Exposure). Light from behind a
@@ -194,6 +219,8 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
 
   double SliceSpacing = 0.0;
+  double ImageSampleDistance = 1.0;
+  double LastImageSampleDistance = 1.0;
   double RadianceScale = 1.0;
   int DirectionalEvaluation = PerVoxel;
   bool WriteDepth = false;

@@ -102,6 +102,13 @@ void vtkBrumeOpenGLSliceVolumeMapper::ReleaseGraphicsResources(vtkWindow* window
   }
   this->Impl->VAO->ReleaseGraphicsResources();
   this->Impl->VBO->ReleaseGraphicsResources();
+  this->Impl->FullDepth->ReleaseGraphicsResources(window);
+  this->Impl->CoarseDepth->ReleaseGraphicsResources(window);
+  this->Impl->CoarseMedia->ReleaseGraphicsResources(window);
+  this->Impl->CoarseFramebuffer->ReleaseGraphicsResources(window);
+  this->Impl->CoarseDepthPass.reset();
+  this->Impl->UpsamplePass.reset();
+  this->Impl->ReducedFailed = false;
   this->Impl->Context = nullptr;
   this->Impl->TextureTime = vtkTimeStamp();
   this->Impl->ExtinctionGrid = nullptr;
@@ -392,7 +399,6 @@ void vtkBrumeOpenGLSliceVolumeMapper::CutSlices(
 
 void vtkBrumeOpenGLSliceVolumeMapper::DrawAll(vtkRenderer* ren)
 {
-  auto* renWin = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
   Internals& impl = *this->Impl;
   std::vector<Slice> slices;
   std::vector<vtkBrumeOpenGLSliceVolumeMapper*> mappers;
@@ -419,13 +425,8 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawAll(vtkRenderer* ren)
   // Far to near over all volumes.
   std::stable_sort(
     slices.begin(), slices.end(), [](const Slice& a, const Slice& b) { return a.Depth > b.Depth; });
-  struct Run
-  {
-    vtkBrumeOpenGLSliceVolumeMapper* Owner;
-    float Spacing;
-    int FirstVertex, Vertices;
-  };
-  std::vector<Run> runs;
+  std::vector<Internals::Run>& runs = impl.Runs;
+  runs.clear();
   impl.Sorted.clear();
   for (const Slice& s : slices)
   {
@@ -442,8 +443,37 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawAll(vtkRenderer* ren)
       runs.push_back({ s.Owner, s.Spacing, first, vertices });
     }
   }
-
   impl.VBO->Upload(impl.Sorted, vtkOpenGLBufferObject::ArrayBuffer);
+
+  // The media at a reduced resolution where every one of them asks for it
+  // (the largest ImageSampleDistance wins) and can be drawn so; otherwise,
+  // or if that fails, at full resolution.
+  double distance = 1.0;
+  bool reducible = true;
+  for (auto* mapper : mappers)
+  {
+    distance = std::max(distance, mapper->ImageSampleDistance);
+    reducible = reducible && !mapper->WriteDepth && mapper->Impl->GreyExtinction();
+  }
+  this->LastImageSampleDistance = 1.0;
+  if (distance > 1.0 && reducible && this->DrawReduced(ren, distance))
+  {
+    this->LastImageSampleDistance = distance;
+  }
+  else
+  {
+    this->DrawRuns(ren, false);
+  }
+  for (auto* mapper : mappers)
+  {
+    mapper->LastImageSampleDistance = this->LastImageSampleDistance;
+  }
+}
+
+void vtkBrumeOpenGLSliceVolumeMapper::DrawRuns(vtkRenderer* ren, bool reduced)
+{
+  auto* renWin = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
+  Internals& impl = *this->Impl;
   vtkCamera* camera = ren->GetActiveCamera();
   vtkMatrix4x4* wcvc;
   vtkMatrix3x3* normals;
@@ -465,21 +495,29 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawAll(vtkRenderer* ren)
   vtkOpenGLState::ScopedglDepthMask depthMaskSaver(state);
   vtkOpenGLState::ScopedglBlendFuncSeparate blendFuncSaver(state);
   state->vtkglEnable(GL_BLEND);
-  // Dual-source blending: C = C_slice + T * C_behind, T per channel.
-  state->vtkglBlendFuncSeparate(GL_ONE, GL_SRC1_COLOR, GL_ONE, GL_SRC1_ALPHA);
+  // Dual-source blending: C = C_slice + T * C_behind, T per channel. On
+  // screen the alpha is the opacity, a = (1 - T) + T a; in a reduced
+  // resolution's buffer (grey media only) it is the transmittance, a = T a.
+  state->vtkglBlendFuncSeparate(GL_ONE, GL_SRC1_COLOR, reduced ? GL_ZERO : GL_ONE, GL_SRC1_ALPHA);
   state->vtkglEnable(GL_DEPTH_TEST);
   // Back to front, each slice nearer than the last: written depths never
   // hide a later slice, only what comes after the media.
-  state->vtkglDepthMask(this->WriteDepth ? GL_TRUE : GL_FALSE);
+  state->vtkglDepthMask(this->WriteDepth && !reduced ? GL_TRUE : GL_FALSE);
   state->vtkglDisable(GL_CULL_FACE);
   // One program per kind of volume (plain, or directional of an order).
   vtkShaderProgram* bound = nullptr;
   const size_t stride = 6 * sizeof(float);
-  for (const Run& run : runs)
+  for (const Internals::Run& run : impl.Runs)
   {
     Internals& owner = *run.Owner->Impl;
+    vtkBrumeSliceVolumeShader::Kind kind;
+    kind.Order = owner.FragmentOrder;
+    kind.SourceIsRadiance = owner.SourceIsRadiance;
+    kind.Extinction = owner.Bricked ? vtkBrumeSliceVolumeShader::ExtinctionBricks
+      : owner.ConstantExtinction    ? vtkBrumeSliceVolumeShader::ExtinctionConstant
+                                    : vtkBrumeSliceVolumeShader::ExtinctionTexture;
     vtkShaderProgram* program = renWin->GetShaderCache()->ReadyShaderProgram(
-      vtkBrumeSliceVolumeVS, vtkBrumeSliceVolumeShader::Fragment(owner.FragmentOrder).c_str(), "");
+      vtkBrumeSliceVolumeVS, vtkBrumeSliceVolumeShader::Fragment(kind).c_str(), "");
     if (!program)
     {
       vtkErrorMacro("Could not build the slice shaders: nothing drawn.");
@@ -504,16 +542,15 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawAll(vtkRenderer* ren)
       bound = program;
     }
     owner.Source->Activate();
+    // Every sampler the shader declares is given a 3D texture's unit, used or not.
     owner.Extinction->Activate();
     program->SetUniformi("sourceTexture", owner.Source->GetTextureUnit());
     program->SetUniformi("extinctionTexture", owner.Extinction->GetTextureUnit());
     program->SetUniformf("sliceSpacing", run.Spacing);
-    program->SetUniformi("sourceIsRadiance", owner.SourceIsRadiance ? 1 : 0);
     program->SetUniform3f("extinctionScale", owner.ExtinctionScale);
     program->SetUniform3f("extinctionOffset", owner.ExtinctionOffset);
     program->SetUniform3f("extinctionFactor", owner.ExtinctionFactor);
-    program->SetUniformi("extinctionBricked", owner.Bricked ? 1 : 0);
-    if (owner.Bricked)
+    if (kind.Extinction == vtkBrumeSliceVolumeShader::ExtinctionBricks)
     {
       owner.BrickTable->Activate();
       program->SetUniformi("brickTable", owner.BrickTable->GetTextureUnit());
@@ -522,10 +559,9 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawAll(vtkRenderer* ren)
       program->SetUniform3f("atlasSize", owner.AtlasSize);
       program->SetUniform3f("brickScale", owner.BrickScale);
     }
-    else
+    else if (kind.Extinction == vtkBrumeSliceVolumeShader::ExtinctionConstant)
     {
-      // Unused; a 3D texture's unit all the same.
-      program->SetUniformi("brickTable", owner.Extinction->GetTextureUnit());
+      program->SetUniform3f("constantExtinction", owner.Constant);
     }
     program->SetUniformf("radianceScale", static_cast<float>(run.Owner->GetRadianceScale()));
     if (owner.FragmentOrder > 0)

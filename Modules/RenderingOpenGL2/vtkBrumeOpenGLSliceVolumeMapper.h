@@ -60,6 +60,9 @@ private:
   bool UploadTextures(
     vtkImageData* input, vtkOpenGLRenderWindow* renWin, const int dims[3], int interpolation);
   bool UploadExtinction(vtkOpenGLRenderWindow* renWin, int filter);
+  // The input's own extinction (RGBA per cell), unless unchanged.
+  bool UploadInputExtinction(
+    vtkOpenGLRenderWindow* renWin, const int dims[3], int filter, const std::vector<float>& e);
   // UploadExtinction's two forms of the grid: dense cell values, or bricks.
   bool UploadDenseExtinction(
     vtkImageData* grid, const int dims[3], vtkOpenGLRenderWindow* renWin, int filter);
@@ -72,6 +75,14 @@ private:
     vtkCamera* camera, vtkMatrix4x4* model, vtkImageData* input, std::vector<Slice>& slices);
   /// Draws the slices of every slice volume of the renderer.
   void DrawAll(vtkRenderer* ren);
+  /// Draws DrawAll's slices, into the window or (`reduced`) a coarse buffer.
+  void DrawRuns(vtkRenderer* ren, bool reduced);
+  /**
+   * Draws DrawAll's slices into a buffer `distance` times coarser, then
+   * upsamples it over the window with the window's depth; false, with
+   * nothing drawn, where the context cannot.
+   */
+  bool DrawReduced(vtkRenderer* ren, double distance);
 
   struct Internals;
   std::unique_ptr<Internals> Impl;

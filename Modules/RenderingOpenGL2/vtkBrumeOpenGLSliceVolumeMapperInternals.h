@@ -9,11 +9,14 @@
 #include "vtkBrumeOpenGLSliceVolumeMapper.h"
 #include "vtkNew.h"
 #include "vtkOpenGLBufferObject.h"
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLQuadHelper.h"
 #include "vtkOpenGLVertexArrayObject.h"
 #include "vtkSmartPointer.h"
 #include "vtkTextureObject.h"
 #include "vtkTimeStamp.h"
 
+#include <memory>
 #include <vector>
 
 class vtkImageData;
@@ -21,6 +24,14 @@ class vtkOpenGLRenderWindow;
 
 struct vtkBrumeOpenGLSliceVolumeMapper::Internals
 {
+  // Consecutive slices of one volume and spacing, drawn by one call.
+  struct Run
+  {
+    vtkBrumeOpenGLSliceVolumeMapper* Owner;
+    float Spacing;
+    int FirstVertex, Vertices;
+  };
+
   vtkNew<vtkTextureObject> Source;
   vtkNew<vtkTextureObject> Extinction; // RGB per cell, or a sparse grid's atlas of bricks
   // A sparse extinction grid: per brick, the atlas texel of its slot (xyz,
@@ -28,6 +39,10 @@ struct vtkBrumeOpenGLSliceVolumeMapper::Internals
   // size, and the extinction per unit of its values.
   vtkNew<vtkTextureObject> BrickTable;
   bool Bricked = false;
+  // A homogeneous medium's one extinction (every cell alike): a uniform, no
+  // texture read per fragment.
+  bool ConstantExtinction = false;
+  float Constant[3] = { 0.f, 0.f, 0.f };
   float GridCells[3] = { 1.f, 1.f, 1.f };
   float BrickCount[3] = { 1.f, 1.f, 1.f };
   float AtlasSize[3] = { 1.f, 1.f, 1.f };
@@ -51,6 +66,10 @@ struct vtkBrumeOpenGLSliceVolumeMapper::Internals
   // BrumeExtinctionFactor; 1 without).
   float ExtinctionFactor[3] = { 1.f, 1.f, 1.f };
   vtkTimeStamp TextureTime;
+  std::vector<float> SourceValues; // RGBA per cell, reused from one upload to the next
+  // The input's extinction last uploaded (RGBA per cell; empty when the
+  // extinction is a grid of its own).
+  std::vector<float> ExtinctionValues;
   bool SourceIsRadiance = false; // the source texture holds S (extinction of its own)
   // The extinction grid of its own last uploaded, and when.
   vtkImageData* ExtinctionGrid = nullptr;
@@ -63,6 +82,27 @@ struct vtkBrumeOpenGLSliceVolumeMapper::Internals
   vtkNew<vtkOpenGLBufferObject> VBO;
   std::vector<float> Collected; // x, y, z (world), s, t, r (texture) per vertex
   std::vector<float> Sorted;
+  std::vector<Run> Runs;
+
+  // Whether the extinction drawn is alike in the three channels, factor
+  // included: only such media can be drawn at a reduced resolution (their
+  // transmittance is one number a pixel).
+  bool ExtinctionGrey = true;
+  bool GreyExtinction() const
+  {
+    return this->ExtinctionGrey && this->ExtinctionFactor[0] == this->ExtinctionFactor[1] &&
+      this->ExtinctionFactor[1] == this->ExtinctionFactor[2];
+  }
+  // The leader's reduced resolution (vtkBrumeOpenGLSliceVolumeMapperReduced.cxx):
+  // the window's depth, the coarse buffer (radiance and transmittance) and
+  // its depth, and the two full-screen passes.
+  vtkNew<vtkTextureObject> FullDepth;
+  vtkNew<vtkTextureObject> CoarseDepth;
+  vtkNew<vtkTextureObject> CoarseMedia;
+  vtkNew<vtkOpenGLFramebufferObject> CoarseFramebuffer;
+  std::unique_ptr<vtkOpenGLQuadHelper> CoarseDepthPass;
+  std::unique_ptr<vtkOpenGLQuadHelper> UpsamplePass;
+  bool ReducedFailed = false; // once the context could not: full resolution from then on
 };
 
 #endif

@@ -22,12 +22,17 @@ void Replace(std::string& shader, const std::string& tag, const std::string& tex
 }
 }
 
-// The fragment shader of a volume: the slab shader, plus for directional
-// radiance of the given order (> 0) the evaluation of its spherical-harmonics
-// coefficients toward the eye (brume/SphericalHarmonics.h, in GLSL).
-std::string vtkBrumeSliceVolumeShader::Fragment(int order)
+// The fragment shader of a kind of volume: the slab shader with its
+// extinction read as the kind says, plus for directional radiance of an
+// order > 0 the evaluation of its spherical-harmonics coefficients toward
+// the eye (brume/SphericalHarmonics.h, in GLSL).
+std::string vtkBrumeSliceVolumeShader::Fragment(const Kind& kind)
 {
   std::string fs = vtkBrumeSliceVolumeFS;
+  Replace(fs, "//BRUME::Slice::Defines",
+    "#define BRUME_EXTINCTION " + std::to_string(static_cast<int>(kind.Extinction)) +
+      "\n#define BRUME_SOURCE_IS_RADIANCE " + (kind.SourceIsRadiance ? "1" : "0") + "\n");
+  const int order = kind.Order;
   if (order < 1)
   {
     return fs;

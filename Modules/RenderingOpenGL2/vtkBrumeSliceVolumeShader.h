@@ -11,8 +11,30 @@
 class vtkBrumeSliceVolumeShader
 {
 public:
-  /// The fragment shader for directional radiance of `order` (0: none).
-  static std::string Fragment(int order);
+  /// How a volume's extinction is read (the shader's BRUME_EXTINCTION).
+  enum ExtinctionRead
+  {
+    ExtinctionTexture = 0, ///< a dense 3D texture (the source's grid, or its own)
+    ExtinctionBricks = 1,  ///< a sparse grid's atlas of bricks and its table
+    ExtinctionConstant = 2 ///< one value (a homogeneous medium): no texture read
+  };
+
+  /// What one fragment shader is compiled for: volumes differing in any of
+  /// these are drawn by different programs.
+  struct Kind
+  {
+    int Order = 0; ///< directional radiance's order (0: none)
+    ExtinctionRead Extinction = ExtinctionTexture;
+    bool SourceIsRadiance = false; ///< the source texture holds S, not J
+    bool operator==(const Kind& other) const
+    {
+      return this->Order == other.Order && this->Extinction == other.Extinction &&
+        this->SourceIsRadiance == other.SourceIsRadiance;
+    }
+  };
+
+  /// The fragment shader for volumes of this kind.
+  static std::string Fragment(const Kind& kind);
 };
 
 #endif

@@ -6,6 +6,14 @@
 // S and lets T = exp(-sigma_t Delta) of the light behind through, per colour
 // channel. Dual-source blending (ONE, SRC1_COLOR) composites back to front:
 // C = S (1 - T) + T C_behind.
+//
+// The mapper defines, per kind of volume (vtkBrumeSliceVolumeShader):
+// BRUME_EXTINCTION 0 (a texture at the source's resolution or of its own),
+// 1 (a sparse grid's atlas of bricks) or 2 (constant: a homogeneous medium);
+// BRUME_SOURCE_IS_RADIANCE 1 where sourceTexture holds S, not J. Each kind
+// is compiled apart: a software rasterizer runs both sides of a branch on a
+// uniform, texture fetches included.
+//BRUME::Slice::Defines
 in vec3 positionWC;
 in vec3 texcoord;
 
@@ -15,28 +23,29 @@ uniform vec3 eyeWC;
 uniform vec3 viewDirectionWC;
 uniform float sliceSpacing;
 uniform int perspective;
-uniform int sourceIsRadiance;        // sourceTexture holds S, not J
 uniform vec3 extinctionScale;        // texcoord to the extinction grid's own box
 uniform vec3 extinctionOffset;
 uniform vec3 extinctionFactor;       // forward peak drawn as transport: sigma_t's factor
 uniform float radianceScale;         // an exposure: the emitted radiance only, not T
+#if BRUME_EXTINCTION == 1
 // A sparse extinction grid (vtkBrumeSliceVolumeMapper::SetExtinctionData):
 // bricks of 8^3 cells, 7 apart, so that the cells a point interpolates lie
 // in one brick; the table gives a brick's place in the atlas or its value.
-uniform int extinctionBricked;
 uniform sampler3D brickTable;
 uniform vec3 gridCells;
 uniform vec3 brickCount;
 uniform vec3 atlasSize;
 uniform vec3 brickScale;             // sigma_t per unit of the grid's values
+#elif BRUME_EXTINCTION == 2
+uniform vec3 constantExtinction;     // sigma_t of a homogeneous medium
+#endif
 
 // sigma_t at t in [0, 1]^3 over the extinction grid's box.
 vec3 extinctionAt(vec3 t)
 {
-  if (extinctionBricked == 0)
-  {
-    return texture(extinctionTexture, t).rgb;
-  }
+#if BRUME_EXTINCTION == 0
+  return texture(extinctionTexture, t).rgb;
+#elif BRUME_EXTINCTION == 1
   // u: in cells, their centres at whole numbers, clamped as at the edges.
   vec3 u = clamp(t * gridCells - 0.5, vec3(0.0), gridCells - 1.0);
   vec3 brick = min(floor(u / 7.0), brickCount - 1.0);
@@ -47,6 +56,9 @@ vec3 extinctionAt(vec3 t)
   }
   vec3 local = min(u - 7.0 * brick, vec3(7.0));
   return texture(extinctionTexture, (entry.xyz + local + 0.5) / atlasSize).r * brickScale;
+#else
+  return constantExtinction;
+#endif
 }
 
 //BRUME::Directional::Dec
@@ -59,16 +71,13 @@ void main()
   vec3 emission = texture(sourceTexture, texcoord).rgb;
   //BRUME::Directional::Impl
   vec3 sigmaT = extinctionFactor * extinctionAt(texcoord * extinctionScale + extinctionOffset);
-  if (sourceIsRadiance != 0)
-  {
-    // Extinction at its own resolution: J = S sigma_t with the fine sigma_t.
-    emission *= sigmaT;
-  }
-  else
-  {
-    // J = S sigma_t was filtered with sigma_t unreduced.
-    emission *= extinctionFactor;
-  }
+#if BRUME_SOURCE_IS_RADIANCE
+  // Extinction at its own resolution: J = S sigma_t with the fine sigma_t.
+  emission *= sigmaT;
+#else
+  // J = S sigma_t was filtered with sigma_t unreduced.
+  emission *= extinctionFactor;
+#endif
   // Distance between two slice planes along this fragment's viewing ray:
   // it grows as 1/cos(angle to the view direction) in perspective.
   float delta = sliceSpacing;

@@ -1,0 +1,186 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The slice mapper's media at a reduced resolution
+// (vtkBrumeSliceVolumeMapper::ImageSampleDistance): the slices are drawn
+// into a buffer `distance` times coarser along each axis, holding per pixel
+// the media's radiance and, for grey media, their transmittance, then
+// upsampled over the window with the window's depth. A slice costs its
+// fragments, so a distance of 2 draws a quarter of them.
+#include "vtkBrumeOpenGLSliceVolumeMapperInternals.h"
+
+#include "vtkCamera.h"
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLQuadHelper.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkRenderer.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+#include "vtkBrumeSliceVolumeCoarseDepthFS.h"
+#include "vtkBrumeSliceVolumeUpsampleFS.h"
+
+#include <cmath>
+
+namespace
+{
+// (Re)allocates a 2D texture of `width` x `height` unless it has that size.
+bool Size2D(
+  vtkTextureObject* texture, vtkOpenGLRenderWindow* window, int width, int height, bool depth)
+{
+  if (texture->GetHandle() && static_cast<int>(texture->GetWidth()) == width &&
+    static_cast<int>(texture->GetHeight()) == height)
+  {
+    return true;
+  }
+  texture->ReleaseGraphicsResources(window);
+  texture->SetContext(window);
+  texture->SetWrapS(vtkTextureObject::ClampToEdge);
+  texture->SetWrapT(vtkTextureObject::ClampToEdge);
+  texture->SetMinificationFilter(vtkTextureObject::Nearest);
+  texture->SetMagnificationFilter(vtkTextureObject::Nearest);
+  return depth ? texture->AllocateDepth(static_cast<unsigned int>(width),
+                   static_cast<unsigned int>(height), vtkTextureObject::Float32)
+               : texture->Allocate2D(static_cast<unsigned int>(width),
+                   static_cast<unsigned int>(height), 4, VTK_FLOAT);
+}
+
+// Drops the errors OpenGL has recorded so far; true if there were none.
+bool ClearErrors()
+{
+  bool none = true;
+  while (glGetError() != GL_NO_ERROR)
+  {
+    none = false;
+  }
+  return none;
+}
+}
+
+bool vtkBrumeOpenGLSliceVolumeMapper::DrawReduced(vtkRenderer* ren, double distance)
+{
+  Internals& impl = *this->Impl;
+  if (impl.ReducedFailed)
+  {
+    return false;
+  }
+  auto* renWin = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
+  vtkOpenGLState* state = renWin->GetState();
+  int width, height, x, y;
+  ren->GetTiledSizeAndOrigin(&width, &height, &x, &y);
+  const int coarse[2] = { std::max(1, static_cast<int>(std::ceil(width / distance))),
+    std::max(1, static_cast<int>(std::ceil(height / distance))) };
+  if (width < 1 || height < 1)
+  {
+    return false;
+  }
+  ClearErrors();
+  auto fail = [&](const char* what)
+  {
+    vtkWarningMacro("Media drawn at full resolution: " << what << ".");
+    impl.ReducedFailed = true;
+    return false;
+  };
+  if (!Size2D(impl.FullDepth, renWin, width, height, true) ||
+    !Size2D(impl.CoarseDepth, renWin, coarse[0], coarse[1], true) ||
+    !Size2D(impl.CoarseMedia, renWin, coarse[0], coarse[1], false))
+  {
+    return fail("its buffers could not be allocated");
+  }
+  // The window's depth (what the opaque props left), read from the
+  // framebuffer being drawn.
+  unsigned int drawBinding = 0, drawBuffer = 0;
+  state->GetCurrentDrawFramebufferState(drawBinding, drawBuffer);
+  state->PushReadFramebufferBinding();
+  state->vtkglBindFramebuffer(GL_READ_FRAMEBUFFER, drawBinding);
+  impl.FullDepth->CopyFromFrameBuffer(x, y, 0, 0, width, height);
+  state->PopReadFramebufferBinding();
+  if (!ClearErrors())
+  {
+    return fail("the window's depth could not be read");
+  }
+
+  if (!impl.CoarseDepthPass)
+  {
+    impl.CoarseDepthPass.reset(
+      new vtkOpenGLQuadHelper(renWin, nullptr, vtkBrumeSliceVolumeCoarseDepthFS, ""));
+    impl.UpsamplePass.reset(
+      new vtkOpenGLQuadHelper(renWin, nullptr, vtkBrumeSliceVolumeUpsampleFS, ""));
+  }
+  if (!impl.CoarseDepthPass->Program || !impl.UpsamplePass->Program)
+  {
+    return fail("its shaders could not be built");
+  }
+
+  {
+    // The coarse buffer: its depth, then the slices.
+    vtkOpenGLState::ScopedglViewport viewportSaver(state);
+    vtkOpenGLState::ScopedglEnableDisable blendSaver(state, GL_BLEND);
+    vtkOpenGLState::ScopedglEnableDisable depthSaver(state, GL_DEPTH_TEST);
+    vtkOpenGLState::ScopedglDepthMask depthMaskSaver(state);
+    vtkOpenGLState::ScopedglDepthFunc depthFuncSaver(state);
+    vtkOpenGLState::ScopedglEnableDisable scissorSaver(state, GL_SCISSOR_TEST);
+    state->PushFramebufferBindings();
+    impl.CoarseFramebuffer->SetContext(renWin);
+    impl.CoarseFramebuffer->Bind();
+    impl.CoarseFramebuffer->AddColorAttachment(0, impl.CoarseMedia);
+    impl.CoarseFramebuffer->AddDepthAttachment(impl.CoarseDepth);
+    impl.CoarseFramebuffer->ActivateDrawBuffer(0);
+    if (!impl.CoarseFramebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER))
+    {
+      state->PopFramebufferBindings();
+      return fail("its framebuffer is incomplete");
+    }
+    state->vtkglDisable(GL_SCISSOR_TEST);
+    state->vtkglViewport(0, 0, coarse[0], coarse[1]);
+    state->vtkglDisable(GL_BLEND);
+    state->vtkglEnable(GL_DEPTH_TEST);
+    state->vtkglDepthFunc(GL_ALWAYS);
+    state->vtkglDepthMask(GL_TRUE);
+    renWin->GetShaderCache()->ReadyShaderProgram(impl.CoarseDepthPass->Program);
+    impl.FullDepth->Activate();
+    vtkShaderProgram* program = impl.CoarseDepthPass->Program;
+    program->SetUniformi("fullDepth", impl.FullDepth->GetTextureUnit());
+    const int fullSize[2] = { width, height };
+    program->SetUniform2i("fullSize", fullSize);
+    program->SetUniform2i("coarseSize", coarse);
+    program->SetUniformf("sampleDistance", static_cast<float>(distance));
+    impl.CoarseDepthPass->Render();
+    impl.FullDepth->Deactivate();
+    // The slices are tested against the coarse depth as against the window's.
+    state->vtkglDepthFunc(GL_LEQUAL);
+    this->DrawRuns(ren, true);
+    state->PopFramebufferBindings();
+  }
+
+  // Upsampled over the window: C = L + T C_behind.
+  vtkOpenGLState::ScopedglEnableDisable blendSaver(state, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable depthSaver(state, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFuncSaver(state);
+  state->vtkglEnable(GL_BLEND);
+  state->vtkglBlendFuncSeparate(GL_ONE, GL_SRC1_COLOR, GL_ONE, GL_SRC1_ALPHA);
+  state->vtkglDisable(GL_DEPTH_TEST);
+  renWin->GetShaderCache()->ReadyShaderProgram(impl.UpsamplePass->Program);
+  vtkShaderProgram* program = impl.UpsamplePass->Program;
+  impl.FullDepth->Activate();
+  impl.CoarseDepth->Activate();
+  impl.CoarseMedia->Activate();
+  program->SetUniformi("fullDepth", impl.FullDepth->GetTextureUnit());
+  program->SetUniformi("coarseDepth", impl.CoarseDepth->GetTextureUnit());
+  program->SetUniformi("coarseMedia", impl.CoarseMedia->GetTextureUnit());
+  const int fullSize[2] = { width, height };
+  program->SetUniform2i("fullSize", fullSize);
+  program->SetUniform2i("coarseSize", coarse);
+  program->SetUniformf("sampleDistance", static_cast<float>(distance));
+  vtkCamera* camera = ren->GetActiveCamera();
+  const double* range = camera->GetClippingRange();
+  const float clipping[2] = { static_cast<float>(range[0]), static_cast<float>(range[1]) };
+  program->SetUniform2f("clippingRange", clipping);
+  program->SetUniformi("perspective", camera->GetParallelProjection() ? 0 : 1);
+  impl.UpsamplePass->Render();
+  impl.FullDepth->Deactivate();
+  impl.CoarseDepth->Deactivate();
+  impl.CoarseMedia->Deactivate();
+  return true;
+}
