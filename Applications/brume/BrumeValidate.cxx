@@ -21,8 +21,8 @@ int RunValidateSlab(const SlabOptions& options)
     std::cerr << "brume: invalid slab: " << experiment.GetError() << "\n";
     return 1;
   }
-  const brume::SlabTally total = experiment.Run(
-    static_cast<std::uint64_t>(options.Particles), vtkBrumeSMP::ParallelFor());
+  const brume::SlabTally total =
+    experiment.Run(static_cast<std::uint64_t>(options.Particles), vtkBrumeSMP::ParallelFor());
   std::printf(
     "R_diffuse,R_diffuse_stderr,T_diffuse,T_diffuse_stderr,T_unscattered,T_unscattered_stderr\n");
   std::printf("%.9g,%.3g,%.9g,%.3g,%.9g,%.3g\n", total.Mean(0), total.StandardError(0),

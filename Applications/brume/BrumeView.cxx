@@ -142,7 +142,7 @@ public:
     this->Overlay->SetVisibility(this->Options.Overlay);
     this->Renderer->AddActor2D(this->Overlay);
     this->Renderer->ResetCameraClippingRange();
-    this->ShowOverlay();
+    this->ShowOverlay(true);
     return true;
   }
 
@@ -217,7 +217,7 @@ public:
       default:
         return false;
     }
-    this->ShowOverlay();
+    this->ShowOverlay(true);
     return true;
   }
 
@@ -269,26 +269,16 @@ public:
     }
   }
 
-  // The image sample distance the media were last drawn at (1 without media).
-  double DrawnSampleDistance()
+  // The overlay's text; the frame times at most four times a second
+  // (redrawing the text costs 4 ms a frame under llvmpipe, and faster
+  // changes cannot be read), anything else (`force`) at once.
+  void ShowOverlay(bool force = false)
   {
-    double distance = 1.0;
-    vtkPropCollection* props = this->Actors->GetProps();
-    props->InitTraversal();
-    while (vtkProp* prop = props->GetNextProp())
+    if (!force && Milliseconds(this->OverlayShown) < 250.0)
     {
-      if (auto* volume = vtkVolume::SafeDownCast(prop))
-      {
-        distance = std::max(distance,
-          static_cast<vtkBrumeSliceVolumeMapper*>(volume->GetMapper())
-            ->GetLastImageSampleDistance());
-      }
+      return;
     }
-    return distance;
-  }
-
-  void ShowOverlay()
-  {
+    this->OverlayShown = Clock::now();
     char text[512];
     std::snprintf(text, sizeof(text),
       "%s particles (traced in %.2f s)   media: %s\n"
@@ -303,6 +293,7 @@ public:
   const ViewOptions& Options;
   long long Particles;
   double LastUpdate = 0.0, LastRender = 0.0, LastTrace = 0.0;
+  Clock::time_point OverlayShown;
   bool MediaVisible = true;
   int Screenshots = 0;
   vtkNew<vtkBrumeLightTracer> Tracer;
@@ -382,7 +373,7 @@ int Orbit(Viewer& viewer, const ViewOptions& options)
     !reconstruction->GetDirectionalRadiance() ? "per view (paper)"
       : options.PerFragment                   ? "spherical harmonics (per fragment)"
                                               : "spherical harmonics (per voxel)",
-    viewer.DrawnSampleDistance(), Thousands(viewer.Particles).c_str());
+    viewer.Actors->GetLastImageSampleDistance(), Thousands(viewer.Particles).c_str());
   std::printf("per frame        median (ms)   95th percentile (ms)\n");
   std::printf("update           %11.2f   %20.2f\n", Quantile(update, 0.5), Quantile(update, 0.95));
   std::printf("render           %11.2f   %20.2f\n", Quantile(render, 0.5), Quantile(render, 0.95));

@@ -369,6 +369,19 @@ void vtkBrumeSceneActors::SetMediaWriteDepth(bool write)
   }
 }
 
+double vtkBrumeSceneActors::GetLastImageSampleDistance()
+{
+  double distance = 1.0;
+  for (const Entry& e : this->Entries)
+  {
+    if (e.Slices)
+    {
+      distance = std::max(distance, e.Slices->GetLastImageSampleDistance());
+    }
+  }
+  return distance;
+}
+
 void vtkBrumeSceneActors::SetImageSampleDistance(double distance)
 {
   distance = std::min(16.0, std::max(1.0, distance));

@@ -141,6 +141,9 @@ public:
    */
   void SetImageSampleDistance(double distance);
   vtkGetMacro(ImageSampleDistance, double);
+  /// The image sample distance the media were last drawn at (their
+  /// largest; 1 without media): 1 where they could not be drawn coarser.
+  double GetLastImageSampleDistance();
   ///@}
 
   ///@{

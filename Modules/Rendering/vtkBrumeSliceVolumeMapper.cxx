@@ -187,6 +187,11 @@ int vtkBrumeSliceVolumeMapper::DirectionalOrder(int components)
   return -1;
 }
 
+void vtkBrumeSliceVolumeMapper::SetImageSampleDistance(double distance)
+{
+  this->ImageSampleDistance = std::isnan(distance) ? 1.0 : std::min(16.0, std::max(1.0, distance));
+}
+
 void vtkBrumeSliceVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);

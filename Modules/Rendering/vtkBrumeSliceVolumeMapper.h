@@ -95,8 +95,12 @@ public:
    * between colour channels (their transmittance is three numbers a pixel),
    * WriteDepth on, or a context where the coarse buffer fails (a warning,
    * once).
+   *
+   * Clamped to [1, 16]. A drawing setting only: it does not mark the mapper
+   * modified, so switching it (at every start and end of an interaction)
+   * uploads no texture again.
    */
-  vtkSetClampMacro(ImageSampleDistance, double, 1.0, 16.0);
+  void SetImageSampleDistance(double distance);
   vtkGetMacro(ImageSampleDistance, double);
   /// The image sample distance the last render drew this volume at.
   vtkGetMacro(LastImageSampleDistance, double);

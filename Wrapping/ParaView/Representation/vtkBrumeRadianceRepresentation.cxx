@@ -213,6 +213,13 @@ int vtkBrumeRadianceRepresentation::ProcessViewRequest(
       vtkPVRenderView::SetRequiresDistributedRendering(inInfo, this, false);
     }
   }
+  else if (request == vtkPVView::REQUEST_UPDATE_LOD())
+  {
+    // The level of detail of interactive renders is the same textures,
+    // their media drawn coarser (InteractiveImageSampleDistance): without
+    // it, nothing would be delivered for them, and nothing drawn.
+    vtkPVView::SetPieceLOD(inInfo, this, this->Cache);
+  }
   else if (request == vtkPVView::REQUEST_RENDER())
   {
     if (!this->InputProblem.empty())
@@ -221,8 +228,10 @@ int vtkBrumeRadianceRepresentation::ProcessViewRequest(
       this->Warn(this->InputProblem + ": nothing is drawn.");
       return 1;
     }
-    auto* delivered =
-      vtkPartitionedDataSetCollection::SafeDownCast(vtkPVView::GetDeliveredPiece(inInfo, this));
+    const bool lod = inInfo->Has(vtkPVRenderView::USE_LOD()) != 0;
+    auto* delivered = vtkPartitionedDataSetCollection::SafeDownCast(lod
+        ? vtkPVView::GetDeliveredPieceLOD(inInfo, this)
+        : vtkPVView::GetDeliveredPiece(inInfo, this));
     if (!delivered || delivered->GetNumberOfPartitionedDataSets() == 0)
     {
       this->Hide(); // a process without the textures
@@ -230,6 +239,9 @@ int vtkBrumeRadianceRepresentation::ProcessViewRequest(
     }
     auto* view = vtkPVRenderView::SafeDownCast(inInfo->Get(vtkPVView::VIEW()));
     this->Actors->SetMediaWriteDepth(Processes() > 1);
+    // ParaView's level of detail (interactive renders of large data): the
+    // media coarser; still renders at full resolution.
+    this->Actors->SetImageSampleDistance(lod ? this->InteractiveImageSampleDistance : 1.0);
     this->Show(this->FollowCamera ? this->Follow(view, delivered) : delivered);
     // With translucent geometry in the view, the render view's default
     // (DepthPeelingForVolumes) would draw the media inside VTK's dual depth
@@ -435,6 +447,11 @@ void vtkBrumeRadianceRepresentation::SetFollowCamera(bool follow)
     this->FollowedReconstruction = nullptr;
   }
   this->MarkModified();
+}
+
+double vtkBrumeRadianceRepresentation::GetLastImageSampleDistance()
+{
+  return this->Actors->GetLastImageSampleDistance();
 }
 
 int vtkBrumeRadianceRepresentation::GetNumberOfProps()

@@ -74,6 +74,19 @@ public:
   ///@}
 
   ///@{
+  /**
+   * The media's image sample distance in interactive renders that use
+   * ParaView's level of detail (default 2, 1 to 16; see
+   * vtkBrumeSliceVolumeMapper::SetImageSampleDistance): drawn that much
+   * coarser while the camera moves, at full resolution in still renders.
+   * ParaView uses its level of detail when the data shown exceed the render
+   * view's LOD threshold (Settings, Render View, "LOD Threshold": 0 always).
+   */
+  vtkSetClampMacro(InteractiveImageSampleDistance, double, 1.0, 16.0);
+  vtkGetMacro(InteractiveImageSampleDistance, double);
+  ///@}
+
+  ///@{
   /// Multiplies the radiance shown (default 1): see vtkBrumeSceneActors::SetExposure.
   void SetExposure(double exposure);
   vtkGetMacro(Exposure, double);
@@ -99,11 +112,13 @@ public:
 
   ///@{
   /**
-   * What the last render showed: the number of props, and the viewpoint the
-   * textures radiate toward (for tests and the curious).
+   * What the last render showed: the number of props, the viewpoint the
+   * textures radiate toward, and the media's image sample distance (for
+   * tests and the curious).
    */
   int GetNumberOfProps();
   void GetShownEyePosition(double eye[3]);
+  double GetLastImageSampleDistance();
   ///@}
 
   /**
@@ -150,6 +165,7 @@ private:
   bool ShowSurfaces = true;
   bool ShowMedia = true;
   double SliceSpacing = 0.0;
+  double InteractiveImageSampleDistance = 2.0;
   bool BackfaceCulling = true;
   bool TextureInterpolation = true;
   double Exposure = 1.0;

@@ -5,7 +5,9 @@ its screenshot equals vtkBrumeSceneActors' render of the same textures,
 camera and size, and the baseline. Moving the camera updates the
 view-dependent textures once (the reconstruction's eye follows the camera)
 and the image equals the one made from scratch at that camera. Shown with a
-dataset that is not Brume's, it draws nothing and says why. Prints the
+dataset that is not Brume's, it draws nothing and says why. Interactive
+renders with ParaView's level of detail draw the media coarser
+(InteractiveImageSampleDistance), still renders at full resolution. Prints the
 frame time of the representation (camera moves included) at the view size.
 
 usage: pvbatch TestBrumeRadianceRepresentation.py PLUGIN BASELINE OUTPUT_DIR [SIZE]
@@ -174,6 +176,31 @@ for k in range(frames):
     Render(view)
 print("frame %.1f ms at %dx%d (a camera step each, view updates included)"
       % (1000 * (time.time() - start) / frames, size, size))
+
+# ParaView's level of detail (LOD threshold 0: every interactive render):
+# the media drawn coarser while interacting, at full resolution at rest.
+def drawn_distance():
+    display.SMProxy.UpdatePropertyInformation()
+    return display.SMProxy.GetProperty("LastImageSampleDistance").GetElement(0)
+
+
+view.LODThreshold = 0.0
+Render(view)  # the view's next update decides on its level of detail
+check(drawn_distance() == 1.0, "a still render: full resolution (%g)" % drawn_distance())
+view.CameraPosition = [0.4, 0.5, 3.6]
+view.SMProxy.InteractiveRender()
+check(drawn_distance() == 2.0,
+      "an interactive render draws the media at image sample distance 2 (%g)"
+      % drawn_distance())
+display.InteractiveImageSampleDistance = 3.0
+view.SMProxy.InteractiveRender()
+check(drawn_distance() == 3.0,
+      "InteractiveImageSampleDistance 3 is followed (%g)" % drawn_distance())
+Render(view)
+check(drawn_distance() == 1.0,
+      "a still render draws the media at full resolution (%g)"
+      % drawn_distance())
+view.LODThreshold = 20.0
 
 # Not Brume's data: nothing drawn, a message.
 Hide(reconstruction, view)
