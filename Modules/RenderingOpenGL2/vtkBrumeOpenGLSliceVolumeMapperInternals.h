@@ -67,6 +67,7 @@ struct vtkBrumeOpenGLSliceVolumeMapper::Internals
   float ExtinctionFactor[3] = { 1.f, 1.f, 1.f };
   vtkTimeStamp TextureTime;
   std::vector<float> SourceValues; // RGBA per cell, reused from one upload to the next
+  std::vector<float> Scratch;      // the input's extinction, likewise
   // The input's extinction last uploaded (RGBA per cell; empty when the
   // extinction is a grid of its own).
   std::vector<float> ExtinctionValues;

@@ -27,9 +27,28 @@ namespace
 // up as RGBA (4 floats a voxel): a software rasterizer samples 16-byte
 // texels faster than 12-byte ones (god-rays.json, 512 x 512 under llvmpipe:
 // 84 against 73 ms a frame).
+//
+// A texture of that size and kind already there is filled in place
+// (glTexSubImage3D): a view update re-uploads the source radiance every
+// frame, and new storage costs a software rasterizer fresh pages each time.
 bool Upload3D(vtkTextureObject* texture, vtkOpenGLRenderWindow* window, const int dims[3],
   int components, int filter, const float* values)
 {
+  if (texture->GetHandle() && texture->GetContext() == window &&
+    texture->GetTarget() == GL_TEXTURE_3D && static_cast<int>(texture->GetWidth()) == dims[0] &&
+    static_cast<int>(texture->GetHeight()) == dims[1] &&
+    static_cast<int>(texture->GetDepth()) == dims[2] && texture->GetComponents() == components &&
+    texture->GetVTKDataType() == VTK_FLOAT && (components == 1 || components == 4))
+  {
+    texture->SetMinificationFilter(filter);
+    texture->SetMagnificationFilter(filter);
+    texture->Activate(); // binds it and sends the filters
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, 0, dims[0], dims[1], dims[2],
+      components == 1 ? GL_RED : GL_RGBA, GL_FLOAT, values);
+    texture->Deactivate();
+    return true;
+  }
   texture->SetContext(window);
   texture->SetWrapS(vtkTextureObject::ClampToEdge);
   texture->SetWrapT(vtkTextureObject::ClampToEdge);
@@ -118,7 +137,7 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadTextures(
   Internals& impl = *this->Impl;
   const vtkIdType cells = static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2];
   std::vector<float>& s = impl.SourceValues;
-  std::vector<float> e;
+  std::vector<float>& e = impl.Scratch;
   const vtkIdType badSource =
     ToRgba(input->GetCellData()->GetArray("SourceRadiance"), cells, false, s);
   const vtkIdType badExtinction =
@@ -192,7 +211,7 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadInputExtinction(
   }
   impl.ConstantExtinction = Uniform(e, impl.Constant);
   impl.ExtinctionGrey = Grey(e);
-  impl.ExtinctionValues = e;
+  impl.ExtinctionValues.assign(e.begin(), e.end());
   impl.ExtinctionInterpolation = filter;
   if (impl.ConstantExtinction)
   {
@@ -436,7 +455,8 @@ bool vtkBrumeOpenGLSliceVolumeMapper::EvaluateTowardEye(
   // Directional radiance toward the eye, once per view and voxel centre.
   const int values = 3 * brume::ShCoefficients(impl.Order);
   const std::size_t cells = impl.Voxels.size() / values;
-  std::vector<float> source(4 * cells, 0.f);
+  std::vector<float>& source = impl.Scratch;
+  source.assign(4 * cells, 0.f);
   const brume::Vec3 eyeData(impl.EyeData[0], impl.EyeData[1], impl.EyeData[2]);
   vtkSMPTools::For(0, static_cast<vtkIdType>(cells),
     [&](vtkIdType begin, vtkIdType end)
