@@ -402,6 +402,7 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawAll(vtkRenderer* ren)
   Internals& impl = *this->Impl;
   std::vector<Slice> slices;
   std::vector<vtkBrumeOpenGLSliceVolumeMapper*> mappers;
+  std::vector<vtkVolume*> drawn;
   vtkVolumeCollection* volumes = ren->GetVolumes();
   vtkCollectionSimpleIterator it;
   volumes->InitTraversal(it);
@@ -416,6 +417,7 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawAll(vtkRenderer* ren)
     if (mapper->PrepareSlices(ren, volume, slices))
     {
       mappers.push_back(mapper);
+      drawn.push_back(volume);
     }
   }
   if (slices.empty())
@@ -456,7 +458,7 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawAll(vtkRenderer* ren)
     reducible = reducible && !mapper->WriteDepth && mapper->Impl->GreyExtinction();
   }
   this->LastImageSampleDistance = 1.0;
-  if (distance > 1.0 && reducible && this->DrawReduced(ren, distance))
+  if (distance > 1.0 && reducible && this->DrawReduced(ren, distance, drawn))
   {
     this->LastImageSampleDistance = distance;
   }

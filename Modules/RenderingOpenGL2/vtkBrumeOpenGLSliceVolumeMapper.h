@@ -78,11 +78,12 @@ private:
   /// Draws DrawAll's slices, into the window or (`reduced`) a coarse buffer.
   void DrawRuns(vtkRenderer* ren, bool reduced);
   /**
-   * Draws DrawAll's slices into a buffer `distance` times coarser, then
-   * upsamples it over the window with the window's depth; false, with
-   * nothing drawn, where the context cannot.
+   * Draws DrawAll's slices (of `volumes`) into a buffer `distance` times
+   * coarser, then upsamples it over the window with the window's depth,
+   * both within the volumes' rectangle on screen; false, with nothing
+   * drawn, where the context cannot.
    */
-  bool DrawReduced(vtkRenderer* ren, double distance);
+  bool DrawReduced(vtkRenderer* ren, double distance, const std::vector<vtkVolume*>& volumes);
 
   struct Internals;
   std::unique_ptr<Internals> Impl;

@@ -8,6 +8,7 @@
 #include "vtkBrumeOpenGLSliceVolumeMapperInternals.h"
 
 #include "vtkCamera.h"
+#include "vtkMatrix4x4.h"
 #include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLQuadHelper.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -16,12 +17,15 @@
 #include "vtkRenderer.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
+#include "vtkVolume.h"
 #include "vtk_glew.h"
 
 #include "vtkBrumeSliceVolumeCoarseDepthFS.h"
 #include "vtkBrumeSliceVolumeUpsampleFS.h"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace
 {
@@ -46,6 +50,43 @@ bool Size2D(
                    static_cast<unsigned int>(height), 4, VTK_FLOAT);
 }
 
+// The pixels of the viewport (width x height) that `volumes` can cover:
+// their bounds' corners projected, [rect[0], rect[2]) x [rect[1], rect[3]);
+// the whole viewport when a corner lies behind the eye.
+void ScreenRectangle(
+  vtkRenderer* ren, const std::vector<vtkVolume*>& volumes, int width, int height, int rect[4])
+{
+  rect[0] = width;
+  rect[1] = height;
+  rect[2] = 0;
+  rect[3] = 0;
+  vtkMatrix4x4* project = ren->GetActiveCamera()->GetCompositeProjectionTransformMatrix(
+    ren->GetTiledAspectRatio(), -1, 1);
+  for (vtkVolume* volume : volumes)
+  {
+    const double* b = volume->GetBounds();
+    for (int c = 0; c < 8; ++c)
+    {
+      const double corner[4] = { b[(c & 1) ? 1 : 0], b[(c & 2) ? 3 : 2], b[(c & 4) ? 5 : 4], 1.0 };
+      double clip[4];
+      project->MultiplyPoint(corner, clip);
+      if (!(clip[3] > 1e-9 * (std::abs(clip[0]) + std::abs(clip[1]) + std::abs(clip[2]))))
+      {
+        rect[0] = rect[1] = 0;
+        rect[2] = width;
+        rect[3] = height;
+        return;
+      }
+      const double x = (clip[0] / clip[3] + 1.0) * 0.5 * width;
+      const double y = (clip[1] / clip[3] + 1.0) * 0.5 * height;
+      rect[0] = std::min(rect[0], static_cast<int>(std::floor(std::max(x, 0.0))));
+      rect[1] = std::min(rect[1], static_cast<int>(std::floor(std::max(y, 0.0))));
+      rect[2] = std::max(rect[2], static_cast<int>(std::ceil(std::min(x, 1.0 * width))));
+      rect[3] = std::max(rect[3], static_cast<int>(std::ceil(std::min(y, 1.0 * height))));
+    }
+  }
+}
+
 // Drops the errors OpenGL has recorded so far; true if there were none.
 bool ClearErrors()
 {
@@ -58,7 +99,8 @@ bool ClearErrors()
 }
 }
 
-bool vtkBrumeOpenGLSliceVolumeMapper::DrawReduced(vtkRenderer* ren, double distance)
+bool vtkBrumeOpenGLSliceVolumeMapper::DrawReduced(
+  vtkRenderer* ren, double distance, const std::vector<vtkVolume*>& volumes)
 {
   Internals& impl = *this->Impl;
   if (impl.ReducedFailed)
@@ -75,6 +117,23 @@ bool vtkBrumeOpenGLSliceVolumeMapper::DrawReduced(vtkRenderer* ren, double dista
   {
     return false;
   }
+  // Only where the media can be: their rectangle on screen (full pixels),
+  // the coarse pixels it touches and one more around (the upsampling's
+  // reach), and the full pixels under those.
+  int rect[4];
+  ScreenRectangle(ren, volumes, width, height, rect);
+  if (rect[2] <= rect[0] || rect[3] <= rect[1])
+  {
+    return true; // nothing on screen
+  }
+  const int coarseRect[4] = { std::max(0, static_cast<int>(rect[0] / distance) - 1),
+    std::max(0, static_cast<int>(rect[1] / distance) - 1),
+    std::min(coarse[0], static_cast<int>(std::ceil(rect[2] / distance)) + 1),
+    std::min(coarse[1], static_cast<int>(std::ceil(rect[3] / distance)) + 1) };
+  const int depthRect[4] = { static_cast<int>(coarseRect[0] * distance),
+    static_cast<int>(coarseRect[1] * distance),
+    std::min(width, static_cast<int>(std::ceil(coarseRect[2] * distance))),
+    std::min(height, static_cast<int>(std::ceil(coarseRect[3] * distance))) };
   ClearErrors();
   auto fail = [&](const char* what)
   {
@@ -94,7 +153,11 @@ bool vtkBrumeOpenGLSliceVolumeMapper::DrawReduced(vtkRenderer* ren, double dista
   state->GetCurrentDrawFramebufferState(drawBinding, drawBuffer);
   state->PushReadFramebufferBinding();
   state->vtkglBindFramebuffer(GL_READ_FRAMEBUFFER, drawBinding);
-  impl.FullDepth->CopyFromFrameBuffer(x, y, 0, 0, width, height);
+  // (vtkTextureObject::CopyFromFrameBuffer ignores the destination corner.)
+  impl.FullDepth->Activate();
+  glCopyTexSubImage2D(GL_TEXTURE_2D, 0, depthRect[0], depthRect[1], x + depthRect[0],
+    y + depthRect[1], depthRect[2] - depthRect[0], depthRect[3] - depthRect[1]);
+  impl.FullDepth->Deactivate();
   state->PopReadFramebufferBinding();
   if (!ClearErrors())
   {
@@ -132,7 +195,10 @@ bool vtkBrumeOpenGLSliceVolumeMapper::DrawReduced(vtkRenderer* ren, double dista
       state->PopFramebufferBindings();
       return fail("its framebuffer is incomplete");
     }
-    state->vtkglDisable(GL_SCISSOR_TEST);
+    vtkOpenGLState::ScopedglScissor scissorBoxSaver(state);
+    state->vtkglEnable(GL_SCISSOR_TEST);
+    state->vtkglScissor(
+      coarseRect[0], coarseRect[1], coarseRect[2] - coarseRect[0], coarseRect[3] - coarseRect[1]);
     state->vtkglViewport(0, 0, coarse[0], coarse[1]);
     state->vtkglDisable(GL_BLEND);
     state->vtkglEnable(GL_DEPTH_TEST);
@@ -155,6 +221,10 @@ bool vtkBrumeOpenGLSliceVolumeMapper::DrawReduced(vtkRenderer* ren, double dista
   }
 
   // Upsampled over the window: C = L + T C_behind.
+  vtkOpenGLState::ScopedglEnableDisable scissorSaver(state, GL_SCISSOR_TEST);
+  vtkOpenGLState::ScopedglScissor scissorBoxSaver(state);
+  state->vtkglEnable(GL_SCISSOR_TEST);
+  state->vtkglScissor(x + rect[0], y + rect[1], rect[2] - rect[0], rect[3] - rect[1]);
   vtkOpenGLState::ScopedglEnableDisable blendSaver(state, GL_BLEND);
   vtkOpenGLState::ScopedglEnableDisable depthSaver(state, GL_DEPTH_TEST);
   vtkOpenGLState::ScopedglBlendFuncSeparate blendFuncSaver(state);

@@ -13,12 +13,13 @@ namespace
 {
 using namespace SliceMapperTesting;
 
-// A grey unit cube seen face-on through its middle, at `distance`: every
-// pixel whose ray crosses both faces against the slab, parallel and
-// perspective.
-bool Uniform(double distance)
+// A grey unit cube seen face-on, its centre at x = `shift`, at `distance`:
+// every pixel whose ray crosses both faces against the slab, parallel and
+// perspective, and nothing drawn beside the cube (the coarse passes cover
+// the cube's rectangle on screen, whose corner moves with `shift`).
+bool Uniform(double distance, double shift)
 {
-  const double box[6] = { -0.5, 0.5, -0.5, 0.5, -0.5, 0.5 };
+  const double box[6] = { shift - 0.5, shift + 0.5, -0.5, 0.5, -0.5, 0.5 };
   const Layer fog{ { 2.0, 1.0, 0.5 }, { 1.5, 1.5, 1.5 } };
   bool ok = true;
   for (bool parallel : { true, false })
@@ -34,7 +35,7 @@ bool Uniform(double distance)
       std::cerr << what << ": drawn at " << mapper->GetLastImageSampleDistance() << "\n";
       ok = false;
     }
-    int checked = 0;
+    int checked = 0, empty = 0;
     for (int j = 0; j < Size; ++j)
       for (int i = 0; i < Size; ++i)
       {
@@ -42,16 +43,29 @@ bool Uniform(double distance)
         // Away from the cube's edges by more than a coarse pixel (the
         // medium's own silhouette is blurred by up to one).
         const double spread = parallel ? 1.0 : 5.5 / 5.0;
-        if (std::max(std::abs(x), std::abs(y)) * spread > 0.5 - 2.0 * distance / Size)
+        const double margin = 2.0 * distance / Size;
+        const double outer =
+          std::max(std::abs(x - shift * (parallel ? 1.0 : 5.0 / 4.5)), std::abs(y)) *
+          (parallel ? 1.0 : 4.5 / 5.0);
+        if (outer > 0.5 + 2.0 * margin)
+        {
+          // Beside the cube (its front face, the nearer, is the larger).
+          ok = Near(f.At(i, j), { 0.0, 0.0, 0.0 }, 0.0, what + ", beside the cube") && ok;
+          ++empty;
+          continue;
+        }
+        if (std::max(std::abs(x - shift), std::abs(y)) * spread > 0.5 - margin)
         {
           continue;
         }
-        const double length = parallel ? 1.0 : std::sqrt(25.0 + x * x + y * y) / 5.0;
+        const double length =
+          parallel ? 1.0 : std::sqrt(25.0 + (x - shift) * (x - shift) + y * y) / 5.0;
         ok = Near(f.At(i, j), Slab(fog, length), 0.01, what) && ok;
         ++checked;
       }
-    std::cout << what << ": " << checked << " pixels checked\n";
-    ok = ok && checked > 300;
+    std::cout << what << ", cube at x = " << shift << ": " << checked << " pixels checked, "
+              << empty << " beside it\n";
+    ok = ok && checked > 300 && (shift == 0.0 || empty > 300);
   }
   return ok;
 }
@@ -108,8 +122,10 @@ bool WriteDepthAtFullResolution()
 int TestSliceVolumeMapperReduced(int, char*[])
 {
   bool ok = true;
-  ok = Uniform(2.0) && ok;
-  ok = Uniform(3.0) && ok;
+  ok = Uniform(2.0, 0.0) && ok;
+  ok = Uniform(3.0, 0.0) && ok;
+  ok = Uniform(2.0, 0.35) && ok;
+  ok = Uniform(3.0, -0.4) && ok;
   // A grey medium around a sphere: the pixels next to the sphere's
   // silhouette (one pixel and a half on each side excluded, as at full
   // resolution) keep their own radiance at a quarter of the fragments.
