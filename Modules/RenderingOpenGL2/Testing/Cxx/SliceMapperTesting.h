@@ -168,6 +168,33 @@ inline RGB Slab(const Layer& l, double d)
   return r;
 }
 
+// Two grey volumes one behind the other (0.4 deep each, 0.2 apart), and
+// the radiance through both: `Expected` composited in depth order,
+// `Wrong` in the other.
+struct StackedVolumes
+{
+  vtkSmartPointer<vtkVolume> Back, Front;
+  RGB Expected, Wrong;
+};
+
+inline StackedVolumes Stacked()
+{
+  const double frontBox[6] = { -0.5, 0.5, -0.5, 0.5, 0.1, 0.5 };
+  const double backBox[6] = { -0.5, 0.5, -0.5, 0.5, -0.5, -0.1 };
+  const Layer front{ { 0.2, 0.2, 0.2 }, { 4.0, 4.0, 4.0 } };
+  const Layer back{ { 5.0, 5.0, 5.0 }, { 3.0, 3.0, 3.0 } };
+  StackedVolumes v;
+  v.Back = Volume(Medium(backBox, { back }), 0.01, false);
+  v.Front = Volume(Medium(frontBox, { front }), 0.01, false);
+  const RGB lf = Slab(front, 0.4), lb = Slab(back, 0.4);
+  for (int c = 0; c < 3; ++c)
+  {
+    v.Expected[c] = lf[c] + std::exp(-front.SigmaT[c] * 0.4) * lb[c];
+    v.Wrong[c] = lb[c] + std::exp(-back.SigmaT[c] * 0.4) * lf[c];
+  }
+  return v;
+}
+
 // A sphere of radius 0.3 centred on the medium's side face x = 0.5: half
 // inside. Unlit colour c; the medium between the front face z = 0.5 and the
 // sphere is all that lies in front of it; nothing behind it shows. The

@@ -109,25 +109,13 @@ bool DepthOrder()
 {
   // Two volumes one behind the other, added back one first: compositing must
   // follow depth, not the order of the props.
-  const double frontBox[6] = { -0.5, 0.5, -0.5, 0.5, 0.1, 0.5 };
-  const double backBox[6] = { -0.5, 0.5, -0.5, 0.5, -0.5, -0.1 };
-  const Layer front{ { 0.2, 0.2, 0.2 }, { 4.0, 4.0, 4.0 } };
-  const Layer back{ { 5.0, 5.0, 5.0 }, { 3.0, 3.0, 3.0 } };
-  auto backVolume = Volume(Medium(backBox, { back }), 0.01, false);
-  auto frontVolume = Volume(Medium(frontBox, { front }), 0.01, false);
-  const Frame f = Render({ backVolume, frontVolume }, true);
-  const Frame g = Render({ frontVolume, backVolume }, true);
-  RGB expected, wrong;
-  const RGB lf = Slab(front, 0.4), lb = Slab(back, 0.4);
-  for (int c = 0; c < 3; ++c)
-  {
-    expected[c] = lf[c] + std::exp(-front.SigmaT[c] * 0.4) * lb[c];
-    wrong[c] = lb[c] + std::exp(-back.SigmaT[c] * 0.4) * lf[c];
-  }
-  std::cout << "depth order: expected " << expected[0] << ", the other order would give "
-            << wrong[0] << "\n";
-  return Near(f.At(Size / 2, Size / 2), expected, 0.01, "back volume added first") &&
-    Near(g.At(Size / 2, Size / 2), expected, 0.01, "front volume added first");
+  const StackedVolumes v = Stacked();
+  const Frame f = Render({ v.Back, v.Front }, true);
+  const Frame g = Render({ v.Front, v.Back }, true);
+  std::cout << "depth order: expected " << v.Expected[0] << ", the other order would give "
+            << v.Wrong[0] << "\n";
+  return Near(f.At(Size / 2, Size / 2), v.Expected, 0.01, "back volume added first") &&
+    Near(g.At(Size / 2, Size / 2), v.Expected, 0.01, "front volume added first");
 }
 
 struct ErrorCount

@@ -74,29 +74,18 @@ bool Uniform(double distance, double shift)
 // order in the coarse buffer.
 bool DepthOrder()
 {
-  const double frontBox[6] = { -0.5, 0.5, -0.5, 0.5, 0.1, 0.5 };
-  const double backBox[6] = { -0.5, 0.5, -0.5, 0.5, -0.5, -0.1 };
-  const Layer front{ { 0.2, 0.2, 0.2 }, { 4.0, 4.0, 4.0 } };
-  const Layer back{ { 5.0, 5.0, 5.0 }, { 3.0, 3.0, 3.0 } };
-  auto backVolume = Volume(Medium(backBox, { back }), 0.01, false);
-  auto frontVolume = Volume(Medium(frontBox, { front }), 0.01, false);
-  vtkBrumeSliceVolumeMapper::SafeDownCast(backVolume->GetMapper())->SetImageSampleDistance(2.0);
-  const Frame f = Render({ backVolume, frontVolume }, true);
-  RGB expected;
-  const RGB lf = Slab(front, 0.4), lb = Slab(back, 0.4);
-  for (int c = 0; c < 3; ++c)
-  {
-    expected[c] = lf[c] + std::exp(-front.SigmaT[c] * 0.4) * lb[c];
-  }
+  const StackedVolumes v = Stacked();
+  vtkBrumeSliceVolumeMapper::SafeDownCast(v.Back->GetMapper())->SetImageSampleDistance(2.0);
+  const Frame f = Render({ v.Back, v.Front }, true);
   const double drawn =
-    vtkBrumeSliceVolumeMapper::SafeDownCast(frontVolume->GetMapper())->GetLastImageSampleDistance();
+    vtkBrumeSliceVolumeMapper::SafeDownCast(v.Front->GetMapper())->GetLastImageSampleDistance();
   if (drawn != 2.0)
   {
     std::cerr << "depth order: drawn at image sample distance " << drawn
               << ", expected 2 (the largest asked for)\n";
     return false;
   }
-  return Near(f.At(Size / 2, Size / 2), expected, 0.01, "two volumes, image sample distance 2");
+  return Near(f.At(Size / 2, Size / 2), v.Expected, 0.01, "two volumes, image sample distance 2");
 }
 
 // WriteDepth needs every slice's own depth: full resolution.
