@@ -184,9 +184,8 @@ std::string vtkBrumeHitConversion::ReadHits(
   vtkFieldData* fields = data->GetFieldData();
   vtkDataArray* power = fields ? fields->GetArray(TotalPowerName) : nullptr;
   vtkDataArray* count = fields ? fields->GetArray(NumberOfParticlesName) : nullptr;
-  if (!power || !count || power->GetNumberOfComponents() != 3 ||
-    power->GetNumberOfTuples() < 1 || count->GetNumberOfTuples() < 1 ||
-    !(count->GetTuple1(0) >= 1.0))
+  if (!power || !count || power->GetNumberOfComponents() != 3 || power->GetNumberOfTuples() < 1 ||
+    count->GetNumberOfTuples() < 1 || !(count->GetTuple1(0) >= 1.0))
   {
     return "The particle hits lack the 'TotalPower' and 'NumberOfParticles' field arrays";
   }

@@ -76,8 +76,8 @@ public:
    * data says of the run. Empty string on success, otherwise a sentence
    * saying what is wrong (without its final period).
    */
-  static std::string ReadHits(vtkPolyData* data, brume::HitArrays& hits, RunInfo& run,
-    std::vector<float>& positionCopy);
+  static std::string ReadHits(
+    vtkPolyData* data, brume::HitArrays& hits, RunInfo& run, std::vector<float>& positionCopy);
 };
 
 #endif

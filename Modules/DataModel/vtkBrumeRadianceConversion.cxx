@@ -258,7 +258,7 @@ vtkSmartPointer<vtkImageData> vtkBrumeRadianceConversion::DenseExtinction(vtkIma
 
 vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
   const brume::ObjectRadiance& radiance, const brume::Medium& medium, bool directional,
-  vtkImageData* nativeExtinction)
+  vtkImageData* nativeExtinction, vtkImageData* previous)
 {
   // Directional radiance stays on the texture's grid; per-view radiance is
   // on the output grid (finer, with direct light).
@@ -310,8 +310,21 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
     f->InsertNextTuple3(factor.x, factor.y, factor.z);
     texture->GetFieldData()->AddArray(f);
   }
-  texture->GetCellData()->AddArray(
-    NewRGB("Extinction", directional ? radiance.GetExtinction() : radiance.GetOutputExtinction()));
+  const std::vector<float>& sigmaT =
+    directional ? radiance.GetExtinction() : radiance.GetOutputExtinction();
+  auto* kept = previous
+    ? vtkFloatArray::SafeDownCast(previous->GetCellData()->GetArray("Extinction"))
+    : nullptr;
+  if (kept && kept->GetNumberOfComponents() == 3 &&
+    static_cast<std::size_t>(kept->GetNumberOfValues()) == sigmaT.size() &&
+    std::equal(sigmaT.begin(), sigmaT.end(), kept->GetPointer(0)))
+  {
+    texture->GetCellData()->AddArray(kept);
+  }
+  else
+  {
+    texture->GetCellData()->AddArray(NewRGB("Extinction", sigmaT));
+  }
   AddString(texture->GetFieldData(), "BrumeObjectKind", "medium");
   auto pds = vtkSmartPointer<vtkPartitionedDataSet>::New();
   pds->SetNumberOfPartitions(1);

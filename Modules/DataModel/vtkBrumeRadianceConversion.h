@@ -63,9 +63,14 @@ public:
   /**
    * A medium's texture: toward the eye, or the directional projection when
    * `directional` (the object holds one: ObjectRadiance::BuildDirectional).
+   * `previous`, when given, is an earlier texture of the same medium: its
+   * `Extinction` array is kept where the values are the same (a view
+   * update changes only the radiance), so that renderers see the same
+   * array and need not convert or compare it again.
    */
   static vtkSmartPointer<vtkPartitionedDataSet> FromMedium(const brume::ObjectRadiance& radiance,
-    const brume::Medium& medium, bool directional, vtkImageData* nativeExtinction = nullptr);
+    const brume::Medium& medium, bool directional, vtkImageData* nativeExtinction = nullptr,
+    vtkImageData* previous = nullptr);
 
   /**
    * A heterogeneous medium's extinction at the density's own resolution

@@ -36,8 +36,8 @@ public:
   static void SetToDefault(vtkCamera* camera);
 
   /// The default view as numbers.
-  static void GetDefault(double position[3], double focalPoint[3], double viewUp[3],
-    double& viewAngle);
+  static void GetDefault(
+    double position[3], double focalPoint[3], double viewUp[3], double& viewAngle);
 
   /**
    * Sets `camera` to the scene's camera and returns true when the scene's

@@ -43,7 +43,7 @@
 #define vtkBrumeSceneConversion_h
 
 #include "vtkBrumeDataModelModule.h" // For export macro
-#include "vtkSmartPointer.h"       // For return values
+#include "vtkSmartPointer.h"         // For return values
 
 #include "brume/Scene.h" // For brume::Scene
 

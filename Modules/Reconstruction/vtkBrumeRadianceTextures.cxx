@@ -589,8 +589,14 @@ void vtkBrumeRadianceTextures::Emit(vtkPartitionedDataSetCollection* output)
           this->NativeExtinction[o] =
             vtkBrumeRadianceConversion::NativeExtinction(radiance, medium);
         }
-        this->Outputs[o] = vtkBrumeRadianceConversion::FromMedium(
-          radiance, medium, this->ObjectDirectional[o], this->NativeExtinction[o]);
+        // The extinction array of the last texture is kept where unchanged.
+        if (this->LastMediumTextures.size() != this->Objects.size())
+        {
+          this->LastMediumTextures.resize(this->Objects.size());
+        }
+        this->Outputs[o] = vtkBrumeRadianceConversion::FromMedium(radiance, medium,
+          this->ObjectDirectional[o], this->NativeExtinction[o], this->LastMediumTextures[o]);
+        this->LastMediumTextures[o] = vtkImageData::SafeDownCast(this->Outputs[o]->GetPartition(0));
       }
     }
     output->SetPartitionedDataSet(source.CollectionIndex, this->Outputs[o]);

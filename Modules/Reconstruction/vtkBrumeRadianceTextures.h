@@ -172,7 +172,8 @@ private:
   std::vector<vtkBrumeSceneConversion::ObjectSource> Sources;
   std::vector<std::unique_ptr<brume::ObjectRadiance>> Objects;
   std::vector<vtkSmartPointer<vtkPartitionedDataSet>> Outputs;
-  std::vector<vtkSmartPointer<vtkImageData>> NativeExtinction; // media: made once
+  std::vector<vtkSmartPointer<vtkImageData>> NativeExtinction;   // media: made once
+  std::vector<vtkSmartPointer<vtkImageData>> LastMediumTextures; // media: the last emitted
   std::vector<brume::Vec3> ObjectEye;  // the eye each texture was estimated toward
   std::vector<bool> ObjectDirectional; // whose output holds directional radiance
   double Particles = 0.0, Seed = 0.0;

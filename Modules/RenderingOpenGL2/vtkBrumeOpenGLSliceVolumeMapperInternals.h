@@ -15,10 +15,12 @@
 #include "vtkSmartPointer.h"
 #include "vtkTextureObject.h"
 #include "vtkTimeStamp.h"
+#include "vtkWeakPointer.h"
 
 #include <memory>
 #include <vector>
 
+class vtkDataArray;
 class vtkImageData;
 class vtkOpenGLRenderWindow;
 
@@ -71,6 +73,8 @@ struct vtkBrumeOpenGLSliceVolumeMapper::Internals
   // The input's extinction last uploaded (RGBA per cell; empty when the
   // extinction is a grid of its own).
   std::vector<float> ExtinctionValues;
+  vtkWeakPointer<vtkDataArray> ExtinctionArray; // and the array they came from, unmodified since
+  vtkMTimeType ExtinctionArrayTime = 0;
   bool SourceIsRadiance = false; // the source texture holds S (extinction of its own)
   // The extinction grid of its own last uploaded, and when.
   vtkImageData* ExtinctionGrid = nullptr;

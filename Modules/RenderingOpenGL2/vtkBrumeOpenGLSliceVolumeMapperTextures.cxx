@@ -137,11 +137,16 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadTextures(
   Internals& impl = *this->Impl;
   const vtkIdType cells = static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2];
   std::vector<float>& s = impl.SourceValues;
-  std::vector<float>& e = impl.Scratch;
   const vtkIdType badSource =
     ToRgba(input->GetCellData()->GetArray("SourceRadiance"), cells, false, s);
-  const vtkIdType badExtinction =
-    ToRgba(input->GetCellData()->GetArray("Extinction"), cells, true, e);
+  // The extinction array of the last upload, unmodified (a view update
+  // keeps it: vtkBrumeRadianceConversion::FromMedium): its values are known.
+  vtkDataArray* extinction = input->GetCellData()->GetArray("Extinction");
+  const bool known = !this->ExtinctionData && extinction == impl.ExtinctionArray &&
+    extinction->GetMTime() == impl.ExtinctionArrayTime &&
+    impl.ExtinctionValues.size() == 4 * static_cast<std::size_t>(cells);
+  std::vector<float>& e = known ? impl.ExtinctionValues : impl.Scratch;
+  const vtkIdType badExtinction = known ? cells : ToRgba(extinction, cells, true, e);
   if (badSource < cells || badExtinction < cells)
   {
     vtkErrorMacro("Cannot draw this medium: its extinction must be finite and "
@@ -173,6 +178,7 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadTextures(
   }
   const int filter = interpolation == VTK_NEAREST_INTERPOLATION ? vtkTextureObject::Nearest
                                                                 : vtkTextureObject::Linear;
+  impl.ExtinctionArray = nullptr;
   if (!Upload3D(impl.Source, renWin, dims, 4, filter, s.data()) ||
     !(impl.SourceIsRadiance ? this->UploadExtinction(renWin, filter)
                             : this->UploadInputExtinction(renWin, dims, filter, e)))
@@ -181,7 +187,12 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadTextures(
                                                        << dims[2] << "): nothing drawn.");
     return false;
   }
-  if (impl.SourceIsRadiance)
+  if (!impl.SourceIsRadiance)
+  {
+    impl.ExtinctionArray = extinction;
+    impl.ExtinctionArrayTime = extinction->GetMTime();
+  }
+  else
   {
     e.assign(e.size(), 1.f); // directional coefficients: S, like the source
   }
@@ -202,7 +213,8 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadInputExtinction(
   // its values or filter changed, and a homogeneous medium's is a uniform.
   Internals& impl = *this->Impl;
   const bool same = impl.ExtinctionGrid == nullptr && impl.Extinction->GetHandle() &&
-    impl.ExtinctionInterpolation == filter && impl.ExtinctionValues == e;
+    impl.ExtinctionInterpolation == filter &&
+    (&e == &impl.ExtinctionValues || impl.ExtinctionValues == e);
   impl.ExtinctionGrid = nullptr;
   impl.Bricked = false;
   if (same)
@@ -211,7 +223,10 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadInputExtinction(
   }
   impl.ConstantExtinction = Uniform(e, impl.Constant);
   impl.ExtinctionGrey = Grey(e);
-  impl.ExtinctionValues.assign(e.begin(), e.end());
+  if (&e != &impl.ExtinctionValues)
+  {
+    impl.ExtinctionValues.assign(e.begin(), e.end());
+  }
   impl.ExtinctionInterpolation = filter;
   if (impl.ConstantExtinction)
   {

@@ -1,5 +1,6 @@
 """vtkBrumeSceneActors.UpdateInputs: a prop keeps the data set it shows when
 the new one holds the same geometry and bytes, and takes any that differ.
+A view update's new medium texture keeps its unchanged extinction array.
 
 usage: python3 TestSceneActorsUpdate.py
 """
@@ -55,8 +56,20 @@ check(actors.GetNumberOfChangedDataSets() == 1,
       "one edited texel changes one data set (%d)" % actors.GetNumberOfChangedDataSets())
 
 # The camera turns: the fog's texture (per view) alone changes.
+def fog_image(textures):
+    for i in range(textures.GetNumberOfPartitionedDataSets()):
+        image = textures.GetPartitionedDataSet(i).GetPartition(0)
+        if image.GetCellData().GetArray("SourceRadiance"):
+            return image
+
+
+before = fog_image(reconstruction.GetOutput())
 camera.Azimuth(10.0)
 reconstruction.Update()
+after = fog_image(reconstruction.GetOutput())
+check(after is not before, "the turn makes a new fog texture")
+check(after.GetCellData().GetArray("Extinction") is before.GetCellData().GetArray("Extinction"),
+      "it keeps the extinction array, which the turn does not change (renderers skip it)")
 turned = vtkPartitionedDataSetCollection()
 turned.DeepCopy(reconstruction.GetOutput())
 check(actors.UpdateInputs(turned), "the turned textures are accepted")
