@@ -409,6 +409,14 @@ void ObjectRadiance::WeighCells(const Vec3& eye, const ParallelFor& parallelFor)
   }
   else
   {
+    // The triangles' normals, once per update rather than per hit.
+    std::vector<Vec3> normals(surface->Triangles.size());
+    for (std::size_t t = 0; t < normals.size(); ++t)
+    {
+      const auto& tri = surface->Triangles[t];
+      normals[t] = Normalize(Cross(surface->Vertices[tri[1]] - surface->Vertices[tri[0]],
+        surface->Vertices[tri[2]] - surface->Vertices[tri[0]]));
+    }
     parallelFor(0, Ranges,
       [&](std::size_t begin, std::size_t end)
       {
@@ -423,9 +431,7 @@ void ObjectRadiance::WeighCells(const Vec3& eye, const ParallelFor& parallelFor)
           // A cast lobe is left out: the diffuse part alone.
           const bool diffuseOnly =
             this->LobeCast && m.Type == MaterialType::Phong && MirrorReflection::Casts(m);
-          const auto& tri = surface->Triangles[t];
-          Vec3 n = Normalize(Cross(surface->Vertices[tri[1]] - surface->Vertices[tri[0]],
-            surface->Vertices[tri[2]] - surface->Vertices[tri[0]]));
+          Vec3 n = normals[t];
           if (Dot(n, dir) > 0.f)
           {
             n = -n;
