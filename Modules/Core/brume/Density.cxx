@@ -43,8 +43,9 @@ Box GridDensity::NativeBox() const
   Box box = this->Bounds;
   for (int a = 0; a < 3; ++a)
   {
-    const float half =
-      this->Dims[a] > 1 ? 0.5f * this->Bounds.Extent()[a] / static_cast<float>(this->Dims[a] - 1) : 0.f;
+    const float half = this->Dims[a] > 1
+      ? 0.5f * this->Bounds.Extent()[a] / static_cast<float>(this->Dims[a] - 1)
+      : 0.f;
     box.lower[a] -= half;
     box.upper[a] += half;
   }

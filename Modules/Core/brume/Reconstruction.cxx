@@ -81,6 +81,12 @@ ObjectRadiance::ObjectRadiance(
   , Refinement(refinement)
   , ViewDependent(surface.IsViewDependent())
 {
+  this->TriangleNormals.reserve(surface.Triangles.size());
+  for (const auto& tri : surface.Triangles)
+  {
+    this->TriangleNormals.push_back(Cross(surface.Vertices[tri[1]] - surface.Vertices[tri[0]],
+      surface.Vertices[tri[2]] - surface.Vertices[tri[0]]));
+  }
 }
 
 ObjectRadiance::ObjectRadiance(const Medium& medium, std::array<int, 3> resolution, int refinement)
@@ -102,9 +108,7 @@ bool ObjectRadiance::FromFront(const HitArrays& hits, std::uint32_t i) const
 {
   // The particle travels against the front (winding) normal of its triangle.
   const std::uint32_t t = hits.Triangle ? hits.Triangle[i] : 0;
-  const auto& tri = this->SurfaceRef->Triangles[t < this->SurfaceRef->Triangles.size() ? t : 0];
-  const Vec3 n = Cross(this->SurfaceRef->Vertices[tri[1]] - this->SurfaceRef->Vertices[tri[0]],
-    this->SurfaceRef->Vertices[tri[2]] - this->SurfaceRef->Vertices[tri[0]]);
+  const Vec3& n = this->TriangleNormals[t < this->TriangleNormals.size() ? t : 0];
   const Vec3 d(hits.Direction[3 * i], hits.Direction[3 * i + 1], hits.Direction[3 * i + 2]);
   return Dot(n, d) < 0.f;
 }
@@ -410,12 +414,10 @@ void ObjectRadiance::WeighCells(const Vec3& eye, const ParallelFor& parallelFor)
   else
   {
     // The triangles' normals, once per update rather than per hit.
-    std::vector<Vec3> normals(surface->Triangles.size());
+    std::vector<Vec3> normals(this->TriangleNormals.size());
     for (std::size_t t = 0; t < normals.size(); ++t)
     {
-      const auto& tri = surface->Triangles[t];
-      normals[t] = Normalize(Cross(surface->Vertices[tri[1]] - surface->Vertices[tri[0]],
-        surface->Vertices[tri[2]] - surface->Vertices[tri[0]]));
+      normals[t] = Normalize(this->TriangleNormals[t]);
     }
     parallelFor(0, Ranges,
       [&](std::size_t begin, std::size_t end)

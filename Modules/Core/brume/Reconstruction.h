@@ -357,6 +357,9 @@ private:
 
   const Surface* SurfaceRef = nullptr;
   const Medium* MediumRef = nullptr;
+  // Surfaces: each triangle's winding normal (not normalized), which
+  // FromFront tests every hit against.
+  std::vector<Vec3> TriangleNormals;
   SurfaceChart Chart;
   std::array<int, 3> Resolution;
   std::array<int, 3> Dims; // histogram

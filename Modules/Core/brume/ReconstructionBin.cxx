@@ -237,9 +237,13 @@ void ObjectRadiance::KeepHits(const HitArrays& hits, const std::uint32_t* index,
         {
           const std::uint32_t j = order[k];
           const std::size_t i = index[j];
-          std::copy(hits.Position + 3 * i, hits.Position + 3 * i + 3, out->Position);
-          std::copy(hits.Direction + 3 * i, hits.Direction + 3 * i + 3, out->Direction);
-          std::copy(hits.Flux + 3 * i, hits.Flux + 3 * i + 3, out->Flux);
+          // Element by element: std::copy of three floats is a memmove call.
+          for (int a = 0; a < 3; ++a)
+          {
+            out->Position[a] = hits.Position[3 * i + a];
+            out->Direction[a] = hits.Direction[3 * i + a];
+            out->Flux[a] = hits.Flux[3 * i + a];
+          }
           out->Cell = cellOf[j];
           out->Triangle = hits.Triangle ? hits.Triangle[i] : 0;
         }

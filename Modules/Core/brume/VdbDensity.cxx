@@ -193,8 +193,9 @@ std::array<int, 3> VdbDensity::NativeResolution() const
   for (int a = 0; a < 3; ++a)
   {
     voxels[a] = std::max(1,
-      static_cast<int>(std::lround(
-        static_cast<double>(this->Bounds.Extent()[a]) / this->Impl->VoxelSize[a])) + 1);
+      static_cast<int>(
+        std::lround(static_cast<double>(this->Bounds.Extent()[a]) / this->Impl->VoxelSize[a])) +
+        1);
   }
   return voxels;
 }

@@ -39,8 +39,8 @@ private:
 };
 
 /// Checks the structure of a .vdb file before OpenVDB reads it: the header,
-/// the file and grid metadata, the grid descriptors and the transform's name. OpenVDB trusts the lengths and counts
-/// it reads, so a corrupt file of a kilobyte can make it allocate gigabytes;
+/// the file and grid metadata, the grid descriptors and the transform's name. OpenVDB trusts the
+/// lengths and counts it reads, so a corrupt file of a kilobyte can make it allocate gigabytes;
 /// every such length must fit in the bytes the file has. Empty when plausible.
 std::string CheckVdbFile(const std::string& fileName);
 
