@@ -67,8 +67,10 @@ template <typename T>
 struct GrowingBuffer
 {
   T* Data = nullptr;
+  std::size_t Capacity = 0; // in values
   ~GrowingBuffer() { std::free(this->Data); }
-  bool Resize(std::size_t values)
+  // Exactly `values` (to reserve, or to shrink to fit).
+  bool Reallocate(std::size_t values)
   {
     void* p = std::realloc(this->Data, std::max<std::size_t>(1, values) * sizeof(T));
     if (!p)
@@ -76,7 +78,16 @@ struct GrowingBuffer
       return false;
     }
     this->Data = static_cast<T*>(p);
+    this->Capacity = values;
     return true;
+  }
+  // Room for `values`, growing by half at least: a realloc that glibc
+  // cannot remap (its mmap threshold rises once large blocks are freed)
+  // copies the buffer, so it must not happen at every batch.
+  bool Resize(std::size_t values)
+  {
+    return values <= this->Capacity ||
+      this->Reallocate(std::max(values, this->Capacity + this->Capacity / 2));
   }
   template <typename Array>
   void HandTo(Array* array, vtkIdType values)
@@ -101,6 +112,16 @@ struct OutputHits
       this->Depth.Resize(m) && this->Triangle.Resize(m);
   }
 
+  // Room for n hits at once (pages are mapped only when written), or
+  // exactly n (shrink to fit).
+  bool Reallocate(vtkIdType n)
+  {
+    const auto m = static_cast<std::size_t>(n);
+    return this->Points.Reallocate(3 * m) && this->Direction.Reallocate(3 * m) &&
+      this->Flux.Reallocate(3 * m) && this->Object.Reallocate(m) && this->Emitter.Reallocate(m) &&
+      this->Depth.Reallocate(m) && this->Triangle.Reallocate(m);
+  }
+
   void Write(vtkIdType offset, const std::vector<brume::Hit>& hits)
   {
     float* p = this->Points.Data + 3 * offset;
@@ -113,9 +134,13 @@ struct OutputHits
     for (std::size_t i = 0; i < hits.size(); ++i)
     {
       const brume::Hit& h = hits[i];
-      std::copy(h.Position, h.Position + 3, p + 3 * i);
-      std::copy(h.Direction, h.Direction + 3, d + 3 * i);
-      std::copy(h.Flux, h.Flux + 3, f + 3 * i);
+      // Element by element: std::copy of three floats is a memmove call.
+      for (int a = 0; a < 3; ++a)
+      {
+        p[3 * i + a] = h.Position[a];
+        d[3 * i + a] = h.Direction[a];
+        f[3 * i + a] = h.Flux[a];
+      }
       o[i] = h.Object;
       e[i] = h.Emitter;
       depth[i] = h.Depth;
@@ -125,7 +150,7 @@ struct OutputHits
 
   void Attach(vtkPolyData* output, vtkIdType n)
   {
-    this->Resize(n); // shrink to fit
+    this->Reallocate(n); // shrink to fit
     auto make = [&](auto array, auto& buffer, const char* name, int components)
     {
       array->SetName(name);
@@ -303,7 +328,16 @@ int vtkBrumeLightTracer::RequestData(
       batchHits += blockHits[b].size();
       sum.Add(counters[b]);
     }
-    if (!out.Resize(stored + static_cast<vtkIdType>(batchHits)))
+    // After the first batch, room for the hits all batches will likely
+    // hold (its hits per particle, 5 % more): one allocation, not twenty.
+    const bool firstBatch = k == 0 && batches > 1;
+    const vtkIdType expected = firstBatch
+      ? static_cast<vtkIdType>(1.05 * static_cast<double>(batchHits) * static_cast<double>(blocks) /
+          static_cast<double>(end - begin)) +
+        1024
+      : 0;
+    if (!(firstBatch ? out.Reallocate(std::max<vtkIdType>(expected, stored + batchHits))
+                     : out.Resize(stored + static_cast<vtkIdType>(batchHits))))
     {
       vtkErrorMacro("Out of memory storing " << stored + batchHits << " particle hits.");
       return 0;
