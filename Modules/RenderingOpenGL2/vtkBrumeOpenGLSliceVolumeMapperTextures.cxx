@@ -161,15 +161,22 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadTextures(
   {
     // The texture holds J = S sigma_t: filtered between voxels, J and
     // sigma_t stay bounded where the medium thins out (S would not).
+    std::atomic<bool> overflow(false);
     vtkSMPTools::For(0, 4 * cells,
       [&](vtkIdType begin, vtkIdType end)
       {
+        bool finite = true;
         for (vtkIdType i = begin; i < end; ++i)
         {
           s[i] *= e[i];
+          finite = finite && std::isfinite(s[i]);
+        }
+        if (!finite)
+        {
+          overflow = true;
         }
       });
-    if (std::find_if(s.begin(), s.end(), [](float v) { return !std::isfinite(v); }) != s.end())
+    if (overflow)
     {
       vtkErrorMacro("Cannot draw this medium: its source radiance times its extinction "
                     "overflows.");

@@ -364,12 +364,7 @@ void ObjectRadiance::WeighCells(const Vec3& eye, const ParallelFor& parallelFor)
   const Surface* surface = this->SurfaceRef;
   // Media: the remainder of the phase function once its peak is set apart.
   const HenyeyGreenstein phase(medium ? this->Peaks[0].G : 0.f);
-  const double remainder = 1.0 - this->Peaks[0].Forward;
-  // Henyey-Greenstein inlined: remainder (1 - g^2) / (4 pi) / x^1.5 with
-  // x = 1 + g^2 - 2 g cos.
-  const float g = phase.G;
-  const float hgA = 1.f + g * g, hgB = 2.f * g;
-  const float hgC = static_cast<float>(remainder * Inv4Pi * (1.0 - static_cast<double>(g) * g));
+  const float remainder = static_cast<float>(1.0 - this->Peaks[0].Forward);
   if (medium)
   {
     // Phase function from the direction of travel to the eye, in blocks
@@ -398,8 +393,7 @@ void ObjectRadiance::WeighCells(const Vec3& eye, const ParallelFor& parallelFor)
           {
             const float cosine = (ux[i] * dx[i] + uy[i] * dy[i] + uz[i] * dz[i]) /
               std::sqrt(dx[i] * dx[i] + dy[i] * dy[i] + dz[i] * dz[i]);
-            const float x = hgA - hgB * cosine;
-            p[i] = hgC / (x * std::sqrt(x));
+            p[i] = remainder * phase.Evaluate(cosine);
           }
           for (std::size_t i = 0; i < n; ++i)
           {

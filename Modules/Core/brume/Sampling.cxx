@@ -28,13 +28,6 @@ Vec3 SampleUniformSphere(float u1, float u2)
   return { r * std::cos(phi), r * std::sin(phi), z };
 }
 
-float HenyeyGreenstein::Evaluate(float cosTheta) const
-{
-  const float g = this->G;
-  const float denom = 1.f + g * g - 2.f * g * cosTheta;
-  return Inv4Pi * (1.f - g * g) / (denom * std::sqrt(denom));
-}
-
 float HenyeyGreenstein::SampleCosTheta(float u) const
 {
   const float g = this->G;

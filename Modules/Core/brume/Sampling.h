@@ -5,6 +5,8 @@
 
 #include "brume/Vec3.h"
 
+#include <cmath>
+
 namespace brume
 {
 
@@ -37,7 +39,12 @@ public:
 
   float G;
 
-  float Evaluate(float cosTheta) const;
+  /// Inline: view updates evaluate it per kept hit, in loops the compiler vectorizes.
+  float Evaluate(float cosTheta) const
+  {
+    const float denom = 1.f + this->G * this->G - 2.f * this->G * cosTheta;
+    return Inv4Pi * (1.f - this->G * this->G) / (denom * std::sqrt(denom));
+  }
   /// Cosine of the scattering angle for a uniform number u (inverse CDF).
   float SampleCosTheta(float u) const;
   /// New direction of travel for a particle travelling along wi.
