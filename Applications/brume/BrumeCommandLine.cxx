@@ -311,15 +311,19 @@ void AddValidate(CLI::App& app, SlabOptions& o)
 
 void AddBench(CLI::App& app, BenchOptions& o)
 {
-  CLI::App* bench = AddCommand(app, "bench", "brume bench [--particles N] [--seed S]",
+  CLI::App* bench = AddCommand(app, "bench", "brume bench [--particles N] [--seed S] [--json FILE]",
     "Traces the built-in scene and casts the same rays through Embree alone;\n"
     "prints particles/s, hits/s, the ratio of the ray throughputs and the peak\n"
     "memory per stored hit; then the reconstruction's full and per-view times\n"
-    "and, with a display, frame times against vtkGPUVolumeRayCastMapper.");
+    "and, with a display, frame times against vtkGPUVolumeRayCastMapper; last,\n"
+    "every figure beside its target.");
   bench->add_option("--particles", o.Particles, "particles traced (default 1000000)")
     ->transform(Integer(1, 10000000000LL, "an integer in [1, 1e10]"))
     ->type_name("N");
   AddSeed(bench, o.Seed);
+  bench->add_option("--json", o.Json, "also write the figures, targets and verdicts as JSON")
+    ->transform(NotEmpty("a file name"))
+    ->type_name("FILE");
 }
 
 void AddChart(CLI::App& app, ChartOptions& o)
@@ -463,7 +467,7 @@ int ParseCommandLine(
     "brume render [SCENE] -o OUTPUT [options]\n"
     "       brume view [SCENE] [options]\n"
     "       brume validate slab --albedo A --optical-thickness B --g G [options]\n"
-    "       brume bench [--particles N] [--seed S]\n"
+    "       brume bench [--particles N] [--seed S] [--json FILE]\n"
     "       brume chart [SCENE] [-o chart.png] [--csv chart.csv] [options]\n"
     "       brume --version"));
   app.set_help_flag("-h,--help", "print this help");

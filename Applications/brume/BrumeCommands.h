@@ -22,6 +22,8 @@ struct BenchOptions
 {
   long long Particles = 1000000;
   std::uint64_t Seed = 0;
+  /// Where to write the figures as JSON (none when empty).
+  std::string Json;
 };
 
 /// `brume bench`: phase-1 throughput against Embree's raw throughput.
