@@ -23,6 +23,8 @@ packages=(
   libcli11-dev librandom123-dev
   # Tools and test frameworks; mpirun for distributed runs and their tests.
   cmake ninja-build g++ git libgtest-dev libbenchmark-dev openmpi-bin
+  # callgrind counts the phases' instructions (Brume.InstructionCounts).
+  valgrind
 )
 
 missing=()
