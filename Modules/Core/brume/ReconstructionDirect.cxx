@@ -280,9 +280,19 @@ void ObjectRadiance::CombineDirect(const ParallelFor& parallelFor)
     this->MediumAlbedo * (1.f - this->Peaks[0].Forward) / this->ExtinctionFactors[0];
   const std::size_t nx = this->Resolution[0], nxy = nx * this->Resolution[1];
   const std::size_t rows = static_cast<std::size_t>(dims[1]) * dims[2];
+  // The output texels' x positions apart, for the media's row loops.
+  std::vector<float> offsetX[3];
+  for (const Vec3& offset : axes[0].Offset)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      offsetX[a].push_back(offset[a]);
+    }
+  }
   parallelFor(0, rows,
     [&](std::size_t begin, std::size_t end)
     {
+      std::vector<float> phaseOf(this->MediumRef ? dims[0] : 0);
       for (std::size_t row = begin; row < end; ++row)
       {
         const std::size_t y = row % dims[1], z = row / dims[1];
@@ -309,6 +319,43 @@ void ObjectRadiance::CombineDirect(const ParallelFor& parallelFor)
             }
             out[c] = value;
           }
+        }
+        if (this->MediumRef)
+        {
+          // S_1 = albedo p E T (the source radiance J_1 / sigma_t), light by
+          // light along the row: the phase function first, in a loop the
+          // compiler vectorizes (ReconstructionDirect.cxx is built without
+          // errno from square roots), then the sums.
+          const Vec3 eye = this->Eye - rowOffset;
+          const std::size_t first = row * dims[0];
+          float* out = &this->DirectRadiance[3 * first];
+          for (std::size_t l = 0; l < lights; ++l)
+          {
+            const float* a = &this->Arrivals[(first * lights + l) * ArrivalFloats];
+            const std::size_t stride = lights * ArrivalFloats;
+            for (int x = 0; x < dims[0]; ++x)
+            {
+              const float* ax = a + x * stride;
+              const float ex = eye.x - offsetX[0][x], ey = eye.y - offsetX[1][x],
+                          ez = eye.z - offsetX[2][x];
+              const float dot = ax[3] * ex + ax[4] * ey + ax[5] * ez;
+              phaseOf[x] = phase.Evaluate(dot / std::sqrt(ex * ex + ey * ey + ez * ez));
+            }
+            for (int x = 0; x < dims[0]; ++x)
+            {
+              const float* ax = a + x * stride;
+              for (int c = 0; c < 3; ++c)
+              {
+                out[3 * x + c] += scale[c] * phaseOf[x] * ax[c];
+              }
+            }
+          }
+          continue;
+        }
+        for (int x = 0; x < dims[0]; ++x)
+        {
+          const std::size_t t = row * dims[0] + x;
+          float* out = &this->DirectRadiance[3 * t];
           const Vec3 toEye = Normalize(this->Eye - (axes[0].Offset[x] + rowOffset));
           for (std::size_t l = 0; l < lights; ++l)
           {
@@ -318,16 +365,8 @@ void ObjectRadiance::CombineDirect(const ParallelFor& parallelFor)
               continue;
             }
             const Vec3 direction(a[3], a[4], a[5]);
-            Vec3 f;
-            if (this->MediumRef)
-            {
-              // S_1 = albedo p E T (the source radiance J_1 / sigma_t).
-              f = scale * phase.Evaluate(Dot(direction, toEye));
-            }
-            else
-            {
-              f = EvaluateBrdf(this->SurfaceRef->Mat, this->SurfaceNormal, -direction, toEye);
-            }
+            const Vec3 f =
+              EvaluateBrdf(this->SurfaceRef->Mat, this->SurfaceNormal, -direction, toEye);
             for (int c = 0; c < 3; ++c)
             {
               out[c] += f[c] * a[c];
