@@ -175,6 +175,13 @@ void AddRender(CLI::App& app, RenderOptions& o)
     ->transform(Integer(1, 8, "an integer in [1, 8]"))
     ->type_name("K");
   render->add_flag("--timings", o.Timings, "print the time of each phase (as the paper's Table 1)");
+  render
+    ->add_option("--batch", o.Batch,
+      "trace and bin the particles N at a time: only one\n"
+      "batch's hits are held, plus those of view-dependent\n"
+      "objects (default: all at once; one process only)")
+    ->transform(Integer(1, 10000000000LL, "an integer in [1, 1e10]"))
+    ->type_name("N");
   render->add_flag("--reference", o.Reference,
     "render with the unbiased path tracer instead (no\n"
     "display needed); .vti adds the per-pixel 'Variance'");

@@ -204,6 +204,7 @@ struct PhaseTimes
 {
   double Tracing, Reconstructing, FirstFrame, Frame, ReductionSeconds;
   vtkTypeInt64 ReductionBytes;
+  long long Hits, Rays; // this process's, over every batch
 };
 
 void PrintTextureMemory(vtkPartitionedDataSetCollection* textures)
@@ -247,14 +248,16 @@ void PrintTextureMemory(vtkPartitionedDataSetCollection* textures)
   std::printf("  %-28s %-18s %23s %9.2f\n", "all textures", "", "", total);
 }
 
-void PrintTimings(const RenderOptions& options, vtkBrumeLightTracer* tracer,
-  vtkPartitionedDataSetCollection* textures, const PhaseTimes& t, int processes)
+void PrintTimings(const RenderOptions& options, vtkPartitionedDataSetCollection* textures,
+  const PhaseTimes& t, int processes)
 {
-  auto* hits = tracer->GetOutput();
   std::printf("phase                time (s)\n");
   std::printf("particle tracing     %8.3f   %lld particles, %lld hits, %lld rays", t.Tracing,
-    options.Particles, static_cast<long long>(hits->GetNumberOfPoints()),
-    static_cast<long long>(tracer->GetLastRayCount()));
+    options.Particles, t.Hits, t.Rays);
+  if (options.Batch > 0 && options.Batch < options.Particles)
+  {
+    std::printf(" in batches of %lld", options.Batch);
+  }
   std::printf(processes > 1 ? " (process 0 of %d; time: the slowest)\n" : "\n", processes);
   std::printf("reconstruction       %8.3f", t.Reconstructing);
   if (processes > 1)
@@ -304,32 +307,21 @@ int RunRender(RenderOptions options)
     return 1;
   }
 
-  // Phase 1: particle tracing.
-  auto start = std::chrono::steady_clock::now();
+  if (options.Batch > 0 && processes > 1)
+  {
+    if (rank == 0)
+    {
+      std::cerr << "brume: --batch runs in one process only (under mpirun, every process "
+                   "traces its share at once).\n";
+    }
+    return 2;
+  }
   vtkNew<vtkBrumeLightTracer> tracer;
   tracer->SetInputConnection(scene->GetOutputPort());
   tracer->SetNumberOfParticles(options.Particles);
   tracer->SetSeed(options.Seed);
-  if (rank == 0)
-  {
-    BrumeShowProgress(tracer, "particle tracing");
-  }
-  const bool traced = tracer->UpdatePiece(rank, processes, 0) != 0;
-  if (!traced)
-  {
-    std::cerr << "brume: particle tracing failed.\n";
-  }
-  if (!vtkBrumeProcesses::AllSucceeded(traced, "particle tracing"))
-  {
-    return 1;
-  }
-  // The slowest process's tracing time.
-  const double tracing = vtkBrumeProcesses::Max(controller, Seconds(start));
-
-  // Phase 2: reconstruction toward the camera.
   double position[3], focal[3], up[3], angle;
   vtkBrumeSceneCamera::GetSceneCamera(scene->GetOutputDataObject(0), position, focal, up, angle);
-  start = std::chrono::steady_clock::now();
   vtkNew<vtkBrumeRadianceReconstruction> reconstruction;
   reconstruction->SetInputConnection(0, scene->GetOutputPort());
   reconstruction->SetInputConnection(1, tracer->GetOutputPort());
@@ -338,18 +330,45 @@ int RunRender(RenderOptions options)
   reconstruction->SetDirectLighting(options.DirectLight);
   if (rank == 0)
   {
+    BrumeShowProgress(tracer, "particle tracing");
     BrumeShowProgress(reconstruction, "reconstruction");
   }
-  const bool reconstructed = reconstruction->UpdatePiece(rank, processes, 0) != 0;
-  if (!reconstructed)
+  // Phases 1 and 2, at once or batch by batch (each batch's hits binned,
+  // then released when the next is traced).
+  const long long batch = options.Batch > 0 ? options.Batch : options.Particles;
+  reconstruction->SetAccumulateParticles(batch < options.Particles);
+  double tracing = 0.0, reconstructing = 0.0;
+  long long hits = 0, rays = 0;
+  for (long long first = 0; first < options.Particles; first += batch)
   {
-    std::cerr << "brume: reconstruction failed.\n";
+    tracer->SetFirstParticle(first);
+    tracer->SetEndParticle(std::min(first + batch, options.Particles));
+    auto start = std::chrono::steady_clock::now();
+    const bool traced = tracer->UpdatePiece(rank, processes, 0) != 0;
+    if (!traced)
+    {
+      std::cerr << "brume: particle tracing failed.\n";
+    }
+    if (!vtkBrumeProcesses::AllSucceeded(traced, "particle tracing"))
+    {
+      return 1;
+    }
+    // The slowest process's tracing time.
+    tracing += vtkBrumeProcesses::Max(controller, Seconds(start));
+    hits += tracer->GetOutput()->GetNumberOfPoints();
+    rays += tracer->GetLastRayCount();
+    start = std::chrono::steady_clock::now();
+    const bool reconstructed = reconstruction->UpdatePiece(rank, processes, 0) != 0;
+    if (!reconstructed)
+    {
+      std::cerr << "brume: reconstruction failed.\n";
+    }
+    if (!vtkBrumeProcesses::AllSucceeded(reconstructed, "reconstruction"))
+    {
+      return 1;
+    }
+    reconstructing += Seconds(start);
   }
-  if (!vtkBrumeProcesses::AllSucceeded(reconstructed, "reconstruction"))
-  {
-    return 1;
-  }
-  const double reconstructing = Seconds(start);
   const vtkTypeInt64 reductionBytes =
     vtkBrumeProcesses::Sum(controller, reconstruction->GetLastReductionBytes());
   const double reductionSeconds =
@@ -388,7 +407,7 @@ int RunRender(RenderOptions options)
   renderer->ResetCameraClippingRange();
   vtkNew<vtkBrumeFloatImageCapture> capture;
   capture->Attach(renderer);
-  start = std::chrono::steady_clock::now();
+  auto start = std::chrono::steady_clock::now();
   window->Render();
   const double firstFrame = Seconds(start);
   // A second frame measures the steady per-view cost (textures already resident).
@@ -419,9 +438,9 @@ int RunRender(RenderOptions options)
 
   if (options.Timings)
   {
-    PhaseTimes times{ tracing, reconstructing, firstFrame, frame, reductionSeconds,
-      reductionBytes };
-    PrintTimings(options, tracer, reconstruction->GetOutput(), times, processes);
+    PhaseTimes times{ tracing, reconstructing, firstFrame, frame, reductionSeconds, reductionBytes,
+      hits, rays };
+    PrintTimings(options, reconstruction->GetOutput(), times, processes);
   }
   return 0;
 }

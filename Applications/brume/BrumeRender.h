@@ -22,6 +22,7 @@ struct RenderOptions
   bool DirectLight = true; // deterministic single scattering (vtkBrumeRadianceReconstruction)
   int Supersample = 1;     // render K x K pixels per output pixel and average them
   bool Timings = false;
+  long long Batch = 0;    // particles per batch (0: all at once)
   bool Reference = false; // the unbiased path tracer instead of the three phases
   int SamplesPerPixel = 64;
   // Which settings the command line gave (a scene file's render settings

@@ -24,6 +24,7 @@ const char* const vtkBrumeHitConversion::TriangleIdName = "TriangleId";
 const char* const vtkBrumeHitConversion::TotalPowerName = "TotalPower";
 const char* const vtkBrumeHitConversion::NumberOfParticlesName = "NumberOfParticles";
 const char* const vtkBrumeHitConversion::FirstParticleName = "FirstParticle";
+const char* const vtkBrumeHitConversion::EndParticleName = "EndParticle";
 const char* const vtkBrumeHitConversion::SeedName = "Seed";
 
 namespace
@@ -197,6 +198,13 @@ std::string vtkBrumeHitConversion::ReadHits(
     return a && a->GetNumberOfTuples() > 0 ? a->GetTuple1(0) : 0.0;
   };
   run.FirstParticle = fieldValue(FirstParticleName);
+  run.EndParticle = fields->GetArray(EndParticleName) ? fieldValue(EndParticleName) : run.Particles;
+  if (!(run.FirstParticle >= 0.0 && run.FirstParticle < run.EndParticle &&
+        run.EndParticle <= run.Particles))
+  {
+    return "The particle hits' 'FirstParticle' and 'EndParticle' do not make a range of "
+           "[0, NumberOfParticles]";
+  }
   run.Seed = fieldValue(SeedName);
   hits.Count = static_cast<std::size_t>(n);
   if (n > 0)

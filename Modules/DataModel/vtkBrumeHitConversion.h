@@ -18,8 +18,9 @@
  *
  * and the field data of the run: `TotalPower` (double[3], W),
  * `NumberOfParticles` (the run's particle count), and where the tracer
- * wrote them `FirstParticle` (progressive steps), `Seed` and
- * `PieceParticles` ([first, end) of a distributed piece).
+ * wrote them `FirstParticle` and `EndParticle` (the run's particles
+ * [first, end) these hits come from: a progressive step or a batch), `Seed`
+ * and `PieceParticles` ([first, end) of a distributed piece).
  *
  * @sa vtkBrumeSceneConversion vtkBrumeRadianceConversion
  */
@@ -51,6 +52,7 @@ public:
   static const char* const TotalPowerName;
   static const char* const NumberOfParticlesName;
   static const char* const FirstParticleName;
+  static const char* const EndParticleName;
   static const char* const SeedName;
   ///@}
 
@@ -60,6 +62,7 @@ public:
     double TotalPower[3] = { 0.0, 0.0, 0.0 };
     double Particles = 0.0;     // NumberOfParticles
     double FirstParticle = 0.0; // 0 unless the hits continue a run
+    double EndParticle = 0.0;   // where these hits' particles end (Particles unless a batch)
     double Seed = 0.0;
   };
 

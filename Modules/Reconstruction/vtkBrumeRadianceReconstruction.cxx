@@ -195,8 +195,8 @@ bool vtkBrumeRadianceReconstruction::Validate(
   if (run.FirstParticle > 0.0 && !this->AccumulateParticles)
   {
     vtkErrorMacro("These hits are the particles ["
-      << run.FirstParticle << ", " << run.Particles
-      << ") of a run: turn AccumulateParticles on to add them to the earlier ones.");
+      << run.FirstParticle << ", " << run.EndParticle << ") of a run of " << run.Particles
+      << ": turn AccumulateParticles on to add them to the earlier ones.");
     return false;
   }
   if (run.FirstParticle > 0.0 && vtkBrumeProcesses::IsDistributed(this->Controller))
@@ -231,8 +231,8 @@ bool vtkBrumeRadianceReconstruction::Plan(const vtkBrumeReconstructionRequest& r
     // The hits hold only the last step's particles: the textures cannot be
     // rebuilt from them.
     vtkErrorMacro("The settings or the scene changed, but the hits are only the particles ["
-      << run.FirstParticle << ", " << run.Particles
-      << ") of a run: trace from FirstParticle 0 again to rebuild the textures.");
+      << run.FirstParticle << ", " << run.EndParticle << ") of a run of " << run.Particles
+      << ": trace from FirstParticle 0 again to rebuild the textures.");
     this->Textures.reset();
     return false;
   }
@@ -240,9 +240,11 @@ bool vtkBrumeRadianceReconstruction::Plan(const vtkBrumeReconstructionRequest& r
   {
     if (!sameSettings || !textures->Continues(run))
     {
-      vtkErrorMacro("These hits continue a run of "
-        << run.FirstParticle << " particles (seed " << run.Seed << ") but the textures hold "
-        << (textures ? textures->GetParticles() : 0.0) << " particles (seed "
+      vtkErrorMacro("These hits are the particles ["
+        << run.FirstParticle << ", " << run.EndParticle << ") of a run of " << run.Particles
+        << " (seed " << run.Seed << ") but the textures hold the particles [0, "
+        << (textures ? textures->GetEndParticle() : 0.0) << ") of a run of "
+        << (textures ? textures->GetParticles() : 0.0) << " (seed "
         << (textures ? textures->GetSeed() : 0.0)
         << ") of the same scene and settings: trace from FirstParticle 0 again.");
       return false; // the textures stay as they are

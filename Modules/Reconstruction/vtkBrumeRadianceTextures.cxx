@@ -95,14 +95,18 @@ bool vtkBrumeRadianceTextures::HoldsHits(vtkPolyData* hits) const
 bool vtkBrumeRadianceTextures::HoldsStep(const vtkBrumeHitConversion::RunInfo& run) const
 {
   return run.FirstParticle > 0.0 && this->Accumulated &&
-    this->LastFirstParticle == run.FirstParticle && this->Particles == run.Particles &&
-    this->Seed == run.Seed;
+    this->LastFirstParticle == run.FirstParticle && this->EndParticle == run.EndParticle &&
+    this->Particles == run.Particles && this->Seed == run.Seed;
 }
 
 bool vtkBrumeRadianceTextures::Continues(const vtkBrumeHitConversion::RunInfo& run) const
 {
-  return this->Particles == run.FirstParticle && this->Seed == run.Seed &&
-    run.Particles > run.FirstParticle;
+  if (this->Seed != run.Seed || this->EndParticle != run.FirstParticle)
+  {
+    return false;
+  }
+  // The next batch of the same run, or a complete run extended.
+  return run.Particles == this->Particles || this->EndParticle == this->Particles;
 }
 
 bool vtkBrumeRadianceTextures::Build(const vtkBrumeReconstructionRequest& request,
@@ -127,9 +131,9 @@ bool vtkBrumeRadianceTextures::Build(const vtkBrumeReconstructionRequest& reques
   {
     return false;
   }
-  if (!this->CreateObjects(settings, groups) || !this->CreateDirectLight(settings, request.Hits) ||
-    !this->PlanReflections() || !this->CheckHits(request.Hits, groups) ||
-    !this->BuildObjects(request, groups, work))
+  if (!this->CreateObjects(settings, groups, request.Run) ||
+    !this->CreateDirectLight(settings, request.Hits) || !this->PlanReflections() ||
+    !this->CheckHits(request.Hits, groups) || !this->BuildObjects(request, groups, work))
   {
     return false;
   }
@@ -142,6 +146,7 @@ bool vtkBrumeRadianceTextures::Build(const vtkBrumeReconstructionRequest& reques
   this->ObjectEye.assign(this->Objects.size(), request.Eye);
   this->ObjectDirectional.assign(this->Objects.size(), false);
   this->Particles = request.Run.Particles;
+  this->EndParticle = request.Run.EndParticle;
   this->Seed = request.Run.Seed;
   return true;
 }
@@ -205,14 +210,17 @@ std::unique_ptr<brume::ObjectRadiance> vtkBrumeRadianceTextures::CreateObject(
   return radiance;
 }
 
-bool vtkBrumeRadianceTextures::CreateObjects(
-  const vtkBrumeReconstructionSettings& settings, const brume::ObjectHits& groups)
+bool vtkBrumeRadianceTextures::CreateObjects(const vtkBrumeReconstructionSettings& settings,
+  const brume::ObjectHits& groups, const vtkBrumeHitConversion::RunInfo& run)
 {
-  // Resolutions follow the hits of the whole run, on every process.
+  // Resolutions follow the hits of the whole run, on every process; from
+  // the first batch of a run traced in batches, its hits scaled to the run.
+  const double scale = run.Particles / (run.EndParticle - run.FirstParticle);
   std::vector<vtkTypeInt64> counts(this->Scene.NumberOfObjects());
   for (std::size_t o = 0; o < counts.size(); ++o)
   {
-    counts[o] = static_cast<vtkTypeInt64>(groups.Offset[o + 1] - groups.Offset[o]);
+    counts[o] = static_cast<vtkTypeInt64>(
+      std::llround(scale * static_cast<double>(groups.Offset[o + 1] - groups.Offset[o])));
   }
   if (this->Distributed() && !counts.empty())
   {
@@ -446,6 +454,7 @@ bool vtkBrumeRadianceTextures::Add(
   this->HitsData = request.HitData;
   this->HitsTime = request.HitData->GetMTime();
   this->Particles = request.Run.Particles;
+  this->EndParticle = request.Run.EndParticle;
   this->LastFirstParticle = request.Run.FirstParticle;
   this->Accumulated = true;
   this->MirrorsCurrent = false;

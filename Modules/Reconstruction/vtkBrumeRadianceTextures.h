@@ -97,9 +97,15 @@ public:
   bool HoldsHits(vtkPolyData* hits) const;
   /// Whether the hits are the last progressive step added (nothing new).
   bool HoldsStep(const vtkBrumeHitConversion::RunInfo& run) const;
-  /// Whether `run` continues the run the textures hold.
+  /**
+   * Whether `run` continues the run the textures hold: the next batch of
+   * the same run (it starts where the particles binned end), or, once that
+   * run is complete, the particles that extend it to a larger count.
+   */
   bool Continues(const vtkBrumeHitConversion::RunInfo& run) const;
   double GetParticles() const { return this->Particles; }
+  /// Where the particles binned end (GetParticles() once the run is complete).
+  double GetEndParticle() const { return this->EndParticle; }
   double GetSeed() const { return this->Seed; }
 
   /// Every texture from the hits. False (errors reported) on failure.
@@ -132,8 +138,8 @@ public:
   void TakeReduction(vtkTypeInt64& bytes, double& seconds);
 
 private:
-  bool CreateObjects(
-    const vtkBrumeReconstructionSettings& settings, const brume::ObjectHits& groups);
+  bool CreateObjects(const vtkBrumeReconstructionSettings& settings,
+    const brume::ObjectHits& groups, const vtkBrumeHitConversion::RunInfo& run);
   std::unique_ptr<brume::ObjectRadiance> CreateObject(
     std::size_t o, std::size_t hitCount, const vtkBrumeReconstructionSettings& settings);
   bool CheckHits(const brume::HitArrays& hits, const brume::ObjectHits& groups);
@@ -177,6 +183,7 @@ private:
   std::vector<brume::Vec3> ObjectEye;  // the eye each texture was estimated toward
   std::vector<bool> ObjectDirectional; // whose output holds directional radiance
   double Particles = 0.0, Seed = 0.0;
+  double EndParticle = 0.0;         // the particles binned are [0, EndParticle)
   bool Accumulated = false;         // particles were added after the build
   double LastFirstParticle = 0.0;   // the first particle of the last step added
   std::vector<std::size_t> Mirrors; // the surfaces whose reflections are cast

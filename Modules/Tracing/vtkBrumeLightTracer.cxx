@@ -252,15 +252,22 @@ int vtkBrumeLightTracer::RequestData(
     vtkErrorMacro("NumberOfParticles must be in [1, 1e10], not " << particles << ".");
     return 0;
   }
-  const vtkTypeInt64 firstParticle = this->FirstParticle;
-  if (firstParticle < 0 || firstParticle >= particles)
+  const vtkTypeInt64 endParticle = this->EndParticle > 0 ? this->EndParticle : particles;
+  if (endParticle > particles)
   {
-    vtkErrorMacro("FirstParticle must be in [0, NumberOfParticles - 1 = " << particles -
-        1 << "], not " << firstParticle << ".");
+    vtkErrorMacro("EndParticle must be in [1, NumberOfParticles = "
+      << particles << "] (or 0: " << particles << "), not " << endParticle << ".");
+    return 0;
+  }
+  const vtkTypeInt64 firstParticle = this->FirstParticle;
+  if (firstParticle < 0 || firstParticle >= endParticle)
+  {
+    vtkErrorMacro("FirstParticle must be in [0, EndParticle - 1 = " << endParticle - 1 << "], not "
+                                                                    << firstParticle << ".");
     return 0;
   }
   // A piece of the pipeline (one process of a distributed run) traces its
-  // share of [FirstParticle, NumberOfParticles); each particle's stream
+  // share of [FirstParticle, EndParticle); each particle's stream
   // depends only on (seed, index), so the pieces together are the whole run.
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   const int piece = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
@@ -270,8 +277,8 @@ int vtkBrumeLightTracer::RequestData(
     ? std::max(1, outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()))
     : 1;
   const vtkTypeInt64 runFirst = firstParticle;
-  const vtkTypeInt64 pieceFirst = runFirst + (particles - runFirst) * piece / pieces;
-  const vtkTypeInt64 pieceEnd = runFirst + (particles - runFirst) * (piece + 1) / pieces;
+  const vtkTypeInt64 pieceFirst = runFirst + (endParticle - runFirst) * piece / pieces;
+  const vtkTypeInt64 pieceEnd = runFirst + (endParticle - runFirst) * (piece + 1) / pieces;
   const vtkTypeInt64 traced = pieceEnd - pieceFirst;
   // A particle stores one hit per interaction; a few per particle is typical.
   const double expectedBytes = 4.0 * static_cast<double>(traced) * sizeof(brume::Hit);
@@ -370,6 +377,10 @@ int vtkBrumeLightTracer::RequestData(
   first->SetName(vtkBrumeHitConversion::FirstParticleName);
   first->InsertNextValue(static_cast<double>(firstParticle));
   output->GetFieldData()->AddArray(first);
+  vtkNew<vtkDoubleArray> end;
+  end->SetName(vtkBrumeHitConversion::EndParticleName);
+  end->InsertNextValue(static_cast<double>(endParticle));
+  output->GetFieldData()->AddArray(end);
   vtkNew<vtkDoubleArray> pieceRange;
   pieceRange->SetName("PieceParticles"); // [first, end) traced by this piece
   pieceRange->SetNumberOfComponents(2);
@@ -397,6 +408,7 @@ void vtkBrumeLightTracer::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "NumberOfParticles: " << this->NumberOfParticles << "\n";
   os << indent << "FirstParticle: " << this->FirstParticle << "\n";
+  os << indent << "EndParticle: " << this->EndParticle << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "MaximumDepth: " << this->MaximumDepth << "\n";
   os << indent << "RouletteDepth: " << this->RouletteDepth << "\n";

@@ -57,14 +57,21 @@ public:
   ///@{
   /**
    * Progressive tracing: trace only the particles [FirstParticle,
-   * NumberOfParticles) of a run of NumberOfParticles (default 0: all). Each
-   * particle's flux is normalized by NumberOfParticles, so these hits are
-   * exactly the later part of the full run's; vtkBrumeRadianceReconstruction
-   * with AccumulateParticles adds them to the hits it already holds. The
-   * output's field data records `FirstParticle` and `Seed`.
+   * EndParticle) of a run of NumberOfParticles (defaults 0 and 0: all, the
+   * end being NumberOfParticles). Each particle's flux is normalized by
+   * NumberOfParticles, so these hits are exactly that part of the full
+   * run's; vtkBrumeRadianceReconstruction with AccumulateParticles adds
+   * them to the hits it already holds. Two uses:
+   * - progressive refinement: [old count, NumberOfParticles) after a run of
+   *   the old count (the particles already binned are rescaled);
+   * - batches: [0, B), [B, 2B), ... of one run, so that only one batch's
+   *   hits are in memory at a time (see vtkBrumeRadianceReconstruction).
+   * The output's field data records `FirstParticle`, `EndParticle` and `Seed`.
    */
   vtkSetMacro(FirstParticle, vtkTypeInt64);
   vtkGetMacro(FirstParticle, vtkTypeInt64);
+  vtkSetMacro(EndParticle, vtkTypeInt64);
+  vtkGetMacro(EndParticle, vtkTypeInt64);
   ///@}
 
   ///@{
@@ -125,6 +132,7 @@ protected:
 
   vtkTypeInt64 NumberOfParticles = 1000000;
   vtkTypeInt64 FirstParticle = 0;
+  vtkTypeInt64 EndParticle = 0;
   vtkIdType Seed = 0;
   int MaximumDepth = 1024;
   int RouletteDepth = 3;

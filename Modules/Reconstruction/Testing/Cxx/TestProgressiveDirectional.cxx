@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Beyond the paper, through the pipeline: progressively added particles give
-// the textures of one run with all of them (bitwise), a run that does not
-// continue the textures' is refused, and directional media follow the
+// the textures of one run with all of them (bitwise), and so do batches of
+// one run traced one after the other; a run that does not continue the
+// textures' is refused, and directional media follow the
 // camera without any reconstruction, then return to per-view textures that
 // equal a fresh reconstruction's.
 #include "BrumeTestScenes.h"
@@ -143,14 +144,91 @@ int TestProgressiveDirectional(int, char*[])
     ok = false;
   }
 
-  // 3. Directional media: projected once, then the camera moves freely.
+  // 3. Batches of one run: [0, 13000), [13000, 26000), [26000, 40000) of
+  // 40,000 particles, added one after the other, give the textures of the
+  // single run (bitwise), per view and directional; only one batch's hits
+  // exist at a time.
+  for (const bool directionalMedia : { false, true })
+  {
+    vtkNew<vtkBrumeLightTracer> batchTracer;
+    batchTracer->SetInputData(scene);
+    batchTracer->SetNumberOfParticles(40000);
+    auto batched = reconstructionOf(batchTracer);
+    batched->AccumulateParticlesOn();
+    batched->SetDirectionalRadiance(directionalMedia);
+    const vtkTypeInt64 ends[3] = { 13000, 26000, 40000 };
+    vtkTypeInt64 first = 0;
+    for (const vtkTypeInt64 end : ends)
+    {
+      batchTracer->SetFirstParticle(first);
+      batchTracer->SetEndParticle(end);
+      batched->Update();
+      first = end;
+    }
+    auto reference = reconstructionOf(singleTracer);
+    reference->SetDirectionalRadiance(directionalMedia);
+    reference->Update();
+    const char* what = directionalMedia ? "batches, directional" : "batches";
+    ok = SameTextures(batched->GetOutput(), reference->GetOutput(), what) && ok;
+    if (batched->GetNumberOfTextureBuilds() != objects ||
+      batched->GetNumberOfParticleAdditions() != 2 * objects)
+    {
+      std::cerr << what << ": expected " << objects << " builds and " << 2 * objects
+                << " additions, got " << batched->GetNumberOfTextureBuilds() << " and "
+                << batched->GetNumberOfParticleAdditions() << "\n";
+      ok = false;
+    }
+    // A batch that skips particles, or one of another run, is refused.
+    batchTracer->SetNumberOfParticles(80000);
+    batchTracer->SetFirstParticle(50000);
+    batchTracer->SetEndParticle(60000);
+    if (!FailsWithError(batched))
+    {
+      std::cerr << what << ": a batch that skips particles was accepted\n";
+      ok = false;
+    }
+  }
+  {
+    // Before the run is complete, a batch of a larger run cannot follow.
+    vtkNew<vtkBrumeLightTracer> batchTracer;
+    batchTracer->SetInputData(scene);
+    batchTracer->SetNumberOfParticles(40000);
+    batchTracer->SetEndParticle(20000);
+    auto batched = reconstructionOf(batchTracer);
+    batched->AccumulateParticlesOn();
+    batched->Update();
+    batchTracer->SetNumberOfParticles(80000);
+    batchTracer->SetFirstParticle(20000);
+    batchTracer->SetEndParticle(40000);
+    if (!FailsWithError(batched))
+    {
+      std::cerr << "a batch of another run continued an incomplete one\n";
+      ok = false;
+    }
+    // EndParticle beyond the run, or not after FirstParticle: the tracer fails.
+    batchTracer->SetEndParticle(90000);
+    if (!FailsWithError(batchTracer))
+    {
+      std::cerr << "EndParticle beyond NumberOfParticles was accepted\n";
+      ok = false;
+    }
+    batchTracer->SetEndParticle(20000);
+    if (!FailsWithError(batchTracer))
+    {
+      std::cerr << "EndParticle at FirstParticle was accepted\n";
+      ok = false;
+    }
+  }
+
+  // 4. Directional media: projected once, then the camera moves freely.
   auto directional = reconstructionOf(singleTracer);
   directional->DirectionalRadianceOn();
   directional->Update();
   vtkDataObject* fog = Fog(directional->GetOutput());
   vtkDataArray* sh = vtkImageData::SafeDownCast(fog)->GetCellData()->GetArray("SourceRadianceSH");
   // Order 3: 3 x 16 components.
-  if (!sh || sh->GetNumberOfComponents() != 48 || directional->GetNumberOfDirectionalBuilds() != 1 ||
+  if (!sh || sh->GetNumberOfComponents() != 48 ||
+    directional->GetNumberOfDirectionalBuilds() != 1 ||
     !fog->GetFieldData()->GetArray("BrumePhaseAsymmetry"))
   {
     std::cerr << "the directional fog lacks its coefficients\n";
@@ -172,9 +250,9 @@ int TestProgressiveDirectional(int, char*[])
   directional->DirectionalRadianceOff();
   directional->Update();
   single->Update();
-  ok = SameTextures(directional->GetOutput(), single->GetOutput(), "directional, then per view") &&
-    ok;
-  std::cout << "progressive, continuation checks and directional mode: " << (ok ? "ok" : "FAILED")
-            << "\n";
+  ok =
+    SameTextures(directional->GetOutput(), single->GetOutput(), "directional, then per view") && ok;
+  std::cout << "progressive, batches, continuation checks and directional mode: "
+            << (ok ? "ok" : "FAILED") << "\n";
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }
