@@ -72,6 +72,20 @@ int vtkBrumeRadianceReconstruction::RequestData(
   this->LastReductionBytes = 0;
   this->LastReductionSeconds = 0.0;
   const bool planned = this->Plan(request);
+  auto* output = vtkPartitionedDataSetCollection::GetData(outputVector, 0);
+  if (planned && !this->Textures->IsComplete())
+  {
+    // A batch of a run binned: the textures come with its last batch. The
+    // output says how far the run is.
+    this->CountWork();
+    vtkNew<vtkDoubleArray> binned;
+    binned->SetName("BrumeParticlesBinned");
+    binned->SetNumberOfComponents(2);
+    binned->InsertNextTuple2(this->Textures->GetEndParticle(), this->Textures->GetParticles());
+    output->GetFieldData()->AddArray(binned);
+    this->UpdateProgress(1.0);
+    return 1;
+  }
   if (!planned ||
     !this->Textures->SetDirectional(
       this->DirectionalRadiance, this->DirectionalOrder, *this->WorkDone))
@@ -86,7 +100,6 @@ int vtkBrumeRadianceReconstruction::RequestData(
   this->Textures->FollowView(request, this->IncrementalUpdate, *this->WorkDone);
   this->CountWork();
   this->Textures->TakeReduction(this->LastReductionBytes, this->LastReductionSeconds);
-  auto* output = vtkPartitionedDataSetCollection::GetData(outputVector, 0);
   // The textures are the same on every process, and every process gives
   // them: renderers that composite (IceT under mpirun) draw on each.
   {

@@ -137,7 +137,11 @@ bool vtkBrumeRadianceTextures::Build(const vtkBrumeReconstructionRequest& reques
   {
     return false;
   }
-  this->ComputeDirect();
+  // The first batch of a run only bins: the last one estimates.
+  if (request.Run.EndParticle >= request.Run.Particles)
+  {
+    this->ComputeDirect();
+  }
   this->SceneData = request.SceneInput;
   this->HitsData = request.HitData;
   this->SceneTime = request.SceneInput->GetMTime();
@@ -383,7 +387,8 @@ bool vtkBrumeRadianceTextures::BuildObjects(const vtkBrumeReconstructionRequest&
   {
     this->Objects[o]->SetParticleFlux(request.ParticleFlux);
     errors[o] = this->Objects[o]->Build(hits, groups.Index.data() + groups.Offset[o],
-      groups.Offset[o + 1] - groups.Offset[o], request.Eye, request.ThresholdFlux, parallelFor);
+      groups.Offset[o + 1] - groups.Offset[o], request.Eye, request.ThresholdFlux, parallelFor,
+      request.Run.EndParticle >= request.Run.Particles);
   };
   auto buildIndependent = [&](vtkIdType begin, vtkIdType end)
   {
@@ -430,13 +435,18 @@ bool vtkBrumeRadianceTextures::Add(
   brume::ObjectHits groups;
   const std::string groupError =
     brume::GroupHitsByObject(request.Hits, this->Scene.NumberOfObjects(), groups);
+  // Batches of a run: only the last estimates the textures (and, the first
+  // time, computes the direct light).
+  const bool complete = request.Run.EndParticle >= request.Run.Particles;
+  const bool firstEstimate = complete && !this->IsComplete();
   for (std::size_t o = 0; o < this->Objects.size() && groupError.empty(); ++o)
   {
     this->Objects[o]->SetParticleFlux(request.ParticleFlux);
     const std::string error =
       this->Objects[o]->Add(request.Hits, groups.Index.data() + groups.Offset[o],
         groups.Offset[o + 1] - groups.Offset[o], this->Particles / request.Run.Particles,
-        this->ObjectEye[o], request.ThresholdFlux, parallelFor);
+        firstEstimate ? request.Eye : this->ObjectEye[o], request.ThresholdFlux, parallelFor,
+        complete);
     if (!error.empty())
     {
       vtkErrorWithObjectMacro(this->Filter,
@@ -456,6 +466,11 @@ bool vtkBrumeRadianceTextures::Add(
   this->Particles = request.Run.Particles;
   this->EndParticle = request.Run.EndParticle;
   this->LastFirstParticle = request.Run.FirstParticle;
+  if (firstEstimate)
+  {
+    this->ComputeDirect();
+    this->ObjectEye.assign(this->Objects.size(), request.Eye);
+  }
   this->Accumulated = true;
   this->MirrorsCurrent = false;
   return true;

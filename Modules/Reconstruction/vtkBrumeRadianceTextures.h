@@ -106,6 +106,8 @@ public:
   double GetParticles() const { return this->Particles; }
   /// Where the particles binned end (GetParticles() once the run is complete).
   double GetEndParticle() const { return this->EndParticle; }
+  /// Whether every batch of the run is binned: only then are there textures.
+  bool IsComplete() const { return this->EndParticle >= this->Particles; }
   double GetSeed() const { return this->Seed; }
 
   /// Every texture from the hits. False (errors reported) on failure.

@@ -114,8 +114,11 @@ bool ObjectRadiance::FromFront(const HitArrays& hits, std::uint32_t i) const
 }
 
 std::string ObjectRadiance::Build(const HitArrays& hits, const std::uint32_t* index,
-  std::size_t count, const Vec3& eye, double thresholdFlux, const ParallelFor& parallelFor)
+  std::size_t count, const Vec3& eye, double thresholdFlux, const ParallelFor& parallelFor,
+  bool estimate)
 {
+  this->Built = false;
+  this->Estimated = false;
   this->Kept.clear();
   this->RangeStart.assign(Ranges + 1, 0);
   this->ThresholdFlux = thresholdFlux;
@@ -149,7 +152,12 @@ std::string ObjectRadiance::Build(const HitArrays& hits, const std::uint32_t* in
   this->Directional.clear();
   this->DirectionalOrder = -1;
   this->Bin(hits, index, count, parallelFor);
-  this->Finish(eye, thresholdFlux, true, parallelFor);
+  this->Built = true;
+  if (estimate)
+  {
+    this->Finish(eye, thresholdFlux, true, parallelFor);
+    this->Estimated = true;
+  }
   return this->Saturation();
 }
 
@@ -166,9 +174,9 @@ std::string ObjectRadiance::Saturation() const
 
 std::string ObjectRadiance::Add(const HitArrays& hits, const std::uint32_t* index,
   std::size_t count, double scale, const Vec3& eye, double thresholdFlux,
-  const ParallelFor& parallelFor)
+  const ParallelFor& parallelFor, bool estimate)
 {
-  if (this->Regions.empty())
+  if (!this->Built)
   {
     return "particles can only be added to a texture already built";
   }
@@ -212,7 +220,12 @@ std::string ObjectRadiance::Add(const HitArrays& hits, const std::uint32_t* inde
     ? ExactHistogram::QuantumExponent(this->ParticleFlux)
     : this->SumsExponent + static_cast<int>(std::lround(std::log2(scale)));
   this->Bin(hits, index, count, parallelFor);
-  this->Finish(eye, thresholdFlux, false, parallelFor);
+  if (!estimate)
+  {
+    return this->Saturation();
+  }
+  this->Finish(eye, thresholdFlux, !this->Estimated, parallelFor);
+  this->Estimated = true;
   if (this->DirectionalOrder >= 0)
   {
     const std::string directional = this->BuildDirectional(this->DirectionalOrder, parallelFor);

@@ -239,9 +239,12 @@ public:
   /**
    * Bins the object's hits (`count` indices into `hits`) and estimates the
    * texture toward `eye`. Empty on success, otherwise what is wrong.
+   * With `estimate` false the hits are only binned: the texture is
+   * estimated by a later Add() (batches of one run: only the last batch's
+   * Add() estimates, IsEstimated() says whether it was).
    */
   std::string Build(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
-    const Vec3& eye, double thresholdFlux, const ParallelFor& parallelFor);
+    const Vec3& eye, double thresholdFlux, const ParallelFor& parallelFor, bool estimate = true);
 
   /**
    * Progressive refinement: adds more particles' hits to the histograms of
@@ -251,10 +254,15 @@ public:
    * new hits are binned after them, and the regions are regrown with
    * `thresholdFlux`. When the count grows by a power of two (scale 1/2,
    * 1/4, ...) and the new hits are those of the particles that follow, the
-   * histograms are bitwise those of one Build() with all the hits.
+   * histograms are bitwise those of one Build() with all the hits. The
+   * batches of one run are added with scale 1, `estimate` false but for
+   * the last.
    */
   std::string Add(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
-    double scale, const Vec3& eye, double thresholdFlux, const ParallelFor& parallelFor);
+    double scale, const Vec3& eye, double thresholdFlux, const ParallelFor& parallelFor,
+    bool estimate = true);
+  /// Whether the texture was estimated (by Build() or Add()) since Build().
+  bool IsEstimated() const { return this->Estimated; }
 
   /// Empty when Build() or Add() would accept these hits, otherwise why not.
   std::string Check(const HitArrays& hits, const std::uint32_t* index, std::size_t count) const;
@@ -412,6 +420,8 @@ private:
   double ParticleFlux = 0.0; // as set
   int SumsExponent = 0;      // the exact sums' quantum, 2^SumsExponent
   bool SumsClamped = false;  // a term beyond the exact sums' bound since Build()
+  bool Built = false;        // Build() binned hits
+  bool Estimated = false;    // the texture was estimated from them
 
   // Empty unless a term was clamped in the exact sums: why.
   std::string Saturation() const;
