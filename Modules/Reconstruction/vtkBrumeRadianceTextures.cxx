@@ -442,11 +442,10 @@ bool vtkBrumeRadianceTextures::Add(
   for (std::size_t o = 0; o < this->Objects.size() && groupError.empty(); ++o)
   {
     this->Objects[o]->SetParticleFlux(request.ParticleFlux);
-    const std::string error =
-      this->Objects[o]->Add(request.Hits, groups.Index.data() + groups.Offset[o],
-        groups.Offset[o + 1] - groups.Offset[o], this->Particles / request.Run.Particles,
-        firstEstimate ? request.Eye : this->ObjectEye[o], request.ThresholdFlux, parallelFor,
-        complete);
+    const std::string error = this->Objects[o]->Add(request.Hits,
+      groups.Index.data() + groups.Offset[o], groups.Offset[o + 1] - groups.Offset[o],
+      this->Particles / request.Run.Particles, firstEstimate ? request.Eye : this->ObjectEye[o],
+      request.ThresholdFlux, parallelFor, complete);
     if (!error.empty())
     {
       vtkErrorWithObjectMacro(this->Filter,

@@ -119,6 +119,8 @@ std::string ObjectRadiance::Build(const HitArrays& hits, const std::uint32_t* in
 {
   this->Built = false;
   this->Estimated = false;
+  this->Pending.clear();
+  this->DeferMerge = !estimate;
   this->Kept.clear();
   this->RangeStart.assign(Ranges + 1, 0);
   this->ThresholdFlux = thresholdFlux;
@@ -209,6 +211,13 @@ std::string ObjectRadiance::Add(const HitArrays& hits, const std::uint32_t* inde
           }
         }
       });
+    for (KeptHit& h : this->Pending) // batches not yet merged (scale 1 in practice)
+    {
+      for (float& f : h.Flux)
+      {
+        f *= s;
+      }
+    }
   }
   else
   {
@@ -219,6 +228,7 @@ std::string ObjectRadiance::Add(const HitArrays& hits, const std::uint32_t* inde
   this->SumsExponent = this->ParticleFlux > 0.0
     ? ExactHistogram::QuantumExponent(this->ParticleFlux)
     : this->SumsExponent + static_cast<int>(std::lround(std::log2(scale)));
+  this->DeferMerge = !estimate;
   this->Bin(hits, index, count, parallelFor);
   if (!estimate)
   {

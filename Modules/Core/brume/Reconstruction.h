@@ -388,6 +388,12 @@ private:
   };
   std::vector<KeptHit> Kept;
   std::vector<std::size_t> RangeStart;
+  // Batches that do not estimate: their hits in hit order, merged into
+  // Kept's ranges once, by the batch that estimates (merging at every batch
+  // would copy every hit kept so far each time).
+  std::vector<KeptHit> Pending;
+  bool DeferMerge = false;
+  void MergePending(const ParallelFor& parallelFor);
 
   // The histograms' exact sums (view-independent objects: kept for Add()).
   ExactHistogram WeightSums;
