@@ -483,3 +483,144 @@ TEST(Reconstruction, HeterogeneousMediumIsNormalizedByTheExtinctionIntegral)
     "");
   EXPECT_TRUE(homogeneous.GetNativeDensity().Empty());
 }
+
+TEST(Reconstruction, LargeHistogramsBinByRangesOfCellsToTheSameSums)
+{
+  // A wall and an isotropic medium with histograms beyond the caches (over
+  // 2 MB: 512 x 512 and 64^3 cells) are binned range of cells by range; the
+  // sums must be those of the hits added one by one (doubles, in hit order:
+  // the same up to their rounding), and nothing may be lost: a 4 x 4 wall's
+  // histogram takes the hits in hit order.
+  const std::uint64_t particles = 200000;
+  Medium fog;
+  fog.Name = "fog";
+  fog.Bounds = { Vec3(-1.f), Vec3(1.f) };
+  fog.SigmaS = Vec3(0.5f);
+  fog.SigmaA = Vec3(0.1f);
+  fog.G = 0.f; // view independent: binned in place
+  Scene scene;
+  scene.Surfaces = brume::testing::ClosedBox(Material());
+  for (Surface& s : scene.Surfaces)
+  {
+    s.Mat.Reflectance = Vec3(0.5f, 0.25f, 0.75f);
+  }
+  scene.Media = { fog };
+  Light light;
+  light.Type = LightType::Point;
+  light.Position = Vec3(0.2f, 0.1f, -0.3f);
+  light.Intensity = Vec3(1.f);
+  scene.Lights = { light };
+  ASSERT_EQ(scene.Validate(), "");
+  const HitStore store(Trace(scene, particles, TraceSettings()));
+  const HitArrays hits = store.View();
+  std::vector<std::uint32_t> wallHits, fogHits;
+  for (std::size_t i = 0; i < store.Object.size(); ++i)
+  {
+    if (store.Object[i] == 0)
+    {
+      wallHits.push_back(static_cast<std::uint32_t>(i));
+    }
+    else if (store.Object[i] == 6)
+    {
+      fogHits.push_back(static_cast<std::uint32_t>(i));
+    }
+  }
+  ASSERT_GT(wallHits.size(), 10000u);
+  ASSERT_GT(fogHits.size(), 10000u);
+
+  // Expected sums in doubles, with the cell found as the binning does.
+  auto expect = [&](const std::vector<std::uint32_t>& index, const std::array<int, 3>& dims,
+                  auto cellOf, auto value, std::vector<double>& w, std::vector<double>& v)
+  {
+    const std::size_t cells = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2];
+    w.assign(cells, 0.0);
+    v.assign(3 * cells, 0.0);
+    for (const std::uint32_t i : index)
+    {
+      const float* f = &store.Flux[3 * i];
+      const std::size_t c = cellOf(i);
+      w[c] += (static_cast<double>(f[0]) + f[1] + f[2]) / 3.0;
+      for (int k = 0; k < 3; ++k)
+      {
+        v[3 * c + k] += value(k) * static_cast<double>(f[k]);
+      }
+    }
+  };
+  auto compare = [](const Histogram& got, const std::vector<double>& expected, const char* what)
+  {
+    ASSERT_EQ(got.GetValues().size(), expected.size()) << what;
+    double total = 0.0, largest = 0.0;
+    for (std::size_t c = 0; c < expected.size(); ++c)
+    {
+      total += expected[c];
+      largest = std::max(largest, std::abs(got.GetValues()[c] - expected[c]));
+    }
+    ASSERT_GT(total, 0.0) << what;
+    EXPECT_LT(largest, 1e-12 * total) << what;
+  };
+  auto cellIndex = [](double q, int n)
+  { return std::clamp(static_cast<int>(std::floor(q * n)), 0, n - 1); };
+
+  // The medium: 64^3 cells (texture 32^3, refinement 2).
+  ObjectRadiance medium(scene.Media[0], { 32, 32, 32 }, 2);
+  ASSERT_EQ(
+    medium.Build(hits, fogHits.data(), fogHits.size(), Vec3(0.f, 0.f, 5.f), 1e-12, SerialFor()),
+    "");
+  std::vector<double> w, v;
+  expect(
+    fogHits, { 64, 64, 64 },
+    [&](std::uint32_t i)
+    {
+      int c[3];
+      for (int a = 0; a < 3; ++a)
+      {
+        c[a] = cellIndex((store.Position[3 * i + a] + 1.0f) / 2.0f, 64);
+      }
+      return (static_cast<std::size_t>(c[2]) * 64 + c[1]) * 64 + c[0];
+    },
+    [](int) { return static_cast<double>(Inv4Pi); }, w, v);
+  compare(medium.GetWeightHistogram(), w, "medium weights");
+  compare(medium.GetValueHistogram(), v, "medium values");
+
+  // The wall (the box's face y = -1, seen from inside): 512 x 512 cells,
+  // then 4 x 4 (the in-order path), hits from the front side only.
+  const Surface& wall = scene.Surfaces[0];
+  const SurfaceChart chart = MakeChart(wall, nullptr);
+  ASSERT_EQ(chart.Type, SurfaceChart::Kind::Planar);
+  const Vec3 normal =
+    Normalize(Cross(wall.Vertices[wall.Triangles[0][1]] - wall.Vertices[wall.Triangles[0][0]],
+      wall.Vertices[wall.Triangles[0][2]] - wall.Vertices[wall.Triangles[0][0]]));
+  std::vector<std::uint32_t> front;
+  for (const std::uint32_t i : wallHits)
+  {
+    if (Dot(normal,
+          Vec3(store.Direction[3 * i], store.Direction[3 * i + 1], store.Direction[3 * i + 2])) <
+      0.f)
+    {
+      front.push_back(i);
+    }
+  }
+  for (const int res : { 256, 2 })
+  {
+    ObjectRadiance radiance(wall, chart, { res, res }, 2);
+    ASSERT_EQ(radiance.Build(
+                hits, wallHits.data(), wallHits.size(), Vec3(0.f, 0.f, 5.f), 1e-12, SerialFor()),
+      "");
+    const int n = 2 * res;
+    const float uu = Dot(chart.Frame.U, chart.Frame.U), vv = Dot(chart.Frame.V, chart.Frame.V);
+    expect(
+      front, { n, n, 1 },
+      [&](std::uint32_t i)
+      {
+        const Vec3 d =
+          Vec3(store.Position[3 * i], store.Position[3 * i + 1], store.Position[3 * i + 2]) -
+          chart.Frame.Origin;
+        return static_cast<std::size_t>(cellIndex(Dot(d, chart.Frame.V) / vv, n)) * n +
+          cellIndex(Dot(d, chart.Frame.U) / uu, n);
+      },
+      [&](int k) { return static_cast<double>(wall.Mat.Reflectance[k] * InvPi); }, w, v);
+    compare(
+      radiance.GetWeightHistogram(), w, res > 2 ? "large wall weights" : "small wall weights");
+    compare(radiance.GetValueHistogram(), v, res > 2 ? "large wall values" : "small wall values");
+  }
+}

@@ -130,17 +130,10 @@ template <typename Locator>
 void ObjectRadiance::BinInPlace(
   const HitArrays& hits, const std::uint32_t* index, std::size_t count, const Locator& cellOfHit)
 {
-  // View-independent objects: one pass adds every hit to its cell (exact
-  // sums: any order gives the same bits); nothing is kept.
-  for (std::size_t k = 0; k < count; ++k)
+  // View-independent objects: every hit is added to its cell (exact sums:
+  // any order gives the same bits); nothing is kept.
+  auto add = [this](std::uint32_t cell, const float* f, std::uint32_t triangle)
   {
-    const std::uint32_t i = index[k];
-    if (!this->MediumRef && !this->FromFront(hits, i))
-    {
-      continue; // light on the back side: reflected, not shown
-    }
-    const std::uint32_t cell = cellOfHit(hits, i);
-    const float* f = hits.Flux + 3 * i;
     const double w[1] = { (static_cast<double>(f[0]) + f[1] + f[2]) / 3.0 };
     this->WeightSums.AddNonNegative(cell, w);
     double v[3];
@@ -153,13 +146,79 @@ void ObjectRadiance::BinInPlace(
     }
     else
     {
-      const Material& m = this->SurfaceRef->MaterialOf(hits.Triangle ? hits.Triangle[i] : 0);
+      const Material& m = this->SurfaceRef->MaterialOf(triangle);
       for (int c = 0; c < 3; ++c)
       {
         v[c] = m.Reflectance[c] * InvPi * static_cast<double>(f[c]);
       }
     }
     this->ValueSums.AddNonNegative(cell, v);
+  };
+  const std::size_t cells = static_cast<std::size_t>(this->Dims[0]) * this->Dims[1] * this->Dims[2];
+  // The sums take 32 bytes a cell (a weight and three values). Histograms
+  // that fit the caches take the hits in hit order, in one pass.
+  constexpr std::size_t CacheBytes = std::size_t(2) << 20;
+  const std::size_t bytes = 32 * cells;
+  if (bytes <= CacheBytes)
+  {
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      const std::uint32_t i = index[k];
+      if (!this->MediumRef && !this->FromFront(hits, i))
+      {
+        continue; // light on the back side: reflected, not shown
+      }
+      add(cellOfHit(hits, i), hits.Flux + 3 * i, hits.Triangle ? hits.Triangle[i] : 0);
+    }
+  }
+  else
+  {
+    // Larger ones (many particles: fine textures) would miss the caches at
+    // nearly every hit. The hits' terms are grouped by ranges of cells that
+    // fit the caches (a counting sort), then added range by range: the same
+    // sums, at a fraction of the time for 10^7 hits and more.
+    struct Term
+    {
+      std::uint32_t Cell;
+      float Flux[3];
+      std::uint32_t Triangle;
+    };
+    const std::size_t ranges = std::min<std::size_t>(4096, bytes / (CacheBytes / 4) + 1);
+    auto rangeOf = [&](std::uint32_t cell)
+    { return static_cast<std::size_t>(cell) * ranges / cells; };
+    std::vector<Term> terms;
+    terms.reserve(count);
+    std::vector<std::size_t> start(ranges + 1, 0);
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      const std::uint32_t i = index[k];
+      if (!this->MediumRef && !this->FromFront(hits, i))
+      {
+        continue;
+      }
+      Term t;
+      t.Cell = cellOfHit(hits, i);
+      for (int c = 0; c < 3; ++c)
+      {
+        t.Flux[c] = hits.Flux[3 * i + c];
+      }
+      t.Triangle = hits.Triangle ? hits.Triangle[i] : 0;
+      terms.push_back(t);
+      ++start[rangeOf(t.Cell) + 1];
+    }
+    for (std::size_t r = 0; r < ranges; ++r)
+    {
+      start[r + 1] += start[r];
+    }
+    std::vector<Term> grouped(terms.size());
+    for (const Term& t : terms)
+    {
+      grouped[start[rangeOf(t.Cell)]++] = t;
+    }
+    for (const Term& t : grouped)
+    {
+      add(t.Cell, t.Flux, t.Triangle);
+    }
   }
   this->Reduce(this->WeightSums, &this->ValueSums);
 }
