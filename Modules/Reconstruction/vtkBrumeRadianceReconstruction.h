@@ -114,6 +114,13 @@ public:
    * already binned are rescaled to the new count; when the count doubles
    * the result is bitwise that of one run with all the particles. Texture
    * resolutions stay those of the first run (set them to compare with one).
+   *
+   * Batches of one run (vtkBrumeLightTracer's [FirstParticle, EndParticle)
+   * of the same NumberOfParticles, one after the other) are binned as they
+   * come, and their hits released when the tracer runs again: only the last
+   * batch estimates the textures; until then the output holds no textures,
+   * only the field array `BrumeParticlesBinned` (binned so far, of the run).
+   * Resolutions follow the run's expected hits (the first batch's, scaled).
    */
   vtkSetMacro(AccumulateParticles, bool);
   vtkGetMacro(AccumulateParticles, bool);
