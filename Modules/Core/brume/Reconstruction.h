@@ -394,6 +394,11 @@ private:
   std::vector<KeptHit> Pending;
   bool DeferMerge = false;
   void MergePending(const ParallelFor& parallelFor);
+  // Merges `count` new hits (cellOf(k), write(k, out)) after Kept's hits of
+  // each range of cells, stably.
+  template <typename CellOf, typename Write>
+  void MergeIntoRanges(
+    std::size_t count, CellOf cellOf, Write write, const ParallelFor& parallelFor);
 
   // The histograms' exact sums (view-independent objects: kept for Add()).
   ExactHistogram WeightSums;

@@ -97,6 +97,60 @@ private:
 };
 }
 
+template <typename CellOf, typename Write>
+void ObjectRadiance::MergeIntoRanges(
+  std::size_t count, CellOf cellOf, Write write, const ParallelFor& parallelFor)
+{
+  // Group the new hits by ranges of cells (a coarse, stable counting sort):
+  // each range is then one task, and a cell's sum follows hit order.
+  const std::size_t cells = static_cast<std::size_t>(this->Dims[0]) * this->Dims[1] * this->Dims[2];
+  auto rangeOf = [&](std::uint32_t cell)
+  { return static_cast<std::size_t>(cell) * Ranges / cells; };
+  std::vector<std::size_t> start(Ranges + 1, 0);
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    ++start[rangeOf(cellOf(k)) + 1];
+  }
+  for (std::size_t r = 0; r < Ranges; ++r)
+  {
+    start[r + 1] += start[r];
+  }
+  std::vector<std::uint32_t> order(count);
+  {
+    std::vector<std::size_t> cursor(start.begin(), start.end() - 1);
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      order[cursor[rangeOf(cellOf(k))]++] = static_cast<std::uint32_t>(k);
+    }
+  }
+  // The hits in that order, after the hits already kept in each range
+  // (particles added later come later in hit order): every later pass reads
+  // them sequentially.
+  std::vector<KeptHit> merged(this->Kept.size() + count);
+  std::vector<std::size_t> mergedStart(Ranges + 1, 0);
+  for (std::size_t r = 0; r < Ranges; ++r)
+  {
+    mergedStart[r + 1] =
+      mergedStart[r] + (this->RangeStart[r + 1] - this->RangeStart[r]) + (start[r + 1] - start[r]);
+  }
+  parallelFor(0, Ranges,
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t r = begin; r < end; ++r)
+      {
+        KeptHit* out = merged.data() + mergedStart[r];
+        out = std::copy(this->Kept.begin() + static_cast<std::ptrdiff_t>(this->RangeStart[r]),
+          this->Kept.begin() + static_cast<std::ptrdiff_t>(this->RangeStart[r + 1]), out);
+        for (std::size_t k = start[r]; k < start[r + 1]; ++k, ++out)
+        {
+          write(order[k], *out);
+        }
+      }
+    });
+  this->Kept.swap(merged);
+  this->RangeStart.swap(mergedStart);
+}
+
 void ObjectRadiance::Bin(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
   const ParallelFor& parallelFor)
 {
@@ -227,7 +281,6 @@ template <typename Locator>
 void ObjectRadiance::KeepHits(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
   const Locator& cellOfHit, const ParallelFor& parallelFor)
 {
-  const std::size_t cells = static_cast<std::size_t>(this->Dims[0]) * this->Dims[1] * this->Dims[2];
   // View-dependent objects keep their hits with their histogram cells,
   // grouped by ranges of cells: a new eye re-weights them (WeighCells).
   // Surfaces keep the hits arriving on their front side only.
@@ -253,142 +306,49 @@ void ObjectRadiance::KeepHits(const HitArrays& hits, const std::uint32_t* index,
         cellOf[k] = cellOfHit(hits, index[k]);
       }
     });
-  if (this->DeferMerge || !this->Pending.empty())
+  auto keep = [&](std::size_t k, KeptHit& out)
   {
-    // A batch of a run: its hits wait, in hit order, for the batch that
-    // estimates, which merges them all at once.
-    const std::size_t before = this->Pending.size();
-    this->Pending.resize(before + count);
-    parallelFor(0, count,
-      [&](std::size_t begin, std::size_t end)
-      {
-        for (std::size_t k = begin; k < end; ++k)
-        {
-          KeptHit& out = this->Pending[before + k];
-          const std::size_t i = index[k];
-          for (int a = 0; a < 3; ++a)
-          {
-            out.Position[a] = hits.Position[3 * i + a];
-            out.Direction[a] = hits.Direction[3 * i + a];
-            out.Flux[a] = hits.Flux[3 * i + a];
-          }
-          out.Cell = cellOf[k];
-          out.Triangle = hits.Triangle ? hits.Triangle[i] : 0;
-        }
-      });
-    if (!this->DeferMerge)
+    const std::size_t i = index[k];
+    // Element by element: std::copy of three floats is a memmove call.
+    for (int a = 0; a < 3; ++a)
     {
-      this->MergePending(parallelFor);
+      out.Position[a] = hits.Position[3 * i + a];
+      out.Direction[a] = hits.Direction[3 * i + a];
+      out.Flux[a] = hits.Flux[3 * i + a];
     }
+    out.Cell = cellOf[k];
+    out.Triangle = hits.Triangle ? hits.Triangle[i] : 0;
+  };
+  if (!this->DeferMerge && this->Pending.empty())
+  {
+    this->MergeIntoRanges(
+      count, [&](std::size_t k) { return cellOf[k]; }, keep, parallelFor);
     return;
   }
-  // Group the hits by ranges of cells (a coarse, stable counting sort):
-  // each range is then one task, and a cell's sum follows hit order.
-  std::vector<std::size_t> start(Ranges + 1, 0);
-  auto rangeOf = [&](std::uint32_t cell)
-  { return static_cast<std::size_t>(cell) * Ranges / cells; };
-  for (std::size_t k = 0; k < count; ++k)
-  {
-    ++start[rangeOf(cellOf[k]) + 1];
-  }
-  for (std::size_t r = 0; r < Ranges; ++r)
-  {
-    start[r + 1] += start[r];
-  }
-  std::vector<std::uint32_t> order(count);
-  {
-    std::vector<std::size_t> cursor(start.begin(), start.end() - 1);
-    for (std::size_t k = 0; k < count; ++k)
-    {
-      order[cursor[rangeOf(cellOf[k])]++] = static_cast<std::uint32_t>(k);
-    }
-  }
-  // The hits' data in that order, after the hits already kept in each range
-  // (particles added later come later in hit order): every later pass reads
-  // it sequentially.
-  std::vector<KeptHit> merged(this->Kept.size() + count);
-  std::vector<std::size_t> mergedStart(Ranges + 1, 0);
-  for (std::size_t r = 0; r < Ranges; ++r)
-  {
-    mergedStart[r + 1] =
-      mergedStart[r] + (this->RangeStart[r + 1] - this->RangeStart[r]) + (start[r + 1] - start[r]);
-  }
-  parallelFor(0, Ranges,
+  // A batch of a run: its hits wait, in hit order, for the batch that
+  // estimates, which merges them all at once.
+  const std::size_t before = this->Pending.size();
+  this->Pending.resize(before + count);
+  parallelFor(0, count,
     [&](std::size_t begin, std::size_t end)
     {
-      for (std::size_t r = begin; r < end; ++r)
+      for (std::size_t k = begin; k < end; ++k)
       {
-        KeptHit* out = merged.data() + mergedStart[r];
-        out = std::copy(this->Kept.begin() + static_cast<std::ptrdiff_t>(this->RangeStart[r]),
-          this->Kept.begin() + static_cast<std::ptrdiff_t>(this->RangeStart[r + 1]), out);
-        for (std::size_t k = start[r]; k < start[r + 1]; ++k, ++out)
-        {
-          const std::uint32_t j = order[k];
-          const std::size_t i = index[j];
-          // Element by element: std::copy of three floats is a memmove call.
-          for (int a = 0; a < 3; ++a)
-          {
-            out->Position[a] = hits.Position[3 * i + a];
-            out->Direction[a] = hits.Direction[3 * i + a];
-            out->Flux[a] = hits.Flux[3 * i + a];
-          }
-          out->Cell = cellOf[j];
-          out->Triangle = hits.Triangle ? hits.Triangle[i] : 0;
-        }
+        keep(k, this->Pending[before + k]);
       }
     });
-  this->Kept.swap(merged);
-  this->RangeStart.swap(mergedStart);
+  if (!this->DeferMerge)
+  {
+    this->MergePending(parallelFor);
+  }
 }
 
 void ObjectRadiance::MergePending(const ParallelFor& parallelFor)
 {
-  // The same stable grouping by ranges of cells as KeepHits, over the hits
-  // that waited: Kept ends as if each batch had been merged in turn.
-  const std::size_t cells = static_cast<std::size_t>(this->Dims[0]) * this->Dims[1] * this->Dims[2];
-  const std::size_t count = this->Pending.size();
-  auto rangeOf = [&](std::uint32_t cell)
-  { return static_cast<std::size_t>(cell) * Ranges / cells; };
-  std::vector<std::size_t> start(Ranges + 1, 0);
-  for (const KeptHit& h : this->Pending)
-  {
-    ++start[rangeOf(h.Cell) + 1];
-  }
-  for (std::size_t r = 0; r < Ranges; ++r)
-  {
-    start[r + 1] += start[r];
-  }
-  std::vector<std::uint32_t> order(count);
-  {
-    std::vector<std::size_t> cursor(start.begin(), start.end() - 1);
-    for (std::size_t k = 0; k < count; ++k)
-    {
-      order[cursor[rangeOf(this->Pending[k].Cell)]++] = static_cast<std::uint32_t>(k);
-    }
-  }
-  std::vector<KeptHit> merged(this->Kept.size() + count);
-  std::vector<std::size_t> mergedStart(Ranges + 1, 0);
-  for (std::size_t r = 0; r < Ranges; ++r)
-  {
-    mergedStart[r + 1] =
-      mergedStart[r] + (this->RangeStart[r + 1] - this->RangeStart[r]) + (start[r + 1] - start[r]);
-  }
-  parallelFor(0, Ranges,
-    [&](std::size_t begin, std::size_t end)
-    {
-      for (std::size_t r = begin; r < end; ++r)
-      {
-        KeptHit* out = merged.data() + mergedStart[r];
-        out = std::copy(this->Kept.begin() + static_cast<std::ptrdiff_t>(this->RangeStart[r]),
-          this->Kept.begin() + static_cast<std::ptrdiff_t>(this->RangeStart[r + 1]), out);
-        for (std::size_t k = start[r]; k < start[r + 1]; ++k, ++out)
-        {
-          *out = this->Pending[order[k]];
-        }
-      }
-    });
-  this->Kept.swap(merged);
-  this->RangeStart.swap(mergedStart);
+  // Kept ends as if each batch had been merged in turn.
+  this->MergeIntoRanges(
+    this->Pending.size(), [&](std::size_t k) { return this->Pending[k].Cell; },
+    [&](std::size_t k, KeptHit& out) { out = this->Pending[k]; }, parallelFor);
   std::vector<KeptHit>().swap(this->Pending);
 }
 
