@@ -22,6 +22,8 @@
 #include "brume/Scene.h"
 #include "brume/SummedAreaTable.h"
 
+#include "TestScenes.h" // HitStore: hits as the pipeline holds them
+
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -238,28 +240,16 @@ void BM_SurfaceTextureBuild(benchmark::State& state)
   {
     ++wall;
   }
-  std::vector<float> position, direction, flux;
-  std::vector<std::uint16_t> object;
-  std::vector<std::uint32_t> triangle, index;
-  for (const Hit& h : hits)
+  const testing::HitStore store(hits);
+  const HitArrays arrays = store.View();
+  std::vector<std::uint32_t> index;
+  for (std::size_t i = 0; i < hits.size(); ++i)
   {
-    if (h.Object == wall)
+    if (hits[i].Object == wall)
     {
-      index.push_back(static_cast<std::uint32_t>(object.size()));
+      index.push_back(static_cast<std::uint32_t>(i));
     }
-    position.insert(position.end(), h.Position, h.Position + 3);
-    direction.insert(direction.end(), h.Direction, h.Direction + 3);
-    flux.insert(flux.end(), h.Flux, h.Flux + 3);
-    object.push_back(h.Object);
-    triangle.push_back(h.Triangle);
   }
-  HitArrays arrays;
-  arrays.Position = position.data();
-  arrays.Direction = direction.data();
-  arrays.Flux = flux.data();
-  arrays.Object = object.data();
-  arrays.Triangle = triangle.data();
-  arrays.Count = object.size();
   const Surface& surface = scene.Surfaces[wall];
   const Vec3 extent(2.f, 2.f, 0.f);
   const auto resolution = ChooseResolution(extent, index.size(), 8.0, 4, 1024);
