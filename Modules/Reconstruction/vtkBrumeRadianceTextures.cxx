@@ -173,7 +173,8 @@ std::unique_ptr<brume::ObjectRadiance> vtkBrumeRadianceTextures::CreateObject(
   }
   // The object's own resolution, the filter's, or one chosen from its hits.
   bool tooLarge = false;
-  auto resolution = [&](const brume::Vec3& extent, int global, int maximum, int automatic)
+  auto resolution =
+    [&](const brume::Vec3& extent, int global, int maximum, int automatic, double hitsPerTexel)
   {
     const int fixed = perObject > 0 ? perObject : global;
     if (fixed > maximum)
@@ -183,9 +184,8 @@ std::unique_ptr<brume::ObjectRadiance> vtkBrumeRadianceTextures::CreateObject(
       tooLarge = true;
       return std::array<int, 3>{ 0, 0, 0 };
     }
-    return fixed > 0
-      ? FixedResolution(extent, fixed)
-      : brume::ChooseResolution(extent, hitCount, settings.RadiosityThreshold, 4, automatic);
+    return fixed > 0 ? FixedResolution(extent, fixed)
+                     : brume::ChooseResolution(extent, hitCount, hitsPerTexel, 4, automatic);
   };
   std::unique_ptr<brume::ObjectRadiance> radiance;
   const int refinement = settings.HistogramRefinement;
@@ -195,7 +195,7 @@ std::unique_ptr<brume::ObjectRadiance> vtkBrumeRadianceTextures::CreateObject(
     const auto tcoords = TextureCoordinates(vtkPolyData::SafeDownCast(sceneObject));
     brume::SurfaceChart chart = brume::MakeChart(surface, tcoords.empty() ? nullptr : &tcoords);
     const auto res = resolution(brume::Vec3(chart.Width, chart.Height, 0.f),
-      settings.SurfaceResolution, MaxSurfaceResolution, 1024);
+      settings.SurfaceResolution, MaxSurfaceResolution, 1024, settings.RadiosityThreshold);
     if (!tooLarge)
     {
       radiance.reset(new brume::ObjectRadiance(surface, chart, { res[0], res[1] }, refinement));
@@ -205,7 +205,9 @@ std::unique_ptr<brume::ObjectRadiance> vtkBrumeRadianceTextures::CreateObject(
   {
     const brume::Medium& medium = this->Scene.Media[o - this->Scene.Surfaces.size()];
     const auto res =
-      resolution(medium.Bounds.Extent(), settings.MediumResolution, MaxMediumResolution, 256);
+      resolution(medium.Bounds.Extent(), settings.MediumResolution, MaxMediumResolution, 256,
+        brume::MediumHitsPerTexel(
+          medium, medium.Bounds.Extent(), hitCount, settings.RadiosityThreshold));
     if (!tooLarge)
     {
       radiance.reset(new brume::ObjectRadiance(medium, res, refinement));

@@ -47,6 +47,10 @@ TEST(VdbDensity, LoadsTheGridSparselyWithItsTransform)
   EXPECT_NEAR(density->Evaluate({ 0.f, 0.45f, 0.f }), 1.5f, 1e-6f);
   EXPECT_NEAR(density->Evaluate({ 0.f, -0.05f, 0.f }), 0.75f, 1e-6f);
   EXPECT_EQ(density->GetMajorants().GlobalMax(), 1.5f);
+  // The active voxels among the native cells (the active box and one voxel
+  // around it: 42 x 12 x 42), and their mean.
+  EXPECT_NEAR(density->OccupiedFraction(), 16000.0 / (42.0 * 12.0 * 42.0), 1e-12);
+  EXPECT_DOUBLE_EQ(density->MeanOccupiedDensity(), 1.5);
   EXPECT_EQ(VdbDensity::Load(path, "temperature", error), nullptr);
   EXPECT_NE(error.find("no float grid named"), std::string::npos);
 }

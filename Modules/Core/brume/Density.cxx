@@ -18,6 +18,24 @@ std::size_t DensityField::NumberOfOccupiedBlocks() const
     this->Majorants.Max.begin(), this->Majorants.Max.end(), [](float m) { return m > 0.f; }));
 }
 
+double DensityField::OccupiedFraction() const
+{
+  if (this->GridValues > 0.0)
+  {
+    return std::clamp(this->OccupiedValues / this->GridValues, 1.0 / this->GridValues, 1.0);
+  }
+  const std::size_t blocks = this->Majorants.Max.size();
+  return blocks == 0 ? 1.0
+                     : std::max(static_cast<double>(this->NumberOfOccupiedBlocks()), 1.0) /
+      static_cast<double>(blocks);
+}
+
+double DensityField::MeanOccupiedDensity() const
+{
+  return this->OccupiedValues > 0.0 ? this->OccupiedSum / this->OccupiedValues
+                                    : this->Majorants.GlobalMax();
+}
+
 std::array<int, 3> DensityField::NativeResolution() const
 {
   constexpr int Cells = 8; // cells per majorant block
@@ -59,6 +77,15 @@ GridDensity::GridDensity(
   , CellValues(cellValues)
 {
   this->Bounds = bounds;
+  this->GridValues = static_cast<double>(this->Values.size());
+  for (const float v : this->Values)
+  {
+    if (v > 0.f)
+    {
+      this->OccupiedValues += 1.0;
+      this->OccupiedSum += v;
+    }
+  }
   // Cells of the grid (point data: one fewer than the points).
   std::array<int, 3> cells{};
   for (int a = 0; a < 3; ++a)

@@ -50,10 +50,24 @@ public:
   const MajorantGrid& GetMajorants() const { return this->Majorants; }
   /// Number of non-empty majorant blocks (for reporting sparsity).
   std::size_t NumberOfOccupiedBlocks() const;
+  /**
+   * The fraction of the native cells where the density is not 0, in
+   * (0, 1]: where particles can interact (a cloud filling a third of its
+   * box). Grids count their values; without them, the non-empty majorant
+   * blocks.
+   */
+  double OccupiedFraction() const;
+  /// The mean density over those cells (without the values: the largest).
+  double MeanOccupiedDensity() const;
 
 protected:
   Box Bounds;
   MajorantGrid Majorants;
+  // Set by grids: their values (or voxels) in all, those above 0, and the
+  // sum of those.
+  double GridValues = 0.0;
+  double OccupiedValues = 0.0;
+  double OccupiedSum = 0.0;
 };
 
 /**

@@ -38,6 +38,36 @@ std::string GroupHitsByObject(const HitArrays& hits, std::size_t objects, Object
   return {};
 }
 
+double MediumHitsPerTexel(
+  const Medium& medium, const Vec3& extent, std::size_t hitCount, double threshold)
+{
+  if (!medium.Density || hitCount == 0)
+  {
+    return threshold;
+  }
+  double volume = 1.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    volume *= std::max(static_cast<double>(extent[a]), 1e-30);
+  }
+  const double boxEdge = std::cbrt(volume * threshold / static_cast<double>(hitCount));
+  const Vec3 sigmaT = medium.SigmaT(), albedo = medium.Albedo();
+  double transport = 0.0;
+  for (int c = 0; c < 3; ++c)
+  {
+    transport += sigmaT[c] * (1.0 - albedo[c] * medium.G) / 3.0;
+  }
+  transport *= medium.Density->MeanOccupiedDensity();
+  if (!(transport > 0.0) || !std::isfinite(transport))
+  {
+    return threshold;
+  }
+  // (edge / box edge)^3 of the texels' count, between the occupied
+  // fraction and 1.
+  const double ratio = 1.0 / transport / boxEdge;
+  return threshold * std::clamp(ratio * ratio * ratio, medium.Density->OccupiedFraction(), 1.0);
+}
+
 std::array<int, 3> ChooseResolution(
   const Vec3& extent, std::size_t hitCount, double hitsPerTexel, int minimum, int maximum)
 {

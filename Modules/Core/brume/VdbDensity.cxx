@@ -160,6 +160,12 @@ std::shared_ptr<VdbDensity> VdbDensity::Load(
       error = "OpenVDB grid '" + grid->getName() + "' has negative or non-finite densities";
       return nullptr;
     }
+    if (v > 0.f)
+    {
+      const double voxels = static_cast<double>(it.getVoxelCount());
+      density->OccupiedValues += voxels;
+      density->OccupiedSum += voxels * v;
+    }
     if (v <= background)
     {
       continue;
@@ -181,6 +187,15 @@ std::shared_ptr<VdbDensity> VdbDensity::Load(
         }
   }
   impl.Grid = grid;
+  // The native cells in all; a background above 0 fills the rest.
+  const std::array<int, 3> cells = density->NativeResolution();
+  density->GridValues = static_cast<double>(cells[0]) * cells[1] * cells[2];
+  if (background > 0.f)
+  {
+    density->OccupiedSum += static_cast<double>(background) *
+      std::max(0.0, density->GridValues - density->OccupiedValues);
+    density->OccupiedValues = std::max(density->OccupiedValues, density->GridValues);
+  }
   return density;
 }
 
