@@ -52,7 +52,9 @@ TEST(VdbDensity, LoadsTheGridSparselyWithItsTransform)
   EXPECT_NEAR(density->OccupiedFraction(), 16000.0 / (42.0 * 12.0 * 42.0), 1e-12);
   EXPECT_DOUBLE_EQ(density->MeanOccupiedDensity(), 1.5);
   EXPECT_EQ(VdbDensity::Load(path, "temperature", error), nullptr);
-  EXPECT_NE(error.find("no float grid named"), std::string::npos);
+  EXPECT_NE(
+    error.find("no float grid named 'temperature' (its float grids: 'density')"), std::string::npos)
+    << error;
 }
 
 TEST(VdbDensity, BeerLambertThroughAVdbSlab)

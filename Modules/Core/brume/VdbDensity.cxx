@@ -41,6 +41,8 @@ openvdb::FloatGrid::Ptr ReadVdbFloatGrid(
   static std::once_flag once;
   std::call_once(once, [] { openvdb::initialize(); });
   openvdb::FloatGrid::Ptr grid;
+  std::string floatGrids; // the names a user could have meant (the first 8)
+  int others = 0;
   error = CheckVdbFile(fileName);
   if (!error.empty())
   {
@@ -52,11 +54,23 @@ openvdb::FloatGrid::Ptr ReadVdbFloatGrid(
     file.open(false);
     for (auto it = file.beginName(); it != file.endName(); ++it)
     {
-      if ((gridName.empty() || it.gridName() == gridName) &&
-        file.readGridMetadata(it.gridName())->isType<openvdb::FloatGrid>())
+      if (!file.readGridMetadata(it.gridName())->isType<openvdb::FloatGrid>())
+      {
+        continue;
+      }
+      if (gridName.empty() || it.gridName() == gridName)
       {
         grid = openvdb::gridPtrCast<openvdb::FloatGrid>(file.readGrid(it.gridName()));
         break;
+      }
+      if (++others <= 8)
+      {
+        floatGrids +=
+          (floatGrids.empty() ? "'" : ", '") + ShortMessage(it.gridName().c_str()) + "'";
+      }
+      else if (others == 9)
+      {
+        floatGrids += ", ...";
       }
     }
     file.close();
@@ -69,7 +83,8 @@ openvdb::FloatGrid::Ptr ReadVdbFloatGrid(
   if (!grid)
   {
     error = "OpenVDB file '" + fileName + "' has no float grid" +
-      (gridName.empty() ? std::string() : " named '" + gridName + "'");
+      (gridName.empty() ? std::string() : " named '" + gridName + "'") +
+      (floatGrids.empty() ? std::string() : " (its float grids: " + floatGrids + ")");
     return nullptr;
   }
   const auto map = grid->transform().baseMap();
