@@ -64,6 +64,8 @@ public:
     double FirstParticle = 0.0; // 0 unless the hits continue a run
     double EndParticle = 0.0;   // where these hits' particles end (Particles unless a batch)
     double Seed = 0.0;
+    /// Whether these hits end the run (its last batch, or the whole run).
+    bool Completes() const { return this->EndParticle >= this->Particles; }
   };
 
   /// Stores hits in a vtkPolyData with the schema's arrays.

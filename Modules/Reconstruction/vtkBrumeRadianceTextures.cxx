@@ -138,7 +138,7 @@ bool vtkBrumeRadianceTextures::Build(const vtkBrumeReconstructionRequest& reques
     return false;
   }
   // The first batch of a run only bins: the last one estimates.
-  if (request.Run.EndParticle >= request.Run.Particles)
+  if (request.Run.Completes())
   {
     this->ComputeDirect();
   }
@@ -206,8 +206,7 @@ std::unique_ptr<brume::ObjectRadiance> vtkBrumeRadianceTextures::CreateObject(
     const brume::Medium& medium = this->Scene.Media[o - this->Scene.Surfaces.size()];
     const auto res =
       resolution(medium.Bounds.Extent(), settings.MediumResolution, MaxMediumResolution, 256,
-        brume::MediumHitsPerTexel(
-          medium, medium.Bounds.Extent(), hitCount, settings.RadiosityThreshold));
+        brume::MediumHitsPerTexel(medium, hitCount, settings.RadiosityThreshold));
     if (!tooLarge)
     {
       radiance.reset(new brume::ObjectRadiance(medium, res, refinement));
@@ -390,7 +389,7 @@ bool vtkBrumeRadianceTextures::BuildObjects(const vtkBrumeReconstructionRequest&
     this->Objects[o]->SetParticleFlux(request.ParticleFlux);
     errors[o] = this->Objects[o]->Build(hits, groups.Index.data() + groups.Offset[o],
       groups.Offset[o + 1] - groups.Offset[o], request.Eye, request.ThresholdFlux, parallelFor,
-      request.Run.EndParticle >= request.Run.Particles);
+      request.Run.Completes());
   };
   auto buildIndependent = [&](vtkIdType begin, vtkIdType end)
   {
@@ -439,7 +438,7 @@ bool vtkBrumeRadianceTextures::Add(
     brume::GroupHitsByObject(request.Hits, this->Scene.NumberOfObjects(), groups);
   // Batches of a run: only the last estimates the textures (and, the first
   // time, computes the direct light).
-  const bool complete = request.Run.EndParticle >= request.Run.Particles;
+  const bool complete = request.Run.Completes();
   const bool firstEstimate = complete && !this->IsComplete();
   for (std::size_t o = 0; o < this->Objects.size() && groupError.empty(); ++o)
   {

@@ -641,30 +641,29 @@ TEST(Reconstruction, DenseMediaCountTheirTexelsWhereTheyAre)
   Medium medium;
   medium.SigmaA = Vec3(0.f);
   medium.G = 0.f;
-  const Vec3 extent(1.f);
   const std::size_t hits = 64000;
   const double threshold = 100.0;
   const double boxEdge = std::cbrt(threshold / static_cast<double>(hits));
   // Homogeneous: the threshold, whatever its density.
   medium.SigmaS = Vec3(100.f);
-  EXPECT_EQ(MediumHitsPerTexel(medium, extent, hits, threshold), threshold);
+  EXPECT_EQ(MediumHitsPerTexel(medium, hits, threshold), threshold);
   medium.SetDensity(density);
   // Dense (a mean free path of 1/200 m): texels counted over the occupied quarter.
-  EXPECT_DOUBLE_EQ(MediumHitsPerTexel(medium, extent, hits, threshold), 0.25 * threshold);
+  EXPECT_DOUBLE_EQ(MediumHitsPerTexel(medium, hits, threshold), 0.25 * threshold);
   // Thin (5 m): the box's texels.
   medium.SigmaS = Vec3(0.1f);
-  EXPECT_DOUBLE_EQ(MediumHitsPerTexel(medium, extent, hits, threshold), threshold);
+  EXPECT_DOUBLE_EQ(MediumHitsPerTexel(medium, hits, threshold), threshold);
   // In between: texels of the mean free path's size, 0.8 of the box's edge.
   medium.SigmaS = Vec3(static_cast<float>(1.0 / (0.8 * boxEdge) / 2.0));
   const double sigmaT = medium.SigmaT()[0] * 2.0;
   const double ratio = 1.0 / sigmaT / boxEdge;
   EXPECT_NEAR(ratio, 0.8, 1e-6);
-  EXPECT_NEAR(MediumHitsPerTexel(medium, extent, hits, threshold),
-    threshold * ratio * ratio * ratio, 1e-9 * threshold);
+  EXPECT_NEAR(MediumHitsPerTexel(medium, hits, threshold), threshold * ratio * ratio * ratio,
+    1e-9 * threshold);
   // Forward scattering lengthens the transport mean free path: back to the box's texels
   // at g = 0.9 (0.8 / 0.1 = 8 box edges).
   medium.G = 0.9f;
-  EXPECT_DOUBLE_EQ(MediumHitsPerTexel(medium, extent, hits, threshold), threshold);
+  EXPECT_DOUBLE_EQ(MediumHitsPerTexel(medium, hits, threshold), threshold);
   // No hits: the threshold (ChooseResolution keeps its minimum).
-  EXPECT_EQ(MediumHitsPerTexel(medium, extent, 0, threshold), threshold);
+  EXPECT_EQ(MediumHitsPerTexel(medium, 0, threshold), threshold);
 }

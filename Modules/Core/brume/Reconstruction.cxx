@@ -38,18 +38,13 @@ std::string GroupHitsByObject(const HitArrays& hits, std::size_t objects, Object
   return {};
 }
 
-double MediumHitsPerTexel(
-  const Medium& medium, const Vec3& extent, std::size_t hitCount, double threshold)
+double MediumHitsPerTexel(const Medium& medium, std::size_t hitCount, double threshold)
 {
   if (!medium.Density || hitCount == 0)
   {
     return threshold;
   }
-  double volume = 1.0;
-  for (int a = 0; a < 3; ++a)
-  {
-    volume *= std::max(static_cast<double>(extent[a]), 1e-30);
-  }
+  const double volume = medium.Bounds.Volume();
   const double boxEdge = std::cbrt(volume * threshold / static_cast<double>(hitCount));
   const Vec3 sigmaT = medium.SigmaT(), albedo = medium.Albedo();
   double transport = 0.0;

@@ -84,7 +84,7 @@ std::array<int, 3> ChooseResolution(
   const Vec3& extent, std::size_t hitCount, double hitsPerTexel, int minimum, int maximum);
 
 /**
- * The hits per texel to ask of ChooseResolution() for a medium, so that its
+ * The hits per texel to ask of ChooseResolution() for a medium's box, so that its
  * texels resolve the scale its multiply scattered light varies on where the
  * hits allow: `threshold` for a homogeneous medium; for a heterogeneous one
  * the texel edge the hits give over its box, shrunk toward its transport
@@ -93,8 +93,7 @@ std::array<int, 3> ChooseResolution(
  * box alone. A thin cloud keeps the box's texels; a dense medium (a mean
  * free path below a texel) gets texels counted over where it is.
  */
-double MediumHitsPerTexel(
-  const Medium& medium, const Vec3& extent, std::size_t hitCount, double threshold);
+double MediumHitsPerTexel(const Medium& medium, std::size_t hitCount, double threshold);
 
 /**
  * Sums histograms across the processes of one run. Every process bins its

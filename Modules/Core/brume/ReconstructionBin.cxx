@@ -26,6 +26,30 @@ void Barycentric(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& p, flo
   u = det != 0.f ? (d11 * d20 - d01 * d21) / det : 0.f;
   v = det != 0.f ? (d00 * d21 - d01 * d20) / det : 0.f;
 }
+
+// A stable counting sort of n items into `ranges` groups: item k belongs to
+// group rangeOf(k), and place(k, position) puts it at its position, items
+// of a group in their order. Returns where each group starts (ranges + 1).
+template <typename RangeOf, typename Place>
+std::vector<std::size_t> GroupByRanges(
+  std::size_t n, std::size_t ranges, RangeOf rangeOf, Place place)
+{
+  std::vector<std::size_t> start(ranges + 1, 0);
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    ++start[rangeOf(k) + 1];
+  }
+  for (std::size_t r = 0; r < ranges; ++r)
+  {
+    start[r + 1] += start[r];
+  }
+  std::vector<std::size_t> cursor(start.begin(), start.end() - 1);
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    place(k, cursor[rangeOf(k)]++);
+  }
+  return start;
+}
 }
 
 namespace
@@ -104,25 +128,11 @@ void ObjectRadiance::MergeIntoRanges(
   // Group the new hits by ranges of cells (a coarse, stable counting sort):
   // each range is then one task, and a cell's sum follows hit order.
   const std::size_t cells = static_cast<std::size_t>(this->Dims[0]) * this->Dims[1] * this->Dims[2];
-  auto rangeOf = [&](std::uint32_t cell)
-  { return static_cast<std::size_t>(cell) * Ranges / cells; };
-  std::vector<std::size_t> start(Ranges + 1, 0);
-  for (std::size_t k = 0; k < count; ++k)
-  {
-    ++start[rangeOf(cellOf(k)) + 1];
-  }
-  for (std::size_t r = 0; r < Ranges; ++r)
-  {
-    start[r + 1] += start[r];
-  }
   std::vector<std::uint32_t> order(count);
-  {
-    std::vector<std::size_t> cursor(start.begin(), start.end() - 1);
-    for (std::size_t k = 0; k < count; ++k)
-    {
-      order[cursor[rangeOf(cellOf(k))]++] = static_cast<std::uint32_t>(k);
-    }
-  }
+  const std::vector<std::size_t> start = GroupByRanges(
+    count, Ranges,
+    [&](std::size_t k) { return static_cast<std::size_t>(cellOf(k)) * Ranges / cells; },
+    [&](std::size_t k, std::size_t position) { order[position] = static_cast<std::uint32_t>(k); });
   // The hits in that order, after the hits already kept in each range
   // (particles added later come later in hit order): every later pass reads
   // them sequentially.
@@ -238,37 +248,33 @@ void ObjectRadiance::BinInPlace(
       std::uint32_t Triangle;
     };
     const std::size_t ranges = std::min<std::size_t>(4096, bytes / (CacheBytes / 4) + 1);
-    auto rangeOf = [&](std::uint32_t cell)
-    { return static_cast<std::size_t>(cell) * ranges / cells; };
-    std::vector<Term> terms;
-    terms.reserve(count);
-    std::vector<std::size_t> start(ranges + 1, 0);
+    std::vector<std::uint32_t> front, cellOf; // the hits binned, and their cells
+    front.reserve(count);
+    cellOf.reserve(count);
     for (std::size_t k = 0; k < count; ++k)
     {
       const std::uint32_t i = index[k];
-      if (!this->MediumRef && !this->FromFront(hits, i))
+      if (this->MediumRef || this->FromFront(hits, i))
       {
-        continue;
+        front.push_back(i);
+        cellOf.push_back(cellOfHit(hits, i));
       }
-      Term t;
-      t.Cell = cellOfHit(hits, i);
-      for (int c = 0; c < 3; ++c)
+    }
+    std::vector<Term> grouped(front.size());
+    GroupByRanges(
+      front.size(), ranges,
+      [&](std::size_t k) { return static_cast<std::size_t>(cellOf[k]) * ranges / cells; },
+      [&](std::size_t k, std::size_t position)
       {
-        t.Flux[c] = hits.Flux[3 * i + c];
-      }
-      t.Triangle = hits.Triangle ? hits.Triangle[i] : 0;
-      terms.push_back(t);
-      ++start[rangeOf(t.Cell) + 1];
-    }
-    for (std::size_t r = 0; r < ranges; ++r)
-    {
-      start[r + 1] += start[r];
-    }
-    std::vector<Term> grouped(terms.size());
-    for (const Term& t : terms)
-    {
-      grouped[start[rangeOf(t.Cell)]++] = t;
-    }
+        const std::uint32_t i = front[k];
+        Term& t = grouped[position];
+        t.Cell = cellOf[k];
+        for (int c = 0; c < 3; ++c)
+        {
+          t.Flux[c] = hits.Flux[3 * i + c];
+        }
+        t.Triangle = hits.Triangle ? hits.Triangle[i] : 0;
+      });
     for (const Term& t : grouped)
     {
       add(t.Cell, t.Flux, t.Triangle);
