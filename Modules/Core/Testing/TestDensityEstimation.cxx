@@ -62,12 +62,53 @@ TEST(DensityEstimation, RegionGrowsUntilTheThreshold)
   EXPECT_EQ(r.Growth, 0);
   EXPECT_EQ(r.Cells, 4);
   EXPECT_DOUBLE_EQ(perCell[0], 2.0);
-  // Texel (2, 5) covers [4, 6) x [10, 12): it must grow by 16 cells to reach x = 20.
+  // Texel (2, 5) covers [4, 6) x [10, 12). Centred, it grows on both axes
+  // until x reaches 0 (growth 4: [0, 10) x [6, 16)), then on y alone until y
+  // reaches 0 too (growth 10: [0, 10) x [0, 22)); with no axis left that can
+  // grow on both sides it grows clipped, until x reaches the weight at 20
+  // (growth 21: [0, 21) x [0, 32)).
   r = EstimateTexel(sat, h.GetDimensions(), { 2, 5, 0 }, settings, perCell);
-  EXPECT_EQ(r.Growth, 15);
-  // Clipped on the left at 0: [0, 21) x [0, 27) -> the region's own area divides.
-  EXPECT_EQ(r.Cells, 21 * 27);
-  EXPECT_DOUBLE_EQ(perCell[0], 8.0 / (21 * 27));
+  EXPECT_EQ(r.Growth, 21);
+  EXPECT_EQ(r.Cells, 21 * 32);
+  EXPECT_DOUBLE_EQ(perCell[0], 8.0 / (21 * 32));
+}
+
+TEST(DensityEstimation, EdgeTexelsStayCentredWhereTheRadianceFalls)
+{
+  // Weight rising linearly away from the left edge, 1 + i in column i (as
+  // the light on a wall rises away from an open side). Texel 0 covers
+  // columns [0, 2), mean 1.5. Its region can no longer grow leftward, so it
+  // grows along y only and keeps that mean; grown clipped to the right as
+  // well, it would take the brighter columns beyond it (2.5 at growth 2).
+  Histogram h({ 32, 32, 1 }, 1);
+  for (int j = 0; j < 32; ++j)
+  {
+    for (int i = 0; i < 32; ++i)
+    {
+      const double v = 1.0 + i;
+      h.Add(h.Index(i, j, 0), &v);
+    }
+  }
+  const SummedAreaTable sat(h);
+  AdaptiveRegionSettings settings;
+  settings.Refinement = { 2, 2, 1 };
+  settings.Threshold = 30.0;
+  double perCell = 0.0;
+  const RegionEstimate edge =
+    EstimateTexel(sat, h.GetDimensions(), { 0, 8, 0 }, settings, &perCell);
+  EXPECT_EQ(edge.Growth, 4); // [0, 2) x [12, 22): 20 cells of 1.5
+  EXPECT_EQ(edge.Cells, 2 * 10);
+  EXPECT_DOUBLE_EQ(perCell, 1.5);
+  // An interior texel grows on both axes and keeps its own mean too.
+  const RegionEstimate inner =
+    EstimateTexel(sat, h.GetDimensions(), { 2, 8, 0 }, settings, &perCell);
+  EXPECT_EQ(inner.Growth, 1); // [3, 7) x [15, 19)
+  EXPECT_DOUBLE_EQ(perCell, 5.5);
+  // A corner texel has no axis with room on both sides: it grows clipped.
+  const RegionEstimate corner =
+    EstimateTexel(sat, h.GetDimensions(), { 0, 0, 0 }, settings, &perCell);
+  EXPECT_EQ(corner.Growth, 2); // [0, 4) x [0, 4)
+  EXPECT_DOUBLE_EQ(perCell, 2.5);
 }
 
 TEST(DensityEstimation, ThreeDimensionalRegions)

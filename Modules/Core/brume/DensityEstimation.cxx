@@ -33,9 +33,18 @@ Region GrowRegion(const SummedAreaTable& weights, const std::array<int, 3>& hist
       r.Growth = growth;
       return r;
     }
+    // Centred growth where there is room on both sides; clipped growth on
+    // every axis only where there is none.
+    bool centred[3];
+    bool anyCentred = false;
     for (int a = 0; a < 3; ++a)
     {
-      if (grows[a])
+      centred[a] = grows[a] && r.Lo[a] > 0 && r.Hi[a] < histogramDims[a];
+      anyCentred = anyCentred || centred[a];
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      if (anyCentred ? centred[a] : grows[a])
       {
         r.Lo[a] = std::max(r.Lo[a] - 1, 0);
         r.Hi[a] = std::min(r.Hi[a] + 1, histogramDims[a]);

@@ -3,10 +3,19 @@
 // (paper, section 3 and Figure 1).
 //
 // A texture texel covers a block of Refinement cells of the (finer)
-// histogram. Its region starts as that block and grows by one cell on every
-// side (clipped to the histogram) until the accumulated weight reaches the
-// threshold; the estimate is the region's sum divided by the region's own
-// number of cells, so the caller divides by one cell's area or volume.
+// histogram. Its region starts as that block and grows by one cell on both
+// sides of every axis until the accumulated weight reaches the threshold;
+// the estimate is the region's sum divided by the region's own number of
+// cells, so the caller divides by one cell's area or volume.
+//
+// The region stays centred on its texel: an axis whose region has reached
+// the histogram's edge on one side stops growing, and the others go on.
+// A region clipped on one side only would average the texel with cells
+// beyond it on the other, so wherever the radiance falls or rises toward
+// an object's edge (a wall beside an open side, a medium's face) the edge
+// texels would take the inner cells' value. Centred, the region's mean is
+// the texel's value to first order. Only when no axis can grow on both
+// sides before the threshold is reached (a corner) does it grow clipped.
 #ifndef brume_DensityEstimation_h
 #define brume_DensityEstimation_h
 
@@ -49,8 +58,10 @@ struct Region
 
 /**
  * The adaptive region of texel `texel`: its own cells, grown by one cell on
- * every side (clipped) until channel `settings.WeightChannel` of `weights`
- * reaches the threshold or the region covers the histogram.
+ * both sides of every axis that has room on both, until channel
+ * `settings.WeightChannel` of `weights` reaches the threshold or the region
+ * covers the histogram. When no axis has room on both sides, every axis
+ * grows clipped to the histogram.
  */
 Region GrowRegion(const SummedAreaTable& weights, const std::array<int, 3>& histogramDims,
   const std::array<int, 3>& texel, const AdaptiveRegionSettings& settings);
