@@ -131,7 +131,7 @@ bool vtkBrumeRadianceTextures::Build(const vtkBrumeReconstructionRequest& reques
   {
     return false;
   }
-  if (!this->CreateObjects(settings, groups, request.Run) ||
+  if (!this->CreateObjects(settings, request.Hits, groups, request.Run) ||
     !this->CreateDirectLight(settings, request.Hits) || !this->PlanReflections() ||
     !this->CheckHits(request.Hits, groups) || !this->BuildObjects(request, groups, work))
   {
@@ -155,8 +155,8 @@ bool vtkBrumeRadianceTextures::Build(const vtkBrumeReconstructionRequest& reques
   return true;
 }
 
-std::unique_ptr<brume::ObjectRadiance> vtkBrumeRadianceTextures::CreateObject(
-  std::size_t o, std::size_t hitCount, const vtkBrumeReconstructionSettings& settings)
+std::unique_ptr<brume::ObjectRadiance> vtkBrumeRadianceTextures::CreateObject(std::size_t o,
+  std::size_t hitCount, double concentration, const vtkBrumeReconstructionSettings& settings)
 {
   const auto& source = this->Sources[o];
   vtkDataObject* sceneObject =
@@ -206,7 +206,7 @@ std::unique_ptr<brume::ObjectRadiance> vtkBrumeRadianceTextures::CreateObject(
     const brume::Medium& medium = this->Scene.Media[o - this->Scene.Surfaces.size()];
     const auto res =
       resolution(medium.Bounds.Extent(), settings.MediumResolution, MaxMediumResolution, 256,
-        brume::MediumHitsPerTexel(medium, hitCount, settings.RadiosityThreshold));
+        brume::MediumHitsPerTexel(medium, hitCount, settings.RadiosityThreshold) / concentration);
     if (!tooLarge)
     {
       radiance.reset(new brume::ObjectRadiance(medium, res, refinement));
@@ -216,25 +216,50 @@ std::unique_ptr<brume::ObjectRadiance> vtkBrumeRadianceTextures::CreateObject(
 }
 
 bool vtkBrumeRadianceTextures::CreateObjects(const vtkBrumeReconstructionSettings& settings,
-  const brume::ObjectHits& groups, const vtkBrumeHitConversion::RunInfo& run)
+  const brume::HitArrays& hits, const brume::ObjectHits& groups,
+  const vtkBrumeHitConversion::RunInfo& run)
 {
   // Resolutions follow the hits of the whole run, on every process; from
   // the first batch of a run traced in batches, its hits scaled to the run.
+  // After the counts of every object come the media's hits counted over
+  // their pilot grids (where the hits are, brume::HitConcentration).
   const double scale = run.Particles / (run.EndParticle - run.FirstParticle);
-  std::vector<vtkTypeInt64> counts(this->Scene.NumberOfObjects());
-  for (std::size_t o = 0; o < counts.size(); ++o)
+  const std::size_t objects = this->Scene.NumberOfObjects();
+  const std::size_t surfaces = this->Scene.Surfaces.size();
+  std::vector<vtkTypeInt64> counts(objects);
+  for (std::size_t o = 0; o < objects; ++o)
   {
     counts[o] = static_cast<vtkTypeInt64>(
       std::llround(scale * static_cast<double>(groups.Offset[o + 1] - groups.Offset[o])));
+  }
+  std::vector<std::size_t> pilotStart(objects + 1, objects);
+  for (std::size_t o = 0; o < objects; ++o)
+  {
+    pilotStart[o + 1] = pilotStart[o];
+    if (o >= surfaces)
+    {
+      std::vector<std::int64_t> pilot;
+      const std::size_t first = groups.Offset[o];
+      brume::CountHitsOverPilotGrid(hits, groups.Index.data() + first, groups.Offset[o + 1] - first,
+        this->Scene.Media[o - surfaces].Bounds, pilot);
+      counts.insert(counts.end(), pilot.begin(), pilot.end());
+      pilotStart[o + 1] += pilot.size();
+    }
   }
   if (this->Distributed() && !counts.empty())
   {
     vtkBrumeProcesses::Sum(this->Controller, counts);
     this->Reduction.reset(new vtkBrumeHistogramReduction(this->Controller));
   }
-  for (std::size_t o = 0; o < counts.size(); ++o)
+  for (std::size_t o = 0; o < objects; ++o)
   {
-    auto radiance = this->CreateObject(o, static_cast<std::size_t>(counts[o]), settings);
+    const double concentration = pilotStart[o + 1] > pilotStart[o]
+      ? brume::HitConcentration(
+          std::vector<std::int64_t>(counts.begin() + static_cast<std::ptrdiff_t>(pilotStart[o]),
+            counts.begin() + static_cast<std::ptrdiff_t>(pilotStart[o + 1])))
+      : 1.0;
+    auto radiance =
+      this->CreateObject(o, static_cast<std::size_t>(counts[o]), concentration, settings);
     if (!radiance)
     {
       return false;

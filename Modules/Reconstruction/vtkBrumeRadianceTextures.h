@@ -140,10 +140,11 @@ public:
   void TakeReduction(vtkTypeInt64& bytes, double& seconds);
 
 private:
-  bool CreateObjects(const vtkBrumeReconstructionSettings& settings,
+  bool CreateObjects(const vtkBrumeReconstructionSettings& settings, const brume::HitArrays& hits,
     const brume::ObjectHits& groups, const vtkBrumeHitConversion::RunInfo& run);
-  std::unique_ptr<brume::ObjectRadiance> CreateObject(
-    std::size_t o, std::size_t hitCount, const vtkBrumeReconstructionSettings& settings);
+  // concentration: brume::HitConcentration of a medium's hits (1 for surfaces).
+  std::unique_ptr<brume::ObjectRadiance> CreateObject(std::size_t o, std::size_t hitCount,
+    double concentration, const vtkBrumeReconstructionSettings& settings);
   bool CheckHits(const brume::HitArrays& hits, const brume::ObjectHits& groups);
   bool BuildObjects(const vtkBrumeReconstructionRequest& request, const brume::ObjectHits& groups,
     vtkBrumeReconstructionWork& work);

@@ -667,3 +667,63 @@ TEST(Reconstruction, DenseMediaCountTheirTexelsWhereTheyAre)
   // No hits: the threshold (ChooseResolution keeps its minimum).
   EXPECT_EQ(MediumHitsPerTexel(medium, 0, threshold), threshold);
 }
+
+TEST(Reconstruction, MediaTexelsFollowWhereTheHitsAre)
+{
+  // A unit box: its pilot grid is 16^3 near-cubic cells; a flat box's
+  // cells stay near-cubic too.
+  const Box box{ Vec3(0.f), Vec3(1.f) };
+  EXPECT_EQ(PilotGridResolution(box), (std::array<int, 3>{ 16, 16, 16 }));
+  const std::array<int, 3> flat = PilotGridResolution(Box{ Vec3(0.f), Vec3(4.f, 1.f, 1.f) });
+  EXPECT_NEAR(4.0 * flat[1] / flat[0], 1.0, 0.2);
+
+  // Hits spread over a part of the box, as positions of a HitArrays.
+  auto concentrationOf = [&](int n, float xMax, float yMax)
+  {
+    Random rng(3, 4);
+    std::vector<float> positions(3 * static_cast<std::size_t>(n));
+    std::vector<std::uint32_t> index(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i)
+    {
+      positions[3 * i] = xMax * rng.NextFloat();
+      positions[3 * i + 1] = yMax * rng.NextFloat();
+      positions[3 * i + 2] = rng.NextFloat();
+      index[i] = static_cast<std::uint32_t>(i);
+    }
+    HitArrays hits;
+    hits.Position = positions.data();
+    hits.Count = static_cast<std::size_t>(n);
+    std::vector<std::int64_t> counts;
+    CountHitsOverPilotGrid(hits, index.data(), index.size(), box, counts);
+    EXPECT_EQ(counts.size(), 4096u);
+    std::int64_t total = 0;
+    for (const std::int64_t c : counts)
+    {
+      total += c;
+    }
+    EXPECT_EQ(total, n);
+    return HitConcentration(counts);
+  };
+  // Evenly spread: 1, few hits or many (sum n(n - 1) is unbiased for Poisson counts).
+  EXPECT_NEAR(concentrationOf(200000, 1.f, 1.f), 1.0, 0.01);
+  EXPECT_NEAR(concentrationOf(3000, 1.f, 1.f), 1.0, 0.06);
+  // A quarter of the box: 4 (its texel count is multiplied by 4).
+  EXPECT_NEAR(concentrationOf(200000, 0.5f, 0.5f), 4.0, 0.05);
+  // A sixteenth: past the cap.
+  EXPECT_EQ(concentrationOf(200000, 0.25f, 0.25f), MaxHitConcentration);
+
+  // Equal counts in every cell, or no hits at all: 1.
+  EXPECT_EQ(HitConcentration(std::vector<std::int64_t>(4096, 5)), 1.0);
+  EXPECT_EQ(HitConcentration(std::vector<std::int64_t>(4096, 0)), 1.0);
+  // All of them in one of two cells: 2 (n(n - 1) / n^2 times 2 cells, just under).
+  EXPECT_NEAR(HitConcentration({ 1000, 0 }), 2.0, 0.01);
+  // Hits on the box's far faces count in its edge cells.
+  const float corner[3] = { 1.f, 1.f, 1.f };
+  const std::uint32_t zero = 0;
+  HitArrays one;
+  one.Position = corner;
+  one.Count = 1;
+  std::vector<std::int64_t> counts;
+  CountHitsOverPilotGrid(one, &zero, 1, box, counts);
+  EXPECT_EQ(counts.back(), 1);
+}

@@ -63,6 +63,48 @@ double MediumHitsPerTexel(const Medium& medium, std::size_t hitCount, double thr
   return threshold * std::clamp(ratio * ratio * ratio, medium.Density->OccupiedFraction(), 1.0);
 }
 
+std::array<int, 3> PilotGridResolution(const Box& box)
+{
+  return ChooseResolution(box.Extent(), 4096, 1.0, 1, 64);
+}
+
+void CountHitsOverPilotGrid(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
+  const Box& box, std::vector<std::int64_t>& counts)
+{
+  const std::array<int, 3> res = PilotGridResolution(box);
+  counts.resize(static_cast<std::size_t>(res[0]) * res[1] * res[2], 0);
+  const Vec3 extent = box.Extent();
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    const float* p = hits.Position + 3 * static_cast<std::size_t>(index[k]);
+    int c[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      const float u = extent[a] > 0.f ? (p[a] - box.lower[a]) / extent[a] : 0.f;
+      // Hits on the box's faces (or a hair beyond) count in its edge cells.
+      c[a] = std::clamp(static_cast<int>(u * static_cast<float>(res[a])), 0, res[a] - 1);
+    }
+    ++counts[(static_cast<std::size_t>(c[2]) * res[1] + c[1]) * res[0] + c[0]];
+  }
+}
+
+double HitConcentration(const std::vector<std::int64_t>& counts)
+{
+  double sum = 0.0, pairs = 0.0;
+  for (const std::int64_t n : counts)
+  {
+    const double v = static_cast<double>(n);
+    sum += v;
+    pairs += v * (v - 1.0);
+  }
+  if (!(sum > 1.0))
+  {
+    return 1.0;
+  }
+  const double concentration = static_cast<double>(counts.size()) * pairs / (sum * sum);
+  return std::clamp(concentration, 1.0, MaxHitConcentration);
+}
+
 std::array<int, 3> ChooseResolution(
   const Vec3& extent, std::size_t hitCount, double hitsPerTexel, int minimum, int maximum)
 {

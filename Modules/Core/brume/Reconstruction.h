@@ -96,6 +96,33 @@ std::array<int, 3> ChooseResolution(
 double MediumHitsPerTexel(const Medium& medium, std::size_t hitCount, double threshold);
 
 /**
+ * Where a medium's hits are, before its texture is sized: its hits counted
+ * over a coarse pilot grid of its box (`PilotGridResolution`, near-cubic
+ * cells, about 4,096 of them), added to `counts` so that processes can sum
+ * their counts before `HitConcentration`.
+ */
+std::array<int, 3> PilotGridResolution(const Box& box);
+void CountHitsOverPilotGrid(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
+  const Box& box, std::vector<std::int64_t>& counts);
+
+/// The largest factor HitConcentration() returns.
+constexpr double MaxHitConcentration = 8.0;
+
+/**
+ * How concentrated hits are over a pilot grid of m cells: m Σ n(n − 1) / (Σ n)²,
+ * the grid's volume over the volume the hits effectively occupy (the
+ * participation ratio of their density; Σ n(n − 1) is the unbiased estimate
+ * of Σ λ² for Poisson counts, so that evenly spread hits give 1 whatever
+ * their number). 1 where the hits are spread evenly, 8 where they fill an
+ * eighth of the box; clamped to [1, MaxHitConcentration]. A medium's texel
+ * count is multiplied by it, so that about `threshold` hits fall in a texel
+ * where the hits are rather than on average over the box: a shaft, a
+ * cloud's lit side, a plume get texels as fine as their hits allow, and the
+ * adaptive regions still grow where the hits are sparse.
+ */
+double HitConcentration(const std::vector<std::int64_t>& counts);
+
+/**
  * Sums histograms across the processes of one run. Every process bins its
  * own hits into exact histograms (brume::ExactHistogram: fixed-point sums,
  * which do not depend on the order of their terms), then one all-reduce
