@@ -412,6 +412,7 @@ bool vtkBrumeRadianceTextures::BuildObjects(const vtkBrumeReconstructionRequest&
   auto build = [&](std::size_t o, const brume::ParallelFor& parallelFor)
   {
     this->Objects[o]->SetParticleFlux(request.ParticleFlux);
+    this->Objects[o]->SetRunShare(request.Run.EndParticle / request.Run.Particles);
     errors[o] = this->Objects[o]->Build(hits, groups.Index.data() + groups.Offset[o],
       groups.Offset[o + 1] - groups.Offset[o], request.Eye, request.ThresholdFlux, parallelFor,
       request.Run.Completes());
@@ -468,6 +469,7 @@ bool vtkBrumeRadianceTextures::Add(
   for (std::size_t o = 0; o < this->Objects.size() && groupError.empty(); ++o)
   {
     this->Objects[o]->SetParticleFlux(request.ParticleFlux);
+    this->Objects[o]->SetRunShare(request.Run.EndParticle / request.Run.Particles);
     const std::string error = this->Objects[o]->Add(request.Hits,
       groups.Index.data() + groups.Offset[o], groups.Offset[o + 1] - groups.Offset[o],
       this->Particles / request.Run.Particles, firstEstimate ? request.Eye : this->ObjectEye[o],

@@ -103,6 +103,23 @@ struct GrowingBuffer
     array->SetArray(this->Data, values, 0, vtkAbstractArray::VTK_DATA_ARRAY_FREE);
     this->Data = nullptr;
   }
+  // Takes back the buffer of an array this tracer handed out, where no one
+  // else holds the array any more: VTK stops owning it (it came from
+  // realloc), and its pages, already mapped, are written again.
+  template <typename Array>
+  void Adopt(vtkDataArray* handed)
+  {
+    auto* array = Array::SafeDownCast(handed);
+    if (this->Data || !array || array->GetReferenceCount() != 1 || array->GetSize() < 1)
+    {
+      return;
+    }
+    T* p = array->GetPointer(0);
+    const auto capacity = static_cast<std::size_t>(array->GetSize());
+    array->SetArray(p, static_cast<vtkIdType>(capacity), 1); // 1: no longer freed by VTK
+    this->Data = p;
+    this->Capacity = capacity;
+  }
 };
 
 struct OutputHits
@@ -156,7 +173,25 @@ struct OutputHits
     }
   }
 
-  void Attach(vtkPolyData* output, vtkIdType n)
+  // The arrays of the last batch's output, in the order Attach() makes them.
+  void Adopt(const std::vector<vtkSmartPointer<vtkDataArray>>& handed)
+  {
+    if (handed.size() != 7)
+    {
+      return;
+    }
+    this->Points.Adopt<vtkFloatArray>(handed[0]);
+    this->Direction.Adopt<vtkFloatArray>(handed[1]);
+    this->Flux.Adopt<vtkFloatArray>(handed[2]);
+    this->Object.Adopt<vtkUnsignedShortArray>(handed[3]);
+    this->Emitter.Adopt<vtkUnsignedShortArray>(handed[4]);
+    this->Depth.Adopt<vtkUnsignedCharArray>(handed[5]);
+    this->Triangle.Adopt<vtkUnsignedIntArray>(handed[6]);
+  }
+
+  // Hands the buffers to the output's arrays; `handed` (if not null) keeps
+  // them for the next batch of the run.
+  void Attach(vtkPolyData* output, vtkIdType n, std::vector<vtkSmartPointer<vtkDataArray>>* handed)
   {
     this->Reallocate(n); // shrink to fit
     auto make = [&](auto array, auto& buffer, const char* name, int components)
@@ -164,6 +199,10 @@ struct OutputHits
       array->SetName(name);
       array->SetNumberOfComponents(components);
       buffer.HandTo(array.GetPointer(), components * n);
+      if (handed)
+      {
+        handed->push_back(array);
+      }
       return array;
     };
     auto points = make(vtkSmartPointer<vtkFloatArray>::New(), this->Points, "Points", 3);
@@ -197,11 +236,19 @@ void AddTuple(vtkPolyData* output, const char* name, const T& v)
 }
 }
 
+struct vtkBrumeLightTracer::BatchMemory
+{
+  std::vector<std::vector<brume::Hit>> BlockHits;
+  std::vector<vtkSmartPointer<vtkDataArray>> Handed; // the last output's hit arrays
+};
+
 vtkBrumeLightTracer::vtkBrumeLightTracer()
   : Lights(vtkSmartPointer<vtkLightCollection>::New())
 {
   this->SetNumberOfInputPorts(1);
 }
+
+vtkBrumeLightTracer::~vtkBrumeLightTracer() = default;
 
 void vtkBrumeLightTracer::AddLight(vtkLight* light)
 {
@@ -316,10 +363,21 @@ int vtkBrumeLightTracer::RequestData(
   const brume::LightTracer tracer(scene, caster, settings);
 
   // Output arrays, grown batch by batch (realloc of large blocks moves pages
-  // without copying), so the hits are never held twice.
+  // without copying), so the hits are never held twice. Within a run traced
+  // in batches, each batch writes where the last one's hits were, when no
+  // one holds them any more: a fresh page costs a fault on first touch
+  // (microseconds each), and a batch of 10^7 particles fills 1.2 GB.
+  std::unique_ptr<BatchMemory> reused = std::move(this->Reused);
+  if (!reused)
+  {
+    reused.reset(new BatchMemory);
+  }
   OutputHits out;
+  output->Initialize(); // lets go of the last batch's arrays
+  out.Adopt(reused->Handed);
+  reused->Handed.clear();
   const vtkTypeInt64 blocks = (traced + ParticlesPerBlock - 1) / ParticlesPerBlock;
-  std::vector<std::vector<brume::Hit>> blockHits;
+  std::vector<std::vector<brume::Hit>>& blockHits = reused->BlockHits;
   std::vector<brume::TraceCounters> counters;
   brume::TraceCounters sum;
   const vtkTypeInt64 batches = std::min<vtkTypeInt64>(blocks, 20);
@@ -375,7 +433,13 @@ int vtkBrumeLightTracer::RequestData(
     this->UpdateProgress(0.99 * static_cast<double>(k + 1) / static_cast<double>(batches));
   }
   this->LastRayCount = static_cast<vtkTypeInt64>(sum.Rays);
-  out.Attach(output, stored);
+  // Kept for the next batch only while the run goes on.
+  const bool runGoesOn = endParticle < particles && !this->GetAbortExecute();
+  out.Attach(output, stored, runGoesOn ? &reused->Handed : nullptr);
+  if (runGoesOn)
+  {
+    this->Reused = std::move(reused);
+  }
   AddTuple(output, vtkBrumeHitConversion::TotalPowerName, tracer.GetTotalPower());
   vtkNew<vtkDoubleArray> count;
   count->SetName(vtkBrumeHitConversion::NumberOfParticlesName);

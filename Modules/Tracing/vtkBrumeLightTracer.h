@@ -35,6 +35,8 @@
 #include "vtkPolyDataAlgorithm.h"
 #include "vtkSmartPointer.h" // For Lights
 
+#include <memory> // For the reused batch memory
+
 class vtkLight;
 class vtkLightCollection;
 
@@ -124,7 +126,7 @@ public:
 
 protected:
   vtkBrumeLightTracer();
-  ~vtkBrumeLightTracer() override = default;
+  ~vtkBrumeLightTracer() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
@@ -141,6 +143,11 @@ protected:
   vtkSmartPointer<vtkLightCollection> Lights;
 
 private:
+  // Between the batches of one run: the block buffers and the output's hit
+  // arrays, reused by the next batch (their pages already mapped).
+  struct BatchMemory;
+  std::unique_ptr<BatchMemory> Reused;
+
   vtkBrumeLightTracer(const vtkBrumeLightTracer&) = delete;
   void operator=(const vtkBrumeLightTracer&) = delete;
 };

@@ -276,6 +276,16 @@ public:
   void SetParticleFlux(double flux) { this->ParticleFlux = flux; }
 
   /**
+   * The share of the run's particles binned once the next Build() or Add()
+   * is done (1, the default: the whole run). A view-dependent object whose
+   * hits wait for the run's last batch makes room for the whole run's at
+   * the first batch, from the hits it holds and this share, instead of
+   * growing by doubling: each growth would copy the hits held so far into
+   * fresh pages.
+   */
+  void SetRunShare(double share) { this->RunShare = share; }
+
+  /**
    * Bins the object's hits (`count` indices into `hits`) and estimates the
    * texture toward `eye`. Empty on success, otherwise what is wrong.
    * With `estimate` false the hits are only binned: the texture is
@@ -468,6 +478,7 @@ private:
   int DirectionalOrder = -1;
   HistogramReduction* Reduction = nullptr;
   double ParticleFlux = 0.0; // as set
+  double RunShare = 1.0;     // as set
   int SumsExponent = 0;      // the exact sums' quantum, 2^SumsExponent
   bool SumsClamped = false;  // a term beyond the exact sums' bound since Build()
   bool Built = false;        // Build() binned hits

@@ -334,6 +334,13 @@ void ObjectRadiance::KeepHits(const HitArrays& hits, const std::uint32_t* index,
   // A batch of a run: its hits wait, in hit order, for the batch that
   // estimates, which merges them all at once.
   const std::size_t before = this->Pending.size();
+  if (this->Pending.capacity() < before + count)
+  {
+    // Room for the run's hits at once, 5 % to spare, where its share is known.
+    const double share = this->RunShare > 0.0 && this->RunShare < 1.0 ? this->RunShare : 1.0;
+    const double expected = 1.05 * static_cast<double>(before + count) / share;
+    this->Pending.reserve(std::max(before + count, static_cast<std::size_t>(expected)));
+  }
   this->Pending.resize(before + count);
   parallelFor(0, count,
     [&](std::size_t begin, std::size_t end)
