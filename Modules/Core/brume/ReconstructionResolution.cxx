@@ -1,0 +1,114 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// How many texels an object's texture gets: from its hits, spread over its
+// extent (ChooseResolution), finer for a dense medium (MediumHitsPerTexel)
+// and where a medium's hits gather (HitConcentration).
+#include "brume/Reconstruction.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace brume
+{
+
+double MediumHitsPerTexel(const Medium& medium, std::size_t hitCount, double threshold)
+{
+  if (!medium.Density || hitCount == 0)
+  {
+    return threshold;
+  }
+  const double volume = medium.Bounds.Volume();
+  const double boxEdge = std::cbrt(volume * threshold / static_cast<double>(hitCount));
+  const Vec3 sigmaT = medium.SigmaT(), albedo = medium.Albedo();
+  double transport = 0.0;
+  for (int c = 0; c < 3; ++c)
+  {
+    transport += sigmaT[c] * (1.0 - albedo[c] * medium.G) / 3.0;
+  }
+  transport *= medium.Density->MeanOccupiedDensity();
+  if (!(transport > 0.0) || !std::isfinite(transport))
+  {
+    return threshold;
+  }
+  // (edge / box edge)^3 of the texels' count, between the occupied
+  // fraction and 1.
+  const double ratio = 1.0 / transport / boxEdge;
+  return threshold * std::clamp(ratio * ratio * ratio, medium.Density->OccupiedFraction(), 1.0);
+}
+
+std::array<int, 3> PilotGridResolution(const Box& box)
+{
+  return ChooseResolution(box.Extent(), 4096, 1.0, 1, 64);
+}
+
+void CountHitsOverPilotGrid(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
+  const Box& box, std::vector<std::int64_t>& counts)
+{
+  const std::array<int, 3> res = PilotGridResolution(box);
+  counts.resize(static_cast<std::size_t>(res[0]) * res[1] * res[2], 0);
+  const Vec3 extent = box.Extent();
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    const float* p = hits.Position + 3 * static_cast<std::size_t>(index[k]);
+    int c[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      const float u = extent[a] > 0.f ? (p[a] - box.lower[a]) / extent[a] : 0.f;
+      // Hits on the box's faces (or a hair beyond) count in its edge cells.
+      c[a] = std::clamp(static_cast<int>(u * static_cast<float>(res[a])), 0, res[a] - 1);
+    }
+    ++counts[(static_cast<std::size_t>(c[2]) * res[1] + c[1]) * res[0] + c[0]];
+  }
+}
+
+double HitConcentration(const std::vector<std::int64_t>& counts)
+{
+  double sum = 0.0, pairs = 0.0;
+  for (const std::int64_t n : counts)
+  {
+    const double v = static_cast<double>(n);
+    sum += v;
+    pairs += v * (v - 1.0);
+  }
+  if (!(sum > 1.0))
+  {
+    return 1.0;
+  }
+  const double concentration = static_cast<double>(counts.size()) * pairs / (sum * sum);
+  return std::clamp(concentration, 1.0, MaxHitConcentration);
+}
+
+std::array<int, 3> ChooseResolution(
+  const Vec3& extent, std::size_t hitCount, double hitsPerTexel, int minimum, int maximum)
+{
+  // Texels proportional to the hits, shared among the used axes so that the
+  // texels are as close to square (cubic) as the extent allows.
+  int used = 0;
+  double measure = 1.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (extent[a] > 0.f)
+    {
+      ++used;
+      measure *= extent[a];
+    }
+  }
+  std::array<int, 3> res{ 1, 1, 1 };
+  if (used == 0)
+  {
+    return res;
+  }
+  const double texels = std::max(1.0, static_cast<double>(hitCount) / hitsPerTexel);
+  const double size = std::pow(measure / texels, 1.0 / used); // texel edge length
+  for (int a = 0; a < 3; ++a)
+  {
+    if (extent[a] > 0.f)
+    {
+      const double n = std::round(extent[a] / size);
+      res[a] =
+        static_cast<int>(std::clamp(n, static_cast<double>(minimum), static_cast<double>(maximum)));
+    }
+  }
+  return res;
+}
+
+} // namespace brume
