@@ -71,6 +71,14 @@ struct TraceBlocks
 // The output arrays of the hits (45 bytes per hit), grown with realloc: glibc
 // moves large blocks with mremap, without copying, so growth needs no second
 // copy of the hits. VTK takes the buffers over (freed with free()).
+// An array of an output's hits, with the buffer and size it was handed.
+struct HandedArray
+{
+  vtkSmartPointer<vtkDataArray> Array;
+  const void* Buffer = nullptr;
+  vtkIdType Size = 0;
+};
+
 template <typename T>
 struct GrowingBuffer
 {
@@ -104,13 +112,16 @@ struct GrowingBuffer
     this->Data = nullptr;
   }
   // Takes back the buffer of an array this tracer handed out, where no one
-  // else holds the array any more: VTK stops owning it (it came from
-  // realloc), and its pages, already mapped, are written again.
+  // else holds the array any more and it still holds the very buffer handed
+  // (from realloc: a buffer set on it since may be anyone's): VTK stops
+  // owning it, and its pages, already mapped, are written again.
   template <typename Array>
-  void Adopt(vtkDataArray* handed)
+  void Adopt(const HandedArray& handed)
   {
-    auto* array = Array::SafeDownCast(handed);
-    if (this->Data || !array || array->GetReferenceCount() != 1 || array->GetSize() < 1)
+    auto* array = Array::SafeDownCast(handed.Array);
+    if (this->Data || !array || array->GetReferenceCount() != 1 ||
+      array->GetVoidPointer(0) != handed.Buffer || array->GetSize() != handed.Size ||
+      handed.Size < 1)
     {
       return;
     }
@@ -174,7 +185,7 @@ struct OutputHits
   }
 
   // The arrays of the last batch's output, in the order Attach() makes them.
-  void Adopt(const std::vector<vtkSmartPointer<vtkDataArray>>& handed)
+  void Adopt(const std::vector<HandedArray>& handed)
   {
     if (handed.size() != 7)
     {
@@ -191,7 +202,7 @@ struct OutputHits
 
   // Hands the buffers to the output's arrays; `handed` (if not null) keeps
   // them for the next batch of the run.
-  void Attach(vtkPolyData* output, vtkIdType n, std::vector<vtkSmartPointer<vtkDataArray>>* handed)
+  void Attach(vtkPolyData* output, vtkIdType n, std::vector<HandedArray>* handed)
   {
     this->Reallocate(n); // shrink to fit
     auto make = [&](auto array, auto& buffer, const char* name, int components)
@@ -201,7 +212,7 @@ struct OutputHits
       buffer.HandTo(array.GetPointer(), components * n);
       if (handed)
       {
-        handed->push_back(array);
+        handed->push_back({ array, array->GetVoidPointer(0), array->GetSize() });
       }
       return array;
     };
@@ -239,7 +250,7 @@ void AddTuple(vtkPolyData* output, const char* name, const T& v)
 struct vtkBrumeLightTracer::BatchMemory
 {
   std::vector<std::vector<brume::Hit>> BlockHits;
-  std::vector<vtkSmartPointer<vtkDataArray>> Handed; // the last output's hit arrays
+  std::vector<HandedArray> Handed; // the last output's hit arrays
 };
 
 vtkBrumeLightTracer::vtkBrumeLightTracer()

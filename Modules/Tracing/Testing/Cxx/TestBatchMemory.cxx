@@ -13,6 +13,7 @@
 
 #include <cstring>
 #include <iostream>
+#include <vector>
 
 namespace
 {
@@ -99,6 +100,13 @@ int TestBatchMemory(int, char*[])
   std::cout << "batch 2 wrote its directions "
             << (reusedInPlace ? "where batch 1's were" : "elsewhere (moved by realloc)") << "\n";
 
+  // A consumer that gives an output array a buffer of its own (VTK does not
+  // free it) must get it back untouched: the tracer takes back only the
+  // buffers it handed out.
+  vtkDataArray* emitter = tracer->GetOutput()->GetPointData()->GetArray("EmitterId");
+  std::vector<unsigned short> own(static_cast<std::size_t>(emitter->GetNumberOfValues()), 7);
+  emitter->SetVoidArray(own.data(), static_cast<vtkIdType>(own.size()), 1);
+
   // Batch 3 ends the run: its arrays are the output's alone afterwards, and
   // a run after it starts afresh.
   held = nullptr;
@@ -106,6 +114,15 @@ int TestBatchMemory(int, char*[])
   tracer->SetEndParticle(Particles);
   tracer->Update();
   ok = SameHits(tracer->GetOutput(), FreshBatch(scene, 40000, Particles), "batch 3") && ok;
+  for (const unsigned short v : own)
+  {
+    if (v != 7)
+    {
+      std::cerr << "batch 3 wrote into a buffer a consumer gave an output array\n";
+      ok = false;
+      break;
+    }
+  }
   vtkDataArray* last = tracer->GetOutput()->GetPointData()->GetArray("Direction");
   if (last->GetReferenceCount() != 1)
   {
