@@ -117,7 +117,8 @@ bool vtkBrumeRadianceTextures::Build(const vtkBrumeReconstructionRequest& reques
     vtkBrumeSceneConversion::ToScene(request.Scene, this->Scene, &this->Sources);
   brume::ObjectHits groups;
   const std::string groupError = error.empty()
-    ? brume::GroupHitsByObject(request.Hits, this->Scene.NumberOfObjects(), groups)
+    ? brume::GroupHitsByObject(
+        request.Hits, this->Scene.NumberOfObjects(), groups, vtkBrumeSMP::ParallelFor())
     : std::string();
   if (!error.empty())
   {
@@ -461,7 +462,7 @@ bool vtkBrumeRadianceTextures::Add(
   const brume::ParallelFor parallelFor = vtkBrumeSMP::ParallelFor();
   brume::ObjectHits groups;
   const std::string groupError =
-    brume::GroupHitsByObject(request.Hits, this->Scene.NumberOfObjects(), groups);
+    brume::GroupHitsByObject(request.Hits, this->Scene.NumberOfObjects(), groups, parallelFor);
   // Batches of a run: only the last estimates the textures (and, the first
   // time, computes the direct light).
   const bool complete = request.Run.Completes();
@@ -574,7 +575,7 @@ void vtkBrumeRadianceTextures::FollowView(
     {
       if (groups.Offset.empty())
       {
-        brume::GroupHitsByObject(request.Hits, this->Scene.NumberOfObjects(), groups);
+        brume::GroupHitsByObject(request.Hits, this->Scene.NumberOfObjects(), groups, parallelFor);
       }
       radiance.SetParticleFlux(request.ParticleFlux);
       radiance.Build(request.Hits, groups.Index.data() + groups.Offset[o],

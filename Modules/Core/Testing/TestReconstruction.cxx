@@ -18,24 +18,7 @@ using namespace brume;
 namespace
 {
 using brume::testing::HitStore;
-
-std::vector<Hit> Trace(
-  const Scene& scene, std::uint64_t n, const TraceSettings& settings, Vec3* power = nullptr)
-{
-  const RayCaster caster(scene);
-  const LightTracer tracer(scene, caster, settings);
-  if (power)
-  {
-    *power = tracer.GetTotalPower();
-  }
-  std::vector<Hit> hits;
-  TraceCounters counters;
-  for (std::uint64_t i = 0; i < n; ++i)
-  {
-    tracer.TraceParticle(i, n, hits, counters);
-  }
-  return hits;
-}
+using brume::testing::Trace;
 
 Surface Wall(float half, const Vec3& reflectance)
 {

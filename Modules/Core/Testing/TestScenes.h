@@ -4,10 +4,13 @@
 #define brume_TestScenes_h
 
 #include "brume/LightTracer.h"
+#include "brume/RayCaster.h"
 #include "brume/Reconstruction.h"
 #include "brume/Scene.h"
 
+#include <atomic>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace brume
@@ -73,6 +76,64 @@ struct HitStore
     return a;
   }
 };
+
+/// Traces particles 0 .. n - 1 of a run of n on one thread; the total power of the lights in
+/// `power`.
+inline std::vector<Hit> Trace(
+  const Scene& scene, std::uint64_t n, const TraceSettings& settings, Vec3* power = nullptr)
+{
+  const RayCaster caster(scene);
+  const LightTracer tracer(scene, caster, settings);
+  if (power)
+  {
+    *power = tracer.GetTotalPower();
+  }
+  std::vector<Hit> hits;
+  TraceCounters counters;
+  for (std::uint64_t i = 0; i < n; ++i)
+  {
+    tracer.TraceParticle(i, n, hits, counters);
+  }
+  return hits;
+}
+
+/**
+ * A ParallelFor over `threads` threads that splits a range into `pieces`
+ * sub-ranges, which the threads take in whatever order they get to them:
+ * algorithms must give the same result as with SerialFor().
+ */
+inline ParallelFor ThreadedFor(int threads, std::size_t pieces)
+{
+  return [threads, pieces](std::size_t begin, std::size_t end,
+           const std::function<void(std::size_t, std::size_t)>& body)
+  {
+    const std::size_t n = end - begin;
+    const std::size_t parts = std::max<std::size_t>(1, std::min(pieces, n));
+    std::atomic<std::size_t> next{ 0 };
+    auto work = [&]
+    {
+      for (std::size_t p = next++; p < parts; p = next++)
+      {
+        // The last pieces first, so that the order differs from hit order.
+        const std::size_t q = parts - 1 - p;
+        if (begin + n * q / parts < begin + n * (q + 1) / parts)
+        {
+          body(begin + n * q / parts, begin + n * (q + 1) / parts);
+        }
+      }
+    };
+    std::vector<std::thread> pool;
+    for (int t = 1; t < threads; ++t)
+    {
+      pool.emplace_back(work);
+    }
+    work();
+    for (std::thread& t : pool)
+    {
+      t.join();
+    }
+  };
+}
 } // namespace testing
 } // namespace brume
 

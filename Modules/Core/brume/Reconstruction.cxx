@@ -13,28 +13,30 @@
 namespace brume
 {
 
-std::string GroupHitsByObject(const HitArrays& hits, std::size_t objects, ObjectHits& groups)
+std::string GroupHitsByObject(
+  const HitArrays& hits, std::size_t objects, ObjectHits& groups, const ParallelFor& parallelFor)
 {
-  groups.Offset.assign(objects + 1, 0);
-  for (std::size_t i = 0; i < hits.Count; ++i)
+  // Ids out of range fall in one more group, reported below.
+  auto objectOf = [&](std::size_t i) { return std::min<std::size_t>(hits.Object[i], objects); };
+  StableGrouping grouping(hits.Count, objects + 1);
+  const std::vector<std::size_t>& counts = grouping.Count(objectOf, parallelFor);
+  if (counts[objects] > 0)
   {
-    if (hits.Object[i] >= objects)
-    {
-      return "a particle hit refers to object " + std::to_string(hits.Object[i]) +
-        " but the scene has " + std::to_string(objects) + " objects";
-    }
-    ++groups.Offset[hits.Object[i] + 1];
+    const std::size_t i =
+      static_cast<std::size_t>(std::find_if(hits.Object, hits.Object + hits.Count,
+                                 [&](std::uint16_t object) { return object >= objects; }) -
+        hits.Object);
+    return "a particle hit refers to object " + std::to_string(hits.Object[i]) +
+      " but the scene has " + std::to_string(objects) + " objects";
   }
-  for (std::size_t o = 0; o < objects; ++o)
-  {
-    groups.Offset[o + 1] += groups.Offset[o];
-  }
+  groups.Offset = grouping.Starts();
+  groups.Offset.pop_back(); // the out-of-range group, empty
   groups.Index.resize(hits.Count);
-  std::vector<std::size_t> cursor(groups.Offset.begin(), groups.Offset.end() - 1);
-  for (std::size_t i = 0; i < hits.Count; ++i)
-  {
-    groups.Index[cursor[hits.Object[i]]++] = static_cast<std::uint32_t>(i);
-  }
+  grouping.Place(
+    groups.Offset, objectOf,
+    [&](std::size_t i, std::size_t position)
+    { groups.Index[position] = static_cast<std::uint32_t>(i); },
+    parallelFor);
   return {};
 }
 

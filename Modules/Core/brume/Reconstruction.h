@@ -37,6 +37,7 @@
 #include "brume/BrickedGrid.h"
 #include "brume/DensityEstimation.h"
 #include "brume/ExactHistogram.h"
+#include "brume/Grouping.h"
 #include "brume/Histogram.h"
 #include "brume/Parallel.h"
 #include "brume/Sampling.h"
@@ -69,11 +70,12 @@ struct HitArrays
 /// Hit indices grouped by object, in hit order within each object.
 struct ObjectHits
 {
-  std::vector<std::uint32_t> Index;
+  std::vector<std::uint32_t, UninitializedAllocator<std::uint32_t>> Index;
   std::vector<std::size_t> Offset; // objects + 1
 };
 /// Empty on success, otherwise what is wrong (an object id out of range).
-std::string GroupHitsByObject(const HitArrays& hits, std::size_t objects, ObjectHits& groups);
+std::string GroupHitsByObject(const HitArrays& hits, std::size_t objects, ObjectHits& groups,
+  const ParallelFor& parallelFor = SerialFor());
 
 /**
  * Texture resolution along each axis of an object of the given extent (zero
@@ -384,11 +386,20 @@ private:
   bool FromFront(const HitArrays& hits, std::uint32_t i) const;
   void Bin(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
     const ParallelFor& parallelFor);
-  // Bin()'s two ways: view-independent objects add every hit to its cell in
-  // one pass in hit order; view-dependent ones keep their hits by cell.
+  // Bin()'s two ways: view-independent objects add every hit to its cell;
+  // view-dependent ones keep their hits by cell.
   template <typename Locator>
-  void BinInPlace(
-    const HitArrays& hits, const std::uint32_t* index, std::size_t count, const Locator& cellOfHit);
+  void BinInPlace(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
+    const Locator& cellOfHit, const ParallelFor& parallelFor);
+  // A hit's cell (Locator: brume/ReconstructionBin.cxx), or NoCell for
+  // light arriving on a surface's back side (reflected, not shown).
+  static constexpr std::uint32_t NoCell = ~std::uint32_t(0);
+  template <typename Locator>
+  std::uint32_t HitCell(const HitArrays& hits, std::uint32_t i, const Locator& cellOfHit) const;
+  // A hit's terms: its flux (mean over channels) and what it adds to the
+  // texture's value, into `cell` of `weights` and `values`.
+  void AddTerms(ExactHistogram& weights, ExactHistogram& values, std::uint32_t cell,
+    const float* flux, std::uint32_t triangle) const;
   template <typename Locator>
   void KeepHits(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
     const Locator& cellOfHit, const ParallelFor& parallelFor);
@@ -435,12 +446,13 @@ private:
     float Position[3], Direction[3], Flux[3];
     std::uint32_t Cell, Triangle;
   };
-  std::vector<KeptHit> Kept;
+  using KeptHits = std::vector<KeptHit, UninitializedAllocator<KeptHit>>;
+  KeptHits Kept;
   std::vector<std::size_t> RangeStart;
   // Batches that do not estimate: their hits in hit order, merged into
   // Kept's ranges once, by the batch that estimates (merging at every batch
   // would copy every hit kept so far each time).
-  std::vector<KeptHit> Pending;
+  KeptHits Pending;
   bool DeferMerge = false;
   void MergePending(const ParallelFor& parallelFor);
   // Merges `count` new hits (cellOf(k), write(k, out)) after Kept's hits of

@@ -27,33 +27,6 @@ void Barycentric(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& p, flo
   v = det != 0.f ? (d00 * d21 - d01 * d20) / det : 0.f;
 }
 
-// A stable counting sort of n items into `ranges` groups: item k belongs to
-// group rangeOf(k), and place(k, position) puts it at its position, items
-// of a group in their order. Returns where each group starts (ranges + 1).
-template <typename RangeOf, typename Place>
-std::vector<std::size_t> GroupByRanges(
-  std::size_t n, std::size_t ranges, RangeOf rangeOf, Place place)
-{
-  std::vector<std::size_t> start(ranges + 1, 0);
-  for (std::size_t k = 0; k < n; ++k)
-  {
-    ++start[rangeOf(k) + 1];
-  }
-  for (std::size_t r = 0; r < ranges; ++r)
-  {
-    start[r + 1] += start[r];
-  }
-  std::vector<std::size_t> cursor(start.begin(), start.end() - 1);
-  for (std::size_t k = 0; k < n; ++k)
-  {
-    place(k, cursor[rangeOf(k)]++);
-  }
-  return start;
-}
-}
-
-namespace
-{
 // The histogram cell of a hit: its (u, v) on the surface's chart, or its
 // position in the medium's box.
 class CellLocator
@@ -125,38 +98,39 @@ template <typename CellOf, typename Write>
 void ObjectRadiance::MergeIntoRanges(
   std::size_t count, CellOf cellOf, Write write, const ParallelFor& parallelFor)
 {
-  // Group the new hits by ranges of cells (a coarse, stable counting sort):
-  // each range is then one task, and a cell's sum follows hit order.
+  // The new hits grouped by ranges of cells (a stable counting sort): each
+  // range is then one task, and a cell's sum follows hit order. A range
+  // holds the hits already kept in it, then its new ones (particles added
+  // later come later in hit order): every later pass reads them in order.
   const std::size_t cells = static_cast<std::size_t>(this->Dims[0]) * this->Dims[1] * this->Dims[2];
-  std::vector<std::uint32_t> order(count);
-  const std::vector<std::size_t> start = GroupByRanges(
-    count, Ranges,
-    [&](std::size_t k) { return static_cast<std::size_t>(cellOf(k)) * Ranges / cells; },
-    [&](std::size_t k, std::size_t position) { order[position] = static_cast<std::uint32_t>(k); });
-  // The hits in that order, after the hits already kept in each range
-  // (particles added later come later in hit order): every later pass reads
-  // them sequentially.
-  std::vector<KeptHit> merged(this->Kept.size() + count);
+  auto rangeOf = [&](std::size_t k)
+  { return static_cast<std::size_t>(cellOf(k)) * Ranges / cells; };
+  StableGrouping grouping(count, Ranges);
+  const std::vector<std::size_t>& added = grouping.Count(rangeOf, parallelFor);
+  KeptHits merged(this->Kept.size() + count); // every element written below
   std::vector<std::size_t> mergedStart(Ranges + 1, 0);
+  std::vector<std::size_t> firstAdded(Ranges);
   for (std::size_t r = 0; r < Ranges; ++r)
   {
-    mergedStart[r + 1] =
-      mergedStart[r] + (this->RangeStart[r + 1] - this->RangeStart[r]) + (start[r + 1] - start[r]);
+    firstAdded[r] = mergedStart[r] + (this->RangeStart[r + 1] - this->RangeStart[r]);
+    mergedStart[r + 1] = firstAdded[r] + added[r];
   }
-  parallelFor(0, Ranges,
-    [&](std::size_t begin, std::size_t end)
-    {
-      for (std::size_t r = begin; r < end; ++r)
+  if (!this->Kept.empty())
+  {
+    parallelFor(0, Ranges,
+      [&](std::size_t begin, std::size_t end)
       {
-        KeptHit* out = merged.data() + mergedStart[r];
-        out = std::copy(this->Kept.begin() + static_cast<std::ptrdiff_t>(this->RangeStart[r]),
-          this->Kept.begin() + static_cast<std::ptrdiff_t>(this->RangeStart[r + 1]), out);
-        for (std::size_t k = start[r]; k < start[r + 1]; ++k, ++out)
+        for (std::size_t r = begin; r < end; ++r)
         {
-          write(order[k], *out);
+          std::copy(this->Kept.begin() + static_cast<std::ptrdiff_t>(this->RangeStart[r]),
+            this->Kept.begin() + static_cast<std::ptrdiff_t>(this->RangeStart[r + 1]),
+            merged.begin() + static_cast<std::ptrdiff_t>(mergedStart[r]));
         }
-      }
-    });
+      });
+  }
+  grouping.Place(
+    firstAdded, rangeOf, [&](std::size_t k, std::size_t position) { write(k, merged[position]); },
+    parallelFor);
   this->Kept.swap(merged);
   this->RangeStart.swap(mergedStart);
 }
@@ -182,7 +156,7 @@ void ObjectRadiance::Bin(const HitArrays& hits, const std::uint32_t* index, std:
   }
   if (!this->ViewDependent)
   {
-    this->BinInPlace(hits, index, count, cellOfHit);
+    this->BinInPlace(hits, index, count, cellOfHit, parallelFor);
   }
   else
   {
@@ -191,94 +165,126 @@ void ObjectRadiance::Bin(const HitArrays& hits, const std::uint32_t* index, std:
 }
 
 template <typename Locator>
-void ObjectRadiance::BinInPlace(
-  const HitArrays& hits, const std::uint32_t* index, std::size_t count, const Locator& cellOfHit)
+std::uint32_t ObjectRadiance::HitCell(
+  const HitArrays& hits, std::uint32_t i, const Locator& cellOfHit) const
+{
+  return this->MediumRef || this->FromFront(hits, i) ? cellOfHit(hits, i) : NoCell;
+}
+
+void ObjectRadiance::AddTerms(ExactHistogram& weights, ExactHistogram& values, std::uint32_t cell,
+  const float* f, std::uint32_t triangle) const
+{
+  const double w[1] = { (static_cast<double>(f[0]) + f[1] + f[2]) / 3.0 };
+  weights.AddNonNegative(cell, w);
+  double v[3];
+  if (this->MediumRef)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      v[c] = Inv4Pi * static_cast<double>(f[c]);
+    }
+  }
+  else
+  {
+    const Material& m = this->SurfaceRef->MaterialOf(triangle);
+    for (int c = 0; c < 3; ++c)
+    {
+      v[c] = m.Reflectance[c] * InvPi * static_cast<double>(f[c]);
+    }
+  }
+  values.AddNonNegative(cell, v);
+}
+
+template <typename Locator>
+void ObjectRadiance::BinInPlace(const HitArrays& hits, const std::uint32_t* index,
+  std::size_t count, const Locator& cellOfHit, const ParallelFor& parallelFor)
 {
   // View-independent objects: every hit is added to its cell (exact sums:
-  // any order gives the same bits); nothing is kept.
-  auto add = [this](std::uint32_t cell, const float* f, std::uint32_t triangle)
-  {
-    const double w[1] = { (static_cast<double>(f[0]) + f[1] + f[2]) / 3.0 };
-    this->WeightSums.AddNonNegative(cell, w);
-    double v[3];
-    if (this->MediumRef)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        v[c] = Inv4Pi * static_cast<double>(f[c]);
-      }
-    }
-    else
-    {
-      const Material& m = this->SurfaceRef->MaterialOf(triangle);
-      for (int c = 0; c < 3; ++c)
-      {
-        v[c] = m.Reflectance[c] * InvPi * static_cast<double>(f[c]);
-      }
-    }
-    this->ValueSums.AddNonNegative(cell, v);
-  };
+  // any order and any grouping of the terms give the same bits); nothing is
+  // kept. The sums take 32 bytes a cell (a weight and three values).
   const std::size_t cells = static_cast<std::size_t>(this->Dims[0]) * this->Dims[1] * this->Dims[2];
-  // The sums take 32 bytes a cell (a weight and three values). Histograms
-  // that fit the caches take the hits in hit order, in one pass.
   constexpr std::size_t CacheBytes = std::size_t(2) << 20;
-  const std::size_t bytes = 32 * cells;
-  if (bytes <= CacheBytes)
+  if (32 * cells <= CacheBytes)
   {
+    // Histograms that fit the caches take the hits in hit order, in one
+    // pass. An object's hits are spread over the whole run's arrays: a hit a
+    // few ahead is asked for while this one is binned (memory latency, not
+    // arithmetic, bounds this loop).
+    constexpr std::size_t Ahead = 16;
     for (std::size_t k = 0; k < count; ++k)
     {
-      const std::uint32_t i = index[k];
-      if (!this->MediumRef && !this->FromFront(hits, i))
+      if (k + Ahead < count)
       {
-        continue; // light on the back side: reflected, not shown
+        const std::uint32_t j = index[k + Ahead];
+        __builtin_prefetch(hits.Position + 3 * j);
+        __builtin_prefetch(hits.Flux + 3 * j);
+        __builtin_prefetch(hits.Direction + 3 * j);
       }
-      add(cellOfHit(hits, i), hits.Flux + 3 * i, hits.Triangle ? hits.Triangle[i] : 0);
+      const std::uint32_t i = index[k];
+      const std::uint32_t cell = this->HitCell(hits, i, cellOfHit);
+      if (cell != NoCell)
+      {
+        this->AddTerms(this->WeightSums, this->ValueSums, cell, hits.Flux + 3 * i,
+          hits.Triangle ? hits.Triangle[i] : 0);
+      }
     }
   }
   else
   {
     // Larger ones (many particles: fine textures) would miss the caches at
     // nearly every hit. The hits' terms are grouped by ranges of cells that
-    // fit the caches (a counting sort), then added range by range: the same
-    // sums, at a fraction of the time for 10^7 hits and more.
+    // fit the caches (a stable counting sort; the back side's hits in a
+    // group of their own, left out), then added range by range, the ranges
+    // in parallel: the same sums, at a fraction of the time for 10^7 hits
+    // and more.
     struct Term
     {
       std::uint32_t Cell;
       float Flux[3];
       std::uint32_t Triangle;
     };
-    const std::size_t ranges = std::min<std::size_t>(4096, bytes / (CacheBytes / 4) + 1);
-    std::vector<std::uint32_t> front, cellOf; // the hits binned, and their cells
-    front.reserve(count);
-    cellOf.reserve(count);
-    for (std::size_t k = 0; k < count; ++k)
-    {
-      const std::uint32_t i = index[k];
-      if (this->MediumRef || this->FromFront(hits, i))
+    const std::size_t ranges = std::min<std::size_t>(4096, 32 * cells / (CacheBytes / 4) + 1);
+    std::vector<std::uint32_t, UninitializedAllocator<std::uint32_t>> cell(count);
+    parallelFor(0, count,
+      [&](std::size_t begin, std::size_t end)
       {
-        front.push_back(i);
-        cellOf.push_back(cellOfHit(hits, i));
-      }
-    }
-    std::vector<Term> grouped(front.size());
-    GroupByRanges(
-      front.size(), ranges,
-      [&](std::size_t k) { return static_cast<std::size_t>(cellOf[k]) * ranges / cells; },
+        for (std::size_t k = begin; k < end; ++k)
+        {
+          cell[k] = this->HitCell(hits, index[k], cellOfHit);
+        }
+      });
+    auto rangeOf = [&](std::size_t k)
+    { return cell[k] == NoCell ? ranges : static_cast<std::size_t>(cell[k]) * ranges / cells; };
+    StableGrouping grouping(count, ranges + 1);
+    grouping.Count(rangeOf, parallelFor);
+    const std::vector<std::size_t> start = grouping.Starts();
+    std::vector<Term, UninitializedAllocator<Term>> grouped(start[ranges]);
+    grouping.Place(
+      start, rangeOf,
       [&](std::size_t k, std::size_t position)
       {
-        const std::uint32_t i = front[k];
-        Term& t = grouped[position];
-        t.Cell = cellOf[k];
-        for (int c = 0; c < 3; ++c)
+        if (position < start[ranges])
         {
-          t.Flux[c] = hits.Flux[3 * i + c];
+          const std::uint32_t i = index[k];
+          Term& t = grouped[position];
+          t.Cell = cell[k];
+          for (int c = 0; c < 3; ++c)
+          {
+            t.Flux[c] = hits.Flux[3 * i + c];
+          }
+          t.Triangle = hits.Triangle ? hits.Triangle[i] : 0;
         }
-        t.Triangle = hits.Triangle ? hits.Triangle[i] : 0;
+      },
+      parallelFor);
+    parallelFor(0, ranges,
+      [&](std::size_t begin, std::size_t end)
+      {
+        for (std::size_t k = start[begin]; k < start[end]; ++k)
+        {
+          const Term& t = grouped[k];
+          this->AddTerms(this->WeightSums, this->ValueSums, t.Cell, t.Flux, t.Triangle);
+        }
       });
-    for (const Term& t : grouped)
-    {
-      add(t.Cell, t.Flux, t.Triangle);
-    }
   }
   this->Reduce(this->WeightSums, &this->ValueSums);
 }
@@ -362,7 +368,7 @@ void ObjectRadiance::MergePending(const ParallelFor& parallelFor)
   this->MergeIntoRanges(
     this->Pending.size(), [&](std::size_t k) { return this->Pending[k].Cell; },
     [&](std::size_t k, KeptHit& out) { out = this->Pending[k]; }, parallelFor);
-  std::vector<KeptHit>().swap(this->Pending);
+  KeptHits().swap(this->Pending);
 }
 
 } // namespace brume

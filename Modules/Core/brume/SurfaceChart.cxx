@@ -25,38 +25,44 @@ double ClippedArea(const std::array<float, 6>& uv, double u0, double u1, double 
   {
     double u, v;
   };
-  std::vector<P> poly = { { uv[0], uv[1] }, { uv[2], uv[3] }, { uv[4], uv[5] } }, next;
+  // A triangle clipped by four half-planes keeps at most 7 vertices: fixed
+  // arrays (a surface's every cell is clipped against every triangle over it).
+  P a[8] = { { uv[0], uv[1] }, { uv[2], uv[3] }, { uv[4], uv[5] } }, b[8];
+  P* poly = a;
+  P* next = b;
+  std::size_t size = 3;
   // Keep the side where f(p) >= 0 for each of the four edges.
   auto clip = [&](auto f)
   {
-    next.clear();
-    for (std::size_t k = 0; k < poly.size(); ++k)
+    std::size_t kept = 0;
+    for (std::size_t k = 0; k < size; ++k)
     {
-      const P& a = poly[k];
-      const P& b = poly[(k + 1) % poly.size()];
-      const double fa = f(a), fb = f(b);
-      if (fa >= 0.0)
+      const P& p = poly[k];
+      const P& q = poly[(k + 1) % size];
+      const double fp = f(p), fq = f(q);
+      if (fp >= 0.0)
       {
-        next.push_back(a);
+        next[kept++] = p;
       }
-      if ((fa >= 0.0) != (fb >= 0.0))
+      if ((fp >= 0.0) != (fq >= 0.0))
       {
-        const double t = fa / (fa - fb);
-        next.push_back({ a.u + t * (b.u - a.u), a.v + t * (b.v - a.v) });
+        const double t = fp / (fp - fq);
+        next[kept++] = { p.u + t * (q.u - p.u), p.v + t * (q.v - p.v) };
       }
     }
-    poly.swap(next);
+    std::swap(poly, next);
+    size = kept;
   };
   clip([&](const P& p) { return p.u - u0; });
   clip([&](const P& p) { return u1 - p.u; });
   clip([&](const P& p) { return p.v - v0; });
   clip([&](const P& p) { return v1 - p.v; });
   double area = 0.0;
-  for (std::size_t k = 0; k < poly.size(); ++k)
+  for (std::size_t k = 0; k < size; ++k)
   {
-    const P& a = poly[k];
-    const P& b = poly[(k + 1) % poly.size()];
-    area += a.u * b.v - b.u * a.v;
+    const P& p = poly[k];
+    const P& q = poly[(k + 1) % size];
+    area += p.u * q.v - q.u * p.v;
   }
   return 0.5 * std::abs(area);
 }
