@@ -48,9 +48,13 @@ TEST(Grouping, IsAStableSortWhateverTheSplit)
         { SerialFor(), ThreadedFor(3, 7), ThreadedFor(2, 1000) })
       {
         std::vector<std::size_t> order(n, n);
-        const std::vector<std::size_t> start = GroupStably(
-          n, groups, [&](std::size_t k) { return key[k]; },
-          [&](std::size_t k, std::size_t position) { order[position] = k; }, parallelFor);
+        auto keyOf = [&](std::size_t k) { return key[k]; };
+        StableGrouping grouping(n, groups);
+        grouping.Count(keyOf, parallelFor);
+        const std::vector<std::size_t> start = grouping.Starts();
+        grouping.Place(
+          start, keyOf, [&](std::size_t k, std::size_t position) { order[position] = k; },
+          parallelFor);
         EXPECT_EQ(order, expected) << n << " items, " << groups << " groups";
         ASSERT_EQ(start.size(), groups + 1);
         for (std::size_t g = 0; g < groups; ++g)
@@ -103,10 +107,10 @@ TEST(Grouping, HitsGroupByObjectInHitOrderAndBadIdsAreNamed)
 
 TEST(Grouping, BinningGivesTheSameBitsOnAnyNumberOfThreads)
 {
-  // The default scene's walls (view-independent, in hit order and, with
-  // fine histograms, by ranges of cells) and its forward-scattering fog
-  // (view-dependent: its kept hits merged by ranges of cells), built on one
-  // thread and on several that take the work in another order.
+  // The default scene's walls (view-independent) and its
+  // forward-scattering fog (view-dependent: its kept hits merged by ranges
+  // of cells in parallel), built on one thread and on several that take the
+  // work in another order.
   const Scene scene = MakeDefaultScene();
   TraceSettings settings;
   settings.Seed = 3;
@@ -121,8 +125,8 @@ TEST(Grouping, BinningGivesTheSameBitsOnAnyNumberOfThreads)
   for (std::size_t o = 0; o < scene.NumberOfObjects(); ++o)
   {
     const std::size_t first = groups.Offset[o], count = groups.Offset[o + 1] - first;
-    // Coarse histograms take the hits in order, fine ones (beyond 2 MB:
-    // 512^2 and 64^3 cells) by ranges.
+    // Coarse histograms, and fine ones beyond the caches (512^2 and 64^3
+    // cells).
     for (const int fine : { 0, 1 })
     {
       std::vector<std::unique_ptr<ObjectRadiance>> built;

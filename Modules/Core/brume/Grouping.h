@@ -159,21 +159,6 @@ public:
   }
 };
 
-/**
- * Groups n items stably in one call: returns where each group starts
- * (groups + 1), the groups laid out one after the other.
- */
-template <typename GroupOf, typename PlaceItem>
-std::vector<std::size_t> GroupStably(std::size_t n, std::size_t groups, GroupOf groupOf,
-  PlaceItem place, const ParallelFor& parallelFor)
-{
-  StableGrouping grouping(n, groups);
-  grouping.Count(groupOf, parallelFor);
-  std::vector<std::size_t> start = grouping.Starts();
-  grouping.Place(start, groupOf, place, parallelFor);
-  return start;
-}
-
 } // namespace brume
 
 #endif

@@ -389,8 +389,8 @@ private:
   // Bin()'s two ways: view-independent objects add every hit to its cell;
   // view-dependent ones keep their hits by cell.
   template <typename Locator>
-  void BinInPlace(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
-    const Locator& cellOfHit, const ParallelFor& parallelFor);
+  void BinInPlace(
+    const HitArrays& hits, const std::uint32_t* index, std::size_t count, const Locator& cellOfHit);
   // A hit's cell (Locator: brume/ReconstructionBin.cxx), or NoCell for
   // light arriving on a surface's back side (reflected, not shown).
   static constexpr std::uint32_t NoCell = ~std::uint32_t(0);

@@ -156,7 +156,7 @@ void ObjectRadiance::Bin(const HitArrays& hits, const std::uint32_t* index, std:
   }
   if (!this->ViewDependent)
   {
-    this->BinInPlace(hits, index, count, cellOfHit, parallelFor);
+    this->BinInPlace(hits, index, count, cellOfHit);
   }
   else
   {
@@ -196,95 +196,50 @@ void ObjectRadiance::AddTerms(ExactHistogram& weights, ExactHistogram& values, s
 }
 
 template <typename Locator>
-void ObjectRadiance::BinInPlace(const HitArrays& hits, const std::uint32_t* index,
-  std::size_t count, const Locator& cellOfHit, const ParallelFor& parallelFor)
+void ObjectRadiance::BinInPlace(
+  const HitArrays& hits, const std::uint32_t* index, std::size_t count, const Locator& cellOfHit)
 {
   // View-independent objects: every hit is added to its cell (exact sums:
-  // any order and any grouping of the terms give the same bits); nothing is
-  // kept. The sums take 32 bytes a cell (a weight and three values).
-  const std::size_t cells = static_cast<std::size_t>(this->Dims[0]) * this->Dims[1] * this->Dims[2];
-  constexpr std::size_t CacheBytes = std::size_t(2) << 20;
-  if (32 * cells <= CacheBytes)
+  // any order of the terms gives the same bits); nothing is kept. The loop
+  // is bound by memory latency, not arithmetic: an object's hits are spread
+  // over the whole run's arrays, and a fine histogram (32 bytes a cell: a
+  // weight and three values; megabytes at 10^7 particles) misses the
+  // caches at nearly every hit. So a hit Ahead of the one whose cell is
+  // found is asked for, and its cell's sums are asked for Lag hits before
+  // they are added to (a software pipeline): 10^7 particles of the default
+  // scene bin in 0.10 s a wall instead of 0.17 s with the hits grouped by
+  // ranges of cells first, and nothing is allocated.
+  constexpr std::size_t Ahead = 32, Lag = 16;
+  std::uint32_t waitingHit[Lag], waitingCell[Lag];
+  for (std::size_t k = 0; k < count + Lag; ++k)
   {
-    // Histograms that fit the caches take the hits in hit order, in one
-    // pass. An object's hits are spread over the whole run's arrays: a hit a
-    // few ahead is asked for while this one is binned (memory latency, not
-    // arithmetic, bounds this loop).
-    constexpr std::size_t Ahead = 16;
-    for (std::size_t k = 0; k < count; ++k)
+    // Hit k - Lag's terms added, then its slot taken by hit k.
+    const std::size_t slot = k % Lag;
+    if (k >= Lag && waitingCell[slot] != NoCell)
+    {
+      const std::uint32_t i = waitingHit[slot];
+      this->AddTerms(this->WeightSums, this->ValueSums, waitingCell[slot], hits.Flux + 3 * i,
+        hits.Triangle ? hits.Triangle[i] : 0);
+    }
+    if (k < count)
     {
       if (k + Ahead < count)
       {
         const std::uint32_t j = index[k + Ahead];
         __builtin_prefetch(hits.Position + 3 * j);
-        __builtin_prefetch(hits.Flux + 3 * j);
         __builtin_prefetch(hits.Direction + 3 * j);
+        __builtin_prefetch(hits.Flux + 3 * j);
       }
       const std::uint32_t i = index[k];
       const std::uint32_t cell = this->HitCell(hits, i, cellOfHit);
       if (cell != NoCell)
       {
-        this->AddTerms(this->WeightSums, this->ValueSums, cell, hits.Flux + 3 * i,
-          hits.Triangle ? hits.Triangle[i] : 0);
+        this->WeightSums.Prefetch(cell);
+        this->ValueSums.Prefetch(cell);
       }
+      waitingHit[slot] = i;
+      waitingCell[slot] = cell;
     }
-  }
-  else
-  {
-    // Larger ones (many particles: fine textures) would miss the caches at
-    // nearly every hit. The hits' terms are grouped by ranges of cells that
-    // fit the caches (a stable counting sort; the back side's hits in a
-    // group of their own, left out), then added range by range, the ranges
-    // in parallel: the same sums, at a fraction of the time for 10^7 hits
-    // and more.
-    struct Term
-    {
-      std::uint32_t Cell;
-      float Flux[3];
-      std::uint32_t Triangle;
-    };
-    const std::size_t ranges = std::min<std::size_t>(4096, 32 * cells / (CacheBytes / 4) + 1);
-    std::vector<std::uint32_t, UninitializedAllocator<std::uint32_t>> cell(count);
-    parallelFor(0, count,
-      [&](std::size_t begin, std::size_t end)
-      {
-        for (std::size_t k = begin; k < end; ++k)
-        {
-          cell[k] = this->HitCell(hits, index[k], cellOfHit);
-        }
-      });
-    auto rangeOf = [&](std::size_t k)
-    { return cell[k] == NoCell ? ranges : static_cast<std::size_t>(cell[k]) * ranges / cells; };
-    StableGrouping grouping(count, ranges + 1);
-    grouping.Count(rangeOf, parallelFor);
-    const std::vector<std::size_t> start = grouping.Starts();
-    std::vector<Term, UninitializedAllocator<Term>> grouped(start[ranges]);
-    grouping.Place(
-      start, rangeOf,
-      [&](std::size_t k, std::size_t position)
-      {
-        if (position < start[ranges])
-        {
-          const std::uint32_t i = index[k];
-          Term& t = grouped[position];
-          t.Cell = cell[k];
-          for (int c = 0; c < 3; ++c)
-          {
-            t.Flux[c] = hits.Flux[3 * i + c];
-          }
-          t.Triangle = hits.Triangle ? hits.Triangle[i] : 0;
-        }
-      },
-      parallelFor);
-    parallelFor(0, ranges,
-      [&](std::size_t begin, std::size_t end)
-      {
-        for (std::size_t k = start[begin]; k < start[end]; ++k)
-        {
-          const Term& t = grouped[k];
-          this->AddTerms(this->WeightSums, this->ValueSums, t.Cell, t.Flux, t.Triangle);
-        }
-      });
   }
   this->Reduce(this->WeightSums, &this->ValueSums);
 }
