@@ -467,27 +467,56 @@ bool vtkBrumeRadianceTextures::Add(
   // time, computes the direct light).
   const bool complete = request.Run.Completes();
   const bool firstEstimate = complete && !this->IsComplete();
-  for (std::size_t o = 0; o < this->Objects.size() && groupError.empty(); ++o)
-  {
-    this->Objects[o]->SetParticleFlux(request.ParticleFlux);
-    this->Objects[o]->SetRunShare(request.Run.EndParticle / request.Run.Particles);
-    const std::string error = this->Objects[o]->Add(request.Hits,
-      groups.Index.data() + groups.Offset[o], groups.Offset[o + 1] - groups.Offset[o],
-      this->Particles / request.Run.Particles, firstEstimate ? request.Eye : this->ObjectEye[o],
-      request.ThresholdFlux, parallelFor, complete);
-    if (!error.empty())
-    {
-      vtkErrorWithObjectMacro(this->Filter,
-        "Cannot add particles to '" << this->Sources[o].Name << "': " << error << ".");
-      return false;
-    }
-    this->Outputs[o] = nullptr;
-    ++work.ParticleAdditions;
-  }
   if (!groupError.empty())
   {
     vtkErrorWithObjectMacro(this->Filter, "Invalid particle hits: " << groupError << ".");
     return false;
+  }
+  // As in BuildObjects: view-independent objects concurrently (each on one
+  // thread), then view-dependent ones, each on every thread.
+  std::vector<std::string> errors(this->Objects.size());
+  auto add = [&](std::size_t o, const brume::ParallelFor& objectFor)
+  {
+    this->Objects[o]->SetParticleFlux(request.ParticleFlux);
+    this->Objects[o]->SetRunShare(request.Run.EndParticle / request.Run.Particles);
+    errors[o] = this->Objects[o]->Add(request.Hits, groups.Index.data() + groups.Offset[o],
+      groups.Offset[o + 1] - groups.Offset[o], this->Particles / request.Run.Particles,
+      firstEstimate ? request.Eye : this->ObjectEye[o], request.ThresholdFlux, objectFor, complete);
+  };
+  std::vector<vtkIdType> independent;
+  for (std::size_t o = 0; o < this->Objects.size(); ++o)
+  {
+    if (!this->Objects[o]->IsViewDependent())
+    {
+      independent.push_back(static_cast<vtkIdType>(o));
+    }
+  }
+  const brume::ParallelFor serialFor = brume::SerialFor();
+  vtkSMPTools::For(0, static_cast<vtkIdType>(independent.size()), 1,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType k = begin; k < end; ++k)
+      {
+        add(static_cast<std::size_t>(independent[k]), serialFor);
+      }
+    });
+  for (std::size_t o = 0; o < this->Objects.size(); ++o)
+  {
+    if (this->Objects[o]->IsViewDependent())
+    {
+      add(o, parallelFor);
+    }
+  }
+  for (std::size_t o = 0; o < this->Objects.size(); ++o)
+  {
+    if (!errors[o].empty())
+    {
+      vtkErrorWithObjectMacro(this->Filter,
+        "Cannot add particles to '" << this->Sources[o].Name << "': " << errors[o] << ".");
+      return false;
+    }
+    this->Outputs[o] = nullptr;
+    ++work.ParticleAdditions;
   }
   this->HitsData = request.HitData;
   this->HitsTime = request.HitData->GetMTime();
