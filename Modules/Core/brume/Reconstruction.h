@@ -391,15 +391,6 @@ private:
   template <typename Locator>
   void BinInPlace(
     const HitArrays& hits, const std::uint32_t* index, std::size_t count, const Locator& cellOfHit);
-  // A hit's cell (Locator: brume/ReconstructionBin.cxx), or NoCell for
-  // light arriving on a surface's back side (reflected, not shown).
-  static constexpr std::uint32_t NoCell = ~std::uint32_t(0);
-  template <typename Locator>
-  std::uint32_t HitCell(const HitArrays& hits, std::uint32_t i, const Locator& cellOfHit) const;
-  // A hit's terms: its flux (mean over channels) and what it adds to the
-  // texture's value, into `cell` of `weights` and `values`.
-  void AddTerms(ExactHistogram& weights, ExactHistogram& values, std::uint32_t cell,
-    const float* flux, std::uint32_t triangle) const;
   template <typename Locator>
   void KeepHits(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
     const Locator& cellOfHit, const ParallelFor& parallelFor);

@@ -165,37 +165,6 @@ void ObjectRadiance::Bin(const HitArrays& hits, const std::uint32_t* index, std:
 }
 
 template <typename Locator>
-std::uint32_t ObjectRadiance::HitCell(
-  const HitArrays& hits, std::uint32_t i, const Locator& cellOfHit) const
-{
-  return this->MediumRef || this->FromFront(hits, i) ? cellOfHit(hits, i) : NoCell;
-}
-
-void ObjectRadiance::AddTerms(ExactHistogram& weights, ExactHistogram& values, std::uint32_t cell,
-  const float* f, std::uint32_t triangle) const
-{
-  const double w[1] = { (static_cast<double>(f[0]) + f[1] + f[2]) / 3.0 };
-  weights.AddNonNegative(cell, w);
-  double v[3];
-  if (this->MediumRef)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      v[c] = Inv4Pi * static_cast<double>(f[c]);
-    }
-  }
-  else
-  {
-    const Material& m = this->SurfaceRef->MaterialOf(triangle);
-    for (int c = 0; c < 3; ++c)
-    {
-      v[c] = m.Reflectance[c] * InvPi * static_cast<double>(f[c]);
-    }
-  }
-  values.AddNonNegative(cell, v);
-}
-
-template <typename Locator>
 void ObjectRadiance::BinInPlace(
   const HitArrays& hits, const std::uint32_t* index, std::size_t count, const Locator& cellOfHit)
 {
@@ -207,8 +176,33 @@ void ObjectRadiance::BinInPlace(
   // caches at nearly every hit. So a hit Ahead of the one whose cell is
   // found is asked for, and its cell's sums are asked for Lag hits before
   // they are added to (a software pipeline): 10^7 particles of the default
-  // scene bin in 0.10 s a wall instead of 0.17 s with the hits grouped by
+  // scene bin in 0.07-0.09 s a wall instead of 0.17 s with the hits grouped by
   // ranges of cells first, and nothing is allocated.
+  auto add = [this](std::uint32_t cell, const float* f, std::uint32_t triangle)
+  {
+    const double w[1] = { (static_cast<double>(f[0]) + f[1] + f[2]) / 3.0 };
+    this->WeightSums.AddNonNegative(cell, w);
+    double v[3];
+    if (this->MediumRef)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        v[c] = Inv4Pi * static_cast<double>(f[c]);
+      }
+    }
+    else
+    {
+      const Material& m = this->SurfaceRef->MaterialOf(triangle);
+      for (int c = 0; c < 3; ++c)
+      {
+        v[c] = m.Reflectance[c] * InvPi * static_cast<double>(f[c]);
+      }
+    }
+    this->ValueSums.AddNonNegative(cell, v);
+  };
+  // A surface shows light arriving on its front side only (the back side's
+  // is reflected, not shown): other hits have no cell.
+  constexpr std::uint32_t NoCell = ~std::uint32_t(0);
   constexpr std::size_t Ahead = 32, Lag = 16;
   std::uint32_t waitingHit[Lag], waitingCell[Lag];
   for (std::size_t k = 0; k < count + Lag; ++k)
@@ -218,8 +212,7 @@ void ObjectRadiance::BinInPlace(
     if (k >= Lag && waitingCell[slot] != NoCell)
     {
       const std::uint32_t i = waitingHit[slot];
-      this->AddTerms(this->WeightSums, this->ValueSums, waitingCell[slot], hits.Flux + 3 * i,
-        hits.Triangle ? hits.Triangle[i] : 0);
+      add(waitingCell[slot], hits.Flux + 3 * i, hits.Triangle ? hits.Triangle[i] : 0);
     }
     if (k < count)
     {
@@ -231,7 +224,8 @@ void ObjectRadiance::BinInPlace(
         __builtin_prefetch(hits.Flux + 3 * j);
       }
       const std::uint32_t i = index[k];
-      const std::uint32_t cell = this->HitCell(hits, i, cellOfHit);
+      const std::uint32_t cell =
+        this->MediumRef || this->FromFront(hits, i) ? cellOfHit(hits, i) : NoCell;
       if (cell != NoCell)
       {
         this->WeightSums.Prefetch(cell);
