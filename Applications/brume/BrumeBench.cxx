@@ -203,9 +203,11 @@ vtkNew<vtkRenderWindow> MakeWindow(vtkRenderer* renderer)
 }
 
 // A full reconstruction of `scene` from the hits, then the update after a 2
-// degree turn of the camera, best of 3 (seconds); the last run's filter.
-vtkSmartPointer<vtkBrumeRadianceReconstruction> TimeReconstruction(
-  vtkDataObject* scene, vtkAlgorithmOutput* hits, double& full, double& update)
+// degree turn of the camera, best of 3 (seconds), and the first full one
+// in `first` (the process's first: its memory not yet touched); the last
+// run's filter.
+vtkSmartPointer<vtkBrumeRadianceReconstruction> TimeReconstruction(vtkDataObject* scene,
+  vtkAlgorithmOutput* hits, double& full, double& update, double* first = nullptr)
 {
   vtkNew<vtkCamera> camera;
   vtkSmartPointer<vtkBrumeRadianceReconstruction> reconstruction;
@@ -219,6 +221,10 @@ vtkSmartPointer<vtkBrumeRadianceReconstruction> TimeReconstruction(
     auto start = std::chrono::steady_clock::now();
     reconstruction->Update();
     full = std::min(full, Seconds(start));
+    if (first && run == 0)
+    {
+      *first = Seconds(start);
+    }
     camera->Azimuth(2.0);
     start = std::chrono::steady_clock::now();
     reconstruction->Update();
@@ -231,15 +237,19 @@ vtkSmartPointer<vtkBrumeRadianceReconstruction> TimeReconstruction(
 // the camera (only the anisotropic medium follows the view).
 double BenchReconstruction(vtkAlgorithm* source, vtkAlgorithm* tracer, Report& report)
 {
-  double full = 1e30, update = 1e30;
-  const auto reconstruction =
-    TimeReconstruction(source->GetOutputDataObject(0), tracer->GetOutputPort(), full, update);
+  double full = 1e30, update = 1e30, first = 0.0;
+  const auto reconstruction = TimeReconstruction(
+    source->GetOutputDataObject(0), tracer->GetOutputPort(), full, update, &first);
   const vtkIdType builds = reconstruction->GetNumberOfTextureBuilds();
   const vtkIdType updates = reconstruction->GetNumberOfViewUpdates();
   std::printf("reconstruction     %8.1f ms full (%lld object textures; the paper: 1.14 s), %.1f ms "
-              "after a 2 degree turn (%lld view-dependent update), best of 3\n",
-    1e3 * full, static_cast<long long>(builds), 1e3 * update, static_cast<long long>(updates));
+              "after a 2 degree turn (%lld view-dependent update), best of 3; the first full "
+              "one %.1f ms\n",
+    1e3 * full, static_cast<long long>(builds), 1e3 * update, static_cast<long long>(updates),
+    1e3 * first);
   report.Add("reconstruction_full", 1e3 * full, "ms", "<= 50", "best of 3; the paper: 1140 ms");
+  report.Add("reconstruction_first_call", 1e3 * first, "ms", "<= 50",
+    "the process's first, its memory not yet touched");
   report.Add("view_update", 1e3 * update, "ms", "<= 4", "after a 2 degree turn, best of 3");
   return 1e3 * update;
 }
