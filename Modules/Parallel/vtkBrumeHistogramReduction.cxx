@@ -4,11 +4,15 @@
 #include "vtkCommunicator.h"
 #include "vtkMultiProcessController.h"
 
+#include <algorithm>
 #include <chrono>
 #include <type_traits>
 
 namespace
 {
+// Values per message at most: MPI counts are ints.
+constexpr std::size_t Piece = std::size_t(1) << 26;
+
 double Since(std::chrono::steady_clock::time_point start)
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -62,17 +66,54 @@ std::int64_t vtkBrumeHistogramReduction::Max(std::int64_t value)
 void vtkBrumeHistogramReduction::Sum(std::vector<std::int64_t>& values)
 {
   const auto start = std::chrono::steady_clock::now();
-  // In pieces of at most 2^26 values: MPI counts are ints.
-  constexpr std::size_t Piece = std::size_t(1) << 26;
-  std::vector<long long> in(values.begin(), values.end()), out(values.size());
+  // Into a buffer kept from one reduction to the next (its pages are
+  // touched once), in pieces of at most 2^26 values: MPI counts are ints.
+  this->Totals.resize(std::max(this->Totals.size(), values.size()));
   for (std::size_t first = 0; first < values.size(); first += Piece)
   {
     const std::size_t n = std::min(Piece, values.size() - first);
-    this->Controller->AllReduce(
-      in.data() + first, out.data() + first, static_cast<vtkIdType>(n), vtkCommunicator::SUM_OP);
+    this->Controller->AllReduce(values.data() + first, this->Totals.data() + first,
+      static_cast<vtkIdType>(n), vtkCommunicator::SUM_OP);
   }
-  std::copy(out.begin(), out.end(), values.begin());
+  std::copy(this->Totals.begin(),
+    this->Totals.begin() + static_cast<std::ptrdiff_t>(values.size()), values.begin());
   // What an all-reduce moves per process, about: its values out and the totals in.
   this->Bytes += 2 * values.size() * sizeof(std::int64_t);
+  this->Seconds += Since(start);
+}
+
+void vtkBrumeHistogramReduction::SumOnto(std::vector<std::int64_t>& values, int root)
+{
+  const auto start = std::chrono::steady_clock::now();
+  const bool here = this->Rank() == root;
+  if (here)
+  {
+    this->Totals.resize(std::max(this->Totals.size(), values.size()));
+  }
+  for (std::size_t first = 0; first < values.size(); first += Piece)
+  {
+    const std::size_t n = std::min(Piece, values.size() - first);
+    this->Controller->Reduce(values.data() + first, here ? this->Totals.data() + first : nullptr,
+      static_cast<vtkIdType>(n), vtkCommunicator::SUM_OP, root);
+  }
+  if (here)
+  {
+    std::copy(this->Totals.begin(),
+      this->Totals.begin() + static_cast<std::ptrdiff_t>(values.size()), values.begin());
+  }
+  // Every process sends its values once; the root receives as many.
+  this->Bytes += values.size() * sizeof(std::int64_t);
+  this->Seconds += Since(start);
+}
+
+void vtkBrumeHistogramReduction::Broadcast(std::vector<float>& data, int root)
+{
+  const auto start = std::chrono::steady_clock::now();
+  for (std::size_t first = 0; first < data.size(); first += Piece)
+  {
+    const std::size_t n = std::min(Piece, data.size() - first);
+    this->Controller->Broadcast(data.data() + first, static_cast<vtkIdType>(n), root);
+  }
+  this->Bytes += data.size() * sizeof(float);
   this->Seconds += Since(start);
 }

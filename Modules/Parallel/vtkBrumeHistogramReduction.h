@@ -6,13 +6,15 @@
  * The core's brume::HistogramReduction on a vtkMultiProcessController:
  * every process bins its own hits into fixed-point histograms
  * (brume::ExactHistogram), whose sums do not depend on the order of their
- * terms; one all-reduce (MPI_Allreduce through vtkMultiProcessController,
- * a tree: about 2 log2 R steps) then gives every process the totals,
- * bitwise those of one process holding every hit, whatever the number of
- * processes and threads. The processes share out the per-texel work of
- * the regions, which one all-gather (MPI_Allgatherv) gives back to all. It
- * counts the bytes it moves and the seconds it spends (waiting for the
- * slowest process included).
+ * terms; one reduction then gives the totals, bitwise those of one
+ * process holding every hit, whatever the number of processes and
+ * threads: to the process that estimates the object's texture
+ * (MPI_Reduce through vtkMultiProcessController, a tree), which then
+ * broadcasts the texture (MPI_Bcast), or to every process (MPI_Allreduce).
+ * The processes share out the shadow rays of the direct light, which one
+ * all-gather (MPI_Allgatherv) gives back to all. It counts the bytes it
+ * moves and the seconds it spends (waiting for the slowest process
+ * included).
  *
  * @sa vtkBrumeProcesses brume::ObjectRadiance::SetReduction
  */
@@ -34,6 +36,8 @@ public:
   int Rank() const override;
   std::int64_t Max(std::int64_t value) override;
   void Sum(std::vector<std::int64_t>& values) override;
+  void SumOnto(std::vector<std::int64_t>& values, int root) override;
+  void Broadcast(std::vector<float>& data, int root) override;
   void Gather(const std::vector<std::int32_t>& mine, const std::vector<std::size_t>& counts,
     std::vector<std::int32_t>& all) override;
 
@@ -42,6 +46,7 @@ public:
 
 private:
   vtkMultiProcessController* Controller;
+  std::vector<std::int64_t> Totals; // received sums, kept from one reduction to the next
 };
 
 #endif

@@ -177,10 +177,14 @@ public:
    * process, each holds a piece of the run's hits (vtkBrumeLightTracer
    * pieces: process r the r-th consecutive share of the particles); every
    * process bins its own hits into exact fixed-point histograms, whose sums
-   * do not depend on the order of their terms, and one all-reduce gives
-   * every process the totals (vtkBrumeHistogramReduction), so that the
-   * textures are bitwise those of one process with all the hits. Hits are
-   * never shipped, only histograms: the view-independent ones once, those
+   * do not depend on the order of their terms; each object's histograms
+   * are summed onto the one process that estimates its texture (the
+   * objects shared out among the processes by their cost,
+   * brume::AssignOwners), which then broadcasts the texture
+   * (vtkBrumeHistogramReduction), so that every process ends with the
+   * textures, bitwise those of one process with all the hits, and the
+   * per-texel work is divided among the processes. Hits are never shipped,
+   * only histograms and textures: the view-independent ones once, those
    * of view-dependent objects at every view change. Every process must
    * execute the filter; every process outputs the textures (the same on
    * each: renderers that composite, as IceT under mpirun pvbatch, draw them

@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <string>
 
 namespace
@@ -269,6 +270,22 @@ bool vtkBrumeRadianceTextures::CreateObjects(const vtkBrumeReconstructionSetting
     this->Objects.push_back(std::move(radiance));
     this->Outputs.push_back(nullptr);
   }
+  if (this->Reduction)
+  {
+    // Each texture estimated by one process, the work shared out evenly:
+    // the same resolutions give the same owners on every process.
+    std::vector<double> costs;
+    for (const auto& object : this->Objects)
+    {
+      costs.push_back(object->EstimateCost());
+    }
+    const std::vector<int> owners =
+      brume::AssignOwners(costs, this->Reduction->NumberOfProcesses());
+    for (std::size_t o = 0; o < objects; ++o)
+    {
+      this->Objects[o]->SetOwner(owners[o]);
+    }
+  }
   return true;
 }
 
@@ -425,22 +442,24 @@ bool vtkBrumeRadianceTextures::BuildObjects(const vtkBrumeReconstructionRequest&
       build(static_cast<std::size_t>(independent[k]), serialFor);
     }
   };
+  const brume::ParallelFor parallelFor = vtkBrumeSMP::ParallelFor();
   if (this->Distributed())
   {
-    // One object at a time: the reductions follow the objects' order.
-    buildIndependent(0, static_cast<vtkIdType>(independent.size()));
+    if (!this->BuildDistributed(request, groups, independent, errors))
+    {
+      return false; // reported
+    }
   }
   else
   {
     vtkSMPTools::For(0, static_cast<vtkIdType>(independent.size()), 1, buildIndependent);
-  }
-  this->Filter->UpdateProgress(0.5);
-  const brume::ParallelFor parallelFor = vtkBrumeSMP::ParallelFor();
-  for (std::size_t o = 0; o < this->Objects.size(); ++o)
-  {
-    if (this->Objects[o]->IsViewDependent())
+    this->Filter->UpdateProgress(0.5);
+    for (std::size_t o = 0; o < this->Objects.size(); ++o)
     {
-      build(o, parallelFor);
+      if (this->Objects[o]->IsViewDependent())
+      {
+        build(o, parallelFor);
+      }
     }
   }
   for (std::size_t o = 0; o < this->Objects.size(); ++o)
@@ -452,6 +471,91 @@ bool vtkBrumeRadianceTextures::BuildObjects(const vtkBrumeReconstructionRequest&
       return false;
     }
     ++work.TextureBuilds;
+  }
+  return true;
+}
+
+bool vtkBrumeRadianceTextures::BuildDistributed(const vtkBrumeReconstructionRequest& request,
+  const brume::ObjectHits& groups, const std::vector<vtkIdType>& independent,
+  std::vector<std::string>& errors)
+{
+  // Each step for every object before the next (ObjectRadiance::Build()'s
+  // four steps): the processes bin their hits, sum every object's
+  // histograms onto its owner in the objects' order, then estimate their
+  // own objects all at once, instead of in turn, and give them to the
+  // others. The binning needs no communication (the particle flux is set).
+  const brume::HitArrays& hits = request.Hits;
+  const bool estimate = request.Run.Completes();
+  const brume::ParallelFor serialFor = brume::SerialFor();
+  const brume::ParallelFor parallelFor = vtkBrumeSMP::ParallelFor();
+  auto bin = [&](std::size_t o, const brume::ParallelFor& objectFor)
+  {
+    this->Objects[o]->SetParticleFlux(request.ParticleFlux);
+    this->Objects[o]->SetRunShare(request.Run.EndParticle / request.Run.Particles);
+    errors[o] = this->Objects[o]->BuildHistograms(hits, groups.Index.data() + groups.Offset[o],
+      groups.Offset[o + 1] - groups.Offset[o], request.ThresholdFlux, objectFor, estimate);
+  };
+  // View-independent objects concurrently (each on one thread), then the
+  // view-dependent ones on every thread; the same for the estimates.
+  auto eachObject = [&](const std::function<void(std::size_t, const brume::ParallelFor&)>& step)
+  {
+    vtkSMPTools::For(0, static_cast<vtkIdType>(independent.size()), 1,
+      [&](vtkIdType begin, vtkIdType end)
+      {
+        for (vtkIdType k = begin; k < end; ++k)
+        {
+          step(static_cast<std::size_t>(independent[k]), serialFor);
+        }
+      });
+    for (std::size_t o = 0; o < this->Objects.size(); ++o)
+    {
+      if (this->Objects[o]->IsViewDependent())
+      {
+        step(o, parallelFor);
+      }
+    }
+  };
+  // Every process's hits were checked before (CheckHits): a failure here
+  // is one process's alone (a term beyond the exact sums' bound), and every
+  // process stops, without entering a reduction.
+  auto agree = [&]()
+  {
+    bool ok = true;
+    for (std::size_t o = 0; o < errors.size(); ++o)
+    {
+      if (!errors[o].empty())
+      {
+        vtkErrorWithObjectMacro(this->Filter,
+          "Cannot reconstruct '" << this->Sources[o].Name << "': " << errors[o] << ".");
+        ok = false;
+      }
+    }
+    return this->Agree(ok);
+  };
+  eachObject(bin);
+  if (!agree())
+  {
+    return false;
+  }
+  if (!estimate)
+  {
+    return true;
+  }
+  this->Filter->UpdateProgress(0.4);
+  for (auto& object : this->Objects)
+  {
+    object->SumHistograms(request.Eye, parallelFor);
+  }
+  this->Filter->UpdateProgress(0.6);
+  eachObject([&](std::size_t o, const brume::ParallelFor& objectFor)
+    { errors[o] = this->Objects[o]->EstimateTexture(objectFor); });
+  if (!agree())
+  {
+    return false;
+  }
+  for (auto& object : this->Objects)
+  {
+    object->ShareTexture(parallelFor);
   }
   return true;
 }

@@ -20,6 +20,7 @@
 
 #include <array>
 #include <memory>
+#include <string>
 #include <vector>
 
 class vtkAlgorithm;
@@ -148,6 +149,11 @@ private:
   bool CheckHits(const brume::HitArrays& hits, const brume::ObjectHits& groups);
   bool BuildObjects(const vtkBrumeReconstructionRequest& request, const brume::ObjectHits& groups,
     vtkBrumeReconstructionWork& work);
+  // Distributed runs: BuildObjects()'s steps, each for every object in
+  // turn. False (reported, on every process) when a process failed.
+  bool BuildDistributed(const vtkBrumeReconstructionRequest& request,
+    const brume::ObjectHits& groups, const std::vector<vtkIdType>& independent,
+    std::vector<std::string>& errors);
   bool Agree(bool ok);
   bool Distributed() const;
   // Deterministic single scattering: the light, the objects' output grids,

@@ -16,9 +16,11 @@
 #include <cmath>
 #include <condition_variable>
 #include <cstdio>
+#include <cstring>
 #include <deque>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <thread>
 
 using namespace brume;
@@ -355,6 +357,38 @@ public:
     this->Meet(values, false);
     this->Bytes += 2 * values.size() * sizeof(std::int64_t);
   }
+  // The totals on `root`; every other process keeps its own values.
+  void SumOnto(std::vector<std::int64_t>& values, int root) override
+  {
+    std::vector<std::int64_t> totals = values;
+    this->Meet(totals, false);
+    if (this->Index == root)
+    {
+      values.swap(totals);
+    }
+    this->Bytes += values.size() * sizeof(std::int64_t);
+  }
+  // The root's bits summed with zeros from the others.
+  void Broadcast(std::vector<float>& data, int root) override
+  {
+    std::vector<std::int64_t> bits(data.size(), 0);
+    if (this->Index == root)
+    {
+      for (std::size_t i = 0; i < data.size(); ++i)
+      {
+        std::uint32_t b;
+        std::memcpy(&b, &data[i], sizeof b);
+        bits[i] = b;
+      }
+    }
+    this->Meet(bits, false);
+    for (std::size_t i = 0; i < data.size(); ++i)
+    {
+      const auto b = static_cast<std::uint32_t>(bits[i]);
+      std::memcpy(&data[i], &b, sizeof b);
+    }
+    this->Bytes += data.size() * sizeof(float);
+  }
 
 private:
   void Meet(std::vector<std::int64_t>& values, bool max)
@@ -460,6 +494,150 @@ TEST(Distributed, ReducedHistogramsEqualOneProcessBitwise)
     }
   }
   EXPECT_GT(reductions[0]->Bytes, 0u) << "nothing was reduced";
+}
+
+TEST(Distributed, OwnersEstimateAndEveryProcessGetsTheSameTexturesBitwise)
+{
+  // The same three processes, each object estimated by one owner
+  // (AssignOwners by EstimateCost) in the four steps of a distributed
+  // build: every process ends with the textures and projections of one
+  // process holding every hit; the owner alone with the histograms; and
+  // the reductions move less than summing every histogram on every process.
+  const Scene scene = MakeDefaultScene();
+  const std::uint64_t n = 20000;
+  const std::uint64_t cut[4] = { 0, 5000, 12000, n };
+  const Hits all = Trace(scene, 0, n, n);
+  const double threshold = 16 * 3.0 / n;
+  const Vec3 eye(0.f, 0.f, 3.f), other(1.f, 0.5f, 3.f);
+  auto run = [&](const Hits& hits, HistogramReduction* reduction, bool owners)
+  {
+    auto objects = Objects(scene);
+    ObjectHits groups;
+    EXPECT_EQ(GroupHitsByObject(hits.View(), scene.NumberOfObjects(), groups), "");
+    std::vector<double> costs;
+    for (const auto& object : objects)
+    {
+      costs.push_back(object->EstimateCost());
+    }
+    const std::vector<int> owner =
+      AssignOwners(costs, reduction ? reduction->NumberOfProcesses() : 1);
+    for (std::size_t o = 0; o < objects.size(); ++o)
+    {
+      objects[o]->SetReduction(reduction);
+      objects[o]->SetOwner(owners ? owner[o] : -1);
+      EXPECT_EQ(objects[o]->BuildHistograms(hits.View(), groups.Index.data() + groups.Offset[o],
+                  groups.Offset[o + 1] - groups.Offset[o], threshold, SerialFor()),
+        "");
+    }
+    for (auto& object : objects)
+    {
+      object->SumHistograms(eye, SerialFor());
+    }
+    for (auto& object : objects)
+    {
+      object->EstimateTexture(SerialFor());
+    }
+    for (auto& object : objects)
+    {
+      object->ShareTexture(SerialFor());
+      if (object->IsViewDependent())
+      {
+        object->UpdateView(other, SerialFor());
+        EXPECT_EQ(object->BuildDirectional(3, SerialFor()), "");
+      }
+    }
+    return objects;
+  };
+  // The reductions outlive the objects that hold them.
+  Meeting meetings[2] = { Meeting(3), Meeting(3) };
+  std::vector<std::unique_ptr<ThreadReduction>> reductions[2];
+  auto distribute = [&](bool owners, std::vector<std::unique_ptr<ObjectRadiance>>* out)
+  {
+    std::vector<std::unique_ptr<ThreadReduction>>& reduction = reductions[owners ? 0 : 1];
+    std::vector<Hits> parts;
+    for (int r = 0; r < 3; ++r)
+    {
+      reduction.push_back(std::make_unique<ThreadReduction>(meetings[owners ? 0 : 1], r));
+      parts.push_back(Trace(scene, cut[r], cut[r + 1], n));
+    }
+    std::vector<std::thread> threads;
+    for (int r = 1; r < 3; ++r)
+    {
+      threads.emplace_back([&, r] { out[r] = run(parts[r], reduction[r].get(), owners); });
+    }
+    out[0] = run(parts[0], reduction[0].get(), owners);
+    for (auto& t : threads)
+    {
+      t.join();
+    }
+    std::size_t bytes = 0;
+    for (const auto& process : reduction)
+    {
+      bytes += process->Bytes;
+    }
+    return bytes;
+  };
+  std::vector<std::unique_ptr<ObjectRadiance>> owned[3], everywhere[3];
+  const std::size_t ownedBytes = distribute(true, owned);
+  const std::size_t everywhereBytes = distribute(false, everywhere);
+  const auto single = run(all, nullptr, false);
+  std::set<int> used;
+  for (std::size_t o = 0; o < single.size(); ++o)
+  {
+    for (int r = 0; r < 3; ++r)
+    {
+      const ObjectRadiance& mine = *owned[r][o];
+      used.insert(mine.GetOwner());
+      EXPECT_EQ(mine.EstimatesHere(), mine.GetOwner() == r) << o;
+      EXPECT_EQ(mine.GetRadiance(), single[o]->GetRadiance()) << o << " on process " << r;
+      EXPECT_EQ(mine.GetDirectional(), single[o]->GetDirectional()) << o << " on process " << r;
+      EXPECT_EQ(mine.GetRadiance(), everywhere[r][o]->GetRadiance()) << o;
+      if (mine.EstimatesHere())
+      {
+        EXPECT_EQ(
+          mine.GetWeightHistogram().GetValues(), single[o]->GetWeightHistogram().GetValues())
+          << o;
+        EXPECT_EQ(mine.GetValueHistogram().GetValues(), single[o]->GetValueHistogram().GetValues())
+          << o;
+      }
+      else
+      {
+        EXPECT_TRUE(mine.GetWeightHistogram().GetValues().empty()) << o;
+      }
+    }
+  }
+  EXPECT_EQ(used.size(), 3u) << "every process owns an object";
+  std::printf("bytes reduced: %zu with owners, %zu summing everywhere\n", ownedBytes,
+    everywhereBytes);
+  EXPECT_LT(ownedBytes, everywhereBytes);
+}
+
+TEST(Distributed, OwnersShareTheCostOutEvenly)
+{
+  // Largest first, each to the least loaded process, the lowest rank
+  // among equals: the same owners for the same costs.
+  EXPECT_EQ(AssignOwners({ 5.0, 3.0, 2.0 }, 1), (std::vector<int>{ 0, 0, 0 }));
+  EXPECT_EQ(AssignOwners({ 5.0, 3.0, 2.0 }, 2), (std::vector<int>{ 0, 1, 1 }));
+  EXPECT_EQ(AssignOwners({ 1.0, 1.0, 1.0, 1.0 }, 2), (std::vector<int>{ 0, 1, 0, 1 }));
+  EXPECT_EQ(AssignOwners({ 1.0, 9.0 }, 4), (std::vector<int>{ 1, 0 }));
+  // The default scene's objects on 2 processes: the fog's share, though
+  // the largest single object, stays within the largest object of the
+  // other's.
+  const Scene scene = MakeDefaultScene();
+  const auto objects = Objects(scene);
+  std::vector<double> costs;
+  for (const auto& object : objects)
+  {
+    costs.push_back(object->EstimateCost());
+  }
+  const std::vector<int> owners = AssignOwners(costs, 2);
+  double load[2] = { 0.0, 0.0 };
+  for (std::size_t o = 0; o < costs.size(); ++o)
+  {
+    load[owners[o]] += costs[o];
+  }
+  const double largest = *std::max_element(costs.begin(), costs.end());
+  EXPECT_LE(std::abs(load[0] - load[1]), largest);
 }
 
 TEST(Distributed, ExactSumsAreTheDoubleSumsToRounding)

@@ -114,12 +114,19 @@ TEST(ExactHistogram, WorstCaseSumsStayExact)
   EXPECT_EQ(h.GetSums()[0], expected);
   EXPECT_EQ(h.GetSums()[1], -expected);
   EXPECT_FALSE(ExactHistogram::FitsOneLimb(h.MaxMagnitude(), 2));
-  std::vector<std::int64_t> limbs;
-  h.ToLimbs(3, limbs);
-  ASSERT_EQ(limbs.size(), 6u);
+  std::vector<std::int64_t> limbs(6);
+  h.ToLimbs(3, 0, 2, limbs.data());
   ExactHistogram total({ 2, 1, 1 }, 1, e);
-  EXPECT_EQ(total.FromLimbs(3, AddLimbs(limbs, limbs), 0), 6u);
+  total.FromLimbs(3, AddLimbs(limbs, limbs).data(), 0, 2);
   EXPECT_EQ(total.GetSums()[0], 2 * expected);
+  // Piece by piece, as a reduction goes: the second value alone.
+  std::vector<std::int64_t> second(3);
+  h.ToLimbs(3, 1, 1, second.data());
+  EXPECT_TRUE(std::equal(second.begin(), second.end(), limbs.begin() + 3));
+  ExactHistogram piece({ 2, 1, 1 }, 1, e);
+  piece.FromLimbs(3, second.data(), 1, 1);
+  EXPECT_EQ(piece.GetSums()[0], 0);
+  EXPECT_EQ(piece.GetSums()[1], -expected);
   EXPECT_EQ(total.GetSums()[1], -2 * expected);
   EXPECT_DOUBLE_EQ(total.GetValue(0), std::ldexp(static_cast<double>(2 * expected), e));
   // A term beyond the bound is clamped and reported; so is NaN.
@@ -148,12 +155,11 @@ TEST(ExactHistogram, OneLimbWhenTheSumsFit)
   ASSERT_TRUE(ExactHistogram::FitsOneLimb(h.MaxMagnitude(), 4));
   for (int limbs : { 1, 3 })
   {
-    std::vector<std::int64_t> out;
-    h.ToLimbs(limbs, out);
-    EXPECT_EQ(out.size(), static_cast<std::size_t>(6 * limbs));
+    std::vector<std::int64_t> out(static_cast<std::size_t>(6 * limbs));
+    h.ToLimbs(limbs, 0, 6, out.data());
     const auto summed = AddLimbs(AddLimbs(out, out), out); // three processes
     ExactHistogram total({ 3, 1, 1 }, 2, e);
-    total.FromLimbs(limbs, summed, 0);
+    total.FromLimbs(limbs, summed.data(), 0, 6);
     for (std::size_t i = 0; i < 6; ++i)
     {
       EXPECT_EQ(total.GetSums()[i], 3 * h.GetSums()[i]) << limbs << " limbs, value " << i;

@@ -146,42 +146,42 @@ bool ExactHistogram::FitsOneLimb(Int128 maxMagnitude, int processes)
   return maxMagnitude < (static_cast<Int128>(1) << 62) / (processes > 0 ? processes : 1);
 }
 
-void ExactHistogram::ToLimbs(int limbs, std::vector<std::int64_t>& out) const
+void ExactHistogram::ToLimbs(
+  int limbs, std::size_t first, std::size_t count, std::int64_t* out) const
 {
   constexpr UInt128 Mask = (static_cast<UInt128>(1) << LimbBits) - 1;
-  for (std::size_t i = 0; i < this->Low.size(); ++i)
+  for (std::size_t i = first; i < first + count; ++i)
   {
     const Int128 s = this->GetSum(i);
     if (limbs == 1)
     {
-      out.push_back(static_cast<std::int64_t>(s));
+      *out++ = static_cast<std::int64_t>(s);
       continue;
     }
     const UInt128 u = static_cast<UInt128>(s); // two's complement
-    out.push_back(static_cast<std::int64_t>(u & Mask));
-    out.push_back(static_cast<std::int64_t>((u >> LimbBits) & Mask));
-    out.push_back(static_cast<std::int64_t>(s >> (2 * LimbBits))); // signed top
+    *out++ = static_cast<std::int64_t>(u & Mask);
+    *out++ = static_cast<std::int64_t>((u >> LimbBits) & Mask);
+    *out++ = static_cast<std::int64_t>(s >> (2 * LimbBits)); // signed top
   }
 }
 
-std::size_t ExactHistogram::FromLimbs(
-  int limbs, const std::vector<std::int64_t>& in, std::size_t offset)
+void ExactHistogram::FromLimbs(
+  int limbs, const std::int64_t* in, std::size_t first, std::size_t count)
 {
-  for (std::size_t i = 0; i < this->Low.size(); ++i)
+  for (std::size_t i = first; i < first + count; ++i)
   {
     if (limbs == 1)
     {
-      this->SetSum(i, in[offset++]);
+      this->SetSum(i, *in++);
       continue;
     }
     // Modulo 2^128 (unsigned): the total fits, the partial sums may wrap.
-    const UInt128 u = static_cast<UInt128>(static_cast<Int128>(in[offset])) +
-      (static_cast<UInt128>(static_cast<Int128>(in[offset + 1])) << LimbBits) +
-      (static_cast<UInt128>(static_cast<Int128>(in[offset + 2])) << (2 * LimbBits));
+    const UInt128 u = static_cast<UInt128>(static_cast<Int128>(in[0])) +
+      (static_cast<UInt128>(static_cast<Int128>(in[1])) << LimbBits) +
+      (static_cast<UInt128>(static_cast<Int128>(in[2])) << (2 * LimbBits));
     this->SetSum(i, static_cast<Int128>(u));
-    offset += 3;
+    in += 3;
   }
-  return offset;
 }
 
 } // namespace brume

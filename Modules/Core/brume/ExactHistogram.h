@@ -134,12 +134,13 @@ public:
   static bool FitsOneLimb(Int128 maxMagnitude, int processes);
 
   /**
-   * The sums as `limbs` 64-bit integers each (1, or 3 of LimbBits bits,
-   * the top one signed), appended to `out`; FromLimbs() reads the summed
-   * limbs back from `in` at `offset` and returns the offset after them.
+   * The sums of values [first, first + count) as `limbs` 64-bit integers
+   * each (1, or 3 of LimbBits bits, the top one signed), written to `out`
+   * (count * limbs of them); FromLimbs() sets those values from the
+   * summed limbs in `in`. A reduction goes piece by piece through them.
    */
-  void ToLimbs(int limbs, std::vector<std::int64_t>& out) const;
-  std::size_t FromLimbs(int limbs, const std::vector<std::int64_t>& in, std::size_t offset);
+  void ToLimbs(int limbs, std::size_t first, std::size_t count, std::int64_t* out) const;
+  void FromLimbs(int limbs, const std::int64_t* in, std::size_t first, std::size_t count);
 
   /// The sum of value `i` in quanta, and all of them (for tests).
   Int128 GetSum(std::size_t i) const;

@@ -127,10 +127,12 @@ double HitConcentration(const std::vector<std::int64_t>& counts);
 /**
  * Sums histograms across the processes of one run. Every process bins its
  * own hits into exact histograms (brume::ExactHistogram: fixed-point sums,
- * which do not depend on the order of their terms), then one all-reduce
- * gives every process the totals: bitwise those of one process holding
- * every hit, whatever the number of processes and threads. Every process
- * must make the same calls in the same order.
+ * which do not depend on the order of their terms), then one reduction
+ * gives the totals, bitwise those of one process holding every hit,
+ * whatever the number of processes and threads: to every process (Sum), or
+ * to the one process that estimates the object's texture (SumOnto), which
+ * then gives the texture to the others (Broadcast). Every process must
+ * make the same calls in the same order.
  */
 class HistogramReduction
 {
@@ -144,6 +146,15 @@ public:
   /// Sums `values` elementwise over the processes, in place, on every process.
   virtual void Sum(std::vector<std::int64_t>& values) = 0;
   /**
+   * Sums `values` elementwise over the processes onto process `root` (a
+   * tree: each process sends its values once, only `root` receives the
+   * totals); the other processes' `values` are left as they were.
+   */
+  virtual void SumOnto(std::vector<std::int64_t>& values, int root) = 0;
+  /// Process `root`'s `data` on every process, bit for bit; every process
+  /// passes `data` at the same size.
+  virtual void Broadcast(std::vector<float>& data, int root) = 0;
+  /**
    * Every process's `mine` (process r brings counts[r] values; every
    * process passes the same counts), concatenated in rank order into `all`
    * on every process.
@@ -152,7 +163,24 @@ public:
     std::vector<std::int32_t>& all) = 0;
   /// Bytes this process has sent and received so far.
   std::size_t Bytes = 0;
+  /**
+   * What ObjectRadiance lays its sums out in, PieceValues values (of one
+   * or three limbs) at a time, kept from one reduction to the next: a
+   * fresh buffer as large as a histogram would cost a page fault per page
+   * at every reduction.
+   */
+  std::vector<std::int64_t> Values;
+  static constexpr std::size_t PieceValues = std::size_t(1) << 16;
 };
+
+/**
+ * Which process estimates each object in a distributed run: the objects
+ * by `costs` (ObjectRadiance::EstimateCost()), largest first, each to the
+ * process with the least cost so far (the lowest rank among equals), so
+ * that the processes' shares of the per-texel work are about equal. The
+ * same costs give the same owners on every process.
+ */
+std::vector<int> AssignOwners(const std::vector<double>& costs, int processes);
 
 /// The radiance texture of one object, kept for cheap view updates.
 class ObjectRadiance
@@ -267,6 +295,31 @@ public:
   void SetReduction(HistogramReduction* reduction) { this->Reduction = reduction; }
 
   /**
+   * Distributed runs: the process that estimates this object's texture
+   * (SetOwner(r)), or every process (-1, the default). With an owner the
+   * histograms are summed onto it alone; it alone builds the summed-area
+   * tables, grows the regions and estimates, then gives the texture (and a
+   * directional projection) to every process, bit for bit: every process
+   * ends with the texture one process holding every hit would make, while
+   * the per-texel work and the reduction's traffic are shared out. The
+   * histograms and regions are then held by the owner only
+   * (GetWeightHistogram() is empty elsewhere).
+   */
+  void SetOwner(int rank) { this->Owner = rank; }
+  int GetOwner() const { return this->Owner; }
+  /// Whether this process estimates the texture: always without a
+  /// reduction or an owner.
+  bool EstimatesHere() const;
+  /**
+   * What estimating the texture costs, about, in units of one homogeneous
+   * medium's histogram cell: the summed-area tables (and a surface's
+   * areas) per cell, a region per texel (AssignOwners() shares the objects
+   * out by it). It depends on the resolutions alone, which every process
+   * of a run chooses alike.
+   */
+  double EstimateCost() const;
+
+  /**
    * The flux one particle of the run carries (the run's emitted power per
    * particle), which sets the quantum of the histograms' exact sums to
    * about 2^-40 of it (ExactHistogram::QuantumExponent) at the next Build()
@@ -296,6 +349,28 @@ public:
    */
   std::string Build(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
     const Vec3& eye, double thresholdFlux, const ParallelFor& parallelFor, bool estimate = true);
+
+  /**
+   * Build() in its four steps, for a distributed run that builds many
+   * objects: BuildHistograms() bins this process's hits (no communication
+   * when SetParticleFlux() is set, so objects may bin concurrently);
+   * SumHistograms() sums them across the processes (every process, object
+   * by object in the same order); EstimateTexture() estimates where
+   * EstimatesHere() (objects concurrently) and does on every process what
+   * the output needs of the object itself (a medium's extinction);
+   * ShareTexture() gives the owner's texture to every process (every
+   * process, in the same order). Doing each step for every object before
+   * the next lets the owners estimate at once instead of in turn. Build()
+   * is the four in a row; with `estimate` false, the first alone (a
+   * batch of a run: a view-dependent object's hits then wait, unmerged,
+   * for the batch that estimates).
+   */
+  std::string BuildHistograms(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
+    double thresholdFlux, const ParallelFor& parallelFor, bool estimate = true);
+  void SumHistograms(const Vec3& eye, const ParallelFor& parallelFor);
+  /// Empty, or what is wrong (a term beyond the exact sums' bound).
+  std::string EstimateTexture(const ParallelFor& parallelFor);
+  void ShareTexture(const ParallelFor& parallelFor);
 
   /**
    * Progressive refinement: adds more particles' hits to the histograms of
@@ -394,7 +469,8 @@ private:
   template <typename Locator>
   void KeepHits(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
     const Locator& cellOfHit, const ParallelFor& parallelFor);
-  void Finish(const Vec3& eye, double thresholdFlux, bool first, const ParallelFor& parallelFor);
+  // Texels of the texture.
+  std::size_t Texels() const;
   // The source radiance of a medium's region, per unit of the reduced
   // extinction (GetExtinctionFactor(directional)).
   void ToRadiance(
@@ -480,6 +556,7 @@ private:
   std::vector<float> Directional;
   int DirectionalOrder = -1;
   HistogramReduction* Reduction = nullptr;
+  int Owner = -1; // -1: every process estimates
   double ParticleFlux = 0.0; // as set
   double RunShare = 1.0;     // as set
   int SumsExponent = 0;      // the exact sums' quantum, 2^SumsExponent

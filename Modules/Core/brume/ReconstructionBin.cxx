@@ -235,7 +235,8 @@ void ObjectRadiance::BinInPlace(
       waitingCell[slot] = cell;
     }
   }
-  this->Reduce(this->WeightSums, &this->ValueSums);
+  this->SumsClamped =
+    this->SumsClamped || this->WeightSums.Saturated() || this->ValueSums.Saturated();
 }
 
 template <typename Locator>

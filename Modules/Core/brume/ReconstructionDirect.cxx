@@ -385,7 +385,7 @@ void ObjectRadiance::AddDirectToDirectional(int order)
   const std::size_t lights = this->Direct->NumberOfLights();
   const std::size_t texels = this->Arrivals.size() / (lights * ArrivalFloats);
   const int nk = ShCoefficients(order);
-  const std::size_t voxels = this->Regions.size();
+  const std::size_t voxels = this->Texels();
   std::vector<double> sums(voxels * nk * 3, 0.0);
   std::vector<std::size_t> members(voxels, 0);
   auto voxelOf = [&](std::size_t t)

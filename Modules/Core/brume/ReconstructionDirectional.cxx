@@ -16,7 +16,7 @@ std::string ObjectRadiance::BuildDirectional(int order, const ParallelFor& paral
   {
     return "directional radiance is made for anisotropic media only";
   }
-  if (this->Regions.empty())
+  if (!this->Estimated)
   {
     return "directional radiance needs a texture already built";
   }
@@ -25,8 +25,9 @@ std::string ObjectRadiance::BuildDirectional(int order, const ParallelFor& paral
     return "the spherical-harmonics order must be in [0, " + std::to_string(MaxShOrder) + "]";
   }
   const int nk = ShCoefficients(order);
-  const std::size_t texels = this->Regions.size();
+  const std::size_t texels = this->Texels();
   this->Directional.assign(texels * nk * 3, 0.f);
+  const bool here = this->EstimatesHere();
   this->DirectionalOrder = order;
   // A few coefficients per pass bound the memory: each pass bins
   // Y_k(w_p) Phi_p into a histogram, sums every region from its table and
@@ -58,6 +59,10 @@ std::string ObjectRadiance::BuildDirectional(int order, const ParallelFor& paral
         }
       });
     this->Reduce(sums);
+    if (!here)
+    {
+      continue; // the owner's sums alone are the totals
+    }
     const SummedAreaTable table(sums);
     parallelFor(0, texels,
       [&](std::size_t begin, std::size_t end)
@@ -74,16 +79,20 @@ std::string ObjectRadiance::BuildDirectional(int order, const ParallelFor& paral
         }
       });
   }
-  if (this->HasDirect())
+  if (here && this->HasDirect())
   {
     this->AddDirectToDirectional(order);
+  }
+  if (this->Reduction && this->Owner >= 0 && this->Reduction->NumberOfProcesses() > 1)
+  {
+    this->Reduction->Broadcast(this->Directional, this->Owner);
   }
   return {};
 }
 
 void ObjectRadiance::EvaluateDirectional(const Vec3& eye, std::vector<float>& radiance) const
 {
-  const std::size_t texels = this->Regions.size();
+  const std::size_t texels = this->Texels();
   radiance.assign(3 * texels, 0.f);
   if (this->DirectionalOrder < 0 || !this->MediumRef)
   {
