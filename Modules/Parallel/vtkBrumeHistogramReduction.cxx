@@ -75,8 +75,8 @@ void vtkBrumeHistogramReduction::Sum(std::vector<std::int64_t>& values)
     this->Controller->AllReduce(values.data() + first, this->Totals.data() + first,
       static_cast<vtkIdType>(n), vtkCommunicator::SUM_OP);
   }
-  std::copy(this->Totals.begin(),
-    this->Totals.begin() + static_cast<std::ptrdiff_t>(values.size()), values.begin());
+  std::copy(this->Totals.begin(), this->Totals.begin() + static_cast<std::ptrdiff_t>(values.size()),
+    values.begin());
   // What an all-reduce moves per process, about: its values out and the totals in.
   this->Bytes += 2 * values.size() * sizeof(std::int64_t);
   this->Seconds += Since(start);

@@ -607,8 +607,8 @@ TEST(Distributed, OwnersEstimateAndEveryProcessGetsTheSameTexturesBitwise)
     }
   }
   EXPECT_EQ(used.size(), 3u) << "every process owns an object";
-  std::printf("bytes reduced: %zu with owners, %zu summing everywhere\n", ownedBytes,
-    everywhereBytes);
+  std::printf(
+    "bytes reduced: %zu with owners, %zu summing everywhere\n", ownedBytes, everywhereBytes);
   EXPECT_LT(ownedBytes, everywhereBytes);
 }
 

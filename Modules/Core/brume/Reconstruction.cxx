@@ -282,8 +282,7 @@ void ObjectRadiance::SumHistograms(const Vec3& eye, const ParallelFor& parallelF
 
 std::size_t ObjectRadiance::Texels() const
 {
-  return static_cast<std::size_t>(this->Resolution[0]) * this->Resolution[1] *
-    this->Resolution[2];
+  return static_cast<std::size_t>(this->Resolution[0]) * this->Resolution[1] * this->Resolution[2];
 }
 
 bool ObjectRadiance::EstimatesHere() const
@@ -607,8 +606,8 @@ std::vector<int> AssignOwners(const std::vector<double>& costs, int processes)
   {
     order[o] = o;
   }
-  std::stable_sort(order.begin(), order.end(),
-    [&](std::size_t x, std::size_t y) { return costs[x] > costs[y]; });
+  std::stable_sort(
+    order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return costs[x] > costs[y]; });
   std::vector<double> load(static_cast<std::size_t>(processes), 0.0);
   for (const std::size_t o : order)
   {

@@ -556,7 +556,7 @@ private:
   std::vector<float> Directional;
   int DirectionalOrder = -1;
   HistogramReduction* Reduction = nullptr;
-  int Owner = -1; // -1: every process estimates
+  int Owner = -1;            // -1: every process estimates
   double ParticleFlux = 0.0; // as set
   double RunShare = 1.0;     // as set
   int SumsExponent = 0;      // the exact sums' quantum, 2^SumsExponent
