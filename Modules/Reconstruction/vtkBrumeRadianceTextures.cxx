@@ -411,57 +411,60 @@ bool vtkBrumeRadianceTextures::CheckHits(
   return this->Agree(hitsOk);
 }
 
-bool vtkBrumeRadianceTextures::BuildObjects(const vtkBrumeReconstructionRequest& request,
-  const brume::ObjectHits& groups, vtkBrumeReconstructionWork& work)
+void vtkBrumeRadianceTextures::ForEachObject(
+  const std::function<void(std::size_t, const brume::ParallelFor&)>& step)
 {
-  // View-independent objects build concurrently (each on one thread: a
-  // single pass in hit order); view-dependent ones then use every thread.
-  const brume::HitArrays& hits = request.Hits;
-  std::vector<std::string> errors(this->Objects.size());
-  std::vector<vtkIdType> independent;
+  const brume::ParallelFor serialFor = brume::SerialFor();
+  std::vector<std::size_t> independent;
   for (std::size_t o = 0; o < this->Objects.size(); ++o)
   {
     if (!this->Objects[o]->IsViewDependent())
     {
-      independent.push_back(static_cast<vtkIdType>(o));
+      independent.push_back(o);
     }
   }
-  const brume::ParallelFor serialFor = brume::SerialFor();
-  auto build = [&](std::size_t o, const brume::ParallelFor& parallelFor)
-  {
-    this->Objects[o]->SetParticleFlux(request.ParticleFlux);
-    this->Objects[o]->SetRunShare(request.Run.EndParticle / request.Run.Particles);
-    errors[o] = this->Objects[o]->Build(hits, groups.Index.data() + groups.Offset[o],
-      groups.Offset[o + 1] - groups.Offset[o], request.Eye, request.ThresholdFlux, parallelFor,
-      request.Run.Completes());
-  };
-  auto buildIndependent = [&](vtkIdType begin, vtkIdType end)
-  {
-    for (vtkIdType k = begin; k < end; ++k)
+  vtkSMPTools::For(0, static_cast<vtkIdType>(independent.size()), 1,
+    [&](vtkIdType begin, vtkIdType end)
     {
-      build(static_cast<std::size_t>(independent[k]), serialFor);
-    }
-  };
+      for (vtkIdType k = begin; k < end; ++k)
+      {
+        step(independent[k], serialFor);
+      }
+    });
   const brume::ParallelFor parallelFor = vtkBrumeSMP::ParallelFor();
+  for (std::size_t o = 0; o < this->Objects.size(); ++o)
+  {
+    if (this->Objects[o]->IsViewDependent())
+    {
+      step(o, parallelFor);
+    }
+  }
+}
+
+bool vtkBrumeRadianceTextures::BuildObjects(const vtkBrumeReconstructionRequest& request,
+  const brume::ObjectHits& groups, vtkBrumeReconstructionWork& work)
+{
+  std::vector<std::string> errors(this->Objects.size());
   if (this->Distributed())
   {
-    if (!this->BuildDistributed(request, groups, independent, errors))
+    if (!this->BuildDistributed(request, groups, errors))
     {
       return false; // reported
     }
   }
   else
   {
-    vtkSMPTools::For(0, static_cast<vtkIdType>(independent.size()), 1, buildIndependent);
-    this->Filter->UpdateProgress(0.5);
-    for (std::size_t o = 0; o < this->Objects.size(); ++o)
-    {
-      if (this->Objects[o]->IsViewDependent())
+    this->ForEachObject(
+      [&](std::size_t o, const brume::ParallelFor& objectFor)
       {
-        build(o, parallelFor);
-      }
-    }
+        this->Objects[o]->SetParticleFlux(request.ParticleFlux);
+        this->Objects[o]->SetRunShare(request.Run.EndParticle / request.Run.Particles);
+        errors[o] = this->Objects[o]->Build(request.Hits, groups.Index.data() + groups.Offset[o],
+          groups.Offset[o + 1] - groups.Offset[o], request.Eye, request.ThresholdFlux, objectFor,
+          request.Run.Completes());
+      });
   }
+  this->Filter->UpdateProgress(0.5);
   for (std::size_t o = 0; o < this->Objects.size(); ++o)
   {
     if (!errors[o].empty())
@@ -476,44 +479,22 @@ bool vtkBrumeRadianceTextures::BuildObjects(const vtkBrumeReconstructionRequest&
 }
 
 bool vtkBrumeRadianceTextures::BuildDistributed(const vtkBrumeReconstructionRequest& request,
-  const brume::ObjectHits& groups, const std::vector<vtkIdType>& independent,
-  std::vector<std::string>& errors)
+  const brume::ObjectHits& groups, std::vector<std::string>& errors)
 {
   // Each step for every object before the next (ObjectRadiance::Build()'s
   // four steps): the processes bin their hits, sum every object's
   // histograms onto its owner in the objects' order, then estimate their
   // own objects all at once, instead of in turn, and give them to the
   // others. The binning needs no communication (the particle flux is set).
-  const brume::HitArrays& hits = request.Hits;
   const bool estimate = request.Run.Completes();
-  const brume::ParallelFor serialFor = brume::SerialFor();
   const brume::ParallelFor parallelFor = vtkBrumeSMP::ParallelFor();
   auto bin = [&](std::size_t o, const brume::ParallelFor& objectFor)
   {
     this->Objects[o]->SetParticleFlux(request.ParticleFlux);
     this->Objects[o]->SetRunShare(request.Run.EndParticle / request.Run.Particles);
-    errors[o] = this->Objects[o]->BuildHistograms(hits, groups.Index.data() + groups.Offset[o],
-      groups.Offset[o + 1] - groups.Offset[o], request.ThresholdFlux, objectFor, estimate);
-  };
-  // View-independent objects concurrently (each on one thread), then the
-  // view-dependent ones on every thread; the same for the estimates.
-  auto eachObject = [&](const std::function<void(std::size_t, const brume::ParallelFor&)>& step)
-  {
-    vtkSMPTools::For(0, static_cast<vtkIdType>(independent.size()), 1,
-      [&](vtkIdType begin, vtkIdType end)
-      {
-        for (vtkIdType k = begin; k < end; ++k)
-        {
-          step(static_cast<std::size_t>(independent[k]), serialFor);
-        }
-      });
-    for (std::size_t o = 0; o < this->Objects.size(); ++o)
-    {
-      if (this->Objects[o]->IsViewDependent())
-      {
-        step(o, parallelFor);
-      }
-    }
+    errors[o] =
+      this->Objects[o]->BuildHistograms(request.Hits, groups.Index.data() + groups.Offset[o],
+        groups.Offset[o + 1] - groups.Offset[o], request.ThresholdFlux, objectFor, estimate);
   };
   // Every process's hits were checked before (CheckHits): a failure here
   // is one process's alone (a term beyond the exact sums' bound), and every
@@ -532,7 +513,7 @@ bool vtkBrumeRadianceTextures::BuildDistributed(const vtkBrumeReconstructionRequ
     }
     return this->Agree(ok);
   };
-  eachObject(bin);
+  this->ForEachObject(bin);
   if (!agree())
   {
     return false;
@@ -547,7 +528,7 @@ bool vtkBrumeRadianceTextures::BuildDistributed(const vtkBrumeReconstructionRequ
     object->SumHistograms(request.Eye, parallelFor);
   }
   this->Filter->UpdateProgress(0.6);
-  eachObject([&](std::size_t o, const brume::ParallelFor& objectFor)
+  this->ForEachObject([&](std::size_t o, const brume::ParallelFor& objectFor)
     { errors[o] = this->Objects[o]->EstimateTexture(objectFor); });
   if (!agree())
   {
@@ -576,8 +557,6 @@ bool vtkBrumeRadianceTextures::Add(
     vtkErrorWithObjectMacro(this->Filter, "Invalid particle hits: " << groupError << ".");
     return false;
   }
-  // As in BuildObjects: view-independent objects concurrently (each on one
-  // thread), then view-dependent ones, each on every thread.
   std::vector<std::string> errors(this->Objects.size());
   auto add = [&](std::size_t o, const brume::ParallelFor& objectFor)
   {
@@ -587,30 +566,7 @@ bool vtkBrumeRadianceTextures::Add(
       groups.Offset[o + 1] - groups.Offset[o], this->Particles / request.Run.Particles,
       firstEstimate ? request.Eye : this->ObjectEye[o], request.ThresholdFlux, objectFor, complete);
   };
-  std::vector<vtkIdType> independent;
-  for (std::size_t o = 0; o < this->Objects.size(); ++o)
-  {
-    if (!this->Objects[o]->IsViewDependent())
-    {
-      independent.push_back(static_cast<vtkIdType>(o));
-    }
-  }
-  const brume::ParallelFor serialFor = brume::SerialFor();
-  vtkSMPTools::For(0, static_cast<vtkIdType>(independent.size()), 1,
-    [&](vtkIdType begin, vtkIdType end)
-    {
-      for (vtkIdType k = begin; k < end; ++k)
-      {
-        add(static_cast<std::size_t>(independent[k]), serialFor);
-      }
-    });
-  for (std::size_t o = 0; o < this->Objects.size(); ++o)
-  {
-    if (this->Objects[o]->IsViewDependent())
-    {
-      add(o, parallelFor);
-    }
-  }
+  this->ForEachObject(add);
   for (std::size_t o = 0; o < this->Objects.size(); ++o)
   {
     if (!errors[o].empty())

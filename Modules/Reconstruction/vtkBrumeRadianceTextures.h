@@ -19,6 +19,7 @@
 #include "brume/Reconstruction.h"
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -152,8 +153,11 @@ private:
   // Distributed runs: BuildObjects()'s steps, each for every object in
   // turn. False (reported, on every process) when a process failed.
   bool BuildDistributed(const vtkBrumeReconstructionRequest& request,
-    const brume::ObjectHits& groups, const std::vector<vtkIdType>& independent,
-    std::vector<std::string>& errors);
+    const brume::ObjectHits& groups, std::vector<std::string>& errors);
+  // step(o, parallelFor) for every object: the view-independent ones
+  // concurrently, each on one thread (a single pass in hit order), then the
+  // view-dependent ones, each on every thread.
+  void ForEachObject(const std::function<void(std::size_t, const brume::ParallelFor&)>& step);
   bool Agree(bool ok);
   bool Distributed() const;
   // Deterministic single scattering: the light, the objects' output grids,

@@ -428,32 +428,42 @@ private:
 };
 }
 
+namespace
+{
+// Particles [0, 5000), [5000, 12000) and [12000, 20000) of a run of
+// 20,000 of the default scene, for three processes, and all of them for one.
+struct ThreeProcessRun
+{
+  const Scene scene = MakeDefaultScene();
+  const std::uint64_t n = 20000;
+  const std::uint64_t cut[4] = { 0, 5000, 12000, 20000 };
+  const Hits all = Trace(scene, 0, n, n);
+  const double threshold = 16 * 3.0 / n;
+  const Vec3 eye{ 0.f, 0.f, 3.f }, other{ 1.f, 0.5f, 3.f };
+};
+}
+
 TEST(Distributed, ReducedHistogramsEqualOneProcessBitwise)
 {
   // Particles [0, 5000), [5000, 12000) and [12000, 20000) of a run of
   // 20,000 on three processes, against one process with all of them: every
   // histogram, texture and projection, after a build, a view change and a
   // projection. The exact sums do not depend on which process adds what.
-  const Scene scene = MakeDefaultScene();
-  const std::uint64_t n = 20000;
-  const std::uint64_t cut[4] = { 0, 5000, 12000, n };
-  const Hits all = Trace(scene, 0, n, n);
-  const double threshold = 16 * 3.0 / n;
-  const Vec3 eye(0.f, 0.f, 3.f), other(1.f, 0.5f, 3.f);
+  const ThreeProcessRun run3;
   auto run = [&](const Hits& hits, HistogramReduction* reduction)
   {
-    auto objects = Objects(scene);
+    auto objects = Objects(run3.scene);
     ObjectHits groups;
-    EXPECT_EQ(GroupHitsByObject(hits.View(), scene.NumberOfObjects(), groups), "");
+    EXPECT_EQ(GroupHitsByObject(hits.View(), run3.scene.NumberOfObjects(), groups), "");
     for (std::size_t o = 0; o < objects.size(); ++o)
     {
       objects[o]->SetReduction(reduction);
       EXPECT_EQ(objects[o]->Build(hits.View(), groups.Index.data() + groups.Offset[o],
-                  groups.Offset[o + 1] - groups.Offset[o], eye, threshold, SerialFor()),
+                  groups.Offset[o + 1] - groups.Offset[o], run3.eye, run3.threshold, SerialFor()),
         "");
       if (objects[o]->IsViewDependent())
       {
-        objects[o]->UpdateView(other, SerialFor());
+        objects[o]->UpdateView(run3.other, SerialFor());
         EXPECT_EQ(objects[o]->BuildDirectional(3, SerialFor()), "");
       }
     }
@@ -465,7 +475,7 @@ TEST(Distributed, ReducedHistogramsEqualOneProcessBitwise)
   for (int r = 0; r < 3; ++r)
   {
     reductions.push_back(std::make_unique<ThreadReduction>(meeting, r));
-    parts.push_back(Trace(scene, cut[r], cut[r + 1], n));
+    parts.push_back(Trace(run3.scene, run3.cut[r], run3.cut[r + 1], run3.n));
   }
   std::vector<std::unique_ptr<ObjectRadiance>> distributed[3];
   std::vector<std::thread> threads;
@@ -478,7 +488,7 @@ TEST(Distributed, ReducedHistogramsEqualOneProcessBitwise)
   {
     t.join();
   }
-  const auto single = run(all, nullptr);
+  const auto single = run(run3.all, nullptr);
   for (std::size_t o = 0; o < single.size(); ++o)
   {
     for (const auto& process : distributed)
@@ -503,17 +513,12 @@ TEST(Distributed, OwnersEstimateAndEveryProcessGetsTheSameTexturesBitwise)
   // build: every process ends with the textures and projections of one
   // process holding every hit; the owner alone with the histograms; and
   // the reductions move less than summing every histogram on every process.
-  const Scene scene = MakeDefaultScene();
-  const std::uint64_t n = 20000;
-  const std::uint64_t cut[4] = { 0, 5000, 12000, n };
-  const Hits all = Trace(scene, 0, n, n);
-  const double threshold = 16 * 3.0 / n;
-  const Vec3 eye(0.f, 0.f, 3.f), other(1.f, 0.5f, 3.f);
+  const ThreeProcessRun run3;
   auto run = [&](const Hits& hits, HistogramReduction* reduction, bool owners)
   {
-    auto objects = Objects(scene);
+    auto objects = Objects(run3.scene);
     ObjectHits groups;
-    EXPECT_EQ(GroupHitsByObject(hits.View(), scene.NumberOfObjects(), groups), "");
+    EXPECT_EQ(GroupHitsByObject(hits.View(), run3.scene.NumberOfObjects(), groups), "");
     std::vector<double> costs;
     for (const auto& object : objects)
     {
@@ -526,12 +531,12 @@ TEST(Distributed, OwnersEstimateAndEveryProcessGetsTheSameTexturesBitwise)
       objects[o]->SetReduction(reduction);
       objects[o]->SetOwner(owners ? owner[o] : -1);
       EXPECT_EQ(objects[o]->BuildHistograms(hits.View(), groups.Index.data() + groups.Offset[o],
-                  groups.Offset[o + 1] - groups.Offset[o], threshold, SerialFor()),
+                  groups.Offset[o + 1] - groups.Offset[o], run3.threshold, SerialFor()),
         "");
     }
     for (auto& object : objects)
     {
-      object->SumHistograms(eye, SerialFor());
+      object->SumHistograms(run3.eye, SerialFor());
     }
     for (auto& object : objects)
     {
@@ -542,7 +547,7 @@ TEST(Distributed, OwnersEstimateAndEveryProcessGetsTheSameTexturesBitwise)
       object->ShareTexture(SerialFor());
       if (object->IsViewDependent())
       {
-        object->UpdateView(other, SerialFor());
+        object->UpdateView(run3.other, SerialFor());
         EXPECT_EQ(object->BuildDirectional(3, SerialFor()), "");
       }
     }
@@ -558,7 +563,7 @@ TEST(Distributed, OwnersEstimateAndEveryProcessGetsTheSameTexturesBitwise)
     for (int r = 0; r < 3; ++r)
     {
       reduction.push_back(std::make_unique<ThreadReduction>(meetings[owners ? 0 : 1], r));
-      parts.push_back(Trace(scene, cut[r], cut[r + 1], n));
+      parts.push_back(Trace(run3.scene, run3.cut[r], run3.cut[r + 1], run3.n));
     }
     std::vector<std::thread> threads;
     for (int r = 1; r < 3; ++r)
@@ -580,7 +585,7 @@ TEST(Distributed, OwnersEstimateAndEveryProcessGetsTheSameTexturesBitwise)
   std::vector<std::unique_ptr<ObjectRadiance>> owned[3], everywhere[3];
   const std::size_t ownedBytes = distribute(true, owned);
   const std::size_t everywhereBytes = distribute(false, everywhere);
-  const auto single = run(all, nullptr, false);
+  const auto single = run(run3.all, nullptr, false);
   std::set<int> used;
   for (std::size_t o = 0; o < single.size(); ++o)
   {
