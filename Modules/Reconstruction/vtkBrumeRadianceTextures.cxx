@@ -196,8 +196,10 @@ std::unique_ptr<brume::ObjectRadiance> vtkBrumeRadianceTextures::CreateObject(st
     const brume::Surface& surface = this->Scene.Surfaces[o];
     const auto tcoords = TextureCoordinates(vtkPolyData::SafeDownCast(sceneObject));
     brume::SurfaceChart chart = brume::MakeChart(surface, tcoords.empty() ? nullptr : &tcoords);
+    // Evenly lit surfaces keep their texels (brume::MinSurfaceConcentration).
+    const double factor = concentration >= brume::MinSurfaceConcentration ? concentration : 1.0;
     const auto res = resolution(brume::Vec3(chart.Width, chart.Height, 0.f),
-      settings.SurfaceResolution, MaxSurfaceResolution, 1024, settings.RadiosityThreshold);
+      settings.SurfaceResolution, MaxSurfaceResolution, 1024, settings.RadiosityThreshold / factor);
     if (!tooLarge)
     {
       radiance.reset(new brume::ObjectRadiance(surface, chart, { res[0], res[1] }, refinement));
@@ -223,8 +225,10 @@ bool vtkBrumeRadianceTextures::CreateObjects(const vtkBrumeReconstructionSetting
 {
   // Resolutions follow the hits of the whole run, on every process; from
   // the first batch of a run traced in batches, its hits scaled to the run.
-  // After the counts of every object come the media's hits counted over
-  // their pilot grids (where the hits are, brume::HitConcentration).
+  // After the counts of every object come the hits of the media and of the
+  // planar surfaces counted over their pilot grids (where the hits are,
+  // brume::HitConcentration; a surface's without those the direct light
+  // replaces).
   const double scale = run.Particles / (run.EndParticle - run.FirstParticle);
   const std::size_t objects = this->Scene.NumberOfObjects();
   const std::size_t surfaces = this->Scene.Surfaces.size();
@@ -235,10 +239,22 @@ bool vtkBrumeRadianceTextures::CreateObjects(const vtkBrumeReconstructionSetting
       std::llround(scale * static_cast<double>(groups.Offset[o + 1] - groups.Offset[o])));
   }
   std::vector<std::size_t> pilotStart(objects + 1, objects);
+  const std::size_t deltaLights =
+    settings.DirectLightResolution > 0 ? this->Scene.Lights.size() : 0;
   for (std::size_t o = 0; o < objects; ++o)
   {
     pilotStart[o + 1] = pilotStart[o];
-    if (o >= surfaces)
+    brume::PlanarFrame frame;
+    if (o < surfaces && this->Scene.Surfaces[o].ComputePlanarFrame(frame))
+    {
+      std::vector<std::int64_t> pilot;
+      const std::size_t first = groups.Offset[o];
+      brume::CountHitsOverPilotGrid(hits, groups.Index.data() + first, groups.Offset[o + 1] - first,
+        frame, this->Scene.LightEmitterId(0), deltaLights, pilot);
+      counts.insert(counts.end(), pilot.begin(), pilot.end());
+      pilotStart[o + 1] += pilot.size();
+    }
+    else if (o >= surfaces)
     {
       std::vector<std::int64_t> pilot;
       const std::size_t first = groups.Offset[o];

@@ -144,7 +144,8 @@ public:
 private:
   bool CreateObjects(const vtkBrumeReconstructionSettings& settings, const brume::HitArrays& hits,
     const brume::ObjectHits& groups, const vtkBrumeHitConversion::RunInfo& run);
-  // concentration: brume::HitConcentration of a medium's hits (1 for surfaces).
+  // concentration: brume::HitConcentration of a medium's or a planar
+  // surface's hits (1 for other surfaces).
   std::unique_ptr<brume::ObjectRadiance> CreateObject(std::size_t o, std::size_t hitCount,
     double concentration, const vtkBrumeReconstructionSettings& settings);
   bool CheckHits(const brume::HitArrays& hits, const brume::ObjectHits& groups);

@@ -710,3 +710,54 @@ TEST(Reconstruction, MediaTexelsFollowWhereTheHitsAre)
   CountHitsOverPilotGrid(one, &zero, 1, box, counts);
   EXPECT_EQ(counts.back(), 1);
 }
+
+TEST(Reconstruction, SurfaceTexelsFollowWhereTheScatteredLightIs)
+{
+  // A 4 x 1 plane: its pilot grid has near-square cells, about 4,096.
+  PlanarFrame frame;
+  frame.Origin = Vec3(0.f);
+  frame.U = Vec3(4.f, 0.f, 0.f);
+  frame.V = Vec3(0.f, 0.f, 1.f);
+  frame.Normal = Vec3(0.f, 1.f, 0.f);
+  const std::array<int, 3> res = PilotGridResolution(frame);
+  EXPECT_EQ(res[2], 1);
+  EXPECT_NEAR(4.0 * res[1] / res[0], 1.0, 0.1);
+  EXPECT_NEAR(res[0] * res[1], 4096, 300);
+  // Hits over [0, uMax) x [0, 1) of the frame; every other one a particle's
+  // first interaction after the delta light of emitter 7 (the direct
+  // light's), spread over the whole plane wherever the others are.
+  auto concentrationOf = [&](int n, float uMax, std::size_t deltaLights)
+  {
+    Random rng(5, 6);
+    std::vector<float> positions(3 * static_cast<std::size_t>(n));
+    std::vector<std::uint32_t> index(static_cast<std::size_t>(n));
+    std::vector<std::uint16_t> emitter(static_cast<std::size_t>(n));
+    std::vector<std::uint8_t> depth(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i)
+    {
+      const bool direct = i % 2 == 1;
+      positions[3 * i] = 4.f * (direct ? 1.f : uMax) * rng.NextFloat();
+      positions[3 * i + 1] = 0.f;
+      positions[3 * i + 2] = rng.NextFloat();
+      emitter[i] = direct ? 7 : 2;
+      depth[i] = direct ? 0 : 1;
+      index[i] = static_cast<std::uint32_t>(i);
+    }
+    HitArrays hits;
+    hits.Position = positions.data();
+    hits.Emitter = emitter.data();
+    hits.Depth = depth.data();
+    hits.Count = static_cast<std::size_t>(n);
+    std::vector<std::int64_t> counts;
+    CountHitsOverPilotGrid(hits, index.data(), index.size(), frame, 7, deltaLights, counts);
+    EXPECT_EQ(counts.size(), static_cast<std::size_t>(res[0] * res[1]));
+    return HitConcentration(counts);
+  };
+  // The scattered light over a quarter of the plane: 4 once the direct
+  // light's hits are left out. Counted with them, the density is 2.5 n on
+  // the quarter and 0.5 n elsewhere: (0.25 * 2.5^2 + 0.75 * 0.5^2) = 1.75.
+  EXPECT_NEAR(concentrationOf(400000, 0.25f, 1), 4.0, 0.1);
+  EXPECT_NEAR(concentrationOf(400000, 0.25f, 0), 1.75, 0.05);
+  // Evenly lit: 1.
+  EXPECT_NEAR(concentrationOf(400000, 1.f, 1), 1.0, 0.02);
+}

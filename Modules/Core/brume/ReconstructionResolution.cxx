@@ -60,6 +60,40 @@ void CountHitsOverPilotGrid(const HitArrays& hits, const std::uint32_t* index, s
   }
 }
 
+std::array<int, 3> PilotGridResolution(const PlanarFrame& frame)
+{
+  return ChooseResolution(Vec3(Length(frame.U), Length(frame.V), 0.f), 4096, 1.0, 1, 4096);
+}
+
+void CountHitsOverPilotGrid(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
+  const PlanarFrame& frame, std::size_t firstDeltaEmitter, std::size_t deltaLights,
+  std::vector<std::int64_t>& counts)
+{
+  const std::array<int, 3> res = PilotGridResolution(frame);
+  counts.resize(static_cast<std::size_t>(res[0]) * res[1], 0);
+  const float uu = Dot(frame.U, frame.U), vv = Dot(frame.V, frame.V);
+  const bool direct = deltaLights > 0 && hits.Emitter && hits.Depth;
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    const std::size_t i = index[k];
+    if (direct && hits.Depth[i] == 0 && hits.Emitter[i] >= firstDeltaEmitter &&
+      hits.Emitter[i] < firstDeltaEmitter + deltaLights)
+    {
+      continue;
+    }
+    const Vec3 d =
+      Vec3(hits.Position[3 * i], hits.Position[3 * i + 1], hits.Position[3 * i + 2]) - frame.Origin;
+    const float q[2] = { uu > 0.f ? Dot(d, frame.U) / uu : 0.f,
+      vv > 0.f ? Dot(d, frame.V) / vv : 0.f };
+    int c[2];
+    for (int a = 0; a < 2; ++a)
+    {
+      c[a] = std::clamp(static_cast<int>(q[a] * static_cast<float>(res[a])), 0, res[a] - 1);
+    }
+    ++counts[static_cast<std::size_t>(c[1]) * res[0] + c[0]];
+  }
+}
+
 double HitConcentration(const std::vector<std::int64_t>& counts)
 {
   double sum = 0.0, pairs = 0.0;
