@@ -239,13 +239,17 @@ bool vtkBrumeRadianceTextures::CreateObjects(const vtkBrumeReconstructionSetting
       std::llround(scale * static_cast<double>(groups.Offset[o + 1] - groups.Offset[o])));
   }
   std::vector<std::size_t> pilotStart(objects + 1, objects);
-  const std::size_t deltaLights =
-    settings.DirectLightResolution > 0 ? this->Scene.Lights.size() : 0;
+  // Surfaces only where the direct light of delta lights is computed: their
+  // scattered light gathers around its patches. Lit by emissive surfaces
+  // alone (the default scene), walls are lit evenly and skip the pass.
+  const std::size_t deltaLights = settings.DirectLightResolution > 0 && hits.Emitter && hits.Depth
+    ? this->Scene.Lights.size()
+    : 0;
   for (std::size_t o = 0; o < objects; ++o)
   {
     pilotStart[o + 1] = pilotStart[o];
     brume::PlanarFrame frame;
-    if (o < surfaces && this->Scene.Surfaces[o].ComputePlanarFrame(frame))
+    if (o < surfaces && deltaLights > 0 && this->Scene.Surfaces[o].ComputePlanarFrame(frame))
     {
       std::vector<std::int64_t> pilot;
       const std::size_t first = groups.Offset[o];

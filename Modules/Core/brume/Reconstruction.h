@@ -123,8 +123,9 @@ void CountHitsOverPilotGrid(const HitArrays& hits, const std::uint32_t* index, s
 constexpr double MaxHitConcentration = 8.0;
 
 /**
- * A planar surface's texel count is multiplied by its hits' concentration
- * (those the direct light replaces left out) from this value on: a sunlit
+ * A planar surface under delta lights whose direct light is computed has
+ * its texel count multiplied by its hits' concentration (those the direct
+ * light replaces left out) from this value on: a sunlit
  * floor or wall, where the light the haze scatters forward gathers around
  * the sun's patch (god-rays.json: 3.0), gets texels as fine as its hits
  * allow, while evenly lit walls (the default scene's: 1.02-1.11) keep
