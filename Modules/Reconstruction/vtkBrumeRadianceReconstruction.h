@@ -234,10 +234,13 @@ public:
    * Texels along each axis of surface textures and voxels along each axis of
    * medium textures. 0 (the default) chooses them from the object's size and
    * hit count so that a texel holds about RadiosityThreshold hits: on
-   * average over a surface, and where the hits are in a medium (over the
-   * volume they effectively fill, brume::HitConcentration, and finer for a
-   * dense medium, brume::MediumHitsPerTexel); otherwise at most 4096
-   * (surfaces) or 512 (media).
+   * average over a surface (where the direct light is computed, over the
+   * part of a plane its scattered light gathers on, once that is
+   * concentrated enough, brume::MinSurfaceConcentration), and where the
+   * hits are in a medium (over the volume they effectively fill,
+   * brume::HitConcentration, and finer for a dense medium,
+   * brume::MediumHitsPerTexel); otherwise at most 4096 (surfaces) or 512
+   * (media).
    */
   vtkSetMacro(SurfaceResolution, int);
   vtkGetMacro(SurfaceResolution, int);
