@@ -160,6 +160,9 @@ private:
   // view-dependent ones, each on every thread.
   void ForEachObject(const std::function<void(std::size_t, const brume::ParallelFor&)>& step);
   bool Agree(bool ok);
+  // Reports each object's error ("what 'name': error.") and agrees with the
+  // other processes: true when no process had one.
+  bool AgreeOnObjects(const std::vector<std::string>& errors, const char* what);
   bool Distributed() const;
   // Deterministic single scattering: the light, the objects' output grids,
   // and the shadow rays once every texture is built.

@@ -56,8 +56,14 @@ public:
   /// interactions is one this class computes (depth 0 from a delta light).
   bool IsFirstInteraction(std::uint16_t emitter, std::uint8_t depth) const
   {
-    return depth == 0 && emitter >= this->FirstLightId &&
-      emitter < this->FirstLightId + this->NumberOfLights();
+    return IsFirstInteraction(emitter, depth, this->FirstLightId, this->NumberOfLights());
+  }
+  /// The same for `lights` delta lights whose emitter ids start at
+  /// `firstLightId` (Scene::LightEmitterId(0)), before there is a DirectLight.
+  static bool IsFirstInteraction(
+    std::uint16_t emitter, std::uint8_t depth, std::size_t firstLightId, std::size_t lights)
+  {
+    return depth == 0 && emitter >= firstLightId && emitter < firstLightId + lights;
   }
 
   /**

@@ -4,6 +4,8 @@
 // and where a medium's hits gather (HitConcentration).
 #include "brume/Reconstruction.h"
 
+#include "brume/DirectLight.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -76,8 +78,9 @@ void CountHitsOverPilotGrid(const HitArrays& hits, const std::uint32_t* index, s
   for (std::size_t k = 0; k < count; ++k)
   {
     const std::size_t i = index[k];
-    if (direct && hits.Depth[i] == 0 && hits.Emitter[i] >= firstDeltaEmitter &&
-      hits.Emitter[i] < firstDeltaEmitter + deltaLights)
+    if (direct &&
+      DirectLight::IsFirstInteraction(
+        hits.Emitter[i], hits.Depth[i], firstDeltaEmitter, deltaLights))
     {
       continue;
     }

@@ -1,0 +1,240 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// vtkBrumeRadianceTextures' objects created: each object's texture sized
+// from the run's hits (where they gather: the media's and the planar
+// surfaces' pilot grids, summed across processes), each object's owner in
+// a distributed run, and the output grids of the direct light.
+#include "vtkBrumeRadianceTextures.h"
+
+#include "vtkAlgorithm.h"
+#include "vtkBrumeProcesses.h"
+#include "vtkDataArray.h"
+#include "vtkDataObject.h"
+#include "vtkFieldData.h"
+#include "vtkPartitionedDataSet.h"
+#include "vtkPartitionedDataSetCollection.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace
+{
+
+// The per-vertex texture coordinates of a scene surface, if it has some.
+std::vector<std::array<float, 2>> TextureCoordinates(vtkPolyData* polyData)
+{
+  std::vector<std::array<float, 2>> tcoords;
+  vtkDataArray* tc = polyData->GetPointData()->GetTCoords();
+  if (tc && tc->GetNumberOfComponents() >= 2)
+  {
+    tcoords.resize(static_cast<std::size_t>(tc->GetNumberOfTuples()));
+    for (vtkIdType i = 0; i < tc->GetNumberOfTuples(); ++i)
+    {
+      tcoords[i] = { static_cast<float>(tc->GetComponent(i, 0)),
+        static_cast<float>(tc->GetComponent(i, 1)) };
+    }
+  }
+  return tcoords;
+}
+}
+
+std::array<int, 3> vtkBrumeRadianceTextures::FixedResolution(const brume::Vec3& extent, int n)
+{
+  const float longest = MaxComponent(extent);
+  std::array<int, 3> res{ 1, 1, 1 };
+  for (int a = 0; a < 3; ++a)
+  {
+    if (extent[a] > 0.f)
+    {
+      res[a] = std::max(1, static_cast<int>(std::lround(n * extent[a] / longest)));
+    }
+  }
+  return res;
+}
+
+std::unique_ptr<brume::ObjectRadiance> vtkBrumeRadianceTextures::CreateObject(std::size_t o,
+  std::size_t hitCount, double concentration, const vtkBrumeReconstructionSettings& settings)
+{
+  const auto& source = this->Sources[o];
+  vtkDataObject* sceneObject =
+    this->SceneCollection->GetPartitionedDataSet(source.CollectionIndex)->GetPartition(0);
+  vtkDataArray* override = sceneObject->GetFieldData()->GetArray("BrumeTextureResolution");
+  const int perObject =
+    override && override->GetNumberOfTuples() > 0 ? static_cast<int>(override->GetTuple1(0)) : 0;
+  if (hitCount == 0)
+  {
+    vtkWarningWithObjectMacro(this->Filter,
+      "Object '" << source.Name
+                 << "' received no particle: its texture holds only its "
+                    "emission (more particles, or a light that reaches it).");
+  }
+  // The object's own resolution, the filter's, or one chosen from its hits.
+  bool tooLarge = false;
+  auto resolution =
+    [&](const brume::Vec3& extent, int global, int maximum, int automatic, double hitsPerTexel)
+  {
+    const int fixed = perObject > 0 ? perObject : global;
+    if (fixed > maximum)
+    {
+      vtkErrorWithObjectMacro(this->Filter,
+        "BrumeTextureResolution of '" << source.Name << "' exceeds " << maximum << ".");
+      tooLarge = true;
+      return std::array<int, 3>{ 0, 0, 0 };
+    }
+    return fixed > 0 ? FixedResolution(extent, fixed)
+                     : brume::ChooseResolution(extent, hitCount, hitsPerTexel, 4, automatic);
+  };
+  std::unique_ptr<brume::ObjectRadiance> radiance;
+  const int refinement = settings.HistogramRefinement;
+  if (!this->Scene.IsMedium(o))
+  {
+    const brume::Surface& surface = this->Scene.Surfaces[o];
+    const auto tcoords = TextureCoordinates(vtkPolyData::SafeDownCast(sceneObject));
+    brume::SurfaceChart chart = brume::MakeChart(surface, tcoords.empty() ? nullptr : &tcoords);
+    // Evenly lit surfaces keep their texels (brume::MinSurfaceConcentration).
+    const double factor = concentration >= brume::MinSurfaceConcentration ? concentration : 1.0;
+    const auto res = resolution(brume::Vec3(chart.Width, chart.Height, 0.f),
+      settings.SurfaceResolution, MaxSurfaceResolution, 1024, settings.RadiosityThreshold / factor);
+    if (!tooLarge)
+    {
+      radiance.reset(new brume::ObjectRadiance(surface, chart, { res[0], res[1] }, refinement));
+    }
+  }
+  else
+  {
+    const brume::Medium& medium = this->Scene.Media[o - this->Scene.Surfaces.size()];
+    const auto res =
+      resolution(medium.Bounds.Extent(), settings.MediumResolution, MaxMediumResolution, 256,
+        brume::MediumHitsPerTexel(medium, hitCount, settings.RadiosityThreshold) / concentration);
+    if (!tooLarge)
+    {
+      radiance.reset(new brume::ObjectRadiance(medium, res, refinement));
+    }
+  }
+  return radiance;
+}
+
+bool vtkBrumeRadianceTextures::CreateObjects(const vtkBrumeReconstructionSettings& settings,
+  const brume::HitArrays& hits, const brume::ObjectHits& groups,
+  const vtkBrumeHitConversion::RunInfo& run)
+{
+  // Resolutions follow the hits of the whole run, on every process; from
+  // the first batch of a run traced in batches, its hits scaled to the run.
+  // After the counts of every object come the hits of the media and of the
+  // planar surfaces counted over their pilot grids (where the hits are,
+  // brume::HitConcentration; a surface's without those the direct light
+  // replaces).
+  const double scale = run.Particles / (run.EndParticle - run.FirstParticle);
+  const std::size_t objects = this->Scene.NumberOfObjects();
+  const std::size_t surfaces = this->Scene.Surfaces.size();
+  std::vector<vtkTypeInt64> counts(objects);
+  for (std::size_t o = 0; o < objects; ++o)
+  {
+    counts[o] = static_cast<vtkTypeInt64>(
+      std::llround(scale * static_cast<double>(groups.Offset[o + 1] - groups.Offset[o])));
+  }
+  std::vector<std::size_t> pilotStart(objects + 1, objects);
+  // Surfaces only where the direct light of delta lights is computed: their
+  // scattered light gathers around its patches. Lit by emissive surfaces
+  // alone (the default scene), walls are lit evenly and skip the pass.
+  const std::size_t deltaLights = settings.DirectLightResolution > 0 && hits.Emitter && hits.Depth
+    ? this->Scene.Lights.size()
+    : 0;
+  for (std::size_t o = 0; o < objects; ++o)
+  {
+    const std::uint32_t* index = groups.Index.data() + groups.Offset[o];
+    const std::size_t count = groups.Offset[o + 1] - groups.Offset[o];
+    std::vector<std::int64_t> pilot;
+    brume::PlanarFrame frame;
+    if (o >= surfaces)
+    {
+      brume::CountHitsOverPilotGrid(
+        hits, index, count, this->Scene.Media[o - surfaces].Bounds, pilot);
+    }
+    else if (deltaLights > 0 && this->Scene.Surfaces[o].ComputePlanarFrame(frame))
+    {
+      brume::CountHitsOverPilotGrid(
+        hits, index, count, frame, this->Scene.LightEmitterId(0), deltaLights, pilot);
+    }
+    counts.insert(counts.end(), pilot.begin(), pilot.end());
+    pilotStart[o + 1] = pilotStart[o] + pilot.size();
+  }
+  if (this->Distributed() && !counts.empty())
+  {
+    vtkBrumeProcesses::Sum(this->Controller, counts);
+    this->Reduction.reset(new vtkBrumeHistogramReduction(this->Controller));
+  }
+  for (std::size_t o = 0; o < objects; ++o)
+  {
+    const double concentration = pilotStart[o + 1] > pilotStart[o]
+      ? brume::HitConcentration(
+          std::vector<std::int64_t>(counts.begin() + static_cast<std::ptrdiff_t>(pilotStart[o]),
+            counts.begin() + static_cast<std::ptrdiff_t>(pilotStart[o + 1])))
+      : 1.0;
+    auto radiance =
+      this->CreateObject(o, static_cast<std::size_t>(counts[o]), concentration, settings);
+    if (!radiance)
+    {
+      return false;
+    }
+    radiance->SetReduction(this->Reduction.get());
+    this->Objects.push_back(std::move(radiance));
+    this->Outputs.push_back(nullptr);
+  }
+  if (this->Reduction)
+  {
+    // Each texture estimated by one process, the work shared out evenly:
+    // the same resolutions give the same owners on every process.
+    std::vector<double> costs;
+    for (const auto& object : this->Objects)
+    {
+      costs.push_back(object->EstimateCost());
+    }
+    const std::vector<int> owners =
+      brume::AssignOwners(costs, this->Reduction->NumberOfProcesses());
+    for (std::size_t o = 0; o < objects; ++o)
+    {
+      this->Objects[o]->SetOwner(owners[o]);
+    }
+  }
+  return true;
+}
+
+std::array<int, 3> vtkBrumeRadianceTextures::DirectResolution(std::size_t o, int n) const
+{
+  // n texels along the longest axis, at most the density's own resolution,
+  // at most MaxDirectTexels in all.
+  std::array<int, 3> res{ 1, 1, 1 };
+  const double limit = MaxDirectTexels;
+  if (this->Scene.IsMedium(o))
+  {
+    const brume::Medium& medium = this->Scene.Media[o - this->Scene.Surfaces.size()];
+    res = FixedResolution(medium.Bounds.Extent(), n);
+    if (medium.Density)
+    {
+      const std::array<int, 3> native = medium.Density->NativeResolution();
+      for (int a = 0; a < 3; ++a)
+      {
+        res[a] = std::max(1, std::min(res[a], native[a]));
+      }
+    }
+  }
+  else
+  {
+    const brume::SurfaceChart& chart = this->Objects[o]->GetChart();
+    res = FixedResolution(brume::Vec3(chart.Width, chart.Height, 0.f), n);
+  }
+  const double texels = static_cast<double>(res[0]) * res[1] * res[2];
+  if (texels > limit)
+  {
+    const int used = this->Scene.IsMedium(o) ? 3 : 2;
+    const double scale = std::pow(limit / texels, 1.0 / used);
+    for (int a = 0; a < used; ++a)
+    {
+      res[a] = std::max(1, static_cast<int>(std::floor(res[a] * scale)));
+    }
+  }
+  return res;
+}
