@@ -8,7 +8,12 @@
 //                                   (when present) read with finite, non-negative values
 //   TestSceneFiles meshes DIR       one quad written in every surface format and encoding
 //                                   the scene files accept reads back as its two triangles
+//   TestSceneFiles shared SCENES SHARED_VDB_DIR
+//                                   the measurement scenes built on the shared volumes
+//                                   (Testing/Data/SharedVdbScenes) read, and their light
+//                                   reaches their medium; skipped without the volumes
 #include "vtkBrumeDefaultSceneSource.h"
+#include "vtkBrumeHitConversion.h"
 #include "vtkBrumeLightTracer.h"
 #include "vtkBrumeOpenVDBReader.h"
 #include "vtkBrumeSceneReader.h"
@@ -393,6 +398,52 @@ int Meshes(const std::string& dir)
   }
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }
+
+// Every scene of `scenes` reads (its volume where `shared` has it, its
+// medium's box from the grid's) and the particles of its light reach its
+// medium: a measurement scene whose medium the light misses measures nothing.
+int SharedScenes(const std::string& scenes, const std::string& shared)
+{
+  if (!std::filesystem::is_directory(shared))
+  {
+    std::cout << "no shared sample volumes: skipped\n";
+    return EXIT_SUCCESS;
+  }
+  int read = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(scenes))
+  {
+    if (entry.path().extension() != ".json")
+    {
+      continue;
+    }
+    const std::string name = entry.path().filename().string();
+    vtkNew<vtkBrumeSceneReader> reader;
+    reader->SetFileName(entry.path().string().c_str());
+    const bool ok = reader->GetExecutive()->Update() == 1;
+    Check(ok, name + " reads");
+    if (!ok)
+    {
+      continue;
+    }
+    ++read;
+    auto* collection =
+      vtkPartitionedDataSetCollection::SafeDownCast(reader->GetOutputDataObject(0));
+    const vtkIdType objects = collection ? collection->GetNumberOfPartitionedDataSets() : 0;
+    const auto hits = Trace(reader);
+    vtkDataArray* ids = hits->GetPointData()->GetArray(vtkBrumeHitConversion::ObjectIdName);
+    // One medium, listed after the surfaces.
+    vtkIdType inMedium = 0;
+    for (vtkIdType i = 0; ids && i < ids->GetNumberOfTuples(); ++i)
+    {
+      inMedium += static_cast<vtkIdType>(ids->GetTuple1(i)) == objects - 1 ? 1 : 0;
+    }
+    std::cout << name << ": " << objects << " objects, " << hits->GetNumberOfPoints() << " hits, "
+              << inMedium << " in the medium\n";
+    Check(inMedium >= 100, name + ": the light reaches the medium");
+  }
+  Check(read >= 4, "the four shared volumes' scenes are there");
+  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}
 }
 
 int TestSceneFiles(int argc, char* argv[])
@@ -410,7 +461,11 @@ int TestSceneFiles(int argc, char* argv[])
   {
     return Meshes(argv[2]);
   }
+  if (mode == "shared" && argc > 3)
+  {
+    return SharedScenes(argv[2], argv[3]);
+  }
   std::cerr << "usage: TestSceneFiles roundtrip DIR SCENE.json | openvdb DIR [SHARED_VDB_DIR] | "
-               "meshes DIR\n";
+               "meshes DIR | shared SCENES SHARED_VDB_DIR\n";
   return EXIT_FAILURE;
 }
