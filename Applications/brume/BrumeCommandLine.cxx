@@ -188,6 +188,13 @@ void AddRender(CLI::App& app, RenderOptions& o)
   render->add_option("--spp", o.SamplesPerPixel, "samples per pixel of --reference (default 64)")
     ->transform(Integer(1, 1000000, "an integer in [1, 1e6]"))
     ->type_name("N");
+  render
+    ->add_option("--max-depth", o.MaxDepth,
+      "interactions after which particles (and --reference's\n"
+      "paths) stop: 1 renders the light scattered or reflected\n"
+      "once, 2 adds the light scattered twice... (default 1024)")
+    ->transform(Integer(1, 1000000, "an integer in [1, 1e6]"))
+    ->type_name("N");
 }
 
 void AddView(CLI::App& app, ViewOptions& o)

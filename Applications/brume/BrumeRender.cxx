@@ -183,6 +183,7 @@ int RunReference(RenderOptions options, bool png)
   reference->SetSize(options.Width, options.Height);
   reference->SetSamplesPerPixel(options.SamplesPerPixel);
   reference->SetSeed(options.Seed);
+  reference->SetMaximumDepth(options.MaxDepth);
   BrumeShowProgress(reference, "path tracing");
   const auto start = std::chrono::steady_clock::now();
   if (!reference->GetExecutive()->Update())
@@ -320,6 +321,7 @@ int RunRender(RenderOptions options)
   tracer->SetInputConnection(scene->GetOutputPort());
   tracer->SetNumberOfParticles(options.Particles);
   tracer->SetSeed(options.Seed);
+  tracer->SetMaximumDepth(options.MaxDepth);
   double position[3], focal[3], up[3], angle;
   vtkBrumeSceneCamera::GetSceneCamera(scene->GetOutputDataObject(0), position, focal, up, angle);
   vtkNew<vtkBrumeRadianceReconstruction> reconstruction;

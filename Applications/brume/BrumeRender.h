@@ -25,6 +25,7 @@ struct RenderOptions
   long long Batch = 0;    // particles per batch (0: all at once)
   bool Reference = false; // the unbiased path tracer instead of the three phases
   int SamplesPerPixel = 64;
+  int MaxDepth = 1024; // interactions after which a particle or a path stops
   // Which settings the command line gave (a scene file's render settings
   // give the others).
   bool ParticlesSet = false, SizeSet = false, ThresholdSet = false, SeedSet = false,

@@ -106,6 +106,7 @@ int vtkBrumeTimedPipeline::RequestData(
   tracer->SetInputData(scene);
   tracer->SetNumberOfParticles(this->NumberOfParticles);
   tracer->SetSeed(this->Seed);
+  tracer->SetMaximumDepth(this->MaximumDepth);
   vtkNew<vtkBrumeRadianceReconstruction> reconstruction;
   reconstruction->SetInputDataObject(0, scene);
   reconstruction->SetInputConnection(1, tracer->GetOutputPort());
@@ -162,6 +163,7 @@ void vtkBrumeTimedPipeline::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Supersampling: " << this->Supersampling << "\n";
   os << indent << "NumberOfParticles: " << this->NumberOfParticles << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "MaximumDepth: " << this->MaximumDepth << "\n";
   os << indent << "RadiosityThreshold: " << this->RadiosityThreshold << "\n";
   os << indent << "DirectionalRadiance: " << this->DirectionalRadiance << "\n";
   os << indent << "DirectionalOrder: " << this->DirectionalOrder << "\n";

@@ -61,6 +61,14 @@ public:
   ///@}
 
   ///@{
+  /// The light tracer's MaximumDepth (default 1024): 1 keeps the light
+  /// scattered or reflected once (vtkBrumeReferencePathTracer's MaximumDepth
+  /// of the same value renders the same light).
+  vtkSetClampMacro(MaximumDepth, int, 1, 1000000);
+  vtkGetMacro(MaximumDepth, int);
+  ///@}
+
+  ///@{
   /// The reconstruction's radiosity threshold (default 128 hits).
   vtkSetMacro(RadiosityThreshold, double);
   vtkGetMacro(RadiosityThreshold, double);
@@ -97,6 +105,7 @@ protected:
   int Supersampling = 4;
   vtkTypeInt64 NumberOfParticles = 1000000;
   vtkIdType Seed = 0;
+  int MaximumDepth = 1024;
   double RadiosityThreshold = 128.0;
   bool DirectionalRadiance = false;
   int DirectionalOrder = 3;

@@ -137,6 +137,7 @@ int vtkBrumeReferencePathTracer::RequestData(
   brume::PathSettings settings;
   settings.Seed = static_cast<std::uint64_t>(this->Seed);
   settings.SamplesPerPixel = this->SamplesPerPixel;
+  settings.MaxDepth = this->MaximumDepth;
   const brume::PathTracer tracer(scene, caster, settings);
 
   const vtkIdType pixels = static_cast<vtkIdType>(camera.Width) * camera.Height;
@@ -178,5 +179,6 @@ void vtkBrumeReferencePathTracer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Size: " << this->Size[0] << " x " << this->Size[1] << "\n";
   os << indent << "SamplesPerPixel: " << this->SamplesPerPixel << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "MaximumDepth: " << this->MaximumDepth << "\n";
   os << indent << "Camera: " << this->Camera << "\n";
 }

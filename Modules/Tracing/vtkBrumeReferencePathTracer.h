@@ -54,6 +54,19 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Scattering and reflection vertices after which a path stops (default
+   * 1024, in [1, 10^6]), each with its light sample: 1 gives the light
+   * scattered or reflected once toward the eye (single scattering), 2 adds
+   * the light scattered twice, and so on. vtkBrumeLightTracer's
+   * MaximumDepth counts the same interactions from the light's side, so
+   * the two images agree order by order.
+   */
+  vtkSetClampMacro(MaximumDepth, int, 1, 1000000);
+  vtkGetMacro(MaximumDepth, int);
+  ///@}
+
+  ///@{
   /// The camera; without one, the scene's camera (or (0, 0, 4) looking at the origin).
   void SetCamera(vtkCamera* camera);
   vtkGetObjectMacro(Camera, vtkCamera);
@@ -78,6 +91,7 @@ protected:
   int Size[2] = { 256, 256 };
   int SamplesPerPixel = 16;
   vtkIdType Seed = 0;
+  int MaximumDepth = 1024;
   vtkCamera* Camera = nullptr;
   vtkSmartPointer<vtkLightCollection> Lights;
 

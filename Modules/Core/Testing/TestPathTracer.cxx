@@ -59,6 +59,44 @@ TEST(PathTracer, FurnaceRadianceIsEverywhereTheSteadyState)
   EXPECT_NEAR(sum / 256, 2.0, 4.0 * std::sqrt(var) / 256);
 }
 
+TEST(PathTracer, PathsStoppedAfterKVerticesCarryKReflections)
+{
+  // The furnace's walls without the medium: a path stopped after k
+  // vertices sees L_e (1 + rho + ... + rho^k). Its last vertex's light
+  // sample takes the whole weight (no BRDF-sampled ray follows to meet the
+  // emitter, as multiple importance sampling would otherwise count on).
+  Material wall;
+  wall.Reflectance = Vec3(0.5f);
+  wall.Emission = Vec3(1.f);
+  Scene scene;
+  scene.Surfaces = ClosedBox(wall);
+  ASSERT_EQ(scene.Validate(), "");
+  const RayCaster caster(scene);
+  PinholeCamera camera;
+  camera.Position = { 0.1f, 0.2f, 0.3f };
+  camera.FocalPoint = { 0.f, 0.f, -1.f };
+  camera.Width = camera.Height = 8;
+  camera.ViewAngle = 90.f;
+  for (int k = 1; k <= 3; ++k)
+  {
+    PathSettings settings;
+    settings.SamplesPerPixel = 64;
+    settings.MaxDepth = k;
+    settings.RouletteDepth = k + 1; // no roulette: every path runs its k vertices
+    const PathTracer tracer(scene, caster, settings);
+    std::vector<float> mean(3 * 64), variance(3 * 64);
+    tracer.RenderRows(camera, 0, 8, mean.data(), variance.data());
+    double sum = 0.0, var = 0.0;
+    for (int p = 0; p < 64; ++p)
+    {
+      sum += mean[3 * p];
+      var += variance[3 * p];
+    }
+    const double expected = 2.0 - std::pow(0.5, k); // 1 + 1/2 + ... + 1/2^k
+    EXPECT_NEAR(sum / 64, expected, 4.0 * std::sqrt(var) / 64 + 1e-6) << k << " vertices";
+  }
+}
+
 TEST(PathTracer, ThinMediumMatchesSingleScatteringQuadrature)
 {
   // A point light in an optically thin medium (tau ~ 0.02: multiple

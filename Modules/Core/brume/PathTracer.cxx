@@ -198,6 +198,7 @@ Vec3 PathTracer::Radiance(Vec3 origin, Vec3 direction, Random& rng) const
   float previousPdf = 0.f;
   for (int depth = 0; depth < this->Settings.MaxDepth; ++depth)
   {
+    const bool last = depth + 1 == this->Settings.MaxDepth;
     SurfaceHit hit;
     const bool hitSurface = this->Caster.Intersect(origin, direction, 0.f, Infinity, hit);
     const float tSurface = hitSurface ? hit.T : Infinity;
@@ -224,7 +225,9 @@ Vec3 PathTracer::Radiance(Vec3 origin, Vec3 direction, Random& rng) const
           !this->Caster.Intersect(p, ls.Direction, 0.f, ls.Distance * (1.f - 1e-4f), blocker);
         if (visible)
         {
-          const float w = ls.Delta ? 1.f : PowerHeuristic(ls.Pdf, f);
+          // At the last vertex no phase-sampled ray follows to meet the
+          // light: its sample takes the whole weight.
+          const float w = ls.Delta || last ? 1.f : PowerHeuristic(ls.Pdf, f);
           L += beta * ls.Radiance * tr * (f * w / ls.Pdf);
         }
       }
@@ -274,7 +277,7 @@ Vec3 PathTracer::Radiance(Vec3 origin, Vec3 direction, Random& rng) const
             !this->Caster.Intersect(q, ls.Direction, 0.f, ls.Distance * (1.f - 1e-4f), blocker))
           {
             const float w =
-              ls.Delta ? 1.f : PowerHeuristic(ls.Pdf, BrdfPdf(m, n, wo, ls.Direction));
+              ls.Delta || last ? 1.f : PowerHeuristic(ls.Pdf, BrdfPdf(m, n, wo, ls.Direction));
             L += beta * f * ls.Radiance * tr * (Dot(ls.Direction, n) * w / ls.Pdf);
           }
         }
