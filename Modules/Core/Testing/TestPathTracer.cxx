@@ -18,17 +18,34 @@ using brume::testing::ClosedBox;
 
 namespace
 {
-}
-
-TEST(PathTracer, FurnaceRadianceIsEverywhereTheSteadyState)
+// The furnace: walls emitting L_e = 1 and reflecting rho = 0.5 all round.
+Scene Furnace()
 {
-  // Walls emitting L_e = 1 and reflecting rho = 0.5, a scattering medium of
-  // albedo 1 inside: the radiance is L_e / (1 - rho) = 2 everywhere.
   Material wall;
   wall.Reflectance = Vec3(0.5f);
   wall.Emission = Vec3(1.f);
   Scene scene;
   scene.Surfaces = ClosedBox(wall);
+  return scene;
+}
+
+// A camera inside the furnace, off its centre, n x n pixels.
+PinholeCamera InsideTheFurnace(int n)
+{
+  PinholeCamera camera;
+  camera.Position = { 0.1f, 0.2f, 0.3f };
+  camera.FocalPoint = { 0.f, 0.f, -1.f };
+  camera.Width = camera.Height = n;
+  camera.ViewAngle = 90.f;
+  return camera;
+}
+}
+
+TEST(PathTracer, FurnaceRadianceIsEverywhereTheSteadyState)
+{
+  // A scattering medium of albedo 1 inside the furnace: the radiance is
+  // L_e / (1 - rho) = 2 everywhere.
+  Scene scene = Furnace();
   Medium fog;
   fog.Name = "fog";
   fog.Bounds = { Vec3(-0.6f), Vec3(0.6f) };
@@ -41,11 +58,7 @@ TEST(PathTracer, FurnaceRadianceIsEverywhereTheSteadyState)
   PathSettings settings;
   settings.SamplesPerPixel = 64;
   const PathTracer tracer(scene, caster, settings);
-  PinholeCamera camera;
-  camera.Position = { 0.1f, 0.2f, 0.3f };
-  camera.FocalPoint = { 0.f, 0.f, -1.f };
-  camera.Width = camera.Height = 16;
-  camera.ViewAngle = 90.f;
+  const PinholeCamera camera = InsideTheFurnace(16);
   std::vector<float> mean(3 * 256), variance(3 * 256);
   tracer.RenderRows(camera, 0, 16, mean.data(), variance.data());
   double sum = 0.0, var = 0.0;
@@ -65,18 +78,10 @@ TEST(PathTracer, PathsStoppedAfterKVerticesCarryKReflections)
   // vertices sees L_e (1 + rho + ... + rho^k). Its last vertex's light
   // sample takes the whole weight (no BRDF-sampled ray follows to meet the
   // emitter, as multiple importance sampling would otherwise count on).
-  Material wall;
-  wall.Reflectance = Vec3(0.5f);
-  wall.Emission = Vec3(1.f);
-  Scene scene;
-  scene.Surfaces = ClosedBox(wall);
+  const Scene scene = Furnace();
   ASSERT_EQ(scene.Validate(), "");
   const RayCaster caster(scene);
-  PinholeCamera camera;
-  camera.Position = { 0.1f, 0.2f, 0.3f };
-  camera.FocalPoint = { 0.f, 0.f, -1.f };
-  camera.Width = camera.Height = 8;
-  camera.ViewAngle = 90.f;
+  const PinholeCamera camera = InsideTheFurnace(8);
   for (int k = 1; k <= 3; ++k)
   {
     PathSettings settings;

@@ -7,6 +7,7 @@
 #include "vtkBrumeSceneConversion.h"
 #include "vtkCellArray.h"
 #include "vtkFieldData.h"
+#include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPartitionedDataSetCollection.h"
@@ -84,6 +85,35 @@ inline void AddMedium(vtkPartitionedDataSetCollection* scene, const std::string&
   vtkBrumeSceneConversion::AppendTuple(box->GetFieldData(), "BrumeSigmaS", sigmaS, 3);
   vtkBrumeSceneConversion::AppendTuple(box->GetFieldData(), "BrumeG", &g, 1);
   vtkBrumeSceneConversion::AddObject(scene, box, name);
+}
+
+/// Appends a heterogeneous medium: `points`^3 density samples (point
+/// values) over [-1, 1]^3, density(x, y, z) at each, with sigma_a and
+/// sigma_s per unit density (RGB) and asymmetry g.
+template <typename Density>
+inline void AddDensityGrid(vtkPartitionedDataSetCollection* scene, const std::string& name,
+  int points, Density density, const double sigmaA[3], const double sigmaS[3], double g)
+{
+  vtkNew<vtkImageData> grid;
+  grid->SetOrigin(-1, -1, -1);
+  const double spacing = 2.0 / (points - 1);
+  grid->SetSpacing(spacing, spacing, spacing);
+  grid->SetDimensions(points, points, points);
+  vtkNew<vtkFloatArray> values;
+  values->SetName("density");
+  values->SetNumberOfTuples(static_cast<vtkIdType>(points) * points * points);
+  for (int k = 0; k < points; ++k)
+    for (int j = 0; j < points; ++j)
+      for (int i = 0; i < points; ++i)
+      {
+        values->SetValue((static_cast<vtkIdType>(k) * points + j) * points + i,
+          static_cast<float>(density(-1 + i * spacing, -1 + j * spacing, -1 + k * spacing)));
+      }
+  grid->GetPointData()->SetScalars(values);
+  vtkBrumeSceneConversion::AppendTuple(grid->GetFieldData(), "BrumeSigmaA", sigmaA, 3);
+  vtkBrumeSceneConversion::AppendTuple(grid->GetFieldData(), "BrumeSigmaS", sigmaS, 3);
+  vtkBrumeSceneConversion::AppendTuple(grid->GetFieldData(), "BrumeG", &g, 1);
+  vtkBrumeSceneConversion::AddObject(scene, grid, name);
 }
 
 /// Adds a light of `type` ("point", "spot", "directional") to the scene's

@@ -104,8 +104,8 @@ bool Brighter(vtkImageData* image, int bx, int by, double level)
   return false;
 }
 
-bool Compare(const char* name, vtkPartitionedDataSetCollection* scene, int argc, char* argv[],
-  int spp = 2048)
+bool Compare(
+  const char* name, vtkPartitionedDataSetCollection* scene, int argc, char* argv[], int spp = 2048)
 {
   vtkNew<vtkBrumeReferencePathTracer> reference;
   reference->SetInputData(scene);

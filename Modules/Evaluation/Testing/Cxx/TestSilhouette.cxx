@@ -34,28 +34,11 @@ constexpr double Distance = 4.0;   // eye to the ball's centre
 vtkSmartPointer<vtkPartitionedDataSetCollection> BallScene()
 {
   auto scene = vtkSmartPointer<vtkPartitionedDataSetCollection>::New();
-  vtkNew<vtkImageData> grid;
-  grid->SetOrigin(-1, -1, -1);
-  const double spacing = 2.0 / (Points - 1);
-  grid->SetSpacing(spacing, spacing, spacing);
-  grid->SetDimensions(Points, Points, Points);
-  vtkNew<vtkFloatArray> density;
-  density->SetName("density");
-  density->SetNumberOfTuples(static_cast<vtkIdType>(Points) * Points * Points);
-  for (int k = 0; k < Points; ++k)
-    for (int j = 0; j < Points; ++j)
-      for (int i = 0; i < Points; ++i)
-      {
-        const double x = -1 + i * spacing, y = -1 + j * spacing, z = -1 + k * spacing;
-        density->SetValue((static_cast<vtkIdType>(k) * Points + j) * Points + i,
-          std::sqrt(x * x + y * y + z * z) < 0.6 ? 8.f : 0.f);
-      }
-  grid->GetPointData()->SetScalars(density);
-  const double sigmaA[3] = { 0.1, 0.1, 0.1 }, sigmaS[3] = { 0.9, 0.9, 0.9 }, g = 0.3;
-  vtkBrumeSceneConversion::AppendTuple(grid->GetFieldData(), "BrumeSigmaA", sigmaA, 3);
-  vtkBrumeSceneConversion::AppendTuple(grid->GetFieldData(), "BrumeSigmaS", sigmaS, 3);
-  vtkBrumeSceneConversion::AppendTuple(grid->GetFieldData(), "BrumeG", &g, 1);
-  vtkBrumeSceneConversion::AddObject(scene, grid, "ball");
+  const double sigmaA[3] = { 0.1, 0.1, 0.1 }, sigmaS[3] = { 0.9, 0.9, 0.9 };
+  AddDensityGrid(
+    scene, "ball", Points,
+    [](double x, double y, double z) { return std::sqrt(x * x + y * y + z * z) < 0.6 ? 8.0 : 0.0; },
+    sigmaA, sigmaS, 0.3);
   const double light[3] = { 0.3, -0.4, -1.0 };
   AddDirectionalLight(scene, light, 5.0);
   const double eye[3] = { 0, 0, Distance }, target[3] = { 0, 0, 0 };

@@ -40,35 +40,18 @@ constexpr double Rounding = 1e-5;
 vtkSmartPointer<vtkPartitionedDataSetCollection> CloudScene()
 {
   auto scene = vtkSmartPointer<vtkPartitionedDataSetCollection>::New();
-  vtkNew<vtkImageData> grid;
-  grid->SetOrigin(-1, -1, -1);
-  const double spacing = 2.0 / (Points - 1);
-  grid->SetSpacing(spacing, spacing, spacing);
-  grid->SetDimensions(Points, Points, Points);
-  vtkNew<vtkFloatArray> density;
-  density->SetName("density");
-  density->SetNumberOfTuples(static_cast<vtkIdType>(Points) * Points * Points);
-  for (int k = 0; k < Points; ++k)
-    for (int j = 0; j < Points; ++j)
-      for (int i = 0; i < Points; ++i)
-      {
-        const double x = -1 + i * spacing, y = -1 + j * spacing, z = -1 + k * spacing;
-        auto blob = [&](double cx, double cy, double cz, double r)
-        {
-          const double d2 = (x - cx) * (x - cx) + (y - cy) * (y - cy) + (z - cz) * (z - cz);
-          return std::exp(-d2 / (r * r));
-        };
-        const double ripples = 0.75 + 0.25 * std::sin(9.0 * x) * std::cos(7.0 * y + 3.0 * z);
-        const double d = (blob(-0.3, 0.1, 0.0, 0.45) + 0.8 * blob(0.35, -0.1, 0.1, 0.35)) * ripples;
-        density->SetValue(
-          (static_cast<vtkIdType>(k) * Points + j) * Points + i, static_cast<float>(3.0 * d));
-      }
-  grid->GetPointData()->SetScalars(density);
-  const double sigmaA[3] = { 0.2, 0.2, 0.2 }, sigmaS[3] = { 1.8, 1.6, 1.4 }, g = 0.4;
-  vtkBrumeSceneConversion::AppendTuple(grid->GetFieldData(), "BrumeSigmaA", sigmaA, 3);
-  vtkBrumeSceneConversion::AppendTuple(grid->GetFieldData(), "BrumeSigmaS", sigmaS, 3);
-  vtkBrumeSceneConversion::AppendTuple(grid->GetFieldData(), "BrumeG", &g, 1);
-  vtkBrumeSceneConversion::AddObject(scene, grid, "cloud");
+  auto cloud = [](double x, double y, double z)
+  {
+    auto blob = [&](double cx, double cy, double cz, double r)
+    {
+      const double d2 = (x - cx) * (x - cx) + (y - cy) * (y - cy) + (z - cz) * (z - cz);
+      return std::exp(-d2 / (r * r));
+    };
+    const double ripples = 0.75 + 0.25 * std::sin(9.0 * x) * std::cos(7.0 * y + 3.0 * z);
+    return 3.0 * (blob(-0.3, 0.1, 0.0, 0.45) + 0.8 * blob(0.35, -0.1, 0.1, 0.35)) * ripples;
+  };
+  const double sigmaA[3] = { 0.2, 0.2, 0.2 }, sigmaS[3] = { 1.8, 1.6, 1.4 };
+  AddDensityGrid(scene, "cloud", Points, cloud, sigmaA, sigmaS, 0.4);
   const double f0[3] = { -3, -1.2, -3 }, f1[3] = { -3, -1.2, 3 }, f2[3] = { 3, -1.2, 3 },
                f3[3] = { 3, -1.2, -3 };
   AddQuad(scene, "floor", f0, f1, f2, f3);
