@@ -147,6 +147,12 @@ void AddSceneOptions(CLI::App* command, RenderOptions& o, const SceneHelp& help)
     "directional lights from the particles too, instead of\n"
     "computing it with shadow rays (sharper shafts and\n"
     "shadows; the default)");
+  command->add_flag_callback(
+    "--no-centroid-matching", [&o]() { o.CentroidMatching = false; },
+    "keep a medium's texel estimates as they are, instead\n"
+    "of matching the texture to where each belongs (its\n"
+    "region's centroid; the default, truer at a dense\n"
+    "cloud's edge)");
 }
 
 void AddRender(CLI::App& app, RenderOptions& o)

@@ -330,6 +330,7 @@ int RunRender(RenderOptions options)
   reconstruction->SetEyePosition(position);
   reconstruction->SetRadiosityThreshold(options.Threshold);
   reconstruction->SetDirectLighting(options.DirectLight);
+  reconstruction->SetCentroidMatching(options.CentroidMatching);
   if (rank == 0)
   {
     BrumeShowProgress(tracer, "particle tracing");

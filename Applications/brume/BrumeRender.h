@@ -19,8 +19,9 @@ struct RenderOptions
   int Height = 512;
   double Exposure = 1.0;
   double Threshold = 128.0;
-  bool DirectLight = true; // deterministic single scattering (vtkBrumeRadianceReconstruction)
-  int Supersample = 1;     // render K x K pixels per output pixel and average them
+  bool DirectLight = true;      // deterministic single scattering (vtkBrumeRadianceReconstruction)
+  bool CentroidMatching = true; // media textures matched to their estimates' centroids
+  int Supersample = 1;          // render K x K pixels per output pixel and average them
   bool Timings = false;
   long long Batch = 0;    // particles per batch (0: all at once)
   bool Reference = false; // the unbiased path tracer instead of the three phases

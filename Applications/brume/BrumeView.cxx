@@ -103,6 +103,7 @@ public:
     this->Reconstruction->SetCamera(camera);
     this->Reconstruction->SetRadiosityThreshold(this->Options.Render.Threshold);
     this->Reconstruction->SetDirectLighting(this->Options.Render.DirectLight);
+    this->Reconstruction->SetCentroidMatching(this->Options.Render.CentroidMatching);
     this->Reconstruction->AccumulateParticlesOn();
     this->Reconstruction->SetDirectionalRadiance(this->Options.Directional);
     this->Reconstruction->SetDirectionalOrder(this->Options.Order);

@@ -112,6 +112,7 @@ int vtkBrumeTimedPipeline::RequestData(
   reconstruction->SetInputConnection(1, tracer->GetOutputPort());
   reconstruction->SetCamera(camera);
   reconstruction->SetRadiosityThreshold(this->RadiosityThreshold);
+  reconstruction->SetCentroidMatching(this->CentroidMatching);
   reconstruction->SetDirectionalRadiance(this->DirectionalRadiance);
   reconstruction->SetDirectionalOrder(this->DirectionalOrder);
   if (!reconstruction->GetExecutive()->Update())
@@ -165,6 +166,7 @@ void vtkBrumeTimedPipeline::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "MaximumDepth: " << this->MaximumDepth << "\n";
   os << indent << "RadiosityThreshold: " << this->RadiosityThreshold << "\n";
+  os << indent << "CentroidMatching: " << this->CentroidMatching << "\n";
   os << indent << "DirectionalRadiance: " << this->DirectionalRadiance << "\n";
   os << indent << "DirectionalOrder: " << this->DirectionalOrder << "\n";
   os << indent << "MeasureNewView: " << this->MeasureNewView << "\n";

@@ -75,6 +75,13 @@ public:
   ///@}
 
   ///@{
+  /// The reconstruction's CentroidMatching (default on).
+  vtkSetMacro(CentroidMatching, bool);
+  vtkGetMacro(CentroidMatching, bool);
+  vtkBooleanMacro(CentroidMatching, bool);
+  ///@}
+
+  ///@{
   /// Directional (spherical-harmonics) media, and their order (default off, 3).
   vtkSetMacro(DirectionalRadiance, bool);
   vtkGetMacro(DirectionalRadiance, bool);
@@ -107,6 +114,7 @@ protected:
   vtkIdType Seed = 0;
   int MaximumDepth = 1024;
   double RadiosityThreshold = 128.0;
+  bool CentroidMatching = true;
   bool DirectionalRadiance = false;
   int DirectionalOrder = 3;
   bool MeasureNewView = true;

@@ -231,7 +231,8 @@ bool vtkBrumeRadianceReconstruction::Plan(const vtkBrumeReconstructionRequest& r
   // view-dependent textures follow the viewpoint.
   const vtkBrumeReconstructionSettings settings{ this->RadiosityThreshold, this->SurfaceResolution,
     this->MediumResolution, this->HistogramRefinement,
-    this->DirectLighting ? this->DirectLightResolution : 0, this->MirrorResolution };
+    this->DirectLighting ? this->DirectLightResolution : 0, this->MirrorResolution,
+    this->CentroidMatching };
   vtkBrumeRadianceTextures* textures = this->Textures.get();
   const auto& run = request.Run;
   const bool sameSettings = textures && textures->SameSceneAndSettings(request, settings);
@@ -302,6 +303,7 @@ void vtkBrumeRadianceReconstruction::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MirrorResolution: " << this->MirrorResolution << "\n";
   os << indent << "MediumResolution: " << this->MediumResolution << "\n";
   os << indent << "HistogramRefinement: " << this->HistogramRefinement << "\n";
+  os << indent << "CentroidMatching: " << this->CentroidMatching << "\n";
   os << indent << "IncrementalUpdate: " << this->IncrementalUpdate << "\n";
   os << indent << "NumberOfTextureBuilds: " << this->NumberOfTextureBuilds << "\n";
   os << indent << "NumberOfViewUpdates: " << this->NumberOfViewUpdates << "\n";

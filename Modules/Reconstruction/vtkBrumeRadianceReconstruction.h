@@ -265,6 +265,22 @@ public:
   vtkGetMacro(HistogramRefinement, int);
   ///@}
 
+  ///@{
+  /**
+   * Media: match the texture to where its estimates belong (default on).
+   * A texel's estimate is a mean over its region, exact for a linearly
+   * varying source at the region's sigma_t-weighted centroid; across a
+   * cloud's edge that centroid lies inside the cloud, and interpolating the
+   * estimates at the texels' centres made a dense cloud's visible skin too
+   * bright. On, the texture is the one whose trilinear interpolation meets
+   * every estimate at its centroid (brume::CentroidMatching). Off, the
+   * texture holds the estimates themselves, as the paper's does.
+   */
+  vtkSetMacro(CentroidMatching, bool);
+  vtkGetMacro(CentroidMatching, bool);
+  vtkBooleanMacro(CentroidMatching, bool);
+  ///@}
+
 protected:
   vtkBrumeRadianceReconstruction();
   ~vtkBrumeRadianceReconstruction() override;
@@ -278,6 +294,7 @@ protected:
   int MediumResolution = 0;
   int MirrorResolution = 512;
   int HistogramRefinement = 2;
+  bool CentroidMatching = true;
   vtkCamera* Camera = nullptr;
   vtkMultiProcessController* Controller = nullptr;
   vtkTypeInt64 LastReductionBytes = 0;

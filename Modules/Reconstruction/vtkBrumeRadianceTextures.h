@@ -55,6 +55,7 @@ struct vtkBrumeReconstructionSettings
   int HistogramRefinement = 0;
   int DirectLightResolution = 0; // 0: no deterministic single scattering
   int MirrorResolution = 0;
+  bool CentroidMatching = true;
 
   bool operator==(const vtkBrumeReconstructionSettings& o) const
   {
@@ -63,7 +64,7 @@ struct vtkBrumeReconstructionSettings
       this->MediumResolution == o.MediumResolution &&
       this->HistogramRefinement == o.HistogramRefinement &&
       this->DirectLightResolution == o.DirectLightResolution &&
-      this->MirrorResolution == o.MirrorResolution;
+      this->MirrorResolution == o.MirrorResolution && this->CentroidMatching == o.CentroidMatching;
   }
 };
 

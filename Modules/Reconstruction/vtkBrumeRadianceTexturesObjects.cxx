@@ -180,6 +180,7 @@ bool vtkBrumeRadianceTextures::CreateObjects(const vtkBrumeReconstructionSetting
       return false;
     }
     radiance->SetReduction(this->Reduction.get());
+    radiance->SetCentroidMatching(settings.CentroidMatching);
     this->Objects.push_back(std::move(radiance));
     this->Outputs.push_back(nullptr);
   }

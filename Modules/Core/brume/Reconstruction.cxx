@@ -368,6 +368,10 @@ std::string ObjectRadiance::EstimateTexture(const ParallelFor& parallelFor)
   {
     this->BuildAreaTable();
   }
+  if (this->MediumRef && this->MediumRef->Density)
+  {
+    this->FindCentroids(parallelFor);
+  }
   this->Estimate(parallelFor);
   return this->Saturation();
 }
@@ -566,6 +570,10 @@ void ObjectRadiance::Estimate(const ParallelFor& parallelFor)
         }
       }
     });
+  if (this->MediumRef && this->MatchingCentroids && !this->Matching.Empty())
+  {
+    this->Matching.Apply(this->Radiance, 3, parallelFor);
+  }
   if (this->HasDirect())
   {
     this->CombineDirect(parallelFor);

@@ -35,6 +35,7 @@
 #define brume_Reconstruction_h
 
 #include "brume/BrickedGrid.h"
+#include "brume/CentroidMatching.h"
 #include "brume/DensityEstimation.h"
 #include "brume/ExactHistogram.h"
 #include "brume/Grouping.h"
@@ -293,6 +294,12 @@ public:
   void SetLobeCast(bool cast) { this->LobeCast = cast; }
   bool IsLobeCast() const { return this->LobeCast; }
 
+  /// Media: whether the texture is matched to where its estimates belong,
+  /// its regions' sigma_t-weighted centroids (brume::CentroidMatching; the
+  /// default), or holds the estimates as they are. Call before Estimate().
+  void SetCentroidMatching(bool match) { this->MatchingCentroids = match; }
+  bool GetCentroidMatching() const { return this->MatchingCentroids; }
+
   /// What a renderer shows: a mirror's reflection; with direct light, the
   /// output grid's texels (RGB, x fastest; media: the source radiance and
   /// sigma_t); otherwise the texture's (GetResolution(), GetRadiance(),
@@ -514,6 +521,9 @@ private:
   // density's own resolution.
   void SampleNativeDensity(const ParallelFor& parallelFor);
   void BuildDensityTable();
+  // Media: where each texel's estimate belongs (its region's sigma_t-weighted
+  // centroid), for the texture whose interpolation meets it there.
+  void FindCentroids(const ParallelFor& parallelFor);
 
   const Surface* SurfaceRef = nullptr;
   const Medium* MediumRef = nullptr;
@@ -557,12 +567,15 @@ private:
   ExactHistogram WeightSums;
   ExactHistogram ValueSums;
 
-  SummedAreaTable WeightTable;  // incident flux (mean over channels): drives the growth
-  SummedAreaTable ValueTable;   // weighted flux, RGB
-  SummedAreaTable AreaTable;    // surfaces: world area per cell
-  SummedAreaTable DensityTable; // heterogeneous media: integral of the density per cell
-  BrickedGrid NativeDensity;    // the density's mean per native cell
-  double EmptyIntegral = 0.0;   // regions below hold no medium
+  SummedAreaTable WeightTable;    // incident flux (mean over channels): drives the growth
+  SummedAreaTable ValueTable;     // weighted flux, RGB
+  SummedAreaTable AreaTable;      // surfaces: world area per cell
+  SummedAreaTable DensityTable;   // heterogeneous media: integral of the density per cell
+  SummedAreaTable DensityMoments; // and its first moments (histogram-cell coordinates)
+  CentroidMatching Matching;      // media: the regions' centroids
+  bool MatchingCentroids = true;
+  BrickedGrid NativeDensity;  // the density's mean per native cell
+  double EmptyIntegral = 0.0; // regions below hold no medium
   const DirectLight* Direct = nullptr;
   std::array<int, 3> DirectDims{ 0, 0, 0 };
   std::vector<float> Arrivals; // per output texel and light: irradiance RGB, direction

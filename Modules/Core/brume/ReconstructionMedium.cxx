@@ -53,6 +53,7 @@ struct Overlap
 {
   int Coarse;
   double Fraction;
+  double Centre; // of the overlap, in coarse cells from coarseLo
 };
 std::vector<std::vector<Overlap>> Overlaps(
   int n, double lo, double hi, int m, double coarseLo, double coarseHi)
@@ -70,7 +71,8 @@ std::vector<std::vector<Overlap>> Overlaps(
         std::min(b, coarseLo + (c + 1) * coarse) - std::max(a, coarseLo + c * coarse);
       if (overlap > 0.0)
       {
-        result[i].push_back({ c, overlap / fine });
+        const double from = std::max(a, coarseLo + c * coarse);
+        result[i].push_back({ c, overlap / fine, (from + 0.5 * overlap - coarseLo) / coarse });
       }
     }
   }
@@ -218,8 +220,9 @@ void ObjectRadiance::BuildDensityTable()
   }
   const double nativeVolume =
     static_cast<double>(native.Volume()) / (static_cast<double>(nd[0]) * nd[1] * nd[2]);
-  Histogram integral(this->Dims, 1);
+  Histogram integral(this->Dims, 1), moments(this->Dims, 3);
   std::vector<double>& values = integral.GetValues();
+  std::vector<double>& firsts = moments.GetValues();
   double total = 0.0;
   grid.ForEachNonZeroCell(
     [&](int i, int j, int k, float density)
@@ -234,14 +237,59 @@ void ObjectRadiance::BuildDensityTable()
         for (const Overlap& y : overlaps[1][j])
           for (const Overlap& x : overlaps[0][i])
           {
-            values[integral.Index(x.Coarse, y.Coarse, z.Coarse)] +=
-              mass * x.Fraction * y.Fraction * z.Fraction;
+            const double part = mass * x.Fraction * y.Fraction * z.Fraction;
+            const std::size_t cell = integral.Index(x.Coarse, y.Coarse, z.Coarse);
+            values[cell] += part;
+            firsts[3 * cell] += part * x.Centre;
+            firsts[3 * cell + 1] += part * y.Centre;
+            firsts[3 * cell + 2] += part * z.Centre;
           }
     });
   this->DensityTable = SummedAreaTable(integral);
+  this->DensityMoments = SummedAreaTable(moments);
   // Regions whose integral is below this are empty: their source radiance
   // is 0, not a ratio of two rounding leftovers of the table.
   this->EmptyIntegral = 1e-9 * total;
+}
+
+void ObjectRadiance::FindCentroids(const ParallelFor& parallelFor)
+{
+  // A region's estimate is the sigma_t-weighted mean of the source
+  // radiance over it: for a source that varies linearly, exactly its value
+  // at the region's sigma_t-weighted centroid, which lies off the texel's
+  // centre where the density fills the region unevenly (a texel across a
+  // cloud's edge, a region grown into a denser part). Homogeneous media
+  // keep their estimates: their centroids are their texels' centres but
+  // where a region meets the box's faces, whose light none of the measured
+  // scenes showed off.
+  const std::size_t texels = this->Regions.size();
+  std::vector<float> centroids(3 * texels);
+  for (std::size_t t = 0; t < texels; ++t)
+  {
+    const Region& r = this->Regions[t];
+    double centre[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      centre[a] = 0.5 * (r.Lo[a] + r.Hi[a]);
+    }
+    double integral = 0.0, first[3];
+    this->DensityTable.RegionSum(r.Lo, r.Hi, &integral);
+    this->DensityMoments.RegionSum(r.Lo, r.Hi, first);
+    if (integral > this->EmptyIntegral)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        centre[a] = first[a] / integral;
+      }
+    }
+    // From histogram cells to the texels' centres' coordinates (texel i's
+    // centre at i).
+    for (int a = 0; a < 3; ++a)
+    {
+      centroids[3 * t + a] = static_cast<float>(centre[a] / this->Refinement - 0.5);
+    }
+  }
+  this->Matching = CentroidMatching(this->Resolution, centroids, parallelFor);
 }
 
 } // namespace brume

@@ -1,0 +1,92 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// A texture whose trilinear interpolation meets each texel's estimate where
+// the estimate belongs: at its region's weighted centroid.
+#ifndef brume_CentroidMatching_h
+#define brume_CentroidMatching_h
+
+#include "brume/Parallel.h"
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace brume
+{
+
+/**
+ * A medium's texel estimate is a weighted mean over the texel's adaptive
+ * region (the sigma_t-weighted mean of the source radiance, ../RADIOMETRY
+ * "Two resolutions in one medium"). For a quantity that varies linearly it
+ * is exact at the region's weighted centroid, not at the texel's centre. The
+ * two differ where a region is filled unevenly: a texel across a cloud's
+ * edge, a region grown into a denser part. Interpolating the estimates as
+ * though they belonged to the centres carries interior values out to the
+ * edge, and a dense cloud's outer skin, which is all a viewer sees of it,
+ * comes out too bright (a ball of optical radius 5.7: +9.6 % of its multiply
+ * scattered light).
+ *
+ * Apply() finds the texture V whose interpolation at each texel's centroid
+ * (trilinear between texel centres and clamped at the faces, as the
+ * renderer samples it) equals the texel's estimate S. It uses simultaneous
+ * iterative reconstruction: every texel's value moves by the mean of the
+ * residuals of the equations it takes part in, weighted by its
+ * interpolation weights. It starts from the estimates, takes Iterations
+ * steps (fewer once the values have settled), and bounds each value to [0, the largest estimate
+ * among the texel and its 26 neighbours], so that noise is not amplified into new maxima or
+ * negative values.
+ *
+ * Where every centroid is its texel's centre the texture is the estimates
+ * unchanged. A linear field is reproduced wherever the bounds allow it.
+ * Everything is summed in a fixed order, so the texture does not depend on
+ * the thread count.
+ */
+class CentroidMatching
+{
+public:
+  static constexpr int Iterations = 32;
+  /// The steps stop early once no value moves by more than this fraction
+  /// of its bound.
+  static constexpr float Settled = 1e-6f;
+  /// Fewer moving texels than this iterate on the calling thread.
+  static constexpr std::size_t ParallelColumns = 4096;
+
+  CentroidMatching() = default;
+  /// `centroids`: 3 per texel of a `dims` grid, in texel units (texel
+  /// (i, j, k)'s centre at (i, j, k)).
+  CentroidMatching(
+    const std::array<int, 3>& dims, const std::vector<float>& centroids, const ParallelFor& pf);
+
+  bool Empty() const { return this->Texels == 0; }
+  std::size_t NumberOfTexels() const { return this->Texels; }
+  /// The texels whose values the iterations move: those that a centroid
+  /// off its texel's centre interpolates. The others keep their estimates.
+  std::size_t NumberOfMovingTexels() const { return this->Columns.size(); }
+
+  /**
+   * `values`: `channels` per texel (at most 4), the estimates, replaced by
+   * the texture. A texel whose estimate is 0 in every channel (a region
+   * holding no medium) sets no equation, though its value may move to meet
+   * its neighbours' equations. Returns the mean relative residual
+   * |V(centroid) - S| / S over the equations after the last step.
+   */
+  double Apply(std::vector<float>& values, int channels, const ParallelFor& pf) const;
+
+private:
+  std::array<int, 3> Dims{ 0, 0, 0 };
+  std::size_t Texels = 0;
+  // The texels that move (columns), the rows they take part in (rows), and
+  // per column those rows, in row order, with their weights.
+  std::vector<std::uint32_t> Columns, Rows;
+  std::vector<std::size_t> ColumnStart;
+  std::vector<std::uint32_t> ColumnRow;
+  std::vector<float> ColumnWeight;
+  // Per row, the texels its centroid interpolates and their weights.
+  std::vector<std::size_t> RowStart;
+  std::vector<std::uint32_t> RowColumn;
+  std::vector<float> RowWeight;
+};
+
+} // namespace brume
+
+#endif

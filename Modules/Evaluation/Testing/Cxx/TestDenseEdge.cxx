@@ -1,0 +1,143 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// A dense ball's visible skin against the reference path tracer, with the
+// reconstruction's CentroidMatching on and off: a ball of constant density
+// (optical radius 5.7, albedo 0.99) in sunlight, whose image is mostly
+// multiply scattered light from its first mean free path.
+//   TestDenseEdge [OUTPUT_DIR]
+//
+// A texel's estimate is the sigma_t-weighted mean of the source over its
+// region; across the ball's edge that belongs to a point inside the ball.
+// Interpolated as though it belonged to the texel's centre, the interior's
+// brighter source reaches the skin. The same particles (one seed) are
+// reconstructed both ways, so the two images differ by the matching alone;
+// the reference's standard error gives the test its scale:
+// - without matching the image must be brighter than the reference by more
+//   than 4 standard errors of the total (what the matching corrects is
+//   there to be seen at this budget);
+// - with it, the excess must be less than half, by more than 4 standard
+//   errors, and the block error lower.
+#include "EvaluationTestScenes.h"
+
+#include "vtkBrumeReferencePathTracer.h"
+#include "vtkBrumeRenderWindowSelection.h"
+#include "vtkBrumeTimedPipeline.h"
+#include "vtkExecutive.h"
+#include "vtkImageData.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+
+namespace
+{
+constexpr int Size = 64;
+constexpr int Block = 8;
+
+vtkSmartPointer<vtkPartitionedDataSetCollection> BallScene()
+{
+  auto scene = vtkSmartPointer<vtkPartitionedDataSetCollection>::New();
+  auto ball = [](double x, double y, double z) { return x * x + y * y + z * z < 0.49 ? 1.0 : 0.0; };
+  const double sigmaA[3] = { 0.08, 0.08, 0.08 }, sigmaS[3] = { 8.0, 8.0, 8.0 };
+  AddDensityGrid(scene, "ball", 65, ball, sigmaA, sigmaS, 0.0);
+  const double sun[3] = { -0.5, -0.8, -0.35 };
+  AddDirectionalLight(scene, sun, 4.0);
+  const double eye[3] = { 2.5, 1.5, 3.5 }, target[3] = { 0, 0, 0 };
+  SetSceneCamera(scene, eye, target, 40);
+  return scene;
+}
+
+struct Comparison
+{
+  double Excess;     // the totals' ratio - 1
+  double BlockError; // mean |block difference| / mean block
+};
+
+Comparison Compare(vtkImageData* image, vtkImageData* reference, double* standardError)
+{
+  double got = 0.0, want = 0.0, differences = 0.0, variance = 0.0;
+  for (int by = 0; by < Size; by += Block)
+  {
+    for (int bx = 0; bx < Size; bx += Block)
+    {
+      double error = 0.0, unused = 0.0;
+      const double w = BlockMean(reference, bx, by, Block, &error);
+      const double g = BlockMean(image, bx, by, Block, &unused);
+      got += g;
+      want += w;
+      differences += std::abs(g - w);
+      variance += error * error;
+    }
+  }
+  if (standardError)
+  {
+    *standardError = std::sqrt(variance) / want;
+  }
+  return { got / want - 1.0, differences / want };
+}
+}
+
+int TestDenseEdge(int argc, char* argv[])
+{
+  if (!*vtkBrumeRenderWindowSelection::GetInstalled())
+  {
+    std::cerr << "no render window (no X display and no EGL): skipped\n";
+    return 125;
+  }
+  const auto scene = BallScene();
+  vtkNew<vtkBrumeReferencePathTracer> reference;
+  reference->SetInputData(scene);
+  reference->SetSize(Size, Size);
+  reference->SetSamplesPerPixel(512);
+  reference->SetSeed(5);
+  vtkNew<vtkBrumeTimedPipeline> pipeline;
+  pipeline->SetInputData(scene);
+  pipeline->SetSize(Size, Size);
+  pipeline->SetNumberOfParticles(1000000);
+  pipeline->MeasureNewViewOff();
+  if (reference->GetExecutive()->Update() != 1 || pipeline->GetExecutive()->Update() != 1)
+  {
+    std::cerr << "FAILED: the images were not made\n";
+    return EXIT_FAILURE;
+  }
+  vtkNew<vtkImageData> matched;
+  matched->DeepCopy(pipeline->GetOutput());
+  pipeline->CentroidMatchingOff();
+  if (pipeline->GetExecutive()->Update() != 1)
+  {
+    std::cerr << "FAILED: the image without matching was not made\n";
+    return EXIT_FAILURE;
+  }
+  if (argc > 1)
+  {
+    SaveImage(argv[1], "dense-edge-reference", reference->GetOutput());
+    SaveImage(argv[1], "dense-edge-matched", matched);
+    SaveImage(argv[1], "dense-edge-unmatched", pipeline->GetOutput());
+  }
+  double se = 0.0;
+  const Comparison with = Compare(matched, reference->GetOutput(), &se);
+  const Comparison without = Compare(pipeline->GetOutput(), reference->GetOutput(), nullptr);
+  std::printf("the reference's total to %.3f %%; without matching %+.2f %% (block error "
+              "%.2f %%), with it %+.2f %% (%.2f %%)\n",
+    100.0 * se, 100.0 * without.Excess, 100.0 * without.BlockError, 100.0 * with.Excess,
+    100.0 * with.BlockError);
+  bool ok = true;
+  if (without.Excess < 4.0 * se)
+  {
+    std::cerr << "FAILED: without matching the ball is not brighter than the reference beyond "
+                 "its noise: nothing to correct at this budget\n";
+    ok = false;
+  }
+  if (std::abs(with.Excess) > 0.5 * without.Excess ||
+    without.Excess - std::abs(with.Excess) < 4.0 * se)
+  {
+    std::cerr << "FAILED: matching does not halve the excess beyond the reference's noise\n";
+    ok = false;
+  }
+  if (with.BlockError >= without.BlockError)
+  {
+    std::cerr << "FAILED: the block error is not lower with matching\n";
+    ok = false;
+  }
+  return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+}
