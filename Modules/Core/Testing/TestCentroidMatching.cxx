@@ -54,10 +54,16 @@ std::vector<float> Centroids(const std::array<int, 3>& n, float spread, Inside i
   return c;
 }
 
-// A field that varies linearly, positive over the grids used here.
+// A field that varies linearly, positive over the grids used here (at most 3.5).
 double Linear(double x, double y, double z)
 {
   return 2.0 + 0.11 * x - 0.07 * y + 0.05 * z;
+}
+
+// One that crosses 0 over them, within [-0.5, 0.5].
+double Signed(double x, double y, double z)
+{
+  return 0.3 - 0.06 * x + 0.02 * y - 0.01 * z;
 }
 }
 
@@ -106,24 +112,29 @@ TEST(CentroidMatching, LinearFieldAtItsCentroidsIsRecoveredAtTheCentres)
   }
   const CentroidMatching matching(n, centroids, SerialFor());
   EXPECT_GT(matching.NumberOfMovingTexels(), Texels(n) / 2);
-  std::vector<float> values(Texels(n));
+  // Two channels: a source (positive) and a signed quantity crossing 0
+  // (a spherical-harmonics coefficient), errors relative to the largest
+  // magnitude of each.
+  std::vector<float> values(2 * Texels(n));
   for (std::size_t t = 0; t < Texels(n); ++t)
   {
-    values[t] =
-      static_cast<float>(Linear(centroids[3 * t], centroids[3 * t + 1], centroids[3 * t + 2]));
+    const float* c = &centroids[3 * t];
+    values[2 * t] = static_cast<float>(Linear(c[0], c[1], c[2]));
+    values[2 * t + 1] = static_cast<float>(Signed(c[0], c[1], c[2]));
   }
   double before = 0.0, after = 0.0;
   auto worst = [&](double& error)
   {
     for (std::size_t t = 0; t < Texels(n); ++t)
     {
-      const double want = Linear(static_cast<double>(t % n[0]),
-        static_cast<double>((t / n[0]) % n[1]), static_cast<double>(t / (n[0] * n[1])));
-      error = std::max(error, std::abs(values[t] - want) / want);
+      const double x = static_cast<double>(t % n[0]), y = static_cast<double>((t / n[0]) % n[1]),
+                   z = static_cast<double>(t / (n[0] * n[1]));
+      error = std::max(error, std::abs(values[2 * t] - Linear(x, y, z)) / 3.5);
+      error = std::max(error, std::abs(values[2 * t + 1] - Signed(x, y, z)) / 0.5);
     }
   };
   worst(before);
-  const double residual = matching.Apply(values, 1, SerialFor());
+  const double residual = matching.Apply(values, 2, SerialFor());
   worst(after);
   std::printf("before %g after %g residual %g\n", before, after, residual);
   EXPECT_GT(before, 0.02);
@@ -211,5 +222,6 @@ TEST(CentroidMatching, SizesThatDoNotMatchAreRefused)
   std::vector<float> values(7);
   EXPECT_THROW(matching.Apply(values, 1, SerialFor()), std::invalid_argument);
   values.resize(8 * 5);
-  EXPECT_THROW(matching.Apply(values, 5, SerialFor()), std::invalid_argument);
+  EXPECT_THROW(matching.Apply(values, 4, SerialFor()), std::invalid_argument);
+  EXPECT_THROW(matching.Apply(values, 0, SerialFor()), std::invalid_argument);
 }

@@ -154,7 +154,7 @@ double CentroidMatching::Apply(
   std::vector<float>& values, int channels, const ParallelFor& pf) const
 {
   const std::size_t texels = this->NumberOfTexels();
-  if (channels < 1 || channels > 4 || values.size() != texels * channels)
+  if (channels < 1 || values.size() != texels * static_cast<std::size_t>(channels))
   {
     throw std::invalid_argument("CentroidMatching: values do not match the texels");
   }
@@ -169,7 +169,8 @@ double CentroidMatching::Apply(
   const ParallelFor serial = SerialFor();
   const ParallelFor& loop = columns >= ParallelColumns ? pf : serial;
   // The rows' estimates (the values before any moves; a texel that no
-  // column is keeps its own), and which rows set an equation.
+  // column is keeps its own), and which rows set an equation (a value not
+  // 0 in some channel).
   std::vector<float> estimate(rows * nc);
   std::vector<char> equation(rows);
   for (std::size_t r = 0; r < rows; ++r)
@@ -178,12 +179,12 @@ double CentroidMatching::Apply(
     for (std::size_t c = 0; c < nc; ++c)
     {
       estimate[nc * r + c] = values[nc * this->Rows[r] + c];
-      any = any || estimate[nc * r + c] > 0.f;
+      any = any || estimate[nc * r + c] != 0.f;
     }
     equation[r] = any ? 1 : 0;
   }
-  // Per column: the bound, and the weight of the equations it takes part in.
-  std::vector<float> upper(columns * nc);
+  // Per column: the bounds, and the weight of the equations it takes part in.
+  std::vector<float> lower(columns * nc), upper(columns * nc);
   std::vector<double> total(columns);
   const int nx = this->Dims[0], ny = this->Dims[1], nz = this->Dims[2];
   loop(0, columns,
@@ -196,7 +197,8 @@ double CentroidMatching::Apply(
                   z = static_cast<int>(t / (static_cast<std::size_t>(nx) * ny));
         for (std::size_t c = 0; c < nc; ++c)
         {
-          upper[nc * col + c] = values[nc * t + c];
+          lower[nc * col + c] = std::min(0.f, values[nc * t + c]);
+          upper[nc * col + c] = std::max(0.f, values[nc * t + c]);
         }
         for (int k = std::max(z - 1, 0); k <= std::min(z + 1, nz - 1); ++k)
           for (int j = std::max(y - 1, 0); j <= std::min(y + 1, ny - 1); ++j)
@@ -205,6 +207,7 @@ double CentroidMatching::Apply(
               const std::size_t u = (static_cast<std::size_t>(k) * ny + j) * nx + i;
               for (std::size_t c = 0; c < nc; ++c)
               {
+                lower[nc * col + c] = std::min(lower[nc * col + c], values[nc * u + c]);
                 upper[nc * col + c] = std::max(upper[nc * col + c], values[nc * u + c]);
               }
             }
@@ -263,9 +266,9 @@ double CentroidMatching::Apply(
                 static_cast<double>(this->ColumnWeight[e]) * residual[nc * this->ColumnRow[e] + c];
             }
             const float before = values[nc * t + c];
-            values[nc * t + c] =
-              std::clamp(static_cast<float>(before + move / total[col]), 0.f, upper[nc * col + c]);
-            const float bound = upper[nc * col + c];
+            values[nc * t + c] = std::clamp(static_cast<float>(before + move / total[col]),
+              lower[nc * col + c], upper[nc * col + c]);
+            const float bound = std::max(upper[nc * col + c], -lower[nc * col + c]);
             if (bound > 0.f)
             {
               moved[col] = std::max(moved[col], std::abs(values[nc * t + c] - before) / bound);
@@ -279,20 +282,16 @@ double CentroidMatching::Apply(
     }
   }
   loop(0, rows, residuals);
-  double sum = 0.0;
-  std::size_t n = 0;
+  double left = 0.0, estimates = 0.0;
   for (std::size_t r = 0; r < rows; ++r)
   {
-    for (std::size_t c = 0; c < nc; ++c)
+    for (std::size_t c = 0; equation[r] && c < nc; ++c)
     {
-      if (equation[r] && estimate[nc * r + c] > 0.f)
-      {
-        sum += std::abs(residual[nc * r + c]) / estimate[nc * r + c];
-        ++n;
-      }
+      left += std::abs(residual[nc * r + c]);
+      estimates += std::abs(estimate[nc * r + c]);
     }
   }
-  return n > 0 ? sum / static_cast<double>(n) : 0.0;
+  return estimates > 0.0 ? left / estimates : 0.0;
 }
 
 } // namespace brume

@@ -32,9 +32,11 @@ namespace brume
  * iterative reconstruction: every texel's value moves by the mean of the
  * residuals of the equations it takes part in, weighted by its
  * interpolation weights. It starts from the estimates, takes Iterations
- * steps (fewer once the values have settled), and bounds each value to [0, the largest estimate
- * among the texel and its 26 neighbours], so that noise is not amplified into new maxima or
- * negative values.
+ * steps (fewer once the values have settled), and bounds each value to
+ * the range of the estimates among the texel and its 26 neighbours,
+ * widened to 0 (a source stays in [0, the largest estimate around]; a
+ * signed quantity, a spherical-harmonics coefficient, may also reach 0),
+ * so that noise is not amplified into new extremes.
  *
  * Where every centroid is its texel's centre the texture is the estimates
  * unchanged. A linear field is reproduced wherever the bounds allow it.
@@ -64,11 +66,12 @@ public:
   std::size_t NumberOfMovingTexels() const { return this->Columns.size(); }
 
   /**
-   * `values`: `channels` per texel (at most 4), the estimates, replaced by
-   * the texture. A texel whose estimate is 0 in every channel (a region
+   * `values`: `channels` per texel, the estimates, replaced by the
+   * texture. A texel whose estimate is 0 in every channel (a region
    * holding no medium) sets no equation, though its value may move to meet
-   * its neighbours' equations. Returns the mean relative residual
-   * |V(centroid) - S| / S over the equations after the last step.
+   * its neighbours' equations. Returns the residual left after
+   * the last step: the sum of |V(centroid) - S| over the equations, over
+   * the sum of |S|.
    */
   double Apply(std::vector<float>& values, int channels, const ParallelFor& pf) const;
 

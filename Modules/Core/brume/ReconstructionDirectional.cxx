@@ -79,6 +79,12 @@ std::string ObjectRadiance::BuildDirectional(int order, const ParallelFor& paral
         }
       });
   }
+  if (here && this->MatchingCentroids && !this->Matching.Empty())
+  {
+    // As the per-view textures: each region's coefficients belong to its
+    // centroid (the direct light, computed per voxel, is added after).
+    this->Matching.Apply(this->Directional, 3 * nk, parallelFor);
+  }
   if (here && this->HasDirect())
   {
     this->AddDirectToDirectional(order);

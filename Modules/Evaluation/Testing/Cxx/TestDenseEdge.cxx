@@ -2,7 +2,9 @@
 // A dense ball's visible skin against the reference path tracer, with the
 // reconstruction's CentroidMatching on and off: a ball of constant density
 // (optical radius 5.7, albedo 0.99) in sunlight, whose image is mostly
-// multiply scattered light from its first mean free path.
+// multiply scattered light from its first mean free path. Twice: isotropic
+// with per-view textures, and with g = 0.5 as spherical harmonics
+// (DirectionalRadiance), whose coefficients are matched the same way.
 //   TestDenseEdge [OUTPUT_DIR]
 //
 // A texel's estimate is the sigma_t-weighted mean of the source over its
@@ -28,18 +30,19 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <string>
 
 namespace
 {
 constexpr int Size = 64;
 constexpr int Block = 8;
 
-vtkSmartPointer<vtkPartitionedDataSetCollection> BallScene()
+vtkSmartPointer<vtkPartitionedDataSetCollection> BallScene(double g)
 {
   auto scene = vtkSmartPointer<vtkPartitionedDataSetCollection>::New();
   auto ball = [](double x, double y, double z) { return x * x + y * y + z * z < 0.49 ? 1.0 : 0.0; };
   const double sigmaA[3] = { 0.08, 0.08, 0.08 }, sigmaS[3] = { 8.0, 8.0, 8.0 };
-  AddDensityGrid(scene, "ball", 65, ball, sigmaA, sigmaS, 0.0);
+  AddDensityGrid(scene, "ball", 65, ball, sigmaA, sigmaS, g);
   const double sun[3] = { -0.5, -0.8, -0.35 };
   AddDirectionalLight(scene, sun, 4.0);
   const double eye[3] = { 2.5, 1.5, 3.5 }, target[3] = { 0, 0, 0 };
@@ -75,16 +78,12 @@ Comparison Compare(vtkImageData* image, vtkImageData* reference, double* standar
   }
   return { got / want - 1.0, differences / want };
 }
-}
 
-int TestDenseEdge(int argc, char* argv[])
+// One case: the reference, the pipeline with and without matching, the
+// figures and the verdict.
+bool Case(double g, bool directional, const char* name, int argc, char* argv[])
 {
-  if (!*vtkBrumeRenderWindowSelection::GetInstalled())
-  {
-    std::cerr << "no render window (no X display and no EGL): skipped\n";
-    return 125;
-  }
-  const auto scene = BallScene();
+  const auto scene = BallScene(g);
   vtkNew<vtkBrumeReferencePathTracer> reference;
   reference->SetInputData(scene);
   reference->SetSize(Size, Size);
@@ -94,50 +93,67 @@ int TestDenseEdge(int argc, char* argv[])
   pipeline->SetInputData(scene);
   pipeline->SetSize(Size, Size);
   pipeline->SetNumberOfParticles(1000000);
+  pipeline->SetDirectionalRadiance(directional);
   pipeline->MeasureNewViewOff();
   if (reference->GetExecutive()->Update() != 1 || pipeline->GetExecutive()->Update() != 1)
   {
-    std::cerr << "FAILED: the images were not made\n";
-    return EXIT_FAILURE;
+    std::cerr << "FAILED: " << name << ": the images were not made\n";
+    return false;
   }
   vtkNew<vtkImageData> matched;
   matched->DeepCopy(pipeline->GetOutput());
   pipeline->CentroidMatchingOff();
   if (pipeline->GetExecutive()->Update() != 1)
   {
-    std::cerr << "FAILED: the image without matching was not made\n";
-    return EXIT_FAILURE;
+    std::cerr << "FAILED: " << name << ": the image without matching was not made\n";
+    return false;
   }
   if (argc > 1)
   {
-    SaveImage(argv[1], "dense-edge-reference", reference->GetOutput());
-    SaveImage(argv[1], "dense-edge-matched", matched);
-    SaveImage(argv[1], "dense-edge-unmatched", pipeline->GetOutput());
+    const std::string prefix = std::string("dense-edge-") + name;
+    SaveImage(argv[1], prefix + "-reference", reference->GetOutput());
+    SaveImage(argv[1], prefix + "-matched", matched);
+    SaveImage(argv[1], prefix + "-unmatched", pipeline->GetOutput());
   }
   double se = 0.0;
   const Comparison with = Compare(matched, reference->GetOutput(), &se);
   const Comparison without = Compare(pipeline->GetOutput(), reference->GetOutput(), nullptr);
-  std::printf("the reference's total to %.3f %%; without matching %+.2f %% (block error "
+  std::printf("%s: the reference's total to %.3f %%; without matching %+.2f %% (block error "
               "%.2f %%), with it %+.2f %% (%.2f %%)\n",
-    100.0 * se, 100.0 * without.Excess, 100.0 * without.BlockError, 100.0 * with.Excess,
+    name, 100.0 * se, 100.0 * without.Excess, 100.0 * without.BlockError, 100.0 * with.Excess,
     100.0 * with.BlockError);
   bool ok = true;
   if (without.Excess < 4.0 * se)
   {
-    std::cerr << "FAILED: without matching the ball is not brighter than the reference beyond "
+    std::cerr << "FAILED: " << name
+              << ": without matching the ball is not brighter than the reference beyond "
                  "its noise: nothing to correct at this budget\n";
     ok = false;
   }
   if (std::abs(with.Excess) > 0.5 * without.Excess ||
     without.Excess - std::abs(with.Excess) < 4.0 * se)
   {
-    std::cerr << "FAILED: matching does not halve the excess beyond the reference's noise\n";
+    std::cerr << "FAILED: " << name
+              << ": matching does not halve the excess beyond the reference's noise\n";
     ok = false;
   }
   if (with.BlockError >= without.BlockError)
   {
-    std::cerr << "FAILED: the block error is not lower with matching\n";
+    std::cerr << "FAILED: " << name << ": the block error is not lower with matching\n";
     ok = false;
   }
-  return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+  return ok;
+}
+}
+
+int TestDenseEdge(int argc, char* argv[])
+{
+  if (!*vtkBrumeRenderWindowSelection::GetInstalled())
+  {
+    std::cerr << "no render window (no X display and no EGL): skipped\n";
+    return 125;
+  }
+  const bool isotropic = Case(0.0, false, "isotropic", argc, argv);
+  const bool directional = Case(0.5, true, "spherical-harmonics", argc, argv);
+  return isotropic && directional ? EXIT_SUCCESS : EXIT_FAILURE;
 }
