@@ -5,29 +5,19 @@
 #include "brume/Random.h"
 #include "brume/Vec3.h"
 
+#include "TestScenes.h"
+
 #include <gtest/gtest.h>
 
 #include <atomic>
 #include <cmath>
 
 using namespace brume;
+using brume::testing::Scrambled;
 
 namespace
 {
 const auto Never = [](const std::array<int, 3>&, const std::array<int, 3>&) { return false; };
-
-// A ParallelFor that hands out ranges of three, last first: the result
-// must not depend on how the work is split.
-void Scrambled(
-  std::size_t begin, std::size_t end, const std::function<void(std::size_t, std::size_t)>& body)
-{
-  for (std::size_t b = end; b > begin;)
-  {
-    const std::size_t a = b - std::min<std::size_t>(3, b - begin);
-    body(a, b);
-    b = a;
-  }
-}
 
 // Trilinear between cell centres of a dense x-fastest grid, clamped at the
 // faces: what a cell-data 3D texture with linear filtering gives.

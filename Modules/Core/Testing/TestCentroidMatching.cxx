@@ -5,6 +5,8 @@
 #include "brume/Random.h"
 #include "brume/Vec3.h"
 
+#include "TestScenes.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,22 +15,10 @@
 #include <stdexcept>
 
 using namespace brume;
+using brume::testing::Scrambled;
 
 namespace
 {
-// Hands out ranges of five, last first: the texture must not depend on how
-// the work is split.
-void Scrambled(
-  std::size_t begin, std::size_t end, const std::function<void(std::size_t, std::size_t)>& body)
-{
-  for (std::size_t b = end; b > begin;)
-  {
-    const std::size_t a = b - std::min<std::size_t>(5, b - begin);
-    body(a, b);
-    b = a;
-  }
-}
-
 std::size_t Texels(const std::array<int, 3>& n)
 {
   return static_cast<std::size_t>(n[0]) * n[1] * n[2];

@@ -8,7 +8,9 @@
 #include "brume/Reconstruction.h"
 #include "brume/Scene.h"
 
+#include <algorithm>
 #include <atomic>
+#include <functional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -17,6 +19,19 @@ namespace brume
 {
 namespace testing
 {
+/// A ParallelFor that hands out ranges of three, last first: what is made
+/// with it must not depend on how the work is split.
+inline void Scrambled(
+  std::size_t begin, std::size_t end, const std::function<void(std::size_t, std::size_t)>& body)
+{
+  for (std::size_t b = end; b > begin;)
+  {
+    const std::size_t a = b - std::min<std::size_t>(3, b - begin);
+    body(a, b);
+    b = a;
+  }
+}
+
 /// The six faces of the closed box [-1, 1]^3 (inward normals), all of material m.
 inline std::vector<Surface> ClosedBox(const Material& m)
 {

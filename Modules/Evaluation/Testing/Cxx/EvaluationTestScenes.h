@@ -5,6 +5,7 @@
 #define EvaluationTestScenes_h
 
 #include "vtkBrumeSceneConversion.h"
+#include "vtkBrumeTimedPipeline.h"
 #include "vtkCellArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
@@ -14,6 +15,7 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
 #include "vtkXMLImageDataWriter.h"
 
@@ -149,6 +151,20 @@ inline void AddDirectionalLight(
 {
   const double origin[3] = { 0, 0, 0 };
   AddLight(scene, "directional", origin, direction, irradiance);
+}
+
+/// The fast pipeline over `scene`: size x size pixels, `particles`,
+/// anisotropic media per view or as spherical harmonics, no new view timed.
+inline vtkSmartPointer<vtkBrumeTimedPipeline> MakePipeline(
+  vtkPartitionedDataSetCollection* scene, int size, vtkTypeInt64 particles, bool directional)
+{
+  auto pipeline = vtkSmartPointer<vtkBrumeTimedPipeline>::New();
+  pipeline->SetInputData(scene);
+  pipeline->SetSize(size, size);
+  pipeline->SetNumberOfParticles(particles);
+  pipeline->SetDirectionalRadiance(directional);
+  pipeline->MeasureNewViewOff();
+  return pipeline;
 }
 
 /// Writes `image` as DIRECTORY/NAME.vti (test output to look at).

@@ -89,12 +89,7 @@ bool Case(double g, bool directional, const char* name, int argc, char* argv[])
   reference->SetSize(Size, Size);
   reference->SetSamplesPerPixel(512);
   reference->SetSeed(5);
-  vtkNew<vtkBrumeTimedPipeline> pipeline;
-  pipeline->SetInputData(scene);
-  pipeline->SetSize(Size, Size);
-  pipeline->SetNumberOfParticles(1000000);
-  pipeline->SetDirectionalRadiance(directional);
-  pipeline->MeasureNewViewOff();
+  const auto pipeline = MakePipeline(scene, Size, 1000000, directional);
   if (reference->GetExecutive()->Update() != 1 || pipeline->GetExecutive()->Update() != 1)
   {
     std::cerr << "FAILED: " << name << ": the images were not made\n";

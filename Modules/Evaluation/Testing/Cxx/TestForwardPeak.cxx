@@ -83,12 +83,7 @@ int TestForwardPeak(int argc, char* argv[])
   for (const bool directional : { false, true })
   {
     const char* mode = directional ? "directional" : "per-view";
-    vtkNew<vtkBrumeTimedPipeline> pipeline;
-    pipeline->SetInputData(scene);
-    pipeline->SetSize(Size, Size);
-    pipeline->SetNumberOfParticles(1000000);
-    pipeline->SetDirectionalRadiance(directional);
-    pipeline->MeasureNewViewOff();
+    const auto pipeline = MakePipeline(scene, Size, 1000000, directional);
     if (pipeline->GetExecutive()->Update() != 1)
     {
       std::cerr << "FAILED: the " << mode << " image was not made\n";
