@@ -124,12 +124,9 @@ CentroidMatching::CentroidMatching(
       {
         this->RowColumn.push_back(c);
         this->RowWeight.push_back(w);
+        ++this->ColumnStart[slotOf[c] + 1];
       });
     this->RowStart.push_back(this->RowColumn.size());
-  }
-  for (const std::uint32_t t : this->Rows)
-  {
-    entries(t, [&](std::uint32_t c, float) { ++this->ColumnStart[slotOf[c] + 1]; });
   }
   for (std::size_t c = 0; c < this->Columns.size(); ++c)
   {
@@ -140,13 +137,12 @@ CentroidMatching::CentroidMatching(
   this->ColumnWeight.resize(this->ColumnStart.back());
   for (std::size_t r = 0; r < this->Rows.size(); ++r)
   {
-    entries(this->Rows[r],
-      [&](std::uint32_t c, float w)
-      {
-        const std::size_t slot = fill[slotOf[c]]++;
-        this->ColumnRow[slot] = static_cast<std::uint32_t>(r);
-        this->ColumnWeight[slot] = w;
-      });
+    for (std::size_t e = this->RowStart[r]; e < this->RowStart[r + 1]; ++e)
+    {
+      const std::size_t slot = fill[slotOf[this->RowColumn[e]]]++;
+      this->ColumnRow[slot] = static_cast<std::uint32_t>(r);
+      this->ColumnWeight[slot] = this->RowWeight[e];
+    }
   }
 }
 
@@ -239,10 +235,6 @@ double CentroidMatching::Apply(
       }
     }
   };
-  // Each column's largest move in a step, relative to its bound: the steps
-  // stop early once none moves by more than Settled (a choice made from
-  // the values alone, the same whatever the split).
-  std::vector<float> moved(columns);
   for (int it = 0; it < Iterations; ++it)
   {
     loop(0, rows, residuals);
@@ -251,7 +243,6 @@ double CentroidMatching::Apply(
       {
         for (std::size_t col = begin; col < end; ++col)
         {
-          moved[col] = 0.f;
           if (total[col] <= 0.0)
           {
             continue;
@@ -265,21 +256,12 @@ double CentroidMatching::Apply(
               move +=
                 static_cast<double>(this->ColumnWeight[e]) * residual[nc * this->ColumnRow[e] + c];
             }
-            const float before = values[nc * t + c];
-            values[nc * t + c] = std::clamp(static_cast<float>(before + move / total[col]),
-              lower[nc * col + c], upper[nc * col + c]);
-            const float bound = std::max(upper[nc * col + c], -lower[nc * col + c]);
-            if (bound > 0.f)
-            {
-              moved[col] = std::max(moved[col], std::abs(values[nc * t + c] - before) / bound);
-            }
+            values[nc * t + c] =
+              std::clamp(static_cast<float>(values[nc * t + c] + move / total[col]),
+                lower[nc * col + c], upper[nc * col + c]);
           }
         }
       });
-    if (*std::max_element(moved.begin(), moved.end()) <= Settled)
-    {
-      break;
-    }
   }
   loop(0, rows, residuals);
   double left = 0.0, estimates = 0.0;

@@ -32,7 +32,7 @@ namespace brume
  * iterative reconstruction: every texel's value moves by the mean of the
  * residuals of the equations it takes part in, weighted by its
  * interpolation weights. It starts from the estimates, takes Iterations
- * steps (fewer once the values have settled), and bounds each value to
+ * steps, and bounds each value to
  * the range of the estimates among the texel and its 26 neighbours,
  * widened to 0 (a source stays in [0, the largest estimate around]; a
  * signed quantity, a spherical-harmonics coefficient, may also reach 0),
@@ -47,9 +47,6 @@ class CentroidMatching
 {
 public:
   static constexpr int Iterations = 32;
-  /// The steps stop early once no value moves by more than this fraction
-  /// of its bound.
-  static constexpr float Settled = 1e-6f;
   /// Fewer moving texels than this iterate on the calling thread.
   static constexpr std::size_t ParallelColumns = 4096;
 
