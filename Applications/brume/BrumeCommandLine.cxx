@@ -147,6 +147,14 @@ void AddSceneOptions(CLI::App* command, RenderOptions& o, const SceneHelp& help)
     "directional lights from the particles too, instead of\n"
     "computing it with shadow rays (sharper shafts and\n"
     "shadows; the default)");
+  command
+    ->add_option("--aim", o.MediumAim,
+      "fraction of a directional light's particles aimed at\n"
+      "the media, where they cover at most a quarter of its\n"
+      "beam (a cloud over a wide ground; default 0.2, 0: the\n"
+      "beam uniformly)")
+    ->transform(Number(0.0, 0.99, "a number in [0, 0.99]"))
+    ->type_name("F");
   command->add_flag_callback(
     "--no-centroid-matching", [&o]() { o.CentroidMatching = false; },
     "keep a medium's texel estimates as they are, instead\n"

@@ -322,6 +322,7 @@ int RunRender(RenderOptions options)
   tracer->SetNumberOfParticles(options.Particles);
   tracer->SetSeed(options.Seed);
   tracer->SetMaximumDepth(options.MaxDepth);
+  tracer->SetMediumAimFraction(options.MediumAim);
   double position[3], focal[3], up[3], angle;
   vtkBrumeSceneCamera::GetSceneCamera(scene->GetOutputDataObject(0), position, focal, up, angle);
   vtkNew<vtkBrumeRadianceReconstruction> reconstruction;

@@ -21,6 +21,7 @@ struct RenderOptions
   double Threshold = 128.0;
   bool DirectLight = true;      // deterministic single scattering (vtkBrumeRadianceReconstruction)
   bool CentroidMatching = true; // media textures matched to their estimates' centroids
+  double MediumAim = 0.2;       // directional lights' particles aimed at the media
   int Supersample = 1;          // render K x K pixels per output pixel and average them
   bool Timings = false;
   long long Batch = 0;    // particles per batch (0: all at once)

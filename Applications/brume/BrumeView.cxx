@@ -85,6 +85,7 @@ public:
   {
     this->Tracer->SetInputConnection(scene->GetOutputPort());
     this->Tracer->SetSeed(static_cast<vtkIdType>(this->Options.Render.Seed));
+    this->Tracer->SetMediumAimFraction(this->Options.Render.MediumAim);
     BrumeShowProgress(this->Tracer, "particle tracing");
     if (!this->Trace(0, this->Particles))
     {

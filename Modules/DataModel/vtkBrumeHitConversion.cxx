@@ -13,6 +13,7 @@
 #include "vtkUnsignedIntArray.h"
 #include "vtkUnsignedShortArray.h"
 
+#include <cmath>
 #include <cstdint>
 
 const char* const vtkBrumeHitConversion::DirectionName = "Direction";
@@ -21,6 +22,8 @@ const char* const vtkBrumeHitConversion::ObjectIdName = "ObjectId";
 const char* const vtkBrumeHitConversion::EmitterIdName = "EmitterId";
 const char* const vtkBrumeHitConversion::DepthName = "Depth";
 const char* const vtkBrumeHitConversion::TriangleIdName = "TriangleId";
+const char* const vtkBrumeHitConversion::AimName = "Aim";
+const char* const vtkBrumeHitConversion::AimWeightsName = "AimWeights";
 const char* const vtkBrumeHitConversion::TotalPowerName = "TotalPower";
 const char* const vtkBrumeHitConversion::NumberOfParticlesName = "NumberOfParticles";
 const char* const vtkBrumeHitConversion::FirstParticleName = "FirstParticle";
@@ -125,6 +128,7 @@ std::string vtkBrumeHitConversion::HitsFromPolyData(
   auto* emitter = vtkUnsignedShortArray::SafeDownCast(pd->GetArray(EmitterIdName));
   auto* depth = vtkUnsignedCharArray::SafeDownCast(pd->GetArray(DepthName));
   auto* triangle = vtkUnsignedIntArray::SafeDownCast(pd->GetArray(TriangleIdName));
+  auto* aim = vtkUnsignedCharArray::SafeDownCast(pd->GetArray(AimName));
   if (n > 0 &&
     (!direction || !flux || !object || direction->GetNumberOfComponents() != 3 ||
       flux->GetNumberOfComponents() != 3))
@@ -147,7 +151,8 @@ std::string vtkBrumeHitConversion::HitsFromPolyData(
     h.Object = object->GetValue(i);
     h.Emitter = emitter ? emitter->GetValue(i) : 0;
     h.Depth = depth ? depth->GetValue(i) : 0;
-    h.Padding[0] = h.Padding[1] = h.Padding[2] = 0;
+    h.Aim = aim && aim->GetNumberOfTuples() == n ? aim->GetValue(i) : 0;
+    h.Padding[0] = h.Padding[1] = 0;
     h.Triangle = triangle ? triangle->GetValue(i) : 0;
   }
   return {};
@@ -218,6 +223,43 @@ std::string vtkBrumeHitConversion::ReadHits(
     hits.Emitter =
       emitterIds && emitterIds->GetNumberOfTuples() == n ? emitterIds->GetPointer(0) : nullptr;
     hits.Depth = depths && depths->GetNumberOfTuples() == n ? depths->GetPointer(0) : nullptr;
+  }
+  auto* aim = vtkUnsignedCharArray::SafeDownCast(pd->GetArray(AimName));
+  if (n > 0 && aim)
+  {
+    // Every hit's class must have its weight: emitters in range, classes 0-2.
+    vtkDataArray* weights = fields->GetArray(AimWeightsName);
+    if (aim->GetNumberOfTuples() != n || !emitterIds || emitterIds->GetNumberOfTuples() != n ||
+      !weights || weights->GetNumberOfComponents() != 3)
+    {
+      return "The particle hits' 'Aim' needs one value per hit, with 'EmitterId' and the "
+             "double[3] field array 'AimWeights'";
+    }
+    const vtkIdType emitters = weights->GetNumberOfTuples();
+    run.GrowthScales.resize(3 * static_cast<std::size_t>(emitters));
+    for (vtkIdType e = 0; e < emitters; ++e)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        const double w = weights->GetComponent(e, c);
+        if (!(w > 0.0) || !std::isfinite(w))
+        {
+          return "The particle hits' 'AimWeights' holds a weight that is not positive and finite";
+        }
+        run.GrowthScales[3 * e + c] = 1.0 / w;
+      }
+    }
+    const unsigned char* a = aim->GetPointer(0);
+    const unsigned short* e = emitterIds->GetPointer(0);
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      if (a[i] > 2 || e[i] >= emitters)
+      {
+        return "The particle hits' 'Aim' or 'EmitterId' has a value without its 'AimWeights'";
+      }
+    }
+    hits.Aim = a;
+    hits.GrowthScales = run.GrowthScales.data();
   }
   return {};
 }

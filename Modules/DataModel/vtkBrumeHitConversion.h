@@ -15,6 +15,11 @@
  * - `Depth` (unsigned char): interactions before this one;
  * - `TriangleId` (unsigned int): for surface hits, the triangle in the
  *   surface's triangulation (polygons as fans, then strips);
+ * - `Aim` (unsigned char, only where a light was aimed at the media,
+ *   vtkBrumeLightTracer::MediumAimFraction): where the particle left its
+ *   light (brume::Light::SampleEmission: 0 unaimed, 1 outside the aimed
+ *   disk, 2 inside it), with the field array `AimWeights` (double[3], one
+ *   tuple per emitter id: the weight of each class);
  *
  * and the field data of the run: `TotalPower` (double[3], W),
  * `NumberOfParticles` (the run's particle count), and where the tracer
@@ -49,6 +54,8 @@ public:
   static const char* const EmitterIdName;
   static const char* const DepthName;
   static const char* const TriangleIdName;
+  static const char* const AimName;
+  static const char* const AimWeightsName;
   static const char* const TotalPowerName;
   static const char* const NumberOfParticlesName;
   static const char* const FirstParticleName;
@@ -64,6 +71,8 @@ public:
     double FirstParticle = 0.0; // 0 unless the hits continue a run
     double EndParticle = 0.0;   // where these hits' particles end (Particles unless a batch)
     double Seed = 0.0;
+    /// 1 / AimWeights, three per emitter id (empty without `Aim`).
+    std::vector<double> GrowthScales;
     /// Whether these hits end the run (its last batch, or the whole run).
     bool Completes() const { return this->EndParticle >= this->Particles; }
   };

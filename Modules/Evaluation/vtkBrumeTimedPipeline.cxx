@@ -107,6 +107,7 @@ int vtkBrumeTimedPipeline::RequestData(
   tracer->SetNumberOfParticles(this->NumberOfParticles);
   tracer->SetSeed(this->Seed);
   tracer->SetMaximumDepth(this->MaximumDepth);
+  tracer->SetMediumAimFraction(this->MediumAimFraction);
   vtkNew<vtkBrumeRadianceReconstruction> reconstruction;
   reconstruction->SetInputDataObject(0, scene);
   reconstruction->SetInputConnection(1, tracer->GetOutputPort());
@@ -167,6 +168,7 @@ void vtkBrumeTimedPipeline::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumDepth: " << this->MaximumDepth << "\n";
   os << indent << "RadiosityThreshold: " << this->RadiosityThreshold << "\n";
   os << indent << "CentroidMatching: " << this->CentroidMatching << "\n";
+  os << indent << "MediumAimFraction: " << this->MediumAimFraction << "\n";
   os << indent << "DirectionalRadiance: " << this->DirectionalRadiance << "\n";
   os << indent << "DirectionalOrder: " << this->DirectionalOrder << "\n";
   os << indent << "MeasureNewView: " << this->MeasureNewView << "\n";

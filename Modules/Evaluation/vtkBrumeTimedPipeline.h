@@ -75,6 +75,10 @@ public:
   ///@}
 
   ///@{
+  /// The light tracer's MediumAimFraction (default 0.2).
+  vtkSetClampMacro(MediumAimFraction, double, 0.0, 0.99);
+  vtkGetMacro(MediumAimFraction, double);
+
   /// The reconstruction's CentroidMatching (default on).
   vtkSetMacro(CentroidMatching, bool);
   vtkGetMacro(CentroidMatching, bool);
@@ -115,6 +119,7 @@ protected:
   int MaximumDepth = 1024;
   double RadiosityThreshold = 128.0;
   bool CentroidMatching = true;
+  double MediumAimFraction = 0.2;
   bool DirectionalRadiance = false;
   int DirectionalOrder = 3;
   bool MeasureNewView = true;

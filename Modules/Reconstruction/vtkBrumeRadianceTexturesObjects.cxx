@@ -129,11 +129,23 @@ bool vtkBrumeRadianceTextures::CreateObjects(const vtkBrumeReconstructionSetting
   const double scale = run.Particles / (run.EndParticle - run.FirstParticle);
   const std::size_t objects = this->Scene.NumberOfObjects();
   const std::size_t surfaces = this->Scene.Surfaces.size();
+  // Where lights were aimed, a hit counts for its particle's emission
+  // weight: an object's texels follow the particles a uniform emission
+  // would have sent it (as many texels, as much work), and the particles
+  // aimed at it lower its noise instead.
   std::vector<vtkTypeInt64> counts(objects);
   for (std::size_t o = 0; o < objects; ++o)
   {
-    counts[o] = static_cast<vtkTypeInt64>(
-      std::llround(scale * static_cast<double>(groups.Offset[o + 1] - groups.Offset[o])));
+    double hitsOfObject = static_cast<double>(groups.Offset[o + 1] - groups.Offset[o]);
+    if (hits.Aim)
+    {
+      hitsOfObject = 0.0;
+      for (std::size_t k = groups.Offset[o]; k < groups.Offset[o + 1]; ++k)
+      {
+        hitsOfObject += 1.0 / hits.GrowthScale(groups.Index[k]);
+      }
+    }
+    counts[o] = static_cast<vtkTypeInt64>(std::llround(scale * hitsOfObject));
   }
   std::vector<std::size_t> pilotStart(objects + 1, objects);
   // Surfaces only where the direct light of delta lights is computed: their

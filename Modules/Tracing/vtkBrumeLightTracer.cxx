@@ -139,13 +139,16 @@ struct OutputHits
   GrowingBuffer<unsigned short> Object, Emitter;
   GrowingBuffer<unsigned char> Depth;
   GrowingBuffer<unsigned int> Triangle;
+  // Only where a light is aimed (vtkBrumeLightTracer::MediumAimFraction).
+  GrowingBuffer<unsigned char> Aim;
+  bool WithAim = false;
 
   bool Resize(vtkIdType n)
   {
     const auto m = static_cast<std::size_t>(n);
     return this->Points.Resize(3 * m) && this->Direction.Resize(3 * m) &&
       this->Flux.Resize(3 * m) && this->Object.Resize(m) && this->Emitter.Resize(m) &&
-      this->Depth.Resize(m) && this->Triangle.Resize(m);
+      this->Depth.Resize(m) && this->Triangle.Resize(m) && (!this->WithAim || this->Aim.Resize(m));
   }
 
   // Room for n hits at once (pages are mapped only when written), or
@@ -155,7 +158,8 @@ struct OutputHits
     const auto m = static_cast<std::size_t>(n);
     return this->Points.Reallocate(3 * m) && this->Direction.Reallocate(3 * m) &&
       this->Flux.Reallocate(3 * m) && this->Object.Reallocate(m) && this->Emitter.Reallocate(m) &&
-      this->Depth.Reallocate(m) && this->Triangle.Reallocate(m);
+      this->Depth.Reallocate(m) && this->Triangle.Reallocate(m) &&
+      (!this->WithAim || this->Aim.Reallocate(m));
   }
 
   void Write(vtkIdType offset, const std::vector<brume::Hit>& hits)
@@ -182,14 +186,26 @@ struct OutputHits
       depth[i] = h.Depth;
       triangle[i] = h.Triangle;
     }
+    if (this->WithAim)
+    {
+      unsigned char* aim = this->Aim.Data + offset;
+      for (std::size_t i = 0; i < hits.size(); ++i)
+      {
+        aim[i] = hits[i].Aim;
+      }
+    }
   }
 
   // The arrays of the last batch's output, in the order Attach() makes them.
   void Adopt(const std::vector<HandedArray>& handed)
   {
-    if (handed.size() != 7)
+    if (handed.size() != (this->WithAim ? 8u : 7u))
     {
       return;
+    }
+    if (this->WithAim)
+    {
+      this->Aim.Adopt<vtkUnsignedCharArray>(handed[7]);
     }
     this->Points.Adopt<vtkFloatArray>(handed[0]);
     this->Direction.Adopt<vtkFloatArray>(handed[1]);
@@ -233,6 +249,11 @@ struct OutputHits
       vtkBrumeHitConversion::DepthName, 1));
     pd->AddArray(make(vtkSmartPointer<vtkUnsignedIntArray>::New(), this->Triangle,
       vtkBrumeHitConversion::TriangleIdName, 1));
+    if (this->WithAim)
+    {
+      pd->AddArray(make(vtkSmartPointer<vtkUnsignedCharArray>::New(), this->Aim,
+        vtkBrumeHitConversion::AimName, 1));
+    }
   }
 };
 
@@ -361,6 +382,9 @@ int vtkBrumeLightTracer::RequestData(
   {
     return 0;
   }
+  brume::AimAtMedia(scene, static_cast<float>(this->MediumAimFraction));
+  const bool aims = std::any_of(
+    scene.Lights.begin(), scene.Lights.end(), [](const brume::Light& l) { return l.Aims(); });
   const brume::RayCaster caster(scene);
   if (!caster.GetError().empty())
   {
@@ -384,6 +408,7 @@ int vtkBrumeLightTracer::RequestData(
     reused.reset(new BatchMemory);
   }
   OutputHits out;
+  out.WithAim = aims;
   output->Initialize(); // lets go of the last batch's arrays
   out.Adopt(reused->Handed);
   reused->Handed.clear();
@@ -452,6 +477,23 @@ int vtkBrumeLightTracer::RequestData(
     this->Reused = std::move(reused);
   }
   AddTuple(output, vtkBrumeHitConversion::TotalPowerName, tracer.GetTotalPower());
+  if (aims)
+  {
+    // The weight of each class of Aim, emitter id by emitter id: the
+    // objects' (emissive surfaces are never aimed), then the lights'.
+    vtkNew<vtkDoubleArray> weights;
+    weights->SetName(vtkBrumeHitConversion::AimWeightsName);
+    weights->SetNumberOfComponents(3);
+    for (std::size_t o = 0; o < scene.NumberOfObjects(); ++o)
+    {
+      weights->InsertNextTuple3(1.0, 1.0, 1.0);
+    }
+    for (const brume::Light& l : scene.Lights)
+    {
+      weights->InsertNextTuple3(l.EmissionWeight(0), l.EmissionWeight(1), l.EmissionWeight(2));
+    }
+    output->GetFieldData()->AddArray(weights);
+  }
   vtkNew<vtkDoubleArray> count;
   count->SetName(vtkBrumeHitConversion::NumberOfParticlesName);
   count->InsertNextValue(static_cast<double>(particles));
@@ -495,6 +537,7 @@ void vtkBrumeLightTracer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "MaximumDepth: " << this->MaximumDepth << "\n";
   os << indent << "RouletteDepth: " << this->RouletteDepth << "\n";
+  os << indent << "MediumAimFraction: " << this->MediumAimFraction << "\n";
   os << indent << "MemoryLimit: " << this->MemoryLimit << "\n";
   os << indent << "Lights: " << this->Lights->GetNumberOfItems() << "\n";
 }

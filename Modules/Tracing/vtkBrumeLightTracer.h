@@ -102,6 +102,24 @@ public:
 
   ///@{
   /**
+   * Fraction of a directional light's particles aimed at the scene's media
+   * (brume::AimAtMedia), where their boxes cover at most a quarter of its
+   * beam: a cloud over a wide ground gets the particles the ground would
+   * otherwise take, and every flux is weighted so that the light is the
+   * same. The hits then carry the point array `Aim` and the field array
+   * `AimWeights`, with which the reconstruction sizes the textures as a
+   * uniform emission would have and grows its regions as if every particle
+   * weighed alike. Default 0.2 (measured best among 0.1-0.8 on the clouds
+   * and the dragon: more leaves the ground's fewer, heavier particles to
+   * carry the light it reflects into the medium); 0 emits every beam
+   * uniformly. In [0, 0.99].
+   */
+  vtkSetClampMacro(MediumAimFraction, double, 0.0, 0.99);
+  vtkGetMacro(MediumAimFraction, double);
+  ///@}
+
+  ///@{
+  /**
    * Point, spot and directional lights, in addition to the emissive surfaces
    * of the scene (see vtkBrumeSceneConversion::ConvertLights for units).
    */
@@ -138,6 +156,7 @@ protected:
   vtkIdType Seed = 0;
   int MaximumDepth = 1024;
   int RouletteDepth = 3;
+  double MediumAimFraction = 0.2;
   vtkTypeInt64 MemoryLimit = vtkTypeInt64(8) << 30;
   vtkTypeInt64 LastRayCount = 0;
   vtkSmartPointer<vtkLightCollection> Lights;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Known answers of the light tracer that need no reference table.
 #include "brume/LightTracer.h"
+#include "brume/Random.h"
 #include "brume/Sampling.h"
 
 #include "TestScenes.h"
@@ -396,4 +397,121 @@ TEST(LightTracer, SpectralTrackingGivesEachChannelItsTransmittance)
     const double mean = sum / n, se = std::sqrt((sum2 / n - mean * mean) / n);
     EXPECT_NEAR(mean, std::exp(-coloured.SigmaA[ch] * 0.5), 4 * se) << "channel " << ch;
   }
+}
+
+TEST(LightTracer, AimedBeamDeliversTheSamePowerWithLessNoise)
+{
+  // Sunlight straight down over a black 4 x 4 ground, with a black box
+  // 0.2 wide (sigma_a 200: nothing crosses it) in it. The box absorbs
+  // E * 0.04 and the ground E * (16 - 0.04), whatever the aim; aimed, the
+  // box gets most particles and its estimate's standard error shrinks.
+  Scene scene;
+  Surface ground = Quad("ground", 2.f, -1.f, false);
+  ground.Mat.Reflectance = Vec3(0.f);
+  scene.Surfaces = { ground };
+  Medium box;
+  box.Name = "box";
+  box.Bounds = { { 0.4f, -0.1f, 0.2f }, { 0.6f, 0.1f, 0.4f } };
+  box.SigmaA = Vec3(200.f);
+  box.SigmaS = Vec3(0.f);
+  scene.Media = { box };
+  Light sun;
+  sun.Type = LightType::Directional;
+  sun.Direction = Vec3(0.f, -1.f, 0.f);
+  sun.Intensity = Vec3(1.f);
+  sun.BeamRadius = 3.f;
+  sun.BeamCenter = Vec3(0.f, 3.f, 0.f);
+  scene.Lights = { sun };
+  ASSERT_EQ(scene.Validate(), "");
+
+  // Unaimed, AimAtMedia leaves the light as it was; the disk holds the
+  // box's projection.
+  AimAtMedia(scene, 0.f);
+  EXPECT_FALSE(scene.Lights[0].Aims());
+  AimAtMedia(scene, 0.5f);
+  const Light& aimed = scene.Lights[0];
+  ASSERT_TRUE(aimed.Aims());
+  EXPECT_NEAR(aimed.AimRadius, 0.1f * std::sqrt(2.f), 1e-3f);
+  EXPECT_NEAR(aimed.AimCenter.x, 0.5f, 1e-5f);
+  EXPECT_NEAR(aimed.AimCenter.z, 0.3f, 1e-5f);
+  EXPECT_EQ(aimed.EmissionWeight(0), 1.f);
+  EXPECT_FLOAT_EQ(aimed.EmissionWeight(1), 2.f);
+  EXPECT_FLOAT_EQ(aimed.EmissionWeight(2), 1.f / (0.5f + 0.5f * 9.f / (0.02f * 1.001f * 1.001f)));
+
+  struct Estimate
+  {
+    double Box = 0.0, BoxError = 0.0, Ground = 0.0, GroundError = 0.0;
+  };
+  const std::uint64_t n = 100000;
+  auto estimate = [&](float fraction)
+  {
+    AimAtMedia(scene, fraction);
+    const auto hits = Trace(scene, n, 11);
+    // One interaction per particle (both objects absorb everything): each
+    // hit is one particle's contribution; the others contribute 0.
+    double sum[2] = { 0, 0 }, squares[2] = { 0, 0 };
+    for (const Hit& h : hits)
+    {
+      sum[h.Object] += h.Flux[1];
+      squares[h.Object] += static_cast<double>(h.Flux[1]) * h.Flux[1];
+      EXPECT_EQ(h.Aim, fraction > 0.f ? (h.Object == 1 ? 2 : h.Aim) : 0);
+    }
+    Estimate e;
+    auto error = [&](int o)
+    { return std::sqrt((squares[o] - sum[o] * sum[o] / n) * n / (n - 1.0)); };
+    e.Ground = sum[0];
+    e.GroundError = error(0);
+    e.Box = sum[1];
+    e.BoxError = error(1);
+    return e;
+  };
+  const Estimate uniform = estimate(0.f), half = estimate(0.5f);
+  for (const Estimate& e : { uniform, half })
+  {
+    EXPECT_NEAR(e.Box, 0.04, 4.0 * e.BoxError);
+    EXPECT_NEAR(e.Ground, 16.0 - 0.04, 4.0 * e.GroundError);
+  }
+  EXPECT_LT(half.BoxError, uniform.BoxError / 5.0);
+}
+
+TEST(LightTracer, AimedPointsBeyondTheBeamCarryNothing)
+{
+  // A disk aimed half outside the beam: its points beyond the beam get
+  // weight 0, the others their class's, and the weights' mean over the
+  // beam's area is 1 (the light's power is unchanged).
+  Light sun;
+  sun.Type = LightType::Directional;
+  sun.Direction = Vec3(0.f, -1.f, 0.f);
+  sun.BeamRadius = 1.f;
+  sun.BeamCenter = Vec3(0.f);
+  sun.AimCenter = Vec3(1.f, 0.f, 0.f);
+  sun.AimRadius = 0.25f;
+  sun.AimFraction = 0.4f;
+  ASSERT_EQ(sun.Validate(), "");
+  Random rng(3, 0);
+  const int n = 400000;
+  double total = 0.0;
+  int beyond = 0;
+  for (int i = 0; i < n; ++i)
+  {
+    Vec3 origin, direction;
+    std::uint8_t aim = 0;
+    const float w = sun.SampleEmission(rng, origin, direction, aim);
+    const bool inBeam = Length(origin - sun.BeamCenter) <= sun.BeamRadius;
+    if (!inBeam)
+    {
+      EXPECT_EQ(w, 0.f);
+      ++beyond;
+    }
+    else
+    {
+      EXPECT_EQ(w, sun.EmissionWeight(aim));
+    }
+    total += w;
+  }
+  EXPECT_GT(beyond, 0);
+  // Each weight is at most 1 / (1 - 0.4): a bound on the standard error.
+  EXPECT_NEAR(total / n, 1.0, 4.0 * (1.0 / 0.6) / std::sqrt(double(n)));
+  sun.AimFraction = 1.f;
+  EXPECT_NE(sun.Validate(), "");
 }

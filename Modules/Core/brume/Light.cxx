@@ -54,6 +54,11 @@ std::string Light::Validate() const
   {
     return "has a beam radius that is not positive";
   }
+  if (!(this->AimFraction >= 0.f && this->AimFraction < 1.f) || !(this->AimRadius >= 0.f) ||
+    !std::isfinite(this->AimRadius) || !IsFinite(this->AimCenter))
+  {
+    return "has an aimed disk that is not a fraction in [0, 1) of a finite disk";
+  }
   if (!(MaxComponent(this->Power()) > 0.f))
   {
     return "has zero power";
@@ -93,6 +98,61 @@ void Light::SampleEmission(Random& rng, Vec3& origin, Vec3& direction) const
       return;
     }
   }
+}
+
+bool Light::Aims() const
+{
+  return this->Type == LightType::Directional && this->AimFraction > 0.f &&
+    this->AimFraction < 1.f && this->AimRadius > 0.f;
+}
+
+float Light::EmissionWeight(std::uint8_t aim) const
+{
+  if (aim == 0 || !this->Aims())
+  {
+    return 1.f;
+  }
+  // The beam's uniform density over the mixture's: (1/A) / ((1 - p)/A + p/a)
+  // inside the aimed disk, (1/A) / ((1 - p)/A) outside it.
+  const double p = this->AimFraction;
+  if (aim == 1)
+  {
+    return static_cast<float>(1.0 / (1.0 - p));
+  }
+  const double areas = static_cast<double>(this->BeamRadius) * this->BeamRadius /
+    (static_cast<double>(this->AimRadius) * this->AimRadius);
+  return static_cast<float>(1.0 / ((1.0 - p) + p * areas));
+}
+
+float Light::SampleEmission(Random& rng, Vec3& origin, Vec3& direction, std::uint8_t& aim) const
+{
+  if (!this->Aims())
+  {
+    aim = 0;
+    this->SampleEmission(rng, origin, direction);
+    return 1.f;
+  }
+  const bool aimed = rng.NextFloat() < this->AimFraction;
+  const float u1 = rng.NextFloat(), u2 = rng.NextFloat();
+  const Vec3& centre = aimed ? this->AimCenter : this->BeamCenter;
+  const float r = (aimed ? this->AimRadius : this->BeamRadius) * std::sqrt(u1);
+  const float phi = 2.f * Pi * u2;
+  const Frame frame(this->Direction);
+  origin = centre + frame.s * (r * std::cos(phi)) + frame.t * (r * std::sin(phi));
+  direction = this->Direction;
+  // Which density the point has follows from where it is, whichever disk it
+  // was drawn from (a point drawn from the aimed disk is inside it).
+  const Vec3 fromAim = origin - this->AimCenter;
+  aim = aimed || Dot(fromAim, fromAim) <= this->AimRadius * this->AimRadius ? 2 : 1;
+  if (aimed)
+  {
+    const Vec3 fromBeam = origin - this->BeamCenter;
+    if (Dot(fromBeam, fromBeam) > this->BeamRadius * this->BeamRadius)
+    {
+      return 0.f; // where the beam does not reach
+    }
+  }
+  return this->EmissionWeight(aim);
 }
 
 } // namespace brume

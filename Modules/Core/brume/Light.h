@@ -6,6 +6,7 @@
 #include "brume/Random.h"
 #include "brume/Vec3.h"
 
+#include <cstdint>
 #include <string>
 
 namespace brume
@@ -37,6 +38,17 @@ struct Light
   /// Directional beam: centre and radius of the emitting disk.
   Vec3 BeamCenter{ 0.f };
   float BeamRadius = 1.f;
+  /**
+   * Directional beam aimed at a smaller disk of its emitting plane (AimAtMedia):
+   * a fraction AimFraction of the particles leave the disk of radius
+   * AimRadius about AimCenter, the others the whole beam, and every particle's
+   * flux is weighted by the beam's uniform density over the mixture's
+   * (EmissionWeight), so that the light's expected flux everywhere is
+   * unchanged. 0: the whole beam, uniformly.
+   */
+  Vec3 AimCenter{ 0.f };
+  float AimRadius = 0.f;
+  float AimFraction = 0.f;
 
   /// Emitted power per channel (W).
   Vec3 Power() const;
@@ -44,6 +56,19 @@ struct Light
   std::string Validate() const;
   /// Samples an emission ray; its flux is Power() divided by the caller.
   void SampleEmission(Random& rng, Vec3& origin, Vec3& direction) const;
+
+  /// Whether the beam is aimed (AimFraction in (0, 1) and a positive AimRadius).
+  bool Aims() const;
+  /**
+   * Samples an emission ray of an aimed or unaimed light and returns the
+   * weight its flux takes (1 for an unaimed light; 0 for a point of the
+   * aimed disk outside the beam, which carries nothing), with `aim` the
+   * class the weight follows from: 0 unaimed, 1 outside the aimed disk,
+   * 2 inside it. Unaimed, the same draws as SampleEmission().
+   */
+  float SampleEmission(Random& rng, Vec3& origin, Vec3& direction, std::uint8_t& aim) const;
+  /// The weight of an emission ray of class `aim` (see above).
+  float EmissionWeight(std::uint8_t aim) const;
 };
 
 } // namespace brume

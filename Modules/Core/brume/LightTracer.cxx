@@ -128,8 +128,8 @@ void LightTracer::TraceParticles(std::uint64_t first, std::uint64_t end, std::ui
   }
 }
 
-const LightTracer::Emitter& LightTracer::Emit(
-  Random& rng, std::uint64_t count, Vec3& flux, Vec3& origin, Vec3& direction) const
+const LightTracer::Emitter& LightTracer::Emit(Random& rng, std::uint64_t count, Vec3& flux,
+  Vec3& origin, Vec3& direction, std::uint8_t& aim) const
 {
   const Scene& scene = this->SceneRef;
   // Choose an emitter in proportion to its power.
@@ -142,9 +142,10 @@ const LightTracer::Emitter& LightTracer::Emit(
   // Flux = Phi_emitter / (N p_emitter).
   flux = emitter.Power * static_cast<float>(1.0 / (static_cast<double>(count) * pdfEmitter));
 
+  aim = 0;
   if (emitter.Light >= 0)
   {
-    scene.Lights[emitter.Light].SampleEmission(rng, origin, direction);
+    flux *= scene.Lights[emitter.Light].SampleEmission(rng, origin, direction, aim);
   }
   else
   {
@@ -178,8 +179,13 @@ void LightTracer::TraceParticle(std::uint64_t index, std::uint64_t count, std::v
   const auto numberOfSurfaces = static_cast<std::uint16_t>(scene.Surfaces.size());
 
   Vec3 flux, origin, direction;
-  const Emitter& emitter = this->Emit(rng, count, flux, origin, direction);
+  std::uint8_t aim = 0;
+  const Emitter& emitter = this->Emit(rng, count, flux, origin, direction, aim);
   Tally(counters.Emitted, flux);
+  if (!(MaxComponent(flux) > 0.f))
+  {
+    return; // an aimed light's point beyond its beam
+  }
   const float initialFlux = MaxComponent(flux);
 
   MediumTracker inlineTrackers[InlineTrackers];
@@ -206,7 +212,8 @@ void LightTracer::TraceParticle(std::uint64_t index, std::uint64_t count, std::v
     h.Object = object;
     h.Emitter = emitter.Id;
     h.Depth = static_cast<std::uint8_t>(std::min(depth, 255));
-    h.Padding[0] = h.Padding[1] = h.Padding[2] = 0;
+    h.Aim = aim;
+    h.Padding[0] = h.Padding[1] = 0;
     h.Triangle = triangle;
     hits.push_back(h);
     ++counters.Hits;

@@ -38,7 +38,10 @@ struct Hit
   std::uint16_t Emitter;
   /// Number of interactions before this one (0: straight from the light), saturating at 255.
   std::uint8_t Depth;
-  std::uint8_t Padding[3];
+  /// Where an aimed light emitted the particle (Light::SampleEmission: 0
+  /// unaimed, 1 outside the aimed disk, 2 inside it).
+  std::uint8_t Aim;
+  std::uint8_t Padding[2];
   /// Surface hits: the triangle (index in Surface::Triangles); media: 0.
   std::uint32_t Triangle;
 };
@@ -128,8 +131,8 @@ private:
 
   /// Chooses an emitter in proportion to its power and samples where and
   /// in which direction the particle leaves it, with its flux.
-  const Emitter& Emit(
-    Random& rng, std::uint64_t count, Vec3& flux, Vec3& origin, Vec3& direction) const;
+  const Emitter& Emit(Random& rng, std::uint64_t count, Vec3& flux, Vec3& origin, Vec3& direction,
+    std::uint8_t& aim) const;
 
   const Scene& SceneRef;
   const RayCaster& Caster;

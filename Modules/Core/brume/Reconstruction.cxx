@@ -270,7 +270,8 @@ void ObjectRadiance::SumHistograms(const Vec3& eye, const ParallelFor& parallelF
         for (std::size_t k = this->RangeStart[begin]; k < this->RangeStart[end]; ++k)
         {
           const float* f = this->Kept[k].Flux;
-          const double w[1] = { (static_cast<double>(f[0]) + f[1] + f[2]) / 3.0 };
+          const double w[1] = { (static_cast<double>(f[0]) + f[1] + f[2]) / 3.0 *
+            this->Kept[k].Growth };
           weights.AddNonNegative(this->Kept[k].Cell, w);
         }
       });

@@ -65,7 +65,23 @@ struct HitArrays
   const std::uint32_t* Triangle = nullptr; // may be null: planar surfaces need none
   const std::uint16_t* Emitter = nullptr;  // may be null unless direct light is computed
   const std::uint8_t* Depth = nullptr;     // may be null unless direct light is computed
+  /**
+   * May be null: every particle weighed alike. Where lights were aimed
+   * (Light::AimAtMedia), each hit's class (Hit::Aim) and, three per emitter
+   * id, the inverse of each class's emission weight: what a hit counts for
+   * when its region grows (GrowthScale), so that regions grow to the
+   * threshold's number of particles, not its flux, and a medium that aimed
+   * particles reach gets their noise down and its regions small, as if
+   * every particle had been traced toward it.
+   */
+  const std::uint8_t* Aim = nullptr;
+  const double* GrowthScales = nullptr;
   std::size_t Count = 0;
+
+  double GrowthScale(std::size_t i) const
+  {
+    return this->Aim ? this->GrowthScales[3 * std::size_t(this->Emitter[i]) + this->Aim[i]] : 1.0;
+  }
 };
 
 /// Hit indices grouped by object, in hit order within each object.
@@ -547,6 +563,7 @@ private:
   {
     float Position[3], Direction[3], Flux[3];
     std::uint32_t Cell, Triangle;
+    float Growth; // HitArrays::GrowthScale
   };
   using KeptHits = std::vector<KeptHit, UninitializedAllocator<KeptHit>>;
   KeptHits Kept;

@@ -178,9 +178,9 @@ void ObjectRadiance::BinInPlace(
   // they are added to (a software pipeline): 10^7 particles of the default
   // scene bin in 0.07-0.09 s a wall instead of 0.17 s with the hits grouped by
   // ranges of cells first, and nothing is allocated.
-  auto add = [this](std::uint32_t cell, const float* f, std::uint32_t triangle)
+  auto add = [this](std::uint32_t cell, const float* f, std::uint32_t triangle, double growth)
   {
-    const double w[1] = { (static_cast<double>(f[0]) + f[1] + f[2]) / 3.0 };
+    const double w[1] = { (static_cast<double>(f[0]) + f[1] + f[2]) / 3.0 * growth };
     this->WeightSums.AddNonNegative(cell, w);
     double v[3];
     if (this->MediumRef)
@@ -212,7 +212,8 @@ void ObjectRadiance::BinInPlace(
     if (k >= Lag && waitingCell[slot] != NoCell)
     {
       const std::uint32_t i = waitingHit[slot];
-      add(waitingCell[slot], hits.Flux + 3 * i, hits.Triangle ? hits.Triangle[i] : 0);
+      add(waitingCell[slot], hits.Flux + 3 * i, hits.Triangle ? hits.Triangle[i] : 0,
+        hits.GrowthScale(i));
     }
     if (k < count)
     {
@@ -280,6 +281,7 @@ void ObjectRadiance::KeepHits(const HitArrays& hits, const std::uint32_t* index,
     }
     out.Cell = cellOf[k];
     out.Triangle = hits.Triangle ? hits.Triangle[i] : 0;
+    out.Growth = static_cast<float>(hits.GrowthScale(i));
   };
   if (!this->DeferMerge && this->Pending.empty())
   {

@@ -9,6 +9,7 @@
 #include "vtkCamera.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
@@ -17,6 +18,7 @@
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkStringArray.h"
+#include "vtkUnsignedCharArray.h"
 
 #include "brume/Reconstruction.h"
 
@@ -131,6 +133,49 @@ void TestHits()
   noFlux->GetPointData()->RemoveArray(vtkBrumeHitConversion::FluxName);
   Check(vtkBrumeHitConversion::ReadHits(noFlux, view, run, copy).find("Flux") != std::string::npos,
     "a missing Flux array is named");
+
+  // An aimed run's classes and weights (emitter 7 is the hits' light).
+  Check(!view.Aim && view.GrowthScale(0) == 1.0, "unaimed hits grow by their flux");
+  vtkNew<vtkPolyData> aimed;
+  aimed->DeepCopy(data);
+  vtkNew<vtkUnsignedCharArray> aim;
+  aim->SetName(vtkBrumeHitConversion::AimName);
+  for (unsigned char a : { 0, 1, 2 })
+  {
+    aim->InsertNextValue(a);
+  }
+  aimed->GetPointData()->AddArray(aim);
+  Check(
+    vtkBrumeHitConversion::ReadHits(aimed, view, run, copy).find("AimWeights") != std::string::npos,
+    "an Aim array without AimWeights is named");
+  vtkNew<vtkDoubleArray> weights;
+  weights->SetName(vtkBrumeHitConversion::AimWeightsName);
+  weights->SetNumberOfComponents(3);
+  for (int e = 0; e < 8; ++e)
+  {
+    weights->InsertNextTuple3(1.0, e == 7 ? 1.25 : 1.0, e == 7 ? 0.05 : 1.0);
+  }
+  aimed->GetFieldData()->AddArray(weights);
+  Check(vtkBrumeHitConversion::ReadHits(aimed, view, run, copy).empty() && view.Aim &&
+      view.GrowthScale(0) == 1.0 && std::abs(view.GrowthScale(1) - 0.8) < 1e-12 &&
+      std::abs(view.GrowthScale(2) - 20.0) < 1e-9,
+    "each hit grows by its class's inverse weight");
+  std::vector<brume::Hit> aimedBack;
+  Check(vtkBrumeHitConversion::HitsFromPolyData(aimed, aimedBack).empty() &&
+      aimedBack.size() == 3 && aimedBack[2].Aim == 2,
+    "hits read back with their classes");
+  weights->SetComponent(7, 2, 0.0);
+  Check(
+    vtkBrumeHitConversion::ReadHits(aimed, view, run, copy).find("AimWeights") != std::string::npos,
+    "a weight of 0 is refused");
+  weights->SetComponent(7, 2, 0.05);
+  aim->SetValue(1, 3);
+  Check(
+    !vtkBrumeHitConversion::ReadHits(aimed, view, run, copy).empty(), "a class of 3 is refused");
+  aim->SetValue(1, 1);
+  weights->SetNumberOfTuples(7);
+  Check(!vtkBrumeHitConversion::ReadHits(aimed, view, run, copy).empty(),
+    "an emitter without weights is refused");
 }
 
 void TestTextures()
@@ -147,8 +192,8 @@ void TestTextures()
   const brume::Surface& wall = scene.Surfaces[0];
   brume::ObjectRadiance surface(wall, brume::MakeChart(wall, nullptr), { 8, 4 }, 2);
   const brume::HitArrays none;
-  Check(surface.Build(none, nullptr, 0, brume::Vec3(0.f, 0.f, 4.f), 1.0, brume::SerialFor())
-          .empty(),
+  Check(
+    surface.Build(none, nullptr, 0, brume::Vec3(0.f, 0.f, 4.f), 1.0, brume::SerialFor()).empty(),
     "an empty surface texture builds");
   auto* sceneSurface = vtkPolyData::SafeDownCast(
     source->GetOutput()->GetPartitionedDataSet(sources[0].CollectionIndex)->GetPartition(0));
@@ -178,8 +223,7 @@ void TestTextures()
   // A medium: a grid of cells over its box, with its extinction.
   const brume::Medium& fog = scene.Media[0];
   brume::ObjectRadiance medium(fog, { 4, 3, 2 }, 1);
-  Check(medium.Build(none, nullptr, 0, brume::Vec3(0.f, 0.f, 4.f), 1.0, brume::SerialFor())
-          .empty(),
+  Check(medium.Build(none, nullptr, 0, brume::Vec3(0.f, 0.f, 4.f), 1.0, brume::SerialFor()).empty(),
     "an empty medium texture builds");
   auto volumePds = vtkBrumeRadianceConversion::FromMedium(medium, fog, false);
   auto* volume = vtkImageData::SafeDownCast(volumePds->GetPartition(0));
