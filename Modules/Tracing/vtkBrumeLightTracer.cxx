@@ -382,15 +382,15 @@ int vtkBrumeLightTracer::RequestData(
   {
     return 0;
   }
-  brume::AimAtMedia(scene, static_cast<float>(this->MediumAimFraction));
-  const bool aims = std::any_of(
-    scene.Lights.begin(), scene.Lights.end(), [](const brume::Light& l) { return l.Aims(); });
   const brume::RayCaster caster(scene);
   if (!caster.GetError().empty())
   {
     vtkErrorMacro("Could not build the ray-casting structure: " << caster.GetError());
     return 0;
   }
+  brume::AimAtMedia(scene, caster, static_cast<float>(this->MediumAimFraction));
+  const bool aims = std::any_of(
+    scene.Lights.begin(), scene.Lights.end(), [](const brume::Light& l) { return l.Aims(); });
   brume::TraceSettings settings;
   settings.Seed = static_cast<std::uint64_t>(this->Seed);
   settings.MaxDepth = this->MaximumDepth;

@@ -424,19 +424,29 @@ TEST(LightTracer, AimedBeamDeliversTheSamePowerWithLessNoise)
   scene.Lights = { sun };
   ASSERT_EQ(scene.Validate(), "");
 
-  // Unaimed, AimAtMedia leaves the light as it was; the disk holds the
-  // box's projection.
-  AimAtMedia(scene, 0.f);
+  // Unaimed, AimAtMedia leaves the light as it was; aimed, the disk holds
+  // the box's projection, to within a pilot cell.
+  const RayCaster caster(scene);
+  AimAtMedia(scene, caster, 0.f);
   EXPECT_FALSE(scene.Lights[0].Aims());
-  AimAtMedia(scene, 0.5f);
+  AimAtMedia(scene, caster, 0.5f);
   const Light& aimed = scene.Lights[0];
   ASSERT_TRUE(aimed.Aims());
-  EXPECT_NEAR(aimed.AimRadius, 0.1f * std::sqrt(2.f), 1e-3f);
-  EXPECT_NEAR(aimed.AimCenter.x, 0.5f, 1e-5f);
-  EXPECT_NEAR(aimed.AimCenter.z, 0.3f, 1e-5f);
+  const float cell = 2.f * sun.BeamRadius / AimPilotRays;
+  EXPECT_NEAR(aimed.AimRadius, 0.1f * std::sqrt(2.f), 2.f * cell);
+  EXPECT_NEAR(aimed.AimCenter.x, 0.5f, cell);
+  EXPECT_NEAR(aimed.AimCenter.z, 0.3f, cell);
+  for (float x : { 0.4f, 0.6f })
+  {
+    for (float z : { 0.2f, 0.4f })
+    {
+      EXPECT_LE(std::hypot(x - aimed.AimCenter.x, z - aimed.AimCenter.z), aimed.AimRadius);
+    }
+  }
   EXPECT_EQ(aimed.EmissionWeight(0), 1.f);
   EXPECT_FLOAT_EQ(aimed.EmissionWeight(1), 2.f);
-  EXPECT_FLOAT_EQ(aimed.EmissionWeight(2), 1.f / (0.5f + 0.5f * 9.f / (0.02f * 1.001f * 1.001f)));
+  EXPECT_FLOAT_EQ(
+    aimed.EmissionWeight(2), 1.f / (0.5f + 0.5f * 9.f / (aimed.AimRadius * aimed.AimRadius)));
 
   struct Estimate
   {
@@ -445,7 +455,7 @@ TEST(LightTracer, AimedBeamDeliversTheSamePowerWithLessNoise)
   const std::uint64_t n = 100000;
   auto estimate = [&](float fraction)
   {
-    AimAtMedia(scene, fraction);
+    AimAtMedia(scene, caster, fraction);
     const auto hits = Trace(scene, n, 11);
     // One interaction per particle (both objects absorb everything): each
     // hit is one particle's contribution; the others contribute 0.

@@ -5,8 +5,10 @@
 #include "brume/Sampling.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace brume
 {
@@ -316,6 +318,95 @@ void LightTracer::TraceParticle(std::uint64_t index, std::uint64_t count, std::v
         TallyChange(counters.EstimatorNet, before, flux);
       }
     }
+  }
+}
+
+void AimAtMedia(Scene& scene, const RayCaster& caster, float fraction)
+{
+  for (Light& light : scene.Lights)
+  {
+    light.AimFraction = 0.f;
+    light.AimRadius = 0.f;
+    if (light.Type != LightType::Directional || scene.Media.empty() || !(fraction > 0.f) ||
+      !(fraction < 1.f))
+    {
+      continue;
+    }
+    // Pilot rays from the centres of a grid of cells across the beam.
+    const Frame frame(light.Direction);
+    const int n = AimPilotRays;
+    const float cell = 2.f * light.BeamRadius / static_cast<float>(n);
+    float lo[2] = { std::numeric_limits<float>::max(), std::numeric_limits<float>::max() };
+    float hi[2] = { std::numeric_limits<float>::lowest(), std::numeric_limits<float>::lowest() };
+    std::vector<std::array<float, 2>> reaching;
+    for (int j = 0; j < n; ++j)
+    {
+      for (int i = 0; i < n; ++i)
+      {
+        const float x = -light.BeamRadius + (static_cast<float>(i) + 0.5f) * cell;
+        const float y = -light.BeamRadius + (static_cast<float>(j) + 0.5f) * cell;
+        if (x * x + y * y > light.BeamRadius * light.BeamRadius)
+        {
+          continue;
+        }
+        const Vec3 origin = light.BeamCenter + frame.s * x + frame.t * y;
+        SurfaceHit hit;
+        const float stop = caster.Intersect(origin, light.Direction, 0.f,
+                             std::numeric_limits<float>::infinity(), hit)
+          ? hit.T
+          : std::numeric_limits<float>::infinity();
+        bool reaches = false;
+        for (const Medium& m : scene.Media)
+        {
+          float t0 = 0.f, t1 = stop;
+          for (int a = 0; a < 3 && t0 < t1; ++a)
+          {
+            const float d = light.Direction[a];
+            const float o = origin[a];
+            if (d == 0.f)
+            {
+              t1 = o >= m.Bounds.lower[a] && o <= m.Bounds.upper[a] ? t1 : -1.f;
+              continue;
+            }
+            float near = (m.Bounds.lower[a] - o) / d, far = (m.Bounds.upper[a] - o) / d;
+            if (near > far)
+            {
+              std::swap(near, far);
+            }
+            t0 = std::max(t0, near);
+            t1 = std::min(t1, far);
+          }
+          reaches = reaches || t1 - t0 > 1e-3f * Length(m.Bounds.Extent());
+        }
+        if (reaches)
+        {
+          reaching.push_back({ x, y });
+          lo[0] = std::min(lo[0], x);
+          lo[1] = std::min(lo[1], y);
+          hi[0] = std::max(hi[0], x);
+          hi[1] = std::max(hi[1], y);
+        }
+      }
+    }
+    if (reaching.empty())
+    {
+      continue;
+    }
+    // The disk about the centre of their extent that holds their cells.
+    const float cx = 0.5f * (lo[0] + hi[0]), cy = 0.5f * (lo[1] + hi[1]);
+    float radius = 0.f;
+    for (const auto& q : reaching)
+    {
+      radius = std::max(radius, std::hypot(q[0] - cx, q[1] - cy));
+    }
+    radius += cell * 1.4143f; // a cell beyond: the edge of what reaches may lie in it
+    if (radius * radius > MaxAimedBeamShare * light.BeamRadius * light.BeamRadius)
+    {
+      continue;
+    }
+    light.AimCenter = light.BeamCenter + frame.s * cx + frame.t * cy;
+    light.AimRadius = radius;
+    light.AimFraction = fraction;
   }
 }
 

@@ -90,6 +90,27 @@ struct RayLog
   std::vector<float> OriginsAndDirections; // 6 floats per ray
 };
 
+/**
+ * Aims every directional light at the scene's media: `fraction` of its
+ * particles (Light::AimFraction) leave the disk of its emitting plane from
+ * which the beam reaches a medium, the others the whole beam. Which part
+ * reaches one is found by pilot rays, AimPilotRays across the beam's
+ * diameter: those that cross a medium's box over more than a thousandth of
+ * its diagonal before any surface stops them (a cloud's box above the
+ * ground, the window through which the sun enters a hazy room, not the
+ * walls around it). The disk holds the cells of those rays and their
+ * neighbours (the edge of what reaches may lie in one); it is used where it
+ * covers at most MaxAimedBeamShare of the beam's area. Other
+ * lights, fraction 0 and beams whose every part reaches a medium are left
+ * unaimed. A beam covering a kilometre-wide ground, or a house with one
+ * window, sends most particles where only the direct light (computed, not
+ * estimated) and a little reflected light are; aimed, the medium gets the
+ * particles, every flux weighted so that the light is unchanged.
+ */
+void AimAtMedia(Scene& scene, const RayCaster& caster, float fraction);
+constexpr int AimPilotRays = 128;
+constexpr float MaxAimedBeamShare = 0.25f;
+
 class LightTracer
 {
 public:

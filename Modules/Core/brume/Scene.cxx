@@ -2,11 +2,8 @@
 #include "brume/Scene.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <limits>
 #include <sstream>
-#include <vector>
 
 namespace brume
 {
@@ -222,58 +219,6 @@ Scene MakeDefaultScene()
   fog.G = 0.7f;
   scene.Media.push_back(fog);
   return scene;
-}
-
-void AimAtMedia(Scene& scene, float fraction)
-{
-  for (Light& light : scene.Lights)
-  {
-    light.AimFraction = 0.f;
-    light.AimRadius = 0.f;
-    if (light.Type != LightType::Directional || scene.Media.empty() || !(fraction > 0.f) ||
-      !(fraction < 1.f))
-    {
-      continue;
-    }
-    // The boxes' corners in the emitting plane's frame: the disk about the
-    // centre of their extent that holds them all.
-    const Frame frame(light.Direction);
-    float lo[2] = { std::numeric_limits<float>::max(), std::numeric_limits<float>::max() };
-    float hi[2] = { std::numeric_limits<float>::lowest(), std::numeric_limits<float>::lowest() };
-    std::vector<std::array<float, 2>> corners;
-    for (const Medium& m : scene.Media)
-    {
-      for (int c = 0; c < 8; ++c)
-      {
-        const Vec3 p((c & 1) ? m.Bounds.upper.x : m.Bounds.lower.x,
-          (c & 2) ? m.Bounds.upper.y : m.Bounds.lower.y,
-          (c & 4) ? m.Bounds.upper.z : m.Bounds.lower.z);
-        const Vec3 d = p - light.BeamCenter;
-        const std::array<float, 2> q{ Dot(d, frame.s), Dot(d, frame.t) };
-        for (int a = 0; a < 2; ++a)
-        {
-          lo[a] = std::min(lo[a], q[a]);
-          hi[a] = std::max(hi[a], q[a]);
-        }
-        corners.push_back(q);
-      }
-    }
-    const float cs = 0.5f * (lo[0] + hi[0]), ct = 0.5f * (lo[1] + hi[1]);
-    float radius = 0.f;
-    for (const auto& q : corners)
-    {
-      radius = std::max(radius, std::hypot(q[0] - cs, q[1] - ct));
-    }
-    radius *= 1.001f;
-    if (!(radius > 0.f) ||
-      radius * radius > MaxAimedBeamShare * light.BeamRadius * light.BeamRadius)
-    {
-      continue;
-    }
-    light.AimCenter = light.BeamCenter + frame.s * cs + frame.t * ct;
-    light.AimRadius = radius;
-    light.AimFraction = fraction;
-  }
 }
 
 } // namespace brume

@@ -67,20 +67,6 @@ struct Scene
   std::string Validate() const;
 };
 
-/**
- * Aims every directional light at the scene's media: the disk of its
- * emitting plane that the media's boxes project into, where that disk
- * covers at most MaxAimedBeamShare of the beam's area (a cloud above a wide
- * plain, not a haze filling a room), with `fraction` of the light's
- * particles (Light::AimFraction); other lights and fraction 0 leave the
- * lights unaimed. A beam covering a kilometre-wide ground sends most
- * particles where only the direct light (computed, not estimated) and a
- * little reflected light are; aimed, the medium gets the particles, the
- * ground fewer, every flux weighted so that the light is unchanged.
- */
-void AimAtMedia(Scene& scene, float fraction);
-constexpr float MaxAimedBeamShare = 0.25f;
-
 /// The built-in default scene (a Cornell box around a cube of forward-scattering
 /// fog), exactly as specified so that its images compare with other renderers.
 Scene MakeDefaultScene();

@@ -246,8 +246,15 @@ float VdbDensity::Evaluate(const Vec3& p) const
   const Internals& impl = *this->Impl;
   const openvdb::Vec3R index((p.x - impl.Origin[0]) / impl.VoxelSize[0],
     (p.y - impl.Origin[1]) / impl.VoxelSize[1], (p.z - impl.Origin[2]) / impl.VoxelSize[2]);
-  // The tree (not a cached accessor) is safe to share between threads.
-  return openvdb::tools::BoxSampler::sample(impl.Grid->tree(), index);
+  // An accessor of this call alone (threads share the tree, not an
+  // accessor), unregistered from the tree (IsSafe false: nothing to
+  // register or release, the tree outlives the call): the trilinear
+  // sample's eight reads mostly fall in one leaf, which the accessor's
+  // cache reaches without descending from the root each time. The values
+  // read are the tree's, so the sample is bitwise the same.
+  const openvdb::tree::ValueAccessor<const openvdb::FloatTree, false> accessor(
+    impl.Grid->constTree());
+  return openvdb::tools::BoxSampler::sample(accessor, index);
 }
 
 namespace
