@@ -150,9 +150,10 @@ void AddSceneOptions(CLI::App* command, RenderOptions& o, const SceneHelp& help)
   command
     ->add_option("--aim", o.MediumAim,
       "fraction of a directional light's particles aimed at\n"
-      "the media, where they cover at most a quarter of its\n"
-      "beam (a cloud over a wide ground; default 0.2, 0: the\n"
-      "beam uniformly)")
+      "the part of its beam that reaches the media, where it\n"
+      "covers at most a quarter of the beam (a cloud over a\n"
+      "wide ground, a window; default 0.2, 0: the beam\n"
+      "uniformly)")
     ->transform(Number(0.0, 0.99, "a number in [0, 0.99]"))
     ->type_name("F");
   command->add_flag_callback(

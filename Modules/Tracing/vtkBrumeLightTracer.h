@@ -102,12 +102,13 @@ public:
 
   ///@{
   /**
-   * Fraction of a directional light's particles aimed at the scene's media
-   * (brume::AimAtMedia), where their boxes cover at most a quarter of its
-   * beam: a cloud over a wide ground gets the particles the ground would
-   * otherwise take, and every flux is weighted so that the light is the
-   * same. The hits then carry the point array `Aim` and the field array
-   * `AimWeights`, with which the reconstruction sizes the textures as a
+   * Fraction of a directional light's particles aimed at the part of its
+   * beam that reaches the scene's media (brume::AimAtMedia: pilot rays),
+   * where that part covers at most a quarter of the beam: a cloud over a
+   * wide ground, or the haze of a room the sun enters through a window,
+   * gets the particles the ground or the walls would otherwise take, and
+   * every flux is weighted so that the light is the same. The hits then
+   * carry the point array `Aim` and the field array `AimWeights`, with which the reconstruction sizes the textures as a
    * uniform emission would have and grows its regions as if every particle
    * weighed alike. Default 0.2 (measured best among 0.1-0.8 on the clouds
    * and the dragon: more leaves the ground's fewer, heavier particles to

@@ -5,10 +5,12 @@
 
 #include <gtest/gtest.h>
 #include <openvdb/openvdb.h>
+#include <openvdb/tools/Interpolation.h>
 
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <random>
 
 using namespace brume;
 
@@ -55,6 +57,42 @@ TEST(VdbDensity, LoadsTheGridSparselyWithItsTransform)
   EXPECT_NE(
     error.find("no float grid named 'temperature' (its float grids: 'density')"), std::string::npos)
     << error;
+}
+
+TEST(VdbDensity, SamplesAreOpenVdbsTrilinearSamplesBitwise)
+{
+  // Varied values in leaves on both sides of the origin, an active tile
+  // where a leaf would be (no leaf: read from the tree) and a background
+  // above 0 around them.
+  openvdb::initialize();
+  auto grid = openvdb::FloatGrid::create(0.25f);
+  grid->setName("density");
+  grid->setTransform(openvdb::math::Transform::createLinearTransform(0.1));
+  auto accessor = grid->getAccessor();
+  for (int i = -13; i < 11; ++i)
+    for (int j = -5; j < 9; ++j)
+      for (int k = -9; k < 12; ++k)
+        accessor.setValue(openvdb::Coord(i, j, k), 0.5f + 0.3f * std::sin(0.7f * i + 1.3f * j - k));
+  grid->tree().addTile(1, openvdb::Coord(16, 0, 0), 2.f, true);
+  const std::string path =
+    (std::filesystem::temp_directory_path() / "brume-test-varied.vdb").string();
+  openvdb::io::File file(path);
+  file.write({ grid });
+  file.close();
+  std::string error;
+  auto density = VdbDensity::Load(path, "", error);
+  ASSERT_TRUE(density) << error;
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> x(-1.6f, 3.4f), y(-0.8f, 1.2f), z(-1.2f, 1.5f);
+  int differing = 0;
+  for (int n = 0; n < 20000; ++n)
+  {
+    const Vec3 p(x(random), y(random), z(random));
+    const openvdb::Vec3R index(p.x / 0.1, p.y / 0.1, p.z / 0.1);
+    const float expected = openvdb::tools::BoxSampler::sample(grid->tree(), index);
+    differing += density->Evaluate(p) == expected ? 0 : 1;
+  }
+  EXPECT_EQ(differing, 0);
 }
 
 TEST(VdbDensity, BeerLambertThroughAVdbSlab)

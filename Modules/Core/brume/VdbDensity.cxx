@@ -11,6 +11,7 @@
 #include <cstring>
 #include <fstream>
 #include <mutex>
+#include <vector>
 
 namespace brume
 {
@@ -21,6 +22,27 @@ struct VdbDensity::Internals
   openvdb::Vec3d Origin;    // world position of index (0, 0, 0)
   openvdb::Vec3d VoxelSize; // world size of a voxel along each axis
   std::size_t Active = 0;
+  // The leaves' values by leaf position over the active box widened by a
+  // leaf (LeafDims leaves from the one whose first voxel is LeafOrigin),
+  // null where the tree has no leaf: a sample reads its eight values
+  // without descending the tree (empty where the table would be too large).
+  std::vector<const float*> Leaves;
+  openvdb::Coord LeafOrigin;
+  int LeafDims[3] = { 0, 0, 0 };
+
+  const float* LeafOf(const openvdb::Coord& c) const
+  {
+    const int i = (c[0] >> 3) - (this->LeafOrigin[0] >> 3);
+    const int j = (c[1] >> 3) - (this->LeafOrigin[1] >> 3);
+    const int k = (c[2] >> 3) - (this->LeafOrigin[2] >> 3);
+    if (i < 0 || j < 0 || k < 0 || i >= this->LeafDims[0] || j >= this->LeafDims[1] ||
+      k >= this->LeafDims[2])
+    {
+      return nullptr;
+    }
+    return this
+      ->Leaves[(static_cast<std::size_t>(k) * this->LeafDims[1] + j) * this->LeafDims[0] + i];
+  }
 };
 
 VdbDensity::VdbDensity()
@@ -202,6 +224,35 @@ std::shared_ptr<VdbDensity> VdbDensity::Load(
         }
   }
   impl.Grid = grid;
+  // The leaf table, where it takes at most 2^24 pointers (128 MiB).
+  for (int a = 0; a < 3; ++a)
+  {
+    impl.LeafOrigin[a] = ((lo[a] - 8) >> 3) << 3;
+    impl.LeafDims[a] = ((hi[a] + 8) >> 3) - (impl.LeafOrigin[a] >> 3) + 1;
+  }
+  const double leafCells =
+    static_cast<double>(impl.LeafDims[0]) * impl.LeafDims[1] * impl.LeafDims[2];
+  if (leafCells <= static_cast<double>(1 << 24))
+  {
+    impl.Leaves.assign(static_cast<std::size_t>(leafCells), nullptr);
+    for (auto leaf = grid->constTree().cbeginLeaf(); leaf; ++leaf)
+    {
+      const openvdb::Coord origin = leaf->origin();
+      const int i = (origin[0] >> 3) - (impl.LeafOrigin[0] >> 3);
+      const int j = (origin[1] >> 3) - (impl.LeafOrigin[1] >> 3);
+      const int k = (origin[2] >> 3) - (impl.LeafOrigin[2] >> 3);
+      if (i >= 0 && j >= 0 && k >= 0 && i < impl.LeafDims[0] && j < impl.LeafDims[1] &&
+        k < impl.LeafDims[2])
+      {
+        impl.Leaves[(static_cast<std::size_t>(k) * impl.LeafDims[1] + j) * impl.LeafDims[0] + i] =
+          leaf->buffer().data();
+      }
+    }
+  }
+  else
+  {
+    impl.LeafDims[0] = impl.LeafDims[1] = impl.LeafDims[2] = 0;
+  }
   // The native cells in all; a background above 0 fills the rest.
   const std::array<int, 3> cells = density->NativeResolution();
   density->GridValues = static_cast<double>(cells[0]) * cells[1] * cells[2];
@@ -246,15 +297,31 @@ float VdbDensity::Evaluate(const Vec3& p) const
   const Internals& impl = *this->Impl;
   const openvdb::Vec3R index((p.x - impl.Origin[0]) / impl.VoxelSize[0],
     (p.y - impl.Origin[1]) / impl.VoxelSize[1], (p.z - impl.Origin[2]) / impl.VoxelSize[2]);
-  // An accessor of this call alone (threads share the tree, not an
-  // accessor), unregistered from the tree (IsSafe false: nothing to
-  // register or release, the tree outlives the call): the trilinear
-  // sample's eight reads mostly fall in one leaf, which the accessor's
-  // cache reaches without descending from the root each time. The values
-  // read are the tree's, so the sample is bitwise the same.
+  // OpenVDB's trilinear sample (BoxSampler) of the eight voxels about the
+  // point, read from the leaf table where their leaves are in it, else from
+  // the tree through an accessor of this call alone (threads share the
+  // tree, not an accessor; unregistered: the tree outlives the call). The
+  // values are the tree's and the interpolation is BoxSampler's own, so
+  // the sample is bitwise BoxSampler::sample's.
+  const openvdb::Vec3i ijk = openvdb::tools::local_util::floorVec3(index);
+  const openvdb::Vec3R uvw = index - ijk;
   const openvdb::tree::ValueAccessor<const openvdb::FloatTree, false> accessor(
     impl.Grid->constTree());
-  return openvdb::tools::BoxSampler::sample(accessor, index);
+  float data[2][2][2];
+  for (int a = 0; a < 2; ++a)
+  {
+    for (int b = 0; b < 2; ++b)
+    {
+      for (int c = 0; c < 2; ++c)
+      {
+        const openvdb::Coord xyz(ijk[0] + a, ijk[1] + b, ijk[2] + c);
+        const float* leaf = impl.LeafOf(xyz);
+        data[a][b][c] = leaf ? leaf[openvdb::FloatTree::LeafNodeType::coordToOffset(xyz)]
+                             : accessor.getValue(xyz);
+      }
+    }
+  }
+  return openvdb::tools::BoxSampler::trilinearInterpolation(data, uvw);
 }
 
 namespace
