@@ -108,8 +108,8 @@ public:
    * wide ground, or the haze of a room the sun enters through a window,
    * gets the particles the ground or the walls would otherwise take, and
    * every flux is weighted so that the light is the same. The hits then
-   * carry the point array `Aim` and the field array `AimWeights`, with which the reconstruction sizes the textures as a
-   * uniform emission would have and grows its regions as if every particle
+   * carry the point array `Aim` and the field array `AimWeights`, with which the reconstruction
+   * sizes the textures as a uniform emission would have and grows its regions as if every particle
    * weighed alike. Default 0.2 (measured best among 0.1-0.8 on the clouds
    * and the dragon: more leaves the ground's fewer, heavier particles to
    * carry the light it reflects into the medium); 0 emits every beam

@@ -53,9 +53,9 @@ vtkSmartPointer<vtkPartitionedDataSetCollection> CloudOverPlain()
 
 struct Comparison
 {
-  double Ratio;       // the image's total over the reference's
-  double BlockError;  // mean |block difference| / mean block
-  double RatioError;  // standard error of Ratio from the blocks' scatter
+  double Ratio;      // the image's total over the reference's
+  double BlockError; // mean |block difference| / mean block
+  double RatioError; // standard error of Ratio from the blocks' scatter
 };
 
 Comparison Compare(vtkImageData* image, vtkImageData* reference)
