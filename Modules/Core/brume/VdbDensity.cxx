@@ -227,7 +227,7 @@ std::shared_ptr<VdbDensity> VdbDensity::Load(
   // The leaf table, where it takes at most 2^24 pointers (128 MiB).
   for (int a = 0; a < 3; ++a)
   {
-    impl.LeafOrigin[a] = ((lo[a] - 8) >> 3) << 3;
+    impl.LeafOrigin[a] = ((lo[a] - 8) >> 3) * 8; // arithmetic shift: floor division by 8
     impl.LeafDims[a] = ((hi[a] + 8) >> 3) - (impl.LeafOrigin[a] >> 3) + 1;
   }
   const double leafCells =
