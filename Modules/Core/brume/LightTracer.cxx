@@ -358,23 +358,10 @@ void AimAtMedia(Scene& scene, const RayCaster& caster, float fraction)
         bool reaches = false;
         for (const Medium& m : scene.Media)
         {
-          float t0 = 0.f, t1 = stop;
-          for (int a = 0; a < 3 && t0 < t1; ++a)
+          float t0 = 0.f, t1 = stop; // Box::Intersect clips to [0, t1]
+          if (!m.Bounds.Intersect(origin, light.Direction, t0, t1))
           {
-            const float d = light.Direction[a];
-            const float o = origin[a];
-            if (d == 0.f)
-            {
-              t1 = o >= m.Bounds.lower[a] && o <= m.Bounds.upper[a] ? t1 : -1.f;
-              continue;
-            }
-            float near = (m.Bounds.lower[a] - o) / d, far = (m.Bounds.upper[a] - o) / d;
-            if (near > far)
-            {
-              std::swap(near, far);
-            }
-            t0 = std::max(t0, near);
-            t1 = std::min(t1, far);
+            continue;
           }
           reaches = reaches || t1 - t0 > 1e-3f * Length(m.Bounds.Extent());
         }
