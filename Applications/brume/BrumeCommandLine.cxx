@@ -157,6 +157,13 @@ void AddSceneOptions(CLI::App* command, RenderOptions& o, const SceneHelp& help)
     ->transform(Number(0.0, 0.99, "a number in [0, 0.99]"))
     ->type_name("F");
   command->add_flag_callback(
+    "--no-split", [&o]() { o.SplitHeavy = false; },
+    "under an aimed light, keep the particles emitted\n"
+    "outside the aimed part whole, instead of splitting each\n"
+    "into aimed particles where it heads into a medium (the\n"
+    "ground's light into a cloud from many particles; the\n"
+    "default)");
+  command->add_flag_callback(
     "--no-centroid-matching", [&o]() { o.CentroidMatching = false; },
     "keep a medium's texel estimates as they are, instead\n"
     "of matching the texture to where each belongs (its\n"

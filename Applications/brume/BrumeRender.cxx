@@ -323,6 +323,7 @@ int RunRender(RenderOptions options)
   tracer->SetSeed(options.Seed);
   tracer->SetMaximumDepth(options.MaxDepth);
   tracer->SetMediumAimFraction(options.MediumAim);
+  tracer->SetSplitHeavyParticles(options.SplitHeavy);
   double position[3], focal[3], up[3], angle;
   vtkBrumeSceneCamera::GetSceneCamera(scene->GetOutputDataObject(0), position, focal, up, angle);
   vtkNew<vtkBrumeRadianceReconstruction> reconstruction;

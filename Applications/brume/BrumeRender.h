@@ -22,6 +22,7 @@ struct RenderOptions
   bool DirectLight = true;      // deterministic single scattering (vtkBrumeRadianceReconstruction)
   bool CentroidMatching = true; // media textures matched to their estimates' centroids
   double MediumAim = 0.2;       // directional lights' particles aimed at the media
+  bool SplitHeavy = true;       // heavy particles split where they head into a medium
   int Supersample = 1;          // render K x K pixels per output pixel and average them
   bool Timings = false;
   long long Batch = 0;    // particles per batch (0: all at once)

@@ -86,6 +86,7 @@ public:
     this->Tracer->SetInputConnection(scene->GetOutputPort());
     this->Tracer->SetSeed(static_cast<vtkIdType>(this->Options.Render.Seed));
     this->Tracer->SetMediumAimFraction(this->Options.Render.MediumAim);
+    this->Tracer->SetSplitHeavyParticles(this->Options.Render.SplitHeavy);
     BrumeShowProgress(this->Tracer, "particle tracing");
     if (!this->Trace(0, this->Particles))
     {

@@ -108,6 +108,7 @@ int vtkBrumeTimedPipeline::RequestData(
   tracer->SetSeed(this->Seed);
   tracer->SetMaximumDepth(this->MaximumDepth);
   tracer->SetMediumAimFraction(this->MediumAimFraction);
+  tracer->SetSplitHeavyParticles(this->SplitHeavyParticles);
   vtkNew<vtkBrumeRadianceReconstruction> reconstruction;
   reconstruction->SetInputDataObject(0, scene);
   reconstruction->SetInputConnection(1, tracer->GetOutputPort());
@@ -169,6 +170,7 @@ void vtkBrumeTimedPipeline::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RadiosityThreshold: " << this->RadiosityThreshold << "\n";
   os << indent << "CentroidMatching: " << this->CentroidMatching << "\n";
   os << indent << "MediumAimFraction: " << this->MediumAimFraction << "\n";
+  os << indent << "SplitHeavyParticles: " << this->SplitHeavyParticles << "\n";
   os << indent << "DirectionalRadiance: " << this->DirectionalRadiance << "\n";
   os << indent << "DirectionalOrder: " << this->DirectionalOrder << "\n";
   os << indent << "MeasureNewView: " << this->MeasureNewView << "\n";

@@ -78,6 +78,10 @@ public:
   /// The light tracer's MediumAimFraction (default 0.2).
   vtkSetClampMacro(MediumAimFraction, double, 0.0, 0.99);
   vtkGetMacro(MediumAimFraction, double);
+  /// The light tracer's SplitHeavyParticles (default on).
+  vtkSetMacro(SplitHeavyParticles, bool);
+  vtkGetMacro(SplitHeavyParticles, bool);
+  vtkBooleanMacro(SplitHeavyParticles, bool);
 
   /// The reconstruction's CentroidMatching (default on).
   vtkSetMacro(CentroidMatching, bool);
@@ -120,6 +124,7 @@ protected:
   double RadiosityThreshold = 128.0;
   bool CentroidMatching = true;
   double MediumAimFraction = 0.2;
+  bool SplitHeavyParticles = true;
   bool DirectionalRadiance = false;
   int DirectionalOrder = 3;
   bool MeasureNewView = true;

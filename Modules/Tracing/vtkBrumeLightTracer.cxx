@@ -395,6 +395,7 @@ int vtkBrumeLightTracer::RequestData(
   settings.Seed = static_cast<std::uint64_t>(this->Seed);
   settings.MaxDepth = this->MaximumDepth;
   settings.RouletteDepth = this->RouletteDepth;
+  settings.SplitHeavyParticles = this->SplitHeavyParticles;
   const brume::LightTracer tracer(scene, caster, settings);
 
   // Output arrays, grown batch by batch (realloc of large blocks moves pages
@@ -538,6 +539,7 @@ void vtkBrumeLightTracer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumDepth: " << this->MaximumDepth << "\n";
   os << indent << "RouletteDepth: " << this->RouletteDepth << "\n";
   os << indent << "MediumAimFraction: " << this->MediumAimFraction << "\n";
+  os << indent << "SplitHeavyParticles: " << this->SplitHeavyParticles << "\n";
   os << indent << "MemoryLimit: " << this->MemoryLimit << "\n";
   os << indent << "Lights: " << this->Lights->GetNumberOfItems() << "\n";
 }

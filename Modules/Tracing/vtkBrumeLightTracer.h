@@ -121,6 +121,22 @@ public:
 
   ///@{
   /**
+   * Under an aimed light, a particle emitted outside the aimed disk weighs
+   * w1 / w2 aimed particles (`AimWeights`); where its next segment crosses
+   * a medium's box before a surface (the sun's light the ground reflects
+   * into a cloud), it splits into that many aimed particles, each of its
+   * flux / (w1 / w2) on a random stream of its own, at most
+   * brume::MaxSplit (brume::TraceSettings::SplitHeavyParticles). Unbiased:
+   * the medium's light is no longer carried by a few heavy particles.
+   * Default on; off, aimed runs are traced as before.
+   */
+  vtkSetMacro(SplitHeavyParticles, bool);
+  vtkGetMacro(SplitHeavyParticles, bool);
+  vtkBooleanMacro(SplitHeavyParticles, bool);
+  ///@}
+
+  ///@{
+  /**
    * Point, spot and directional lights, in addition to the emissive surfaces
    * of the scene (see vtkBrumeSceneConversion::ConvertLights for units).
    */
@@ -158,6 +174,7 @@ protected:
   int MaximumDepth = 1024;
   int RouletteDepth = 3;
   double MediumAimFraction = 0.2;
+  bool SplitHeavyParticles = true;
   vtkTypeInt64 MemoryLimit = vtkTypeInt64(8) << 30;
   vtkTypeInt64 LastRayCount = 0;
   vtkSmartPointer<vtkLightCollection> Lights;

@@ -525,3 +525,111 @@ TEST(LightTracer, AimedPointsBeyondTheBeamCarryNothing)
   sun.AimFraction = 1.f;
   EXPECT_NE(sun.Validate(), "");
 }
+
+TEST(LightTracer, HeavyParticlesSplitIntoAimedOnesWithoutBias)
+{
+  // Sunlight straight down on a white ground with a scattering cloud above
+  // it, aimed at the cloud: the particles emitted beside the aimed disk
+  // weigh w1 / w2 aimed ones and reach the cloud only after the ground
+  // reflects them. Split where they head into the cloud, they bring the
+  // cloud the same light (unbiased: the per-particle means agree) from
+  // many particles instead of a few heavy ones (a smaller standard error).
+  Scene scene;
+  Surface ground = Quad("ground", 2.f, -1.f, false);
+  ground.Mat.Reflectance = Vec3(0.8f);
+  scene.Surfaces = { ground };
+  Medium cloud;
+  cloud.Name = "cloud";
+  cloud.Bounds = { { 0.3f, -0.8f, 0.1f }, { 0.7f, -0.4f, 0.5f } };
+  cloud.SigmaA = Vec3(0.5f);
+  cloud.SigmaS = Vec3(10.f);
+  scene.Media = { cloud };
+  Light sun;
+  sun.Type = LightType::Directional;
+  sun.Direction = Vec3(0.f, -1.f, 0.f);
+  sun.Intensity = Vec3(1.f);
+  sun.BeamRadius = 2.f;
+  sun.BeamCenter = Vec3(0.f, 3.f, 0.f);
+  scene.Lights = { sun };
+  ASSERT_EQ(scene.Validate(), "");
+  const RayCaster caster(scene);
+  AimAtMedia(scene, caster, 0.5f);
+  const Light& aimed = scene.Lights[0];
+  ASSERT_TRUE(aimed.Aims());
+  const double ratio = aimed.EmissionWeight(1) / aimed.EmissionWeight(2);
+  ASSERT_GT(ratio, 10.0);
+  ASSERT_LT(ratio, MaxSplit);
+
+  struct Run
+  {
+    double Mean = 0.0, Error = 0.0, Children = 0.0, ChildrenSquares = 0.0;
+    std::uint64_t Splits = 0, HeavyHitsInCloud = 0;
+    TraceCounters Counters;
+  };
+  const std::uint64_t n = 100000;
+  auto run = [&](bool split)
+  {
+    TraceSettings settings;
+    settings.Seed = 5;
+    settings.SplitHeavyParticles = split;
+    const LightTracer tracer(scene, caster, settings);
+    Run r;
+    double sum = 0.0, squares = 0.0;
+    std::vector<Hit> hits;
+    for (std::uint64_t i = 0; i < n; ++i)
+    {
+      hits.clear();
+      ParticleExit exit;
+      tracer.TraceParticle(i, n, hits, r.Counters, &exit);
+      // The light the ground reflects into the cloud: the cloud's hits of
+      // particles that met the ground first (the hit before any split).
+      double x = 0.0;
+      for (const Hit& h : hits)
+      {
+        if (h.Object == 1 && hits.front().Object == 0)
+        {
+          x += h.Flux[1];
+          r.HeavyHitsInCloud += h.Aim == 1 ? 1 : 0;
+        }
+      }
+      sum += x;
+      squares += x * x;
+      if (exit.Children > 0)
+      {
+        ++r.Splits;
+        r.Children += exit.Children;
+        r.ChildrenSquares += static_cast<double>(exit.Children) * exit.Children;
+      }
+    }
+    r.Mean = sum / n;
+    r.Error = std::sqrt((squares / n - r.Mean * r.Mean) / (n - 1.0));
+    return r;
+  };
+  const Run whole = run(false), split = run(true);
+  EXPECT_GT(whole.HeavyHitsInCloud, 0u);
+  EXPECT_EQ(split.HeavyHitsInCloud, 0u);
+  EXPECT_EQ(whole.Splits, 0u);
+  ASSERT_GT(split.Splits, 100u);
+  EXPECT_GT(whole.Mean, 0.0);
+  EXPECT_NEAR(split.Mean, whole.Mean, 4.0 * std::hypot(split.Error, whole.Error));
+  EXPECT_LT(split.Error, 0.8 * whole.Error);
+  // floor(r) or floor(r) + 1 children, r on average.
+  const double mean = split.Children / split.Splits;
+  const double spread = std::sqrt(split.ChildrenSquares / split.Splits - mean * mean);
+  EXPECT_LE(spread, 0.5 + 1e-9);
+  EXPECT_NEAR(mean, ratio, 4.0 * 0.5 / std::sqrt(static_cast<double>(split.Splits)));
+  // The split's flux change is the estimators' (zero in expectation): the
+  // run's balance stays exact.
+  for (const TraceCounters& c : { whole.Counters, split.Counters })
+  {
+    for (int ch = 0; ch < 3; ++ch)
+    {
+      const double out = c.Absorbed[ch] + c.Escaped[ch] + c.Truncated[ch] + c.EstimatorNet[ch];
+      EXPECT_LT(Relative(c.Emitted[ch], out), 1e-9);
+    }
+  }
+  std::printf("cloud's light per particle: whole %.6g +- %.2g, split %.6g +- %.2g; "
+              "%llu splits into %.2f (r = %.2f)\n",
+    whole.Mean, whole.Error, split.Mean, split.Error, static_cast<unsigned long long>(split.Splits),
+    mean, ratio);
+}

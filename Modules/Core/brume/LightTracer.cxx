@@ -177,18 +177,114 @@ void LightTracer::TraceParticle(std::uint64_t index, std::uint64_t count, std::v
     return;
   }
   Random rng(this->Settings.Seed, index);
-  const Scene& scene = this->SceneRef;
-  const auto numberOfSurfaces = static_cast<std::uint16_t>(scene.Surfaces.size());
-
-  Vec3 flux, origin, direction;
-  std::uint8_t aim = 0;
-  const Emitter& emitter = this->Emit(rng, count, flux, origin, direction, aim);
-  Tally(counters.Emitted, flux);
-  if (!(MaxComponent(flux) > 0.f))
+  Walker w;
+  const Emitter& emitter = this->Emit(rng, count, w.Flux, w.Origin, w.Direction, w.Aim);
+  Tally(counters.Emitted, w.Flux);
+  if (!(MaxComponent(w.Flux) > 0.f))
   {
     return; // an aimed light's point beyond its beam
   }
-  const float initialFlux = MaxComponent(flux);
+  w.InitialFlux = MaxComponent(w.Flux);
+  this->Walk(index, rng, emitter, w, hits, counters, exit, rays);
+}
+
+bool LightTracer::CrossesMedium(const Vec3& o, const Vec3& d, float tEnd) const
+{
+  for (const Medium& m : this->SceneRef.Media)
+  {
+    float t0 = 0.f, t1 = tEnd; // Box::Intersect clips to [0, t1]
+    if (m.Bounds.Intersect(o, d, t0, t1) && t1 > t0)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+bool LightTracer::Roulette(Walker& w, Random& rng, TraceCounters& counters) const
+{
+  // Russian roulette, dividing the survivors' flux by the survival probability.
+  if (w.Depth + 1 >= this->Settings.RouletteDepth)
+  {
+    const float q = std::min(1.f, MaxComponent(w.Flux) / w.InitialFlux);
+    if (q < 1.f)
+    {
+      const Vec3 before = w.Flux;
+      if (!(rng.NextFloat() < q))
+      {
+        Tally(counters.EstimatorNet, w.Flux);
+        return false;
+      }
+      w.Flux = w.Flux / q;
+      TallyChange(counters.EstimatorNet, before, w.Flux);
+    }
+  }
+  return true;
+}
+
+namespace
+{
+// Reflects a particle at `position` (normal `n` on its side): BRDF
+// sampling, the absorbed flux tallied; false when the particle ends there.
+bool Reflect(const Material& material, const Vec3& n, const Vec3& position, Random& rng, Vec3& flux,
+  Vec3& origin, Vec3& direction, TraceCounters& counters)
+{
+  Vec3 weight;
+  const Vec3 before = flux;
+  if (!SampleBrdf(material, n, -direction, rng, direction, weight))
+  {
+    Tally(counters.Absorbed, flux);
+    return false;
+  }
+  flux *= weight;
+  TallyChange(counters.Absorbed, before, flux);
+  if (!(MaxComponent(flux) > 0.f))
+  {
+    return false;
+  }
+  origin = position + n * OffsetEpsilon(position);
+  return true;
+}
+}
+
+void LightTracer::Walk(std::uint64_t index, Random& rng, const Emitter& emitter, Walker w,
+  std::vector<Hit>& hits, TraceCounters& counters, ParticleExit* exit, RayLog* rays) const
+{
+  const Scene& scene = this->SceneRef;
+  const auto numberOfSurfaces = static_cast<std::uint16_t>(scene.Surfaces.size());
+  Vec3& flux = w.Flux;
+  Vec3& origin = w.Origin;
+  Vec3& direction = w.Direction;
+  // Only particles emitted outside an aimed disk are heavy.
+  const Light* aimedLight = emitter.Light >= 0 && w.Aim == 1 &&
+      this->Settings.SplitHeavyParticles && !scene.Media.empty() &&
+      scene.Lights[emitter.Light].Aims()
+    ? &scene.Lights[emitter.Light]
+    : nullptr;
+  // A heavy particle splits into r = w1 / w2 particles of an aimed
+  // particle's weight: n of them, n = floor(r) or floor(r) + 1 with the
+  // probability of r's fraction (E[n] = r), each carrying flux / r, so that
+  // the expected flux is the particle's. They are aimed particles from there
+  // on (class 2: the reconstruction counts each as one aimed particle), on
+  // streams of their own. Returns the children's template and their number.
+  auto split = [&](Walker& child) -> int
+  {
+    const double ratio = static_cast<double>(aimedLight->EmissionWeight(1)) /
+      static_cast<double>(aimedLight->EmissionWeight(2));
+    const double r = std::min(ratio, static_cast<double>(MaxSplit));
+    const double whole = std::floor(r);
+    const int n = static_cast<int>(whole) + (rng.NextDouble() < r - whole ? 1 : 0);
+    child = w;
+    child.Flux = flux * static_cast<float>(1.0 / r);
+    child.InitialFlux = static_cast<float>(w.InitialFlux / r);
+    child.Aim = 2;
+    TallyChange(counters.EstimatorNet, flux, child.Flux * static_cast<float>(n));
+    if (exit)
+    {
+      exit->Children = n;
+    }
+    return n;
+  };
 
   MediumTracker inlineTrackers[InlineTrackers];
   std::vector<MediumTracker> heapTrackers;
@@ -214,14 +310,14 @@ void LightTracer::TraceParticle(std::uint64_t index, std::uint64_t count, std::v
     h.Object = object;
     h.Emitter = emitter.Id;
     h.Depth = static_cast<std::uint8_t>(std::min(depth, 255));
-    h.Aim = aim;
+    h.Aim = w.Aim;
     h.Padding[0] = h.Padding[1] = 0;
     h.Triangle = triangle;
     hits.push_back(h);
     ++counters.Hits;
   };
 
-  for (int depth = 0;; ++depth)
+  for (int& depth = w.Depth;; ++depth)
   {
     if (depth >= this->Settings.MaxDepth)
     {
@@ -238,6 +334,21 @@ void LightTracer::TraceParticle(std::uint64_t index, std::uint64_t count, std::v
     const bool hitSurface = this->Caster.Intersect(
       origin, direction, 0.f, std::numeric_limits<float>::infinity(), surfaceHit);
     const float tSurface = hitSurface ? surfaceHit.T : std::numeric_limits<float>::infinity();
+
+    if (aimedLight && this->CrossesMedium(origin, direction, tSurface))
+    {
+      // A heavy particle heading into a medium (the light the ground
+      // reflects into a cloud): its children walk this segment anew, each
+      // its own free flight and scattering in the medium.
+      Walker child;
+      const int n = split(child);
+      for (int k = 0; k < n; ++k)
+      {
+        Random childRng(this->Settings.Seed, ChildStream(index, k));
+        this->Walk(index, childRng, emitter, child, hits, counters, nullptr, rays);
+      }
+      return;
+    }
 
     // Delta tracking in every medium the segment crosses.
     float tCollision = tSurface;
@@ -264,7 +375,7 @@ void LightTracer::TraceParticle(std::uint64_t index, std::uint64_t count, std::v
     }
     else if (hitSurface)
     {
-      const Surface& hitObject = scene.Surfaces[surfaceHit.Surface];
+      const Material& material = scene.Surfaces[surfaceHit.Surface].MaterialOf(surfaceHit.Triangle);
       const Vec3 position = origin + direction * tSurface;
       store(position, static_cast<std::uint16_t>(surfaceHit.Surface), depth, surfaceHit.Triangle);
       // Reflection on the side the particle came from.
@@ -273,21 +384,10 @@ void LightTracer::TraceParticle(std::uint64_t index, std::uint64_t count, std::v
       {
         n = -n;
       }
-      Vec3 weight;
-      const Vec3 before = flux;
-      if (!SampleBrdf(
-            hitObject.MaterialOf(surfaceHit.Triangle), n, -direction, rng, direction, weight))
-      {
-        Tally(counters.Absorbed, flux);
-        return;
-      }
-      flux *= weight;
-      TallyChange(counters.Absorbed, before, flux);
-      if (!(MaxComponent(flux) > 0.f))
+      if (!Reflect(material, n, position, rng, flux, origin, direction, counters))
       {
         return;
       }
-      origin = position + n * OffsetEpsilon(position);
     }
     else
     {
@@ -302,21 +402,9 @@ void LightTracer::TraceParticle(std::uint64_t index, std::uint64_t count, std::v
       return;
     }
 
-    // Russian roulette, dividing the survivors' flux by the survival probability.
-    if (depth + 1 >= this->Settings.RouletteDepth)
+    if (!this->Roulette(w, rng, counters))
     {
-      const float q = std::min(1.f, MaxComponent(flux) / initialFlux);
-      if (q < 1.f)
-      {
-        const Vec3 before = flux;
-        if (!(rng.NextFloat() < q))
-        {
-          Tally(counters.EstimatorNet, flux);
-          return;
-        }
-        flux = flux / q;
-        TallyChange(counters.EstimatorNet, before, flux);
-      }
+      return;
     }
   }
 }

@@ -55,7 +55,30 @@ struct TraceSettings
   /// Interactions after which Russian roulette may end a particle; a value
   /// above MaxDepth turns Russian roulette off.
   int RouletteDepth = 3;
+  /**
+   * Under an aimed light (AimAtMedia), a particle emitted outside the aimed
+   * disk carries EmissionWeight(1) / EmissionWeight(2) times an aimed one's
+   * flux; where such a particle's next segment crosses a medium's box before
+   * a surface stops it (the sun's light reflected by the ground into a
+   * cloud), it splits into that many particles of an aimed one's weight
+   * (SplitHeavyParticle), so that the medium's light is not carried by a few
+   * heavy particles. Unbiased; off, aimed runs are as before.
+   */
+  bool SplitHeavyParticles = true;
 };
+
+/// The most particles one heavy particle splits into (SplitHeavyParticles):
+/// where the weights' ratio is larger, the children carry more than an aimed
+/// particle's weight.
+constexpr int MaxSplit = 256;
+
+/// The random stream of child `child` of particle `index` when it splits:
+/// particle indices stay below 2^40 (runs hold at most 10^10 particles), so
+/// the children's streams are distinct from every particle's and each other's.
+inline std::uint64_t ChildStream(std::uint64_t index, int child)
+{
+  return index + (static_cast<std::uint64_t>(child + 1) << 40u);
+}
 
 /// Per-run tallies, summed over particles in double precision.
 struct TraceCounters
@@ -76,12 +99,15 @@ struct TraceCounters
 };
 
 /// How a particle left the scene (for validation against transport codes).
+/// A particle that split (TraceSettings::SplitHeavyParticles) left through
+/// its children: Children is their number, and the rest is left unset.
 struct ParticleExit
 {
   bool Escaped = false;
   Vec3 Flux;
   Vec3 Direction;
   int Depth = 0;
+  int Children = 0;
 };
 
 /// Optional log of the rays a particle casts (for benchmarks).
@@ -154,6 +180,27 @@ private:
   /// in which direction the particle leaves it, with its flux.
   const Emitter& Emit(Random& rng, std::uint64_t count, Vec3& flux, Vec3& origin, Vec3& direction,
     std::uint8_t& aim) const;
+
+  /// Where a particle is on its walk: what it carries, where it goes, and
+  /// the flux Russian roulette compares with.
+  struct Walker
+  {
+    Vec3 Flux, Origin, Direction;
+    int Depth = 0;
+    std::uint8_t Aim = 0;
+    float InitialFlux = 0.f;
+  };
+
+  /// Follows a particle of `emitter` from `w` until it is absorbed, escapes
+  /// or stops, storing its hits; a heavy particle splits
+  /// (TraceSettings::SplitHeavyParticles), its children walked in turn.
+  void Walk(std::uint64_t index, Random& rng, const Emitter& emitter, Walker w,
+    std::vector<Hit>& hits, TraceCounters& counters, ParticleExit* exit, RayLog* rays) const;
+
+  /// Whether the segment o + t d, t in [0, tEnd], crosses a medium's box.
+  bool CrossesMedium(const Vec3& o, const Vec3& d, float tEnd) const;
+  /// Russian roulette after interaction w.Depth; false when the particle ends.
+  bool Roulette(Walker& w, Random& rng, TraceCounters& counters) const;
 
   const Scene& SceneRef;
   const RayCaster& Caster;

@@ -14,7 +14,10 @@
 //   particles the ball gets are about 40 times more);
 // - aiming must not bias the image: the totals of the two images must
 //   agree within 4 standard errors of the uniform one's total, estimated
-//   from the spread of its blocks' errors.
+//   from the spread of its blocks' errors;
+// - nor must splitting the particles emitted beside the aimed disk where
+//   they head into the ball (vtkBrumeLightTracer::SplitHeavyParticles):
+//   the aimed image's total with and without it agree the same way.
 #include "EvaluationTestScenes.h"
 
 #include "vtkBrumeReferencePathTracer.h"
@@ -113,6 +116,15 @@ int TestAimedSun(int argc, char* argv[])
   uniform->DeepCopy(pipeline->GetOutput());
   const double fraction = vtkSmartPointer<vtkBrumeTimedPipeline>::New()->GetMediumAimFraction();
   pipeline->SetMediumAimFraction(fraction);
+  pipeline->SplitHeavyParticlesOff();
+  vtkNew<vtkImageData> unsplit;
+  if (pipeline->GetExecutive()->Update() != 1)
+  {
+    std::cerr << "FAILED: the aimed image was not made\n";
+    return EXIT_FAILURE;
+  }
+  unsplit->DeepCopy(pipeline->GetOutput());
+  pipeline->SplitHeavyParticlesOn();
   if (pipeline->GetExecutive()->Update() != 1)
   {
     std::cerr << "FAILED: the aimed image was not made\n";
@@ -123,13 +135,16 @@ int TestAimedSun(int argc, char* argv[])
     SaveImage(argv[1], "aimed-sun-reference", reference->GetOutput());
     SaveImage(argv[1], "aimed-sun-uniform", uniform);
     SaveImage(argv[1], "aimed-sun-aimed", pipeline->GetOutput());
+    SaveImage(argv[1], "aimed-sun-unsplit", unsplit);
   }
   const Comparison u = Compare(uniform, reference->GetOutput());
   const Comparison a = Compare(pipeline->GetOutput(), reference->GetOutput());
+  const Comparison w = Compare(unsplit, reference->GetOutput());
   std::printf("uniform: block error %.2f %%, total %.4f (+- %.4f); aimed (%.2f): block error "
+              "%.2f %%, total %.4f (+- %.4f); aimed, heavy particles unsplit: block error "
               "%.2f %%, total %.4f (+- %.4f)\n",
     100.0 * u.BlockError, u.Ratio, u.RatioError, fraction, 100.0 * a.BlockError, a.Ratio,
-    a.RatioError);
+    a.RatioError, 100.0 * w.BlockError, w.Ratio, w.RatioError);
   bool ok = true;
   if (!(a.BlockError < 0.75 * u.BlockError))
   {
@@ -139,6 +154,12 @@ int TestAimedSun(int argc, char* argv[])
   if (std::abs(a.Ratio - u.Ratio) > 4.0 * u.RatioError)
   {
     std::cerr << "FAILED: the aimed image's total differs from the uniform one's beyond "
+                 "its noise\n";
+    ok = false;
+  }
+  if (std::abs(a.Ratio - w.Ratio) > 4.0 * w.RatioError)
+  {
+    std::cerr << "FAILED: splitting the heavy particles changed the image's total beyond "
                  "its noise\n";
     ok = false;
   }
