@@ -45,6 +45,31 @@ std::vector<Hit> Trace(const Scene& scene, std::uint64_t n, std::uint64_t seed =
   }
   return hits;
 }
+// Sunlight straight down (unit irradiance, beam radius `beam` centred above
+// the origin) on a ground 2 * `half` wide at y = -1 of reflectance
+// `reflectance`, with one box medium in it.
+Scene SunOverGround(float half, float reflectance, const Box& bounds, const Vec3& sigmaA,
+  const Vec3& sigmaS, float beam)
+{
+  Scene scene;
+  Surface ground = Quad("ground", half, -1.f, false);
+  ground.Mat.Reflectance = Vec3(reflectance);
+  scene.Surfaces = { ground };
+  Medium medium;
+  medium.Name = "medium";
+  medium.Bounds = bounds;
+  medium.SigmaA = sigmaA;
+  medium.SigmaS = sigmaS;
+  scene.Media = { medium };
+  Light sun;
+  sun.Type = LightType::Directional;
+  sun.Direction = Vec3(0.f, -1.f, 0.f);
+  sun.Intensity = Vec3(1.f);
+  sun.BeamRadius = beam;
+  sun.BeamCenter = Vec3(0.f, 3.f, 0.f);
+  scene.Lights = { sun };
+  return scene;
+}
 }
 
 TEST(LightTracer, DefaultSceneIsValidAndHasTheSpecifiedPower)
@@ -405,23 +430,8 @@ TEST(LightTracer, AimedBeamDeliversTheSamePowerWithLessNoise)
   // 0.2 wide (sigma_a 200: nothing crosses it) in it. The box absorbs
   // E * 0.04 and the ground E * (16 - 0.04), whatever the aim; aimed, the
   // box gets most particles and its estimate's standard error shrinks.
-  Scene scene;
-  Surface ground = Quad("ground", 2.f, -1.f, false);
-  ground.Mat.Reflectance = Vec3(0.f);
-  scene.Surfaces = { ground };
-  Medium box;
-  box.Name = "box";
-  box.Bounds = { { 0.4f, -0.1f, 0.2f }, { 0.6f, 0.1f, 0.4f } };
-  box.SigmaA = Vec3(200.f);
-  box.SigmaS = Vec3(0.f);
-  scene.Media = { box };
-  Light sun;
-  sun.Type = LightType::Directional;
-  sun.Direction = Vec3(0.f, -1.f, 0.f);
-  sun.Intensity = Vec3(1.f);
-  sun.BeamRadius = 3.f;
-  sun.BeamCenter = Vec3(0.f, 3.f, 0.f);
-  scene.Lights = { sun };
+  Scene scene = SunOverGround(
+    2.f, 0.f, { { 0.4f, -0.1f, 0.2f }, { 0.6f, 0.1f, 0.4f } }, Vec3(200.f), Vec3(0.f), 3.f);
   ASSERT_EQ(scene.Validate(), "");
 
   // Unaimed, AimAtMedia leaves the light as it was; aimed, the disk holds
@@ -432,7 +442,7 @@ TEST(LightTracer, AimedBeamDeliversTheSamePowerWithLessNoise)
   AimAtMedia(scene, caster, 0.5f);
   const Light& aimed = scene.Lights[0];
   ASSERT_TRUE(aimed.Aims());
-  const float cell = 2.f * sun.BeamRadius / AimPilotRays;
+  const float cell = 2.f * scene.Lights[0].BeamRadius / AimPilotRays;
   EXPECT_NEAR(aimed.AimRadius, 0.1f * std::sqrt(2.f), 2.f * cell);
   EXPECT_NEAR(aimed.AimCenter.x, 0.5f, cell);
   EXPECT_NEAR(aimed.AimCenter.z, 0.3f, cell);
@@ -534,23 +544,8 @@ TEST(LightTracer, HeavyParticlesSplitIntoAimedOnesWithoutBias)
   // reflects them. Split where they head into the cloud, they bring the
   // cloud the same light (unbiased: the per-particle means agree) from
   // many particles instead of a few heavy ones (a smaller standard error).
-  Scene scene;
-  Surface ground = Quad("ground", 2.f, -1.f, false);
-  ground.Mat.Reflectance = Vec3(0.8f);
-  scene.Surfaces = { ground };
-  Medium cloud;
-  cloud.Name = "cloud";
-  cloud.Bounds = { { 0.3f, -0.8f, 0.1f }, { 0.7f, -0.4f, 0.5f } };
-  cloud.SigmaA = Vec3(0.5f);
-  cloud.SigmaS = Vec3(10.f);
-  scene.Media = { cloud };
-  Light sun;
-  sun.Type = LightType::Directional;
-  sun.Direction = Vec3(0.f, -1.f, 0.f);
-  sun.Intensity = Vec3(1.f);
-  sun.BeamRadius = 2.f;
-  sun.BeamCenter = Vec3(0.f, 3.f, 0.f);
-  scene.Lights = { sun };
+  Scene scene = SunOverGround(
+    2.f, 0.8f, { { 0.3f, -0.8f, 0.1f }, { 0.7f, -0.4f, 0.5f } }, Vec3(0.5f), Vec3(10.f), 2.f);
   ASSERT_EQ(scene.Validate(), "");
   const RayCaster caster(scene);
   AimAtMedia(scene, caster, 0.5f);
