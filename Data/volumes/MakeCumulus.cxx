@@ -8,7 +8,7 @@
 // The shape is a union of spheres with a flat base, its surface broken up by
 // four octaves of value noise (a hash of the lattice point, smoothstep
 // interpolated): deterministic, the same file on every machine.
-#include <openvdb/openvdb.h>
+#include "BrumeVdbWriter.h"
 
 #include <algorithm>
 #include <array>
@@ -22,7 +22,8 @@ namespace
 // A lattice value in [0, 1) from the integer point (i, j, k).
 double Lattice(int i, int j, int k)
 {
-  std::uint64_t h = static_cast<std::uint64_t>(static_cast<std::uint32_t>(i)) * 0x9E3779B97F4A7C15ULL;
+  std::uint64_t h =
+    static_cast<std::uint64_t>(static_cast<std::uint32_t>(i)) * 0x9E3779B97F4A7C15ULL;
   h ^= static_cast<std::uint64_t>(static_cast<std::uint32_t>(j)) * 0xC2B2AE3D27D4EB4FULL;
   h ^= static_cast<std::uint64_t>(static_cast<std::uint32_t>(k)) * 0x165667B19E3779F9ULL;
   h ^= h >> 31;
@@ -46,7 +47,8 @@ double Noise(double x, double y, double z)
   for (int c = 0; c < 8; ++c)
   {
     const int a = c & 1, b = (c >> 1) & 1, d = c >> 2;
-    result += (a ? u : 1.0 - u) * (b ? v : 1.0 - v) * (d ? w : 1.0 - w) * Lattice(i + a, j + b, k + d);
+    result +=
+      (a ? u : 1.0 - u) * (b ? v : 1.0 - v) * (d ? w : 1.0 - w) * Lattice(i + a, j + b, k + d);
   }
   return result;
 }
@@ -79,7 +81,8 @@ double Density(double x, double y, double z)
   double shape = -1e30;
   for (const Sphere& s : puffs)
   {
-    const double d = std::sqrt((x - s.X) * (x - s.X) + (y - s.Y) * (y - s.Y) + (z - s.Z) * (z - s.Z));
+    const double d =
+      std::sqrt((x - s.X) * (x - s.X) + (y - s.Y) * (y - s.Y) + (z - s.Z) * (z - s.Z));
     shape = std::max(shape, 1.0 - d / s.R);
   }
   if (shape < -0.3)
@@ -101,31 +104,21 @@ int main(int argc, char* argv[])
   }
   try
   {
-    openvdb::initialize();
-    auto grid = openvdb::FloatGrid::create(0.f);
-    grid->setName("density");
-    grid->setGridClass(openvdb::GRID_FOG_VOLUME);
+    brume::vdbwriter::Grid grid;
+    grid.FogVolume = true;
     // One-metre voxels; the base 60 m above the ground.
-    auto transform = openvdb::math::Transform::createLinearTransform(1.0);
-    transform->postTranslate(openvdb::Vec3d(0.0, 60.0, 0.0));
-    grid->setTransform(transform);
-    auto accessor = grid->getAccessor();
-    for (int k = -50; k <= 50; ++k)
-      for (int j = -2; j <= 50; ++j)
-        for (int i = -70; i <= 70; ++i)
-        {
-          const double v = Density(i, j, k);
-          if (v > 1e-3)
-          {
-            accessor.setValue(openvdb::Coord(i, j, k), static_cast<float>(v));
-          }
-        }
-    grid->pruneGrid();
-    openvdb::io::File file(argv[1]);
-    file.write({ grid });
-    file.close();
-    std::printf("%s: %llu active voxels\n", argv[1],
-      static_cast<unsigned long long>(grid->activeVoxelCount()));
+    grid.Translation = { 0.0, 60.0, 0.0 };
+    grid.Lower = { -70, -2, -50 };
+    grid.Upper = { 70, 50, 50 };
+    grid.Value = [](int i, int j, int k)
+    {
+      const double v = Density(i, j, k);
+      return v > 1e-3 ? static_cast<float>(v) : std::nanf("");
+    };
+    grid.Prune = true;
+    const auto active = brume::vdbwriter::Write(argv[1], { grid });
+    std::printf(
+      "%s: %llu active voxels\n", argv[1], static_cast<unsigned long long>(active.front()));
   }
   catch (const std::exception& e)
   {

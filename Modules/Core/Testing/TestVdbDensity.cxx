@@ -3,14 +3,16 @@
 #include "brume/LightTracer.h"
 #include "brume/VdbDensity.h"
 
-#include <gtest/gtest.h>
-#include <openvdb/openvdb.h>
-#include <openvdb/tools/Interpolation.h>
+#include "BrumeVdbWriter.h"
 
+#include <gtest/gtest.h>
+
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <random>
+#include <vector>
 
 using namespace brume;
 
@@ -18,20 +20,14 @@ namespace
 {
 std::string WriteSlabGrid(const std::string& name, float value, float voxel)
 {
-  openvdb::initialize();
-  auto grid = openvdb::FloatGrid::create(0.f);
-  grid->setName("density");
-  grid->setTransform(openvdb::math::Transform::createLinearTransform(voxel));
   // 40 x 10 x 40 active voxels of `value`, indices y in [0, 9].
-  auto accessor = grid->getAccessor();
-  for (int i = -20; i < 20; ++i)
-    for (int j = 0; j < 10; ++j)
-      for (int k = -20; k < 20; ++k)
-        accessor.setValue(openvdb::Coord(i, j, k), value);
+  vdbwriter::Grid grid;
+  grid.VoxelSize = voxel;
+  grid.Lower = { -20, 0, -20 };
+  grid.Upper = { 19, 9, 19 };
+  grid.Value = [value](int, int, int) { return value; };
   const std::string path = (std::filesystem::temp_directory_path() / name).string();
-  openvdb::io::File file(path);
-  file.write({ grid });
-  file.close();
+  vdbwriter::Write(path, { grid });
   return path;
 }
 }
@@ -64,33 +60,40 @@ TEST(VdbDensity, SamplesAreOpenVdbsTrilinearSamplesBitwise)
   // Varied values in leaves on both sides of the origin, an active tile
   // where a leaf would be (no leaf: read from the tree) and a background
   // above 0 around them.
-  openvdb::initialize();
-  auto grid = openvdb::FloatGrid::create(0.25f);
-  grid->setName("density");
-  grid->setTransform(openvdb::math::Transform::createLinearTransform(0.1));
-  auto accessor = grid->getAccessor();
-  for (int i = -13; i < 11; ++i)
-    for (int j = -5; j < 9; ++j)
-      for (int k = -9; k < 12; ++k)
-        accessor.setValue(openvdb::Coord(i, j, k), 0.5f + 0.3f * std::sin(0.7f * i + 1.3f * j - k));
-  grid->tree().addTile(1, openvdb::Coord(16, 0, 0), 2.f, true);
+  vdbwriter::Grid grid;
+  grid.Background = 0.25f;
+  grid.VoxelSize = 0.1;
+  grid.Lower = { -13, -5, -9 };
+  grid.Upper = { 10, 8, 11 };
+  grid.Value = [](int i, int j, int k)
+  {
+    return 0.5f +
+      0.3f *
+      std::sin(0.7f * static_cast<float>(i) + 1.3f * static_cast<float>(j) - static_cast<float>(k));
+  };
+  grid.Tiles = { { 1, { 16, 0, 0 }, 2.f } };
   const std::string path =
     (std::filesystem::temp_directory_path() / "brume-test-varied.vdb").string();
-  openvdb::io::File file(path);
-  file.write({ grid });
-  file.close();
+  vdbwriter::Write(path, { grid });
   std::string error;
   auto density = VdbDensity::Load(path, "", error);
   ASSERT_TRUE(density) << error;
   std::mt19937 random(7);
   std::uniform_real_distribution<float> x(-1.6f, 3.4f), y(-0.8f, 1.2f), z(-1.2f, 1.5f);
-  int differing = 0;
+  std::vector<Vec3> points;
+  std::vector<std::array<double, 3>> indices;
   for (int n = 0; n < 20000; ++n)
   {
     const Vec3 p(x(random), y(random), z(random));
-    const openvdb::Vec3R index(p.x / 0.1, p.y / 0.1, p.z / 0.1);
-    const float expected = openvdb::tools::BoxSampler::sample(grid->tree(), index);
-    differing += density->Evaluate(p) == expected ? 0 : 1;
+    points.push_back(p);
+    indices.push_back({ p.x / 0.1, p.y / 0.1, p.z / 0.1 });
+  }
+  // OpenVDB's own samples of the grid as written.
+  const std::vector<float> expected = vdbwriter::Sample(path, "density", indices);
+  int differing = 0;
+  for (std::size_t n = 0; n < points.size(); ++n)
+  {
+    differing += density->Evaluate(points[n]) == expected[n] ? 0 : 1;
   }
   EXPECT_EQ(differing, 0);
 }

@@ -38,7 +38,7 @@
 #include "vtkXMLPolyDataWriter.h"
 #include "vtkXMLUnstructuredGridWriter.h"
 
-#include <openvdb/openvdb.h>
+#include "BrumeVdbWriter.h"
 
 #include <cmath>
 #include <cstdlib>
@@ -144,26 +144,19 @@ int RoundTrip(const std::string& dir, const std::string& shippedScene)
 // temperature constant 300 on a smaller box.
 void WriteGrids(const std::string& path)
 {
-  openvdb::initialize();
-  auto density = openvdb::FloatGrid::create(0.0f);
-  density->setName("density");
-  auto transform = openvdb::math::Transform::createLinearTransform(0.5);
-  transform->postTranslate(openvdb::Vec3d(1, 2, 3));
-  density->setTransform(transform);
-  auto d = density->getAccessor();
-  for (int k = 0; k <= 5; ++k)
-    for (int j = -3; j <= 4; ++j)
-      for (int i = 2; i <= 9; ++i)
-      {
-        d.setValue(openvdb::Coord(i, j, k), 0.01f * static_cast<float>(i + 2 * j + 4 * k + 20));
-      }
-  auto temperature = openvdb::FloatGrid::create(0.0f);
-  temperature->setName("temperature");
-  temperature->setTransform(transform->copy());
-  temperature->fill(openvdb::CoordBBox(openvdb::Coord(0), openvdb::Coord(3)), 300.0f);
-  openvdb::io::File out(path);
-  out.write({ density, temperature });
-  out.close();
+  brume::vdbwriter::Grid density;
+  density.VoxelSize = 0.5;
+  density.Translation = { 1.0, 2.0, 3.0 };
+  density.Lower = { 2, -3, 0 };
+  density.Upper = { 9, 4, 5 };
+  density.Value = [](int i, int j, int k)
+  { return 0.01f * static_cast<float>(i + 2 * j + 4 * k + 20); };
+  brume::vdbwriter::Grid temperature = density;
+  temperature.Name = "temperature";
+  temperature.Lower = { 0, 0, 0 };
+  temperature.Upper = { 3, 3, 3 };
+  temperature.Value = [](int, int, int) { return 300.0f; };
+  brume::vdbwriter::Write(path, { density, temperature });
 }
 
 int OpenVDB(const std::string& dir, const std::string& shared)

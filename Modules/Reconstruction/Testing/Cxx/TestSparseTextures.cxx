@@ -18,7 +18,7 @@
 #include "vtkPartitionedDataSetCollection.h"
 #include "vtkSmartPointer.h"
 
-#include <openvdb/openvdb.h>
+#include "BrumeVdbWriter.h"
 
 #include <cmath>
 #include <fstream>
@@ -41,24 +41,22 @@ void Check(bool ok, const std::string& what)
 // centres `apart` voxels apart along x; voxels of 1 m.
 void WriteBalls(const std::string& path, int apart)
 {
-  openvdb::initialize();
-  auto grid = openvdb::FloatGrid::create(0.f);
-  grid->setName("density");
-  auto accessor = grid->getAccessor();
-  for (int centre : { 0, apart })
-    for (int k = -6; k <= 6; ++k)
-      for (int j = -6; j <= 6; ++j)
-        for (int i = -6; i <= 6; ++i)
-        {
-          const float r2 = static_cast<float>(i * i + j * j + k * k);
-          if (r2 < 36.f)
-          {
-            accessor.setValue(openvdb::Coord(centre + i, j, k), 0.5f * (1.f - r2 / 36.f));
-          }
-        }
-  openvdb::io::File file(path);
-  file.write({ grid });
-  file.close();
+  brume::vdbwriter::Grid grid;
+  grid.Lower = { -6, -6, -6 };
+  grid.Upper = { apart + 6, 6, 6 };
+  grid.Value = [apart](int i, int j, int k)
+  {
+    for (int centre : { 0, apart })
+    {
+      const float r2 = static_cast<float>((i - centre) * (i - centre) + j * j + k * k);
+      if (r2 < 36.f)
+      {
+        return 0.5f * (1.f - r2 / 36.f);
+      }
+    }
+    return std::nanf("");
+  };
+  brume::vdbwriter::Write(path, { grid });
 }
 
 void WriteScene(const std::string& path, const std::string& vdb)
