@@ -31,17 +31,20 @@ std::vector<std::uint64_t> Write(const std::string& path, const std::vector<Grid
       transform->postTranslate(
         openvdb::Vec3d(g.Translation[0], g.Translation[1], g.Translation[2]));
       grid->setTransform(transform);
-      auto accessor = grid->getAccessor();
-      for (int k = g.Lower[2]; g.Value && k <= g.Upper[2]; ++k)
-        for (int j = g.Lower[1]; j <= g.Upper[1]; ++j)
-          for (int i = g.Lower[0]; i <= g.Upper[0]; ++i)
-          {
-            const float v = g.Value(i, j, k);
-            if (!std::isnan(v))
+      if (g.Value)
+      {
+        auto accessor = grid->getAccessor();
+        for (int k = g.Lower[2]; k <= g.Upper[2]; ++k)
+          for (int j = g.Lower[1]; j <= g.Upper[1]; ++j)
+            for (int i = g.Lower[0]; i <= g.Upper[0]; ++i)
             {
-              accessor.setValue(openvdb::Coord(i, j, k), v);
+              const float v = g.Value(i, j, k);
+              if (!std::isnan(v))
+              {
+                accessor.setValue(openvdb::Coord(i, j, k), v);
+              }
             }
-          }
+      }
       for (const Grid::Tile& t : g.Tiles)
       {
         grid->tree().addTile(

@@ -18,6 +18,7 @@ namespace vdbwriter
 
 /// A float grid: voxels of the index box [Lower, Upper] (inclusive) get
 /// Value(i, j, k); those whose value is NaN stay inactive (the background).
+/// Without Value, the grid holds only its tiles.
 struct Grid
 {
   std::string Name = "density";
