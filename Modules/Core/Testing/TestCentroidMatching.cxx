@@ -185,6 +185,28 @@ TEST(CentroidMatching, TheSameWhateverTheSplit)
   EXPECT_EQ(a, b);
 }
 
+TEST(CentroidMatching, CentroidsOutsideTheirCellSetNoEquation)
+{
+  // Texel 0 lies beside a thin structure at texel 2 and its region grew
+  // into it: its centroid is two texels away, its estimate (3) a mean over
+  // a far wider region than texel 2's own (1). It must not pull texel 2,
+  // nor be pulled itself; a centroid just inside its cell still moves the
+  // texels it interpolates.
+  const std::array<int, 3> n{ 5, 1, 1 };
+  std::vector<float> centroids = Centroids(n, 0.f, [](const int*) { return false; });
+  centroids[0] = 2.f;
+  std::vector<float> values{ 3.f, 1.f, 1.f, 3.f, 3.f };
+  const std::vector<float> estimates = values;
+  const CentroidMatching far(n, centroids, SerialFor());
+  EXPECT_EQ(far.NumberOfMovingTexels(), 0u);
+  EXPECT_EQ(far.Apply(values, 1, SerialFor()), 0.0);
+  EXPECT_EQ(values, estimates);
+
+  centroids[0] = 0.49f;
+  const CentroidMatching inside(n, centroids, SerialFor());
+  EXPECT_EQ(inside.NumberOfMovingTexels(), 2u);
+}
+
 TEST(CentroidMatching, CentroidsBeyondTheGridAreClamped)
 {
   // A region grown past the grid's faces, or a centroid that is not a

@@ -57,16 +57,24 @@ CentroidMatching::CentroidMatching(
   // Rows whose centroid is their texel's centre (to 10^-4 of its weight)
   // hold V_t = S_t, and so do the texels that no other row interpolates:
   // the iterations need only the texels that off-centre rows interpolate
-  // (the columns) and the rows those take part in.
+  // (the columns) and the rows those take part in. A row whose centroid
+  // lies outside its texel's own cell sets no equation (far).
   std::vector<char> column(texels, 0), row(texels, 0);
+  this->Far.assign(texels, 0);
   for (std::size_t t = 0; t < texels; ++t)
   {
+    const std::size_t ijk[3] = { t % nx, (t / nx) % dims[1], t / nxy };
+    for (int a = 0; a < 3; ++a)
+    {
+      const float offset = centroids[3 * t + a] - static_cast<float>(ijk[a]);
+      this->Far[t] = this->Far[t] || !(std::abs(offset) <= 0.5f);
+    }
     float own = 0.f;
     for (int k = 0; k < 8; ++k)
     {
       own += index[8 * t + k] == t ? weight[8 * t + k] : 0.f;
     }
-    if (own >= 1.f - 1e-4f)
+    if (this->Far[t] || own >= 1.f - 1e-4f)
     {
       for (int k = 0; k < 8; ++k)
       {
@@ -177,7 +185,7 @@ double CentroidMatching::Apply(
       estimate[nc * r + c] = values[nc * this->Rows[r] + c];
       any = any || estimate[nc * r + c] != 0.f;
     }
-    equation[r] = any ? 1 : 0;
+    equation[r] = any && !this->Far[this->Rows[r]] ? 1 : 0;
   }
   // Per column: the bounds, and the weight of the equations it takes part in.
   std::vector<float> lower(columns * nc), upper(columns * nc);

@@ -38,6 +38,15 @@ namespace brume
  * signed quantity, a spherical-harmonics coefficient, may also reach 0),
  * so that noise is not amplified into new extremes.
  *
+ * Only a centroid inside its texel's own cell (within half a texel on
+ * every axis) sets an equation. One farther out belongs to a region that
+ * grew well beyond its texel: a texel beside a thin dense structure whose
+ * region reached into it, its estimate a mean over a region far wider than
+ * those of the texels around its centroid, which set their own equations
+ * there. Such rows pulled those texels toward the wider means; on a dense
+ * dragon at threshold 32 they brightened the image by 1.6 % (block error
+ * 2.98 % without them, 4.11 % with them, 2.87 % with no matching at all).
+ *
  * Where every centroid is its texel's centre the texture is the estimates
  * unchanged. A linear field is reproduced wherever the bounds allow it.
  * Everything is summed in a fixed order, so the texture does not depend on
@@ -85,6 +94,8 @@ private:
   std::vector<std::size_t> RowStart;
   std::vector<std::uint32_t> RowColumn;
   std::vector<float> RowWeight;
+  // Per texel: whether its centroid lies outside its own cell (no equation).
+  std::vector<char> Far;
 };
 
 } // namespace brume
