@@ -69,8 +69,12 @@ public:
   ///@{
   /**
    * Distance between slices along the view direction, in world units.
-   * 0 (the default) uses half the smallest voxel size, which the volume's
-   * resolution sets. Negative values are an error.
+   * 0 (the default) chooses it: half the input's smallest voxel, but no
+   * closer than 1/40 of the medium's longest side; with an extinction grid
+   * of its own (SetExtinctionData), also at most four of its cells apart
+   * and at most two optical depths at its largest extinction, but no closer
+   * than one of its cells (an optically thick medium's lit skin is then
+   * sampled where it is). Negative values are an error.
    */
   vtkSetMacro(SliceSpacing, double);
   vtkGetMacro(SliceSpacing, double);
@@ -159,8 +163,8 @@ public:
    * as the cell array `Extinction` (1 or 3 components), or sparsely, in
    * bricks (below). When set, it replaces the input's `Extinction`, the
    * input's `SourceRadiance` (and `SourceRadianceSH`) is taken as the
-   * source radiance S itself, and the default slice spacing is half a voxel
-   * of the input and at most four cells of this grid. The grid is uploaded
+   * source radiance S itself, and the default slice spacing follows this
+   * grid too (SetSliceSpacing). The grid is uploaded
    * again only when it is another one or was modified.
    * vtkBrumeSceneActors sets it from a medium's partition 1
    * (vtkBrumeRadianceReconstruction's extinction at the density's own

@@ -49,6 +49,9 @@ struct vtkBrumeOpenGLSliceVolumeMapper::Internals
   float BrickCount[3] = { 1.f, 1.f, 1.f };
   float AtlasSize[3] = { 1.f, 1.f, 1.f };
   float BrickScale[3] = { 1.f, 1.f, 1.f };
+  // The largest sigma_t of the extinction grid of its own (any channel),
+  // which bounds the slices' spacing (CutSlices).
+  double MaxExtinction = 0.0;
   // Directional radiance: the coefficients (RGBA float 3D textures), the
   // order (0: none), g, and the eye and box in data coordinates.
   std::vector<vtkSmartPointer<vtkTextureObject>> Coefficients;

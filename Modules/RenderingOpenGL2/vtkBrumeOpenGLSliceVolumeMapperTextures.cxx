@@ -285,6 +285,11 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadDenseExtinction(
     return false;
   }
   impl.ExtinctionValues.clear();
+  impl.MaxExtinction = 0.0;
+  for (std::size_t i = 0; i < e.size(); ++i)
+  {
+    impl.MaxExtinction = std::max(impl.MaxExtinction, static_cast<double>(e[i]));
+  }
   impl.ConstantExtinction = Uniform(e, impl.Constant);
   impl.ExtinctionGrey = Grey(e);
   return Upload3D(impl.Extinction, renWin, dims, 4, filter, e.data());
@@ -324,6 +329,7 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
     return false;
   }
   std::vector<float> packed(static_cast<std::size_t>(texels[0]) * texels[1] * texels[2], 0.f);
+  double largest = 0.0; // the largest value, stored or constant, before the scale
   auto invalid = [](double v) { return !(v >= 0.0) || !std::isfinite(v); };
   for (vtkIdType slot = 0; slot < slotCount; ++slot)
   {
@@ -344,6 +350,7 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
           }
           packed[(static_cast<std::size_t>(sz * B + k) * texels[1] + (sy * B + j)) * texels[0] +
             (sx * B + i)] = static_cast<float>(v);
+          largest = std::max(largest, v);
         }
   }
   const vtkIdType bricks = slots->GetNumberOfTuples();
@@ -366,6 +373,7 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
       }
       entry[0] = static_cast<float>(v);
       entry[3] = -1.f;
+      largest = std::max(largest, v);
       continue;
     }
     entry[0] = static_cast<float>(B * (slot % atlas[0]));
@@ -388,6 +396,8 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   }
   impl.ExtinctionGrey =
     impl.BrickScale[0] == impl.BrickScale[1] && impl.BrickScale[1] == impl.BrickScale[2];
+  impl.MaxExtinction = largest *
+    std::max({ impl.BrickScale[0], impl.BrickScale[1], impl.BrickScale[2] });
   return Upload3D(impl.Extinction, renWin, texels, 1, filter, packed.data()) &&
     Upload3D(impl.BrickTable, renWin, brickDims, 4, vtkTextureObject::Nearest, table.data());
 }
