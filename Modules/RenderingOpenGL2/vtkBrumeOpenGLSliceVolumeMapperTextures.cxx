@@ -285,11 +285,7 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadDenseExtinction(
     return false;
   }
   impl.ExtinctionValues.clear();
-  impl.MaxExtinction = 0.0;
-  for (std::size_t i = 0; i < e.size(); ++i)
-  {
-    impl.MaxExtinction = std::max(impl.MaxExtinction, static_cast<double>(e[i]));
-  }
+  impl.MaxExtinction = e.empty() ? 0.0 : *std::max_element(e.begin(), e.end());
   impl.ConstantExtinction = Uniform(e, impl.Constant);
   impl.ExtinctionGrey = Grey(e);
   return Upload3D(impl.Extinction, renWin, dims, 4, filter, e.data());
