@@ -235,8 +235,11 @@ void PrintTextureMemory(vtkPartitionedDataSetCollection* textures)
         volume ? dims[0] - 1 : dims[0], volume ? dims[1] - 1 : dims[1], volume ? dims[2] - 1 : 1,
         megabytes);
       // A sparse grid: the bricks it stores of those its box holds.
-      vtkDataArray* slots = image->GetFieldData()->GetArray("ExtinctionBrickSlots");
-      vtkDataArray* samples = image->GetFieldData()->GetArray("ExtinctionBrickSamples");
+      vtkFieldData* fd = image->GetFieldData();
+      const bool source = fd->GetArray("SourceBrickSlots") != nullptr;
+      vtkDataArray* slots = fd->GetArray(source ? "SourceBrickSlots" : "ExtinctionBrickSlots");
+      vtkDataArray* samples =
+        fd->GetArray(source ? "SourceRadianceBrickSamples" : "ExtinctionBrickSamples");
       if (slots && samples)
       {
         std::printf("   sparse: %lld of %lld bricks",

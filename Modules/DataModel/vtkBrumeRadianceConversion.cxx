@@ -16,9 +16,11 @@
 #include "vtkPolyData.h"
 #include "vtkStringArray.h"
 
+#include "brume/SparseTexture.h"
 #include "brume/SphericalHarmonics.h"
 
 #include <algorithm>
+#include <string>
 
 namespace
 {
@@ -256,9 +258,17 @@ vtkSmartPointer<vtkImageData> vtkBrumeRadianceConversion::DenseExtinction(vtkIma
   return dense;
 }
 
+brume::SparseTexture vtkBrumeRadianceConversion::SourceBricks(
+  const brume::ObjectRadiance& radiance, const brume::Medium& medium, bool directional)
+{
+  return brume::SparseTexture::WhereDensity(
+    directional ? radiance.GetResolution() : radiance.GetOutputResolution(), medium.Bounds,
+    radiance.GetNativeDensity());
+}
+
 vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
   const brume::ObjectRadiance& radiance, const brume::Medium& medium, bool directional,
-  vtkImageData* nativeExtinction, vtkImageData* previous)
+  vtkImageData* nativeExtinction, vtkImageData* previous, const brume::SparseTexture* bricks)
 {
   // Directional radiance stays on the texture's grid; per-view radiance is
   // on the output grid (finer, with direct light).
@@ -268,6 +278,45 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
   texture->SetDimensions(res[0] + 1, res[1] + 1, res[2] + 1);
   texture->SetOrigin(medium.Bounds.lower.x, medium.Bounds.lower.y, medium.Bounds.lower.z);
   texture->SetSpacing(extent.x / res[0], extent.y / res[1], extent.z / res[2]);
+  vtkSmartPointer<vtkImageData> extinction = nativeExtinction;
+  if (!extinction)
+  {
+    extinction = NativeExtinction(radiance, medium);
+  }
+  // The sparse form needs the extinction at the density's own resolution:
+  // it replaces the texture's, and says where the source radiance is read.
+  const bool sparse = bricks && extinction && bricks->GetDims() == res;
+  vtkCellData* cd = texture->GetCellData();
+  vtkFieldData* fd = texture->GetFieldData();
+  // A cell array, or in the sparse form the field array name + "BrickSamples".
+  auto add = [&](const char* name, const std::vector<float>& values, int components)
+  {
+    auto a = vtkSmartPointer<vtkFloatArray>::New();
+    a->SetNumberOfComponents(components);
+    if (sparse)
+    {
+      a->SetName((std::string(name) + "BrickSamples").c_str());
+      const std::vector<float> gathered = bricks->Gather(values, components);
+      a->SetNumberOfTuples(static_cast<vtkIdType>(gathered.size() / components));
+      std::copy(gathered.begin(), gathered.end(), a->GetPointer(0));
+      fd->AddArray(a);
+    }
+    else
+    {
+      a->SetName(name);
+      a->SetNumberOfTuples(static_cast<vtkIdType>(values.size() / components));
+      std::copy(values.begin(), values.end(), a->GetPointer(0));
+      cd->AddArray(a);
+    }
+  };
+  if (sparse)
+  {
+    vtkNew<vtkIntArray> slots;
+    slots->SetName("SourceBrickSlots");
+    slots->SetNumberOfValues(static_cast<vtkIdType>(bricks->GetSlots().size()));
+    std::copy(bricks->GetSlots().begin(), bricks->GetSlots().end(), slots->GetPointer(0));
+    fd->AddArray(slots);
+  }
   if (directional)
   {
     // The projection, and as SourceRadiance its mean over directions (the
@@ -275,12 +324,7 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
     const int order = radiance.GetDirectionalOrder();
     const int components = 3 * brume::ShCoefficients(order);
     const std::vector<float>& coefficients = radiance.GetDirectional();
-    vtkNew<vtkFloatArray> sh;
-    sh->SetName("SourceRadianceSH");
-    sh->SetNumberOfComponents(components);
-    sh->SetNumberOfTuples(static_cast<vtkIdType>(coefficients.size() / components));
-    std::copy(coefficients.begin(), coefficients.end(), sh->GetPointer(0));
-    std::vector<float> mean(3 * static_cast<std::size_t>(sh->GetNumberOfTuples()));
+    std::vector<float> mean(3 * (coefficients.size() / components));
     for (std::size_t t = 0; t < mean.size() / 3; ++t)
     {
       for (int c = 0; c < 3; ++c)
@@ -288,16 +332,20 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
         mean[3 * t + c] = std::max(0.f, brume::ShY00 * coefficients[t * components + c]);
       }
     }
-    texture->GetCellData()->SetScalars(NewRGB("SourceRadiance", mean));
-    texture->GetCellData()->AddArray(sh);
+    add("SourceRadiance", mean, 3);
+    add("SourceRadianceSH", coefficients, components);
     vtkNew<vtkDoubleArray> g;
     g->SetName("BrumePhaseAsymmetry");
     g->InsertNextValue(radiance.GetPeak(true).G); // the remainder's, past DirectionalResolvedG
-    texture->GetFieldData()->AddArray(g);
+    fd->AddArray(g);
   }
   else
   {
-    texture->GetCellData()->SetScalars(NewRGB("SourceRadiance", radiance.GetOutputRadiance()));
+    add("SourceRadiance", radiance.GetOutputRadiance(), 3);
+  }
+  if (!sparse)
+  {
+    cd->SetActiveScalars("SourceRadiance");
   }
   // A strongly forward medium's peak is drawn as transport: at the
   // extinction times this factor, with S per unit of it.
@@ -308,35 +356,32 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
     f->SetName("BrumeExtinctionFactor");
     f->SetNumberOfComponents(3);
     f->InsertNextTuple3(factor.x, factor.y, factor.z);
-    texture->GetFieldData()->AddArray(f);
+    fd->AddArray(f);
   }
-  const std::vector<float>& sigmaT =
-    directional ? radiance.GetExtinction() : radiance.GetOutputExtinction();
-  auto* kept = previous
-    ? vtkFloatArray::SafeDownCast(previous->GetCellData()->GetArray("Extinction"))
-    : nullptr;
-  if (kept && kept->GetNumberOfComponents() == 3 &&
-    static_cast<std::size_t>(kept->GetNumberOfValues()) == sigmaT.size() &&
-    std::equal(sigmaT.begin(), sigmaT.end(), kept->GetPointer(0)))
+  if (!sparse)
   {
-    texture->GetCellData()->AddArray(kept);
+    const std::vector<float>& sigmaT =
+      directional ? radiance.GetExtinction() : radiance.GetOutputExtinction();
+    auto* kept = previous
+      ? vtkFloatArray::SafeDownCast(previous->GetCellData()->GetArray("Extinction"))
+      : nullptr;
+    if (kept && kept->GetNumberOfComponents() == 3 &&
+      static_cast<std::size_t>(kept->GetNumberOfValues()) == sigmaT.size() &&
+      std::equal(sigmaT.begin(), sigmaT.end(), kept->GetPointer(0)))
+    {
+      cd->AddArray(kept);
+    }
+    else
+    {
+      cd->AddArray(NewRGB("Extinction", sigmaT));
+    }
   }
-  else
-  {
-    texture->GetCellData()->AddArray(NewRGB("Extinction", sigmaT));
-  }
-  AddString(texture->GetFieldData(), "BrumeObjectKind", "medium");
+  AddString(fd, "BrumeObjectKind", "medium");
   auto pds = vtkSmartPointer<vtkPartitionedDataSet>::New();
-  pds->SetNumberOfPartitions(1);
+  pds->SetNumberOfPartitions(extinction ? 2 : 1);
   pds->SetPartition(0, texture);
-  vtkSmartPointer<vtkImageData> extinction = nativeExtinction;
-  if (!extinction)
-  {
-    extinction = NativeExtinction(radiance, medium);
-  }
   if (extinction)
   {
-    pds->SetNumberOfPartitions(2);
     pds->SetPartition(1, extinction);
   }
   return pds;

@@ -31,6 +31,13 @@
  *   vtkBrumeSliceVolumeMapper::SetExtinctionData): memory follows the
  *   bricks where the density varies, not the box. The mapper draws the
  *   medium's structure with it; DenseExtinction() expands it.
+ * - a heterogeneous medium's partition 0 in the sparse form (FromMedium
+ *   given the layout of SourceBricks()): its source radiance only where
+ *   the mapper reads it (near the density), as the field arrays
+ *   `SourceBrickSlots`, `SourceRadianceBrickSamples` and, for directional
+ *   media, `SourceRadianceSHBrickSamples`, with no cell arrays and no
+ *   texture-resolution `Extinction` (partition 1 replaces it); see
+ *   vtkBrumeSliceVolumeMapper's input and its DenseSourceArray().
  *
  * Every partition's field data holds `BrumeObjectKind` ("surface" or
  * "medium").
@@ -44,6 +51,7 @@
 #include "vtkSmartPointer.h"         // For return values
 
 #include "brume/Reconstruction.h" // For brume::ObjectRadiance
+#include "brume/SparseTexture.h"  // For SourceBricks
 
 class vtkImageData;
 class vtkPartitionedDataSet;
@@ -66,11 +74,23 @@ public:
    * `previous`, when given, is an earlier texture of the same medium: its
    * `Extinction` array is kept where the values are the same (a view
    * update changes only the radiance), so that renderers see the same
-   * array and need not convert or compare it again.
+   * array and need not convert or compare it again. With `bricks` (the
+   * texture's SourceBricks(), of the same resolution) a heterogeneous
+   * medium's texture is in the sparse form.
    */
   static vtkSmartPointer<vtkPartitionedDataSet> FromMedium(const brume::ObjectRadiance& radiance,
     const brume::Medium& medium, bool directional, vtkImageData* nativeExtinction = nullptr,
-    vtkImageData* previous = nullptr);
+    vtkImageData* previous = nullptr, const brume::SparseTexture* bricks = nullptr);
+
+  /**
+   * The bricks of a heterogeneous medium's texture (toward the eye, or
+   * directional) that the slice mapper reads: those near the density
+   * (brume::SparseTexture::WhereDensity). It depends on the texture's
+   * resolution and the density alone: a caller may keep it while the
+   * resolution stays.
+   */
+  static brume::SparseTexture SourceBricks(
+    const brume::ObjectRadiance& radiance, const brume::Medium& medium, bool directional);
 
   /**
    * A heterogeneous medium's extinction at the density's own resolution

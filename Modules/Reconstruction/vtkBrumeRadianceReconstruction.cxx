@@ -232,7 +232,7 @@ bool vtkBrumeRadianceReconstruction::Plan(const vtkBrumeReconstructionRequest& r
   const vtkBrumeReconstructionSettings settings{ this->RadiosityThreshold, this->SurfaceResolution,
     this->MediumResolution, this->HistogramRefinement,
     this->DirectLighting ? this->DirectLightResolution : 0, this->MirrorResolution,
-    this->CentroidMatching };
+    this->CentroidMatching, this->SparseMedia };
   vtkBrumeRadianceTextures* textures = this->Textures.get();
   const auto& run = request.Run;
   const bool sameSettings = textures && textures->SameSceneAndSettings(request, settings);
@@ -304,6 +304,7 @@ void vtkBrumeRadianceReconstruction::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MediumResolution: " << this->MediumResolution << "\n";
   os << indent << "HistogramRefinement: " << this->HistogramRefinement << "\n";
   os << indent << "CentroidMatching: " << this->CentroidMatching << "\n";
+  os << indent << "SparseMedia: " << this->SparseMedia << "\n";
   os << indent << "IncrementalUpdate: " << this->IncrementalUpdate << "\n";
   os << indent << "NumberOfTextureBuilds: " << this->NumberOfTextureBuilds << "\n";
   os << indent << "NumberOfViewUpdates: " << this->NumberOfViewUpdates << "\n";

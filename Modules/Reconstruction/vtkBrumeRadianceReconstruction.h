@@ -31,7 +31,8 @@
  *   (float[3], sigma_t in m^-1), ready for vtkBrumeSliceVolumeMapper; a
  *   heterogeneous medium adds partition 1, its extinction at the density's
  *   own resolution, and its source radiance is the sigma_t-weighted mean
- *   over each voxel's region (vtkBrumeRadianceConversion has the details).
+ *   over each voxel's region, kept by default only near the density
+ *   (SparseMedia; vtkBrumeRadianceConversion has the details).
  *
  * Every partition's field data holds `BrumeObjectKind` ("surface" or
  * "medium"). The collection's field data holds `BrumeEyePosition` (the
@@ -281,6 +282,26 @@ public:
   vtkBooleanMacro(CentroidMatching, bool);
   ///@}
 
+  ///@{
+  /**
+   * Heterogeneous media: their textures in the sparse form (default on).
+   * On, a medium whose density has its own grid (partition 1) keeps its
+   * source radiance only in the bricks of 8^3 cells that the slice mapper
+   * reads, those near the density (brume::SparseTexture), as field arrays
+   * (`SourceBrickSlots`, `SourceRadianceBrickSamples`,
+   * `SourceRadianceSHBrickSamples`) with no cell arrays, and drops the
+   * texture-resolution `Extinction` that partition 1 replaces: memory
+   * follows the medium, not its box.
+   * vtkBrumeSliceVolumeMapper::DenseSourceArray() expands an array. Off,
+   * partition 0 holds the cell arrays `SourceRadiance`, `Extinction` (and
+   * `SourceRadianceSH`), for filters that slice or probe it. Images are
+   * the same either way.
+   */
+  vtkSetMacro(SparseMedia, bool);
+  vtkGetMacro(SparseMedia, bool);
+  vtkBooleanMacro(SparseMedia, bool);
+  ///@}
+
 protected:
   vtkBrumeRadianceReconstruction();
   ~vtkBrumeRadianceReconstruction() override;
@@ -295,6 +316,7 @@ protected:
   int MirrorResolution = 512;
   int HistogramRefinement = 2;
   bool CentroidMatching = true;
+  bool SparseMedia = true;
   vtkCamera* Camera = nullptr;
   vtkMultiProcessController* Controller = nullptr;
   vtkTypeInt64 LastReductionBytes = 0;

@@ -526,8 +526,24 @@ void vtkBrumeRadianceTextures::Emit(vtkPartitionedDataSetCollection* output)
         {
           this->LastMediumTextures.resize(this->Objects.size());
         }
-        this->Outputs[o] = vtkBrumeRadianceConversion::FromMedium(radiance, medium,
-          this->ObjectDirectional[o], this->NativeExtinction[o], this->LastMediumTextures[o]);
+        // The bricks the source radiance needs, kept while the resolution
+        // stays (a view update changes only the values).
+        const brume::SparseTexture* bricks = nullptr;
+        if (this->Settings.SparseMedia && this->NativeExtinction[o])
+        {
+          this->SourceBricks.resize(this->Objects.size());
+          const bool directional = this->ObjectDirectional[o];
+          const auto& res = directional ? radiance.GetResolution() : radiance.GetOutputResolution();
+          if (this->SourceBricks[o].GetDims() != res)
+          {
+            this->SourceBricks[o] =
+              vtkBrumeRadianceConversion::SourceBricks(radiance, medium, directional);
+          }
+          bricks = &this->SourceBricks[o];
+        }
+        this->Outputs[o] =
+          vtkBrumeRadianceConversion::FromMedium(radiance, medium, this->ObjectDirectional[o],
+            this->NativeExtinction[o], this->LastMediumTextures[o], bricks);
         this->LastMediumTextures[o] = vtkImageData::SafeDownCast(this->Outputs[o]->GetPartition(0));
       }
     }

@@ -17,6 +17,7 @@
 #include "brume/DirectLight.h"
 #include "brume/RayCaster.h"
 #include "brume/Reconstruction.h"
+#include "brume/SparseTexture.h"
 
 #include <array>
 #include <functional>
@@ -56,6 +57,7 @@ struct vtkBrumeReconstructionSettings
   int DirectLightResolution = 0; // 0: no deterministic single scattering
   int MirrorResolution = 0;
   bool CentroidMatching = true;
+  bool SparseMedia = true; // heterogeneous media's textures in the sparse form
 
   bool operator==(const vtkBrumeReconstructionSettings& o) const
   {
@@ -64,7 +66,8 @@ struct vtkBrumeReconstructionSettings
       this->MediumResolution == o.MediumResolution &&
       this->HistogramRefinement == o.HistogramRefinement &&
       this->DirectLightResolution == o.DirectLightResolution &&
-      this->MirrorResolution == o.MirrorResolution && this->CentroidMatching == o.CentroidMatching;
+      this->MirrorResolution == o.MirrorResolution &&
+      this->CentroidMatching == o.CentroidMatching && this->SparseMedia == o.SparseMedia;
   }
 };
 
@@ -198,8 +201,9 @@ private:
   std::vector<vtkSmartPointer<vtkPartitionedDataSet>> Outputs;
   std::vector<vtkSmartPointer<vtkImageData>> NativeExtinction;   // media: made once
   std::vector<vtkSmartPointer<vtkImageData>> LastMediumTextures; // media: the last emitted
-  std::vector<brume::Vec3> ObjectEye;  // the eye each texture was estimated toward
-  std::vector<bool> ObjectDirectional; // whose output holds directional radiance
+  std::vector<brume::SparseTexture> SourceBricks; // media: kept while the resolution stays
+  std::vector<brume::Vec3> ObjectEye;             // the eye each texture was estimated toward
+  std::vector<bool> ObjectDirectional;            // whose output holds directional radiance
   double Particles = 0.0, Seed = 0.0;
   double EndParticle = 0.0;         // the particles binned are [0, EndParticle)
   bool Accumulated = false;         // particles were added after the build

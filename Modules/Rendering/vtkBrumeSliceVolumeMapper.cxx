@@ -4,6 +4,7 @@
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
+#include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkObjectFactory.h"
@@ -12,6 +13,22 @@
 #include <cmath>
 
 vtkAbstractObjectFactoryNewMacro(vtkBrumeSliceVolumeMapper);
+
+namespace
+{
+// Directional radiance (the array `coefficients`) needs the phase
+// function's g.
+std::string CheckAsymmetry(vtkFieldData* fd, const char* coefficients)
+{
+  vtkDataArray* g = fd->GetArray("BrumePhaseAsymmetry");
+  if (!g || g->GetNumberOfTuples() < 1 || !(std::abs(g->GetTuple1(0)) < 1.0))
+  {
+    return std::string("directional radiance ('") + coefficients +
+      "') needs the field array 'BrumePhaseAsymmetry' with the phase function's g in (-1, 1)";
+  }
+  return {};
+}
+}
 
 vtkBrumeSliceVolumeMapper::vtkBrumeSliceVolumeMapper() = default;
 vtkBrumeSliceVolumeMapper::~vtkBrumeSliceVolumeMapper() = default;
@@ -44,6 +61,11 @@ std::string vtkBrumeSliceVolumeMapper::ValidateInput(vtkImageData* image)
   }
   const vtkIdType cells =
     static_cast<vtkIdType>(pointDims[0] - 1) * (pointDims[1] - 1) * (pointDims[2] - 1);
+  if (IsSparseSource(image))
+  {
+    const int dims[3] = { pointDims[0] - 1, pointDims[1] - 1, pointDims[2] - 1 };
+    return ValidateSourceBricks(image, dims);
+  }
   vtkDataArray* source = image->GetCellData()->GetArray("SourceRadiance");
   vtkDataArray* extinction = image->GetCellData()->GetArray("Extinction");
   if (!source || !extinction || source->GetNumberOfComponents() != 3 ||
@@ -56,19 +78,118 @@ std::string vtkBrumeSliceVolumeMapper::ValidateInput(vtkImageData* image)
   if (vtkDataArray* sh = image->GetCellData()->GetArray("SourceRadianceSH"))
   {
     const int order = DirectionalOrder(sh->GetNumberOfComponents());
-    vtkDataArray* g = image->GetFieldData()->GetArray("BrumePhaseAsymmetry");
     if (order < 1 || sh->GetNumberOfTuples() != cells)
     {
       return "the cell array 'SourceRadianceSH' needs 3 (order + 1)^2 components (order 1 to 3), "
              "one tuple per cell";
     }
-    if (!g || g->GetNumberOfTuples() < 1 || !(std::abs(g->GetTuple1(0)) < 1.0))
-    {
-      return "directional radiance ('SourceRadianceSH') needs the field array "
-             "'BrumePhaseAsymmetry' with the phase function's g in (-1, 1)";
-    }
+    return CheckAsymmetry(image->GetFieldData(), "SourceRadianceSH");
   }
   return {};
+}
+
+bool vtkBrumeSliceVolumeMapper::IsSparseSource(vtkImageData* image)
+{
+  return image && image->GetFieldData()->GetArray("SourceBrickSlots") != nullptr;
+}
+
+std::string vtkBrumeSliceVolumeMapper::ValidateSourceBricks(vtkImageData* image, const int cells[3])
+{
+  vtkFieldData* fd = image->GetFieldData();
+  vtkDataArray* slots = fd->GetArray("SourceBrickSlots");
+  vtkDataArray* source = fd->GetArray("SourceRadianceBrickSamples");
+  vtkDataArray* sh = fd->GetArray("SourceRadianceSHBrickSamples");
+  vtkIdType bricks = 1;
+  for (int a = 0; a < 3; ++a)
+  {
+    bricks *= SourceBricksAlong(cells[a]);
+  }
+  const vtkIdType brickCells = static_cast<vtkIdType>(SourceBrickEdge(cells[0])) *
+    SourceBrickEdge(cells[1]) * SourceBrickEdge(cells[2]);
+  if (slots->GetNumberOfComponents() != 1 || slots->GetNumberOfTuples() != bricks || !source ||
+    source->GetNumberOfComponents() != 3 || source->GetNumberOfTuples() % brickCells != 0)
+  {
+    return "the sparse source radiance needs the field arrays 'SourceBrickSlots' (one integer "
+           "per brick, " +
+      std::to_string(bricks) + " here) and 'SourceRadianceBrickSamples' (3 components, " +
+      std::to_string(brickCells) + " tuples per slot)";
+  }
+  const vtkIdType slotCount = source->GetNumberOfTuples() / brickCells;
+  if (sh &&
+    (DirectionalOrder(sh->GetNumberOfComponents()) < 1 ||
+      sh->GetNumberOfTuples() != source->GetNumberOfTuples()))
+  {
+    return "the field array 'SourceRadianceSHBrickSamples' needs 3 (order + 1)^2 components "
+           "(order 1 to 3) and as many tuples as 'SourceRadianceBrickSamples'";
+  }
+  for (vtkIdType b = 0; b < bricks; ++b)
+  {
+    const double slot = slots->GetTuple1(b);
+    if (!(slot >= -1.0 && slot < static_cast<double>(slotCount)) || slot != std::floor(slot))
+    {
+      return "the sparse source radiance's brick " + std::to_string(b) +
+        " names a slot that 'SourceRadianceBrickSamples' does not hold";
+    }
+  }
+  return sh ? CheckAsymmetry(fd, "SourceRadianceSHBrickSamples") : std::string();
+}
+
+vtkSmartPointer<vtkDataArray> vtkBrumeSliceVolumeMapper::DenseSourceArray(
+  vtkImageData* image, const char* name)
+{
+  if (!image)
+  {
+    return nullptr;
+  }
+  if (!IsSparseSource(image))
+  {
+    return image->GetCellData()->GetArray(name);
+  }
+  int pointDims[3];
+  image->GetDimensions(pointDims);
+  const int cells[3] = { pointDims[0] - 1, pointDims[1] - 1, pointDims[2] - 1 };
+  vtkFieldData* fd = image->GetFieldData();
+  vtkDataArray* slots = fd->GetArray("SourceBrickSlots");
+  vtkDataArray* samples = fd->GetArray((std::string(name) + "BrickSamples").c_str());
+  if (cells[0] < 1 || cells[1] < 1 || cells[2] < 1 || !samples ||
+    !ValidateSourceBricks(image, cells).empty())
+  {
+    return nullptr;
+  }
+  const int n = samples->GetNumberOfComponents();
+  const int bricks[3] = { SourceBricksAlong(cells[0]), SourceBricksAlong(cells[1]),
+    SourceBricksAlong(cells[2]) };
+  const int edge[3] = { SourceBrickEdge(cells[0]), SourceBrickEdge(cells[1]),
+    SourceBrickEdge(cells[2]) };
+  auto dense = vtkSmartPointer<vtkFloatArray>::New();
+  dense->SetName(name);
+  dense->SetNumberOfComponents(n);
+  dense->SetNumberOfTuples(static_cast<vtkIdType>(cells[0]) * cells[1] * cells[2]);
+  float* out = dense->GetPointer(0);
+  auto* typed = vtkFloatArray::FastDownCast(samples);
+  vtkIdType cell = 0;
+  for (int k = 0; k < cells[2]; ++k)
+    for (int j = 0; j < cells[1]; ++j)
+      for (int i = 0; i < cells[0]; ++i, ++cell)
+      {
+        const vtkIdType brick =
+          (static_cast<vtkIdType>(k / edge[2]) * bricks[1] + j / edge[1]) * bricks[0] + i / edge[0];
+        const vtkIdType slot = static_cast<vtkIdType>(slots->GetTuple1(brick));
+        float* to = out + cell * n;
+        if (slot < 0)
+        {
+          std::fill_n(to, n, 0.f);
+          continue;
+        }
+        const vtkIdType from = slot * edge[0] * edge[1] * edge[2] +
+          (static_cast<vtkIdType>(k % edge[2]) * edge[1] + j % edge[1]) * edge[0] + i % edge[0];
+        for (int c = 0; c < n; ++c)
+        {
+          to[c] = typed ? typed->GetTypedComponent(from, c)
+                        : static_cast<float>(samples->GetComponent(from, c));
+        }
+      }
+  return dense;
 }
 
 void vtkBrumeSliceVolumeMapper::SetExtinctionData(vtkImageData* extinction)

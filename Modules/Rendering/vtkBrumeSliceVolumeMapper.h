@@ -40,6 +40,22 @@
  * volume property's interpolation type (nearest or linear) is honoured; its
  * transfer functions are not used: the data are physical.
  *
+ * Sparse input (with ExtinctionData only): the source radiance kept only
+ * where it is read, in bricks that do not overlap, SourceBrickEdge(n)
+ * cells along an axis of n cells (SourceBrickSize, or n when fewer; brick
+ * b holds cells SourceBrickEdge(n) b ... SourceBrickEdge(n) (b + 1) - 1,
+ * the last one padded; SourceBricksAlong(n) bricks, x fastest), as field
+ * arrays with no cell arrays:
+ * - `SourceBrickSlots` (integers, one per brick): the brick's slot, or -1
+ *   when the brick is not stored (its cells read as 0: the extinction is 0
+ *   wherever they would be interpolated);
+ * - `SourceRadianceBrickSamples` (3 components) and, for directional
+ *   radiance, `SourceRadianceSHBrickSamples`: a brick's cells' tuples per
+ *   slot, x fastest within a brick.
+ * vtkBrumeRadianceReconstruction produces it for heterogeneous media
+ * (SparseMedia); DenseSourceArray() expands one array. The mapper's own
+ * textures are dense.
+ *
  * This class is the interface; New() returns the OpenGL implementation
  * (vtkBrumeOpenGLSliceVolumeMapper) through VTK's object factory.
  *
@@ -212,10 +228,35 @@ public:
 
   /**
    * Empty when `image` has what the mapper draws, otherwise why not (missing
-   * arrays, no cells, non-positive spacing). Values are checked when they
-   * are uploaded (negative or non-finite extinction is an error).
+   * arrays, no cells, non-positive spacing, sparse arrays that do not fit
+   * the grid). Values are checked when they are uploaded (negative or
+   * non-finite extinction is an error). An image in the sparse form also
+   * needs ExtinctionData, which the mapper checks when it draws.
    */
   static std::string ValidateInput(vtkImageData* image);
+
+  /// The sparse source radiance's bricks: cells per side, and bricks along an axis of `cells`.
+  static constexpr int SourceBrickSize = 8;
+  static int SourceBricksAlong(int cells)
+  {
+    return (cells + SourceBrickSize - 1) / SourceBrickSize;
+  }
+  static int SourceBrickEdge(int cells)
+  {
+    return cells < SourceBrickSize ? cells : SourceBrickSize;
+  }
+
+  /// Whether `image` holds its source radiance in the sparse form (`SourceBrickSlots`).
+  static bool IsSparseSource(vtkImageData* image);
+
+  /**
+   * The cell array `name` of a medium image (`SourceRadiance`,
+   * `SourceRadianceSH`) with one tuple per cell: the array itself, or in the
+   * sparse form a new float array expanded from `name` + "BrickSamples"
+   * (cells of bricks not stored are 0). Null when the image has neither or
+   * the sparse arrays do not fit the grid (ValidateInput says why).
+   */
+  static vtkSmartPointer<vtkDataArray> DenseSourceArray(vtkImageData* image, const char* name);
 
   /// The order of a `SourceRadianceSH` array of so many components, or -1.
   static int DirectionalOrder(int components);
@@ -236,6 +277,9 @@ protected:
   vtkSmartPointer<vtkImageData> ExtinctionData;
 
 private:
+  // ValidateInput's sparse form: the source radiance's brick arrays
+  // against the grid.
+  static std::string ValidateSourceBricks(vtkImageData* image, const int cells[3]);
   // ValidateExtinction's sparse form: the brick arrays against the grid.
   static std::string ValidateBricks(
     const int pointDims[3], vtkFieldData* fd, vtkDataArray* samples);

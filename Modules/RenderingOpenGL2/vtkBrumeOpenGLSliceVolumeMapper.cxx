@@ -159,6 +159,11 @@ bool vtkBrumeOpenGLSliceVolumeMapper::PrepareSlices(
   {
     problem = ValidateExtinction(input, this->ExtinctionData);
   }
+  else if (problem.empty() && IsSparseSource(input))
+  {
+    problem = "a medium image in the sparse form (SourceBrickSlots) needs its extinction "
+              "grid (SetExtinctionData)";
+  }
   if (!problem.empty())
   {
     vtkErrorMacro("Cannot draw this medium: " << problem << ".");

@@ -137,16 +137,21 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadTextures(
   Internals& impl = *this->Impl;
   const vtkIdType cells = static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2];
   std::vector<float>& s = impl.SourceValues;
-  const vtkIdType badSource =
-    ToRgba(input->GetCellData()->GetArray("SourceRadiance"), cells, false, s);
+  // The source radiance per cell (expanded from the sparse form's bricks).
+  const vtkIdType badSource = ToRgba(DenseSourceArray(input, "SourceRadiance"), cells, false, s);
   // The extinction array of the last upload, unmodified (a view update
   // keeps it: vtkBrumeRadianceConversion::FromMedium): its values are known.
+  // The sparse form has none (ExtinctionData replaces it).
   vtkDataArray* extinction = input->GetCellData()->GetArray("Extinction");
   const bool known = !this->ExtinctionData && extinction == impl.ExtinctionArray &&
     extinction->GetMTime() == impl.ExtinctionArrayTime &&
     impl.ExtinctionValues.size() == 4 * static_cast<std::size_t>(cells);
   std::vector<float>& e = known ? impl.ExtinctionValues : impl.Scratch;
-  const vtkIdType badExtinction = known ? cells : ToRgba(extinction, cells, true, e);
+  if (!extinction)
+  {
+    e.assign(4 * static_cast<std::size_t>(cells), 1.f);
+  }
+  const vtkIdType badExtinction = known || !extinction ? cells : ToRgba(extinction, cells, true, e);
   if (badSource < cells || badExtinction < cells)
   {
     vtkErrorMacro("Cannot draw this medium: its extinction must be finite and "
@@ -392,8 +397,8 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   }
   impl.ExtinctionGrey =
     impl.BrickScale[0] == impl.BrickScale[1] && impl.BrickScale[1] == impl.BrickScale[2];
-  impl.MaxExtinction = largest *
-    std::max({ impl.BrickScale[0], impl.BrickScale[1], impl.BrickScale[2] });
+  impl.MaxExtinction =
+    largest * std::max({ impl.BrickScale[0], impl.BrickScale[1], impl.BrickScale[2] });
   return Upload3D(impl.Extinction, renWin, texels, 1, filter, packed.data()) &&
     Upload3D(impl.BrickTable, renWin, brickDims, 4, vtkTextureObject::Nearest, table.data());
 }
@@ -409,7 +414,7 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadDirectional(vtkImageData* input,
   impl.Order = 0;
   impl.FragmentOrder = 0;
   impl.Voxels.clear();
-  vtkDataArray* sh = input->GetCellData()->GetArray("SourceRadianceSH");
+  vtkSmartPointer<vtkDataArray> sh = DenseSourceArray(input, "SourceRadianceSH");
   const int order = sh ? DirectionalOrder(sh->GetNumberOfComponents()) : -1;
   if (order <= 0)
   {
