@@ -7,6 +7,7 @@
 #include "brume/Material.h"
 #include "brume/Reconstruction.h"
 #include "brume/Sampling.h"
+#include "brume/SparseTexture.h"
 #include "brume/SphericalHarmonics.h"
 
 #include <algorithm>
@@ -122,12 +123,41 @@ void ObjectRadiance::ComputeDirect(const ParallelFor& parallelFor)
   // depend on the texel only).
   const auto mine = this->Share(texels);
   const std::size_t floats = lights * ArrivalFloats;
+  // A medium with a density grid of its own: only the texels a renderer
+  // reads (near the density, SparseTexture::CellsRead) get their light; the
+  // others stay 0, as no image shows them. Their face neighbours' rays are
+  // cast too, so that the edges below are found as with every texel.
+  const int used = this->MediumRef ? 3 : 2;
+  const std::size_t nx = dims[0], nxy = nx * dims[1];
+  std::vector<std::uint8_t> read, cast;
+  if (this->MediumRef && !this->NativeDensity.Empty())
+  {
+    read = SparseTexture::CellsRead(dims, this->MediumRef->Bounds, this->NativeDensity);
+    cast = read;
+    for (std::size_t t = 0; t < texels; ++t)
+    {
+      const int c[3] = { static_cast<int>(t % nx), static_cast<int>((t % nxy) / nx),
+        static_cast<int>(t / nxy) };
+      for (int a = 0; a < used && !read[t]; ++a)
+      {
+        const std::size_t stride = a == 0 ? 1 : (a == 1 ? nx : nxy);
+        if ((c[a] > 0 && read[t - stride]) || (c[a] + 1 < dims[a] && read[t + stride]))
+        {
+          cast[t] = 1;
+        }
+      }
+    }
+  }
   // 1. One shadow ray per texel centre.
   parallelFor(mine[0], mine[1],
     [&](std::size_t begin, std::size_t end)
     {
       for (std::size_t t = begin; t < end; ++t)
       {
+        if (!cast.empty() && !cast[t])
+        {
+          continue;
+        }
         const Vec3 x = this->OutputPosition(t);
         for (std::size_t l = 0; l < lights; ++l)
         {
@@ -142,8 +172,6 @@ void ObjectRadiance::ComputeDirect(const ParallelFor& parallelFor)
   // not, or the reverse) hold the mean over RefinedSamples^d stratified
   // points of the texel instead: the edge then lies where it is, not half
   // way between two texel centres, once the renderer interpolates.
-  const int used = this->MediumRef ? 3 : 2;
-  const std::size_t nx = dims[0], nxy = nx * dims[1];
   auto lit = [&](std::size_t t, std::size_t l)
   {
     const float* a = &arrivals[(t * lights + l) * ArrivalFloats];
@@ -152,6 +180,10 @@ void ObjectRadiance::ComputeDirect(const ParallelFor& parallelFor)
   std::vector<std::uint8_t> edge(texels * lights, 0);
   for (std::size_t t = 0; t < texels; ++t)
   {
+    if (!read.empty() && !read[t])
+    {
+      continue;
+    }
     const int c[3] = { static_cast<int>(t % nx), static_cast<int>((t % nxy) / nx),
       static_cast<int>(t / nxy) };
     for (std::size_t l = 0; l < lights; ++l)

@@ -23,47 +23,79 @@ std::vector<std::uint8_t> SparseTexture::CellsRead(
     return near;
   }
   // Texture cells whose box meets a non-zero density cell's centre give or
-  // take one density cell (where trilinear interpolation reaches it) ...
+  // take one density cell (where trilinear interpolation reaches it): per
+  // axis, the texture cells each density cell reaches ...
   const auto& nativeDims = density.GetDims();
   const Box& nativeBox = density.GetBox();
-  double lower[3], cell[3], nativeLower[3], nativeCell[3];
+  std::array<std::vector<int>, 3> from, to;
   for (int a = 0; a < 3; ++a)
   {
-    lower[a] = box.lower[a];
-    cell[a] = (static_cast<double>(box.upper[a]) - box.lower[a]) / dims[a];
-    nativeLower[a] = nativeBox.lower[a];
-    nativeCell[a] = (static_cast<double>(nativeBox.upper[a]) - nativeBox.lower[a]) / nativeDims[a];
+    const double lower = box.lower[a];
+    const double cell = (static_cast<double>(box.upper[a]) - box.lower[a]) / dims[a];
+    const double nativeCell =
+      (static_cast<double>(nativeBox.upper[a]) - nativeBox.lower[a]) / nativeDims[a];
+    for (int i = 0; i < nativeDims[a]; ++i)
+    {
+      const double centre = nativeBox.lower[a] + (i + 0.5) * nativeCell;
+      from[a].push_back(
+        std::max(static_cast<int>(std::floor((centre - nativeCell - lower) / cell)), 0));
+      to[a].push_back(
+        std::min(static_cast<int>(std::floor((centre + nativeCell - lower) / cell)), dims[a] - 1));
+    }
   }
   auto index = [&](int i, int j, int k)
   { return (static_cast<std::size_t>(k) * dims[1] + j) * dims[0] + i; };
-  density.ForEachNonZeroCell(
-    [&](int i, int j, int k, float value)
-    {
-      if (value == 0.f)
-      {
-        return;
-      }
-      const int c[3] = { i, j, k };
-      int from[3], to[3];
-      for (int a = 0; a < 3; ++a)
-      {
-        const double centre = nativeLower[a] + (c[a] + 0.5) * nativeCell[a];
-        from[a] = static_cast<int>(std::floor((centre - nativeCell[a] - lower[a]) / cell[a]));
-        to[a] = static_cast<int>(std::floor((centre + nativeCell[a] - lower[a]) / cell[a]));
-        from[a] = std::max(from[a], 0);
-        to[a] = std::min(to[a], dims[a] - 1);
-        if (from[a] > to[a])
+  // ... marked for the cells lower..upper (inclusive) of the density.
+  auto mark = [&](const int lower[3], const int upper[3])
+  {
+    const int x0 = from[0][lower[0]], x1 = to[0][upper[0]], y0 = from[1][lower[1]],
+              y1 = to[1][upper[1]], z0 = from[2][lower[2]], z1 = to[2][upper[2]];
+    for (int z = z0; z <= z1; ++z)
+      for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x)
         {
-          return; // outside the texture's box
+          near[index(x, y, z)] = 1;
         }
+  };
+  constexpr int Stride = BrickedGrid::Stride, Size = BrickedGrid::Size;
+  const auto& bricks = density.GetBrickDims();
+  const std::vector<float>& samples = density.GetSamples();
+  std::size_t brick = 0;
+  for (int bk = 0; bk < bricks[2]; ++bk)
+    for (int bj = 0; bj < bricks[1]; ++bj)
+      for (int bi = 0; bi < bricks[0]; ++bi, ++brick)
+      {
+        const int slot = density.GetSlots()[brick];
+        if (slot < 0 && density.GetConstants()[brick] == 0.f)
+        {
+          continue;
+        }
+        // The brick's own cells (Stride per axis, the last brick the rest).
+        const int b[3] = { bi, bj, bk };
+        int lower[3], upper[3];
+        for (int a = 0; a < 3; ++a)
+        {
+          lower[a] = Stride * b[a];
+          upper[a] = (b[a] == bricks[a] - 1 ? nativeDims[a] : lower[a] + Stride) - 1;
+        }
+        if (slot < 0)
+        {
+          mark(lower, upper); // one value, not 0, everywhere
+          continue;
+        }
+        const float* values = &samples[static_cast<std::size_t>(slot) * BrickedGrid::BrickSamples];
+        for (int k = lower[2]; k <= upper[2]; ++k)
+          for (int j = lower[1]; j <= upper[1]; ++j)
+            for (int i = lower[0]; i <= upper[0]; ++i)
+            {
+              const int local = ((k - lower[2]) * Size + (j - lower[1])) * Size + (i - lower[0]);
+              if (values[local] != 0.f)
+              {
+                const int c[3] = { i, j, k };
+                mark(c, c);
+              }
+            }
       }
-      for (int z = from[2]; z <= to[2]; ++z)
-        for (int y = from[1]; y <= to[1]; ++y)
-          for (int x = from[0]; x <= to[0]; ++x)
-          {
-            near[index(x, y, z)] = 1;
-          }
-    });
   // ... and their neighbours, whose values trilinear interpolation of the
   // texture mixes in up to one cell away.
   for (int a = 0; a < 3; ++a)
