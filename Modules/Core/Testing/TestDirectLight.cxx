@@ -239,26 +239,40 @@ TEST(DirectLight, TransmittanceMarchesTheDensityGrid)
   ramp.SetDensity(
     std::make_shared<GridDensity>(Box{ Vec3(-1.f), Vec3(1.f) }, std::array<int, 3>{ 3, 2, 2 },
       std::vector<float>{ 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2 }, false));
-  for (int which = 0; which < 2; ++which)
+  // The slab eight times as dense: three optical depths a cell, so that
+  // the march takes half cells (at most one optical depth a step).
+  Medium dense = slab;
+  dense.Name = "dense slab";
+  dense.SigmaA = slab.SigmaA * 8.f;
+  dense.SigmaS = slab.SigmaS * 8.f;
+  struct Case
+  {
+    const Medium* M;
+    bool Grid;
+    double Depth, Step; // the step in cells
+  };
+  for (const Case& c : { Case{ &slab, true, 1.5 * 2.0 * 0.5, 1.0 },
+         Case{ &dense, true, 12.0 * 2.0 * 0.5, 0.5 }, Case{ &ramp, false, 0.5 * 1.8, 0.5 } })
   {
     Scene scene;
-    scene.Media = { which == 0 ? slab : ramp };
+    scene.Media = { *c.M };
     scene.Lights = { PointLight(Vec3(0.f), 1.f) };
     ASSERT_EQ(scene.Validate(), "");
     const RayCaster caster(scene);
     DirectLight direct(scene, caster);
-    if (which == 0)
+    if (c.Grid)
     {
       direct.SetMediumGrid(0, &grid);
     }
-    const double depth = which == 0 ? 1.5 * 2.0 * 0.5 : 0.5 * 1.8;
     const Vec3 T = direct.Transmittance(Vec3(-0.9f, 0.1f, -0.2f), Vec3(1.f, 0.f, 0.f), 1.8f);
-    for (int c = 0; c < 3; ++c)
+    for (int channel = 0; channel < 3; ++channel)
     {
-      // The midpoint rule at half-cell steps misses the interpolation's
-      // kinks between cell centres by O(step^2): 0.1 % of the depth here.
-      EXPECT_NEAR(T[c], std::exp(-depth), 1e-3 * depth * std::exp(-depth))
-        << scene.Media[0].Name << " channel " << c;
+      // The midpoint rule misses the interpolation's kinks between cell
+      // centres by O(step^2): 0.1 % of the depth here at half-cell steps,
+      // four times that at one-cell steps.
+      const double tolerance = 4e-3 * c.Step * c.Step;
+      EXPECT_NEAR(T[channel], std::exp(-c.Depth), tolerance * c.Depth * std::exp(-c.Depth))
+        << c.M->Name << " channel " << channel;
     }
   }
   // Segments that miss the slab see nothing.

@@ -14,6 +14,21 @@ namespace
 constexpr float DegreesToRadians = Pi / 180.f;
 // Past this optical depth (every channel) the light is gone: e^-30 < 1e-13.
 constexpr double OpaqueDepth = 30.0;
+// A march step through a grid spans at most this optical depth (at the
+// grid's largest extinction). One cell steps change the clouds' images by
+// at most 0.01 % block error (WDAS 0.17, smoke.vdb 0.87 optical depths a
+// cell) and halve the march; the dragon (2.0 a cell) moved by 0.12 %, and
+// keeps half cells.
+constexpr float MaxStepDepth = 1.f;
+
+// The smallest side of a cell of `dims` cells over a box of `extent`.
+float SmallestCell(const Vec3& extent, const std::array<int, 3>& dims)
+{
+  float cell = extent.x / static_cast<float>(std::max(dims[0], 1));
+  cell = std::min(cell, extent.y / static_cast<float>(std::max(dims[1], 1)));
+  cell = std::min(cell, extent.z / static_cast<float>(std::max(dims[2], 1)));
+  return std::max(cell, 1e-6f);
+}
 }
 
 DirectLight::DirectLight(const Scene& scene, const RayCaster& caster)
@@ -21,6 +36,7 @@ DirectLight::DirectLight(const Scene& scene, const RayCaster& caster)
   , Caster(caster)
   , FirstLightId(scene.LightEmitterId(0))
   , Grids(scene.Media.size())
+  , Steps(scene.Media.size(), 0.f)
 {
   Box bounds = caster.GetBounds();
   for (const Medium& m : scene.Media)
@@ -40,6 +56,21 @@ void DirectLight::SetMediumGrid(std::size_t m, const BrickedGrid* density)
   if (m < this->Grids.size())
   {
     this->Grids[m] = density;
+    if (density)
+    {
+      float largest = 0.f;
+      for (const std::vector<float>* values : { &density->GetSamples(), &density->GetConstants() })
+      {
+        for (float v : *values)
+        {
+          largest = std::max(largest, v);
+        }
+      }
+      const float cell = SmallestCell(density->GetBox().Extent(), density->GetDims());
+      const float sigmaT = largest * MaxComponent(this->SceneRef.Media[m].SigmaT());
+      this->Steps[m] =
+        sigmaT > 0.f ? std::min(cell, std::max(0.5f * cell, MaxStepDepth / sigmaT)) : cell;
+    }
   }
 }
 
@@ -58,14 +89,12 @@ Vec3 DirectLight::Transmittance(const Vec3& x, const Vec3& d, float length) cons
     double integral = t1 - t0; // of the density along the segment
     if (medium.Density)
     {
-      // Midpoint rule at steps of at most half a cell of the density's grid.
+      // Midpoint rule at the grid's step (SetMediumGrid), or half a cell
+      // of the field's native resolution.
       const BrickedGrid* grid = this->Grids[m];
-      const std::array<int, 3> dims = grid ? grid->GetDims() : medium.Density->NativeResolution();
-      const Vec3 extent = grid ? grid->GetBox().Extent() : medium.Bounds.Extent();
-      float cell = extent.x / static_cast<float>(std::max(dims[0], 1));
-      cell = std::min(cell, extent.y / static_cast<float>(std::max(dims[1], 1)));
-      cell = std::min(cell, extent.z / static_cast<float>(std::max(dims[2], 1)));
-      const float step = 0.5f * std::max(cell, 1e-6f);
+      const float step = grid
+        ? this->Steps[m]
+        : 0.5f * SmallestCell(medium.Bounds.Extent(), medium.Density->NativeResolution());
       const int n = std::max(1, static_cast<int>(std::ceil((t1 - t0) / step)));
       const float h = (t1 - t0) / static_cast<float>(n);
       const double opaque =

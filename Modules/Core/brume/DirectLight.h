@@ -71,6 +71,11 @@ public:
    * of a grid (ObjectRadiance's native grid), interpolated between cell
    * centres, which the shadow rays march instead of evaluating the density
    * field. Optional; the grid must outlive this object.
+   *
+   * The march's midpoint rule takes steps of one cell, but of at most
+   * MaxStepDepth optical depths at the grid's largest extinction and never
+   * less than half a cell (a field without a grid: half a cell of its
+   * native resolution).
    */
   void SetMediumGrid(std::size_t m, const BrickedGrid* density);
 
@@ -95,6 +100,7 @@ private:
   const RayCaster& Caster;
   std::size_t FirstLightId;
   std::vector<const BrickedGrid*> Grids; // per medium: its grid, or null: the field
+  std::vector<float> Steps;              // per medium with a grid: the march's step
   float Epsilon;
 };
 
