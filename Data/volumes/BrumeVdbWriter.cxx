@@ -4,6 +4,7 @@
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Interpolation.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -66,6 +67,28 @@ std::vector<std::uint64_t> Write(const std::string& path, const std::vector<Grid
   {
     throw std::runtime_error(path + ": " + e.what());
   }
+}
+
+Grid Balls(const std::vector<int>& centres, int radius, float peak)
+{
+  Grid grid;
+  const auto [first, last] = std::minmax_element(centres.begin(), centres.end());
+  grid.Lower = { *first - radius, -radius, -radius };
+  grid.Upper = { *last + radius, radius, radius };
+  const float r2max = static_cast<float>(radius * radius);
+  grid.Value = [centres, r2max, peak](int i, int j, int k)
+  {
+    for (int centre : centres)
+    {
+      const float r2 = static_cast<float>((i - centre) * (i - centre) + j * j + k * k);
+      if (r2 < r2max)
+      {
+        return peak * (1.f - r2 / r2max);
+      }
+    }
+    return std::nanf("");
+  };
+  return grid;
 }
 
 std::vector<float> Sample(const std::string& path, const std::string& name,

@@ -47,6 +47,12 @@ struct Grid
 /// voxel count. Throws std::runtime_error (OpenVDB's message) on failure.
 std::vector<std::uint64_t> Write(const std::string& path, const std::vector<Grid>& grids);
 
+/// Balls of `radius` voxels (unit voxels, index space) centred on the x
+/// axis at `centres`: density peak (1 - r^2 / radius^2) inside, inactive
+/// outside; the grid's index box just holds them. Test volumes whose
+/// active voxels fill a known part of a box.
+Grid Balls(const std::vector<int>& centres, int radius, float peak);
+
 /// OpenVDB's own trilinear samples (tools::BoxSampler) of the float grid
 /// `name` in `path` at index-space points. Throws on failure.
 std::vector<float> Sample(const std::string& path, const std::string& name,

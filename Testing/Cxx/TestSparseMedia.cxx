@@ -52,22 +52,7 @@ void Check(bool ok, const std::string& what)
 // of the box is empty.
 void WriteBalls(const std::string& path)
 {
-  brume::vdbwriter::Grid grid;
-  grid.Lower = { -6, -6, -6 };
-  grid.Upper = { 66, 6, 6 };
-  grid.Value = [](int i, int j, int k)
-  {
-    for (int centre : { 0, 60 })
-    {
-      const float r2 = static_cast<float>((i - centre) * (i - centre) + j * j + k * k);
-      if (r2 < 36.f)
-      {
-        return 0.9f * (1.f - r2 / 36.f);
-      }
-    }
-    return std::nanf("");
-  };
-  brume::vdbwriter::Write(path, { grid });
+  brume::vdbwriter::Write(path, { brume::vdbwriter::Balls({ 0, 60 }, 6, 0.9f) });
 }
 
 void WriteScene(const std::string& path, const std::string& vdb)

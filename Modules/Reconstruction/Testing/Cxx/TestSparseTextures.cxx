@@ -41,22 +41,7 @@ void Check(bool ok, const std::string& what)
 // centres `apart` voxels apart along x; voxels of 1 m.
 void WriteBalls(const std::string& path, int apart)
 {
-  brume::vdbwriter::Grid grid;
-  grid.Lower = { -6, -6, -6 };
-  grid.Upper = { apart + 6, 6, 6 };
-  grid.Value = [apart](int i, int j, int k)
-  {
-    for (int centre : { 0, apart })
-    {
-      const float r2 = static_cast<float>((i - centre) * (i - centre) + j * j + k * k);
-      if (r2 < 36.f)
-      {
-        return 0.5f * (1.f - r2 / 36.f);
-      }
-    }
-    return std::nanf("");
-  };
-  brume::vdbwriter::Write(path, { grid });
+  brume::vdbwriter::Write(path, { brume::vdbwriter::Balls({ 0, apart }, 6, 0.5f) });
 }
 
 void WriteScene(const std::string& path, const std::string& vdb)
