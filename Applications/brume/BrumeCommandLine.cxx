@@ -192,8 +192,9 @@ void AddRender(CLI::App& app, RenderOptions& o)
       "radiosity threshold of the density estimation, in\nparticles (default 128)" });
   render
     ->add_option("--supersample", o.Supersample,
-      "render K x K pixels per pixel and average them: pixel\n"
-      "areas, as the path tracer integrates (default 1)")
+      "average K x K samples of each pixel's area (K^2 frames,\n"
+      "shifted on a rotated grid), as the path tracer integrates\n"
+      "pixels (default 1: the pixels' centres)")
     ->transform(Integer(1, 8, "an integer in [1, 8]"))
     ->type_name("K");
   render->add_flag("--timings", o.Timings, "print the time of each phase (as the paper's Table 1)");

@@ -20,7 +20,6 @@
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
-#include "vtkImageShrink3D.h"
 #include "vtkInformation.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
@@ -393,13 +392,7 @@ int RunRender(RenderOptions options)
   window->SetOffScreenRendering(1);
   window->SetMultiSamples(0);
   const int k = options.Supersample;
-  if (options.Width * k > 16384 || options.Height * k > 16384)
-  {
-    std::cerr << "brume: --supersample " << k << " at " << options.Width << "x" << options.Height
-              << " renders more than 16384 pixels along an axis.\n";
-    return 1;
-  }
-  window->SetSize(options.Width * k, options.Height * k);
+  window->SetSize(options.Width, options.Height);
   window->AddRenderer(renderer);
   vtkNew<vtkBrumeSceneActors> actors;
   actors->SetInputData(reconstruction->GetOutput());
@@ -422,21 +415,12 @@ int RunRender(RenderOptions options)
   start = std::chrono::steady_clock::now();
   window->Render();
   const double frame = Seconds(start);
-  vtkSmartPointer<vtkImageData> radiance = capture->Capture();
+  // Each output pixel: the mean of k x k samples of its area.
+  vtkSmartPointer<vtkImageData> radiance =
+    k > 1 ? capture->CaptureSupersampled(k) : capture->Capture();
   if (!radiance)
   {
     return 1;
-  }
-  if (k > 1)
-  {
-    // Each output pixel: the mean of its k x k samples.
-    vtkNew<vtkImageShrink3D> shrink;
-    shrink->SetInputData(radiance);
-    shrink->SetShrinkFactors(k, k, 1);
-    shrink->AveragingOn();
-    shrink->Update();
-    radiance = shrink->GetOutput();
-    radiance->GetPointData()->GetScalars()->SetName("Radiance");
   }
 
   if (const int rc = WriteImage(radiance, options, png))

@@ -9,13 +9,11 @@
 #include "vtkBrumeSceneActors.h"
 #include "vtkCamera.h"
 #include "vtkExecutive.h"
-#include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
 #include "vtkPartitionedDataSetCollection.h"
-#include "vtkPointData.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
@@ -33,38 +31,6 @@ namespace
 double Seconds(std::chrono::steady_clock::time_point start)
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-// Averages blocks of `factor` x `factor` pixels: the supersampled frame as
-// pixel-area (box-filtered) radiance, as the reference path tracer's pixels.
-vtkSmartPointer<vtkImageData> Downsample(vtkImageData* image, int factor)
-{
-  int dims[3];
-  image->GetDimensions(dims);
-  const int w = dims[0] / factor, h = dims[1] / factor;
-  auto* in = vtkFloatArray::SafeDownCast(image->GetPointData()->GetArray("Radiance"));
-  vtkNew<vtkFloatArray> out;
-  out->SetName("Radiance");
-  out->SetNumberOfComponents(3);
-  out->SetNumberOfTuples(static_cast<vtkIdType>(w) * h);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      for (int c = 0; c < 3; ++c)
-      {
-        double sum = 0;
-        for (int j = 0; j < factor; ++j)
-          for (int i = 0; i < factor; ++i)
-          {
-            sum += in->GetValue(
-              3 * ((static_cast<vtkIdType>(y) * factor + j) * dims[0] + x * factor + i) + c);
-          }
-        out->SetValue(
-          3 * (static_cast<vtkIdType>(y) * w + x) + c, static_cast<float>(sum / (factor * factor)));
-      }
-  auto result = vtkSmartPointer<vtkImageData>::New();
-  result->SetDimensions(w, h, 1);
-  result->GetPointData()->SetScalars(out);
-  return result;
 }
 
 // One frame of `window`, finished.
@@ -96,7 +62,7 @@ int vtkBrumeTimedPipeline::RequestData(
   vtkNew<vtkRenderWindow> window;
   window->SetOffScreenRendering(1);
   window->SetMultiSamples(0);
-  window->SetSize(this->Size[0] * this->Supersampling, this->Size[1] * this->Supersampling);
+  window->SetSize(this->Size[0], this->Size[1]);
   window->AddRenderer(renderer);
   vtkNew<vtkBrumeFloatImageCapture> capture;
   capture->Attach(renderer);
@@ -130,15 +96,14 @@ int vtkBrumeTimedPipeline::RequestData(
     return 0;
   }
   renderer->ResetCameraClippingRange();
-  Draw(window);
+  const vtkSmartPointer<vtkImageData> frame = capture->CaptureSupersampled(this->Supersampling);
   this->FullSeconds = Seconds(start);
-  const vtkSmartPointer<vtkImageData> frame = capture->Capture();
   if (!frame)
   {
     vtkErrorMacro("Could not read the frame back.");
     return 0;
   }
-  vtkImageData::GetData(outputVector, 0)->ShallowCopy(Downsample(frame, this->Supersampling));
+  vtkImageData::GetData(outputVector, 0)->ShallowCopy(frame);
   if (!this->MeasureNewView)
   {
     return 1;
@@ -154,7 +119,11 @@ int vtkBrumeTimedPipeline::RequestData(
   const auto viewStart = std::chrono::steady_clock::now();
   reconstruction->Update();
   actors->UpdateInputs(reconstruction->GetOutput());
-  Draw(window);
+  if (!capture->CaptureSupersampled(this->Supersampling))
+  {
+    vtkErrorMacro("Could not read the new view's frame back.");
+    return 0;
+  }
   this->NewViewSeconds = Seconds(viewStart);
   return 1;
 }

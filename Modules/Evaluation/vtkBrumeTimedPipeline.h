@@ -9,19 +9,21 @@
  * 1. light tracing (vtkBrumeLightTracer, NumberOfParticles, Seed), radiance
  *    reconstruction (vtkBrumeRadianceReconstruction for the camera, with
  *    RadiosityThreshold and, when DirectionalRadiance is on, the media's
- *    spherical harmonics up to DirectionalOrder) and one off-screen frame
- *    (vtkBrumeSceneActors, read back by vtkBrumeFloatImageCapture): the
- *    full time, `FullSeconds`;
+ *    spherical harmonics up to DirectionalOrder) and the off-screen frame
+ *    (vtkBrumeSceneActors; Supersampling^2 renders read back and averaged
+ *    by vtkBrumeFloatImageCapture): the full time, `FullSeconds`;
  * 2. when MeasureNewView is on, a new viewpoint: the camera turns 2 degrees
  *    in azimuth and a frame is drawn there (untimed, so that every per-view
  *    step runs again), then it turns back and the reconstruction's
- *    incremental update and one frame are timed: `NewViewSeconds`.
+ *    incremental update and the frame (supersampled as above) are timed:
+ *    `NewViewSeconds`.
  *
- * The frame is rendered `Supersampling` times larger on each axis and
- * averaged down to `Size` (box filter), so that, like the reference path
- * tracer's pixels, each pixel estimates the radiance averaged over its
- * area. The output is that image: point data `Radiance` (float RGB, row 0
- * at the bottom).
+ * The frame is the mean of `Supersampling`^2 frames at `Size`, shifted by
+ * sub-pixel offsets on a rotated grid
+ * (vtkBrumeFloatImageCapture::CaptureSupersampled), so that, like the
+ * reference path tracer's pixels, each pixel estimates the radiance
+ * averaged over its area. The output is that image: point data `Radiance`
+ * (float RGB, row 0 at the bottom).
  *
  * Needs an OpenGL context (an X display; `xvfb-run -a` without one). A
  * first run in a process also pays OpenGL's start-up and shader
@@ -43,7 +45,7 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
-  /// Rendered pixels per output pixel, on each axis (default 4, in [1, 16]).
+  /// Samples per pixel along each axis: Supersampling^2 frames (default 4, in [1, 16]).
   vtkSetClampMacro(Supersampling, int, 1, 16);
   vtkGetMacro(Supersampling, int);
   ///@}

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumeFloatImageCapture.h"
 
+#include "vtkCamera.h"
 #include "vtkFloatArray.h"
 #include "vtkFramebufferPass.h"
 #include "vtkImageData.h"
@@ -16,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 vtkStandardNewMacro(vtkBrumeFloatImageCapture);
 
@@ -30,6 +32,59 @@ void vtkBrumeFloatImageCapture::Attach(vtkRenderer* renderer)
   this->Pass->SetColorFormat(vtkTextureObject::Float32);
   this->Pass->SetDelegatePass(steps);
   renderer->SetPass(this->Pass);
+}
+
+vtkSmartPointer<vtkImageData> vtkBrumeFloatImageCapture::CaptureSupersampled(int k)
+{
+  if (!this->Renderer || !this->Renderer->GetRenderWindow() || k < 1)
+  {
+    vtkErrorMacro("Nothing to capture: Attach() a renderer in a window, and k >= 1.");
+    return nullptr;
+  }
+  vtkRenderWindow* window = this->Renderer->GetRenderWindow();
+  vtkCamera* camera = this->Renderer->GetActiveCamera();
+  int width = 0, height = 0;
+  this->Renderer->GetTiledSize(&width, &height);
+  double centre[2];
+  camera->GetWindowCenter(centre);
+  vtkSmartPointer<vtkImageData> sum;
+  std::vector<double> total;
+  for (int n = 0; n < k * k; ++n)
+  {
+    // Sample (i, j) of the rotated grid, in pixels from the pixel's centre.
+    const int i = n % k, j = n / k;
+    const double x = (i + (j + 0.5) / k) / k - 0.5;
+    const double y = (j + (i + 0.5) / k) / k - 0.5;
+    // The window centre is in viewport units (the viewport spans [-1, 1]).
+    camera->SetWindowCenter(centre[0] + 2.0 * x / width, centre[1] + 2.0 * y / height);
+    window->Render();
+    vtkSmartPointer<vtkImageData> frame = this->Capture();
+    if (!frame)
+    {
+      camera->SetWindowCenter(centre[0], centre[1]);
+      return nullptr;
+    }
+    auto* values = vtkFloatArray::SafeDownCast(frame->GetPointData()->GetArray("Radiance"));
+    if (!sum)
+    {
+      sum = frame;
+      total.assign(values->GetPointer(0), values->GetPointer(0) + values->GetNumberOfValues());
+    }
+    else
+    {
+      for (vtkIdType v = 0; v < values->GetNumberOfValues(); ++v)
+      {
+        total[v] += values->GetValue(v);
+      }
+    }
+  }
+  camera->SetWindowCenter(centre[0], centre[1]);
+  auto* values = vtkFloatArray::SafeDownCast(sum->GetPointData()->GetArray("Radiance"));
+  for (vtkIdType v = 0; v < values->GetNumberOfValues(); ++v)
+  {
+    values->SetValue(v, static_cast<float>(total[v] / (k * k)));
+  }
+  return sum;
 }
 
 vtkSmartPointer<vtkImageData> vtkBrumeFloatImageCapture::Capture()

@@ -41,6 +41,17 @@ public:
   vtkSmartPointer<vtkImageData> Capture();
 
   /**
+   * Pixel areas, as a path tracer integrates them: the mean of k^2 frames of
+   * the attached renderer's window, its active camera's projection shifted
+   * in each by a sub-pixel offset (vtkCamera::SetWindowCenter) on a rotated
+   * grid, k^2 distinct offsets along each axis (a regular k x k grid has k:
+   * an edge along an axis then covers a pixel in steps of 1/k, not 1/k^2).
+   * The camera's window centre is restored. k = 1 renders once, at the
+   * pixels' centres. Null (with an error) if a frame cannot be read.
+   */
+  vtkSmartPointer<vtkImageData> CaptureSupersampled(int k);
+
+  /**
    * Brume's display transform of a radiance image (point array `Radiance`):
    * multiply by `exposure`, clamp to [0, 1], apply the sRGB transfer curve,
    * quantize to 8 bits. Returns an unsigned char RGB image of the same size.
