@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <vector>
 
 vtkStandardNewMacro(vtkBrumeFloatImageCapture);
@@ -34,6 +35,39 @@ void vtkBrumeFloatImageCapture::Attach(vtkRenderer* renderer)
   renderer->SetPass(this->Pass);
 }
 
+bool vtkBrumeFloatImageCapture::Read(int size[2], const std::function<void(const float*, int)>& use)
+{
+  vtkTextureObject* color = this->Pass ? this->Pass->GetColorTexture() : nullptr;
+  if (!this->Renderer || !color || !color->GetHandle())
+  {
+    vtkErrorMacro("Nothing to capture: Attach() a renderer and render first.");
+    return false;
+  }
+  this->Renderer->GetRenderWindow()->MakeCurrent();
+  size[0] = static_cast<int>(color->GetWidth());
+  size[1] = static_cast<int>(color->GetHeight());
+  const int components = color->GetComponents();
+  vtkPixelBufferObject* pbo = color->Download();
+  if (!pbo || components < 3)
+  {
+    vtkErrorMacro("Could not read the float colour buffer back.");
+    if (pbo)
+    {
+      pbo->Delete();
+    }
+    return false;
+  }
+  use(static_cast<const float*>(pbo->MapPackedBuffer()), components);
+  pbo->UnmapPackedBuffer();
+  pbo->Delete();
+  return true;
+}
+
+vtkSmartPointer<vtkImageData> vtkBrumeFloatImageCapture::Capture()
+{
+  return this->CaptureSupersampled(1);
+}
+
 vtkSmartPointer<vtkImageData> vtkBrumeFloatImageCapture::CaptureSupersampled(int k)
 {
   if (!this->Renderer || !this->Renderer->GetRenderWindow() || k < 1)
@@ -47,9 +81,24 @@ vtkSmartPointer<vtkImageData> vtkBrumeFloatImageCapture::CaptureSupersampled(int
   this->Renderer->GetTiledSize(&width, &height);
   double centre[2];
   camera->GetWindowCenter(centre);
-  vtkSmartPointer<vtkImageData> sum;
+  // The sum of the frames' RGB, read straight from each frame's buffer.
   std::vector<double> total;
-  for (int n = 0; n < k * k; ++n)
+  int size[2] = { 0, 0 };
+  auto add = [&total, &size](const float* data, int components)
+  {
+    const std::size_t pixels = static_cast<std::size_t>(size[0]) * size[1];
+    total.resize(3 * pixels, 0.0);
+    for (std::size_t i = 0; i < pixels; ++i)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        total[3 * i + c] += data[components * i + c];
+      }
+    }
+  };
+  // k = 1: the last frame, as drawn.
+  bool ok = k > 1 || this->Read(size, add);
+  for (int n = 0; k > 1 && n < k * k && ok; ++n)
   {
     // Sample (i, j) of the rotated grid, in pixels from the pixel's centre.
     const int i = n % k, j = n / k;
@@ -58,73 +107,23 @@ vtkSmartPointer<vtkImageData> vtkBrumeFloatImageCapture::CaptureSupersampled(int
     // The window centre is in viewport units (the viewport spans [-1, 1]).
     camera->SetWindowCenter(centre[0] + 2.0 * x / width, centre[1] + 2.0 * y / height);
     window->Render();
-    vtkSmartPointer<vtkImageData> frame = this->Capture();
-    if (!frame)
-    {
-      camera->SetWindowCenter(centre[0], centre[1]);
-      return nullptr;
-    }
-    auto* values = vtkFloatArray::SafeDownCast(frame->GetPointData()->GetArray("Radiance"));
-    if (!sum)
-    {
-      sum = frame;
-      total.assign(values->GetPointer(0), values->GetPointer(0) + values->GetNumberOfValues());
-    }
-    else
-    {
-      for (vtkIdType v = 0; v < values->GetNumberOfValues(); ++v)
-      {
-        total[v] += values->GetValue(v);
-      }
-    }
+    ok = this->Read(size, add);
   }
   camera->SetWindowCenter(centre[0], centre[1]);
-  auto* values = vtkFloatArray::SafeDownCast(sum->GetPointData()->GetArray("Radiance"));
-  for (vtkIdType v = 0; v < values->GetNumberOfValues(); ++v)
+  if (!ok)
   {
-    values->SetValue(v, static_cast<float>(total[v] / (k * k)));
-  }
-  return sum;
-}
-
-vtkSmartPointer<vtkImageData> vtkBrumeFloatImageCapture::Capture()
-{
-  vtkTextureObject* color = this->Pass ? this->Pass->GetColorTexture() : nullptr;
-  if (!this->Renderer || !color || !color->GetHandle())
-  {
-    vtkErrorMacro("Nothing to capture: Attach() a renderer and render first.");
     return nullptr;
   }
-  this->Renderer->GetRenderWindow()->MakeCurrent();
-  const int width = static_cast<int>(color->GetWidth());
-  const int height = static_cast<int>(color->GetHeight());
-  const int components = color->GetComponents();
-  vtkPixelBufferObject* pbo = color->Download();
-  if (!pbo || components < 3)
-  {
-    vtkErrorMacro("Could not read the float colour buffer back.");
-    if (pbo)
-    {
-      pbo->Delete();
-    }
-    return nullptr;
-  }
-  const auto* data = static_cast<const float*>(pbo->MapPackedBuffer());
   vtkNew<vtkFloatArray> radiance;
   radiance->SetName("Radiance");
   radiance->SetNumberOfComponents(3);
-  radiance->SetNumberOfTuples(static_cast<vtkIdType>(width) * height);
-  float* out = radiance->GetPointer(0);
-  for (vtkIdType i = 0; i < static_cast<vtkIdType>(width) * height; ++i)
+  radiance->SetNumberOfValues(static_cast<vtkIdType>(total.size()));
+  for (std::size_t v = 0; v < total.size(); ++v)
   {
-    out[3 * i + 0] = data[components * i + 0];
-    out[3 * i + 1] = data[components * i + 1];
-    out[3 * i + 2] = data[components * i + 2];
+    radiance->SetValue(static_cast<vtkIdType>(v), static_cast<float>(total[v] / (k * k)));
   }
-  pbo->UnmapPackedBuffer();
-  pbo->Delete();
   auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetDimensions(width, height, 1);
+  image->SetDimensions(size[0], size[1], 1);
   image->GetPointData()->SetScalars(radiance);
   return image;
 }

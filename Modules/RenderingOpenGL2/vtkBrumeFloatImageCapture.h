@@ -23,6 +23,8 @@
 #include "vtkObject.h"
 #include "vtkSmartPointer.h" // For return value
 
+#include <functional> // For Read
+
 class vtkFramebufferPass;
 class vtkImageData;
 class vtkRenderer;
@@ -46,8 +48,9 @@ public:
    * in each by a sub-pixel offset (vtkCamera::SetWindowCenter) on a rotated
    * grid, k^2 distinct offsets along each axis (a regular k x k grid has k:
    * an edge along an axis then covers a pixel in steps of 1/k, not 1/k^2).
-   * The camera's window centre is restored. k = 1 renders once, at the
-   * pixels' centres. Null (with an error) if a frame cannot be read.
+   * The camera's window centre is restored. k = 1 renders nothing and is
+   * Capture(): the last frame, at the pixels' centres. Null (with an
+   * error) if a frame cannot be read.
    */
   vtkSmartPointer<vtkImageData> CaptureSupersampled(int k);
 
@@ -61,6 +64,10 @@ public:
 protected:
   vtkBrumeFloatImageCapture();
   ~vtkBrumeFloatImageCapture() override;
+
+  // Reads the last frame's float buffer: `use(data, components)` with
+  // size[0] x size[1] pixels of `components` floats, row 0 at the bottom.
+  bool Read(int size[2], const std::function<void(const float*, int)>& use);
 
   vtkSmartPointer<vtkFramebufferPass> Pass;
   vtkRenderer* Renderer = nullptr;

@@ -76,6 +76,7 @@ int TestFloatImageCapture(int, char*[])
     auto* radiance = vtkFloatArray::SafeDownCast(image->GetPointData()->GetArray("Radiance"));
     return radiance ? static_cast<double>(radiance->GetTypedComponent(y * 16 + x, 0)) : -1.0;
   };
+  window->Render(); // K = 1 reads the frame as drawn
   for (int k : { 1, 2, 4 })
   {
     vtkSmartPointer<vtkImageData> image = capture->CaptureSupersampled(k);
