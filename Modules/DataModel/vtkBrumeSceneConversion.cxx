@@ -25,10 +25,12 @@
 #include "vtkPolyData.h"
 #include "vtkStringArray.h"
 
+#include "brume/TransferFunction.h"
 #include "brume/VdbDensity.h"
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 namespace
@@ -242,6 +244,45 @@ std::string ReadString(vtkFieldData* fd, const char* name)
   return a && a->GetNumberOfValues() > 0 ? a->GetValue(0) : std::string();
 }
 
+// The scalar-opacity transfer function of a medium's field data, if any:
+// BrumeScalarOpacity (tuples of scalar and opacity) and
+// BrumeScalarOpacityUnitDistance (default 1). Empty when valid or absent.
+std::string ReadOpacityFunction(
+  vtkFieldData* fd, std::optional<brume::OpacityTransferFunction>& function)
+{
+  vtkDataArray* points = fd ? fd->GetArray("BrumeScalarOpacity") : nullptr;
+  std::string error;
+  double unit = 1.0;
+  const bool hasUnit = ReadField(fd, "BrumeScalarOpacityUnitDistance", 1, &unit, error);
+  if (!error.empty())
+  {
+    return error;
+  }
+  if (!points)
+  {
+    return hasUnit ? "has a BrumeScalarOpacityUnitDistance without a BrumeScalarOpacity "
+                     "transfer function"
+                   : std::string();
+  }
+  if (points->GetNumberOfComponents() != 2)
+  {
+    return "has a BrumeScalarOpacity that is not (scalar, opacity) pairs (2 components)";
+  }
+  std::vector<brume::OpacityTransferFunction::Node> nodes;
+  for (vtkIdType i = 0; i < points->GetNumberOfTuples(); ++i)
+  {
+    nodes.push_back({ static_cast<float>(points->GetComponent(i, 0)),
+      static_cast<float>(points->GetComponent(i, 1)) });
+  }
+  error = brume::OpacityTransferFunction::Validate(nodes, unit);
+  if (!error.empty())
+  {
+    return "has a BrumeScalarOpacity transfer function that " + error;
+  }
+  function.emplace(std::move(nodes), static_cast<float>(unit));
+  return {};
+}
+
 std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
 {
   std::string error;
@@ -274,6 +315,11 @@ std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
   const std::string vdbFile = ReadString(fd, "BrumeVDBFile");
   if (!vdbFile.empty())
   {
+    if (fd->GetAbstractArray("BrumeScalarOpacity"))
+    {
+      return "has a BrumeScalarOpacity transfer function on an OpenVDB grid, which is not "
+             "supported yet (resample the grid to a vtkImageData)";
+    }
     auto density = brume::VdbDensity::Load(vdbFile, ReadString(fd, "BrumeVDBGrid"), error);
     if (!density)
     {
@@ -311,11 +357,51 @@ std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
   }
   if (!density)
   {
+    if (fd->GetAbstractArray("BrumeScalarOpacity"))
+    {
+      return "has a BrumeScalarOpacity transfer function but no scalars to classify";
+    }
     return {}; // homogeneous
   }
-  if (density->GetNumberOfComponents() != 1)
+  // A transfer function classifies the array's scalars; without one the
+  // array is the density itself.
+  std::optional<brume::OpacityTransferFunction> opacity;
+  error = ReadOpacityFunction(fd, opacity);
+  if (!error.empty())
+  {
+    return error;
+  }
+  double component = 0.0;
+  if (ReadField(fd, "BrumeScalarComponent", 1, &component, error) && !opacity)
+  {
+    return "has a BrumeScalarComponent without a BrumeScalarOpacity transfer function";
+  }
+  if (!error.empty())
+  {
+    return error;
+  }
+  const int components = density->GetNumberOfComponents();
+  if (!opacity && components != 1)
   {
     return "has a density array with more than one component";
+  }
+  if (!(component >= 0.0 && component < components) || component != std::floor(component))
+  {
+    std::ostringstream os;
+    os << "has a BrumeScalarComponent " << component << ", but its array '"
+       << (density->GetName() ? density->GetName() : "") << "' has " << components
+       << (components == 1 ? " component" : " components");
+    return os.str();
+  }
+  brume::GridDensity::Interpolation interpolation = brume::GridDensity::Interpolation::Linear;
+  const std::string interpolationName = ReadString(fd, "BrumeInterpolation");
+  if (interpolationName == "nearest")
+  {
+    interpolation = brume::GridDensity::Interpolation::Nearest;
+  }
+  else if (!interpolationName.empty() && interpolationName != "linear")
+  {
+    return "has a BrumeInterpolation '" + interpolationName + "' (expected linear or nearest)";
   }
   const double* direction = image->GetDirectionMatrix()->GetData();
   const double identity[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
@@ -333,17 +419,31 @@ std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
       d = std::max(1, d - 1);
     }
   }
+  const int c = static_cast<int>(component);
   std::vector<float> values(static_cast<std::size_t>(density->GetNumberOfTuples()));
   for (vtkIdType i = 0; i < density->GetNumberOfTuples(); ++i)
   {
-    const double v = density->GetTuple1(i);
-    if (!(v >= 0.0) || !std::isfinite(v))
+    const double v = density->GetComponent(i, c);
+    if (!std::isfinite(v))
+    {
+      return opacity ? "has non-finite scalars" : "has negative or non-finite densities";
+    }
+    if (!opacity && !(v >= 0.0))
     {
       return "has negative or non-finite densities";
     }
     values[i] = static_cast<float>(v);
   }
-  m.SetDensity(std::make_shared<brume::GridDensity>(m.Bounds, n, std::move(values), cells));
+  auto grid =
+    std::make_shared<brume::GridDensity>(m.Bounds, n, std::move(values), cells, interpolation);
+  if (opacity)
+  {
+    m.SetDensity(std::make_shared<brume::ClassifiedGridDensity>(grid, std::move(*opacity)));
+  }
+  else
+  {
+    m.SetDensity(grid);
+  }
   return {};
 }
 }

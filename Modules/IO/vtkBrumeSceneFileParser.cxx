@@ -6,6 +6,7 @@
 #include "vtkBrumeSceneFileChecks.h"
 #include "vtkBrumeSceneGeometry.h"
 #include "vtkCellArray.h"
+#include "vtkDoubleArray.h"
 #include "vtkExecutive.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
@@ -347,13 +348,37 @@ bool vtkBrumeSceneFileParser::ParseMedium(const json& m, std::size_t i)
   Parser& p = *this->P;
   const std::string at = "media[" + std::to_string(i) + "]";
   std::string name;
-  if (!p.Keys(m, at, { "name", "box", "sigma_a", "sigma_s", "g", "density_scale", "density" }) ||
+  if (!p.Keys(m, at,
+        { "name", "box", "sigma_a", "sigma_s", "albedo", "g", "density_scale", "density" }) ||
     !p.String(m.value("name", json()), at + ".name", name))
   {
     return false;
   }
   double sa[3], ss[3], g = 0, scale = 1;
-  if (!p.Vector(m.value("sigma_a", json()), at + ".sigma_a", sa, 3, 0, Huge) ||
+  const bool classified =
+    m.value("density", json::object()).is_object() && m["density"].contains("transfer_function");
+  if (m.contains("albedo"))
+  {
+    // A transfer function's extinction split by one albedo colour.
+    if (!classified)
+    {
+      return p.Fail(at + ".albedo",
+        "needs a density.transfer_function (a medium without one gives sigma_a and sigma_s)");
+    }
+    if (m.contains("sigma_a") || m.contains("sigma_s"))
+    {
+      return p.Fail(at + ".albedo", "give either albedo or sigma_a and sigma_s, not both");
+    }
+    if (!p.Vector(m["albedo"], at + ".albedo", ss, 3, 0, 1))
+    {
+      return false;
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      sa[c] = 1.0 - ss[c];
+    }
+  }
+  else if (!p.Vector(m.value("sigma_a", json()), at + ".sigma_a", sa, 3, 0, Huge) ||
     !p.Vector(m.value("sigma_s", json()), at + ".sigma_s", ss, 3, 0, Huge))
   {
     return false;
@@ -405,6 +430,79 @@ bool vtkBrumeSceneFileParser::ParseVdb(
       return false;
     }
     AddString(image->GetFieldData(), "BrumeVDBGrid", grid);
+  }
+  return true;
+}
+
+bool vtkBrumeSceneFileParser::ParseTransferFunction(
+  const json& density, const std::string& at, vtkImageData* image)
+{
+  Parser& p = *this->P;
+  vtkFieldData* fd = image->GetFieldData();
+  if (density.contains("component"))
+  {
+    double component = 0;
+    if (!p.Integer(density["component"], at + ".component", component, 0, 3))
+    {
+      return false;
+    }
+    AddTuple(fd, "BrumeScalarComponent", &component, 1);
+  }
+  const json& f = density["transfer_function"];
+  const std::string tf = at + ".transfer_function";
+  if (!p.Keys(f, tf, { "opacity", "unit_distance", "interpolation" }))
+  {
+    return false;
+  }
+  const json& opacity = f.value("opacity", json());
+  if (!opacity.is_array() || opacity.empty())
+  {
+    return p.Fail(tf + ".opacity", "expected [[scalar, opacity], ...] with at least one point");
+  }
+  vtkNew<vtkDoubleArray> points;
+  points->SetName("BrumeScalarOpacity");
+  points->SetNumberOfComponents(2);
+  for (std::size_t i = 0; i < opacity.size(); ++i)
+  {
+    const std::string point = tf + ".opacity[" + std::to_string(i) + "]";
+    double pair[2];
+    if (!opacity[i].is_array() || opacity[i].size() != 2)
+    {
+      return p.Fail(point, "expected [scalar, opacity]");
+    }
+    if (!p.Number(opacity[i][0], point + "[0]", pair[0], -Huge, Huge) ||
+      !p.Number(opacity[i][1], point + "[1]", pair[1], 0, 1))
+    {
+      return false;
+    }
+    if (i > 0 && pair[0] < points->GetComponent(static_cast<vtkIdType>(i) - 1, 0))
+    {
+      return p.Fail(point + "[0]", "scalars must not decrease from point to point");
+    }
+    points->InsertNextTuple(pair);
+  }
+  fd->AddArray(points);
+  double unit = 1;
+  if (f.contains("unit_distance") &&
+    (!p.Number(f["unit_distance"], tf + ".unit_distance", unit, 0, Huge) ||
+      (!(unit > 0) && !p.Fail(tf + ".unit_distance", "expected a length above 0"))))
+  {
+    return false;
+  }
+  AddTuple(fd, "BrumeScalarOpacityUnitDistance", &unit, 1);
+  if (f.contains("interpolation"))
+  {
+    std::string interpolation;
+    if (!p.String(f["interpolation"], tf + ".interpolation", interpolation))
+    {
+      return false;
+    }
+    if (interpolation != "linear" && interpolation != "nearest")
+    {
+      return p.Fail(
+        tf + ".interpolation", "expected 'linear' or 'nearest', not '" + interpolation + "'");
+    }
+    AddString(fd, "BrumeInterpolation", interpolation);
   }
   return true;
 }
@@ -471,8 +569,23 @@ vtkSmartPointer<vtkImageData> vtkBrumeSceneFileParser::ParseDensity(
   auto relative = [this](const std::string& name) { return this->Relative(name); };
   vtkSmartPointer<vtkImageData> image;
   const json density = m.value("density", json::object());
-  if (!p.Keys(density, at + ".density", { "vdb", "grid", "vti", "array" }))
+  if (!p.Keys(density, at + ".density",
+        { "vdb", "grid", "vti", "array", "component", "transfer_function" }))
   {
+    return nullptr;
+  }
+  if ((density.contains("transfer_function") || density.contains("component")) &&
+    !density.contains("vti"))
+  {
+    p.Fail(at + ".density." +
+        (density.contains("transfer_function") ? "transfer_function" : "component"),
+      "needs a 'vti' density (an OpenVDB grid is not classified yet: resample it to an image)");
+    return nullptr;
+  }
+  if (density.contains("component") && !density.contains("transfer_function"))
+  {
+    p.Fail(
+      at + ".density.component", "needs a transfer_function (a density array has one component)");
     return nullptr;
   }
   if (density.contains("vdb") && density.contains("vti"))
@@ -519,6 +632,11 @@ vtkSmartPointer<vtkImageData> vtkBrumeSceneFileParser::ParseDensity(
         return nullptr;
       }
       AddString(image->GetFieldData(), "BrumeDensityArray", array);
+    }
+    if (density.contains("transfer_function") &&
+      !this->ParseTransferFunction(density, at + ".density", image))
+    {
+      return nullptr;
     }
   }
   else if (density.contains("vdb") && !m.contains("box"))

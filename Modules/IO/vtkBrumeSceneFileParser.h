@@ -47,6 +47,7 @@ private:
   bool ParseMedium(const json& m, std::size_t i);
   vtkSmartPointer<vtkImageData> ParseDensity(const json& m, const std::string& at);
   bool ParseVdb(const json& density, const std::string& at, vtkImageData* image);
+  bool ParseTransferFunction(const json& function, const std::string& at, vtkImageData* image);
   // OpenVDB media given without a box take the grid's active box.
   void SetBoxesFromGrids(
     const brume::Scene& scene, const std::vector<vtkBrumeSceneConversion::ObjectSource>& sources);

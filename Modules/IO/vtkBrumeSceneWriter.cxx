@@ -95,6 +95,35 @@ std::string WriteSurface(
   return {};
 }
 
+// A dense medium's scalar-opacity transfer function, if it has one.
+void WriteTransferFunction(vtkFieldData* fd, json& density)
+{
+  vtkDataArray* points = fd->GetArray("BrumeScalarOpacity");
+  if (!points)
+  {
+    return;
+  }
+  json& f = density["transfer_function"];
+  f["opacity"] = json::array();
+  for (vtkIdType i = 0; i < points->GetNumberOfTuples(); ++i)
+  {
+    f["opacity"].push_back(json::array({ points->GetComponent(i, 0), points->GetComponent(i, 1) }));
+  }
+  if (vtkDataArray* unit = fd->GetArray("BrumeScalarOpacityUnitDistance"))
+  {
+    f["unit_distance"] = unit->GetTuple1(0);
+  }
+  const std::string interpolation = StringField(fd, "BrumeInterpolation");
+  if (!interpolation.empty())
+  {
+    f["interpolation"] = interpolation;
+  }
+  if (vtkDataArray* component = fd->GetArray("BrumeScalarComponent"))
+  {
+    density["component"] = static_cast<int>(component->GetTuple1(0));
+  }
+}
+
 // A medium: its box, coefficients and density (an OpenVDB file by path, a
 // dense grid in a .vti file beside the scene file).
 std::string WriteMedium(
@@ -155,6 +184,7 @@ std::string WriteMedium(
     {
       m["density"]["array"] = array;
     }
+    WriteTransferFunction(fd, m["density"]);
   }
   return {};
 }

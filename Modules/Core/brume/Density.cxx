@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace brume
 {
@@ -70,11 +71,12 @@ Box GridDensity::NativeBox() const
   return box;
 }
 
-GridDensity::GridDensity(
-  const Box& bounds, std::array<int, 3> dims, std::vector<float> values, bool cellValues)
+GridDensity::GridDensity(const Box& bounds, std::array<int, 3> dims, std::vector<float> values,
+  bool cellValues, Interpolation interpolation)
   : Dims(dims)
   , Values(std::move(values))
   , CellValues(cellValues)
+  , Interpolated(interpolation)
 {
   this->Bounds = bounds;
   this->GridValues = static_cast<double>(this->Values.size());
@@ -98,55 +100,66 @@ GridDensity::GridDensity(
   {
     mg.Dims[a] = (cells[a] + BlockSize - 1) / BlockSize;
   }
-  mg.Max.assign(static_cast<std::size_t>(mg.Dims[0]) * mg.Dims[1] * mg.Dims[2], 0.f);
   // Blocks are BlockSize cells wide: the majorant grid's box is a whole number of blocks.
   for (int a = 0; a < 3; ++a)
   {
     const double cell = static_cast<double>(bounds.Extent()[a]) / cells[a];
     mg.Bounds.upper[a] = static_cast<float>(bounds.lower[a] + cell * BlockSize * mg.Dims[a]);
   }
-  // A value influences the blocks of the cells it touches: its own cell, or,
-  // for point values, the up to eight cells sharing the point.
-  const int reach = cellValues ? 0 : 1;
-  for (int k = 0; k < dims[2]; ++k)
-  {
-    for (int j = 0; j < dims[1]; ++j)
-    {
-      for (int i = 0; i < dims[0]; ++i)
+  // A density's majorant is its largest value in the block (0 where none is positive).
+  std::vector<float> lo, hi;
+  this->BlockRanges(lo, hi);
+  mg.Max.resize(hi.size());
+  std::transform(hi.begin(), hi.end(), mg.Max.begin(), [](float v) { return v > 0.f ? v : 0.f; });
+}
+
+void GridDensity::BlockRanges(std::vector<float>& lo, std::vector<float>& hi) const
+{
+  const MajorantGrid& mg = this->Majorants;
+  const std::size_t blocks = static_cast<std::size_t>(mg.Dims[0]) * mg.Dims[1] * mg.Dims[2];
+  lo.assign(blocks, std::numeric_limits<float>::infinity());
+  hi.assign(blocks, -std::numeric_limits<float>::infinity());
+  // A block's cells read the values of indices [first, last] along each
+  // axis: its own cells, and for point values the points one beyond.
+  const int reach = this->CellValues ? 0 : 1;
+  std::size_t b = 0;
+  for (int bk = 0; bk < mg.Dims[2]; ++bk)
+    for (int bj = 0; bj < mg.Dims[1]; ++bj)
+      for (int bi = 0; bi < mg.Dims[0]; ++bi, ++b)
       {
-        const float v = this->Value(i, j, k);
-        if (!(v > 0.f))
-        {
-          continue;
-        }
-        const int ijk[3] = { i, j, k };
-        int lo[3], hi[3];
+        const int block[3] = { bi, bj, bk };
+        int first[3], last[3];
         for (int a = 0; a < 3; ++a)
         {
-          lo[a] = std::max(0, ijk[a] - reach) / BlockSize;
-          hi[a] = std::min(cells[a] - 1, ijk[a]) / BlockSize;
+          first[a] = block[a] * BlockSize;
+          last[a] = std::min(this->Dims[a] - 1, first[a] + BlockSize - 1 + reach);
         }
-        for (int bk = lo[2]; bk <= hi[2]; ++bk)
-          for (int bj = lo[1]; bj <= hi[1]; ++bj)
-            for (int bi = lo[0]; bi <= hi[0]; ++bi)
+        float l = lo[b], h = hi[b];
+        for (int k = first[2]; k <= last[2]; ++k)
+          for (int j = first[1]; j <= last[1]; ++j)
+            for (int i = first[0]; i <= last[0]; ++i)
             {
-              float& m = mg.Max[(static_cast<std::size_t>(bk) * mg.Dims[1] + bj) * mg.Dims[0] + bi];
-              m = std::max(m, v);
+              const float v = this->Value(i, j, k);
+              l = std::min(l, v);
+              h = std::max(h, v);
             }
+        lo[b] = l;
+        hi[b] = h;
       }
-    }
-  }
 }
 
 float GridDensity::Evaluate(const Vec3& p) const
 {
   const Vec3 q = (p - this->Bounds.lower) / this->Bounds.Extent();
-  if (this->CellValues)
+  if (this->CellValues || this->Interpolated == Interpolation::Nearest)
   {
+    // The cell's value, or the nearest point's.
     int idx[3];
     for (int a = 0; a < 3; ++a)
     {
-      idx[a] = std::min(this->Dims[a] - 1, std::max(0, static_cast<int>(q[a] * this->Dims[a])));
+      const float x = this->CellValues ? q[a] * static_cast<float>(this->Dims[a])
+                                       : q[a] * static_cast<float>(this->Dims[a] - 1) + 0.5f;
+      idx[a] = std::min(this->Dims[a] - 1, std::max(0, static_cast<int>(x)));
     }
     return this->Value(idx[0], idx[1], idx[2]);
   }

@@ -72,20 +72,41 @@ protected:
 
 /**
  * Dense density on a regular grid (a vtkImageData's array): point values are
- * interpolated trilinearly, cell values are constant per cell. Majorants are
- * kept per block of BlockSize^3 cells.
+ * interpolated trilinearly (or the nearest point's value is taken), cell
+ * values are constant per cell. Majorants are kept per block of
+ * BlockSize^3 cells.
  */
 class GridDensity : public DensityField
 {
 public:
   static constexpr int BlockSize = 8;
+  enum class Interpolation
+  {
+    Linear,
+    Nearest
+  };
 
-  /// `dims` counts the values along each axis: points (>= 2 each) or cells (>= 1 each).
-  GridDensity(
-    const Box& bounds, std::array<int, 3> dims, std::vector<float> values, bool cellValues);
+  /**
+   * `dims` counts the values along each axis: points (>= 2 each) or cells
+   * (>= 1 each). Interpolation applies to point values; cell values are
+   * constant per cell either way.
+   */
+  GridDensity(const Box& bounds, std::array<int, 3> dims, std::vector<float> values,
+    bool cellValues, Interpolation interpolation = Interpolation::Linear);
   float Evaluate(const Vec3& p) const override;
   std::array<int, 3> NativeResolution() const override;
   Box NativeBox() const override;
+
+  /**
+   * Per majorant block (in GetMajorants()'s order), the smallest and largest
+   * of the values its cells interpolate: its cells' own values, or the
+   * points on its cells' corners. The value anywhere in a block lies in
+   * that range.
+   */
+  void BlockRanges(std::vector<float>& lo, std::vector<float>& hi) const;
+  const std::array<int, 3>& GetDimensions() const { return this->Dims; }
+  const std::vector<float>& GetValues() const { return this->Values; }
+  bool HasCellValues() const { return this->CellValues; }
 
 private:
   float Value(int i, int j, int k) const
@@ -95,6 +116,7 @@ private:
   std::array<int, 3> Dims;
   std::vector<float> Values;
   bool CellValues;
+  Interpolation Interpolated;
 };
 
 } // namespace brume

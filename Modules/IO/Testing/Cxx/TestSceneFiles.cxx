@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Scene files and OpenVDB input:
-//   TestSceneFiles roundtrip DIR    default scene -> writer -> reader traces the same hits,
-//                                   and Data/scenes/cornell-fog.json does too
+//   TestSceneFiles roundtrip DIR SCENE TF_SCENE
+//                                   default scene -> writer -> reader traces the same hits,
+//                                   and Data/scenes/cornell-fog.json does too; so does a
+//                                   scene with a transfer-function medium
 //   TestSceneFiles openvdb DIR [SHARED_VDB_DIR]
 //                                   a grid this test writes, read back voxel by voxel;
 //                                   corrupt copies fail cleanly; the shared samples
@@ -100,7 +102,8 @@ bool SameHits(vtkPolyData* a, vtkPolyData* b)
   return true;
 }
 
-int RoundTrip(const std::string& dir, const std::string& shippedScene)
+int RoundTrip(
+  const std::string& dir, const std::string& shippedScene, const std::string& transferFunctionScene)
 {
   vtkNew<vtkBrumeDefaultSceneSource> builtIn;
   builtIn->Update();
@@ -136,6 +139,22 @@ int RoundTrip(const std::string& dir, const std::string& shippedScene)
   Check(vtkBrumeSceneReader::CanReadFile((dir + "/missing.json").c_str()) == 0,
     "CanReadFile: a missing file");
   Check(vtkBrumeSceneReader::CanReadFile(nullptr) == 0, "CanReadFile: no name");
+
+  // A medium classified by a transfer function (its array, points, unit
+  // distance, interpolation and the albedo) survives the round trip.
+  vtkNew<vtkBrumeSceneReader> classified;
+  classified->SetFileName(transferFunctionScene.c_str());
+  Check(classified->GetExecutive()->Update() == 1, "the transfer-function scene reads");
+  const std::string classifiedFile = dir + "/roundtrip-transfer-function.json";
+  vtkNew<vtkBrumeSceneWriter> classifiedWriter;
+  classifiedWriter->SetInputConnection(classified->GetOutputPort());
+  classifiedWriter->SetFileName(classifiedFile.c_str());
+  Check(classifiedWriter->Write() == 1, "the writer saves the transfer-function scene");
+  vtkNew<vtkBrumeSceneReader> classifiedBack;
+  classifiedBack->SetFileName(classifiedFile.c_str());
+  Check(classifiedBack->GetExecutive()->Update() == 1, "the written transfer function reads");
+  Check(SameHits(Trace(classified), Trace(classifiedBack)),
+    "written and read back, the transfer-function scene traces the same hits");
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }
 
@@ -442,9 +461,9 @@ int SharedScenes(const std::string& scenes, const std::string& shared)
 int TestSceneFiles(int argc, char* argv[])
 {
   const std::string mode = argc > 1 ? argv[1] : "";
-  if (mode == "roundtrip" && argc > 3)
+  if (mode == "roundtrip" && argc > 4)
   {
-    return RoundTrip(argv[2], argv[3]);
+    return RoundTrip(argv[2], argv[3], argv[4]);
   }
   if (mode == "openvdb" && argc > 2)
   {
@@ -458,7 +477,8 @@ int TestSceneFiles(int argc, char* argv[])
   {
     return SharedScenes(argv[2], argv[3]);
   }
-  std::cerr << "usage: TestSceneFiles roundtrip DIR SCENE.json | openvdb DIR [SHARED_VDB_DIR] | "
+  std::cerr << "usage: TestSceneFiles roundtrip DIR SCENE.json TF_SCENE.json | openvdb DIR "
+               "[SHARED_VDB_DIR] | "
                "meshes DIR | shared SCENES SHARED_VDB_DIR\n";
   return EXIT_FAILURE;
 }

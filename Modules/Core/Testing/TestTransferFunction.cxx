@@ -1,0 +1,224 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Media defined by a scalar field and an opacity transfer function: the
+// extinction VTK's compositing stands for, classified after interpolation,
+// block majorants that follow the function, and unbiased free flights.
+#include "brume/Medium.h"
+#include "brume/Random.h"
+#include "brume/TransferFunction.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace brume;
+
+namespace
+{
+using Nodes = std::vector<OpacityTransferFunction::Node>;
+
+// A scalar that is x over the unit cube, on n^3 points.
+std::shared_ptr<GridDensity> RampInX(
+  int n, GridDensity::Interpolation interpolation = GridDensity::Interpolation::Linear)
+{
+  std::vector<float> values;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        values.push_back(static_cast<float>(i) / static_cast<float>(n - 1));
+  return std::make_shared<GridDensity>(
+    Box{ Vec3(0.f), Vec3(1.f) }, std::array<int, 3>{ n, n, n }, values, false, interpolation);
+}
+
+Medium Absorber(std::shared_ptr<const DensityField> density)
+{
+  Medium m;
+  m.Name = "classified";
+  m.SigmaA = Vec3(1.f); // sigma_t is the function's extinction
+  m.SigmaS = Vec3(0.f);
+  m.SetDensity(std::move(density));
+  return m;
+}
+
+// The fraction of n free flights along o + t d, t in [0, length], that
+// reach the end, and its standard error.
+void Uncollided(const Medium& medium, const Vec3& o, const Vec3& d, float length, double& fraction,
+  double& stderr, std::uint64_t n = 200000)
+{
+  const std::vector<Medium> media{ medium };
+  MediumTracker tracker;
+  std::uint64_t through = 0;
+  for (std::uint64_t i = 0; i < n; ++i)
+  {
+    Random rng(7, i);
+    Vec3 weight(1.f);
+    float t = 0.f;
+    through += SampleCollision(media, o, d, length, rng, weight, t, &tracker) ? 0 : 1;
+  }
+  fraction = static_cast<double>(through) / static_cast<double>(n);
+  stderr = std::sqrt(fraction * (1.0 - fraction) / static_cast<double>(n));
+}
+
+// Optical depth along the segment by the midpoint rule (2^16 steps).
+double Quadrature(const Medium& medium, const Vec3& o, const Vec3& d, float length)
+{
+  const int steps = 1 << 16;
+  double depth = 0.0;
+  for (int i = 0; i < steps; ++i)
+  {
+    const float t = length * (static_cast<float>(i) + 0.5f) / static_cast<float>(steps);
+    depth += medium.SigmaTAt(o + d * t).x;
+  }
+  return depth * length / steps;
+}
+}
+
+TEST(TransferFunction, OpacityPerUnitDistanceIsVtksCompositing)
+{
+  // alpha 0.5 per unit distance 2: a step of 2 lets half through, as VTK's
+  // 1 - (1 - alpha)^(dt / unit) composites it.
+  const OpacityTransferFunction f({ { 0.f, 0.f }, { 1.f, 0.5f } }, 2.f);
+  EXPECT_FLOAT_EQ(f.Opacity(0.5f), 0.25f);
+  EXPECT_FLOAT_EQ(std::exp(-2.f * f.Extinction(1.f)), 0.5f);
+  const float dt = 0.3f;
+  EXPECT_NEAR(1.f - std::exp(-dt * f.Extinction(0.5f)), 1.f - std::pow(0.75f, dt / 2.f), 1e-6f);
+  // Clamped to the end values outside the range, as vtkPiecewiseFunction clamps.
+  EXPECT_EQ(f.Opacity(-3.f), 0.f);
+  EXPECT_EQ(f.Opacity(7.f), 0.5f);
+  // Opaque is finite: one unit distance lets 10^-6 through (float's 1 - 10^-6).
+  const OpacityTransferFunction opaque({ { 0.f, 1.f } }, 1.f);
+  EXPECT_NEAR(std::exp(-opaque.Extinction(0.f)), 1e-6, 2e-8);
+}
+
+TEST(TransferFunction, StepsAndMaximaOverRanges)
+{
+  // A step at s = 0.5 (two points at the same scalar) and a peak at 0.8.
+  const OpacityTransferFunction f(
+    { { 0.f, 0.f }, { 0.5f, 0.f }, { 0.5f, 0.4f }, { 0.8f, 0.6f }, { 1.f, 0.2f } }, 1.f);
+  EXPECT_EQ(f.Opacity(0.49f), 0.f);
+  EXPECT_FLOAT_EQ(f.Opacity(0.5f), 0.4f); // a scalar at a step takes the later point
+  EXPECT_EQ(f.MaxExtinction(0.f, 0.45f), 0.f);
+  EXPECT_FLOAT_EQ(f.MaxExtinction(0.f, 0.5f), -std::log1p(-0.4f));
+  EXPECT_FLOAT_EQ(f.MaxExtinction(0.6f, 0.9f), -std::log1p(-0.6f)); // the peak inside
+  EXPECT_FLOAT_EQ(f.MaxExtinction(0.9f, 0.95f), f.Extinction(0.9f));
+}
+
+TEST(TransferFunction, BadFunctionsAreRefused)
+{
+  EXPECT_NE(OpacityTransferFunction::Validate({}, 1.0), "");
+  EXPECT_NE(OpacityTransferFunction::Validate({ { 0.f, -0.1f } }, 1.0), "");
+  EXPECT_NE(OpacityTransferFunction::Validate({ { 0.f, 1.5f } }, 1.0), "");
+  EXPECT_NE(OpacityTransferFunction::Validate({ { 0.f, NAN } }, 1.0), "");
+  EXPECT_NE(OpacityTransferFunction::Validate({ { INFINITY, 0.5f } }, 1.0), "");
+  EXPECT_NE(OpacityTransferFunction::Validate({ { 1.f, 0.5f }, { 0.f, 0.5f } }, 1.0), "");
+  EXPECT_NE(OpacityTransferFunction::Validate({ { 0.f, 0.5f } }, 0.0), "");
+  EXPECT_NE(OpacityTransferFunction::Validate({ { 0.f, 0.5f } }, NAN), "");
+  EXPECT_EQ(OpacityTransferFunction::Validate({ { 0.f, 0.f }, { 0.f, 1.f } }, 1.0), "");
+}
+
+TEST(TransferFunction, ConstantFunctionIsTheHomogeneousMedium)
+{
+  const float alpha = 0.3f, unit = 0.5f;
+  const float sigma = -std::log(1.f - alpha) / unit;
+  const Medium classified = Absorber(std::make_shared<ClassifiedGridDensity>(
+    RampInX(9), OpacityTransferFunction({ { 0.f, alpha } }, unit)));
+  Medium homogeneous = Absorber(nullptr);
+  homogeneous.Bounds = { Vec3(0.f), Vec3(1.f) };
+  homogeneous.SigmaA = Vec3(sigma);
+  const Vec3 o(-0.5f, 0.3f, 0.6f), d = Normalize(Vec3(1.f, 0.2f, -0.1f));
+  double f = 0, se = 0, h = 0, hse = 0;
+  Uncollided(classified, o, d, 3.f, f, se);
+  Uncollided(homogeneous, o, d, 3.f, h, hse);
+  const float length = 1.f / d.x; // the ray crosses the cube from x = 0 to x = 1
+  EXPECT_NEAR(f, std::exp(-sigma * length), 4 * se);
+  EXPECT_NEAR(f, h, 4 * std::hypot(se, hse));
+  EXPECT_FLOAT_EQ(classified.SigmaTAt(Vec3(0.2f, 0.7f, 0.4f)).x, sigma);
+}
+
+TEST(TransferFunction, TwoLevelStepIsClassifiedAfterInterpolation)
+{
+  // s = x on 5 points along x, a step of the function at s = 0.6 (between
+  // the points at 0.5 and 0.75): classified after interpolation, the
+  // extinction steps exactly at x = 0.6, and the transmittance across the
+  // cube is the product of the two levels' transmittances.
+  const float low = 0.2f, high = 0.7f;
+  const OpacityTransferFunction f(
+    { { 0.f, low }, { 0.6f, low }, { 0.6f, high }, { 1.f, high } }, 1.f);
+  const Medium m = Absorber(std::make_shared<ClassifiedGridDensity>(RampInX(5), f));
+  const double expected = std::pow(1.0 - low, 0.6) * std::pow(1.0 - high, 0.4);
+  double fraction = 0, se = 0;
+  Uncollided(m, Vec3(-0.1f, 0.4f, 0.5f), Vec3(1.f, 0.f, 0.f), 1.2f, fraction, se);
+  EXPECT_NEAR(fraction, expected, 4 * se);
+  EXPECT_FLOAT_EQ(m.SigmaTAt(Vec3(0.599f, 0.5f, 0.5f)).x, -std::log1p(-low));
+  EXPECT_FLOAT_EQ(m.SigmaTAt(Vec3(0.601f, 0.5f, 0.5f)).x, -std::log1p(-high));
+
+  // Nearest interpolation steps at the point halfway between 0.5 and 0.75.
+  const Medium nearest = Absorber(
+    std::make_shared<ClassifiedGridDensity>(RampInX(5, GridDensity::Interpolation::Nearest), f));
+  EXPECT_FLOAT_EQ(nearest.SigmaTAt(Vec3(0.62f, 0.5f, 0.5f)).x, -std::log1p(-low));
+  EXPECT_FLOAT_EQ(nearest.SigmaTAt(Vec3(0.63f, 0.5f, 0.5f)).x, -std::log1p(-high));
+  Uncollided(nearest, Vec3(-0.1f, 0.4f, 0.5f), Vec3(1.f, 0.f, 0.f), 1.2f, fraction, se);
+  EXPECT_NEAR(fraction, std::pow(1.0 - low, 0.625) * std::pow(1.0 - high, 0.375), 4 * se);
+}
+
+TEST(TransferFunction, FreeFlightsAreUnbiasedAlongFixedRays)
+{
+  // A smooth scalar (a Gaussian blob on 17^3 points) through a function
+  // with a ramp, a plateau and a peak: uncollided fractions along oblique
+  // rays against the quadrature of the same classified field.
+  const int n = 17;
+  std::vector<float> values;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+      {
+        const float x = i / 16.f - 0.5f, y = j / 16.f - 0.45f, z = k / 16.f - 0.55f;
+        values.push_back(std::exp(-6.f * (x * x + y * y + z * z)) * 100.f);
+      }
+  auto scalars = std::make_shared<GridDensity>(
+    Box{ Vec3(0.f), Vec3(1.f) }, std::array<int, 3>{ n, n, n }, values, false);
+  const OpacityTransferFunction f(
+    { { 30.f, 0.f }, { 60.f, 0.5f }, { 75.f, 0.5f }, { 90.f, 0.9f }, { 95.f, 0.1f } }, 0.25f);
+  const Medium m = Absorber(std::make_shared<ClassifiedGridDensity>(scalars, f));
+  ASSERT_EQ(m.Validate(), "");
+  const Vec3 origins[] = { { -0.2f, 0.1f, 0.3f }, { 0.5f, -0.3f, 0.4f }, { 1.2f, 0.9f, 0.2f } };
+  const Vec3 targets[] = { { 1.1f, 0.8f, 0.6f }, { 0.45f, 1.2f, 0.55f }, { -0.1f, 0.1f, 0.9f } };
+  for (int r = 0; r < 3; ++r)
+  {
+    const Vec3 d = Normalize(targets[r] - origins[r]);
+    const float length = Length(targets[r] - origins[r]);
+    double fraction = 0, se = 0;
+    Uncollided(m, origins[r], d, length, fraction, se);
+    const double depth = Quadrature(m, origins[r], d, length);
+    EXPECT_GT(depth, 0.3) << "ray " << r; // each ray crosses the classified blob
+    EXPECT_NEAR(fraction, std::exp(-depth), 4 * se) << "ray " << r;
+  }
+}
+
+TEST(TransferFunction, MajorantsFollowTheFunctionNotTheField)
+{
+  // s = x on 65^3 points, opacity only for s in [0.9, 1]: only the last
+  // column of 8^3 blocks (cells with x >= 7/8) may collide, though the
+  // field is positive everywhere.
+  const auto scalars = RampInX(65);
+  const OpacityTransferFunction f({ { 0.9f, 0.f }, { 0.95f, 0.8f }, { 1.f, 0.f } }, 1.f);
+  const ClassifiedGridDensity classified(scalars, f);
+  EXPECT_EQ(scalars->NumberOfOccupiedBlocks(), 512u);
+  EXPECT_EQ(classified.NumberOfOccupiedBlocks(), 64u);
+  EXPECT_FLOAT_EQ(classified.GetMajorants().GlobalMax(), -std::log1p(-0.8f));
+  // Every block's majorant bounds the field inside it (sampled densely).
+  const MajorantGrid& g = classified.GetMajorants();
+  Random rng(3, 0);
+  for (int i = 0; i < 100000; ++i)
+  {
+    const Vec3 p(rng.NextFloat(), rng.NextFloat(), rng.NextFloat());
+    int b[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      b[a] = std::min(g.Dims[a] - 1,
+        static_cast<int>((p[a] - g.Bounds.lower[a]) / g.Bounds.Extent()[a] * g.Dims[a]));
+    }
+    ASSERT_LE(classified.Evaluate(p), g.At(b[0], b[1], b[2]) * (1.f + 1e-6f)) << i;
+  }
+  // Occupancy counts the values the function makes non-zero: s = i / 64 in (0.9, 1).
+  EXPECT_NEAR(classified.OccupiedFraction(), 6.0 / 65.0, 1e-9);
+}

@@ -1,0 +1,118 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "brume/TransferFunction.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace brume
+{
+
+std::string OpacityTransferFunction::Validate(const std::vector<Node>& nodes, double unitDistance)
+{
+  if (nodes.empty())
+  {
+    return "has no opacity points";
+  }
+  for (std::size_t i = 0; i < nodes.size(); ++i)
+  {
+    std::ostringstream at;
+    at << "opacity point " << i << " (scalar " << nodes[i].Scalar << ", opacity "
+       << nodes[i].Opacity << ")";
+    if (!std::isfinite(nodes[i].Scalar))
+    {
+      return at.str() + " has a non-finite scalar";
+    }
+    if (!(nodes[i].Opacity >= 0.f && nodes[i].Opacity <= 1.f))
+    {
+      return at.str() + " has an opacity outside [0, 1]";
+    }
+    if (i > 0 && nodes[i].Scalar < nodes[i - 1].Scalar)
+    {
+      return at.str() + " comes before the previous point's scalar: scalars must not decrease";
+    }
+  }
+  if (!(unitDistance > 0.0) || !std::isfinite(unitDistance))
+  {
+    return "has a unit distance that is not a finite positive number";
+  }
+  return {};
+}
+
+OpacityTransferFunction::OpacityTransferFunction(std::vector<Node> nodes, float unitDistance)
+  : Nodes(std::move(nodes))
+  , UnitDistance(unitDistance)
+{
+}
+
+float OpacityTransferFunction::Opacity(float s) const
+{
+  // The first node past s; s at a node's scalar takes the last node there.
+  const auto next = std::upper_bound(
+    this->Nodes.begin(), this->Nodes.end(), s, [](float v, const Node& n) { return v < n.Scalar; });
+  if (next == this->Nodes.begin())
+  {
+    return this->Nodes.front().Opacity;
+  }
+  if (next == this->Nodes.end())
+  {
+    return this->Nodes.back().Opacity;
+  }
+  const Node& a = *(next - 1);
+  const Node& b = *next;
+  const float t = (s - a.Scalar) / (b.Scalar - a.Scalar);
+  return a.Opacity + (b.Opacity - a.Opacity) * t;
+}
+
+float OpacityTransferFunction::ExtinctionOfOpacity(float alpha) const
+{
+  return -std::log1p(-std::min(alpha, MaxOpacity)) / this->UnitDistance;
+}
+
+float OpacityTransferFunction::Extinction(float s) const
+{
+  return this->ExtinctionOfOpacity(this->Opacity(s));
+}
+
+float OpacityTransferFunction::MaxExtinction(float lo, float hi) const
+{
+  // A piecewise-linear function's largest value on [lo, hi] is at an end or
+  // at a node inside; extinction grows with opacity.
+  float alpha = std::max(this->Opacity(lo), this->Opacity(hi));
+  for (const Node& n : this->Nodes)
+  {
+    if (n.Scalar >= lo && n.Scalar <= hi)
+    {
+      alpha = std::max(alpha, n.Opacity);
+    }
+  }
+  return this->ExtinctionOfOpacity(alpha);
+}
+
+ClassifiedGridDensity::ClassifiedGridDensity(
+  std::shared_ptr<const GridDensity> scalars, OpacityTransferFunction opacity)
+  : Scalars(std::move(scalars))
+  , Opacity(std::move(opacity))
+{
+  this->Bounds = this->Scalars->GetBounds();
+  this->GridValues = static_cast<double>(this->Scalars->GetValues().size());
+  for (const float s : this->Scalars->GetValues())
+  {
+    const float sigma = this->Opacity.Extinction(s);
+    if (sigma > 0.f)
+    {
+      this->OccupiedValues += 1.0;
+      this->OccupiedSum += sigma;
+    }
+  }
+  this->Majorants = this->Scalars->GetMajorants();
+  std::vector<float> lo, hi;
+  this->Scalars->BlockRanges(lo, hi);
+  for (std::size_t b = 0; b < hi.size(); ++b)
+  {
+    // A block of non-finite values only (none to range over) has none to classify.
+    this->Majorants.Max[b] = lo[b] <= hi[b] ? this->Opacity.MaxExtinction(lo[b], hi[b]) : 0.f;
+  }
+}
+
+} // namespace brume

@@ -1,0 +1,105 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// A medium defined by a scalar field and a transfer function, as VTK's
+// volume properties define how a field looks: the scalar-opacity function
+// gives the extinction, classified after interpolation (as VTK's ray caster
+// does), and its block majorants follow the function over each block's
+// scalar range, so a function that is 0 over most of the range costs no
+// dense majorant.
+#ifndef brume_TransferFunction_h
+#define brume_TransferFunction_h
+
+#include "brume/Density.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace brume
+{
+
+/**
+ * Opacity per unit distance as a piecewise-linear function of a scalar
+ * (vtkPiecewiseFunction with its midpoints at 0.5 and sharpness 0), clamped
+ * to its end values outside its range, and the extinction it stands for.
+ *
+ * VTK's ray caster composites a step of length dt with the opacity
+ * 1 - (1 - alpha)^(dt / unit), alpha the function's value and `unit` the
+ * volume property's ScalarOpacityUnitDistance. That is the transmittance of
+ * the extinction
+ *
+ *     sigma_t(s) = -ln(1 - alpha(s)) / unit,
+ *
+ * which this class returns. alpha = 1 would be infinite: opacity is held
+ * below MaxOpacity (a unit distance then lets 10^-6 through).
+ */
+class OpacityTransferFunction
+{
+public:
+  struct Node
+  {
+    float Scalar;
+    float Opacity;
+  };
+  static constexpr float MaxOpacity = 1.f - 1e-6f;
+
+  /**
+   * Empty when `nodes` (at least one, scalars finite and non-decreasing,
+   * opacities in [0, 1]) and `unitDistance` (finite, > 0) make a function;
+   * otherwise what is wrong.
+   */
+  static std::string Validate(const std::vector<Node>& nodes, double unitDistance);
+
+  /// Requires Validate(nodes, unitDistance) to be empty.
+  OpacityTransferFunction(std::vector<Node> nodes, float unitDistance);
+
+  /// alpha(s), linear between nodes; a scalar at two nodes takes the later one.
+  float Opacity(float s) const;
+  /// sigma_t(s) = -ln(1 - alpha(s)) / unit, in inverse units of length.
+  float Extinction(float s) const;
+  /// The largest extinction over the scalars in [lo, hi].
+  float MaxExtinction(float lo, float hi) const;
+
+  const std::vector<Node>& GetNodes() const { return this->Nodes; }
+  float GetUnitDistance() const { return this->UnitDistance; }
+
+private:
+  float ExtinctionOfOpacity(float alpha) const;
+
+  std::vector<Node> Nodes;
+  float UnitDistance;
+};
+
+/**
+ * A density that is the extinction of a transfer function applied to a
+ * scalar grid after interpolation: density(x) = sigma_t(s(x)), s(x)
+ * interpolated as the grid interpolates (trilinear between point values,
+ * constant per cell, or the nearest value). A medium with this density and
+ * sigma_a + sigma_s = 1 per channel has exactly the function's extinction.
+ *
+ * Majorants: the interpolated scalar in a cell lies between the values
+ * that define the cell, so each block's majorant is the function's largest
+ * extinction over the range of its values.
+ */
+class ClassifiedGridDensity : public DensityField
+{
+public:
+  ClassifiedGridDensity(
+    std::shared_ptr<const GridDensity> scalars, OpacityTransferFunction opacity);
+  float Evaluate(const Vec3& p) const override
+  {
+    return this->Opacity.Extinction(this->Scalars->Evaluate(p));
+  }
+  std::array<int, 3> NativeResolution() const override { return this->Scalars->NativeResolution(); }
+  Box NativeBox() const override { return this->Scalars->NativeBox(); }
+
+  const GridDensity& GetScalars() const { return *this->Scalars; }
+  const OpacityTransferFunction& GetOpacity() const { return this->Opacity; }
+
+private:
+  std::shared_ptr<const GridDensity> Scalars;
+  OpacityTransferFunction Opacity;
+};
+
+} // namespace brume
+
+#endif

@@ -1,0 +1,430 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// A VTK volume property makes a Brume medium of any scalar field
+// (vtkBrumeVolumePropertyMedium): the extinction is the scalar opacity's,
+// classified after interpolation; a constant function is the constant
+// density it stands for, through the whole pipeline, bit for bit; bad
+// functions, arrays and components fail with a clear error.
+#include "vtkBrumeFloatImageCapture.h"
+#include "vtkBrumeLightTracer.h"
+#include "vtkBrumeRadianceReconstruction.h"
+#include "vtkBrumeSceneActors.h"
+#include "vtkBrumeSceneConversion.h"
+#include "vtkBrumeVolumePropertyMedium.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCamera.h"
+#include "vtkDoubleArray.h"
+#include "vtkExecutive.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPartitionedDataSetCollection.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkSmartPointer.h"
+#include "vtkStringArray.h"
+#include "vtkVolumeProperty.h"
+
+#include "brume/Scene.h"
+
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <iostream>
+#include <string>
+
+namespace
+{
+int failures = 0;
+void Check(bool ok, const std::string& what)
+{
+  if (!ok)
+  {
+    std::cerr << "FAILED: " << what << "\n";
+    ++failures;
+  }
+}
+
+// A simulation-like scalar on 17^3 points over [-0.5, 0.5]^3 (a warped
+// blob with values in about [0, 100]) and a second, two-component array.
+vtkSmartPointer<vtkImageData> Field()
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  const int n = 17;
+  image->SetDimensions(n, n, n);
+  image->SetOrigin(-0.5, -0.5, -0.5);
+  image->SetSpacing(1.0 / (n - 1), 1.0 / (n - 1), 1.0 / (n - 1));
+  vtkNew<vtkFloatArray> s, pair;
+  s->SetName("temperature");
+  pair->SetName("pair");
+  pair->SetNumberOfComponents(2);
+  for (vtkIdType i = 0; i < image->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    image->GetPoint(i, p);
+    const double r2 = p[0] * p[0] + (p[1] + 0.1) * (p[1] + 0.1) + p[2] * p[2];
+    const double v = 100.0 * std::exp(-5.0 * r2) * (1.0 + 0.2 * std::sin(9.0 * p[0]));
+    s->InsertNextValue(static_cast<float>(v));
+    pair->InsertNextTuple2(-v, v);
+  }
+  image->GetPointData()->SetScalars(s);
+  image->GetPointData()->AddArray(pair);
+  return image;
+}
+
+vtkSmartPointer<vtkPolyData> Ground()
+{
+  auto ground = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  points->InsertNextPoint(-2, -0.6, -2);
+  points->InsertNextPoint(-2, -0.6, 2);
+  points->InsertNextPoint(2, -0.6, 2);
+  points->InsertNextPoint(2, -0.6, -2);
+  ground->SetPoints(points);
+  vtkNew<vtkCellArray> polys;
+  const vtkIdType quad[4] = { 0, 1, 2, 3 };
+  polys->InsertNextCell(4, quad);
+  ground->SetPolys(polys);
+  return ground;
+}
+
+vtkSmartPointer<vtkPartitionedDataSetCollection> Scene(vtkImageData* medium)
+{
+  auto scene = vtkSmartPointer<vtkPartitionedDataSetCollection>::New();
+  vtkBrumeSceneConversion::AddObject(scene, Ground(), "ground");
+  vtkBrumeSceneConversion::AddObject(scene, medium, "field");
+  const char* type = "point";
+  vtkNew<vtkStringArray> types;
+  types->SetName("BrumeLightType");
+  types->InsertNextValue(type);
+  scene->GetFieldData()->AddArray(types);
+  const double position[3] = { 0.8, 1.5, 0.9 }, direction[3] = { 0, -1, 0 },
+               intensity[3] = { 4, 4, 4 }, cone = 180;
+  vtkFieldData* fd = scene->GetFieldData();
+  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeLightPosition", position, 3);
+  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeLightDirection", direction, 3);
+  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeLightIntensity", intensity, 3);
+  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeLightConeAngle", &cone, 1);
+  return scene;
+}
+
+vtkSmartPointer<vtkImageData> Render(vtkPartitionedDataSetCollection* scene)
+{
+  vtkNew<vtkBrumeLightTracer> tracer;
+  tracer->SetInputData(scene);
+  tracer->SetNumberOfParticles(40000);
+  tracer->SetSeed(5);
+  vtkNew<vtkBrumeRadianceReconstruction> reconstruction;
+  reconstruction->SetInputDataObject(0, scene);
+  reconstruction->SetInputConnection(1, tracer->GetOutputPort());
+  reconstruction->SetEyePosition(0, 0.4, 3);
+  if (!reconstruction->GetExecutive()->Update())
+  {
+    return nullptr;
+  }
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkRenderWindow> window;
+  window->SetOffScreenRendering(1);
+  window->SetMultiSamples(0);
+  window->SetSize(64, 64);
+  window->AddRenderer(renderer);
+  vtkNew<vtkBrumeSceneActors> actors;
+  actors->SetInputData(reconstruction->GetOutput());
+  actors->AddToRenderer(renderer);
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->SetPosition(0, 0.4, 3);
+  camera->SetFocalPoint(0, -0.1, 0);
+  camera->SetViewUp(0, 1, 0);
+  camera->SetViewAngle(35);
+  renderer->ResetCameraClippingRange();
+  vtkNew<vtkBrumeFloatImageCapture> capture;
+  capture->Attach(renderer);
+  window->Render();
+  return capture->Capture();
+}
+
+struct ErrorCatcher
+{
+  std::string Last;
+  static void Callback(vtkObject*, unsigned long, void* clientData, void* callData)
+  {
+    static_cast<ErrorCatcher*>(clientData)->Last = static_cast<const char*>(callData);
+  }
+};
+
+// Runs `algorithm` and checks that it fails with an error mentioning `expected`.
+void ExpectFailure(const std::string& what, vtkAlgorithm* algorithm, const std::string& expected)
+{
+  ErrorCatcher catcher;
+  vtkNew<vtkCallbackCommand> command;
+  command->SetCallback(ErrorCatcher::Callback);
+  command->SetClientData(&catcher);
+  const unsigned long tag = algorithm->AddObserver(vtkCommand::ErrorEvent, command);
+  const int ok = algorithm->GetExecutive()->Update();
+  algorithm->RemoveObserver(tag);
+  Check(!ok && catcher.Last.find(expected) != std::string::npos,
+    what + ": expected a failure mentioning '" + expected + "', got " +
+      (ok ? "success" : "failure") + " with '" + catcher.Last + "'");
+}
+
+// The core scene's medium made of `image`, or the conversion's error.
+std::string ConvertMedium(vtkImageData* image, brume::Medium& medium)
+{
+  brume::Scene scene;
+  const std::string error = vtkBrumeSceneConversion::ToScene(Scene(image), scene);
+  if (error.empty())
+  {
+    medium = scene.Media.at(0);
+  }
+  return error;
+}
+
+void TestClassification()
+{
+  // A step at 40 (opacity 0 -> 0.5; VTK keeps one point per scalar) rising
+  // to 0.9 at 80, per unit 0.25.
+  vtkNew<vtkVolumeProperty> property;
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(0, 0);
+  opacity->AddPoint(40, 0);
+  opacity->AddPoint(40.001, 0.5);
+  opacity->AddPoint(80, 0.9);
+  property->SetScalarOpacity(opacity);
+  property->SetScalarOpacityUnitDistance(0.25);
+  property->SetScatteringAnisotropy(0.6f);
+  property->SetInterpolationTypeToLinear();
+  vtkNew<vtkBrumeVolumePropertyMedium> filter;
+  filter->SetInputData(Field());
+  filter->SetVolumeProperty(property);
+  filter->SetAlbedo(0.9, 0.8, 0.7);
+  Check(filter->GetExecutive()->Update() == 1, "the filter runs");
+  brume::Medium m;
+  Check(ConvertMedium(filter->GetOutput(), m).empty(), "the medium converts");
+  Check(!m.IsHomogeneous(), "a classified medium is heterogeneous");
+  Check(std::abs(m.G - 0.6f) < 1e-6f, "g is the property's ScatteringAnisotropy");
+  Check(std::abs(m.Albedo().y - 0.8f) < 1e-6f && std::abs(m.SigmaT().x - 1.f) < 1e-6f,
+    "albedo 0.8 in green, sigma_a + sigma_s = 1");
+
+  // The extinction at a point is the function's at the interpolated scalar.
+  vtkImageData* image = filter->GetOutput();
+  vtkDataArray* s = image->GetPointData()->GetArray("temperature");
+  int checked = 0;
+  for (double x = -0.45; x < 0.5; x += 0.1)
+  {
+    const double p[3] = { x, -0.07, 0.13 };
+    int ijk[3];
+    double pc[3];
+    image->ComputeStructuredCoordinates(p, ijk, pc);
+    // Trilinear interpolation of the scalar, as the image's cell does.
+    double value = 0.0;
+    for (int c = 0; c < 8; ++c)
+    {
+      int idx[3] = { ijk[0] + (c & 1), ijk[1] + ((c >> 1) & 1), ijk[2] + ((c >> 2) & 1) };
+      double w = 1.0;
+      for (int a = 0; a < 3; ++a)
+      {
+        w *= (idx[a] > ijk[a]) ? pc[a] : 1.0 - pc[a];
+      }
+      value += w * s->GetTuple1(image->ComputePointId(idx));
+    }
+    const double alpha = opacity->GetValue(value);
+    const double expected = -std::log1p(-alpha) / 0.25;
+    const double got = m.SigmaTAt(
+      brume::Vec3(static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2])))[0];
+    Check(std::abs(got - expected) <= 1e-4 * (1.0 + expected),
+      "extinction at x = " + std::to_string(x) + ": " + std::to_string(got) + " against " +
+        std::to_string(expected));
+    checked += alpha > 0.0 ? 1 : 0;
+  }
+  Check(checked >= 3, "the line crosses the classified blob");
+
+  // Nearest interpolation: the nearest point's scalar is classified.
+  property->SetInterpolationTypeToNearest();
+  Check(filter->GetExecutive()->Update() == 1, "the filter follows the property");
+  Check(ConvertMedium(filter->GetOutput(), m).empty(), "nearest converts");
+  const double p[3] = { 0.02, -0.07, 0.13 };
+  const vtkIdType nearest = filter->GetOutput()->FindPoint(p[0], p[1], p[2]);
+  const double v = s->GetTuple1(nearest);
+  const double alpha = opacity->GetValue(v);
+  Check(
+    std::abs(m.SigmaTAt(brume::Vec3(0.02f, -0.07f, 0.13f))[0] + std::log1p(-alpha) / 0.25) < 1e-4,
+    "nearest: the nearest point's scalar");
+
+  // Component 1 of the two-component array.
+  property->SetInterpolationTypeToLinear();
+  filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "pair");
+  filter->SetComponent(1);
+  property->SetScalarOpacity(1, opacity);
+  property->SetScalarOpacityUnitDistance(1, 0.25);
+  Check(filter->GetExecutive()->Update() == 1, "component 1 runs");
+  brume::Medium pair;
+  Check(ConvertMedium(filter->GetOutput(), pair).empty(), "component 1 converts");
+  filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "temperature");
+  filter->SetComponent(0);
+  filter->GetExecutive()->Update();
+  ConvertMedium(filter->GetOutput(), m);
+  const brume::Vec3 q(0.05f, -0.1f, 0.02f);
+  Check(pair.SigmaTAt(q).x == m.SigmaTAt(q).x && m.SigmaTAt(q).x > 0.f,
+    "component 1 of (-s, s) classifies as s");
+}
+
+void TestConstantFunctionIsTheConstantDensity()
+{
+  // Opacity 0.35 per unit 0.5 everywhere: the extinction is a constant,
+  // which the same grid of constant densities has too. The two pipelines
+  // must draw the very same image.
+  vtkNew<vtkVolumeProperty> property;
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(0, 0.35);
+  opacity->AddPoint(100, 0.35);
+  property->SetScalarOpacity(opacity);
+  property->SetScalarOpacityUnitDistance(0.5);
+  vtkNew<vtkBrumeVolumePropertyMedium> filter;
+  filter->SetInputData(Field());
+  filter->SetVolumeProperty(property);
+  filter->SetAlbedo(0.8, 0.8, 0.8);
+  filter->Update();
+  vtkSmartPointer<vtkImageData> classified = Render(Scene(filter->GetOutput()));
+
+  auto constant = vtkSmartPointer<vtkImageData>::New();
+  constant->CopyStructure(filter->GetOutput());
+  vtkNew<vtkFloatArray> density;
+  density->SetName("density");
+  density->SetNumberOfTuples(constant->GetNumberOfPoints());
+  density->Fill(-std::log1p(-0.35f) / 0.5f);
+  constant->GetPointData()->SetScalars(density);
+  const double sa[3] = { 0.2, 0.2, 0.2 }, ss[3] = { 0.8, 0.8, 0.8 };
+  vtkBrumeSceneConversion::AppendTuple(constant->GetFieldData(), "BrumeSigmaA", sa, 3);
+  vtkBrumeSceneConversion::AppendTuple(constant->GetFieldData(), "BrumeSigmaS", ss, 3);
+  vtkSmartPointer<vtkImageData> reference = Render(Scene(constant));
+
+  Check(classified && reference, "both pipelines render");
+  if (!classified || !reference)
+  {
+    return;
+  }
+  vtkDataArray* a = classified->GetPointData()->GetScalars();
+  vtkDataArray* b = reference->GetPointData()->GetScalars();
+  double sum = 0.0;
+  vtkIdType differing = 0;
+  for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      sum += b->GetComponent(i, c);
+      differing += a->GetComponent(i, c) != b->GetComponent(i, c) ? 1 : 0;
+    }
+  }
+  Check(sum > 0.0, "the image is lit");
+  Check(differing == 0,
+    "constant function against constant density: " + std::to_string(differing) +
+      " channel values differ");
+}
+
+void TestBadInput()
+{
+  vtkNew<vtkBrumeVolumePropertyMedium> filter;
+  filter->SetInputData(Field());
+  ExpectFailure("no property", filter, "has no VolumeProperty");
+
+  vtkNew<vtkVolumeProperty> property;
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(0, 0.2);
+  opacity->AddPoint(50, -0.5);
+  property->SetScalarOpacity(opacity);
+  filter->SetVolumeProperty(property);
+  ExpectFailure("negative opacity", filter, "opacity outside [0, 1]");
+
+  vtkNew<vtkPiecewiseFunction> empty;
+  property->SetScalarOpacity(empty);
+  ExpectFailure("empty function", filter, "has no opacity points");
+
+  vtkNew<vtkPiecewiseFunction> good;
+  good->AddPoint(0, 0.2);
+  property->SetScalarOpacity(good);
+  filter->SetComponent(2);
+  ExpectFailure("component out of range", filter, "has Component 2");
+  filter->SetComponent(0);
+  filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "no such");
+  ExpectFailure("missing array", filter, "finds no array");
+  filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "temperature");
+  filter->SetAlbedo(1.2, 0.5, 0.5);
+  ExpectFailure("albedo above 1", filter, "Albedo outside [0, 1]");
+  filter->SetAlbedo(0.5, 0.5, 0.5);
+  Check(filter->GetExecutive()->Update() == 1, "a good function runs");
+
+  // Field data written by hand: each bad array named in the error.
+  auto edit = [&](const std::function<void(vtkFieldData*)>& change)
+  {
+    auto image = vtkSmartPointer<vtkImageData>::New();
+    image->DeepCopy(filter->GetOutput());
+    change(image->GetFieldData());
+    brume::Medium m;
+    return ConvertMedium(image, m);
+  };
+  auto setPoints = [](vtkFieldData* fd, double s0, double a0)
+  {
+    vtkDataArray* points = fd->GetArray("BrumeScalarOpacity");
+    points->SetTuple2(0, s0, a0);
+  };
+  Check(
+    edit([&](vtkFieldData* fd) { setPoints(fd, std::nan(""), 0.2); }).find("non-finite scalar") !=
+      std::string::npos,
+    "a NaN scalar in BrumeScalarOpacity");
+  Check(
+    edit([&](vtkFieldData* fd) { setPoints(fd, 0.0, INFINITY); }).find("opacity outside [0, 1]") !=
+      std::string::npos,
+    "an infinite opacity");
+  Check(edit([](vtkFieldData* fd) { fd->GetArray("BrumeScalarComponent")->SetTuple1(0, 1); })
+          .find("BrumeScalarComponent 1, but its array") != std::string::npos,
+    "component out of range in field data");
+  Check(
+    edit(
+      [](vtkFieldData* fd) {
+        fd->GetArray("BrumeScalarOpacityUnitDistance")->SetTuple1(0, 0);
+      }).find("unit distance") != std::string::npos,
+    "a zero unit distance");
+  Check(
+    edit(
+      [](vtkFieldData* fd) {
+        vtkStringArray::SafeDownCast(fd->GetAbstractArray("BrumeInterpolation"))
+          ->SetValue(0, "cubic");
+      }).find("BrumeInterpolation 'cubic'") != std::string::npos,
+    "an unknown interpolation");
+  Check(
+    edit(
+      [](vtkFieldData* fd) {
+        vtkStringArray::SafeDownCast(fd->GetAbstractArray("BrumeDensityArray"))
+          ->SetValue(0, "absent");
+      }).find("no density array 'absent'") != std::string::npos,
+    "an array that does not exist");
+  const std::string nan = edit([](vtkFieldData*) {});
+  Check(nan.empty(), "the unedited medium converts: " + nan);
+  // Non-finite scalars are refused; negative ones are fine with a function.
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->DeepCopy(filter->GetOutput());
+  image->GetPointData()->GetArray("temperature")->SetTuple1(7, std::nan(""));
+  brume::Medium m;
+  Check(ConvertMedium(image, m).find("non-finite scalars") != std::string::npos,
+    "a NaN scalar in the field");
+  image->GetPointData()->GetArray("temperature")->SetTuple1(7, -3.0);
+  Check(ConvertMedium(image, m).empty(), "negative scalars are classified");
+}
+}
+
+int TestTransferFunctionMedium(int, char*[])
+{
+  TestClassification();
+  TestConstantFunctionIsTheConstantDensity();
+  TestBadInput();
+  if (failures)
+  {
+    std::cerr << failures << " check(s) failed\n";
+    return 1;
+  }
+  return 0;
+}
