@@ -551,6 +551,37 @@ std::string vtkBrumeSceneConversion::ConvertFieldLights(vtkFieldData* fd, brume:
   return {};
 }
 
+void vtkBrumeSceneConversion::AppendFieldLights(
+  const std::vector<brume::Light>& lights, vtkFieldData* fd)
+{
+  if (lights.empty())
+  {
+    return;
+  }
+  auto* types = vtkStringArray::SafeDownCast(fd->GetAbstractArray("BrumeLightType"));
+  if (!types)
+  {
+    vtkNew<vtkStringArray> created;
+    created->SetName("BrumeLightType");
+    fd->AddArray(created);
+    types = created;
+  }
+  for (const brume::Light& l : lights)
+  {
+    types->InsertNextValue(l.Type == brume::LightType::Point ? "point"
+        : l.Type == brume::LightType::Spot                   ? "spot"
+                                                             : "directional");
+    const double position[3] = { l.Position.x, l.Position.y, l.Position.z };
+    const double direction[3] = { l.Direction.x, l.Direction.y, l.Direction.z };
+    const double intensity[3] = { l.Intensity.x, l.Intensity.y, l.Intensity.z };
+    const double cone = l.ConeAngle;
+    AppendTuple(fd, "BrumeLightPosition", position, 3);
+    AppendTuple(fd, "BrumeLightDirection", direction, 3);
+    AppendTuple(fd, "BrumeLightIntensity", intensity, 3);
+    AppendTuple(fd, "BrumeLightConeAngle", &cone, 1);
+  }
+}
+
 std::string vtkBrumeSceneConversion::ConvertLights(vtkLightCollection* lights, brume::Scene& scene)
 {
   lights->InitTraversal();
@@ -677,7 +708,7 @@ bool vtkBrumeSceneConversion::ToTracedScene(vtkAlgorithm* algorithm, vtkDataObje
 }
 
 std::string vtkBrumeSceneConversion::ToScene(vtkDataObject* input, brume::Scene& scene,
-  std::vector<ObjectSource>* sources, vtkLightCollection* lights)
+  std::vector<ObjectSource>* sources, vtkLightCollection* lights, vtkFieldData* tracedLights)
 {
   scene = brume::Scene();
   auto* collection = vtkPartitionedDataSetCollection::SafeDownCast(input);
@@ -737,6 +768,10 @@ std::string vtkBrumeSceneConversion::ToScene(vtkDataObject* input, brume::Scene&
     sources->insert(sources->end(), mediumSources.begin(), mediumSources.end());
   }
   std::string lightError = ConvertFieldLights(collection->GetFieldData(), scene);
+  if (lightError.empty() && tracedLights)
+  {
+    lightError = ConvertFieldLights(tracedLights, scene);
+  }
   if (lightError.empty() && lights)
   {
     lightError = ConvertLights(lights, scene);

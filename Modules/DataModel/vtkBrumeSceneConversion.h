@@ -86,10 +86,15 @@ public:
 
   /**
    * Builds the core scene from a scene collection. Returns an empty string on
-   * success, otherwise a message saying what is wrong with the input.
+   * success, otherwise a message saying what is wrong with the input. The
+   * lights are the collection's field-data lights, then those of
+   * `tracedLights` (a tracer's output field data: the lights it was given
+   * besides the scene's, see AppendFieldLights), then `lights`: the order in
+   * which the hits' EmitterId counts them.
    */
   static std::string ToScene(vtkDataObject* input, brume::Scene& scene,
-    std::vector<ObjectSource>* sources = nullptr, vtkLightCollection* lights = nullptr);
+    std::vector<ObjectSource>* sources = nullptr, vtkLightCollection* lights = nullptr,
+    vtkFieldData* tracedLights = nullptr);
 
   /**
    * What both tracers check before tracing: a non-negative seed and a valid
@@ -116,6 +121,13 @@ public:
    * `BrumeLightConeAngle` (spot half-angle, degrees).
    */
   static std::string ConvertFieldLights(vtkFieldData* fieldData, brume::Scene& scene);
+
+  /**
+   * Appends `lights` to `fieldData` in the schema ConvertFieldLights reads:
+   * how a tracer's output tells the reconstruction about the vtkLights it
+   * was given (a directional light's beam is made again to cover the scene).
+   */
+  static void AppendFieldLights(const std::vector<brume::Light>& lights, vtkFieldData* fieldData);
 };
 
 #endif

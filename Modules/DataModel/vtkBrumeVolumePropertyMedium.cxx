@@ -18,6 +18,7 @@
 #include "brume/TransferFunction.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -47,29 +48,29 @@ void SetString(vtkFieldData* fd, const char* name, const std::string& value)
 
 // The function's (scalar, opacity) points: its nodes when it is piecewise
 // linear (midpoints 0.5, sharpness 0), else `samples` samples over its range.
-std::vector<brume::OpacityTransferFunction::Node> Nodes(vtkPiecewiseFunction* f, int samples)
+std::vector<std::array<double, 2>> Points(vtkPiecewiseFunction* f, int samples)
 {
-  std::vector<brume::OpacityTransferFunction::Node> nodes;
+  std::vector<std::array<double, 2>> points;
   bool linear = true;
   double node[4];
   for (int i = 0; i < f->GetSize(); ++i)
   {
     f->GetNodeValue(i, node);
     linear = linear && node[2] == 0.5 && node[3] == 0.0;
-    nodes.push_back({ static_cast<float>(node[0]), static_cast<float>(node[1]) });
+    points.push_back({ node[0], node[1] });
   }
-  if (linear || nodes.size() < 2)
+  if (linear || points.size() < 2)
   {
-    return nodes;
+    return points;
   }
-  const double lo = nodes.front().Scalar, hi = nodes.back().Scalar;
-  nodes.clear();
+  const double lo = points.front()[0], hi = points.back()[0];
+  points.clear();
   for (int i = 0; i < samples; ++i)
   {
     const double s = lo + (hi - lo) * i / (samples - 1);
-    nodes.push_back({ static_cast<float>(s), static_cast<float>(f->GetValue(s)) });
+    points.push_back({ s, f->GetValue(s) });
   }
-  return nodes;
+  return points;
 }
 }
 
@@ -143,8 +144,12 @@ int vtkBrumeVolumePropertyMedium::RequestData(
     }
   }
   vtkPiecewiseFunction* opacity = this->VolumeProperty->GetScalarOpacity(this->Component);
-  const std::vector<brume::OpacityTransferFunction::Node> nodes =
-    Nodes(opacity, this->SampledFunctionPoints);
+  const std::vector<std::array<double, 2>> points = Points(opacity, this->SampledFunctionPoints);
+  std::vector<brume::OpacityTransferFunction::Node> nodes;
+  for (const auto& p : points)
+  {
+    nodes.push_back({ static_cast<float>(p[0]), static_cast<float>(p[1]) });
+  }
   const double unit = this->VolumeProperty->GetScalarOpacityUnitDistance(this->Component);
   const std::string error = brume::OpacityTransferFunction::Validate(nodes, unit);
   if (!error.empty())
@@ -170,16 +175,15 @@ int vtkBrumeVolumePropertyMedium::RequestData(
   SetString(fd, "BrumeInterpolation",
     this->VolumeProperty->GetInterpolationType() == VTK_NEAREST_INTERPOLATION ? "nearest"
                                                                               : "linear");
-  vtkNew<vtkDoubleArray> points;
-  points->SetName("BrumeScalarOpacity");
-  points->SetNumberOfComponents(2);
-  for (const auto& n : nodes)
+  vtkNew<vtkDoubleArray> function;
+  function->SetName("BrumeScalarOpacity");
+  function->SetNumberOfComponents(2);
+  for (const auto& p : points)
   {
-    const double tuple[2] = { n.Scalar, n.Opacity };
-    points->InsertNextTuple(tuple);
+    function->InsertNextTuple(p.data());
   }
   fd->RemoveArray("BrumeScalarOpacity");
-  fd->AddArray(points);
+  fd->AddArray(function);
   fd->RemoveArray("BrumeDensityScale");
   fd->RemoveArray("BrumeVDBFile");
   output->SetFieldData(fd);

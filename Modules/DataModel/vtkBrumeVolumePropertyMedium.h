@@ -82,6 +82,11 @@ protected:
   vtkBrumeVolumePropertyMedium();
   ~vtkBrumeVolumePropertyMedium() override;
 
+  // The output's extent and spacing are the input's (the executive's copy).
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override
+  {
+    return 1;
+  }
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
 

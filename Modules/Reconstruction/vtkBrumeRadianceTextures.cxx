@@ -79,8 +79,9 @@ bool vtkBrumeRadianceTextures::Build(const vtkBrumeReconstructionRequest& reques
   const vtkBrumeReconstructionSettings& settings, vtkBrumeReconstructionWork& work)
 {
   this->SceneCollection = request.Scene;
-  const std::string error =
-    vtkBrumeSceneConversion::ToScene(request.Scene, this->Scene, &this->Sources);
+  // The scene's lights and those its tracer was given (the hits name them).
+  const std::string error = vtkBrumeSceneConversion::ToScene(request.Scene, this->Scene,
+    &this->Sources, nullptr, request.HitData ? request.HitData->GetFieldData() : nullptr);
   brume::ObjectHits groups;
   const std::string groupError = error.empty()
     ? brume::GroupHitsByObject(

@@ -382,6 +382,15 @@ int vtkBrumeLightTracer::RequestData(
   {
     return 0;
   }
+  // The switched-on vtkLights come last among the scene's lights; the
+  // output names them for the reconstruction, which sees only the scene.
+  std::size_t given = 0;
+  this->Lights->InitTraversal();
+  while (vtkLight* light = this->Lights->GetNextItem())
+  {
+    given += light->GetSwitch() ? 1 : 0;
+  }
+  const std::vector<brume::Light> givenLights(scene.Lights.end() - given, scene.Lights.end());
   const brume::RayCaster caster(scene);
   if (!caster.GetError().empty())
   {
@@ -525,6 +534,7 @@ int vtkBrumeLightTracer::RequestData(
   AddTuple(output, "EscapedFlux", sum.Escaped);
   AddTuple(output, "TruncatedFlux", sum.Truncated);
   AddTuple(output, "EstimatorNetFlux", sum.EstimatorNet);
+  vtkBrumeSceneConversion::AppendFieldLights(givenLights, output->GetFieldData());
   this->UpdateProgress(1.0);
   return 1;
 }

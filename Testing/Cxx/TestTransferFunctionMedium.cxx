@@ -17,6 +17,7 @@
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkLight.h"
 #include "vtkNew.h"
 #include "vtkPartitionedDataSetCollection.h"
 #include "vtkPiecewiseFunction.h"
@@ -92,11 +93,17 @@ vtkSmartPointer<vtkPolyData> Ground()
   return ground;
 }
 
-vtkSmartPointer<vtkPartitionedDataSetCollection> Scene(vtkImageData* medium)
+// The ground and the medium, lit by a point light in the scene's field
+// data (or by none, for a tracer given a vtkLight).
+vtkSmartPointer<vtkPartitionedDataSetCollection> Scene(vtkImageData* medium, bool lit = true)
 {
   auto scene = vtkSmartPointer<vtkPartitionedDataSetCollection>::New();
   vtkBrumeSceneConversion::AddObject(scene, Ground(), "ground");
   vtkBrumeSceneConversion::AddObject(scene, medium, "field");
+  if (!lit)
+  {
+    return scene;
+  }
   const char* type = "point";
   vtkNew<vtkStringArray> types;
   types->SetName("BrumeLightType");
@@ -112,10 +119,15 @@ vtkSmartPointer<vtkPartitionedDataSetCollection> Scene(vtkImageData* medium)
   return scene;
 }
 
-vtkSmartPointer<vtkImageData> Render(vtkPartitionedDataSetCollection* scene)
+vtkSmartPointer<vtkImageData> Render(
+  vtkPartitionedDataSetCollection* scene, vtkLight* light = nullptr)
 {
   vtkNew<vtkBrumeLightTracer> tracer;
   tracer->SetInputData(scene);
+  if (light)
+  {
+    tracer->AddLight(light);
+  }
   tracer->SetNumberOfParticles(40000);
   tracer->SetSeed(5);
   vtkNew<vtkBrumeRadianceReconstruction> reconstruction;
@@ -254,6 +266,29 @@ void TestClassification()
     std::abs(m.SigmaTAt(brume::Vec3(0.02f, -0.07f, 0.13f))[0] + std::log1p(-alpha) / 0.25) < 1e-4,
     "nearest: the nearest point's scalar");
 
+  // A function with midpoints off 0.5 is not piecewise linear: sampled at
+  // SampledFunctionPoints points, linear in between.
+  vtkNew<vtkPiecewiseFunction> curved;
+  curved->AddPoint(0, 0, 0.2, 0.0);
+  curved->AddPoint(100, 0.8, 0.5, 0.0);
+  property->SetScalarOpacity(curved);
+  Check(filter->GetExecutive()->Update() == 1, "a curved function runs");
+  Check(filter->GetOutput()->GetFieldData()->GetArray("BrumeScalarOpacity")->GetNumberOfTuples() ==
+      filter->GetSampledFunctionPoints(),
+    "a curved function is sampled");
+  brume::Medium curvedMedium;
+  Check(ConvertMedium(filter->GetOutput(), curvedMedium).empty(), "the curved function converts");
+  double sample[3] = { 0.1, 0.0, 0.0 };
+  const vtkIdType at = filter->GetOutput()->FindPoint(sample);
+  double centre[3];
+  filter->GetOutput()->GetPoint(at, centre);
+  const double sv = s->GetTuple1(at);
+  Check(std::abs(curvedMedium.SigmaTAt(brume::Vec3(static_cast<float>(centre[0]),
+                   static_cast<float>(centre[1]), static_cast<float>(centre[2])))[0] +
+          std::log1p(-curved->GetValue(sv)) / 0.25) < 1e-3,
+    "the sampled curve's extinction at a grid point");
+  property->SetScalarOpacity(opacity);
+
   // Component 1 of the two-component array.
   property->SetInterpolationTypeToLinear();
   filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "pair");
@@ -323,6 +358,33 @@ void TestConstantFunctionIsTheConstantDensity()
   Check(differing == 0,
     "constant function against constant density: " + std::to_string(differing) +
       " channel values differ");
+
+  // The same point light given to the tracer as a vtkLight: the hits name
+  // it, so the reconstruction lights the texels with it too.
+  vtkNew<vtkLight> light;
+  light->SetPositional(true);
+  light->SetConeAngle(180);
+  light->SetPosition(0.8, 1.5, 0.9);
+  light->SetFocalPoint(0.8, 0.5, 0.9);
+  light->SetIntensity(4);
+  light->SetDiffuseColor(1, 1, 1);
+  vtkSmartPointer<vtkImageData> given = Render(Scene(filter->GetOutput(), false), light);
+  Check(given != nullptr, "a scene lit by a vtkLight given to the tracer reconstructs");
+  if (given)
+  {
+    vtkDataArray* g = given->GetPointData()->GetScalars();
+    differing = 0;
+    for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        differing += a->GetComponent(i, c) != g->GetComponent(i, c) ? 1 : 0;
+      }
+    }
+    Check(differing == 0,
+      "a vtkLight given to the tracer against the same light in the scene: " +
+        std::to_string(differing) + " channel values differ");
+  }
 }
 
 void TestBadInput()
