@@ -355,8 +355,8 @@ bool vtkBrumeSceneFileParser::ParseMedium(const json& m, std::size_t i)
     return false;
   }
   double sa[3], ss[3], g = 0, scale = 1;
-  const bool classified =
-    m.value("density", json::object()).is_object() && m["density"].contains("transfer_function");
+  const bool classified = m.contains("density") && m["density"].is_object() &&
+    m["density"].contains("transfer_function");
   if (m.contains("albedo"))
   {
     // A transfer function's extinction split by one albedo colour.
