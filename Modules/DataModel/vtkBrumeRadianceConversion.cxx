@@ -18,6 +18,7 @@
 
 #include "brume/SparseTexture.h"
 #include "brume/SphericalHarmonics.h"
+#include "brume/TransferFunction.h"
 
 #include <algorithm>
 #include <string>
@@ -158,7 +159,12 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromSurface(
 vtkSmartPointer<vtkImageData> vtkBrumeRadianceConversion::NativeExtinction(
   const brume::ObjectRadiance& radiance, const brume::Medium& medium)
 {
-  const brume::BrickedGrid& density = radiance.GetNativeDensity();
+  // A classified density gives its scalars and the function that
+  // classifies them (the mapper classifies after interpolation, as the
+  // tracer does); another gives sigma_t per unit density.
+  const brume::OpacityTransferFunction* function = radiance.GetClassification();
+  const brume::BrickedGrid& density =
+    function ? radiance.GetNativeScalars() : radiance.GetNativeDensity();
   if (density.Empty())
   {
     return nullptr;
@@ -196,8 +202,39 @@ vtkSmartPointer<vtkImageData> vtkBrumeRadianceConversion::NativeExtinction(
   const brume::Vec3 sigmaT = medium.SigmaT();
   scale->InsertNextTuple3(sigmaT.x, sigmaT.y, sigmaT.z);
   fd->AddArray(scale);
+  if (function)
+  {
+    // The function's extinction at TransferFunctionSamples scalars evenly
+    // over its points' range (its end values beyond).
+    const float lo = function->GetNodes().front().Scalar;
+    const float hi = std::max(function->GetNodes().back().Scalar, lo + 1.f);
+    vtkNew<vtkFloatArray> table;
+    table->SetName("ExtinctionTransferFunction");
+    table->SetNumberOfValues(TransferFunctionSamples);
+    for (int i = 0; i < TransferFunctionSamples; ++i)
+    {
+      const float t = static_cast<float>(i) / static_cast<float>(TransferFunctionSamples - 1);
+      table->SetValue(i, function->Extinction(lo + (hi - lo) * t));
+    }
+    fd->AddArray(table);
+    vtkNew<vtkDoubleArray> range;
+    range->SetName("ExtinctionTransferRange");
+    range->SetNumberOfComponents(2);
+    range->InsertNextTuple2(lo, hi);
+    fd->AddArray(range);
+  }
   AddString(fd, "BrumeObjectKind", "medium extinction");
   return extinction;
+}
+
+double vtkBrumeRadianceConversion::Classify(vtkDataArray* table, const double range[2], double s)
+{
+  const vtkIdType n = table->GetNumberOfTuples();
+  const double x =
+    std::clamp((s - range[0]) / (range[1] - range[0]), 0.0, 1.0) * static_cast<double>(n - 1);
+  const vtkIdType i = std::min(static_cast<vtkIdType>(x), n - 2);
+  const double f = x - static_cast<double>(i);
+  return table->GetTuple1(i) * (1.0 - f) + table->GetTuple1(i + 1) * f;
 }
 
 vtkSmartPointer<vtkImageData> vtkBrumeRadianceConversion::DenseExtinction(vtkImageData* sparse)
@@ -210,6 +247,14 @@ vtkSmartPointer<vtkImageData> vtkBrumeRadianceConversion::DenseExtinction(vtkIma
   if (!slots || !values || !samples || !scale || scale->GetNumberOfComponents() != 3)
   {
     return nullptr;
+  }
+  // Classified scalars: sigma_t of each cell's scalar (at the centres).
+  vtkDataArray* table = fd->GetArray("ExtinctionTransferFunction");
+  vtkDataArray* rangeArray = fd->GetArray("ExtinctionTransferRange");
+  double range[2] = { 0.0, 1.0 };
+  if (table && rangeArray)
+  {
+    rangeArray->GetTuple(0, range);
   }
   int pointDims[3];
   sparse->GetDimensions(pointDims);
@@ -244,9 +289,13 @@ vtkSmartPointer<vtkImageData> vtkBrumeRadianceConversion::DenseExtinction(vtkIma
         const vtkIdType brick =
           (static_cast<vtkIdType>(b[2]) * bricks[1] + b[1]) * bricks[0] + b[0];
         const vtkIdType slot = static_cast<vtkIdType>(slots->GetTuple1(brick));
-        const double v = slot < 0 ? values->GetTuple1(brick)
-                                  : samples->GetTuple1(slot * B * B * B +
-                                      ((k - S * b[2]) * B + (j - S * b[1])) * B + (i - S * b[0]));
+        double v = slot < 0 ? values->GetTuple1(brick)
+                            : samples->GetTuple1(slot * B * B * B +
+                                ((k - S * b[2]) * B + (j - S * b[1])) * B + (i - S * b[0]));
+        if (table && rangeArray)
+        {
+          v = Classify(table, range, v);
+        }
         const vtkIdType cell = (static_cast<vtkIdType>(k) * dims[1] + j) * dims[0] + i;
         for (int c = 0; c < 3; ++c)
         {

@@ -53,6 +53,7 @@
 #include "brume/Reconstruction.h" // For brume::ObjectRadiance
 #include "brume/SparseTexture.h"  // For SourceBricks
 
+class vtkDataArray;
 class vtkImageData;
 class vtkPartitionedDataSet;
 class vtkPolyData;
@@ -108,6 +109,18 @@ public:
    * in that form.
    */
   static vtkSmartPointer<vtkImageData> DenseExtinction(vtkImageData* sparse);
+
+  /**
+   * A classified medium's extinction (brume::ClassifiedGridDensity) is given
+   * as its scalars, in the same bricks, with `ExtinctionTransferFunction`
+   * (TransferFunctionSamples values: the function's extinction at scalars
+   * evenly spaced over `ExtinctionTransferRange`, its first and last
+   * points' scalars; the end values beyond), which the slice mapper
+   * applies after interpolating the scalars. Classify() is that lookup
+   * (linear between the table's samples).
+   */
+  static constexpr int TransferFunctionSamples = 4096;
+  static double Classify(vtkDataArray* table, const double range[2], double scalar);
 };
 
 #endif

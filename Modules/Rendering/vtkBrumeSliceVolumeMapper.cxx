@@ -235,6 +235,31 @@ std::string vtkBrumeSliceVolumeMapper::ValidateBricks(
            "'ExtinctionBrickValues' (one value per brick), 'ExtinctionBrickSamples' (" +
       std::to_string(brickCells) + " values per slot) and 'ExtinctionScale' (3 components)";
   }
+  vtkDataArray* table = fd->GetArray("ExtinctionTransferFunction");
+  vtkDataArray* range = fd->GetArray("ExtinctionTransferRange");
+  if (table || range)
+  {
+    if (!table || !range || table->GetNumberOfComponents() != 1 || table->GetNumberOfTuples() < 2 ||
+      range->GetNumberOfComponents() != 2 || range->GetNumberOfTuples() < 1)
+    {
+      return "classified scalars need 'ExtinctionTransferFunction' (at least two values) and "
+             "'ExtinctionTransferRange' (2 components)";
+    }
+    const double lo = range->GetComponent(0, 0), hi = range->GetComponent(0, 1);
+    if (!std::isfinite(lo) || !std::isfinite(hi) || !(hi > lo))
+    {
+      return "'ExtinctionTransferRange' must be two finite scalars, the first below the second";
+    }
+    for (vtkIdType i = 0; i < table->GetNumberOfTuples(); ++i)
+    {
+      const double v = table->GetTuple1(i);
+      if (!(v >= 0.0) || !std::isfinite(v))
+      {
+        return "'ExtinctionTransferFunction' value " + std::to_string(i) +
+          " is negative or not finite";
+      }
+    }
+  }
   const vtkIdType slotCount = samples->GetNumberOfTuples() / brickCells;
   for (vtkIdType b = 0; b < bricks; ++b)
   {

@@ -198,7 +198,14 @@ public:
    * - `ExtinctionBrickSamples` (1 component): ExtinctionBrickSize^3 values
    *   per slot, x fastest within a brick;
    * - `ExtinctionScale` (3 components): the extinction per unit of the
-   *   values, per colour channel (a density's sigma_t).
+   *   values, per colour channel (a density's sigma_t);
+   * - optionally `ExtinctionTransferFunction` (n >= 2 values) and
+   *   `ExtinctionTransferRange` (2 components): the values are scalars,
+   *   classified after interpolation by the table (n samples evenly over
+   *   the range, linear between them, its end values beyond), as the light
+   *   tracer classifies a transfer-function medium
+   *   (vtkBrumeRadianceConversion::NativeExtinction); the table's value
+   *   times `ExtinctionScale` is sigma_t.
    * The GPU holds the same: the slots in one 3D atlas texture and the brick
    * table, so memory follows the bricks where the medium varies, not its box.
    */

@@ -100,6 +100,7 @@ void vtkBrumeOpenGLSliceVolumeMapper::ReleaseGraphicsResources(vtkWindow* window
   this->Impl->Source->ReleaseGraphicsResources(window);
   this->Impl->Extinction->ReleaseGraphicsResources(window);
   this->Impl->BrickTable->ReleaseGraphicsResources(window);
+  this->Impl->TransferTable->ReleaseGraphicsResources(window);
   for (auto& texture : this->Impl->Coefficients)
   {
     texture->ReleaseGraphicsResources(window);
@@ -551,6 +552,7 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawRuns(vtkRenderer* ren, bool reduced)
     vtkBrumeSliceVolumeShader::Kind kind;
     kind.Order = owner.FragmentOrder;
     kind.SourceIsRadiance = owner.SourceIsRadiance;
+    kind.Classified = owner.Bricked && owner.Classified;
     kind.Extinction = owner.Bricked ? vtkBrumeSliceVolumeShader::ExtinctionBricks
       : owner.ConstantExtinction    ? vtkBrumeSliceVolumeShader::ExtinctionConstant
                                     : vtkBrumeSliceVolumeShader::ExtinctionTexture;
@@ -596,6 +598,13 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawRuns(vtkRenderer* ren, bool reduced)
       program->SetUniform3f("brickCount", owner.BrickCount);
       program->SetUniform3f("atlasSize", owner.AtlasSize);
       program->SetUniform3f("brickScale", owner.BrickScale);
+      if (kind.Classified)
+      {
+        owner.TransferTable->Activate();
+        program->SetUniformi("transferTexture", owner.TransferTable->GetTextureUnit());
+        program->SetUniform2f("transferRange", owner.TransferRange);
+        program->SetUniformf("transferSamples", owner.TransferSamples);
+      }
     }
     else if (kind.Extinction == vtkBrumeSliceVolumeShader::ExtinctionConstant)
     {
@@ -621,6 +630,10 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawRuns(vtkRenderer* ren, bool reduced)
     if (owner.Bricked)
     {
       owner.BrickTable->Deactivate();
+    }
+    if (kind.Classified)
+    {
+      owner.TransferTable->Deactivate();
     }
     if (owner.FragmentOrder > 0)
     {

@@ -22,6 +22,7 @@
 #include <vector> // For slices
 
 class vtkCamera;
+class vtkFieldData;
 class vtkImageData;
 class vtkInformationIntegerKey;
 class vtkMatrix4x4;
@@ -68,6 +69,7 @@ private:
     vtkImageData* grid, const int dims[3], vtkOpenGLRenderWindow* renWin, int filter);
   bool UploadBricks(
     vtkImageData* grid, const int dims[3], vtkOpenGLRenderWindow* renWin, int filter);
+  bool UploadTransferFunction(vtkFieldData* fd, vtkOpenGLRenderWindow* renWin, double& largest);
   bool UploadDirectional(vtkImageData* input, vtkOpenGLRenderWindow* renWin, const int dims[3],
     int filter, const std::vector<float>& extinction);
   bool EvaluateTowardEye(vtkOpenGLRenderWindow* renWin, const int dims[3], int interpolation);

@@ -49,6 +49,12 @@ struct vtkBrumeOpenGLSliceVolumeMapper::Internals
   float BrickCount[3] = { 1.f, 1.f, 1.f };
   float AtlasSize[3] = { 1.f, 1.f, 1.f };
   float BrickScale[3] = { 1.f, 1.f, 1.f };
+  // Bricks of scalars a transfer function classifies: its extinction in one
+  // row (linear filtering), over TransferRange, TransferSamples wide.
+  bool Classified = false;
+  vtkNew<vtkTextureObject> TransferTable;
+  float TransferRange[2] = { 0.f, 1.f };
+  float TransferSamples = 2.f;
   // The largest sigma_t of the extinction grid of its own (any channel),
   // which bounds the slices' spacing (CutSlices).
   double MaxExtinction = 0.0;

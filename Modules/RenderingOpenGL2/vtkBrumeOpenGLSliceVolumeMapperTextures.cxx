@@ -332,6 +332,10 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   std::vector<float> packed(static_cast<std::size_t>(texels[0]) * texels[1] * texels[2], 0.f);
   double largest = 0.0; // the largest value, stored or constant, before the scale
   auto invalid = [](double v) { return !(v >= 0.0) || !std::isfinite(v); };
+  // Scalars a transfer function classifies may be negative; its table bounds sigma_t.
+  vtkDataArray* transfer = fd->GetArray("ExtinctionTransferFunction");
+  impl.Classified = transfer != nullptr;
+  auto invalidSample = [&](double v) { return impl.Classified ? !std::isfinite(v) : invalid(v); };
   for (vtkIdType slot = 0; slot < slotCount; ++slot)
   {
     const int sx = static_cast<int>(slot % atlas[0]),
@@ -342,10 +346,10 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
         for (int i = 0; i < B; ++i)
         {
           const double v = samples->GetTuple1(slot * BrickCells + (k * B + j) * B + i);
-          if (invalid(v))
+          if (invalidSample(v))
           {
             vtkErrorMacro("Cannot draw this medium: its extinction must be finite and "
-                          "non-negative (brick slot "
+                          "non-negative, its scalars finite (brick slot "
               << slot << " of the extinction grid).");
             return false;
           }
@@ -365,7 +369,7 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
     if (slot < 0)
     {
       const double v = values->GetTuple1(b);
-      if (invalid(v))
+      if (invalidSample(v))
       {
         vtkErrorMacro("Cannot draw this medium: its extinction must be finite and non-negative "
                       "(brick "
@@ -397,10 +401,49 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   }
   impl.ExtinctionGrey =
     impl.BrickScale[0] == impl.BrickScale[1] && impl.BrickScale[1] == impl.BrickScale[2];
+  if (impl.Classified && !this->UploadTransferFunction(fd, renWin, largest))
+  {
+    return false;
+  }
   impl.MaxExtinction =
     largest * std::max({ impl.BrickScale[0], impl.BrickScale[1], impl.BrickScale[2] });
   return Upload3D(impl.Extinction, renWin, texels, 1, filter, packed.data()) &&
     Upload3D(impl.BrickTable, renWin, brickDims, 4, vtkTextureObject::Nearest, table.data());
+}
+
+bool vtkBrumeOpenGLSliceVolumeMapper::UploadTransferFunction(
+  vtkFieldData* fd, vtkOpenGLRenderWindow* renWin, double& largest)
+{
+  // One row of the table (resampled to the GPU's widest texture if need
+  // be), filtered linearly; its largest value bounds sigma_t.
+  Internals& impl = *this->Impl;
+  vtkDataArray* transfer = fd->GetArray("ExtinctionTransferFunction");
+  vtkDataArray* range = fd->GetArray("ExtinctionTransferRange");
+  int maxWidth = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxWidth);
+  const vtkIdType n = transfer->GetNumberOfTuples();
+  const int width = static_cast<int>(std::min<vtkIdType>(n, std::max(2, maxWidth)));
+  std::vector<float> row(static_cast<std::size_t>(width));
+  largest = 0.0;
+  for (int i = 0; i < width; ++i)
+  {
+    const double x = static_cast<double>(i) * static_cast<double>(n - 1) / (width - 1);
+    const vtkIdType at = std::min(static_cast<vtkIdType>(x), n - 2);
+    const double f = x - static_cast<double>(at);
+    row[i] =
+      static_cast<float>(transfer->GetTuple1(at) * (1.0 - f) + transfer->GetTuple1(at + 1) * f);
+    largest = std::max(largest, static_cast<double>(row[i]));
+  }
+  impl.TransferRange[0] = static_cast<float>(range->GetComponent(0, 0));
+  impl.TransferRange[1] = static_cast<float>(range->GetComponent(0, 1));
+  impl.TransferSamples = static_cast<float>(width);
+  vtkTextureObject* texture = impl.TransferTable;
+  texture->SetContext(renWin);
+  texture->SetWrapS(vtkTextureObject::ClampToEdge);
+  texture->SetWrapT(vtkTextureObject::ClampToEdge);
+  texture->SetMinificationFilter(vtkTextureObject::Linear);
+  texture->SetMagnificationFilter(vtkTextureObject::Linear);
+  return texture->Create2DFromRaw(static_cast<unsigned int>(width), 1, 1, VTK_FLOAT, row.data());
 }
 
 bool vtkBrumeOpenGLSliceVolumeMapper::UploadDirectional(vtkImageData* input,

@@ -26,10 +26,11 @@ public:
     int Order = 0; ///< directional radiance's order (0: none)
     ExtinctionRead Extinction = ExtinctionTexture;
     bool SourceIsRadiance = false; ///< the source texture holds S, not J
+    bool Classified = false;       ///< the bricks hold scalars a transfer function classifies
     bool operator==(const Kind& other) const
     {
       return this->Order == other.Order && this->Extinction == other.Extinction &&
-        this->SourceIsRadiance == other.SourceIsRadiance;
+        this->SourceIsRadiance == other.SourceIsRadiance && this->Classified == other.Classified;
     }
   };
 

@@ -6,12 +6,14 @@
 // functions, arrays and components fail with a clear error.
 #include "vtkBrumeFloatImageCapture.h"
 #include "vtkBrumeLightTracer.h"
+#include "vtkBrumeRadianceConversion.h"
 #include "vtkBrumeRadianceReconstruction.h"
 #include "vtkBrumeSceneActors.h"
 #include "vtkBrumeSceneConversion.h"
 #include "vtkBrumeVolumePropertyMedium.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
+#include "vtkCellData.h"
 #include "vtkDoubleArray.h"
 #include "vtkExecutive.h"
 #include "vtkFieldData.h"
@@ -19,6 +21,7 @@
 #include "vtkImageData.h"
 #include "vtkLight.h"
 #include "vtkNew.h"
+#include "vtkPartitionedDataSet.h"
 #include "vtkPartitionedDataSetCollection.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
@@ -288,6 +291,49 @@ void TestClassification()
           std::log1p(-curved->GetValue(sv)) / 0.25) < 1e-3,
     "the sampled curve's extinction at a grid point");
   property->SetScalarOpacity(opacity);
+
+  // The reconstruction hands the slice mapper the scalars and the
+  // function's table (it classifies after interpolating); expanded, each
+  // native cell (centred on a point) holds the function's extinction of
+  // that point's scalar.
+  {
+    Check(filter->GetExecutive()->Update() == 1, "the step function again");
+    vtkNew<vtkBrumeLightTracer> tracer;
+    vtkSmartPointer<vtkPartitionedDataSetCollection> scene = Scene(filter->GetOutput());
+    tracer->SetInputData(scene);
+    tracer->SetNumberOfParticles(2000);
+    vtkNew<vtkBrumeRadianceReconstruction> reconstruction;
+    reconstruction->SetInputDataObject(0, scene);
+    reconstruction->SetInputConnection(1, tracer->GetOutputPort());
+    Check(reconstruction->GetExecutive()->Update() == 1, "the classified medium reconstructs");
+    vtkPartitionedDataSet* medium = reconstruction->GetOutput()->GetPartitionedDataSet(1);
+    auto* native = medium && medium->GetNumberOfPartitions() > 1
+      ? vtkImageData::SafeDownCast(medium->GetPartition(1))
+      : nullptr;
+    Check(native && native->GetFieldData()->GetArray("ExtinctionTransferFunction") &&
+        native->GetFieldData()->GetArray("ExtinctionTransferRange"),
+      "partition 1 holds the transfer function's table");
+    vtkSmartPointer<vtkImageData> dense =
+      native ? vtkBrumeRadianceConversion::DenseExtinction(native) : nullptr;
+    Check(dense && dense->GetNumberOfCells() == image->GetNumberOfPoints(),
+      "one native cell per point of the field");
+    int compared = 0;
+    for (vtkIdType point = 0; dense && point < image->GetNumberOfPoints(); point += 37)
+    {
+      const double scalar = s->GetTuple1(point);
+      if (std::abs(scalar - 40.0) < 0.1)
+      {
+        continue; // the step: one table sample wide
+      }
+      const double expected = -std::log1p(-opacity->GetValue(scalar)) / 0.25;
+      const double got = dense->GetCellData()->GetArray("Extinction")->GetComponent(point, 0);
+      Check(std::abs(got - expected) <= 1e-4 * expected + 1e-6,
+        "native cell " + std::to_string(point) + ": " + std::to_string(got) + " against " +
+          std::to_string(expected));
+      ++compared;
+    }
+    Check(compared > 50, "native cells compared");
+  }
 
   // Component 1 of the two-component array.
   property->SetInterpolationTypeToLinear();

@@ -10,7 +10,7 @@ namespace brume
 BrickedGrid BrickedGrid::Sample(const std::array<int, 3>& dims, const Box& box,
   const std::function<float(int, int, int)>& value,
   const std::function<bool(const std::array<int, 3>&, const std::array<int, 3>&)>& zeroOver,
-  const ParallelFor& parallelFor)
+  const ParallelFor& parallelFor, float skipped)
 {
   BrickedGrid grid;
   grid.Dims = dims;
@@ -22,7 +22,7 @@ BrickedGrid BrickedGrid::Sample(const std::array<int, 3>& dims, const Box& box,
   const std::size_t bricks =
     static_cast<std::size_t>(grid.BrickDims[0]) * grid.BrickDims[1] * grid.BrickDims[2];
   grid.Slots.assign(bricks, -1);
-  grid.Constants.assign(bricks, 0.f);
+  grid.Constants.assign(bricks, skipped);
   const std::size_t bx = grid.BrickDims[0], bxy = bx * grid.BrickDims[1];
   auto brickOrigin = [&](std::size_t b)
   {

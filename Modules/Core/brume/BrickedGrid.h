@@ -45,12 +45,14 @@ public:
    * sample of cell (i, j, k) (thread safe); `zeroOver(lower, upper)` may say
    * that every sample of cells lower..upper (inclusive) is 0 without
    * evaluating them (a majorant of 0), so that empty space costs no
-   * evaluation. Deterministic whatever the threads.
+   * evaluation; those bricks hold `skipped` (a grid of scalars that a
+   * transfer function classifies gives one the function takes to 0).
+   * Deterministic whatever the threads.
    */
   static BrickedGrid Sample(const std::array<int, 3>& dims, const Box& box,
     const std::function<float(int, int, int)>& value,
     const std::function<bool(const std::array<int, 3>&, const std::array<int, 3>&)>& zeroOver,
-    const ParallelFor& parallelFor);
+    const ParallelFor& parallelFor, float skipped = 0.f);
 
   bool Empty() const { return this->Slots.empty(); }
   const std::array<int, 3>& GetDims() const { return this->Dims; }

@@ -52,6 +52,7 @@
 
 namespace brume
 {
+class OpacityTransferFunction;
 
 class DirectLight;
 
@@ -492,6 +493,17 @@ public:
    * from this grid. Empty for homogeneous media and surfaces.
    */
   const BrickedGrid& GetNativeDensity() const { return this->NativeDensity; }
+  /**
+   * A density classified by a transfer function (ClassifiedGridDensity)
+   * also keeps its scalars at the same centres, for a renderer that
+   * interpolates them and classifies after, as the tracer does: bricks
+   * whose extinction the majorants make 0 hold a scalar the function takes
+   * to 0. Empty otherwise, and when the native grid is coarsened (a mean
+   * of scalars is not what the function classified). GetClassification()
+   * is then the function, else null.
+   */
+  const BrickedGrid& GetNativeScalars() const { return this->NativeScalars; }
+  const OpacityTransferFunction* GetClassification() const { return this->Classification; }
   const std::array<int, 3>& GetNativeResolution() const { return this->NativeDensity.GetDims(); }
   /// The box of the native grid's cells (DensityField::NativeBox(), grown
   /// to whole coarsened cells): it holds the medium's bounds.
@@ -591,7 +603,9 @@ private:
   SummedAreaTable DensityMoments; // and its first moments (histogram-cell coordinates)
   CentroidMatching Matching;      // media: the regions' centroids
   bool MatchingCentroids = true;
-  BrickedGrid NativeDensity;  // the density's mean per native cell
+  BrickedGrid NativeDensity; // the density's mean per native cell
+  BrickedGrid NativeScalars; // a classified density's scalars at the same centres
+  const OpacityTransferFunction* Classification = nullptr;
   double EmptyIntegral = 0.0; // regions below hold no medium
   const DirectLight* Direct = nullptr;
   std::array<int, 3> DirectDims{ 0, 0, 0 };

@@ -7,6 +7,7 @@
 // come from one grid of the density's means, so that what the texture is
 // divided by is what the renderer draws.
 #include "brume/Reconstruction.h"
+#include "brume/TransferFunction.h"
 
 #include <algorithm>
 #include <cmath>
@@ -201,6 +202,42 @@ void ObjectRadiance::SampleNativeDensity(const ParallelFor& parallelFor)
         MeanDensity(density, bounds, box.lower + corner * cell, cell, samples));
     },
     zeroOver, parallelFor);
+  // A classified density's scalars at the same centres (not coarsened).
+  this->NativeScalars = BrickedGrid();
+  this->Classification = nullptr;
+  const auto* classified = dynamic_cast<const ClassifiedGridDensity*>(&density);
+  if (classified && factor == 1)
+  {
+    const OpacityTransferFunction& function = classified->GetOpacity();
+    // Bricks the majorants leave out hold a scalar the function takes to 0
+    // (a node of opacity 0; with none, no brick is left out).
+    float nothing = function.GetNodes().front().Scalar;
+    for (const auto& node : function.GetNodes())
+    {
+      if (node.Opacity == 0.f)
+      {
+        nothing = node.Scalar;
+        break;
+      }
+    }
+    const GridDensity& scalars = classified->GetScalars();
+    this->NativeScalars = BrickedGrid::Sample(
+      dims, box,
+      [&](int i, int j, int k)
+      {
+        // The centre MeanDensity samples, on the bounds' faces beyond them.
+        const Vec3 centre(
+          static_cast<float>(i) + 0.5f, static_cast<float>(j) + 0.5f, static_cast<float>(k) + 0.5f);
+        Vec3 p = box.lower + cell * centre;
+        for (int a = 0; a < 3; ++a)
+        {
+          p[a] = std::clamp(p[a], bounds.lower[a], bounds.upper[a]);
+        }
+        return scalars.Evaluate(p);
+      },
+      zeroOver, parallelFor, nothing);
+    this->Classification = &function;
+  }
 }
 
 void ObjectRadiance::BuildDensityTable()

@@ -36,7 +36,26 @@ uniform vec3 gridCells;
 uniform vec3 brickCount;
 uniform vec3 atlasSize;
 uniform vec3 brickScale;             // sigma_t per unit of the grid's values
-#elif BRUME_EXTINCTION == 2
+#endif
+#if BRUME_EXTINCTION == 1 && BRUME_CLASSIFIED
+// The bricks hold scalars: a transfer function's extinction, sampled evenly
+// over transferRange in one row, classifies them after interpolation, as the
+// light tracer does (vtkBrumeSliceVolumeMapper::SetExtinctionData).
+uniform sampler2D transferTexture;
+uniform vec2 transferRange;
+uniform float transferSamples;
+float classify(float s)
+{
+  float x = clamp((s - transferRange.x) / (transferRange.y - transferRange.x), 0.0, 1.0);
+  return texture(transferTexture, vec2((x * (transferSamples - 1.0) + 0.5) / transferSamples, 0.5)).r;
+}
+#else
+float classify(float s)
+{
+  return s;
+}
+#endif
+#if BRUME_EXTINCTION == 2
 uniform vec3 constantExtinction;     // sigma_t of a homogeneous medium
 #endif
 
@@ -52,10 +71,10 @@ vec3 extinctionAt(vec3 t)
   vec4 entry = texelFetch(brickTable, ivec3(brick), 0);
   if (entry.w < 0.0)
   {
-    return entry.x * brickScale;
+    return classify(entry.x) * brickScale;
   }
   vec3 local = min(u - 7.0 * brick, vec3(7.0));
-  return texture(extinctionTexture, (entry.xyz + local + 0.5) / atlasSize).r * brickScale;
+  return classify(texture(extinctionTexture, (entry.xyz + local + 0.5) / atlasSize).r) * brickScale;
 #else
   return constantExtinction;
 #endif

@@ -2,7 +2,7 @@
 // vtkBrumeSliceVolumeMapper against analytic answers, read back from a float
 // framebuffer: exactness for any slice count, layered and coloured
 // extinction, occlusion by opaque geometry, depth order of overlapping
-// volumes, and bad input.
+// volumes, scalars classified by a transfer function, and bad input.
 #include "vtkActor.h"
 #include "vtkBrumeFloatImageCapture.h"
 #include "vtkBrumeSliceVolumeMapper.h"
@@ -495,9 +495,9 @@ bool ThickSkin()
     const Frame f = Render({ volume }, true);
     const float got = f.At(Size / 2, Size / 2)[0];
     errors[rule] = std::abs(got - expected) / expected;
-    std::cout << "thick skin, " << (rule == 0 ? "automatic spacing" : "half a source cell")
-              << ": " << mapper->GetLastNumberOfSlices() << " slices, " << got << " against "
-              << expected << " (" << 100.0 * errors[rule] << " %)\n";
+    std::cout << "thick skin, " << (rule == 0 ? "automatic spacing" : "half a source cell") << ": "
+              << mapper->GetLastNumberOfSlices() << " slices, " << got << " against " << expected
+              << " (" << 100.0 * errors[rule] << " %)\n";
   }
   if (!(errors[0] <= 0.05))
   {
@@ -512,6 +512,92 @@ bool ThickSkin()
               << 100.0 * errors[1] << " %\n";
     ok = false;
   }
+  return ok;
+}
+
+bool ClassifiedExtinction()
+{
+  // Scalars s_i = i / 7 at the centres of 8 x 4 x 1 cells over the unit
+  // cube (one brick), classified by a two-level step function: opacity 0.2
+  // below s = 9/14, 0.8 from there (per unit distance 1). Classified after
+  // interpolation, sigma_t steps where the interpolated scalar crosses 9/14,
+  // x = 0.125, halfway between two centres; classifying the cells' values
+  // before interpolating would ramp over the cell between them. Each pixel
+  // is S (1 - exp(-sigma_t)) through the cube's depth of 1, its sigma_t the
+  // level on its side of the step (the same step with nearest sampling: the
+  // cells meet at x = 0.125).
+  const double box[6] = { -0.5, 0.5, -0.5, 0.5, -0.5, 0.5 };
+  const double step = 9.0 / 14.0, low = 0.2, high = 0.8;
+  const RGB scale{ 1.5, 0.5, 3.0 };
+  auto grid = vtkSmartPointer<vtkImageData>::New();
+  grid->SetDimensions(9, 5, 2);
+  grid->SetOrigin(box[0], box[2], box[4]);
+  grid->SetSpacing(1.0 / 8.0, 1.0 / 4.0, 1.0);
+  const int B = vtkBrumeSliceVolumeMapper::ExtinctionBrickSize;
+  vtkNew<vtkIntArray> slots;
+  slots->SetName("ExtinctionBrickSlots");
+  slots->InsertNextValue(0);
+  vtkNew<vtkFloatArray> values, samples, table;
+  values->SetName("ExtinctionBrickValues");
+  values->InsertNextValue(0.f);
+  samples->SetName("ExtinctionBrickSamples");
+  for (int k = 0; k < B; ++k)
+    for (int j = 0; j < B; ++j)
+      for (int i = 0; i < B; ++i)
+      {
+        samples->InsertNextValue(static_cast<float>(std::min(i, 7)) / 7.f);
+      }
+  // The function's extinction at 4096 scalars over [0, 1].
+  table->SetName("ExtinctionTransferFunction");
+  const int n = 4096;
+  for (int i = 0; i < n; ++i)
+  {
+    const double s = static_cast<double>(i) / (n - 1);
+    table->InsertNextValue(static_cast<float>(-std::log1p(-(s < step ? low : high))));
+  }
+  vtkNew<vtkDoubleArray> range, perUnit;
+  range->SetName("ExtinctionTransferRange");
+  range->SetNumberOfComponents(2);
+  range->InsertNextTuple2(0.0, 1.0);
+  perUnit->SetName("ExtinctionScale");
+  perUnit->SetNumberOfComponents(3);
+  perUnit->InsertNextTuple(scale.data());
+  for (vtkDataArray* a : { static_cast<vtkDataArray*>(slots), static_cast<vtkDataArray*>(values),
+         static_cast<vtkDataArray*>(samples), static_cast<vtkDataArray*>(table),
+         static_cast<vtkDataArray*>(range), static_cast<vtkDataArray*>(perUnit) })
+  {
+    grid->GetFieldData()->AddArray(a);
+  }
+  const Layer coarse{ { 2.0, 1.0, 0.5 }, { 10.0, 10.0, 10.0 } }; // extinction ignored
+  bool ok = vtkBrumeSliceVolumeMapper::ValidateExtinction(Medium(box, { coarse }), grid).empty();
+  auto level = [&](double alpha)
+  {
+    const double sigma = -std::log1p(-alpha);
+    return Layer{ coarse.Source, { sigma * scale[0], sigma * scale[1], sigma * scale[2] } };
+  };
+  for (bool nearest : { true, false })
+  {
+    auto volume = Volume(Medium(box, { coarse }), 0.0, nearest);
+    vtkBrumeSliceVolumeMapper::SafeDownCast(volume->GetMapper())->SetExtinctionData(grid);
+    const Frame f = Render({ volume }, true);
+    const std::string what = std::string("classified scalars, ") + (nearest ? "nearest" : "linear");
+    for (int i = 0; i < Size; ++i)
+    {
+      const double x = Coordinate(i);
+      if (std::abs(x) > 0.45)
+      {
+        continue;
+      }
+      const RGB expected = Slab(level(x < 0.125 ? low : high), 1.0);
+      ok = Near(f.At(i, Size / 2), expected, 0.01, what + " at x = " + std::to_string(x)) && ok;
+    }
+  }
+  // A table with a negative value, or a range the wrong way round, is refused.
+  table->SetValue(3, -1.f);
+  ok = !vtkBrumeSliceVolumeMapper::ValidateExtinction(Medium(box, { coarse }), grid).empty() && ok;
+  table->SetValue(3, 0.f);
+  range->SetTuple2(0, 1.0, 0.0);
+  ok = !vtkBrumeSliceVolumeMapper::ValidateExtinction(Medium(box, { coarse }), grid).empty() && ok;
   return ok;
 }
 
@@ -530,6 +616,7 @@ int TestSliceVolumeMapper(int, char*[])
   ok = Directional() && ok;
   ok = NativeExtinction() && ok;
   ok = SparseExtinction() && ok;
+  ok = ClassifiedExtinction() && ok;
   ok = ThickSkin() && ok;
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }
