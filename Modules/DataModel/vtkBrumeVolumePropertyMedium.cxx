@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumeVolumePropertyMedium.h"
 
+#include "vtkCharArray.h"
 #include "vtkDataArray.h"
 #include "vtkDataObject.h"
+#include "vtkDataSet.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -12,6 +14,10 @@
 #include "vtkIntArray.h"
 #include "vtkObjectFactory.h"
 #include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkResampleToImage.h"
+#include "vtkSmartPointer.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 #include "vtkVolumeProperty.h"
 
@@ -99,14 +105,51 @@ vtkMTimeType vtkBrumeVolumePropertyMedium::GetMTime()
   return t;
 }
 
+int vtkBrumeVolumePropertyMedium::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet");
+  return 1;
+}
+
+bool vtkBrumeVolumePropertyMedium::ChooseSamplingDimensions(
+  vtkDataSet* dataset, vtkIdType maximumPoints, int dims[3])
+{
+  double b[6];
+  dataset->GetBounds(b);
+  const double extent[3] = { b[1] - b[0], b[3] - b[2], b[5] - b[4] };
+  const vtkIdType cells = dataset->GetNumberOfCells();
+  if (cells < 1 || !(extent[0] > 0.0 && extent[1] > 0.0 && extent[2] > 0.0) ||
+    !std::isfinite(extent[0] * extent[1] * extent[2]))
+  {
+    return false;
+  }
+  // One point per cell: the spacing of `cells` cubes filling the bounds.
+  double spacing = std::cbrt(extent[0] * extent[1] * extent[2] / static_cast<double>(cells));
+  for (;;)
+  {
+    double points = 1.0;
+    for (int a = 0; a < 3; ++a)
+    {
+      dims[a] = static_cast<int>(std::min(
+        std::max(2.0, std::round(extent[a] / spacing) + 1.0), static_cast<double>(VTK_INT_MAX)));
+      points *= dims[a];
+    }
+    if (points <= static_cast<double>(maximumPoints))
+    {
+      return true;
+    }
+    spacing *= 1.05;
+  }
+}
+
 int vtkBrumeVolumePropertyMedium::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  vtkImageData* input = vtkImageData::GetData(inputVector[0]);
+  vtkDataSet* dataset = vtkDataSet::GetData(inputVector[0]);
   vtkImageData* output = vtkImageData::GetData(outputVector);
-  if (!input || !output)
+  if (!dataset || !output)
   {
-    vtkErrorMacro("needs a vtkImageData input");
+    vtkErrorMacro("needs a vtkDataSet input");
     return 0;
   }
   if (!this->VolumeProperty)
@@ -159,9 +202,61 @@ int vtkBrumeVolumePropertyMedium::RequestData(
     return 0;
   }
 
+  // Another dataset is resampled to an image, its arrays probed at the points.
+  vtkSmartPointer<vtkImageData> input = vtkImageData::SafeDownCast(dataset);
+  if (!input)
+  {
+    int dims[3] = { this->SamplingDimensions[0], this->SamplingDimensions[1],
+      this->SamplingDimensions[2] };
+    if ((dims[0] < 2 || dims[1] < 2 || dims[2] < 2) &&
+      !ChooseSamplingDimensions(dataset, this->MaximumSampledPoints, dims))
+    {
+      vtkErrorMacro("cannot resample a " << dataset->GetClassName()
+                                         << " without cells or with flat bounds to an image");
+      return 0;
+    }
+    vtkNew<vtkResampleToImage> resample;
+    resample->SetInputDataObject(dataset);
+    resample->SetSamplingDimensions(dims);
+    resample->Update();
+    input = resample->GetOutput();
+    vtkDataArray* probed = input->GetPointData()->GetArray(scalars->GetName());
+    auto* valid =
+      vtkCharArray::SafeDownCast(input->GetPointData()->GetArray(resample->GetMaskArrayName()));
+    if (!probed || !valid)
+    {
+      vtkErrorMacro(
+        "lost the array '" << scalars->GetName() << "' resampling the " << dataset->GetClassName());
+      return 0;
+    }
+    // Points outside the dataset: a scalar the function takes to 0.
+    auto none = std::find_if(nodes.begin(), nodes.end(),
+      [](const brume::OpacityTransferFunction::Node& n) { return n.Opacity == 0.f; });
+    for (vtkIdType i = 0; i < probed->GetNumberOfTuples(); ++i)
+    {
+      if (!valid->GetValue(i))
+      {
+        for (int c = 0; c < probed->GetNumberOfComponents(); ++c)
+        {
+          probed->SetComponent(i, c, none != nodes.end() ? none->Scalar : 0.0);
+        }
+      }
+    }
+    if (none == nodes.end())
+    {
+      vtkWarningMacro("resampled points outside the "
+        << dataset->GetClassName() << " take the scalar 0, and the function has no opacity 0");
+    }
+    input->GetPointData()->RemoveArray(resample->GetMaskArrayName());
+    int extent[6];
+    input->GetExtent(extent);
+    outputVector->GetInformationObject(0)->Set(
+      vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
+  }
+
   output->ShallowCopy(input);
   vtkNew<vtkFieldData> fd;
-  fd->DeepCopy(input->GetFieldData());
+  fd->DeepCopy(dataset->GetFieldData());
   const double sigmaA[3] = { 1.0 - this->Albedo[0], 1.0 - this->Albedo[1], 1.0 - this->Albedo[2] };
   SetField(fd, "BrumeSigmaA", sigmaA, 3);
   SetField(fd, "BrumeSigmaS", this->Albedo, 3);
@@ -198,4 +293,7 @@ void vtkBrumeVolumePropertyMedium::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Albedo: " << this->Albedo[0] << ", " << this->Albedo[1] << ", "
      << this->Albedo[2] << "\n";
   os << indent << "SampledFunctionPoints: " << this->SampledFunctionPoints << "\n";
+  os << indent << "SamplingDimensions: " << this->SamplingDimensions[0] << ", "
+     << this->SamplingDimensions[1] << ", " << this->SamplingDimensions[2] << "\n";
+  os << indent << "MaximumSampledPoints: " << this->MaximumSampledPoints << "\n";
 }

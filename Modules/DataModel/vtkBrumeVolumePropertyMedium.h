@@ -31,8 +31,14 @@
  * BrumeScalarComponent, BrumeScalarOpacity, BrumeScalarOpacityUnitDistance
  * and BrumeInterpolation, replacing any of those the input had.
  *
- * An OpenVDB grid must be resampled to a vtkImageData first; unstructured
- * grids through vtkResampleToImage.
+ * Any other dataset (an unstructured or curvilinear grid) is resampled to
+ * an image first (vtkResampleToImage) over its bounds, at
+ * SamplingDimensions or, by default, at one point per cell: a spacing of
+ * the cube root of (bounds' volume / cells) along every axis, at least 2
+ * points an axis, grown evenly until the image holds at most
+ * MaximumSampledPoints. Points outside the dataset take a scalar the
+ * function takes to 0 (its first point of opacity 0). An OpenVDB grid must
+ * be resampled to a vtkImageData first.
  *
  * @sa vtkBrumeSceneConversion vtkVolumeProperty vtkPiecewiseFunction
  */
@@ -42,6 +48,7 @@
 #include "vtkBrumeDataModelModule.h" // For export macro
 #include "vtkImageAlgorithm.h"
 
+class vtkDataSet;
 class vtkVolumeProperty;
 
 class VTKBRUMEDATAMODEL_EXPORT vtkBrumeVolumePropertyMedium : public vtkImageAlgorithm
@@ -75,6 +82,24 @@ public:
   vtkGetMacro(SampledFunctionPoints, int);
   ///@}
 
+  ///@{
+  /**
+   * The image a dataset other than vtkImageData is resampled to: its
+   * points along each axis (default 0, 0, 0: chosen from the cells' size,
+   * above), and the most points a chosen image may hold (default 2^24).
+   */
+  vtkSetVector3Macro(SamplingDimensions, int);
+  vtkGetVector3Macro(SamplingDimensions, int);
+  vtkSetClampMacro(MaximumSampledPoints, vtkIdType, 8, VTK_ID_MAX);
+  vtkGetMacro(MaximumSampledPoints, vtkIdType);
+  ///@}
+
+  /**
+   * The points along each axis the default rule gives `dataset` (above);
+   * false when its bounds are empty or flat along an axis.
+   */
+  static bool ChooseSamplingDimensions(vtkDataSet* dataset, vtkIdType maximumPoints, int dims[3]);
+
   /// Also the property's and its functions' modification times.
   vtkMTimeType GetMTime() override;
 
@@ -82,11 +107,13 @@ protected:
   vtkBrumeVolumePropertyMedium();
   ~vtkBrumeVolumePropertyMedium() override;
 
-  // The output's extent and spacing are the input's (the executive's copy).
+  // An image's extent and spacing are the input's (the executive's copy);
+  // a resampled dataset's are known once it is resampled.
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override
   {
     return 1;
   }
+  int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
 
@@ -94,6 +121,8 @@ protected:
   int Component = 0;
   double Albedo[3] = { 0.8, 0.8, 0.8 };
   int SampledFunctionPoints = 1024;
+  int SamplingDimensions[3] = { 0, 0, 0 };
+  vtkIdType MaximumSampledPoints = vtkIdType(1) << 24;
 
 private:
   vtkBrumeVolumePropertyMedium(const vtkBrumeVolumePropertyMedium&) = delete;

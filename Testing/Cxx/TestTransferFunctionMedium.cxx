@@ -31,6 +31,7 @@
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
+#include "vtkStructuredGrid.h"
 #include "vtkVolumeProperty.h"
 
 #include "brume/Scene.h"
@@ -353,6 +354,73 @@ void TestClassification()
     "component 1 of (-s, s) classifies as s");
 }
 
+void TestResampledDataset()
+{
+  // The field as a curvilinear grid (the image's points, moved nowhere): it
+  // is resampled at one point per cell, which here is the image's own
+  // points, so the medium is the image's, scalar for scalar.
+  vtkNew<vtkVolumeProperty> property;
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(20, 0);
+  opacity->AddPoint(90, 0.7);
+  property->SetScalarOpacity(opacity);
+  vtkSmartPointer<vtkImageData> field = Field();
+  vtkNew<vtkStructuredGrid> grid;
+  grid->SetDimensions(field->GetDimensions());
+  vtkNew<vtkPoints> points;
+  for (vtkIdType i = 0; i < field->GetNumberOfPoints(); ++i)
+  {
+    points->InsertNextPoint(field->GetPoint(i));
+  }
+  grid->SetPoints(points);
+  grid->GetPointData()->ShallowCopy(field->GetPointData());
+  int dims[3];
+  Check(vtkBrumeVolumePropertyMedium::ChooseSamplingDimensions(grid, vtkIdType(1) << 24, dims) &&
+      dims[0] == 17 && dims[1] == 17 && dims[2] == 17,
+    "one point per cell: 17^3 points for 16^3 cells");
+  int capped[3];
+  Check(vtkBrumeVolumePropertyMedium::ChooseSamplingDimensions(grid, 1000, capped) &&
+      capped[0] * capped[1] * capped[2] <= 1000 && capped[0] >= 2,
+    "the cap on the sampled points");
+  brume::Medium fromImage, fromGrid;
+  vtkNew<vtkBrumeVolumePropertyMedium> filter;
+  filter->SetVolumeProperty(property);
+  filter->SetInputData(field);
+  Check(
+    filter->GetExecutive()->Update() == 1 && ConvertMedium(filter->GetOutput(), fromImage).empty(),
+    "the image's medium");
+  filter->SetInputData(grid);
+  Check(filter->GetExecutive()->Update() == 1, "a curvilinear grid is resampled");
+  int got[3];
+  filter->GetOutput()->GetDimensions(got);
+  Check(got[0] == 17 && got[1] == 17 && got[2] == 17, "resampled on 17^3 points");
+  Check(ConvertMedium(filter->GetOutput(), fromGrid).empty(), "the resampled medium converts");
+  double worst = 0.0;
+  for (double x = -0.45; x < 0.5; x += 0.05)
+  {
+    const brume::Vec3 p(static_cast<float>(x), 0.04f, -0.11f);
+    worst = std::max(
+      worst, static_cast<double>(std::abs(fromGrid.SigmaTAt(p).x - fromImage.SigmaTAt(p).x)));
+  }
+  Check(worst < 1e-4, "resampled and image media agree: " + std::to_string(worst));
+
+  // Points with scalars but no cells have no volume to resample.
+  vtkNew<vtkPolyData> flat;
+  vtkNew<vtkPoints> scattered;
+  scattered->InsertNextPoint(0, 0, 0);
+  scattered->InsertNextPoint(1, 1, 1);
+  flat->SetPoints(scattered);
+  vtkNew<vtkFloatArray> values;
+  values->SetName("temperature");
+  values->InsertNextValue(30.f);
+  values->InsertNextValue(60.f);
+  flat->GetPointData()->SetScalars(values);
+  vtkNew<vtkBrumeVolumePropertyMedium> bad;
+  bad->SetVolumeProperty(property);
+  bad->SetInputData(flat);
+  ExpectFailure("a dataset without cells", bad, "cannot resample");
+}
+
 void TestConstantFunctionIsTheConstantDensity()
 {
   // Opacity 0.35 per unit 0.5 everywhere: the extinction is a constant,
@@ -527,6 +595,7 @@ void TestBadInput()
 int TestTransferFunctionMedium(int, char*[])
 {
   TestClassification();
+  TestResampledDataset();
   TestConstantFunctionIsTheConstantDensity();
   TestBadInput();
   if (failures)

@@ -222,3 +222,15 @@ TEST(TransferFunction, MajorantsFollowTheFunctionNotTheField)
   // Occupancy counts the values the function makes non-zero: s = i / 64 in (0.9, 1).
   EXPECT_NEAR(classified.OccupiedFraction(), 6.0 / 65.0, 1e-9);
 }
+
+TEST(TransferFunction, BendsWhereAPointLiesInsideTheScalarsRange)
+{
+  // s = x on 9 points: a region of x in [0.5, 0.6] is defined by the
+  // points at 0.5 and 0.625, so a point of the function at 0.55 lies inside
+  // its range, one at 0.3 or exactly at 0.5 does not.
+  const OpacityTransferFunction inside({ { 0.f, 0.f }, { 0.55f, 0.9f }, { 1.f, 0.f } }, 1.f);
+  const OpacityTransferFunction outside({ { 0.3f, 0.f }, { 0.5f, 0.9f } }, 1.f);
+  const Box region{ Vec3(0.5f, 0.2f, 0.2f), Vec3(0.6f, 0.3f, 0.3f) };
+  EXPECT_TRUE(ClassifiedGridDensity(RampInX(9), inside).BendsWithin(region));
+  EXPECT_FALSE(ClassifiedGridDensity(RampInX(9), outside).BendsWithin(region));
+}

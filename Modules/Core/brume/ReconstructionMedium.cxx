@@ -191,21 +191,26 @@ void ObjectRadiance::SampleNativeDensity(const ParallelFor& parallelFor)
     ++factor;
   }
   layout(factor);
-  // One sample at the centre of a native cell; a coarsened cell averages 2^3.
+  // One sample at the centre of a native cell; a coarsened cell averages
+  // 2^3. A classified density is classified after interpolation, so its
+  // function may step or bend anywhere in a cell: cells whose scalars span
+  // one of its points average 4^3 samples.
+  const auto* classified = dynamic_cast<const ClassifiedGridDensity*>(&density);
   const int samples = factor > 1 ? 2 : 1;
   this->NativeDensity = BrickedGrid::Sample(
     dims, box,
     [&](int i, int j, int k)
     {
       const Vec3 corner(static_cast<float>(i), static_cast<float>(j), static_cast<float>(k));
-      return static_cast<float>(
-        MeanDensity(density, bounds, box.lower + corner * cell, cell, samples));
+      const Vec3 lower = box.lower + corner * cell;
+      const bool bends =
+        classified && factor == 1 && classified->BendsWithin(Box{ lower, lower + cell });
+      return static_cast<float>(MeanDensity(density, bounds, lower, cell, bends ? 4 : samples));
     },
     zeroOver, parallelFor);
   // A classified density's scalars at the same centres (not coarsened).
   this->NativeScalars = BrickedGrid();
   this->Classification = nullptr;
-  const auto* classified = dynamic_cast<const ClassifiedGridDensity*>(&density);
   if (classified && factor == 1)
   {
     const OpacityTransferFunction& function = classified->GetOpacity();

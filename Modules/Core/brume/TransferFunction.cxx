@@ -115,4 +115,52 @@ ClassifiedGridDensity::ClassifiedGridDensity(
   }
 }
 
+bool ClassifiedGridDensity::BendsWithin(const Box& region) const
+{
+  const GridDensity& g = *this->Scalars;
+  const std::array<int, 3>& dims = g.GetDimensions();
+  const Box& bounds = g.GetBounds();
+  // The values that define the region: the cells it touches, or the points
+  // around the cells it touches.
+  int first[3], last[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    const float extent = bounds.Extent()[a];
+    const int n = dims[a];
+    const float lo = (region.lower[a] - bounds.lower[a]) / extent;
+    const float hi = (region.upper[a] - bounds.lower[a]) / extent;
+    if (g.HasCellValues())
+    {
+      first[a] = static_cast<int>(std::floor(lo * n));
+      last[a] = static_cast<int>(std::floor(hi * n));
+    }
+    else
+    {
+      first[a] = static_cast<int>(std::floor(lo * (n - 1)));
+      last[a] = static_cast<int>(std::ceil(hi * (n - 1)));
+    }
+    first[a] = std::clamp(first[a], 0, n - 1);
+    last[a] = std::clamp(last[a], first[a], n - 1);
+  }
+  const std::vector<float>& values = g.GetValues();
+  float lo = values[(static_cast<std::size_t>(first[2]) * dims[1] + first[1]) * dims[0] + first[0]];
+  float hi = lo;
+  for (int k = first[2]; k <= last[2]; ++k)
+    for (int j = first[1]; j <= last[1]; ++j)
+      for (int i = first[0]; i <= last[0]; ++i)
+      {
+        const float v = values[(static_cast<std::size_t>(k) * dims[1] + j) * dims[0] + i];
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+      }
+  for (const auto& node : this->Opacity.GetNodes())
+  {
+    if (node.Scalar > lo && node.Scalar < hi)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 } // namespace brume

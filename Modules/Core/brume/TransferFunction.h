@@ -92,6 +92,14 @@ public:
   std::array<int, 3> NativeResolution() const override { return this->Scalars->NativeResolution(); }
   Box NativeBox() const override { return this->Scalars->NativeBox(); }
 
+  /**
+   * Whether one of the function's points lies strictly inside the range of
+   * the scalars interpolated over `region` (the values that define it): where
+   * the extinction may bend or step inside the region, so that one sample
+   * does not give its mean.
+   */
+  bool BendsWithin(const Box& region) const;
+
   const GridDensity& GetScalars() const { return *this->Scalars; }
   const OpacityTransferFunction& GetOpacity() const { return this->Opacity; }
 
