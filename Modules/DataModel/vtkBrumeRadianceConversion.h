@@ -111,7 +111,7 @@ public:
   static vtkSmartPointer<vtkImageData> DenseExtinction(vtkImageData* sparse);
 
   /**
-   * A classified medium's extinction (brume::ClassifiedGridDensity) is given
+   * A classified medium's extinction (brume::ClassifiedDensity) is given
    * as its scalars, in the same bricks, with `ExtinctionTransferFunction`
    * (TransferFunctionSamples values: the function's extinction at scalars
    * evenly spaced over `ExtinctionTransferRange`, its first and last

@@ -315,17 +315,28 @@ std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
   const std::string vdbFile = ReadString(fd, "BrumeVDBFile");
   if (!vdbFile.empty())
   {
-    if (fd->GetAbstractArray("BrumeScalarOpacity"))
+    // With a transfer function, the grid's values are scalars it classifies.
+    std::optional<brume::OpacityTransferFunction> opacity;
+    error = ReadOpacityFunction(fd, opacity);
+    if (!error.empty())
     {
-      return "has a BrumeScalarOpacity transfer function on an OpenVDB grid, which is not "
-             "supported yet (resample the grid to a vtkImageData)";
+      return error;
     }
-    auto density = brume::VdbDensity::Load(vdbFile, ReadString(fd, "BrumeVDBGrid"), error);
+    auto density = opacity
+      ? brume::VdbDensity::LoadScalars(vdbFile, ReadString(fd, "BrumeVDBGrid"), error)
+      : brume::VdbDensity::Load(vdbFile, ReadString(fd, "BrumeVDBGrid"), error);
     if (!density)
     {
       return error;
     }
-    m.SetDensity(density);
+    if (opacity)
+    {
+      m.SetDensity(std::make_shared<brume::ClassifiedDensity>(density, std::move(*opacity)));
+    }
+    else
+    {
+      m.SetDensity(density);
+    }
     return {};
   }
 
@@ -438,7 +449,7 @@ std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
     std::make_shared<brume::GridDensity>(m.Bounds, n, std::move(values), cells, interpolation);
   if (opacity)
   {
-    m.SetDensity(std::make_shared<brume::ClassifiedGridDensity>(grid, std::move(*opacity)));
+    m.SetDensity(std::make_shared<brume::ClassifiedDensity>(grid, std::move(*opacity)));
   }
   else
   {

@@ -27,7 +27,14 @@
  *   `BrumeVDBFile` (strings), used sparsely in place; the point or cell array
  *   named by the string `BrumeDensityArray`; the active point or cell
  *   scalars. sigma(x) = density(x) * sigma; point densities are interpolated
- *   trilinearly, cell densities are constant per cell.
+ *   trilinearly, cell densities are constant per cell. With the field arrays
+ *   `BrumeScalarOpacity` ((scalar, opacity) tuples, scalars not decreasing,
+ *   opacities in [0, 1]), `BrumeScalarOpacityUnitDistance` (default 1),
+ *   `BrumeScalarComponent` (default 0) and `BrumeInterpolation` ("linear",
+ *   "nearest"), the array or the OpenVDB grid holds scalars, any finite
+ *   values, classified after interpolation: the density is
+ *   -ln(1 - opacity) / unit distance (brume::ClassifiedDensity;
+ *   vtkBrumeVolumePropertyMedium writes them from a vtkVolumeProperty).
  *
  * Object ids number the surfaces first, then the media, each in collection
  * order. The scene's camera may be given in the collection's field data:

@@ -37,8 +37,10 @@
  * the cube root of (bounds' volume / cells) along every axis, at least 2
  * points an axis, grown evenly until the image holds at most
  * MaximumSampledPoints. Points outside the dataset take a scalar the
- * function takes to 0 (its first point of opacity 0). An OpenVDB grid must
- * be resampled to a vtkImageData first.
+ * function takes to 0 (its first point of opacity 0). An OpenVDB grid is
+ * classified in place by the same field arrays on its medium image
+ * (BrumeVDBFile beside BrumeScalarOpacity; scene files:
+ * density.transfer_function).
  *
  * @sa vtkBrumeSceneConversion vtkVolumeProperty vtkPiecewiseFunction
  */

@@ -355,8 +355,8 @@ bool vtkBrumeSceneFileParser::ParseMedium(const json& m, std::size_t i)
     return false;
   }
   double sa[3], ss[3], g = 0, scale = 1;
-  const bool classified = m.contains("density") && m["density"].is_object() &&
-    m["density"].contains("transfer_function");
+  const bool classified =
+    m.contains("density") && m["density"].is_object() && m["density"].contains("transfer_function");
   if (m.contains("albedo"))
   {
     // A transfer function's extinction split by one albedo colour.
@@ -430,6 +430,11 @@ bool vtkBrumeSceneFileParser::ParseVdb(
       return false;
     }
     AddString(image->GetFieldData(), "BrumeVDBGrid", grid);
+  }
+  if (density.contains("transfer_function") &&
+    !this->ParseTransferFunction(density, at + ".density", image))
+  {
+    return false;
   }
   return true;
 }
@@ -574,12 +579,14 @@ vtkSmartPointer<vtkImageData> vtkBrumeSceneFileParser::ParseDensity(
   {
     return nullptr;
   }
-  if ((density.contains("transfer_function") || density.contains("component")) &&
-    !density.contains("vti"))
+  if (density.contains("transfer_function") && !density.contains("vti") && !density.contains("vdb"))
   {
-    p.Fail(at + ".density." +
-        (density.contains("transfer_function") ? "transfer_function" : "component"),
-      "needs a 'vti' density (an OpenVDB grid is not classified yet: resample it to an image)");
+    p.Fail(at + ".density.transfer_function", "needs a 'vti' or 'vdb' density to classify");
+    return nullptr;
+  }
+  if (density.contains("component") && !density.contains("vti"))
+  {
+    p.Fail(at + ".density.component", "needs a 'vti' density (an OpenVDB float grid has one)");
     return nullptr;
   }
   if (density.contains("component") && !density.contains("transfer_function"))

@@ -166,6 +166,7 @@ std::string WriteMedium(
     {
       m["density"]["grid"] = grid;
     }
+    WriteTransferFunction(fd, m["density"]);
   }
   else if (dense)
   {

@@ -5,10 +5,14 @@
 #include "brume/Medium.h"
 #include "brume/Random.h"
 #include "brume/TransferFunction.h"
+#include "brume/VdbDensity.h"
+
+#include "BrumeVdbWriter.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 
 using namespace brume;
 
@@ -119,7 +123,7 @@ TEST(TransferFunction, ConstantFunctionIsTheHomogeneousMedium)
 {
   const float alpha = 0.3f, unit = 0.5f;
   const float sigma = -std::log(1.f - alpha) / unit;
-  const Medium classified = Absorber(std::make_shared<ClassifiedGridDensity>(
+  const Medium classified = Absorber(std::make_shared<ClassifiedDensity>(
     RampInX(9), OpacityTransferFunction({ { 0.f, alpha } }, unit)));
   Medium homogeneous = Absorber(nullptr);
   homogeneous.Bounds = { Vec3(0.f), Vec3(1.f) };
@@ -143,7 +147,7 @@ TEST(TransferFunction, TwoLevelStepIsClassifiedAfterInterpolation)
   const float low = 0.2f, high = 0.7f;
   const OpacityTransferFunction f(
     { { 0.f, low }, { 0.6f, low }, { 0.6f, high }, { 1.f, high } }, 1.f);
-  const Medium m = Absorber(std::make_shared<ClassifiedGridDensity>(RampInX(5), f));
+  const Medium m = Absorber(std::make_shared<ClassifiedDensity>(RampInX(5), f));
   const double expected = std::pow(1.0 - low, 0.6) * std::pow(1.0 - high, 0.4);
   double fraction = 0, se = 0;
   Uncollided(m, Vec3(-0.1f, 0.4f, 0.5f), Vec3(1.f, 0.f, 0.f), 1.2f, fraction, se);
@@ -153,7 +157,7 @@ TEST(TransferFunction, TwoLevelStepIsClassifiedAfterInterpolation)
 
   // Nearest interpolation steps at the point halfway between 0.5 and 0.75.
   const Medium nearest = Absorber(
-    std::make_shared<ClassifiedGridDensity>(RampInX(5, GridDensity::Interpolation::Nearest), f));
+    std::make_shared<ClassifiedDensity>(RampInX(5, GridDensity::Interpolation::Nearest), f));
   EXPECT_FLOAT_EQ(nearest.SigmaTAt(Vec3(0.62f, 0.5f, 0.5f)).x, -std::log1p(-low));
   EXPECT_FLOAT_EQ(nearest.SigmaTAt(Vec3(0.63f, 0.5f, 0.5f)).x, -std::log1p(-high));
   Uncollided(nearest, Vec3(-0.1f, 0.4f, 0.5f), Vec3(1.f, 0.f, 0.f), 1.2f, fraction, se);
@@ -178,7 +182,7 @@ TEST(TransferFunction, FreeFlightsAreUnbiasedAlongFixedRays)
     Box{ Vec3(0.f), Vec3(1.f) }, std::array<int, 3>{ n, n, n }, values, false);
   const OpacityTransferFunction f(
     { { 30.f, 0.f }, { 60.f, 0.5f }, { 75.f, 0.5f }, { 90.f, 0.9f }, { 95.f, 0.1f } }, 0.25f);
-  const Medium m = Absorber(std::make_shared<ClassifiedGridDensity>(scalars, f));
+  const Medium m = Absorber(std::make_shared<ClassifiedDensity>(scalars, f));
   ASSERT_EQ(m.Validate(), "");
   const Vec3 origins[] = { { -0.2f, 0.1f, 0.3f }, { 0.5f, -0.3f, 0.4f }, { 1.2f, 0.9f, 0.2f } };
   const Vec3 targets[] = { { 1.1f, 0.8f, 0.6f }, { 0.45f, 1.2f, 0.55f }, { -0.1f, 0.1f, 0.9f } };
@@ -201,7 +205,7 @@ TEST(TransferFunction, MajorantsFollowTheFunctionNotTheField)
   // field is positive everywhere.
   const auto scalars = RampInX(65);
   const OpacityTransferFunction f({ { 0.9f, 0.f }, { 0.95f, 0.8f }, { 1.f, 0.f } }, 1.f);
-  const ClassifiedGridDensity classified(scalars, f);
+  const ClassifiedDensity classified(scalars, f);
   EXPECT_EQ(scalars->NumberOfOccupiedBlocks(), 512u);
   EXPECT_EQ(classified.NumberOfOccupiedBlocks(), 64u);
   EXPECT_FLOAT_EQ(classified.GetMajorants().GlobalMax(), -std::log1p(-0.8f));
@@ -231,6 +235,52 @@ TEST(TransferFunction, BendsWhereAPointLiesInsideTheScalarsRange)
   const OpacityTransferFunction inside({ { 0.f, 0.f }, { 0.55f, 0.9f }, { 1.f, 0.f } }, 1.f);
   const OpacityTransferFunction outside({ { 0.3f, 0.f }, { 0.5f, 0.9f } }, 1.f);
   const Box region{ Vec3(0.5f, 0.2f, 0.2f), Vec3(0.6f, 0.3f, 0.3f) };
-  EXPECT_TRUE(ClassifiedGridDensity(RampInX(9), inside).BendsWithin(region));
-  EXPECT_FALSE(ClassifiedGridDensity(RampInX(9), outside).BendsWithin(region));
+  EXPECT_TRUE(ClassifiedDensity(RampInX(9), inside).BendsWithin(region));
+  EXPECT_FALSE(ClassifiedDensity(RampInX(9), outside).BendsWithin(region));
+}
+
+TEST(TransferFunction, OpenVdbScalarsAreClassifiedToo)
+{
+  // A signed scalar in an OpenVDB grid (voxels of 0.1 m over x in [0, 3.2],
+  // y and z in [0, 1.6]): s = 5 x - 8, in [-8, 8], background -20 outside
+  // the active voxels. Opacity 0 below s = -2, `low` up to the step at
+  // s = 0 (x = 1.6), `high` from there.
+  const std::string path =
+    (std::filesystem::temp_directory_path() / "brume-classified-scalars.vdb").string();
+  vdbwriter::Grid grid;
+  grid.Name = "signed";
+  grid.Background = -20.f;
+  grid.VoxelSize = 0.1;
+  grid.Upper = { 32, 16, 16 };
+  grid.Value = [](int i, int, int) { return 0.5f * static_cast<float>(i) - 8.f; };
+  vdbwriter::Write(path, { grid });
+  std::string error;
+  EXPECT_EQ(VdbDensity::Load(path, "signed", error), nullptr); // negative: not a density
+  auto scalars = VdbDensity::LoadScalars(path, "signed", error);
+  ASSERT_NE(scalars, nullptr) << error;
+  const float low = 0.3f, high = 0.7f;
+  const OpacityTransferFunction f(
+    { { -2.f, 0.f }, { -1.9f, low }, { -0.001f, low }, { 0.f, high }, { 8.f, high } }, 1.f);
+  auto classified = std::make_shared<ClassifiedDensity>(scalars, f);
+  const Medium m = Absorber(classified);
+  ASSERT_EQ(m.Validate(), "");
+  // Along x from 1.0 to 2.2 (s from -3 to 3): nothing up to x = 1.2, a
+  // ramp to x = 1.22, `low` to 1.6, `high` to 2.2.
+  const Vec3 o(1.f, 0.8f, 0.8f), d(1.f, 0.f, 0.f);
+  double fraction = 0, se = 0;
+  Uncollided(m, o, d, 1.2f, fraction, se);
+  const double depth = Quadrature(m, o, d, 1.2f);
+  EXPECT_NEAR(fraction, std::exp(-depth), 4 * se);
+  EXPECT_NEAR(depth, -std::log1p(-low) * 0.38 - std::log1p(-high) * 0.6, 0.01);
+  // The first column of blocks (s at most -4.5 and the background there)
+  // holds no medium; the function's largest extinction is reached.
+  const MajorantGrid& g = classified->GetMajorants();
+  EXPECT_FLOAT_EQ(g.GlobalMax(), -std::log1p(-high));
+  for (int k = 0; k < g.Dims[2]; ++k)
+    for (int j = 0; j < g.Dims[1]; ++j)
+    {
+      EXPECT_EQ(g.At(0, j, k), 0.f) << j << " " << k;
+      EXPECT_GT(g.At(1, j, k), 0.f) << j << " " << k;
+    }
+  std::filesystem::remove(path);
 }

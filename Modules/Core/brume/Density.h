@@ -59,6 +59,17 @@ public:
   double OccupiedFraction() const;
   /// The mean density over those cells (without the values: the largest).
   double MeanOccupiedDensity() const;
+  /**
+   * Per majorant block (in GetMajorants()'s order), the smallest and
+   * largest value anywhere in the block (what a transfer function
+   * classifying the field must bound there); false when the field cannot say.
+   */
+  virtual bool ValueRanges(std::vector<float>& lo, std::vector<float>& hi) const
+  {
+    (void)lo;
+    (void)hi;
+    return false;
+  }
 
 protected:
   Box Bounds;
@@ -104,6 +115,11 @@ public:
    * that range.
    */
   void BlockRanges(std::vector<float>& lo, std::vector<float>& hi) const;
+  bool ValueRanges(std::vector<float>& lo, std::vector<float>& hi) const override
+  {
+    this->BlockRanges(lo, hi);
+    return true;
+  }
   const std::array<int, 3>& GetDimensions() const { return this->Dims; }
   const std::vector<float>& GetValues() const { return this->Values; }
   bool HasCellValues() const { return this->CellValues; }

@@ -494,7 +494,7 @@ public:
    */
   const BrickedGrid& GetNativeDensity() const { return this->NativeDensity; }
   /**
-   * A density classified by a transfer function (ClassifiedGridDensity)
+   * A density classified by a transfer function (ClassifiedDensity)
    * also keeps its scalars at the same centres, for a renderer that
    * interpolates them and classifies after, as the tracer does: bricks
    * whose extinction the majorants make 0 hold a scalar the function takes

@@ -195,7 +195,7 @@ void ObjectRadiance::SampleNativeDensity(const ParallelFor& parallelFor)
   // 2^3. A classified density is classified after interpolation, so its
   // function may step or bend anywhere in a cell: cells whose scalars span
   // one of its points average 4^3 samples.
-  const auto* classified = dynamic_cast<const ClassifiedGridDensity*>(&density);
+  const auto* classified = dynamic_cast<const ClassifiedDensity*>(&density);
   const int samples = factor > 1 ? 2 : 1;
   this->NativeDensity = BrickedGrid::Sample(
     dims, box,
@@ -225,7 +225,7 @@ void ObjectRadiance::SampleNativeDensity(const ParallelFor& parallelFor)
         break;
       }
     }
-    const GridDensity& scalars = classified->GetScalars();
+    const DensityField& scalars = classified->GetScalars();
     this->NativeScalars = BrickedGrid::Sample(
       dims, box,
       [&](int i, int j, int k)

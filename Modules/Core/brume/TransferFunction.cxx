@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace brume
@@ -89,25 +90,37 @@ float OpacityTransferFunction::MaxExtinction(float lo, float hi) const
   return this->ExtinctionOfOpacity(alpha);
 }
 
-ClassifiedGridDensity::ClassifiedGridDensity(
-  std::shared_ptr<const GridDensity> scalars, OpacityTransferFunction opacity)
+ClassifiedDensity::ClassifiedDensity(
+  std::shared_ptr<const DensityField> scalars, OpacityTransferFunction opacity)
   : Scalars(std::move(scalars))
   , Opacity(std::move(opacity))
 {
   this->Bounds = this->Scalars->GetBounds();
-  this->GridValues = static_cast<double>(this->Scalars->GetValues().size());
-  for (const float s : this->Scalars->GetValues())
+  // A grid's values: the fraction and mean of those the function makes
+  // positive (other fields: the non-empty majorant blocks').
+  if (const auto* grid = dynamic_cast<const GridDensity*>(this->Scalars.get()))
   {
-    const float sigma = this->Opacity.Extinction(s);
-    if (sigma > 0.f)
+    this->GridValues = static_cast<double>(grid->GetValues().size());
+    for (const float s : grid->GetValues())
     {
-      this->OccupiedValues += 1.0;
-      this->OccupiedSum += sigma;
+      const float sigma = this->Opacity.Extinction(s);
+      if (sigma > 0.f)
+      {
+        this->OccupiedValues += 1.0;
+        this->OccupiedSum += sigma;
+      }
     }
   }
   this->Majorants = this->Scalars->GetMajorants();
   std::vector<float> lo, hi;
-  this->Scalars->BlockRanges(lo, hi);
+  if (!this->Scalars->ValueRanges(lo, hi) || hi.size() != this->Majorants.Max.size())
+  {
+    // Without ranges, the function's largest extinction everywhere.
+    const auto& nodes = this->Opacity.GetNodes();
+    const float all = this->Opacity.MaxExtinction(nodes.front().Scalar, nodes.back().Scalar);
+    std::fill(this->Majorants.Max.begin(), this->Majorants.Max.end(), all);
+    return;
+  }
   for (std::size_t b = 0; b < hi.size(); ++b)
   {
     // A block of non-finite values only (none to range over) has none to classify.
@@ -115,9 +128,14 @@ ClassifiedGridDensity::ClassifiedGridDensity(
   }
 }
 
-bool ClassifiedGridDensity::BendsWithin(const Box& region) const
+bool ClassifiedDensity::BendsWithin(const Box& region) const
 {
-  const GridDensity& g = *this->Scalars;
+  const auto* grid = dynamic_cast<const GridDensity*>(this->Scalars.get());
+  if (!grid)
+  {
+    return this->BendsWithinBlocks(region);
+  }
+  const GridDensity& g = *grid;
   const std::array<int, 3>& dims = g.GetDimensions();
   const Box& bounds = g.GetBounds();
   // The values that define the region: the cells it touches, or the points
@@ -156,6 +174,45 @@ bool ClassifiedGridDensity::BendsWithin(const Box& region) const
   for (const auto& node : this->Opacity.GetNodes())
   {
     if (node.Scalar > lo && node.Scalar < hi)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+bool ClassifiedDensity::BendsWithinBlocks(const Box& region) const
+{
+  // The value ranges of the majorant blocks the region overlaps.
+  std::vector<float> lo, hi;
+  const MajorantGrid& mg = this->Majorants;
+  if (!this->Scalars->ValueRanges(lo, hi) || hi.size() != mg.Max.size())
+  {
+    return true;
+  }
+  int first[3], last[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    const float size = mg.Bounds.Extent()[a] / static_cast<float>(mg.Dims[a]);
+    first[a] =
+      std::clamp(static_cast<int>(std::floor((region.lower[a] - mg.Bounds.lower[a]) / size)), 0,
+        mg.Dims[a] - 1);
+    last[a] =
+      std::clamp(static_cast<int>(std::floor((region.upper[a] - mg.Bounds.lower[a]) / size)),
+        first[a], mg.Dims[a] - 1);
+  }
+  float l = std::numeric_limits<float>::infinity(), h = -l;
+  for (int k = first[2]; k <= last[2]; ++k)
+    for (int j = first[1]; j <= last[1]; ++j)
+      for (int i = first[0]; i <= last[0]; ++i)
+      {
+        const std::size_t b = (static_cast<std::size_t>(k) * mg.Dims[1] + j) * mg.Dims[0] + i;
+        l = std::min(l, lo[b]);
+        h = std::max(h, hi[b]);
+      }
+  for (const auto& node : this->Opacity.GetNodes())
+  {
+    if (node.Scalar > l && node.Scalar < h)
     {
       return true;
     }

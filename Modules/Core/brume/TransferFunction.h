@@ -71,20 +71,20 @@ private:
 
 /**
  * A density that is the extinction of a transfer function applied to a
- * scalar grid after interpolation: density(x) = sigma_t(s(x)), s(x)
- * interpolated as the grid interpolates (trilinear between point values,
- * constant per cell, or the nearest value). A medium with this density and
+ * scalar field after interpolation: density(x) = sigma_t(s(x)), s(x)
+ * interpolated as the field interpolates (a grid: trilinear between point
+ * values, constant per cell, or the nearest value; an OpenVDB grid:
+ * trilinear between voxels). A medium with this density and
  * sigma_a + sigma_s = 1 per channel has exactly the function's extinction.
  *
- * Majorants: the interpolated scalar in a cell lies between the values
- * that define the cell, so each block's majorant is the function's largest
- * extinction over the range of its values.
+ * Majorants: each block's is the function's largest extinction over the
+ * range of the field's values in the block (DensityField::ValueRanges).
  */
-class ClassifiedGridDensity : public DensityField
+class ClassifiedDensity : public DensityField
 {
 public:
-  ClassifiedGridDensity(
-    std::shared_ptr<const GridDensity> scalars, OpacityTransferFunction opacity);
+  /// `scalars` should know its ValueRanges (a GridDensity, a VdbDensity loaded as scalars).
+  ClassifiedDensity(std::shared_ptr<const DensityField> scalars, OpacityTransferFunction opacity);
   float Evaluate(const Vec3& p) const override
   {
     return this->Opacity.Extinction(this->Scalars->Evaluate(p));
@@ -100,11 +100,13 @@ public:
    */
   bool BendsWithin(const Box& region) const;
 
-  const GridDensity& GetScalars() const { return *this->Scalars; }
+  const DensityField& GetScalars() const { return *this->Scalars; }
   const OpacityTransferFunction& GetOpacity() const { return this->Opacity; }
 
 private:
-  std::shared_ptr<const GridDensity> Scalars;
+  bool BendsWithinBlocks(const Box& region) const;
+
+  std::shared_ptr<const DensityField> Scalars;
   OpacityTransferFunction Opacity;
 };
 

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <mutex>
 #include <vector>
 
@@ -22,6 +23,8 @@ struct VdbDensity::Internals
   openvdb::Vec3d Origin;    // world position of index (0, 0, 0)
   openvdb::Vec3d VoxelSize; // world size of a voxel along each axis
   std::size_t Active = 0;
+  // Scalars (LoadScalars): per majorant block, the smallest and largest value.
+  std::vector<float> RangeLow, RangeHigh;
   // The leaves' values by leaf position over the active box widened by a
   // leaf (LeafDims leaves from the one whose first voxel is LeafOrigin),
   // null where the tree has no leaf: a sample reads its eight values
@@ -125,6 +128,29 @@ openvdb::FloatGrid::Ptr ReadVdbFloatGrid(
 std::shared_ptr<VdbDensity> VdbDensity::Load(
   const std::string& fileName, const std::string& gridName, std::string& error)
 {
+  return LoadGrid(fileName, gridName, false, error);
+}
+
+std::shared_ptr<VdbDensity> VdbDensity::LoadScalars(
+  const std::string& fileName, const std::string& gridName, std::string& error)
+{
+  return LoadGrid(fileName, gridName, true, error);
+}
+
+bool VdbDensity::ValueRanges(std::vector<float>& lo, std::vector<float>& hi) const
+{
+  if (this->Impl->RangeHigh.empty())
+  {
+    return false;
+  }
+  lo = this->Impl->RangeLow;
+  hi = this->Impl->RangeHigh;
+  return true;
+}
+
+std::shared_ptr<VdbDensity> VdbDensity::LoadGrid(
+  const std::string& fileName, const std::string& gridName, bool scalars, std::string& error)
+{
   const openvdb::FloatGrid::Ptr grid = ReadVdbFloatGrid(fileName, gridName, error);
   if (!grid)
   {
@@ -150,7 +176,7 @@ std::shared_ptr<VdbDensity> VdbDensity::Load(
     return nullptr;
   }
   const float background = grid->background();
-  if (!(background >= 0.f) || !std::isfinite(background))
+  if (!std::isfinite(background) || (!scalars && !(background >= 0.f)))
   {
     error = "OpenVDB grid '" + grid->getName() + "' has a negative or non-finite background";
     return nullptr;
@@ -184,6 +210,16 @@ std::shared_ptr<VdbDensity> VdbDensity::Load(
       mg.Bounds.lower[a] + static_cast<double>(mg.Dims[a]) * B * impl.VoxelSize[a]);
   }
   mg.Max.assign(static_cast<std::size_t>(mg.Dims[0]) * mg.Dims[1] * mg.Dims[2], background);
+  // Scalars: each block's range of the values its samples interpolate (its
+  // voxels and one more layer around), the background where one of those
+  // voxels is inactive (counted in `activeAround`).
+  std::vector<double> activeAround;
+  if (scalars)
+  {
+    impl.RangeLow.assign(mg.Max.size(), std::numeric_limits<float>::infinity());
+    impl.RangeHigh.assign(mg.Max.size(), -std::numeric_limits<float>::infinity());
+    activeAround.assign(mg.Max.size(), 0.0);
+  }
   auto blockOf = [&](int a, double index)
   {
     const int b = static_cast<int>(std::floor((index - (lo[a] - 1.0)) / B));
@@ -192,9 +228,10 @@ std::shared_ptr<VdbDensity> VdbDensity::Load(
   for (auto it = grid->cbeginValueOn(); it; ++it)
   {
     const float v = *it;
-    if (!(v >= 0.f) || !std::isfinite(v))
+    if (!std::isfinite(v) || (!scalars && !(v >= 0.f)))
     {
-      error = "OpenVDB grid '" + grid->getName() + "' has negative or non-finite densities";
+      error = "OpenVDB grid '" + grid->getName() + "' has negative or non-finite " +
+        (scalars ? "scalars" : "densities");
       return nullptr;
     }
     if (v > 0.f)
@@ -203,7 +240,7 @@ std::shared_ptr<VdbDensity> VdbDensity::Load(
       density->OccupiedValues += voxels;
       density->OccupiedSum += voxels * v;
     }
-    if (v <= background)
+    if (v <= background && !scalars)
     {
       continue;
     }
@@ -219,9 +256,31 @@ std::shared_ptr<VdbDensity> VdbDensity::Load(
       for (int j = b0[1]; j <= b1[1]; ++j)
         for (int i = b0[0]; i <= b1[0]; ++i)
         {
-          float& m = mg.Max[(static_cast<std::size_t>(k) * mg.Dims[1] + j) * mg.Dims[0] + i];
-          m = std::max(m, v);
+          const std::size_t b = (static_cast<std::size_t>(k) * mg.Dims[1] + j) * mg.Dims[0] + i;
+          mg.Max[b] = std::max(mg.Max[b], v);
+          if (scalars)
+          {
+            impl.RangeLow[b] = std::min(impl.RangeLow[b], v);
+            impl.RangeHigh[b] = std::max(impl.RangeHigh[b], v);
+            const int block[3] = { i, j, k };
+            double overlap = 1.0;
+            for (int a = 0; a < 3; ++a)
+            {
+              const int first = lo[a] - 1 + block[a] * B - 1, last = first + B + 1;
+              overlap *=
+                std::max(0, std::min(region.max()[a], last) - std::max(region.min()[a], first) + 1);
+            }
+            activeAround[b] += overlap;
+          }
         }
+  }
+  for (std::size_t b = 0; b < activeAround.size(); ++b)
+  {
+    if (activeAround[b] < static_cast<double>((B + 2) * (B + 2) * (B + 2)))
+    {
+      impl.RangeLow[b] = std::min(impl.RangeLow[b], background);
+      impl.RangeHigh[b] = std::max(impl.RangeHigh[b], background);
+    }
   }
   impl.Grid = grid;
   // The leaf table, where it takes at most 2^24 pointers (128 MiB).

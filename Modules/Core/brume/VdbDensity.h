@@ -8,6 +8,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace brume
 {
@@ -23,6 +24,14 @@ public:
    */
   static std::shared_ptr<VdbDensity> Load(
     const std::string& fileName, const std::string& gridName, std::string& error);
+  /**
+   * The same for a grid of scalars a transfer function classifies
+   * (ClassifiedDensity): any finite values and background, and the value
+   * ranges of its blocks.
+   */
+  static std::shared_ptr<VdbDensity> LoadScalars(
+    const std::string& fileName, const std::string& gridName, std::string& error);
+  bool ValueRanges(std::vector<float>& lo, std::vector<float>& hi) const override;
 
   ~VdbDensity() override;
   float Evaluate(const Vec3& p) const override;
@@ -34,6 +43,8 @@ public:
 
 private:
   VdbDensity();
+  static std::shared_ptr<VdbDensity> LoadGrid(
+    const std::string& fileName, const std::string& gridName, bool scalars, std::string& error);
   struct Internals;
   std::unique_ptr<Internals> Impl;
 };

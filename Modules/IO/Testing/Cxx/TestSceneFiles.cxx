@@ -141,20 +141,28 @@ int RoundTrip(
   Check(vtkBrumeSceneReader::CanReadFile(nullptr) == 0, "CanReadFile: no name");
 
   // A medium classified by a transfer function (its array, points, unit
-  // distance, interpolation and the albedo) survives the round trip.
-  vtkNew<vtkBrumeSceneReader> classified;
-  classified->SetFileName(transferFunctionScene.c_str());
-  Check(classified->GetExecutive()->Update() == 1, "the transfer-function scene reads");
-  const std::string classifiedFile = dir + "/roundtrip-transfer-function.json";
-  vtkNew<vtkBrumeSceneWriter> classifiedWriter;
-  classifiedWriter->SetInputConnection(classified->GetOutputPort());
-  classifiedWriter->SetFileName(classifiedFile.c_str());
-  Check(classifiedWriter->Write() == 1, "the writer saves the transfer-function scene");
-  vtkNew<vtkBrumeSceneReader> classifiedBack;
-  classifiedBack->SetFileName(classifiedFile.c_str());
-  Check(classifiedBack->GetExecutive()->Update() == 1, "the written transfer function reads");
-  Check(SameHits(Trace(classified), Trace(classifiedBack)),
-    "written and read back, the transfer-function scene traces the same hits");
+  // distance, interpolation and the albedo) survives the round trip, on an
+  // image and on an OpenVDB grid (TF_SCENE with -vdb before .json).
+  const std::string vdbScene =
+    transferFunctionScene.substr(0, transferFunctionScene.size() - 5) + "-vdb.json";
+  int written = 0;
+  for (const std::string& scene : { transferFunctionScene, vdbScene })
+  {
+    vtkNew<vtkBrumeSceneReader> classified;
+    classified->SetFileName(scene.c_str());
+    Check(classified->GetExecutive()->Update() == 1, "the transfer-function scene reads: " + scene);
+    const std::string classifiedFile =
+      dir + "/roundtrip-transfer-function-" + std::to_string(written++) + ".json";
+    vtkNew<vtkBrumeSceneWriter> classifiedWriter;
+    classifiedWriter->SetInputConnection(classified->GetOutputPort());
+    classifiedWriter->SetFileName(classifiedFile.c_str());
+    Check(classifiedWriter->Write() == 1, "the writer saves the transfer-function scene");
+    vtkNew<vtkBrumeSceneReader> classifiedBack;
+    classifiedBack->SetFileName(classifiedFile.c_str());
+    Check(classifiedBack->GetExecutive()->Update() == 1, "the written transfer function reads");
+    Check(SameHits(Trace(classified), Trace(classifiedBack)),
+      "written and read back, the transfer-function scene traces the same hits: " + scene);
+  }
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }
 
