@@ -19,8 +19,69 @@
 #include "vtkStringArray.h"
 #include "vtkXMLImageDataWriter.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
+#include <vector>
+
+/// Per column of a `size`-wide image, the mean over rows [first, last] of
+/// the channels' mean Radiance, and (with `error` and a Variance array, a
+/// reference path tracer's) the standard error of that mean.
+inline void RowProfile(vtkImageData* image, int size, int first, int last,
+  std::vector<double>& mean, std::vector<double>* error)
+{
+  vtkDataArray* radiance = image->GetPointData()->GetArray("Radiance");
+  vtkDataArray* variance = image->GetPointData()->GetArray("Variance");
+  const int rows = last - first + 1;
+  mean.assign(size, 0.0);
+  if (error)
+  {
+    error->assign(size, 0.0);
+  }
+  for (int x = 0; x < size; ++x)
+  {
+    double v2 = 0.0;
+    for (int y = first; y <= last; ++y)
+    {
+      const vtkIdType p = static_cast<vtkIdType>(y) * size + x;
+      for (int c = 0; c < 3; ++c)
+      {
+        mean[x] += radiance->GetComponent(p, c) / 3.0 / rows;
+        // The channels' mean has at most their mean variance (correlated).
+        v2 += variance ? variance->GetComponent(p, c) / 3.0 : 0.0;
+      }
+    }
+    if (error)
+    {
+      (*error)[x] = std::sqrt(v2) / rows;
+    }
+  }
+}
+
+/// Column by column, whether `got` lies within four standard errors of the
+/// reference's profile plus `slack` times its peak (the pipeline's own noise
+/// and smoothing); prints the table.
+inline bool WithinBand(const std::vector<double>& expected, const std::vector<double>& error,
+  const std::vector<double>& got, double slack)
+{
+  double peak = 0.0;
+  for (const double v : expected)
+  {
+    peak = std::max(peak, v);
+  }
+  bool ok = true;
+  std::printf("%6s %12s %12s %12s\n", "column", "reference", "pipeline", "band");
+  for (std::size_t x = 0; x < expected.size(); ++x)
+  {
+    const double band = 4.0 * error[x] + slack * peak;
+    const bool pass = std::abs(got[x] - expected[x]) <= band;
+    ok = ok && pass;
+    std::printf("%6d %12.5g %12.5g %12.3g%s\n", static_cast<int>(x), expected[x], got[x], band,
+      pass ? "" : "  FAIL");
+  }
+  return ok;
+}
 
 /// The channels' mean of `image`'s Radiance over the block of block x block
 /// pixels at (bx, by), and (with a Variance array) its standard error.

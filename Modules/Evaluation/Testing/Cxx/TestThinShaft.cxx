@@ -48,42 +48,6 @@ vtkSmartPointer<vtkPartitionedDataSetCollection> SlitScene(double halfWidth)
   return scene;
 }
 
-// Per column, the mean over the rows of the channels' mean, and (with
-// `variance`) the standard error of that mean.
-void Profile(vtkImageData* image, std::vector<double>& mean, std::vector<double>* error)
-{
-  vtkDataArray* radiance = image->GetPointData()->GetArray("Radiance");
-  vtkDataArray* variance = image->GetPointData()->GetArray("Variance");
-  const int rows = LastRow - FirstRow + 1;
-  mean.assign(Size, 0.0);
-  if (error)
-  {
-    error->assign(Size, 0.0);
-  }
-  for (int x = 0; x < Size; ++x)
-  {
-    double v2 = 0.0;
-    for (int y = FirstRow; y <= LastRow; ++y)
-    {
-      const vtkIdType p = y * Size + x;
-      mean[x] += (radiance->GetComponent(p, 0) + radiance->GetComponent(p, 1) +
-                   radiance->GetComponent(p, 2)) /
-        3.0 / rows;
-      if (variance)
-      {
-        // The channels' mean has at most their mean variance (correlated).
-        v2 += (variance->GetComponent(p, 0) + variance->GetComponent(p, 1) +
-                variance->GetComponent(p, 2)) /
-          3.0;
-      }
-    }
-    if (error)
-    {
-      (*error)[x] = std::sqrt(v2) / rows;
-    }
-  }
-}
-
 // The shaft's width in pixels: where the profile crosses half its height
 // above the background (the mean of the outer eight columns), interpolated.
 double Width(const std::vector<double>& p)
@@ -147,21 +111,12 @@ int TestThinShaft(int argc, char* argv[])
   }
 
   std::vector<double> expected, error, got;
-  Profile(reference->GetOutput(), expected, &error);
-  Profile(pipeline->GetOutput(), got, nullptr);
-  const double peak = *std::max_element(expected.begin(), expected.end());
+  RowProfile(reference->GetOutput(), Size, FirstRow, LastRow, expected, &error);
+  RowProfile(pipeline->GetOutput(), Size, FirstRow, LastRow, got, nullptr);
   // The band: four standard errors of the reference, and 3 % of the peak
   // for the pipeline's own noise and smoothing of the multiply scattered
   // light (the shaft itself is computed, not estimated).
-  bool ok = true;
-  std::printf("%6s %12s %12s %12s\n", "column", "reference", "pipeline", "band");
-  for (int x = 0; x < Size; ++x)
-  {
-    const double band = 4.0 * error[x] + 0.03 * peak;
-    const bool pass = std::abs(got[x] - expected[x]) <= band;
-    ok = ok && pass;
-    std::printf("%6d %12.5g %12.5g %12.3g%s\n", x, expected[x], got[x], band, pass ? "" : "  FAIL");
-  }
+  bool ok = WithinBand(expected, error, got, 0.03);
   const double wantWidth = Width(expected), gotWidth = Width(got);
   std::printf("shaft width: reference %.2f px, pipeline %.2f px\n", wantWidth, gotWidth);
   if (!(std::abs(wantWidth - gotWidth) <= 1.0))

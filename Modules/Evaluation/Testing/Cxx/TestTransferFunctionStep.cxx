@@ -64,37 +64,6 @@ vtkSmartPointer<vtkPartitionedDataSetCollection> StepScene()
   return scene;
 }
 
-// Per column, the mean over the rows of the channels' mean, and (with
-// `error`) the standard error of that mean from the reference's variance.
-void Profile(vtkImageData* image, std::vector<double>& mean, std::vector<double>* error)
-{
-  vtkDataArray* radiance = image->GetPointData()->GetArray("Radiance");
-  vtkDataArray* variance = image->GetPointData()->GetArray("Variance");
-  const int rows = LastRow - FirstRow + 1;
-  mean.assign(Size, 0.0);
-  if (error)
-  {
-    error->assign(Size, 0.0);
-  }
-  for (int x = 0; x < Size; ++x)
-  {
-    double v2 = 0.0;
-    for (int y = FirstRow; y <= LastRow; ++y)
-    {
-      const vtkIdType p = y * Size + x;
-      for (int c = 0; c < 3; ++c)
-      {
-        mean[x] += radiance->GetComponent(p, c) / 3.0 / rows;
-        v2 += variance ? variance->GetComponent(p, c) / 3.0 : 0.0;
-      }
-    }
-    if (error)
-    {
-      (*error)[x] = std::sqrt(v2) / rows;
-    }
-  }
-}
-
 // Where the profile crosses halfway between its plateaus on either side
 // of `guess` (the means of the four columns 6 to 9 columns away), interpolated.
 double StepAt(const std::vector<double>& p, int guess)
@@ -146,20 +115,11 @@ int TestTransferFunctionStep(int argc, char* argv[])
     SaveImage(argv[1], "transfer-function-step-pipeline", pipeline->GetOutput());
   }
   std::vector<double> expected, error, got;
-  Profile(reference->GetOutput(), expected, &error);
-  Profile(pipeline->GetOutput(), got, nullptr);
-  const double peak = *std::max_element(expected.begin(), expected.end());
+  RowProfile(reference->GetOutput(), Size, FirstRow, LastRow, expected, &error);
+  RowProfile(pipeline->GetOutput(), Size, FirstRow, LastRow, got, nullptr);
   // The band: four standard errors of the reference, and 3 % of the peak
   // for the pipeline's own noise and smoothing (as the thin shaft's test).
-  bool ok = true;
-  std::printf("%6s %12s %12s %12s\n", "column", "reference", "pipeline", "band");
-  for (int x = 0; x < Size; ++x)
-  {
-    const double band = 4.0 * error[x] + 0.03 * peak;
-    const bool pass = std::abs(got[x] - expected[x]) <= band;
-    ok = ok && pass;
-    std::printf("%6d %12.5g %12.5g %12.3g%s\n", x, expected[x], got[x], band, pass ? "" : "  FAIL");
-  }
+  bool ok = WithinBand(expected, error, got, 0.03);
   // The step at x = 0.2 seen from z = 4 through a 30 degree view: its column.
   const double pixel = 2.0 * 4.0 * std::tan(30.0 * M_PI / 360.0) / Size;
   const int guess = static_cast<int>(Size / 2 + Step / pixel);
