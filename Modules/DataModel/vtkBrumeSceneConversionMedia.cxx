@@ -1,0 +1,238 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// vtkBrumeSceneConversion's media: coefficients, and the density an
+// OpenVDB grid or an array gives, classified by a transfer function when
+// the medium has one.
+#include "vtkBrumeSceneConversionInternals.h"
+
+#include "vtkCellData.h"
+#include "vtkImageData.h"
+#include "vtkMatrix3x3.h"
+#include "vtkPointData.h"
+
+#include "brume/TransferFunction.h"
+#include "brume/VdbDensity.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+namespace vtkBrumeSceneConversionInternals
+{
+namespace
+{
+// The scalar-opacity transfer function of a medium's field data, if any:
+// BrumeScalarOpacity (tuples of scalar and opacity) and
+// BrumeScalarOpacityUnitDistance (default 1). Empty when valid or absent.
+std::string ReadOpacityFunction(
+  vtkFieldData* fd, std::optional<brume::OpacityTransferFunction>& function)
+{
+  vtkDataArray* points = fd ? fd->GetArray("BrumeScalarOpacity") : nullptr;
+  std::string error;
+  double unit = 1.0;
+  const bool hasUnit = ReadField(fd, "BrumeScalarOpacityUnitDistance", 1, &unit, error);
+  if (!error.empty())
+  {
+    return error;
+  }
+  if (!points)
+  {
+    return hasUnit ? "has a BrumeScalarOpacityUnitDistance without a BrumeScalarOpacity "
+                     "transfer function"
+                   : std::string();
+  }
+  if (points->GetNumberOfComponents() != 2)
+  {
+    return "has a BrumeScalarOpacity that is not (scalar, opacity) pairs (2 components)";
+  }
+  std::vector<brume::OpacityTransferFunction::Node> nodes;
+  for (vtkIdType i = 0; i < points->GetNumberOfTuples(); ++i)
+  {
+    nodes.push_back({ static_cast<float>(points->GetComponent(i, 0)),
+      static_cast<float>(points->GetComponent(i, 1)) });
+  }
+  error = brume::OpacityTransferFunction::Validate(nodes, unit);
+  if (!error.empty())
+  {
+    return "has a BrumeScalarOpacity transfer function that " + error;
+  }
+  function.emplace(std::move(nodes), static_cast<float>(unit));
+  return {};
+}
+
+}
+
+std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
+{
+  std::string error;
+  vtkFieldData* fd = image->GetFieldData();
+  if (!ReadVec3(fd, "BrumeSigmaA", m.SigmaA, error) ||
+    !ReadVec3(fd, "BrumeSigmaS", m.SigmaS, error))
+  {
+    return error.empty() ? "lacks the BrumeSigmaA or BrumeSigmaS field array" : error;
+  }
+  double g = 0.0;
+  if (ReadField(fd, "BrumeG", 1, &g, error))
+  {
+    m.G = static_cast<float>(g);
+  }
+  double scale = 1.0;
+  ReadField(fd, "BrumeDensityScale", 1, &scale, error);
+  if (!error.empty())
+  {
+    return error;
+  }
+  if (!(scale >= 0.0) || !std::isfinite(scale))
+  {
+    return "has a BrumeDensityScale that is negative or not finite";
+  }
+  // Density scales the coefficients.
+  m.SigmaA = m.SigmaA * static_cast<float>(scale);
+  m.SigmaS = m.SigmaS * static_cast<float>(scale);
+
+  // A sparse OpenVDB grid, used in place.
+  const std::string vdbFile = ReadString(fd, "BrumeVDBFile");
+  if (!vdbFile.empty())
+  {
+    // With a transfer function, the grid's values are scalars it classifies.
+    std::optional<brume::OpacityTransferFunction> opacity;
+    error = ReadOpacityFunction(fd, opacity);
+    if (!error.empty())
+    {
+      return error;
+    }
+    auto density = opacity
+      ? brume::VdbDensity::LoadScalars(vdbFile, ReadString(fd, "BrumeVDBGrid"), error)
+      : brume::VdbDensity::Load(vdbFile, ReadString(fd, "BrumeVDBGrid"), error);
+    if (!density)
+    {
+      return error;
+    }
+    if (opacity)
+    {
+      m.SetDensity(std::make_shared<brume::ClassifiedDensity>(density, std::move(*opacity)));
+    }
+    else
+    {
+      m.SetDensity(density);
+    }
+    return {};
+  }
+
+  double b[6];
+  image->GetBounds(b);
+  m.Bounds = { { static_cast<float>(b[0]), static_cast<float>(b[2]), static_cast<float>(b[4]) },
+    { static_cast<float>(b[1]), static_cast<float>(b[3]), static_cast<float>(b[5]) } };
+  // A density array: named by BrumeDensityArray, else the active scalars.
+  const std::string name = ReadString(fd, "BrumeDensityArray");
+  vtkDataArray* density = nullptr;
+  bool cells = false;
+  if (!name.empty())
+  {
+    density = image->GetPointData()->GetArray(name.c_str());
+    if (!density)
+    {
+      density = image->GetCellData()->GetArray(name.c_str());
+      cells = density != nullptr;
+    }
+    if (!density)
+    {
+      return "has no density array '" + name + "' (named by BrumeDensityArray)";
+    }
+  }
+  else if ((density = image->GetPointData()->GetScalars()) == nullptr)
+  {
+    density = image->GetCellData()->GetScalars();
+    cells = density != nullptr;
+  }
+  if (!density)
+  {
+    if (fd->GetAbstractArray("BrumeScalarOpacity"))
+    {
+      return "has a BrumeScalarOpacity transfer function but no scalars to classify";
+    }
+    return {}; // homogeneous
+  }
+  // A transfer function classifies the array's scalars; without one the
+  // array is the density itself.
+  std::optional<brume::OpacityTransferFunction> opacity;
+  error = ReadOpacityFunction(fd, opacity);
+  if (!error.empty())
+  {
+    return error;
+  }
+  double component = 0.0;
+  if (ReadField(fd, "BrumeScalarComponent", 1, &component, error) && !opacity)
+  {
+    return "has a BrumeScalarComponent without a BrumeScalarOpacity transfer function";
+  }
+  if (!error.empty())
+  {
+    return error;
+  }
+  const int components = density->GetNumberOfComponents();
+  if (!opacity && components != 1)
+  {
+    return "has a density array with more than one component";
+  }
+  if (!(component >= 0.0 && component < components) || component != std::floor(component))
+  {
+    std::ostringstream os;
+    os << "has a BrumeScalarComponent " << component << ", but its array '"
+       << (density->GetName() ? density->GetName() : "") << "' has " << components
+       << (components == 1 ? " component" : " components");
+    return os.str();
+  }
+  brume::GridDensity::Interpolation interpolation = brume::GridDensity::Interpolation::Linear;
+  const std::string interpolationName = ReadString(fd, "BrumeInterpolation");
+  if (interpolationName == "nearest")
+  {
+    interpolation = brume::GridDensity::Interpolation::Nearest;
+  }
+  else if (!interpolationName.empty() && interpolationName != "linear")
+  {
+    return "has a BrumeInterpolation '" + interpolationName + "' (expected linear or nearest)";
+  }
+  const double* direction = image->GetDirectionMatrix()->GetData();
+  const double identity[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  if (!std::equal(direction, direction + 9, identity))
+  {
+    return "is an oriented image (non-identity direction matrix), which is not supported";
+  }
+  int dims[3];
+  image->GetDimensions(dims);
+  std::array<int, 3> n{ dims[0], dims[1], dims[2] };
+  if (cells)
+  {
+    for (int& d : n)
+    {
+      d = std::max(1, d - 1);
+    }
+  }
+  const int c = static_cast<int>(component);
+  std::vector<float> values(static_cast<std::size_t>(density->GetNumberOfTuples()));
+  for (vtkIdType i = 0; i < density->GetNumberOfTuples(); ++i)
+  {
+    const double v = density->GetComponent(i, c);
+    if (!std::isfinite(v))
+    {
+      return opacity ? "has non-finite scalars" : "has negative or non-finite densities";
+    }
+    if (!opacity && !(v >= 0.0))
+    {
+      return "has negative or non-finite densities";
+    }
+    values[i] = static_cast<float>(v);
+  }
+  auto grid =
+    std::make_shared<brume::GridDensity>(m.Bounds, n, std::move(values), cells, interpolation);
+  if (opacity)
+  {
+    m.SetDensity(std::make_shared<brume::ClassifiedDensity>(grid, std::move(*opacity)));
+  }
+  else
+  {
+    m.SetDensity(grid);
+  }
+  return {};
+}
+}

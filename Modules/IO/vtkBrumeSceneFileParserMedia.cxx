@@ -1,0 +1,372 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// vtkBrumeSceneFileParser's media: coefficients, boxes, densities (OpenVDB
+// and .vti files, announced extents checked before reading) and transfer
+// functions.
+#include "vtkBrumeSceneFileParser.h"
+#include "vtkBrumeSceneFileParserInternals.h"
+
+#include "vtkBrumeSceneFileChecks.h"
+#include "vtkDoubleArray.h"
+#include "vtkExecutive.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkNew.h"
+#include "vtkPartitionedDataSet.h"
+#include "vtkPartitionedDataSetCollection.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkXMLImageDataReader.h"
+
+#include "brume/Scene.h"
+
+#include <algorithm>
+#include <filesystem>
+
+using namespace vtkBrumeSceneFileParserInternals;
+
+bool vtkBrumeSceneFileParser::ParseMedium(const json& m, std::size_t i)
+{
+  Parser& p = *this->P;
+  const std::string at = "media[" + std::to_string(i) + "]";
+  std::string name;
+  if (!p.Keys(m, at,
+        { "name", "box", "sigma_a", "sigma_s", "albedo", "g", "density_scale", "density" }) ||
+    !p.String(m.value("name", json()), at + ".name", name))
+  {
+    return false;
+  }
+  double sa[3], ss[3], g = 0, scale = 1;
+  const bool classified =
+    m.contains("density") && m["density"].is_object() && m["density"].contains("transfer_function");
+  if (m.contains("albedo"))
+  {
+    // A transfer function's extinction split by one albedo colour.
+    if (!classified)
+    {
+      return p.Fail(at + ".albedo",
+        "needs a density.transfer_function (a medium without one gives sigma_a and sigma_s)");
+    }
+    if (m.contains("sigma_a") || m.contains("sigma_s"))
+    {
+      return p.Fail(at + ".albedo", "give either albedo or sigma_a and sigma_s, not both");
+    }
+    if (!p.Vector(m["albedo"], at + ".albedo", ss, 3, 0, 1))
+    {
+      return false;
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      sa[c] = 1.0 - ss[c];
+    }
+  }
+  else if (!p.Vector(m.value("sigma_a", json()), at + ".sigma_a", sa, 3, 0, Huge) ||
+    !p.Vector(m.value("sigma_s", json()), at + ".sigma_s", ss, 3, 0, Huge))
+  {
+    return false;
+  }
+  if (m.contains("g") && !p.Number(m["g"], at + ".g", g, -0.999999, 0.999999))
+  {
+    return false;
+  }
+  if (m.contains("density_scale") &&
+    !p.Number(m["density_scale"], at + ".density_scale", scale, 0, Huge))
+  {
+    return false;
+  }
+  vtkSmartPointer<vtkImageData> image = this->ParseDensity(m, at);
+  if (!image)
+  {
+    return false;
+  }
+  vtkFieldData* mfd = image->GetFieldData();
+  AddTuple(mfd, "BrumeSigmaA", sa, 3);
+  AddTuple(mfd, "BrumeSigmaS", ss, 3);
+  AddTuple(mfd, "BrumeG", &g, 1);
+  AddTuple(mfd, "BrumeDensityScale", &scale, 1);
+  vtkBrumeSceneConversion::AddObject(this->Scene, image, name);
+  this->ObjectFields.emplace_back(name, at);
+  return true;
+}
+
+bool vtkBrumeSceneFileParser::ParseVdb(
+  const json& density, const std::string& at, vtkImageData* image)
+{
+  Parser& p = *this->P;
+  auto relative = [this](const std::string& name) { return this->Relative(name); };
+  std::string file, grid;
+  if (!p.String(density["vdb"], at + ".density.vdb", file))
+  {
+    return false;
+  }
+  if (!std::filesystem::exists(relative(file)))
+  {
+    p.Fail(at + ".density.vdb", "no file '" + relative(file).string() + "'");
+    return false;
+  }
+  AddString(image->GetFieldData(), "BrumeVDBFile", relative(file).string());
+  if (density.contains("grid"))
+  {
+    if (!p.String(density["grid"], at + ".density.grid", grid))
+    {
+      return false;
+    }
+    AddString(image->GetFieldData(), "BrumeVDBGrid", grid);
+  }
+  if (density.contains("transfer_function") &&
+    !this->ParseTransferFunction(density, at + ".density", image))
+  {
+    return false;
+  }
+  return true;
+}
+
+bool vtkBrumeSceneFileParser::ParseTransferFunction(
+  const json& density, const std::string& at, vtkImageData* image)
+{
+  Parser& p = *this->P;
+  vtkFieldData* fd = image->GetFieldData();
+  if (density.contains("component"))
+  {
+    double component = 0;
+    if (!p.Integer(density["component"], at + ".component", component, 0, 3))
+    {
+      return false;
+    }
+    AddTuple(fd, "BrumeScalarComponent", &component, 1);
+  }
+  const json& f = density["transfer_function"];
+  const std::string tf = at + ".transfer_function";
+  if (!p.Keys(f, tf, { "opacity", "unit_distance", "interpolation" }))
+  {
+    return false;
+  }
+  const json& opacity = f.value("opacity", json());
+  if (!opacity.is_array() || opacity.empty())
+  {
+    return p.Fail(tf + ".opacity", "expected [[scalar, opacity], ...] with at least one point");
+  }
+  vtkNew<vtkDoubleArray> points;
+  points->SetName("BrumeScalarOpacity");
+  points->SetNumberOfComponents(2);
+  for (std::size_t i = 0; i < opacity.size(); ++i)
+  {
+    const std::string point = tf + ".opacity[" + std::to_string(i) + "]";
+    double pair[2];
+    if (!opacity[i].is_array() || opacity[i].size() != 2)
+    {
+      return p.Fail(point, "expected [scalar, opacity]");
+    }
+    if (!p.Number(opacity[i][0], point + "[0]", pair[0], -Huge, Huge) ||
+      !p.Number(opacity[i][1], point + "[1]", pair[1], 0, 1))
+    {
+      return false;
+    }
+    if (i > 0 && pair[0] < points->GetComponent(static_cast<vtkIdType>(i) - 1, 0))
+    {
+      return p.Fail(point + "[0]", "scalars must not decrease from point to point");
+    }
+    points->InsertNextTuple(pair);
+  }
+  fd->AddArray(points);
+  double unit = 1;
+  if (f.contains("unit_distance") &&
+    (!p.Number(f["unit_distance"], tf + ".unit_distance", unit, 0, Huge) ||
+      (!(unit > 0) && !p.Fail(tf + ".unit_distance", "expected a length above 0"))))
+  {
+    return false;
+  }
+  AddTuple(fd, "BrumeScalarOpacityUnitDistance", &unit, 1);
+  if (f.contains("interpolation"))
+  {
+    std::string interpolation;
+    if (!p.String(f["interpolation"], tf + ".interpolation", interpolation))
+    {
+      return false;
+    }
+    if (interpolation != "linear" && interpolation != "nearest")
+    {
+      return p.Fail(
+        tf + ".interpolation", "expected 'linear' or 'nearest', not '" + interpolation + "'");
+    }
+    AddString(fd, "BrumeInterpolation", interpolation);
+  }
+  return true;
+}
+
+void vtkBrumeSceneFileParser::SetBoxesFromGrids(
+  const brume::Scene& scene, const std::vector<vtkBrumeSceneConversion::ObjectSource>& sources)
+{
+  for (std::size_t o = scene.Surfaces.size(); o < sources.size(); ++o)
+  {
+    auto* image = vtkImageData::SafeDownCast(
+      this->Scene->GetPartitionedDataSet(sources[o].CollectionIndex)->GetPartition(0));
+    if (std::find(this->BoxesFromGrids.begin(), this->BoxesFromGrids.end(), image) ==
+      this->BoxesFromGrids.end())
+    {
+      continue;
+    }
+    const brume::Box& box = scene.Media[o - scene.Surfaces.size()].Bounds;
+    image->SetOrigin(box.lower.x, box.lower.y, box.lower.z);
+    const brume::Vec3 extent = box.Extent();
+    image->SetSpacing(extent.x, extent.y, extent.z);
+  }
+}
+
+namespace
+{
+// Why an image whose header announces `information`'s whole extent cannot
+// be read (empty when it can): more than MaxDensityPoints points, or more
+// bytes of float densities than half this machine's memory.
+std::string CheckAnnouncedExtent(vtkInformation* information, const std::string& file)
+{
+  constexpr double MaxDensityPoints = 1073741824.0; // 2^30
+  int extent[6] = { 0, -1, 0, -1, 0, -1 };
+  if (!information || !information->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    return {};
+  }
+  information->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+  double points = 1.0;
+  std::ostringstream dims;
+  for (int a = 0; a < 3; ++a)
+  {
+    const double n = static_cast<double>(extent[2 * a + 1]) - extent[2 * a] + 1.0;
+    points *= std::max(n, 0.0);
+    dims << (a ? " x " : "") << static_cast<long long>(n);
+  }
+  const double memory = 2.0 * vtkBrumeSceneFileChecks::UsableMemory();
+  const double bytes = points * static_cast<double>(sizeof(float));
+  if (points > MaxDensityPoints || (memory > 0.0 && bytes > 0.5 * memory))
+  {
+    std::ostringstream os;
+    os << "'" << file << "' announces " << dims.str() << " points (" << bytes
+       << " bytes of densities): more than a density image may hold here (2^30 points, half of "
+       << memory << " bytes of memory)";
+    return os.str();
+  }
+  return {};
+}
+}
+
+vtkSmartPointer<vtkImageData> vtkBrumeSceneFileParser::ParseDensity(
+  const json& m, const std::string& at)
+{
+  Parser& p = *this->P;
+  auto relative = [this](const std::string& name) { return this->Relative(name); };
+  vtkSmartPointer<vtkImageData> image;
+  const json density = m.value("density", json::object());
+  if (!p.Keys(density, at + ".density",
+        { "vdb", "grid", "vti", "array", "component", "transfer_function" }))
+  {
+    return nullptr;
+  }
+  if (density.contains("transfer_function") && !density.contains("vti") && !density.contains("vdb"))
+  {
+    p.Fail(at + ".density.transfer_function", "needs a 'vti' or 'vdb' density to classify");
+    return nullptr;
+  }
+  if (density.contains("component") && !density.contains("vti"))
+  {
+    p.Fail(at + ".density.component", "needs a 'vti' density (an OpenVDB float grid has one)");
+    return nullptr;
+  }
+  if (density.contains("component") && !density.contains("transfer_function"))
+  {
+    p.Fail(
+      at + ".density.component", "needs a transfer_function (a density array has one component)");
+    return nullptr;
+  }
+  if (density.contains("vdb") && density.contains("vti"))
+  {
+    p.Fail(at + ".density", "needs at most one of 'vdb' and 'vti'");
+    return nullptr;
+  }
+  if (density.contains("vti"))
+  {
+    std::string file;
+    if (!p.String(density["vti"], at + ".density.vti", file))
+    {
+      return nullptr;
+    }
+    vtkNew<vtkXMLImageDataReader> reader;
+    reader->SetFileName(relative(file).string().c_str());
+    const bool display = vtkObject::GetGlobalWarningDisplay();
+    vtkObject::GlobalWarningDisplayOff();
+    // The extent the header announces, before anything is allocated for it.
+    const std::string tooLarge = reader->GetExecutive()->UpdateInformation() != 0
+      ? CheckAnnouncedExtent(reader->GetOutputInformation(0), relative(file).string())
+      : std::string();
+    if (!tooLarge.empty())
+    {
+      vtkObject::SetGlobalWarningDisplay(display);
+      p.Fail(at + ".density.vti", tooLarge);
+      return nullptr;
+    }
+    const int ok = reader->GetExecutive()->Update();
+    vtkObject::SetGlobalWarningDisplay(display);
+    if (!ok || reader->GetOutput()->GetNumberOfPoints() == 0)
+    {
+      p.Fail(at + ".density.vti", "cannot read '" + relative(file).string() + "'");
+      return nullptr;
+    }
+    image = vtkSmartPointer<vtkImageData>::New();
+    image->ShallowCopy(reader->GetOutput());
+    image->GetFieldData()->Initialize();
+    if (density.contains("array"))
+    {
+      std::string array;
+      if (!p.String(density["array"], at + ".density.array", array))
+      {
+        return nullptr;
+      }
+      AddString(image->GetFieldData(), "BrumeDensityArray", array);
+    }
+    if (density.contains("transfer_function") &&
+      !this->ParseTransferFunction(density, at + ".density", image))
+    {
+      return nullptr;
+    }
+  }
+  else if (density.contains("vdb") && !m.contains("box"))
+  {
+    // An OpenVDB medium without a box: the grid's active box, set once the
+    // grid is read (CheckScene).
+    image = vtkSmartPointer<vtkImageData>::New();
+    image->SetDimensions(2, 2, 2);
+    this->BoxesFromGrids.push_back(image);
+    if (!this->ParseVdb(density, at, image))
+    {
+      return nullptr;
+    }
+  }
+  else
+  {
+    double box[6];
+    const json& b = m.value("box", json());
+    if (!b.is_array() || b.size() != 2 || !p.Vector(b[0], at + ".box[0]", box, 3, -Huge, Huge) ||
+      !p.Vector(b[1], at + ".box[1]", box + 3, 3, -Huge, Huge))
+    {
+      if (p.Error.empty())
+      {
+        p.Fail(at + ".box", "expected [[xmin, ymin, zmin], [xmax, ymax, zmax]]");
+      }
+      return nullptr;
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      if (!(box[3 + a] > box[a]))
+      {
+        p.Fail(at + ".box", "the box is empty (max <= min)");
+        return nullptr;
+      }
+    }
+    image = vtkSmartPointer<vtkImageData>::New();
+    image->SetOrigin(box[0], box[1], box[2]);
+    image->SetSpacing(box[3] - box[0], box[4] - box[1], box[5] - box[2]);
+    image->SetDimensions(2, 2, 2);
+    if (density.contains("vdb") && !this->ParseVdb(density, at, image))
+    {
+      return nullptr;
+    }
+  }
+  return image;
+}
