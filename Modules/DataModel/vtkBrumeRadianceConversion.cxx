@@ -21,6 +21,7 @@
 #include "brume/TransferFunction.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace
@@ -207,7 +208,9 @@ vtkSmartPointer<vtkImageData> vtkBrumeRadianceConversion::NativeExtinction(
     // The function's extinction at TransferFunctionSamples scalars evenly
     // over its points' range (its end values beyond).
     const float lo = function->GetNodes().front().Scalar;
-    const float hi = std::max(function->GetNodes().back().Scalar, lo + 1.f);
+    // One point (or all at one scalar): any range past it holds the end values.
+    const float last = function->GetNodes().back().Scalar;
+    const float hi = last > lo ? last : lo + std::max(1.f, std::abs(lo));
     vtkNew<vtkFloatArray> table;
     table->SetName("ExtinctionTransferFunction");
     table->SetNumberOfValues(TransferFunctionSamples);

@@ -118,7 +118,7 @@ bool vtkBrumeVolumePropertyMedium::ChooseSamplingDimensions(
   dataset->GetBounds(b);
   const double extent[3] = { b[1] - b[0], b[3] - b[2], b[5] - b[4] };
   const vtkIdType cells = dataset->GetNumberOfCells();
-  if (cells < 1 || !(extent[0] > 0.0 && extent[1] > 0.0 && extent[2] > 0.0) ||
+  if (maximumPoints < 8 || cells < 1 || !(extent[0] > 0.0 && extent[1] > 0.0 && extent[2] > 0.0) ||
     !std::isfinite(extent[0] * extent[1] * extent[2]))
   {
     return false;

@@ -98,7 +98,8 @@ public:
 
   /**
    * The points along each axis the default rule gives `dataset` (above);
-   * false when its bounds are empty or flat along an axis.
+   * false when it has no cells, its bounds are empty or flat along an
+   * axis, or `maximumPoints` is below 8.
    */
   static bool ChooseSamplingDimensions(vtkDataSet* dataset, vtkIdType maximumPoints, int dims[3]);
 

@@ -382,6 +382,8 @@ void TestResampledDataset()
   Check(vtkBrumeVolumePropertyMedium::ChooseSamplingDimensions(grid, 1000, capped) &&
       capped[0] * capped[1] * capped[2] <= 1000 && capped[0] >= 2,
     "the cap on the sampled points");
+  Check(!vtkBrumeVolumePropertyMedium::ChooseSamplingDimensions(grid, 7, capped),
+    "fewer than 2^3 points cannot be chosen");
   brume::Medium fromImage, fromGrid;
   vtkNew<vtkBrumeVolumePropertyMedium> filter;
   filter->SetVolumeProperty(property);
