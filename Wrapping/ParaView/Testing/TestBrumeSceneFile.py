@@ -18,7 +18,7 @@ import sys
 from paraview.simple import *  # noqa: F401,F403
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from brume_testing import actors_image, black_view, check, finish, image_error  # noqa: E402
+from brume_testing import check, finish, image_error, shown_at_scene_camera  # noqa: E402
 
 plugin, scene_dir, output_dir = sys.argv[1:4]
 LoadPlugin(plugin, ns=globals())
@@ -65,23 +65,8 @@ for i in range(textures.GetNumberOfPartitionedDataSets()):
         bricked += 1 if fd.GetArray("ExtinctionBrickSamples") is not None else 0
 check(bricked == 1, "the cloud's extinction travels in bricks (%d sparse grids)" % bricked)
 
-view = black_view(size)
-display = Show(reconstruction, view)
-check(display.Representation == "Brume Radiance",
-      "Show() gives 'Brume Radiance' (got '%s')" % display.Representation)
-Render(view)  # the first render frames the scene; then the scene's camera
-view.CameraPosition = camera_settings["position"]
-view.CameraFocalPoint = camera_settings["focal_point"]
-view.CameraViewUp = camera_settings["view_up"]
-view.CameraViewAngle = camera_settings["view_angle"]
-Render(view)
-shown = os.path.join(output_dir, "TestBrumeSceneFile.png")
-SaveScreenshot(shown, view, ImageResolution=[size, size])
-expected = os.path.join(output_dir, "TestBrumeSceneFile-actors.png")
-actors_image(view, size, reconstruction.GetClientSideObject().GetOutput(),
-             view.GetActiveCamera(), expected)
-error = image_error(shown, expected)
-check(error <= 0.5, "the render view shows what vtkBrumeSceneActors draws (error %g)" % error)
+view, display, shown = shown_at_scene_camera(reconstruction, camera_settings, size, output_dir,
+                                            "TestBrumeSceneFile")
 
 # Without the medium's bricks drawn, the image would be the plain's alone:
 # the cloud must change it.

@@ -14,7 +14,7 @@ import sys
 from paraview.simple import *  # noqa: F401,F403
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from brume_testing import actors_image, black_view, check, finish, image_error  # noqa: E402
+from brume_testing import check, finish, image_error, shown_at_scene_camera  # noqa: E402
 
 plugin, scene_file, output_dir = sys.argv[1:4]
 LoadPlugin(plugin, ns=globals())
@@ -37,23 +37,8 @@ check(tables == 1, "the plume's scalars travel with the function's table (%d tab
 with open(scene_file) as f:
     camera_settings = json.load(f)["camera"]
 size = 128
-view = black_view(size)
-display = Show(reconstruction, view)
-check(display.Representation == "Brume Radiance",
-      "Show() gives 'Brume Radiance' (got '%s')" % display.Representation)
-Render(view)
-view.CameraPosition = camera_settings["position"]
-view.CameraFocalPoint = camera_settings["focal_point"]
-view.CameraViewUp = camera_settings["view_up"]
-view.CameraViewAngle = camera_settings["view_angle"]
-Render(view)
-shown = os.path.join(output_dir, "TestBrumeTransferFunctionScene.png")
-SaveScreenshot(shown, view, ImageResolution=[size, size])
-expected = os.path.join(output_dir, "TestBrumeTransferFunctionScene-actors.png")
-actors_image(view, size, reconstruction.GetClientSideObject().GetOutput(),
-             view.GetActiveCamera(), expected)
-error = image_error(shown, expected)
-check(error <= 0.5, "the render view shows what vtkBrumeSceneActors draws (error %g)" % error)
+view, display, shown = shown_at_scene_camera(reconstruction, camera_settings, size, output_dir,
+                                            "TestBrumeTransferFunctionScene")
 display.ShowMedia = 0
 Render(view)
 bare = os.path.join(output_dir, "TestBrumeTransferFunctionScene-bare.png")

@@ -2,9 +2,10 @@
 they give, a black render view looking at the default scene as `brume
 render` does, vtkBrumeSceneActors' image of textures as a VTK user would
 draw them, and vtkImageDifference's error between two PNG files."""
+import os
 import sys
 
-from paraview.simple import CreateView, Render
+from paraview.simple import CreateView, Render, SaveScreenshot, Show
 from vtkmodules.vtkImagingCore import vtkImageDifference
 from vtkmodules.vtkIOImage import vtkPNGReader, vtkPNGWriter
 from vtkmodules.vtkRenderingCore import vtkRenderer, vtkRenderWindow, vtkWindowToImageFilter
@@ -115,3 +116,28 @@ def actors_image(view, size, textures, camera, png, interpolate=True, extra=None
     writer.SetInputConnection(capture.GetOutputPort())
     writer.Write()
     window.Finalize()
+
+
+def shown_at_scene_camera(reconstruction, camera_settings, size, output_dir, name):
+    """Shows a reconstruction with "Brume Radiance" in a black view at a
+    scene file's camera, saves the screenshot (NAME.png) and
+    vtkBrumeSceneActors' image of the same textures (NAME-actors.png), and
+    checks that they agree. Returns the view, the display and the screenshot."""
+    view = black_view(size)
+    display = Show(reconstruction, view)
+    check(display.Representation == "Brume Radiance",
+          "Show() gives 'Brume Radiance' (got '%s')" % display.Representation)
+    Render(view)  # the first render frames the scene; then the scene's camera
+    view.CameraPosition = camera_settings["position"]
+    view.CameraFocalPoint = camera_settings["focal_point"]
+    view.CameraViewUp = camera_settings["view_up"]
+    view.CameraViewAngle = camera_settings["view_angle"]
+    Render(view)
+    shown = os.path.join(output_dir, name + ".png")
+    SaveScreenshot(shown, view, ImageResolution=[size, size])
+    expected = os.path.join(output_dir, name + "-actors.png")
+    actors_image(view, size, reconstruction.GetClientSideObject().GetOutput(),
+                 view.GetActiveCamera(), expected)
+    error = image_error(shown, expected)
+    check(error <= 0.5, "the render view shows what vtkBrumeSceneActors draws (error %g)" % error)
+    return view, display, shown
