@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumeVolumePropertyMedium.h"
 
+#include "vtkBrumeSceneConversion.h"
 #include "vtkCharArray.h"
 #include "vtkDataArray.h"
 #include "vtkDataObject.h"
@@ -33,14 +34,11 @@ vtkCxxSetObjectMacro(vtkBrumeVolumePropertyMedium, VolumeProperty, vtkVolumeProp
 
 namespace
 {
+// Replaces the field array `name` by one tuple of `n` values.
 void SetField(vtkFieldData* fd, const char* name, const double* values, int n)
 {
-  vtkNew<vtkDoubleArray> a;
-  a->SetName(name);
-  a->SetNumberOfComponents(n);
-  a->InsertNextTuple(values);
   fd->RemoveArray(name);
-  fd->AddArray(a);
+  vtkBrumeSceneConversion::AppendTuple(fd, name, values, n);
 }
 
 void SetString(vtkFieldData* fd, const char* name, const std::string& value)
@@ -70,11 +68,12 @@ std::vector<std::array<double, 2>> Points(vtkPiecewiseFunction* f, int samples)
     return points;
   }
   const double lo = points.front()[0], hi = points.back()[0];
+  std::vector<double> values(static_cast<std::size_t>(samples));
+  f->GetTable(lo, hi, samples, values.data());
   points.clear();
   for (int i = 0; i < samples; ++i)
   {
-    const double s = lo + (hi - lo) * i / (samples - 1);
-    points.push_back({ s, f->GetValue(s) });
+    points.push_back({ lo + (hi - lo) * i / (samples - 1), values[i] });
   }
   return points;
 }

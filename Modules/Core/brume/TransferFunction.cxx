@@ -112,9 +112,12 @@ ClassifiedDensity::ClassifiedDensity(
     }
   }
   this->Majorants = this->Scalars->GetMajorants();
-  std::vector<float> lo, hi;
+  std::vector<float>& lo = this->RangeLow;
+  std::vector<float>& hi = this->RangeHigh;
   if (!this->Scalars->ValueRanges(lo, hi) || hi.size() != this->Majorants.Max.size())
   {
+    lo.clear();
+    hi.clear();
     // Without ranges, the function's largest extinction everywhere.
     const auto& nodes = this->Opacity.GetNodes();
     const float all = this->Opacity.MaxExtinction(nodes.front().Scalar, nodes.back().Scalar);
@@ -183,10 +186,11 @@ bool ClassifiedDensity::BendsWithin(const Box& region) const
 
 bool ClassifiedDensity::BendsWithinBlocks(const Box& region) const
 {
-  // The value ranges of the majorant blocks the region overlaps.
-  std::vector<float> lo, hi;
+  // The value ranges of the majorant blocks the region overlaps (kept by the constructor).
+  const std::vector<float>& lo = this->RangeLow;
+  const std::vector<float>& hi = this->RangeHigh;
   const MajorantGrid& mg = this->Majorants;
-  if (!this->Scalars->ValueRanges(lo, hi) || hi.size() != mg.Max.size())
+  if (hi.empty())
   {
     return true;
   }

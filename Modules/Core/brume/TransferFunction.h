@@ -107,6 +107,8 @@ private:
   bool BendsWithinBlocks(const Box& region) const;
 
   std::shared_ptr<const DensityField> Scalars;
+  // Per majorant block, the field's value range (empty when it cannot say).
+  std::vector<float> RangeLow, RangeHigh;
   OpacityTransferFunction Opacity;
 };
 

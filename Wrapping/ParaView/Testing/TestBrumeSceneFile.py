@@ -18,7 +18,8 @@ import sys
 from paraview.simple import *  # noqa: F401,F403
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from brume_testing import check, finish, image_error, shown_at_scene_camera  # noqa: E402
+from brume_testing import (check, check_media_drawn, finish, partitions_with,  # noqa: E402
+                           shown_at_scene_camera)
 
 plugin, scene_dir, output_dir = sys.argv[1:4]
 LoadPlugin(plugin, ns=globals())
@@ -57,12 +58,7 @@ tracer = BrumeLightTracer(Input=reader, NumberOfParticles=100000, Seed=1)
 reconstruction = BrumeRadianceReconstruction(Scene=reader, Hits=tracer)
 reconstruction.UpdatePipeline()
 textures = reconstruction.GetClientSideObject().GetOutput()
-bricked = 0
-for i in range(textures.GetNumberOfPartitionedDataSets()):
-    pds = textures.GetPartitionedDataSet(i)
-    for k in range(pds.GetNumberOfPartitions()):
-        fd = pds.GetPartition(k).GetFieldData()
-        bricked += 1 if fd.GetArray("ExtinctionBrickSamples") is not None else 0
+bricked = partitions_with(textures, "ExtinctionBrickSamples")
 check(bricked == 1, "the cloud's extinction travels in bricks (%d sparse grids)" % bricked)
 
 view, display, shown = shown_at_scene_camera(reconstruction, camera_settings, size, output_dir,
@@ -70,12 +66,7 @@ view, display, shown = shown_at_scene_camera(reconstruction, camera_settings, si
 
 # Without the medium's bricks drawn, the image would be the plain's alone:
 # the cloud must change it.
-display.ShowMedia = 0
-Render(view)
-plain = os.path.join(output_dir, "TestBrumeSceneFile-plain.png")
-SaveScreenshot(plain, view, ImageResolution=[size, size])
-error = image_error(shown, plain)
-check(error > 10, "the cloud is drawn (error %g against the plain alone)" % error)
+check_media_drawn(view, display, shown, size, output_dir, "TestBrumeSceneFile", "the cloud")
 
 Delete(view)  # before the interpreter's exit, as pvbatch expects
 del view

@@ -14,7 +14,8 @@ import sys
 from paraview.simple import *  # noqa: F401,F403
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from brume_testing import check, finish, image_error, shown_at_scene_camera  # noqa: E402
+from brume_testing import (check, check_media_drawn, finish, partitions_with,  # noqa: E402
+                           shown_at_scene_camera)
 
 plugin, scene_file, output_dir = sys.argv[1:4]
 LoadPlugin(plugin, ns=globals())
@@ -26,12 +27,7 @@ tracer = BrumeLightTracer(Input=reader, NumberOfParticles=100000, Seed=1)
 reconstruction = BrumeRadianceReconstruction(Scene=reader, Hits=tracer)
 reconstruction.UpdatePipeline()
 textures = reconstruction.GetClientSideObject().GetOutput()
-tables = 0
-for i in range(textures.GetNumberOfPartitionedDataSets()):
-    pds = textures.GetPartitionedDataSet(i)
-    for k in range(pds.GetNumberOfPartitions()):
-        fd = pds.GetPartition(k).GetFieldData()
-        tables += 1 if fd.GetArray("ExtinctionTransferFunction") is not None else 0
+tables = partitions_with(textures, "ExtinctionTransferFunction")
 check(tables == 1, "the plume's scalars travel with the function's table (%d tables)" % tables)
 
 with open(scene_file) as f:
@@ -39,12 +35,8 @@ with open(scene_file) as f:
 size = 128
 view, display, shown = shown_at_scene_camera(reconstruction, camera_settings, size, output_dir,
                                             "TestBrumeTransferFunctionScene")
-display.ShowMedia = 0
-Render(view)
-bare = os.path.join(output_dir, "TestBrumeTransferFunctionScene-bare.png")
-SaveScreenshot(bare, view, ImageResolution=[size, size])
-error = image_error(shown, bare)
-check(error > 10, "the classified plume is drawn (error %g against the room alone)" % error)
+check_media_drawn(view, display, shown, size, output_dir, "TestBrumeTransferFunctionScene",
+                  "the classified plume")
 
 Delete(view)  # before the interpreter's exit, as pvbatch expects
 del view

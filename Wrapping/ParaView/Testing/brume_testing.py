@@ -141,3 +141,24 @@ def shown_at_scene_camera(reconstruction, camera_settings, size, output_dir, nam
     error = image_error(shown, expected)
     check(error <= 0.5, "the render view shows what vtkBrumeSceneActors draws (error %g)" % error)
     return view, display, shown
+
+
+def partitions_with(textures, array):
+    """The partitions of a reconstruction's output whose field data hold `array`."""
+    count = 0
+    for i in range(textures.GetNumberOfPartitionedDataSets()):
+        pds = textures.GetPartitionedDataSet(i)
+        for k in range(pds.GetNumberOfPartitions()):
+            count += 1 if pds.GetPartition(k).GetFieldData().GetArray(array) is not None else 0
+    return count
+
+
+def check_media_drawn(view, display, shown, size, output_dir, name, what):
+    """Draws the view again without its media (NAME-bare.png) and checks
+    that the media changed the screenshot `shown`."""
+    display.ShowMedia = 0
+    Render(view)
+    bare = os.path.join(output_dir, name + "-bare.png")
+    SaveScreenshot(bare, view, ImageResolution=[size, size])
+    error = image_error(shown, bare)
+    check(error > 10, "%s is drawn (error %g without the media)" % (what, error))
