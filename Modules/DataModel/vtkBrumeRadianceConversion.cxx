@@ -206,20 +206,42 @@ vtkSmartPointer<vtkImageData> vtkBrumeRadianceConversion::NativeExtinction(
   if (function)
   {
     // The function's extinction at TransferFunctionSamples scalars evenly
-    // over its points' range (its end values beyond).
-    const float lo = function->GetNodes().front().Scalar;
+    // over its points' range (its end values beyond), and the albedo its
+    // colour function gives, over both functions' points.
+    const auto* colors = dynamic_cast<const brume::ClassifiedAlbedo*>(medium.AlbedoFactor.get());
+    float lo = function->GetNodes().front().Scalar;
+    float last = function->GetNodes().back().Scalar;
+    if (colors)
+    {
+      lo = std::min(lo, colors->GetColors().GetNodes().front().Scalar);
+      last = std::max(last, colors->GetColors().GetNodes().back().Scalar);
+    }
     // One point (or all at one scalar): any range past it holds the end values.
-    const float last = function->GetNodes().back().Scalar;
     const float hi = last > lo ? last : lo + std::max(1.f, std::abs(lo));
     vtkNew<vtkFloatArray> table;
     table->SetName("ExtinctionTransferFunction");
     table->SetNumberOfValues(TransferFunctionSamples);
+    vtkNew<vtkFloatArray> albedo;
+    albedo->SetName("AlbedoTransferFunction");
+    albedo->SetNumberOfComponents(3);
+    albedo->SetNumberOfTuples(colors ? TransferFunctionSamples : 0);
+    const brume::Vec3 albedoScale = medium.Albedo();
     for (int i = 0; i < TransferFunctionSamples; ++i)
     {
       const float t = static_cast<float>(i) / static_cast<float>(TransferFunctionSamples - 1);
-      table->SetValue(i, function->Extinction(lo + (hi - lo) * t));
+      const float s = lo + (hi - lo) * t;
+      table->SetValue(i, function->Extinction(s));
+      if (colors)
+      {
+        const brume::Vec3 a = albedoScale * colors->GetColors().Color(s);
+        albedo->SetTypedTuple(i, &a.x);
+      }
     }
     fd->AddArray(table);
+    if (colors)
+    {
+      fd->AddArray(albedo);
+    }
     vtkNew<vtkDoubleArray> range;
     range->SetName("ExtinctionTransferRange");
     range->SetNumberOfComponents(2);
@@ -369,13 +391,51 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
     std::copy(bricks->GetSlots().begin(), bricks->GetSlots().end(), slots->GetPointer(0));
     fd->AddArray(slots);
   }
+  // A varying albedo is applied by the mapper where it classifies the
+  // scalars. On a grid it cannot classify (a coarsened one) it is applied
+  // here, the albedo at each texel's centre: the emission sigma_t a X is
+  // kept, and the extinction takes one factor, that of the mean albedo.
+  const bool bake = radiance.HasVaryingAlbedo() && !radiance.GetClassification();
+  const bool albedoTable = radiance.HasVaryingAlbedo() && !bake;
+  std::vector<brume::Vec3> texelAlbedo;
+  brume::Vec3 bakedFactor(1.f);
+  if (bake)
+  {
+    const std::size_t texels = static_cast<std::size_t>(res[0]) * res[1] * res[2];
+    const brume::Vec3 cell(extent.x / res[0], extent.y / res[1], extent.z / res[2]);
+    brume::Vec3 mean(0.f);
+    texelAlbedo.resize(texels);
+    for (std::size_t t = 0; t < texels; ++t)
+    {
+      const int i = static_cast<int>(t % res[0]), j = static_cast<int>((t / res[0]) % res[1]),
+                k = static_cast<int>(t / (static_cast<std::size_t>(res[0]) * res[1]));
+      texelAlbedo[t] = medium.AlbedoAt(medium.Bounds.lower +
+        cell *
+          brume::Vec3(static_cast<float>(i) + 0.5f, static_cast<float>(j) + 0.5f,
+            static_cast<float>(k) + 0.5f));
+      mean += texelAlbedo[t] * (1.f / static_cast<float>(texels));
+    }
+    bakedFactor = brume::Vec3(1.f) - mean * radiance.GetPeak(directional).Forward;
+  }
+  auto baked = [&](const std::vector<float>& values, int components)
+  {
+    std::vector<float> out(values);
+    for (std::size_t t = 0; bake && t < texelAlbedo.size(); ++t)
+    {
+      for (int c = 0; c < components; ++c)
+      {
+        out[t * components + c] *= texelAlbedo[t][c % 3] / bakedFactor[c % 3];
+      }
+    }
+    return out;
+  };
   if (directional)
   {
     // The projection, and as SourceRadiance its mean over directions (the
     // l = 0 term: c_00 Y_00).
     const int order = radiance.GetDirectionalOrder();
     const int components = 3 * brume::ShCoefficients(order);
-    const std::vector<float>& coefficients = radiance.GetDirectional();
+    const std::vector<float> coefficients = baked(radiance.GetDirectional(), components);
     std::vector<float> mean(3 * (coefficients.size() / components));
     for (std::size_t t = 0; t < mean.size() / 3; ++t)
     {
@@ -393,7 +453,15 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
   }
   else
   {
-    add("SourceRadiance", radiance.GetOutputRadiance(), 3);
+    add("SourceRadiance", baked(radiance.GetOutputRadiance(), 3), 3);
+  }
+  if (albedoTable)
+  {
+    // The mapper draws sigma_t a X and extinguishes sigma_t (1 - a Forward).
+    vtkNew<vtkDoubleArray> forward;
+    forward->SetName("BrumeForwardFraction");
+    forward->InsertNextValue(radiance.GetPeak(directional).Forward);
+    fd->AddArray(forward);
   }
   if (!sparse)
   {
@@ -401,7 +469,7 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
   }
   // A strongly forward medium's peak is drawn as transport: at the
   // extinction times this factor, with S per unit of it.
-  const brume::Vec3& factor = radiance.GetExtinctionFactor(directional);
+  const brume::Vec3 factor = bake ? bakedFactor : radiance.GetExtinctionFactor(directional);
   if (factor.x != 1.f || factor.y != 1.f || factor.z != 1.f)
   {
     vtkNew<vtkDoubleArray> f;

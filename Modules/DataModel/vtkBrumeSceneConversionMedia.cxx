@@ -59,6 +59,60 @@ std::string ReadOpacityFunction(
   return {};
 }
 
+// The colour transfer function of a medium's field data, if any:
+// BrumeScalarColor (tuples of scalar, red, green, blue), a factor on the
+// albedo. Empty when valid or absent.
+std::string ReadColorFunction(
+  vtkFieldData* fd, std::optional<brume::ColorTransferFunction>& function)
+{
+  vtkDataArray* points = fd ? fd->GetArray("BrumeScalarColor") : nullptr;
+  if (!points)
+  {
+    return {};
+  }
+  if (!fd->GetArray("BrumeScalarOpacity"))
+  {
+    return "has a BrumeScalarColor without a BrumeScalarOpacity transfer function";
+  }
+  if (points->GetNumberOfComponents() != 4)
+  {
+    return "has a BrumeScalarColor that is not (scalar, red, green, blue) tuples (4 components)";
+  }
+  std::vector<brume::ColorTransferFunction::Node> nodes;
+  for (vtkIdType i = 0; i < points->GetNumberOfTuples(); ++i)
+  {
+    nodes.push_back({ static_cast<float>(points->GetComponent(i, 0)),
+      brume::Vec3(static_cast<float>(points->GetComponent(i, 1)),
+        static_cast<float>(points->GetComponent(i, 2)),
+        static_cast<float>(points->GetComponent(i, 3))) });
+  }
+  const std::string error = brume::ColorTransferFunction::Validate(nodes);
+  if (!error.empty())
+  {
+    return "has a BrumeScalarColor transfer function that " + error;
+  }
+  function.emplace(std::move(nodes));
+  return {};
+}
+
+// The medium's density: `scalars` classified when it has an opacity
+// function, and its albedo coloured when it has a colour function too.
+void SetClassified(brume::Medium& m, std::shared_ptr<const brume::DensityField> scalars,
+  std::optional<brume::OpacityTransferFunction>& opacity,
+  std::optional<brume::ColorTransferFunction>& colors)
+{
+  if (!opacity)
+  {
+    m.SetDensity(std::move(scalars));
+    return;
+  }
+  if (colors)
+  {
+    m.AlbedoFactor = std::make_shared<brume::ClassifiedAlbedo>(scalars, std::move(*colors));
+  }
+  m.SetDensity(std::make_shared<brume::ClassifiedDensity>(std::move(scalars), std::move(*opacity)));
+}
+
 }
 
 std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
@@ -95,26 +149,24 @@ std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
   {
     // With a transfer function, the grid's values are scalars it classifies.
     std::optional<brume::OpacityTransferFunction> opacity;
+    std::optional<brume::ColorTransferFunction> colors;
     error = ReadOpacityFunction(fd, opacity);
+    if (error.empty())
+    {
+      error = ReadColorFunction(fd, colors);
+    }
     if (!error.empty())
     {
       return error;
     }
-    auto density = opacity
+    std::shared_ptr<const brume::DensityField> density = opacity
       ? brume::VdbDensity::LoadScalars(vdbFile, ReadString(fd, "BrumeVDBGrid"), error)
       : brume::VdbDensity::Load(vdbFile, ReadString(fd, "BrumeVDBGrid"), error);
     if (!density)
     {
       return error;
     }
-    if (opacity)
-    {
-      m.SetDensity(std::make_shared<brume::ClassifiedDensity>(density, std::move(*opacity)));
-    }
-    else
-    {
-      m.SetDensity(density);
-    }
+    SetClassified(m, std::move(density), opacity, colors);
     return {};
   }
 
@@ -146,16 +198,22 @@ std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
   }
   if (!density)
   {
-    if (fd->GetAbstractArray("BrumeScalarOpacity"))
+    if (fd->GetAbstractArray("BrumeScalarOpacity") || fd->GetAbstractArray("BrumeScalarColor"))
     {
-      return "has a BrumeScalarOpacity transfer function but no scalars to classify";
+      return "has a transfer function (BrumeScalarOpacity or BrumeScalarColor) but no scalars "
+             "to classify";
     }
     return {}; // homogeneous
   }
   // A transfer function classifies the array's scalars; without one the
   // array is the density itself.
   std::optional<brume::OpacityTransferFunction> opacity;
+  std::optional<brume::ColorTransferFunction> colors;
   error = ReadOpacityFunction(fd, opacity);
+  if (error.empty())
+  {
+    error = ReadColorFunction(fd, colors);
+  }
   if (!error.empty())
   {
     return error;
@@ -223,16 +281,9 @@ std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
     }
     values[i] = static_cast<float>(v);
   }
-  auto grid =
-    std::make_shared<brume::GridDensity>(m.Bounds, n, std::move(values), cells, interpolation);
-  if (opacity)
-  {
-    m.SetDensity(std::make_shared<brume::ClassifiedDensity>(grid, std::move(*opacity)));
-  }
-  else
-  {
-    m.SetDensity(grid);
-  }
+  SetClassified(m,
+    std::make_shared<brume::GridDensity>(m.Bounds, n, std::move(values), cells, interpolation),
+    opacity, colors);
   return {};
 }
 }

@@ -3,6 +3,7 @@
 
 #include "vtkBrumeSceneConversion.h"
 #include "vtkCharArray.h"
+#include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
 #include "vtkDataObject.h"
 #include "vtkDataSet.h"
@@ -77,6 +78,36 @@ std::vector<std::array<double, 2>> Points(vtkPiecewiseFunction* f, int samples)
   }
   return points;
 }
+
+// The function's (scalar, red, green, blue) points: its nodes when it is
+// piecewise linear in RGB (midpoints 0.5, sharpness 0), else `samples`
+// samples over its range.
+std::vector<std::array<double, 4>> Points(vtkColorTransferFunction* f, int samples)
+{
+  std::vector<std::array<double, 4>> points;
+  bool linear = f->GetColorSpace() == VTK_CTF_RGB;
+  double node[6];
+  for (int i = 0; i < f->GetSize(); ++i)
+  {
+    f->GetNodeValue(i, node);
+    linear = linear && node[4] == 0.5 && node[5] == 0.0;
+    points.push_back({ node[0], node[1], node[2], node[3] });
+  }
+  if (linear || points.size() < 2)
+  {
+    return points;
+  }
+  const double lo = points.front()[0], hi = points.back()[0];
+  std::vector<double> rgb(3 * static_cast<std::size_t>(samples));
+  f->GetTable(lo, hi, samples, rgb.data());
+  points.clear();
+  for (int i = 0; i < samples; ++i)
+  {
+    points.push_back({ lo + (hi - lo) * i / (samples - 1), rgb[3 * i], rgb[3 * i + 1],
+      rgb[3 * i + 2] });
+  }
+  return points;
+}
 }
 
 vtkBrumeVolumePropertyMedium::vtkBrumeVolumePropertyMedium()
@@ -99,6 +130,10 @@ vtkMTimeType vtkBrumeVolumePropertyMedium::GetMTime()
     if (vtkPiecewiseFunction* f = this->VolumeProperty->GetScalarOpacity(this->Component))
     {
       t = std::max(t, f->GetMTime());
+    }
+    if (this->VolumeProperty->GetColorChannels(this->Component) == 3)
+    {
+      t = std::max(t, this->VolumeProperty->GetRGBTransferFunction(this->Component)->GetMTime());
     }
   }
   return t;
@@ -193,12 +228,31 @@ int vtkBrumeVolumePropertyMedium::RequestData(
     nodes.push_back({ static_cast<float>(p[0]), static_cast<float>(p[1]) });
   }
   const double unit = this->VolumeProperty->GetScalarOpacityUnitDistance(this->Component);
-  const std::string error = brume::OpacityTransferFunction::Validate(nodes, unit);
+  std::string error = brume::OpacityTransferFunction::Validate(nodes, unit);
   if (!error.empty())
   {
     vtkErrorMacro(
       "has a volume property whose scalar opacity (component " << this->Component << ") " << error);
     return 0;
+  }
+  std::vector<std::array<double, 4>> colors;
+  if (this->ColorAsAlbedo && this->VolumeProperty->GetColorChannels(this->Component) == 3)
+  {
+    colors = Points(
+      this->VolumeProperty->GetRGBTransferFunction(this->Component), this->SampledFunctionPoints);
+    std::vector<brume::ColorTransferFunction::Node> colorNodes;
+    for (const auto& p : colors)
+    {
+      colorNodes.push_back({ static_cast<float>(p[0]),
+        brume::Vec3(static_cast<float>(p[1]), static_cast<float>(p[2]), static_cast<float>(p[3])) });
+    }
+    error = brume::ColorTransferFunction::Validate(colorNodes);
+    if (!error.empty())
+    {
+      vtkErrorMacro(
+        "has a volume property whose colour (component " << this->Component << ") " << error);
+      return 0;
+    }
   }
 
   // Another dataset is resampled to an image, its arrays probed at the points.
@@ -278,6 +332,18 @@ int vtkBrumeVolumePropertyMedium::RequestData(
   }
   fd->RemoveArray("BrumeScalarOpacity");
   fd->AddArray(function);
+  fd->RemoveArray("BrumeScalarColor");
+  if (!colors.empty())
+  {
+    vtkNew<vtkDoubleArray> color;
+    color->SetName("BrumeScalarColor");
+    color->SetNumberOfComponents(4);
+    for (const auto& p : colors)
+    {
+      color->InsertNextTuple(p.data());
+    }
+    fd->AddArray(color);
+  }
   fd->RemoveArray("BrumeDensityScale");
   fd->RemoveArray("BrumeVDBFile");
   output->SetFieldData(fd);
@@ -291,6 +357,7 @@ void vtkBrumeVolumePropertyMedium::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Component: " << this->Component << "\n";
   os << indent << "Albedo: " << this->Albedo[0] << ", " << this->Albedo[1] << ", "
      << this->Albedo[2] << "\n";
+  os << indent << "ColorAsAlbedo: " << this->ColorAsAlbedo << "\n";
   os << indent << "SampledFunctionPoints: " << this->SampledFunctionPoints << "\n";
   os << indent << "SamplingDimensions: " << this->SamplingDimensions[0] << ", "
      << this->SamplingDimensions[1] << ", " << this->SamplingDimensions[2] << "\n";

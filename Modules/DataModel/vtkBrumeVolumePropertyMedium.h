@@ -20,16 +20,26 @@
  *   scalars) or nearest. Cell scalars are constant per cell.
  * - **g** (Henyey-Greenstein) from the property's ScatteringAnisotropy
  *   (VTK >= 9.2), held inside (-1, 1).
- * - **Albedo**: one single-scattering albedo colour for the whole medium
- *   (default 0.8, 0.8, 0.8): sigma_s = Albedo sigma_t and sigma_a =
- *   (1 - Albedo) sigma_t. The property's colour transfer function is not
- *   read yet.
+ * - **Albedo** (the single-scattering albedo) from the property's colour
+ *   transfer function of that component, classified after interpolation
+ *   like the opacity: the albedo at x is Albedo * colour(s(x)) per
+ *   channel, so a white point scatters the fraction Albedo (default 0.8,
+ *   0.8, 0.8) of the light it stops and a black point absorbs it all
+ *   (brume::ClassifiedAlbedo). This is read when ColorAsAlbedo is on (the
+ *   default) and the property's colour for the component is an RGB
+ *   function (GetColorChannels() is 3, as after SetColor() with a
+ *   vtkColorTransferFunction); an RGB-space function with default
+ *   midpoints and sharpness is taken node for node, any other (ParaView's
+ *   diverging and Lab colour maps) sampled at SampledFunctionPoints
+ *   points. Otherwise (ColorAsAlbedo off, or a grey function) the albedo
+ *   is Albedo everywhere. Either way sigma_t is the opacity's alone.
  *
  * The array is the first input array to process (default: the point
  * scalars, else the cell scalars), and it must have a name. The output's
  * field data gains BrumeSigmaA, BrumeSigmaS, BrumeG, BrumeDensityArray,
- * BrumeScalarComponent, BrumeScalarOpacity, BrumeScalarOpacityUnitDistance
- * and BrumeInterpolation, replacing any of those the input had.
+ * BrumeScalarComponent, BrumeScalarOpacity, BrumeScalarOpacityUnitDistance,
+ * BrumeInterpolation and, with a colour, BrumeScalarColor (scalar, red,
+ * green, blue), replacing any of those the input had.
  *
  * Any other dataset (an unstructured or curvilinear grid) is resampled to
  * an image first (vtkResampleToImage) over its bounds, at
@@ -73,9 +83,19 @@ public:
   ///@}
 
   ///@{
-  /// Single-scattering albedo per channel, each in [0, 1] (default 0.8, 0.8, 0.8).
+  /**
+   * Single-scattering albedo per channel, each in [0, 1] (default 0.8,
+   * 0.8, 0.8): the medium's, or with a colour function its factor.
+   */
   vtkSetVector3Macro(Albedo, double);
   vtkGetVector3Macro(Albedo, double);
+  ///@}
+
+  ///@{
+  /// Whether the property's RGB colour function colours the albedo (default on).
+  vtkSetMacro(ColorAsAlbedo, bool);
+  vtkGetMacro(ColorAsAlbedo, bool);
+  vtkBooleanMacro(ColorAsAlbedo, bool);
   ///@}
 
   ///@{
@@ -123,6 +143,7 @@ protected:
   vtkVolumeProperty* VolumeProperty = nullptr;
   int Component = 0;
   double Albedo[3] = { 0.8, 0.8, 0.8 };
+  bool ColorAsAlbedo = true;
   int SampledFunctionPoints = 1024;
   int SamplingDimensions[3] = { 0, 0, 0 };
   vtkIdType MaximumSampledPoints = vtkIdType(1) << 24;

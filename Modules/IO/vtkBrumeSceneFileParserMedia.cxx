@@ -135,7 +135,7 @@ bool vtkBrumeSceneFileParser::ParseTransferFunction(
   }
   const json& f = density["transfer_function"];
   const std::string tf = at + ".transfer_function";
-  if (!p.Keys(f, tf, { "opacity", "unit_distance", "interpolation" }))
+  if (!p.Keys(f, tf, { "opacity", "color", "unit_distance", "interpolation" }))
   {
     return false;
   }
@@ -167,6 +167,45 @@ bool vtkBrumeSceneFileParser::ParseTransferFunction(
     points->InsertNextTuple(pair);
   }
   fd->AddArray(points);
+  // The colour: a factor on the albedo, point by point.
+  if (f.contains("color"))
+  {
+    const json& color = f["color"];
+    if (!color.is_array() || color.empty())
+    {
+      return p.Fail(
+        tf + ".color", "expected [[scalar, red, green, blue], ...] with at least one point");
+    }
+    vtkNew<vtkDoubleArray> colors;
+    colors->SetName("BrumeScalarColor");
+    colors->SetNumberOfComponents(4);
+    for (std::size_t i = 0; i < color.size(); ++i)
+    {
+      const std::string point = tf + ".color[" + std::to_string(i) + "]";
+      double tuple[4];
+      if (!color[i].is_array() || color[i].size() != 4)
+      {
+        return p.Fail(point, "expected [scalar, red, green, blue]");
+      }
+      if (!p.Number(color[i][0], point + "[0]", tuple[0], -Huge, Huge))
+      {
+        return false;
+      }
+      for (int c = 1; c < 4; ++c)
+      {
+        if (!p.Number(color[i][c], point + "[" + std::to_string(c) + "]", tuple[c], 0, 1))
+        {
+          return false;
+        }
+      }
+      if (i > 0 && tuple[0] < colors->GetComponent(static_cast<vtkIdType>(i) - 1, 0))
+      {
+        return p.Fail(point + "[0]", "scalars must not decrease from point to point");
+      }
+      colors->InsertNextTuple(tuple);
+    }
+    fd->AddArray(colors);
+  }
   double unit = 1;
   if (f.contains("unit_distance") &&
     (!p.Number(f["unit_distance"], tf + ".unit_distance", unit, 0, Huge) ||

@@ -109,6 +109,15 @@ void WriteTransferFunction(vtkFieldData* fd, json& density)
   {
     f["opacity"].push_back(json::array({ points->GetComponent(i, 0), points->GetComponent(i, 1) }));
   }
+  if (vtkDataArray* color = fd->GetArray("BrumeScalarColor"))
+  {
+    f["color"] = json::array();
+    for (vtkIdType i = 0; i < color->GetNumberOfTuples(); ++i)
+    {
+      f["color"].push_back(json::array({ color->GetComponent(i, 0), color->GetComponent(i, 1),
+        color->GetComponent(i, 2), color->GetComponent(i, 3) }));
+    }
+  }
   if (vtkDataArray* unit = fd->GetArray("BrumeScalarOpacityUnitDistance"))
   {
     f["unit_distance"] = unit->GetTuple1(0);

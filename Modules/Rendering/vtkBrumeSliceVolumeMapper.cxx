@@ -259,6 +259,27 @@ std::string vtkBrumeSliceVolumeMapper::ValidateBricks(
           " is negative or not finite";
       }
     }
+    if (vtkDataArray* albedo = fd->GetArray("AlbedoTransferFunction"))
+    {
+      if (albedo->GetNumberOfComponents() != 3 ||
+        albedo->GetNumberOfTuples() != table->GetNumberOfTuples())
+      {
+        return "'AlbedoTransferFunction' needs 3 components and as many tuples as "
+               "'ExtinctionTransferFunction'";
+      }
+      for (vtkIdType i = 0; i < albedo->GetNumberOfValues(); ++i)
+      {
+        const double v = albedo->GetComponent(i / 3, static_cast<int>(i % 3));
+        if (!(v >= 0.0 && v <= 1.0))
+        {
+          return "'AlbedoTransferFunction' value " + std::to_string(i) + " is not in [0, 1]";
+        }
+      }
+    }
+  }
+  else if (fd->GetArray("AlbedoTransferFunction"))
+  {
+    return "'AlbedoTransferFunction' needs classified scalars ('ExtinctionTransferFunction')";
   }
   const vtkIdType slotCount = samples->GetNumberOfTuples() / brickCells;
   for (vtkIdType b = 0; b < bricks; ++b)

@@ -235,6 +235,9 @@ bool vtkBrumeOpenGLSliceVolumeMapper::PrepareSlices(
         factor && factor->GetNumberOfComponents() == 3 ? factor->GetComponent(0, c) : 1.0;
       impl.ExtinctionFactor[c] = f > 0.0 && f <= 1.0 ? static_cast<float>(f) : 1.f;
     }
+    vtkDataArray* forward = input->GetFieldData()->GetArray("BrumeForwardFraction");
+    const double fraction = forward ? forward->GetTuple1(0) : 0.0;
+    impl.ForwardFraction = fraction > 0.0 && fraction < 1.0 ? static_cast<float>(fraction) : 0.f;
   }
   if (!this->EvaluateTowardEye(renWin, dims, interpolation))
   {
@@ -553,6 +556,7 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawRuns(vtkRenderer* ren, bool reduced)
     kind.Order = owner.FragmentOrder;
     kind.SourceIsRadiance = owner.SourceIsRadiance;
     kind.Classified = owner.Bricked && owner.Classified;
+    kind.Albedo = kind.Classified && owner.Albedo;
     kind.Extinction = owner.Bricked ? vtkBrumeSliceVolumeShader::ExtinctionBricks
       : owner.ConstantExtinction    ? vtkBrumeSliceVolumeShader::ExtinctionConstant
                                     : vtkBrumeSliceVolumeShader::ExtinctionTexture;
@@ -604,6 +608,10 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawRuns(vtkRenderer* ren, bool reduced)
         program->SetUniformi("transferTexture", owner.TransferTable->GetTextureUnit());
         program->SetUniform2f("transferRange", owner.TransferRange);
         program->SetUniformf("transferSamples", owner.TransferSamples);
+        if (kind.Albedo)
+        {
+          program->SetUniformf("forwardFraction", owner.ForwardFraction);
+        }
       }
     }
     else if (kind.Extinction == vtkBrumeSliceVolumeShader::ExtinctionConstant)

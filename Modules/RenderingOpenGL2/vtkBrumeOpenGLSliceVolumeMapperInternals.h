@@ -55,6 +55,12 @@ struct vtkBrumeOpenGLSliceVolumeMapper::Internals
   vtkNew<vtkTextureObject> TransferTable;
   float TransferRange[2] = { 0.f, 1.f };
   float TransferSamples = 2.f;
+  // The table's green, blue and alpha hold the albedo of a medium whose
+  // albedo varies (AlbedoTransferFunction): the source texture then holds
+  // X, the radiance of an albedo of 1, drawn as sigma_t a X with the
+  // extinction sigma_t (1 - a ForwardFraction) (BrumeForwardFraction).
+  bool Albedo = false;
+  float ForwardFraction = 0.f;
   // The largest sigma_t of the extinction grid of its own (any channel),
   // which bounds the slices' spacing (CutSlices).
   double MaxExtinction = 0.0;
@@ -105,7 +111,8 @@ struct vtkBrumeOpenGLSliceVolumeMapper::Internals
   bool GreyExtinction() const
   {
     return this->ExtinctionGrey && this->ExtinctionFactor[0] == this->ExtinctionFactor[1] &&
-      this->ExtinctionFactor[1] == this->ExtinctionFactor[2];
+      this->ExtinctionFactor[1] == this->ExtinctionFactor[2] &&
+      !(this->Albedo && this->ForwardFraction > 0.f);
   }
   // The leader's reduced resolution (vtkBrumeOpenGLSliceVolumeMapperReduced.cxx):
   // the window's depth, the coarse buffer (radiance and transmittance) and

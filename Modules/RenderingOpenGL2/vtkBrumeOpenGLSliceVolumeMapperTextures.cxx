@@ -335,6 +335,7 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   // Scalars a transfer function classifies may be negative; its table bounds sigma_t.
   vtkDataArray* transfer = fd->GetArray("ExtinctionTransferFunction");
   impl.Classified = transfer != nullptr;
+  impl.Albedo = false;
   auto invalidSample = [&](double v) { return impl.Classified ? !std::isfinite(v) : invalid(v); };
   for (vtkIdType slot = 0; slot < slotCount; ++slot)
   {
@@ -421,18 +422,28 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadTransferFunction(
   vtkDataArray* range = fd->GetArray("ExtinctionTransferRange");
   int maxWidth = 0;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxWidth);
+  // A varying albedo: in the same row, green to alpha.
+  vtkDataArray* albedo = fd->GetArray("AlbedoTransferFunction");
+  impl.Albedo = albedo != nullptr;
+  const int channels = impl.Albedo ? 4 : 1;
   const vtkIdType n = transfer->GetNumberOfTuples();
   const int width = static_cast<int>(std::min<vtkIdType>(n, std::max(2, maxWidth)));
-  std::vector<float> row(static_cast<std::size_t>(width));
+  std::vector<float> row(static_cast<std::size_t>(width) * channels);
   largest = 0.0;
   for (int i = 0; i < width; ++i)
   {
     const double x = static_cast<double>(i) * static_cast<double>(n - 1) / (width - 1);
     const vtkIdType at = std::min(static_cast<vtkIdType>(x), n - 2);
     const double f = x - static_cast<double>(at);
-    row[i] =
+    float* texel = &row[static_cast<std::size_t>(i) * channels];
+    texel[0] =
       static_cast<float>(transfer->GetTuple1(at) * (1.0 - f) + transfer->GetTuple1(at + 1) * f);
-    largest = std::max(largest, static_cast<double>(row[i]));
+    largest = std::max(largest, static_cast<double>(texel[0]));
+    for (int c = 1; c < channels; ++c)
+    {
+      texel[c] = static_cast<float>(albedo->GetComponent(at, c - 1) * (1.0 - f) +
+        albedo->GetComponent(at + 1, c - 1) * f);
+    }
   }
   impl.TransferRange[0] = static_cast<float>(range->GetComponent(0, 0));
   impl.TransferRange[1] = static_cast<float>(range->GetComponent(0, 1));
@@ -443,7 +454,8 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadTransferFunction(
   texture->SetWrapT(vtkTextureObject::ClampToEdge);
   texture->SetMinificationFilter(vtkTextureObject::Linear);
   texture->SetMagnificationFilter(vtkTextureObject::Linear);
-  return texture->Create2DFromRaw(static_cast<unsigned int>(width), 1, 1, VTK_FLOAT, row.data());
+  return texture->Create2DFromRaw(
+    static_cast<unsigned int>(width), 1, channels, VTK_FLOAT, row.data());
 }
 
 bool vtkBrumeOpenGLSliceVolumeMapper::UploadDirectional(vtkImageData* input,

@@ -27,10 +27,12 @@ public:
     ExtinctionRead Extinction = ExtinctionTexture;
     bool SourceIsRadiance = false; ///< the source texture holds S, not J
     bool Classified = false;       ///< the bricks hold scalars a transfer function classifies
+    bool Albedo = false;           ///< and its table gives an albedo, applied per fragment
     bool operator==(const Kind& other) const
     {
       return this->Order == other.Order && this->Extinction == other.Extinction &&
-        this->SourceIsRadiance == other.SourceIsRadiance && this->Classified == other.Classified;
+        this->SourceIsRadiance == other.SourceIsRadiance && this->Classified == other.Classified &&
+        this->Albedo == other.Albedo;
     }
   };
 

@@ -2,8 +2,11 @@
 // A VTK volume property makes a Brume medium of any scalar field
 // (vtkBrumeVolumePropertyMedium): the extinction is the scalar opacity's,
 // classified after interpolation; a constant function is the constant
-// density it stands for, through the whole pipeline, bit for bit; bad
-// functions, arrays and components fail with a clear error.
+// density it stands for, through the whole pipeline, bit for bit; the
+// colour transfer function colours the albedo, classified after
+// interpolation too, and a constant colour draws the image of the same
+// albedo given as one colour; bad functions, arrays and components fail
+// with a clear error.
 #include "vtkBrumeFloatImageCapture.h"
 #include "vtkBrumeLightTracer.h"
 #include "vtkBrumeRadianceConversion.h"
@@ -14,6 +17,7 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkCellData.h"
+#include "vtkColorTransferFunction.h"
 #include "vtkDoubleArray.h"
 #include "vtkExecutive.h"
 #include "vtkFieldData.h"
@@ -35,6 +39,7 @@
 #include "vtkVolumeProperty.h"
 
 #include "brume/Scene.h"
+#include "brume/TransferFunction.h"
 
 #include <cmath>
 #include <cstring>
@@ -503,6 +508,191 @@ void TestConstantFunctionIsTheConstantDensity()
   }
 }
 
+
+// The trilinear interpolation of the image's array `name` at p.
+double Interpolate(vtkImageData* image, const char* name, const double p[3])
+{
+  vtkDataArray* s = image->GetPointData()->GetArray(name);
+  int ijk[3];
+  double pc[3];
+  image->ComputeStructuredCoordinates(p, ijk, pc);
+  double value = 0.0;
+  for (int c = 0; c < 8; ++c)
+  {
+    int idx[3] = { ijk[0] + (c & 1), ijk[1] + ((c >> 1) & 1), ijk[2] + ((c >> 2) & 1) };
+    double w = 1.0;
+    for (int a = 0; a < 3; ++a)
+    {
+      w *= (idx[a] > ijk[a]) ? pc[a] : 1.0 - pc[a];
+    }
+    value += w * s->GetTuple1(image->ComputePointId(idx));
+  }
+  return value;
+}
+
+void TestColour()
+{
+  vtkNew<vtkVolumeProperty> property;
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(0, 0.1);
+  opacity->AddPoint(100, 0.6);
+  property->SetScalarOpacity(opacity);
+  property->SetScalarOpacityUnitDistance(0.25);
+  property->SetInterpolationTypeToLinear();
+  vtkNew<vtkColorTransferFunction> colour;
+  colour->AddRGBPoint(10, 1.0, 0.2, 0.1);
+  colour->AddRGBPoint(45, 0.9, 0.9, 0.3);
+  colour->AddRGBPoint(90, 0.1, 0.3, 1.0);
+  property->SetColor(colour);
+  vtkNew<vtkBrumeVolumePropertyMedium> filter;
+  filter->SetInputData(Field());
+  filter->SetVolumeProperty(property);
+  filter->SetAlbedo(0.9, 0.8, 0.5);
+  Check(filter->GetExecutive()->Update() == 1, "the filter runs with a colour");
+  vtkDataArray* points = filter->GetOutput()->GetFieldData()->GetArray("BrumeScalarColor");
+  Check(points && points->GetNumberOfTuples() == 3 && points->GetNumberOfComponents() == 4 &&
+      points->GetComponent(1, 0) == 45 && points->GetComponent(2, 3) == 1.0,
+    "an RGB function's points are taken node for node");
+  brume::Medium m;
+  Check(ConvertMedium(filter->GetOutput(), m).empty(), "the coloured medium converts");
+  Check(m.HasVaryingAlbedo(), "the colour makes the albedo vary");
+
+  // The albedo at a point is Albedo times the colour of the interpolated
+  // scalar; sigma_t is the opacity's alone.
+  const double scale[3] = { 0.9, 0.8, 0.5 };
+  auto checkAlong = [&](vtkColorTransferFunction* f, double tolerance, const std::string& what)
+  {
+    int checked = 0;
+    for (double x = -0.45; x < 0.5; x += 0.1)
+    {
+      const double p[3] = { x, 0.05, -0.11 };
+      const double value = Interpolate(filter->GetOutput(), "temperature", p);
+      double rgb[3];
+      f->GetColor(value, rgb);
+      const brume::Vec3 q(
+        static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2]));
+      const brume::Vec3 got = m.AlbedoAt(q);
+      bool near = true;
+      for (int c = 0; c < 3; ++c)
+      {
+        near = near && std::abs(got[c] - scale[c] * rgb[c]) <= tolerance;
+      }
+      Check(near,
+        what + ": albedo at x = " + std::to_string(x) + " is " + std::to_string(got.x) + " " +
+          std::to_string(got.y) + " " + std::to_string(got.z));
+      const double sigma = -std::log1p(-opacity->GetValue(value)) / 0.25;
+      Check(std::abs(m.SigmaTAt(q).x - sigma) <= 1e-4 * (1.0 + sigma),
+        what + ": the colour leaves sigma_t as the opacity gives it");
+      checked += value > 10 && value < 90 ? 1 : 0;
+    }
+    Check(checked >= 3, what + ": the line crosses the colour ramp");
+  };
+  checkAlong(colour, 1e-5, "RGB points");
+
+  // ParaView's colour maps interpolate in other spaces: sampled.
+  colour->SetColorSpaceToDiverging();
+  filter->Update();
+  points = filter->GetOutput()->GetFieldData()->GetArray("BrumeScalarColor");
+  Check(points && points->GetNumberOfTuples() == filter->GetSampledFunctionPoints(),
+    "a diverging function is sampled");
+  Check(ConvertMedium(filter->GetOutput(), m).empty(), "the sampled colour converts");
+  checkAlong(colour, 2e-3, "diverging, sampled");
+  colour->SetColorSpaceToRGB();
+
+  // Off, or a grey function: one albedo everywhere.
+  filter->ColorAsAlbedoOff();
+  filter->Update();
+  Check(!filter->GetOutput()->GetFieldData()->GetArray("BrumeScalarColor") &&
+      ConvertMedium(filter->GetOutput(), m).empty() && !m.HasVaryingAlbedo(),
+    "ColorAsAlbedo off: no colour");
+  filter->ColorAsAlbedoOn();
+  vtkNew<vtkPiecewiseFunction> grey;
+  grey->AddPoint(0, 0.5);
+  property->SetColor(grey);
+  filter->Update();
+  Check(!filter->GetOutput()->GetFieldData()->GetArray("BrumeScalarColor"),
+    "a grey function does not colour the albedo");
+
+  // A constant colour with Albedo 1 draws the image of that colour given
+  // as the Albedo, with g = 0.85 (part of the peak set apart, whose share
+  // of the extinction the mapper takes per fragment from the albedo).
+  // Colours exactly representable with 1 - colour: the two media have the
+  // same sigma_t and albedo to the bit, so the tracers trace the same hits.
+  vtkNew<vtkColorTransferFunction> constant;
+  constant->AddRGBPoint(0, 0.75, 0.5, 0.25);
+  property->SetColor(constant);
+  property->SetScatteringAnisotropy(0.85f);
+  filter->SetAlbedo(1, 1, 1);
+  filter->Update();
+  auto coloured = vtkSmartPointer<vtkImageData>::New();
+  coloured->DeepCopy(filter->GetOutput());
+  filter->ColorAsAlbedoOff();
+  filter->SetAlbedo(0.75, 0.5, 0.25);
+  filter->Update();
+  vtkSmartPointer<vtkImageData> a = Render(Scene(coloured));
+  vtkSmartPointer<vtkImageData> b = Render(Scene(filter->GetOutput()));
+  Check(a && b, "both coloured pipelines render");
+  if (!a || !b)
+  {
+    return;
+  }
+  vtkDataArray* x = a->GetPointData()->GetScalars();
+  vtkDataArray* y = b->GetPointData()->GetScalars();
+  double peak = 0.0, worst = 0.0;
+  for (vtkIdType i = 0; i < x->GetNumberOfTuples(); ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      peak = std::max(peak, y->GetComponent(i, c));
+      worst = std::max(worst, std::abs(x->GetComponent(i, c) - y->GetComponent(i, c)));
+    }
+  }
+  Check(peak > 0.0 && worst <= 1e-5 * peak,
+    "a constant colour against the same albedo: differs by " + std::to_string(worst) +
+      " of a peak " + std::to_string(peak));
+  filter->ColorAsAlbedoOn();
+
+  // Bad colours, named.
+  vtkNew<vtkColorTransferFunction> bright;
+  bright->AddRGBPoint(0, 1.5, 0.2, 0.2);
+  property->SetColor(bright);
+  ExpectFailure("a colour above 1", filter, "colour component outside [0, 1]");
+  property->SetColor(colour);
+  filter->Update();
+  auto edit = [&](const std::function<void(vtkFieldData*)>& change)
+  {
+    auto image = vtkSmartPointer<vtkImageData>::New();
+    image->DeepCopy(filter->GetOutput());
+    change(image->GetFieldData());
+    brume::Medium medium;
+    return ConvertMedium(image, medium);
+  };
+  Check(edit([](vtkFieldData* fd) {
+    fd->GetArray("BrumeScalarColor")->SetComponent(0, 0, std::nan(""));
+  }).find("BrumeScalarColor transfer function that colour point 0") != std::string::npos,
+    "a NaN colour scalar");
+  Check(edit(
+          [](vtkFieldData* fd)
+          {
+            fd->RemoveArray("BrumeScalarOpacity");
+            fd->RemoveArray("BrumeScalarOpacityUnitDistance");
+          })
+          .find("BrumeScalarColor without a BrumeScalarOpacity") != std::string::npos,
+    "a colour without an opacity");
+  Check(edit(
+          [](vtkFieldData* fd)
+          {
+            vtkNew<vtkDoubleArray> three;
+            three->SetName("BrumeScalarColor");
+            three->SetNumberOfComponents(3);
+            three->InsertNextTuple3(0, 1, 1);
+            fd->RemoveArray("BrumeScalarColor");
+            fd->AddArray(three);
+          })
+          .find("(scalar, red, green, blue) tuples") != std::string::npos,
+    "a colour of three components");
+}
+
 void TestBadInput()
 {
   vtkNew<vtkBrumeVolumePropertyMedium> filter;
@@ -599,6 +789,7 @@ int TestTransferFunctionMedium(int, char*[])
   TestClassification();
   TestResampledDataset();
   TestConstantFunctionIsTheConstantDensity();
+  TestColour();
   TestBadInput();
   if (failures)
   {

@@ -1,6 +1,7 @@
 """The volume-property example (Examples/Python/wavelet_volume.py) from
 /usr/bin/python3: vtkBrumeVolumePropertyMedium carries the property's scalar
-opacity, unit distance, interpolation and g into the medium's field data;
+opacity, colour, unit distance, interpolation and g into the medium's field
+data;
 vtkLights given to the tracer light the reconstruction; both renderers draw
 the field.
 
@@ -42,6 +43,14 @@ for i in range(opacity.GetSize()):
     node = [0.0] * 4
     opacity.GetNodeValue(i, node)
     check(points.GetTuple2(i) == (node[0], node[1]), f"node {i} carried over")
+colours = fd.GetArray("BrumeScalarColor")
+colour = prop.GetRGBTransferFunction()
+check(colours is not None and colours.GetNumberOfTuples() == colour.GetSize(),
+      "one (scalar, red, green, blue) point per node of the property's colour")
+for i in range(colour.GetSize()):
+    node = [0.0] * 6
+    colour.GetNodeValue(i, node)
+    check(colours.GetTuple4(i) == tuple(node[:4]), f"colour node {i} carried over")
 check(fd.GetArray("BrumeScalarOpacityUnitDistance").GetTuple1(0) == 1.0, "unit distance")
 check(abs(fd.GetArray("BrumeG").GetTuple1(0) - 0.3) < 1e-6, "g from ScatteringAnisotropy")
 check(fd.GetAbstractArray("BrumeInterpolation").GetValue(0) == "linear", "interpolation")

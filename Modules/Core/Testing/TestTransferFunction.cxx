@@ -284,3 +284,49 @@ TEST(TransferFunction, OpenVdbScalarsAreClassifiedToo)
     }
   std::filesystem::remove(path);
 }
+
+TEST(TransferFunction, ColourIsLinearBetweenPointsAndClampedBeyond)
+{
+  const ColorTransferFunction f({ { 0.f, Vec3(1.f, 0.f, 0.f) }, { 1.f, Vec3(0.f, 0.5f, 1.f) },
+    { 1.f, Vec3(0.2f, 0.2f, 0.2f) } });
+  const Vec3 mid = f.Color(0.25f);
+  EXPECT_FLOAT_EQ(mid.x, 0.75f);
+  EXPECT_FLOAT_EQ(mid.y, 0.125f);
+  EXPECT_FLOAT_EQ(mid.z, 0.25f);
+  EXPECT_FLOAT_EQ(f.Color(-3.f).x, 1.f);
+  // At two points' scalar, the later point's; beyond, the last colour.
+  EXPECT_FLOAT_EQ(f.Color(1.f).x, 0.2f);
+  EXPECT_FLOAT_EQ(f.Color(7.f).z, 0.2f);
+
+  EXPECT_NE(ColorTransferFunction::Validate({}), "");
+  EXPECT_NE(ColorTransferFunction::Validate({ { 0.f, Vec3(1.2f, 0.f, 0.f) } }), "");
+  EXPECT_NE(ColorTransferFunction::Validate({ { 0.f, Vec3(0.f, -0.1f, 0.f) } }), "");
+  EXPECT_NE(ColorTransferFunction::Validate({ { 0.f, Vec3(0.f, 0.f, NAN) } }), "");
+  EXPECT_NE(ColorTransferFunction::Validate({ { NAN, Vec3(0.5f) } }), "");
+  EXPECT_NE(ColorTransferFunction::Validate({ { 1.f, Vec3(0.5f) }, { 0.f, Vec3(0.5f) } }), "");
+  EXPECT_EQ(ColorTransferFunction::Validate({ { 0.f, Vec3(0.f) }, { 0.f, Vec3(1.f) } }), "");
+}
+
+TEST(TransferFunction, AlbedoIsTheColourAfterInterpolationTimesTheMediumAlbedo)
+{
+  // s = x on 5 points, the colour stepping from red to blue at s = 0.6
+  // (between the points at 0.5 and 0.75): the albedo steps exactly there,
+  // scaled by the medium's own albedo; sigma_t is the opacity's alone.
+  const auto scalars = RampInX(5);
+  Medium m;
+  m.SigmaS = Vec3(0.8f, 0.9f, 1.f);
+  m.SigmaA = Vec3(1.f) - m.SigmaS;
+  m.SetDensity(
+    std::make_shared<ClassifiedDensity>(scalars, OpacityTransferFunction({ { 0.f, 0.5f } }, 1.f)));
+  EXPECT_FALSE(m.HasVaryingAlbedo());
+  m.AlbedoFactor = std::make_shared<ClassifiedAlbedo>(scalars,
+    ColorTransferFunction({ { 0.6f, Vec3(1.f, 0.f, 0.f) }, { 0.6f, Vec3(0.f, 0.f, 1.f) } }));
+  EXPECT_TRUE(m.HasVaryingAlbedo());
+  const Vec3 red = m.AlbedoAt(Vec3(0.599f, 0.3f, 0.8f));
+  const Vec3 blue = m.AlbedoAt(Vec3(0.601f, 0.3f, 0.8f));
+  EXPECT_FLOAT_EQ(red.x, 0.8f);
+  EXPECT_FLOAT_EQ(red.z, 0.f);
+  EXPECT_FLOAT_EQ(blue.x, 0.f);
+  EXPECT_FLOAT_EQ(blue.z, 1.f);
+  EXPECT_FLOAT_EQ(m.SigmaTAt(Vec3(0.599f, 0.3f, 0.8f)).x, m.SigmaTAt(Vec3(0.601f, 0.3f, 0.8f)).x);
+}

@@ -357,7 +357,7 @@ void LightTracer::Walk(std::uint64_t index, Random& rng, const Emitter& emitter,
       store(origin, static_cast<std::uint16_t>(numberOfSurfaces + collidedIndex), depth, 0);
       // Always scatter, weighting by the albedo (less variance than absorbing).
       const Vec3 before = flux;
-      flux *= collided->Albedo();
+      flux *= collided->AlbedoAt(origin);
       TallyChange(counters.Absorbed, before, flux);
       if (!(MaxComponent(flux) > 0.f))
       {

@@ -14,6 +14,18 @@
 namespace brume
 {
 
+/**
+ * A factor on a medium's single-scattering albedo that varies in space:
+ * per channel, in [0, 1] (a transfer function's colour, ClassifiedAlbedo
+ * in brume/TransferFunction.h). Must be thread safe.
+ */
+class AlbedoField
+{
+public:
+  virtual ~AlbedoField() = default;
+  virtual Vec3 Evaluate(const Vec3& p) const = 0;
+};
+
 struct Medium
 {
   std::string Name;
@@ -27,6 +39,12 @@ struct Medium
   float G = 0.f;
   /// Null for a homogeneous medium.
   std::shared_ptr<const DensityField> Density;
+  /**
+   * Null for an albedo alike everywhere. Otherwise the albedo at p is
+   * Albedo() times the field's value there: sigma_s(p) = AlbedoAt(p)
+   * sigma_t(p), sigma_t unchanged.
+   */
+  std::shared_ptr<const AlbedoField> AlbedoFactor;
 
   void SetDensity(std::shared_ptr<const DensityField> density)
   {
@@ -45,6 +63,13 @@ struct Medium
   }
   /// Single-scattering albedo sigma_s / sigma_t per channel (0 where sigma_t is 0).
   Vec3 Albedo() const;
+  /// Whether the albedo varies in space (AlbedoFactor).
+  bool HasVaryingAlbedo() const { return this->AlbedoFactor != nullptr; }
+  /// The albedo at a point inside Bounds.
+  Vec3 AlbedoAt(const Vec3& p) const
+  {
+    return this->AlbedoFactor ? this->Albedo() * this->AlbedoFactor->Evaluate(p) : this->Albedo();
+  }
   /// Empty when valid, otherwise what is wrong.
   std::string Validate() const;
 };

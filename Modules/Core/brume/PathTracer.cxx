@@ -213,7 +213,7 @@ Vec3 PathTracer::Radiance(Vec3 origin, Vec3 direction, Random& rng) const
     {
       // A real collision: scatter with the albedo's weight.
       const Vec3 p = origin + direction * t;
-      beta *= medium->Albedo();
+      beta *= medium->AlbedoAt(p);
       const HenyeyGreenstein phase(medium->G);
       LightSample ls;
       if (SampleLight(p, rng, ls))

@@ -65,11 +65,34 @@ ObjectRadiance::ObjectRadiance(const Medium& medium, std::array<int, 3> resoluti
   , ViewDependent(medium.G != 0.f)
   , CellVolume(static_cast<double>(medium.Bounds.Volume()) /
       (static_cast<double>(this->Dims[0]) * this->Dims[1] * this->Dims[2]))
-  , MediumAlbedo(medium.Albedo())
+  , AlbedoVaries(medium.HasVaryingAlbedo())
+  , MediumAlbedo(AlbedoVaries ? Vec3(1.f) : medium.Albedo())
   , Peaks{ SplitForwardPeak(medium.G, ResolvedG), SplitForwardPeak(medium.G, DirectionalResolvedG) }
-  , ExtinctionFactors{ Vec3(1.f) - medium.Albedo() * Peaks[0].Forward,
-    Vec3(1.f) - medium.Albedo() * Peaks[1].Forward }
+  , ExtinctionFactors{ Vec3(1.f) - MediumAlbedo * Peaks[0].Forward,
+    Vec3(1.f) - MediumAlbedo * Peaks[1].Forward }
 {
+  // A varying albedo is applied where the radiance is drawn: the texture
+  // holds the radiance of an albedo of 1 with the peak's factor left out.
+  if (this->AlbedoVaries)
+  {
+    this->ExtinctionFactors[0] = this->ExtinctionFactors[1] = Vec3(1.f);
+  }
+}
+
+Vec3 ObjectRadiance::SourceAt(const Vec3& albedo, const Vec3& texel, bool directional, Vec3& factor) const
+{
+  if (!this->AlbedoVaries)
+  {
+    factor = this->ExtinctionFactors[directional ? 1 : 0];
+    return texel;
+  }
+  factor = Vec3(1.f) - albedo * this->Peaks[directional ? 1 : 0].Forward;
+  Vec3 s;
+  for (int c = 0; c < 3; ++c)
+  {
+    s[c] = factor[c] > 0.f ? albedo[c] * texel[c] / factor[c] : 0.f;
+  }
+  return s;
 }
 
 bool ObjectRadiance::FromFront(const HitArrays& hits, std::uint32_t i) const

@@ -261,6 +261,20 @@ public:
   }
 
   /**
+   * A medium whose albedo varies (Medium::AlbedoFactor) cannot fold it into
+   * its texture: the albedo may step inside a texel where the light does
+   * not. Its texture (GetOutputRadiance(), GetDirectional()) then holds the
+   * source radiance X of an albedo of 1 with no peak set apart, and a
+   * renderer applies the albedo a(x) where it draws: the emission is
+   * sigma_t a X and the extinction sigma_t (1 - a Forward), Forward being
+   * GetPeak(directional).Forward; GetExtinctionFactor() is then 1.
+   * SourceAt() gives the source radiance S per unit of that extinction and
+   * its factor, for any medium.
+   */
+  bool HasVaryingAlbedo() const { return this->AlbedoVaries; }
+  Vec3 SourceAt(const Vec3& albedo, const Vec3& texel, bool directional, Vec3& factor) const;
+
+  /**
    * Deterministic single scattering (brume/DirectLight.h), for media and
    * for planar surfaces of one non-mirror material (SupportsDirect()).
    * Call before Build(): the object then leaves out every particle's first
@@ -564,7 +578,8 @@ private:
   int Refinement;
   bool ViewDependent = false;
   double CellVolume = 0.0; // media: one histogram cell's volume
-  Vec3 MediumAlbedo;       // media: sigma_s / sigma_t
+  bool AlbedoVaries = false;
+  Vec3 MediumAlbedo;       // media: sigma_s / sigma_t (1 where it varies)
   // Media: the phase function's peak set apart, per view and directional.
   ForwardPeak Peaks[2];
   Vec3 ExtinctionFactors[2] = { Vec3(1.f), Vec3(1.f) };

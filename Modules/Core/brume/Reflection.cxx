@@ -313,11 +313,13 @@ void MirrorReflection::MarchMedia(
         const Medium& medium = this->SceneRef.Media[o - surfaces];
         const ObjectRadiance& r = *this->Objects[o];
         const BrickedGrid& density = r.GetNativeDensity();
+        Vec3 factor;
+        const Vec3 source = r.SourceAt(r.HasVaryingAlbedo() ? medium.AlbedoAt(p) : Vec3(1.f),
+          Sample3D(this->Textures[o], medium.Bounds, p), false, factor);
         const Vec3 s =
-          (density.Empty() ? medium.SigmaT() : medium.SigmaT() * density.Interpolate(p)) *
-          r.GetExtinctionFactor(false);
+          (density.Empty() ? medium.SigmaT() : medium.SigmaT() * density.Interpolate(p)) * factor;
         sigma += s;
-        emitted += s * Sample3D(this->Textures[o], medium.Bounds, p);
+        emitted += s * source;
       }
       for (int c = 0; c < 3; ++c)
       {

@@ -224,4 +224,64 @@ bool ClassifiedDensity::BendsWithinBlocks(const Box& region) const
   return false;
 }
 
+std::string ColorTransferFunction::Validate(const std::vector<Node>& nodes)
+{
+  if (nodes.empty())
+  {
+    return "has no colour points";
+  }
+  for (std::size_t i = 0; i < nodes.size(); ++i)
+  {
+    std::ostringstream at;
+    at << "colour point " << i << " (scalar " << nodes[i].Scalar << ", colour "
+       << nodes[i].Color.x << " " << nodes[i].Color.y << " " << nodes[i].Color.z << ")";
+    if (!std::isfinite(nodes[i].Scalar))
+    {
+      return at.str() + " has a non-finite scalar";
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      if (!(nodes[i].Color[c] >= 0.f && nodes[i].Color[c] <= 1.f))
+      {
+        return at.str() + " has a colour component outside [0, 1]";
+      }
+    }
+    if (i > 0 && nodes[i].Scalar < nodes[i - 1].Scalar)
+    {
+      return at.str() + " comes before the previous point's scalar: scalars must not decrease";
+    }
+  }
+  return {};
+}
+
+ColorTransferFunction::ColorTransferFunction(std::vector<Node> nodes)
+  : Nodes(std::move(nodes))
+{
+}
+
+Vec3 ColorTransferFunction::Color(float s) const
+{
+  const auto next = std::upper_bound(
+    this->Nodes.begin(), this->Nodes.end(), s, [](float v, const Node& n) { return v < n.Scalar; });
+  if (next == this->Nodes.begin())
+  {
+    return this->Nodes.front().Color;
+  }
+  if (next == this->Nodes.end())
+  {
+    return this->Nodes.back().Color;
+  }
+  const Node& a = *(next - 1);
+  const Node& b = *next;
+  const float t = (s - a.Scalar) / (b.Scalar - a.Scalar);
+  return a.Color + (b.Color - a.Color) * t;
+}
+
+ClassifiedAlbedo::ClassifiedAlbedo(
+  std::shared_ptr<const DensityField> scalars, ColorTransferFunction colors)
+  : Scalars(std::move(scalars))
+  , Colors(std::move(colors))
+{
+}
+
 } // namespace brume

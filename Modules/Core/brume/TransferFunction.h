@@ -9,6 +9,7 @@
 #define brume_TransferFunction_h
 
 #include "brume/Density.h"
+#include "brume/Medium.h"
 
 #include <memory>
 #include <string>
@@ -110,6 +111,60 @@ private:
   // Per majorant block, the field's value range (empty when it cannot say).
   std::vector<float> RangeLow, RangeHigh;
   OpacityTransferFunction Opacity;
+};
+
+/**
+ * Colour as a piecewise-linear function of a scalar, RGB per point
+ * (vtkColorTransferFunction in RGB space, its midpoints at 0.5 and
+ * sharpness 0, clamped to its end colours outside its range).
+ */
+class ColorTransferFunction
+{
+public:
+  struct Node
+  {
+    float Scalar;
+    Vec3 Color;
+  };
+
+  /**
+   * Empty when `nodes` (at least one, scalars finite and non-decreasing,
+   * colours in [0, 1]) make a function; otherwise what is wrong.
+   */
+  static std::string Validate(const std::vector<Node>& nodes);
+
+  /// Requires Validate(nodes) to be empty.
+  explicit ColorTransferFunction(std::vector<Node> nodes);
+
+  /// The colour at s, linear between points; a scalar at two points takes the later one.
+  Vec3 Color(float s) const;
+  const std::vector<Node>& GetNodes() const { return this->Nodes; }
+
+private:
+  std::vector<Node> Nodes;
+};
+
+/**
+ * The colour of a transfer function applied to a scalar field after
+ * interpolation, as a factor on a medium's albedo (Medium::AlbedoFactor):
+ * the albedo at x is the medium's Albedo() times colour(s(x)). With the
+ * extinction a ClassifiedDensity of the same scalars gives, this is how a
+ * VTK volume property's colour transfer function colours the light a
+ * medium scatters: sigma_s(x) = Albedo() colour(s(x)) sigma_t(s(x)).
+ */
+class ClassifiedAlbedo : public AlbedoField
+{
+public:
+  ClassifiedAlbedo(std::shared_ptr<const DensityField> scalars, ColorTransferFunction colors);
+  Vec3 Evaluate(const Vec3& p) const override
+  {
+    return this->Colors.Color(this->Scalars->Evaluate(p));
+  }
+  const ColorTransferFunction& GetColors() const { return this->Colors; }
+
+private:
+  std::shared_ptr<const DensityField> Scalars;
+  ColorTransferFunction Colors;
 };
 
 } // namespace brume

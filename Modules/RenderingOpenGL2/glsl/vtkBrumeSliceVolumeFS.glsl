@@ -10,7 +10,9 @@
 // The mapper defines, per kind of volume (vtkBrumeSliceVolumeShader):
 // BRUME_EXTINCTION 0 (a texture at the source's resolution or of its own),
 // 1 (a sparse grid's atlas of bricks) or 2 (constant: a homogeneous medium);
-// BRUME_SOURCE_IS_RADIANCE 1 where sourceTexture holds S, not J. Each kind
+// BRUME_SOURCE_IS_RADIANCE 1 where sourceTexture holds S, not J;
+// BRUME_CLASSIFIED 1 where the bricks hold scalars a transfer function
+// classifies, and BRUME_ALBEDO 1 where its table gives an albedo too. Each kind
 // is compiled apart: a software rasterizer runs both sides of a branch on a
 // uniform, texture fetches included.
 //BRUME::Slice::Defines
@@ -41,27 +43,36 @@ uniform vec3 brickScale;             // sigma_t per unit of the grid's values
 // The bricks hold scalars: a transfer function's extinction, sampled evenly
 // over transferRange in one row, classifies them after interpolation, as the
 // light tracer does (vtkBrumeSliceVolumeMapper::SetExtinctionData).
+// With BRUME_ALBEDO the row's green, blue and alpha hold the albedo there.
 uniform sampler2D transferTexture;
 uniform vec2 transferRange;
 uniform float transferSamples;
-float classify(float s)
+vec4 classify(float s)
 {
   float x = clamp((s - transferRange.x) / (transferRange.y - transferRange.x), 0.0, 1.0);
-  return texture(transferTexture, vec2((x * (transferSamples - 1.0) + 0.5) / transferSamples, 0.5)).r;
+  return texture(transferTexture, vec2((x * (transferSamples - 1.0) + 0.5) / transferSamples, 0.5));
 }
 #else
-float classify(float s)
+vec4 classify(float s)
 {
-  return s;
+  return vec4(s, 1.0, 1.0, 1.0);
 }
+#endif
+#if BRUME_ALBEDO
+// The source texture holds X, the radiance of an albedo of 1: drawn as
+// sigma_t a X, with the albedo's share of the phase function's forward
+// peak (drawn as transport) taken from the extinction.
+uniform float forwardFraction;
 #endif
 #if BRUME_EXTINCTION == 2
 uniform vec3 constantExtinction;     // sigma_t of a homogeneous medium
 #endif
 
-// sigma_t at t in [0, 1]^3 over the extinction grid's box.
-vec3 extinctionAt(vec3 t)
+// sigma_t at t in [0, 1]^3 over the extinction grid's box, and the albedo
+// there (1 unless BRUME_ALBEDO).
+vec3 extinctionAt(vec3 t, out vec3 albedo)
 {
+  albedo = vec3(1.0);
 #if BRUME_EXTINCTION == 0
   return texture(extinctionTexture, t).rgb;
 #elif BRUME_EXTINCTION == 1
@@ -69,12 +80,20 @@ vec3 extinctionAt(vec3 t)
   vec3 u = clamp(t * gridCells - 0.5, vec3(0.0), gridCells - 1.0);
   vec3 brick = min(floor(u / 7.0), brickCount - 1.0);
   vec4 entry = texelFetch(brickTable, ivec3(brick), 0);
+  vec4 classified;
   if (entry.w < 0.0)
   {
-    return classify(entry.x) * brickScale;
+    classified = classify(entry.x);
   }
-  vec3 local = min(u - 7.0 * brick, vec3(7.0));
-  return classify(texture(extinctionTexture, (entry.xyz + local + 0.5) / atlasSize).r) * brickScale;
+  else
+  {
+    vec3 local = min(u - 7.0 * brick, vec3(7.0));
+    classified = classify(texture(extinctionTexture, (entry.xyz + local + 0.5) / atlasSize).r);
+  }
+#if BRUME_ALBEDO
+  albedo = classified.gba;
+#endif
+  return classified.r * brickScale;
 #else
   return constantExtinction;
 #endif
@@ -89,8 +108,17 @@ void main()
 {
   vec3 emission = texture(sourceTexture, texcoord).rgb;
   //BRUME::Directional::Impl
-  vec3 sigmaT = extinctionFactor * extinctionAt(texcoord * extinctionScale + extinctionOffset);
-#if BRUME_SOURCE_IS_RADIANCE
+  vec3 albedo;
+  vec3 sigmaT = extinctionAt(texcoord * extinctionScale + extinctionOffset, albedo);
+#if BRUME_ALBEDO
+  // J = sigma_t a X; the peak's share a Forward of sigma_t is transport.
+  emission *= sigmaT * albedo;
+  sigmaT *= vec3(1.0) - albedo * forwardFraction;
+#else
+  sigmaT *= extinctionFactor;
+#endif
+#if BRUME_ALBEDO
+#elif BRUME_SOURCE_IS_RADIANCE
   // Extinction at its own resolution: J = S sigma_t with the fine sigma_t.
   emission *= sigmaT;
 #else

@@ -26,10 +26,10 @@
 #include <vector>
 
 /// Per column of a `size`-wide image, the mean over rows [first, last] of
-/// the channels' mean Radiance, and (with `error` and a Variance array, a
+/// the channels' mean Radiance (or of one `channel`'s), and (with `error` and a Variance array, a
 /// reference path tracer's) the standard error of that mean.
 inline void RowProfile(vtkImageData* image, int size, int first, int last,
-  std::vector<double>& mean, std::vector<double>* error)
+  std::vector<double>& mean, std::vector<double>* error, int channel = -1)
 {
   vtkDataArray* radiance = image->GetPointData()->GetArray("Radiance");
   vtkDataArray* variance = image->GetPointData()->GetArray("Variance");
@@ -47,9 +47,14 @@ inline void RowProfile(vtkImageData* image, int size, int first, int last,
       const vtkIdType p = static_cast<vtkIdType>(y) * size + x;
       for (int c = 0; c < 3; ++c)
       {
-        mean[x] += radiance->GetComponent(p, c) / 3.0 / rows;
+        if (channel >= 0 && c != channel)
+        {
+          continue;
+        }
+        const double share = channel >= 0 ? 1.0 : 1.0 / 3.0;
+        mean[x] += radiance->GetComponent(p, c) * share / rows;
         // The channels' mean has at most their mean variance (correlated).
-        v2 += variance ? variance->GetComponent(p, c) / 3.0 : 0.0;
+        v2 += variance ? variance->GetComponent(p, c) * share : 0.0;
       }
     }
     if (error)

@@ -11,7 +11,15 @@
 // grid is at most the field's own resolution: on 17^3 points (0.125 m) the
 // pipeline draws that glowing face 9 % too dark (2.5 % beyond the band at
 // 2 * 10^6 particles); on 33^3 points it is within half the band.
-//   TestTransferFunctionStep [OUTPUT_DIR]
+//
+// With `colour`, the opacity is alike everywhere and the colour transfer
+// function steps instead, from red to blue at the same scalar: the albedo
+// varies, applied per fragment by the slice mapper. The red and the blue
+// channels' profiles must each agree with the reference's, and the
+// colour's step lie within one pixel of the reference's. (g = 0.5: with a
+// peak set apart, g > 0.7, the pipeline draws this back-lit view 2 to 11 %
+// too bright, colour or not.)
+//   TestTransferFunctionStep [colour] [OUTPUT_DIR]
 #include "EvaluationTestScenes.h"
 
 #include "vtkBrumeReferencePathTracer.h"
@@ -30,6 +38,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <string>
 #include <vector>
 
 namespace
@@ -38,23 +47,36 @@ constexpr int Size = 64;
 constexpr int FirstRow = 20, LastRow = 43;
 constexpr double Step = 0.2; // the scalar (and x) of the step
 
-vtkSmartPointer<vtkPartitionedDataSetCollection> StepScene()
+vtkSmartPointer<vtkPartitionedDataSetCollection> StepScene(bool colour)
 {
   auto scene = vtkSmartPointer<vtkPartitionedDataSetCollection>::New();
   const double sigmaA[3] = { 0.2, 0.2, 0.2 }, sigmaS[3] = { 0.8, 0.8, 0.8 };
-  AddDensityGrid(
-    scene, "field", 33, [](double x, double, double) { return x; }, sigmaA, sigmaS, 0.2);
+  const double white[3] = { 0.0, 0.0, 0.0 }, ones[3] = { 1.0, 1.0, 1.0 };
+  AddDensityGrid(scene, "field", 33, [](double x, double, double) { return x; },
+    colour ? white : sigmaA, colour ? ones : sigmaS, colour ? 0.5 : 0.2);
   // Opacity 0.15 per half metre below the step, 0.6 above (VTK keeps one
-  // point per scalar: the step rises over 10^-4).
+  // point per scalar: the step rises over 10^-4); or 0.3 everywhere, and
+  // the albedo red below the step and blue above.
   vtkFieldData* fd = scene->GetPartitionedDataSet(0)->GetPartition(0)->GetFieldData();
   vtkNew<vtkDoubleArray> opacity;
   opacity->SetName("BrumeScalarOpacity");
   opacity->SetNumberOfComponents(2);
-  opacity->InsertNextTuple2(-1.0, 0.15);
-  opacity->InsertNextTuple2(Step, 0.15);
-  opacity->InsertNextTuple2(Step + 1e-4, 0.6);
-  opacity->InsertNextTuple2(1.0, 0.6);
+  opacity->InsertNextTuple2(-1.0, colour ? 0.3 : 0.15);
+  opacity->InsertNextTuple2(Step, colour ? 0.3 : 0.15);
+  opacity->InsertNextTuple2(Step + 1e-4, colour ? 0.3 : 0.6);
+  opacity->InsertNextTuple2(1.0, colour ? 0.3 : 0.6);
   fd->AddArray(opacity);
+  if (colour)
+  {
+    vtkNew<vtkDoubleArray> colors;
+    colors->SetName("BrumeScalarColor");
+    colors->SetNumberOfComponents(4);
+    colors->InsertNextTuple4(-1.0, 0.95, 0.3, 0.2);
+    colors->InsertNextTuple4(Step, 0.95, 0.3, 0.2);
+    colors->InsertNextTuple4(Step + 1e-4, 0.2, 0.4, 0.95);
+    colors->InsertNextTuple4(1.0, 0.2, 0.4, 0.95);
+    fd->AddArray(colors);
+  }
   const double unit = 0.5;
   vtkBrumeSceneConversion::AppendTuple(fd, "BrumeScalarOpacityUnitDistance", &unit, 1);
   const double light[3] = { 0.3, -0.4, -1.0 };
@@ -93,7 +115,10 @@ int TestTransferFunctionStep(int argc, char* argv[])
     std::cerr << "no render window (no X display and no EGL): skipped\n";
     return 125;
   }
-  const auto scene = StepScene();
+  const bool colour = argc > 1 && std::string(argv[1]) == "colour";
+  const char* outputDir = argc > (colour ? 2 : 1) ? argv[colour ? 2 : 1] : nullptr;
+  const std::string name = colour ? "transfer-function-colour" : "transfer-function-step";
+  const auto scene = StepScene(colour);
   vtkNew<vtkBrumeReferencePathTracer> reference;
   reference->SetInputData(scene);
   reference->SetSize(Size, Size);
@@ -109,28 +134,37 @@ int TestTransferFunctionStep(int argc, char* argv[])
     std::cerr << "FAILED: the images were not made\n";
     return EXIT_FAILURE;
   }
-  if (argc > 1)
+  if (outputDir)
   {
-    SaveImage(argv[1], "transfer-function-step-reference", reference->GetOutput());
-    SaveImage(argv[1], "transfer-function-step-pipeline", pipeline->GetOutput());
+    SaveImage(outputDir, name + "-reference", reference->GetOutput());
+    SaveImage(outputDir, name + "-pipeline", pipeline->GetOutput());
   }
-  std::vector<double> expected, error, got;
-  RowProfile(reference->GetOutput(), Size, FirstRow, LastRow, expected, &error);
-  RowProfile(pipeline->GetOutput(), Size, FirstRow, LastRow, got, nullptr);
-  // The band: four standard errors of the reference, and 3 % of the peak
-  // for the pipeline's own noise and smoothing (as the thin shaft's test).
-  bool ok = WithinBand(expected, error, got, 0.03);
   // The step at x = 0.2 seen from z = 4 through a 30 degree view: its column.
   const double pixel = 2.0 * 4.0 * std::tan(30.0 * M_PI / 360.0) / Size;
   const int guess = static_cast<int>(Size / 2 + Step / pixel);
-  const double wantStep = StepAt(expected, guess), gotStep = StepAt(got, guess);
-  std::printf(
-    "step: reference %.2f px, pipeline %.2f px (expected near %d)\n", wantStep, gotStep, guess);
-  if (!(wantStep > 0.0 && gotStep > 0.0 && std::abs(wantStep - gotStep) <= 1.0))
+  bool ok = true;
+  // The channels' mean; with a colour, red and blue apart.
+  for (const int channel : colour ? std::vector<int>{ 0, 2 } : std::vector<int>{ -1 })
   {
-    std::cerr << "FAILED: the step lies " << gotStep << " pixels across, the reference's at "
-              << wantStep << "\n";
-    ok = false;
+    if (channel >= 0)
+    {
+      std::printf("channel %d\n", channel);
+    }
+    std::vector<double> expected, error, got;
+    RowProfile(reference->GetOutput(), Size, FirstRow, LastRow, expected, &error, channel);
+    RowProfile(pipeline->GetOutput(), Size, FirstRow, LastRow, got, nullptr, channel);
+    // The band: four standard errors of the reference, and 3 % of the peak
+    // for the pipeline's own noise and smoothing (as the thin shaft's test).
+    ok = WithinBand(expected, error, got, 0.03) && ok;
+    const double wantStep = StepAt(expected, guess), gotStep = StepAt(got, guess);
+    std::printf(
+      "step: reference %.2f px, pipeline %.2f px (expected near %d)\n", wantStep, gotStep, guess);
+    if (!(wantStep > 0.0 && gotStep > 0.0 && std::abs(wantStep - gotStep) <= 1.0))
+    {
+      std::cerr << "FAILED: the step lies " << gotStep << " pixels across, the reference's at "
+                << wantStep << "\n";
+      ok = false;
+    }
   }
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }
