@@ -121,9 +121,45 @@ vtkBrumeVolumePropertyMedium::~vtkBrumeVolumePropertyMedium()
   this->SetVolumeProperty(nullptr);
 }
 
+void vtkBrumeVolumePropertyMedium::SetScalarOpacity(vtkPiecewiseFunction* function)
+{
+  if (this->ScalarOpacity != function)
+  {
+    this->ScalarOpacity = function;
+    this->Modified();
+  }
+}
+
+void vtkBrumeVolumePropertyMedium::SetColor(vtkColorTransferFunction* function)
+{
+  if (this->Color != function)
+  {
+    this->Color = function;
+    this->Modified();
+  }
+}
+
+vtkPiecewiseFunction* vtkBrumeVolumePropertyMedium::GetScalarOpacity()
+{
+  return this->ScalarOpacity;
+}
+
+vtkColorTransferFunction* vtkBrumeVolumePropertyMedium::GetColor()
+{
+  return this->Color;
+}
+
 vtkMTimeType vtkBrumeVolumePropertyMedium::GetMTime()
 {
   vtkMTimeType t = this->Superclass::GetMTime();
+  if (this->ScalarOpacity)
+  {
+    t = std::max(t, this->ScalarOpacity->GetMTime());
+  }
+  if (this->Color)
+  {
+    t = std::max(t, this->Color->GetMTime());
+  }
   if (this->VolumeProperty)
   {
     t = std::max(t, this->VolumeProperty->GetMTime());
@@ -186,10 +222,24 @@ int vtkBrumeVolumePropertyMedium::RequestData(
     vtkErrorMacro("needs a vtkDataSet input");
     return 0;
   }
-  if (!this->VolumeProperty)
+  // The property, or one made of the functions set one by one.
+  vtkSmartPointer<vtkVolumeProperty> property = this->VolumeProperty;
+  if (!property)
   {
-    vtkErrorMacro("has no VolumeProperty");
-    return 0;
+    if (!this->ScalarOpacity)
+    {
+      vtkErrorMacro("has no VolumeProperty (nor a ScalarOpacity function)");
+      return 0;
+    }
+    property = vtkSmartPointer<vtkVolumeProperty>::New();
+    property->SetScalarOpacity(this->Component, this->ScalarOpacity);
+    property->SetScalarOpacityUnitDistance(this->Component, this->ScalarOpacityUnitDistance);
+    if (this->Color)
+    {
+      property->SetColor(this->Component, this->Color);
+    }
+    property->SetInterpolationType(this->InterpolationType);
+    property->SetScatteringAnisotropy(static_cast<float>(this->ScatteringAnisotropy));
   }
   int association = 0;
   vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector, association);
@@ -220,14 +270,14 @@ int vtkBrumeVolumePropertyMedium::RequestData(
       return 0;
     }
   }
-  vtkPiecewiseFunction* opacity = this->VolumeProperty->GetScalarOpacity(this->Component);
+  vtkPiecewiseFunction* opacity = property->GetScalarOpacity(this->Component);
   const std::vector<std::array<double, 2>> points = Points(opacity, this->SampledFunctionPoints);
   std::vector<brume::OpacityTransferFunction::Node> nodes;
   for (const auto& p : points)
   {
     nodes.push_back({ static_cast<float>(p[0]), static_cast<float>(p[1]) });
   }
-  const double unit = this->VolumeProperty->GetScalarOpacityUnitDistance(this->Component);
+  const double unit = property->GetScalarOpacityUnitDistance(this->Component);
   std::string error = brume::OpacityTransferFunction::Validate(nodes, unit);
   if (!error.empty())
   {
@@ -236,10 +286,10 @@ int vtkBrumeVolumePropertyMedium::RequestData(
     return 0;
   }
   std::vector<std::array<double, 4>> colors;
-  if (this->ColorAsAlbedo && this->VolumeProperty->GetColorChannels(this->Component) == 3)
+  if (this->ColorAsAlbedo && property->GetColorChannels(this->Component) == 3)
   {
     colors = Points(
-      this->VolumeProperty->GetRGBTransferFunction(this->Component), this->SampledFunctionPoints);
+      property->GetRGBTransferFunction(this->Component), this->SampledFunctionPoints);
     std::vector<brume::ColorTransferFunction::Node> colorNodes;
     for (const auto& p : colors)
     {
@@ -314,14 +364,14 @@ int vtkBrumeVolumePropertyMedium::RequestData(
   SetField(fd, "BrumeSigmaA", sigmaA, 3);
   SetField(fd, "BrumeSigmaS", this->Albedo, 3);
   const double g =
-    std::clamp(static_cast<double>(this->VolumeProperty->GetScatteringAnisotropy()), -0.999, 0.999);
+    std::clamp(static_cast<double>(property->GetScatteringAnisotropy()), -0.999, 0.999);
   SetField(fd, "BrumeG", &g, 1);
   const double component = this->Component;
   SetField(fd, "BrumeScalarComponent", &component, 1);
   SetField(fd, "BrumeScalarOpacityUnitDistance", &unit, 1);
   SetString(fd, "BrumeDensityArray", scalars->GetName());
   SetString(fd, "BrumeInterpolation",
-    this->VolumeProperty->GetInterpolationType() == VTK_NEAREST_INTERPOLATION ? "nearest"
+    property->GetInterpolationType() == VTK_NEAREST_INTERPOLATION ? "nearest"
                                                                               : "linear");
   vtkNew<vtkDoubleArray> function;
   function->SetName("BrumeScalarOpacity");
@@ -354,6 +404,11 @@ void vtkBrumeVolumePropertyMedium::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "VolumeProperty: " << this->VolumeProperty << "\n";
+  os << indent << "ScalarOpacity: " << this->ScalarOpacity.Get() << "\n";
+  os << indent << "Color: " << this->Color.Get() << "\n";
+  os << indent << "ScalarOpacityUnitDistance: " << this->ScalarOpacityUnitDistance << "\n";
+  os << indent << "InterpolationType: " << this->InterpolationType << "\n";
+  os << indent << "ScatteringAnisotropy: " << this->ScatteringAnisotropy << "\n";
   os << indent << "Component: " << this->Component << "\n";
   os << indent << "Albedo: " << this->Albedo[0] << ", " << this->Albedo[1] << ", "
      << this->Albedo[2] << "\n";

@@ -59,8 +59,11 @@
 
 #include "vtkBrumeDataModelModule.h" // For export macro
 #include "vtkImageAlgorithm.h"
+#include "vtkSmartPointer.h" // For the functions set one by one
 
+class vtkColorTransferFunction;
 class vtkDataSet;
+class vtkPiecewiseFunction;
 class vtkVolumeProperty;
 
 class VTKBRUMEDATAMODEL_EXPORT vtkBrumeVolumePropertyMedium : public vtkImageAlgorithm
@@ -74,6 +77,28 @@ public:
   /// The volume property that defines the medium (required).
   void SetVolumeProperty(vtkVolumeProperty* property);
   vtkGetObjectMacro(VolumeProperty, vtkVolumeProperty);
+  ///@}
+
+  ///@{
+  /**
+   * Without a VolumeProperty, the functions and settings it would hold,
+   * one by one, as ParaView's "Brume Medium From Field" filter sets them
+   * from the colour map and opacity editor of the array: the scalar
+   * opacity (required then), the colour (none: one albedo), the unit
+   * distance (default 1), the interpolation (VTK_LINEAR_INTERPOLATION,
+   * the default, or VTK_NEAREST_INTERPOLATION) and g (default 0). A
+   * VolumeProperty, when set, is used instead.
+   */
+  void SetScalarOpacity(vtkPiecewiseFunction* function);
+  vtkPiecewiseFunction* GetScalarOpacity();
+  void SetColor(vtkColorTransferFunction* function);
+  vtkColorTransferFunction* GetColor();
+  vtkSetMacro(ScalarOpacityUnitDistance, double);
+  vtkGetMacro(ScalarOpacityUnitDistance, double);
+  vtkSetClampMacro(InterpolationType, int, VTK_NEAREST_INTERPOLATION, VTK_LINEAR_INTERPOLATION);
+  vtkGetMacro(InterpolationType, int);
+  vtkSetMacro(ScatteringAnisotropy, double);
+  vtkGetMacro(ScatteringAnisotropy, double);
   ///@}
 
   ///@{
@@ -141,6 +166,11 @@ protected:
     vtkInformationVector* outputVector) override;
 
   vtkVolumeProperty* VolumeProperty = nullptr;
+  vtkSmartPointer<vtkPiecewiseFunction> ScalarOpacity;
+  vtkSmartPointer<vtkColorTransferFunction> Color;
+  double ScalarOpacityUnitDistance = 1.0;
+  int InterpolationType = VTK_LINEAR_INTERPOLATION;
+  double ScatteringAnisotropy = 0.0;
   int Component = 0;
   double Albedo[3] = { 0.8, 0.8, 0.8 };
   bool ColorAsAlbedo = true;
