@@ -553,6 +553,34 @@ void TestColour()
   Check(points && points->GetNumberOfTuples() == 3 && points->GetNumberOfComponents() == 4 &&
       points->GetComponent(1, 0) == 45 && points->GetComponent(2, 3) == 1.0,
     "an RGB function's points are taken node for node");
+  // The same functions and settings given one by one, without a property
+  // (as ParaView's filter gives them): the same field data.
+  vtkNew<vtkBrumeVolumePropertyMedium> byParts;
+  byParts->SetInputData(Field());
+  byParts->SetScalarOpacity(opacity);
+  byParts->SetColor(colour);
+  byParts->SetScalarOpacityUnitDistance(0.25);
+  byParts->SetInterpolationType(VTK_LINEAR_INTERPOLATION);
+  byParts->SetAlbedo(0.9, 0.8, 0.5);
+  Check(byParts->GetExecutive()->Update() == 1, "the filter runs with functions set one by one");
+  for (const char* name : { "BrumeScalarOpacity", "BrumeScalarColor",
+         "BrumeScalarOpacityUnitDistance", "BrumeSigmaS", "BrumeG" })
+  {
+    vtkDataArray* x = filter->GetOutput()->GetFieldData()->GetArray(name);
+    vtkDataArray* y = byParts->GetOutput()->GetFieldData()->GetArray(name);
+    bool same = x && y && x->GetNumberOfValues() == y->GetNumberOfValues();
+    for (vtkIdType i = 0; same && i < x->GetNumberOfValues(); ++i)
+    {
+      const int c = x->GetNumberOfComponents();
+      same = x->GetComponent(i / c, static_cast<int>(i % c)) ==
+        y->GetComponent(i / c, static_cast<int>(i % c));
+    }
+    Check(same, std::string("functions set one by one give the property's ") + name);
+  }
+  const auto modified = byParts->GetMTime();
+  colour->AddRGBPoint(95, 0.1, 0.3, 1.0);
+  Check(byParts->GetMTime() > modified, "editing the colour function modifies the filter");
+
   brume::Medium m;
   Check(ConvertMedium(filter->GetOutput(), m).empty(), "the coloured medium converts");
   Check(m.HasVaryingAlbedo(), "the colour makes the albedo vary");
