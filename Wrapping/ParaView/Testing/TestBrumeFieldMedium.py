@@ -86,6 +86,23 @@ check(image_error(recoloured, shown) > 10, "a new colour map changes the view (e
       % image_error(recoloured, shown))
 colours = medium.GetClientSideObject().GetOutput().GetFieldData().GetArray("BrumeScalarColor")
 check(colours.GetTuple4(0) == (90.0, 0.9, 0.3, 0.1), "the medium has the new colours")
+
+
+def albedo_table(textures):
+    for i in range(textures.GetNumberOfPartitionedDataSets()):
+        pds = textures.GetPartitionedDataSet(i)
+        for k in range(pds.GetNumberOfPartitions()):
+            table = pds.GetPartition(k).GetFieldData().GetArray("AlbedoTransferFunction")
+            if table is not None:
+                return table
+    return None
+
+
+table = albedo_table(reconstruction.GetClientSideObject().GetOutput())
+check(table is not None and all(abs(a - b) < 1e-6 for a, b in
+                                zip(table.GetTuple3(0), (0.81, 0.27, 0.09))),
+      "the view's albedo table is the new colour times Albedo: %s"
+      % (table.GetTuple3(0) if table else None,))
 opacity.Points = [90, 0.0, 0.5, 0.0, 280, 0.05, 0.5, 0.0]
 thinner = screenshot("thinner")
 check(image_error(thinner, recoloured) > 10, "a new opacity function changes the view (error %g)"
