@@ -205,7 +205,15 @@ public:
    *   the range, linear between them, its end values beyond), as the light
    *   tracer classifies a transfer-function medium
    *   (vtkBrumeRadianceConversion::NativeExtinction); the table's value
-   *   times `ExtinctionScale` is sigma_t.
+   *   times `ExtinctionScale` is sigma_t;
+   * - with those, optionally `AlbedoTransferFunction` (3 components, as
+   *   many tuples, each in [0, 1]): the albedo a of the same scalars, for a
+   *   medium whose albedo varies. The input's source radiance is then X,
+   *   the radiance of an albedo of 1 (brume::ObjectRadiance::
+   *   HasVaryingAlbedo), drawn per fragment as the emission sigma_t a X
+   *   with the extinction sigma_t (1 - a F), F the input's field array
+   *   `BrumeForwardFraction` (the share of a forward peak drawn as
+   *   transport; 0 without it).
    * The GPU holds the same: the slots in one 3D atlas texture and the brick
    * table, so memory follows the bricks where the medium varies, not its box.
    */
