@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumeRadianceConversion.h"
+#include "vtkBrumeSMP.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -208,7 +209,13 @@ vtkSmartPointer<vtkImageData> vtkBrumeRadianceConversion::NativeExtinction(
     // The function's extinction at TransferFunctionSamples scalars evenly
     // over its points' range (its end values beyond), and the albedo its
     // colour function gives, over both functions' points.
+    // (A colour of other scalars than the density's cannot share its table.)
     const auto* colors = dynamic_cast<const brume::ClassifiedAlbedo*>(medium.AlbedoFactor.get());
+    const auto* classified = dynamic_cast<const brume::ClassifiedDensity*>(medium.Density.get());
+    if (colors && !(classified && &colors->GetScalars() == &classified->GetScalars()))
+    {
+      colors = nullptr;
+    }
     float lo = function->GetNodes().front().Scalar;
     float last = function->GetNodes().back().Scalar;
     if (colors)
@@ -391,43 +398,88 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
     std::copy(bricks->GetSlots().begin(), bricks->GetSlots().end(), slots->GetPointer(0));
     fd->AddArray(slots);
   }
-  // A varying albedo is applied by the mapper where it classifies the
-  // scalars. On a grid it cannot classify (a coarsened one) it is applied
-  // here, the albedo at each texel's centre: the emission sigma_t a X is
-  // kept, and the extinction takes one factor, that of the mean albedo.
-  const bool bake = radiance.HasVaryingAlbedo() && !radiance.GetClassification();
-  const bool albedoTable = radiance.HasVaryingAlbedo() && !bake;
+  // A varying albedo is applied by the mapper where its extinction carries
+  // the albedo's table. On a grid that has none (a coarsened one) it is
+  // applied here, per texel: its sigma_t-weighted mean over 2^3 points of
+  // the texel, so that the emission sigma_t a X is kept; the extinction
+  // takes one factor, that of the medium's sigma_t-weighted mean albedo.
+  const bool albedoTable = radiance.HasVaryingAlbedo() && extinction &&
+    extinction->GetFieldData()->GetArray("AlbedoTransferFunction");
+  const bool bake = radiance.HasVaryingAlbedo() && !albedoTable;
   std::vector<brume::Vec3> texelAlbedo;
   brume::Vec3 bakedFactor(1.f);
   if (bake)
   {
     const std::size_t texels = static_cast<std::size_t>(res[0]) * res[1] * res[2];
     const brume::Vec3 cell(extent.x / res[0], extent.y / res[1], extent.z / res[2]);
-    brume::Vec3 mean(0.f);
     texelAlbedo.resize(texels);
+    std::vector<double> texelWeight(texels);
+    vtkBrumeSMP::ParallelFor()(0, texels,
+      [&](std::size_t begin, std::size_t end)
+      {
+        for (std::size_t t = begin; t < end; ++t)
+        {
+          const int i = static_cast<int>(t % res[0]), j = static_cast<int>((t / res[0]) % res[1]),
+                    k = static_cast<int>(t / (static_cast<std::size_t>(res[0]) * res[1]));
+          double sum[3] = { 0.0, 0.0, 0.0 }, weight = 0.0;
+          for (int q = 0; q < 8; ++q)
+          {
+            const brume::Vec3 p = medium.Bounds.lower +
+              cell *
+                brume::Vec3(static_cast<float>(i) + ((q & 1) ? 0.75f : 0.25f),
+                  static_cast<float>(j) + ((q & 2) ? 0.75f : 0.25f),
+                  static_cast<float>(k) + ((q & 4) ? 0.75f : 0.25f));
+            const double w = medium.SigmaTAt(p).x;
+            const brume::Vec3 a = medium.AlbedoAt(p);
+            for (int c = 0; c < 3; ++c)
+            {
+              sum[c] += w * a[c];
+            }
+            weight += w;
+          }
+          const brume::Vec3 centre = medium.AlbedoAt(medium.Bounds.lower +
+            cell *
+              brume::Vec3(static_cast<float>(i) + 0.5f, static_cast<float>(j) + 0.5f,
+                static_cast<float>(k) + 0.5f));
+          texelAlbedo[t] = weight > 0.0
+            ? brume::Vec3(static_cast<float>(sum[0] / weight), static_cast<float>(sum[1] / weight),
+                static_cast<float>(sum[2] / weight))
+            : centre;
+          texelWeight[t] = weight;
+        }
+      });
+    double sum[3] = { 0.0, 0.0, 0.0 }, weight = 0.0;
     for (std::size_t t = 0; t < texels; ++t)
     {
-      const int i = static_cast<int>(t % res[0]), j = static_cast<int>((t / res[0]) % res[1]),
-                k = static_cast<int>(t / (static_cast<std::size_t>(res[0]) * res[1]));
-      texelAlbedo[t] = medium.AlbedoAt(medium.Bounds.lower +
-        cell *
-          brume::Vec3(static_cast<float>(i) + 0.5f, static_cast<float>(j) + 0.5f,
-            static_cast<float>(k) + 0.5f));
-      mean += texelAlbedo[t] * (1.f / static_cast<float>(texels));
+      for (int c = 0; c < 3; ++c)
+      {
+        sum[c] += texelWeight[t] * texelAlbedo[t][c];
+      }
+      weight += texelWeight[t];
     }
-    bakedFactor = brume::Vec3(1.f) - mean * radiance.GetPeak(directional).Forward;
+    const float forward = radiance.GetPeak(directional).Forward;
+    for (int c = 0; c < 3; ++c)
+    {
+      bakedFactor[c] = 1.f - (weight > 0.0 ? static_cast<float>(sum[c] / weight) : 1.f) * forward;
+    }
   }
-  auto baked = [&](const std::vector<float>& values, int components)
+  // The source's values, the albedo applied where it is baked.
+  std::vector<float> bakedValues;
+  auto baked = [&](const std::vector<float>& values, int components) -> const std::vector<float>&
   {
-    std::vector<float> out(values);
-    for (std::size_t t = 0; bake && t < texelAlbedo.size(); ++t)
+    if (!bake)
+    {
+      return values;
+    }
+    bakedValues = values;
+    for (std::size_t t = 0; t < texelAlbedo.size(); ++t)
     {
       for (int c = 0; c < components; ++c)
       {
-        out[t * components + c] *= texelAlbedo[t][c % 3] / bakedFactor[c % 3];
+        bakedValues[t * components + c] *= texelAlbedo[t][c % 3] / bakedFactor[c % 3];
       }
     }
-    return out;
+    return bakedValues;
   };
   if (directional)
   {
@@ -435,7 +487,7 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
     // l = 0 term: c_00 Y_00).
     const int order = radiance.GetDirectionalOrder();
     const int components = 3 * brume::ShCoefficients(order);
-    const std::vector<float> coefficients = baked(radiance.GetDirectional(), components);
+    const std::vector<float>& coefficients = baked(radiance.GetDirectional(), components);
     std::vector<float> mean(3 * (coefficients.size() / components));
     for (std::size_t t = 0; t < mean.size() / 3; ++t)
     {

@@ -118,6 +118,14 @@ public:
    * points' scalars; the end values beyond), which the slice mapper
    * applies after interpolating the scalars. Classify() is that lookup
    * (linear between the table's samples).
+   *
+   * A medium whose albedo varies (brume::ClassifiedAlbedo of the same
+   * scalars) adds `AlbedoTransferFunction` (3 components, the albedo at the
+   * same samples) there, and its texture's SourceRadiance is then X, the
+   * radiance of an albedo of 1, with the field array BrumeForwardFraction:
+   * the mapper draws sigma_t a X with the extinction sigma_t (1 - a F). A
+   * grid without the table (a coarsened one) gets the albedo baked into its
+   * texture instead: per texel, its sigma_t-weighted mean over 2^3 points.
    */
   static constexpr int TransferFunctionSamples = 4096;
   static double Classify(vtkDataArray* table, const double range[2], double scalar);

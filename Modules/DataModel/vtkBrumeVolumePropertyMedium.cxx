@@ -80,12 +80,12 @@ std::vector<std::array<double, 2>> Points(vtkPiecewiseFunction* f, int samples)
 }
 
 // The function's (scalar, red, green, blue) points: its nodes when it is
-// piecewise linear in RGB (midpoints 0.5, sharpness 0), else `samples`
-// samples over its range.
+// piecewise linear in RGB over a linear scale (midpoints 0.5, sharpness 0),
+// else `samples` samples over its range (GetTable follows a log scale).
 std::vector<std::array<double, 4>> Points(vtkColorTransferFunction* f, int samples)
 {
   std::vector<std::array<double, 4>> points;
-  bool linear = f->GetColorSpace() == VTK_CTF_RGB;
+  bool linear = f->GetColorSpace() == VTK_CTF_RGB && f->GetScale() == VTK_CTF_LINEAR;
   double node[6];
   for (int i = 0; i < f->GetSize(); ++i)
   {

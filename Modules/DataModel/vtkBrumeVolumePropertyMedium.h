@@ -31,8 +31,11 @@
  *   vtkColorTransferFunction); an RGB-space function with default
  *   midpoints and sharpness is taken node for node, any other (ParaView's
  *   diverging and Lab colour maps) sampled at SampledFunctionPoints
- *   points. Otherwise (ColorAsAlbedo off, or a grey function) the albedo
- *   is Albedo everywhere. Either way sigma_t is the opacity's alone.
+ *   points (as are log-scale functions). Otherwise (ColorAsAlbedo off, or
+ *   a grey function) the albedo is Albedo everywhere. Either way sigma_t
+ *   is the opacity's alone. Beyond their points both functions keep their
+ *   end values, as with VTK's Clamping on (a function with Clamping off,
+ *   or above- and below-range colours, is read clamped all the same).
  *
  * The array is the first input array to process (default: the point
  * scalars, else the cell scalars), and it must have a name. The output's

@@ -59,6 +59,14 @@ std::string vtkBrumeSliceVolumeMapper::ValidateInput(vtkImageData* image)
       return "the medium image needs a positive spacing";
     }
   }
+  if (vtkDataArray* forward = image->GetFieldData()->GetArray("BrumeForwardFraction"))
+  {
+    const double f = forward->GetNumberOfTuples() > 0 ? forward->GetTuple1(0) : -1.0;
+    if (!(f >= 0.0 && f < 1.0))
+    {
+      return "the field array 'BrumeForwardFraction' needs one value in [0, 1)";
+    }
+  }
   const vtkIdType cells =
     static_cast<vtkIdType>(pointDims[0] - 1) * (pointDims[1] - 1) * (pointDims[2] - 1);
   if (IsSparseSource(image))

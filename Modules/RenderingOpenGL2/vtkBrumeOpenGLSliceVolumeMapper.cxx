@@ -236,7 +236,8 @@ bool vtkBrumeOpenGLSliceVolumeMapper::PrepareSlices(
       impl.ExtinctionFactor[c] = f > 0.0 && f <= 1.0 ? static_cast<float>(f) : 1.f;
     }
     vtkDataArray* forward = input->GetFieldData()->GetArray("BrumeForwardFraction");
-    const double fraction = forward ? forward->GetTuple1(0) : 0.0;
+    const double fraction =
+      forward && forward->GetNumberOfTuples() > 0 ? forward->GetTuple1(0) : 0.0;
     impl.ForwardFraction = fraction > 0.0 && fraction < 1.0 ? static_cast<float>(fraction) : 0.f;
   }
   if (!this->EvaluateTowardEye(renWin, dims, interpolation))

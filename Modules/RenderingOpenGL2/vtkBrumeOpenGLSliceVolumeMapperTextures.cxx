@@ -229,6 +229,7 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadInputExtinction(
     (&e == &impl.ExtinctionValues || impl.ExtinctionValues == e);
   impl.ExtinctionGrid = nullptr;
   impl.Bricked = false;
+  impl.Albedo = false;
   if (same)
   {
     return true;

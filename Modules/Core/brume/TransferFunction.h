@@ -161,6 +161,7 @@ public:
     return this->Colors.Color(this->Scalars->Evaluate(p));
   }
   const ColorTransferFunction& GetColors() const { return this->Colors; }
+  const DensityField& GetScalars() const { return *this->Scalars; }
 
 private:
   std::shared_ptr<const DensityField> Scalars;
