@@ -95,6 +95,15 @@ std::string ReadColorFunction(
   return {};
 }
 
+// Both functions of a medium's field data, if any. Empty when valid or absent.
+std::string ReadTransferFunctions(vtkFieldData* fd,
+  std::optional<brume::OpacityTransferFunction>& opacity,
+  std::optional<brume::ColorTransferFunction>& colors)
+{
+  const std::string error = ReadOpacityFunction(fd, opacity);
+  return error.empty() ? ReadColorFunction(fd, colors) : error;
+}
+
 // The medium's density: `scalars` classified when it has an opacity
 // function, and its albedo coloured when it has a colour function too.
 void SetClassified(brume::Medium& m, std::shared_ptr<const brume::DensityField> scalars,
@@ -150,11 +159,7 @@ std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
     // With a transfer function, the grid's values are scalars it classifies.
     std::optional<brume::OpacityTransferFunction> opacity;
     std::optional<brume::ColorTransferFunction> colors;
-    error = ReadOpacityFunction(fd, opacity);
-    if (error.empty())
-    {
-      error = ReadColorFunction(fd, colors);
-    }
+    error = ReadTransferFunctions(fd, opacity, colors);
     if (!error.empty())
     {
       return error;
@@ -209,11 +214,7 @@ std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
   // array is the density itself.
   std::optional<brume::OpacityTransferFunction> opacity;
   std::optional<brume::ColorTransferFunction> colors;
-  error = ReadOpacityFunction(fd, opacity);
-  if (error.empty())
-  {
-    error = ReadColorFunction(fd, colors);
-  }
+  error = ReadTransferFunctions(fd, opacity, colors);
   if (!error.empty())
   {
     return error;

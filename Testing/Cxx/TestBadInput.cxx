@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Bad input gets a clear error and a failed RequestData, never a crash.
+#include "BrumeExpectFailure.h"
 #include "vtkBrumeDefaultSceneSource.h"
 #include "vtkBrumeLightTracer.h"
 #include "vtkBrumeRadianceReconstruction.h"
-#include "vtkDataSet.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDataArray.h"
+#include "vtkDataSet.h"
 #include "vtkDoubleArray.h"
 #include "vtkExecutive.h"
 #include "vtkFieldData.h"
@@ -34,15 +35,6 @@
 
 namespace
 {
-struct ErrorCatcher
-{
-  std::string Last;
-  static void Callback(vtkObject*, unsigned long, void* clientData, void* callData)
-  {
-    static_cast<ErrorCatcher*>(clientData)->Last = static_cast<const char*>(callData);
-  }
-};
-
 vtkSmartPointer<vtkPartitionedDataSetCollection> DefaultScene()
 {
   vtkNew<vtkBrumeDefaultSceneSource> source;
@@ -81,26 +73,6 @@ void SetField(vtkDataObject* object, const char* name, double x, double y, doubl
 {
   vtkDataArray* a = object->GetFieldData()->GetArray(name);
   a->SetTuple3(0, x, y, z);
-}
-
-// Runs `algorithm` and checks that it fails with an error mentioning `expected`.
-bool ExpectFailure(const std::string& what, vtkAlgorithm* algorithm, const std::string& expected)
-{
-  ErrorCatcher catcher;
-  vtkNew<vtkCallbackCommand> command;
-  command->SetCallback(ErrorCatcher::Callback);
-  command->SetClientData(&catcher);
-  const unsigned long tag = algorithm->AddObserver(vtkCommand::ErrorEvent, command);
-  const int ok = algorithm->GetExecutive()->Update();
-  algorithm->RemoveObserver(tag);
-  if (ok || catcher.Last.find(expected) == std::string::npos)
-  {
-    std::cerr << what << ": expected a failure mentioning '" << expected << "', got "
-              << (ok ? "success" : "failure") << " with error '" << catcher.Last << "'\n";
-    return false;
-  }
-  std::cout << what << ": " << catcher.Last.substr(catcher.Last.find('\n') + 1);
-  return true;
 }
 
 bool TracerFails(const std::string& what, vtkPartitionedDataSetCollection* scene,

@@ -7,6 +7,7 @@
 // interpolation too, and a constant colour draws the image of the same
 // albedo given as one colour; bad functions, arrays and components fail
 // with a clear error.
+#include "BrumeExpectFailure.h"
 #include "vtkBrumeFloatImageCapture.h"
 #include "vtkBrumeLightTracer.h"
 #include "vtkBrumeRadianceConversion.h"
@@ -168,30 +169,6 @@ vtkSmartPointer<vtkImageData> Render(
   return capture->Capture();
 }
 
-struct ErrorCatcher
-{
-  std::string Last;
-  static void Callback(vtkObject*, unsigned long, void* clientData, void* callData)
-  {
-    static_cast<ErrorCatcher*>(clientData)->Last = static_cast<const char*>(callData);
-  }
-};
-
-// Runs `algorithm` and checks that it fails with an error mentioning `expected`.
-void ExpectFailure(const std::string& what, vtkAlgorithm* algorithm, const std::string& expected)
-{
-  ErrorCatcher catcher;
-  vtkNew<vtkCallbackCommand> command;
-  command->SetCallback(ErrorCatcher::Callback);
-  command->SetClientData(&catcher);
-  const unsigned long tag = algorithm->AddObserver(vtkCommand::ErrorEvent, command);
-  const int ok = algorithm->GetExecutive()->Update();
-  algorithm->RemoveObserver(tag);
-  Check(!ok && catcher.Last.find(expected) != std::string::npos,
-    what + ": expected a failure mentioning '" + expected + "', got " +
-      (ok ? "success" : "failure") + " with '" + catcher.Last + "'");
-}
-
 // The core scene's medium made of `image`, or the conversion's error.
 std::string ConvertMedium(vtkImageData* image, brume::Medium& medium)
 {
@@ -202,6 +179,44 @@ std::string ConvertMedium(vtkImageData* image, brume::Medium& medium)
     medium = scene.Media.at(0);
   }
   return error;
+}
+
+// The trilinear interpolation of the image's array `name` at p.
+double Interpolate(vtkImageData* image, const char* name, const double p[3])
+{
+  vtkDataArray* s = image->GetPointData()->GetArray(name);
+  int ijk[3];
+  double pc[3];
+  image->ComputeStructuredCoordinates(p, ijk, pc);
+  double value = 0.0;
+  for (int c = 0; c < 8; ++c)
+  {
+    int idx[3] = { ijk[0] + (c & 1), ijk[1] + ((c >> 1) & 1), ijk[2] + ((c >> 2) & 1) };
+    double w = 1.0;
+    for (int a = 0; a < 3; ++a)
+    {
+      w *= (idx[a] > ijk[a]) ? pc[a] : 1.0 - pc[a];
+    }
+    value += w * s->GetTuple1(image->ComputePointId(idx));
+  }
+  return value;
+}
+
+// The largest channel difference of two images, and their peak.
+void Compare(vtkImageData* a, vtkImageData* b, double& worst, double& peak)
+{
+  vtkDataArray* x = a->GetPointData()->GetScalars();
+  vtkDataArray* y = b->GetPointData()->GetScalars();
+  worst = 0.0;
+  peak = 0.0;
+  for (vtkIdType i = 0; i < x->GetNumberOfTuples(); ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      peak = std::max(peak, y->GetComponent(i, c));
+      worst = std::max(worst, std::abs(x->GetComponent(i, c) - y->GetComponent(i, c)));
+    }
+  }
 }
 
 void TestClassification()
@@ -237,21 +252,7 @@ void TestClassification()
   for (double x = -0.45; x < 0.5; x += 0.1)
   {
     const double p[3] = { x, -0.07, 0.13 };
-    int ijk[3];
-    double pc[3];
-    image->ComputeStructuredCoordinates(p, ijk, pc);
-    // Trilinear interpolation of the scalar, as the image's cell does.
-    double value = 0.0;
-    for (int c = 0; c < 8; ++c)
-    {
-      int idx[3] = { ijk[0] + (c & 1), ijk[1] + ((c >> 1) & 1), ijk[2] + ((c >> 2) & 1) };
-      double w = 1.0;
-      for (int a = 0; a < 3; ++a)
-      {
-        w *= (idx[a] > ijk[a]) ? pc[a] : 1.0 - pc[a];
-      }
-      value += w * s->GetTuple1(image->ComputePointId(idx));
-    }
+    const double value = Interpolate(image, "temperature", p);
     const double alpha = opacity->GetValue(value);
     const double expected = -std::log1p(-alpha) / 0.25;
     const double got = m.SigmaTAt(
@@ -425,7 +426,8 @@ void TestResampledDataset()
   vtkNew<vtkBrumeVolumePropertyMedium> bad;
   bad->SetVolumeProperty(property);
   bad->SetInputData(flat);
-  ExpectFailure("a dataset without cells", bad, "cannot resample");
+  Check(
+    ExpectFailure("a dataset without cells", bad, "cannot resample"), "a dataset without cells");
 }
 
 void TestConstantFunctionIsTheConstantDensity()
@@ -506,28 +508,6 @@ void TestConstantFunctionIsTheConstantDensity()
       "a vtkLight given to the tracer against the same light in the scene: " +
         std::to_string(differing) + " channel values differ");
   }
-}
-
-
-// The trilinear interpolation of the image's array `name` at p.
-double Interpolate(vtkImageData* image, const char* name, const double p[3])
-{
-  vtkDataArray* s = image->GetPointData()->GetArray(name);
-  int ijk[3];
-  double pc[3];
-  image->ComputeStructuredCoordinates(p, ijk, pc);
-  double value = 0.0;
-  for (int c = 0; c < 8; ++c)
-  {
-    int idx[3] = { ijk[0] + (c & 1), ijk[1] + ((c >> 1) & 1), ijk[2] + ((c >> 2) & 1) };
-    double w = 1.0;
-    for (int a = 0; a < 3; ++a)
-    {
-      w *= (idx[a] > ijk[a]) ? pc[a] : 1.0 - pc[a];
-    }
-    value += w * s->GetTuple1(image->ComputePointId(idx));
-  }
-  return value;
 }
 
 void TestColour()
@@ -664,17 +644,8 @@ void TestColour()
   {
     return;
   }
-  vtkDataArray* x = a->GetPointData()->GetScalars();
-  vtkDataArray* y = b->GetPointData()->GetScalars();
-  double peak = 0.0, worst = 0.0;
-  for (vtkIdType i = 0; i < x->GetNumberOfTuples(); ++i)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      peak = std::max(peak, y->GetComponent(i, c));
-      worst = std::max(worst, std::abs(x->GetComponent(i, c) - y->GetComponent(i, c)));
-    }
-  }
+  double worst = 0.0, peak = 0.0;
+  Compare(a, b, worst, peak);
   Check(peak > 0.0 && worst <= 1e-5 * peak,
     "a constant colour against the same albedo: differs by " + std::to_string(worst) +
       " of a peak " + std::to_string(peak));
@@ -684,7 +655,8 @@ void TestColour()
   vtkNew<vtkColorTransferFunction> bright;
   bright->AddRGBPoint(0, 1.5, 0.2, 0.2);
   property->SetColor(bright);
-  ExpectFailure("a colour above 1", filter, "colour component outside [0, 1]");
+  Check(ExpectFailure("a colour above 1", filter, "colour component outside [0, 1]"),
+    "a colour above 1");
   property->SetColor(colour);
   filter->Update();
   auto edit = [&](const std::function<void(vtkFieldData*)>& change)
@@ -695,47 +667,32 @@ void TestColour()
     brume::Medium medium;
     return ConvertMedium(image, medium);
   };
-  Check(edit([](vtkFieldData* fd) {
-    fd->GetArray("BrumeScalarColor")->SetComponent(0, 0, std::nan(""));
-  }).find("BrumeScalarColor transfer function that colour point 0") != std::string::npos,
+  Check(
+    edit(
+      [](vtkFieldData* fd) {
+        fd->GetArray("BrumeScalarColor")->SetComponent(0, 0, std::nan(""));
+      }).find("BrumeScalarColor transfer function that colour point 0") != std::string::npos,
     "a NaN colour scalar");
-  Check(edit(
-          [](vtkFieldData* fd)
-          {
-            fd->RemoveArray("BrumeScalarOpacity");
-            fd->RemoveArray("BrumeScalarOpacityUnitDistance");
-          })
-          .find("BrumeScalarColor without a BrumeScalarOpacity") != std::string::npos,
+  Check(
+    edit(
+      [](vtkFieldData* fd)
+      {
+        fd->RemoveArray("BrumeScalarOpacity");
+        fd->RemoveArray("BrumeScalarOpacityUnitDistance");
+      }).find("BrumeScalarColor without a BrumeScalarOpacity") != std::string::npos,
     "a colour without an opacity");
-  Check(edit(
-          [](vtkFieldData* fd)
-          {
-            vtkNew<vtkDoubleArray> three;
-            three->SetName("BrumeScalarColor");
-            three->SetNumberOfComponents(3);
-            three->InsertNextTuple3(0, 1, 1);
-            fd->RemoveArray("BrumeScalarColor");
-            fd->AddArray(three);
-          })
-          .find("(scalar, red, green, blue) tuples") != std::string::npos,
+  Check(
+    edit(
+      [](vtkFieldData* fd)
+      {
+        vtkNew<vtkDoubleArray> three;
+        three->SetName("BrumeScalarColor");
+        three->SetNumberOfComponents(3);
+        three->InsertNextTuple3(0, 1, 1);
+        fd->RemoveArray("BrumeScalarColor");
+        fd->AddArray(three);
+      }).find("(scalar, red, green, blue) tuples") != std::string::npos,
     "a colour of three components");
-}
-
-// The largest channel difference of two images, and their peak.
-void Compare(vtkImageData* a, vtkImageData* b, double& worst, double& peak)
-{
-  vtkDataArray* x = a->GetPointData()->GetScalars();
-  vtkDataArray* y = b->GetPointData()->GetScalars();
-  worst = 0.0;
-  peak = 0.0;
-  for (vtkIdType i = 0; i < x->GetNumberOfTuples(); ++i)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      peak = std::max(peak, y->GetComponent(i, c));
-      worst = std::max(worst, std::abs(x->GetComponent(i, c) - y->GetComponent(i, c)));
-    }
-  }
 }
 
 void TestCoarsenedColour()
@@ -799,7 +756,7 @@ void TestBadInput()
 {
   vtkNew<vtkBrumeVolumePropertyMedium> filter;
   filter->SetInputData(Field());
-  ExpectFailure("no property", filter, "has no VolumeProperty");
+  Check(ExpectFailure("no property", filter, "has no VolumeProperty"), "no property");
 
   vtkNew<vtkVolumeProperty> property;
   vtkNew<vtkPiecewiseFunction> opacity;
@@ -807,23 +764,24 @@ void TestBadInput()
   opacity->AddPoint(50, -0.5);
   property->SetScalarOpacity(opacity);
   filter->SetVolumeProperty(property);
-  ExpectFailure("negative opacity", filter, "opacity outside [0, 1]");
+  Check(ExpectFailure("negative opacity", filter, "opacity outside [0, 1]"), "negative opacity");
 
   vtkNew<vtkPiecewiseFunction> empty;
   property->SetScalarOpacity(empty);
-  ExpectFailure("empty function", filter, "has no opacity points");
+  Check(ExpectFailure("empty function", filter, "has no opacity points"), "empty function");
 
   vtkNew<vtkPiecewiseFunction> good;
   good->AddPoint(0, 0.2);
   property->SetScalarOpacity(good);
   filter->SetComponent(2);
-  ExpectFailure("component out of range", filter, "has Component 2");
+  Check(
+    ExpectFailure("component out of range", filter, "has Component 2"), "component out of range");
   filter->SetComponent(0);
   filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "no such");
-  ExpectFailure("missing array", filter, "finds no array");
+  Check(ExpectFailure("missing array", filter, "finds no array"), "missing array");
   filter->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "temperature");
   filter->SetAlbedo(1.2, 0.5, 0.5);
-  ExpectFailure("albedo above 1", filter, "Albedo outside [0, 1]");
+  Check(ExpectFailure("albedo above 1", filter, "Albedo outside [0, 1]"), "albedo above 1");
   filter->SetAlbedo(0.5, 0.5, 0.5);
   Check(filter->GetExecutive()->Update() == 1, "a good function runs");
 
