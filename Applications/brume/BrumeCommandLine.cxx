@@ -201,8 +201,9 @@ void AddRender(CLI::App& app, RenderOptions& o)
   render
     ->add_option("--batch", o.Batch,
       "trace and bin the particles N at a time: only one\n"
-      "batch's hits are held, plus those of view-dependent\n"
-      "objects (default: all at once; one process only)")
+      "batch's hits are held (default: all at once, or\n"
+      "batches of 10^7 where the run's hits would exceed the\n"
+      "tracer's 8 GiB; one process only)")
     ->transform(Integer(1, 10000000000LL, "an integer in [1, 1e10]"))
     ->type_name("N");
   render->add_flag("--reference", o.Reference,

@@ -44,6 +44,10 @@
 
 namespace
 {
+// Particles per batch of a run too large for one (about 1.3 GB of hits in
+// the default scene).
+constexpr long long AutomaticBatch = 10000000;
+
 double Seconds(std::chrono::steady_clock::time_point start)
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -320,6 +324,17 @@ int RunRender(RenderOptions options)
     return 2;
   }
   vtkNew<vtkBrumeLightTracer> tracer;
+  // A run whose hits would not fit the tracer's memory at once is traced in
+  // batches, as --batch does: the particle count is bounded by time.
+  if (options.Batch == 0 && processes == 1 &&
+    vtkBrumeLightTracer::ExpectedHitBytes(options.Particles) >
+      static_cast<double>(tracer->GetMemoryLimit()))
+  {
+    options.Batch = AutomaticBatch;
+    std::printf("%lld particles: traced in batches of %lld, their hits exceeding the tracer's "
+                "memory limit at once (--batch sets the size)\n",
+      options.Particles, options.Batch);
+  }
   tracer->SetInputConnection(scene->GetOutputPort());
   tracer->SetNumberOfParticles(options.Particles);
   tracer->SetSeed(options.Seed);
@@ -335,6 +350,9 @@ int RunRender(RenderOptions options)
   reconstruction->SetRadiosityThreshold(options.Threshold);
   reconstruction->SetDirectLighting(options.DirectLight);
   reconstruction->SetCentroidMatching(options.CentroidMatching);
+  // One image, one viewpoint: view-dependent objects bin toward it and keep
+  // no hits, so that a run in batches holds one batch's hits at a time.
+  reconstruction->SetFixedView(true);
   if (rank == 0)
   {
     BrumeShowProgress(tracer, "particle tracing");

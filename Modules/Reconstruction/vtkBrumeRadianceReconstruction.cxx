@@ -97,7 +97,11 @@ int vtkBrumeRadianceReconstruction::RequestData(
     this->CountWork();
     return 0;
   }
-  this->Textures->FollowView(request, this->IncrementalUpdate, *this->WorkDone);
+  if (!this->Textures->FollowView(request, this->IncrementalUpdate, *this->WorkDone))
+  {
+    this->CountWork();
+    return 0;
+  }
   this->CountWork();
   this->Textures->TakeReduction(this->LastReductionBytes, this->LastReductionSeconds);
   // The textures are the same on every process, and every process gives
@@ -232,7 +236,8 @@ bool vtkBrumeRadianceReconstruction::Plan(const vtkBrumeReconstructionRequest& r
   const vtkBrumeReconstructionSettings settings{ this->RadiosityThreshold, this->SurfaceResolution,
     this->MediumResolution, this->HistogramRefinement,
     this->DirectLighting ? this->DirectLightResolution : 0, this->MirrorResolution,
-    this->CentroidMatching, this->SparseMedia };
+    this->CentroidMatching, this->SparseMedia, this->FixedView,
+    this->FixedView && this->DirectionalRadiance };
   vtkBrumeRadianceTextures* textures = this->Textures.get();
   const auto& run = request.Run;
   const bool sameSettings = textures && textures->SameSceneAndSettings(request, settings);
@@ -309,6 +314,7 @@ void vtkBrumeRadianceReconstruction::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfTextureBuilds: " << this->NumberOfTextureBuilds << "\n";
   os << indent << "NumberOfViewUpdates: " << this->NumberOfViewUpdates << "\n";
   os << indent << "AccumulateParticles: " << this->AccumulateParticles << "\n";
+  os << indent << "FixedView: " << this->FixedView << "\n";
   os << indent << "Controller: " << this->Controller << "\n";
   os << indent << "LastReductionBytes: " << this->LastReductionBytes << "\n";
   os << indent << "DirectionalRadiance: " << this->DirectionalRadiance << "\n";

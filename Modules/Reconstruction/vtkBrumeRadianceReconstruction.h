@@ -130,6 +130,28 @@ public:
 
   ///@{
   /**
+   * One viewpoint only (default off). View-dependent objects (glossy
+   * surfaces, anisotropic media held per view) keep their hits (44 bytes
+   * each) so that a new viewpoint re-weights them without new particles:
+   * in a run traced in batches (AccumulateParticles) their hits are the
+   * memory that grows with the particles. On, they bin each hit's flux
+   * weighted toward the viewpoint as it comes, as view-independent objects
+   * do, and keep nothing: a batched run holds one batch's hits at a time
+   * whatever its count, and the textures are bitwise those of kept hits
+   * toward the same viewpoint. What `brume render` uses for its one image.
+   * A new viewpoint then rebuilds them from the hits input; where that
+   * input no longer holds the run (batches, added particles), RequestData
+   * fails, asking to trace again. Objects stay as without it where a
+   * mirror or a cast glossy lobe reflects them (each reflection sees them
+   * from another point) and, with DirectionalRadiance, anisotropic media.
+   */
+  vtkSetMacro(FixedView, bool);
+  vtkGetMacro(FixedView, bool);
+  vtkBooleanMacro(FixedView, bool);
+  ///@}
+
+  ///@{
+  /**
    * Deterministic single scattering (default on): the light of point, spot
    * and directional lights reaching each texel directly is computed with a
    * shadow ray (through Embree and the media's own density) instead of
@@ -323,6 +345,7 @@ protected:
   double LastReductionSeconds = 0.0;
   bool IncrementalUpdate = true;
   bool AccumulateParticles = false;
+  bool FixedView = false;
   bool DirectionalRadiance = false;
   int DirectionalOrder = 3;
   bool DirectLighting = true;

@@ -100,8 +100,12 @@ bool vtkBrumeRadianceTextures::Build(const vtkBrumeReconstructionRequest& reques
     return false;
   }
   if (!this->CreateObjects(settings, request.Hits, groups, request.Run) ||
-    !this->CreateDirectLight(settings, request.Hits) || !this->PlanReflections() ||
-    !this->CheckHits(request.Hits, groups) || !this->BuildObjects(request, groups, work))
+    !this->CreateDirectLight(settings, request.Hits) || !this->PlanReflections())
+  {
+    return false;
+  }
+  this->FixViews(settings, request.Eye);
+  if (!this->CheckHits(request.Hits, groups) || !this->BuildObjects(request, groups, work))
   {
     return false;
   }
@@ -158,6 +162,26 @@ bool vtkBrumeRadianceTextures::CreateDirectLight(
   return this->Agree(true);
 }
 
+void vtkBrumeRadianceTextures::FixViews(
+  const vtkBrumeReconstructionSettings& settings, const brume::Vec3& eye)
+{
+  if (!settings.FixedView)
+  {
+    return;
+  }
+  for (std::size_t o = 0; o < this->Objects.size(); ++o)
+  {
+    // A mirror or a cast lobe looks the other view-dependent objects up
+    // toward its mirrored eye (ReflectMirrors()): those keep their hits.
+    const bool reflected = !this->Mirrors.empty() &&
+      std::find(this->Mirrors.begin(), this->Mirrors.end(), o) == this->Mirrors.end();
+    if (!reflected && !(settings.DirectionalMedia && this->Scene.IsMedium(o)))
+    {
+      this->Objects[o]->FixView(eye);
+    }
+  }
+}
+
 void vtkBrumeRadianceTextures::ComputeDirect()
 {
   if (!this->Direct)
@@ -212,10 +236,12 @@ void vtkBrumeRadianceTextures::ForEachObject(
   const std::function<void(std::size_t, const brume::ParallelFor&)>& step)
 {
   const brume::ParallelFor serialFor = brume::SerialFor();
+  // Objects that bin in place (view-independent ones, fixed views) take
+  // one thread each; those that keep hits group them on every thread.
   std::vector<std::size_t> independent;
   for (std::size_t o = 0; o < this->Objects.size(); ++o)
   {
-    if (!this->Objects[o]->IsViewDependent())
+    if (!this->Objects[o]->KeepsHits())
     {
       independent.push_back(o);
     }
@@ -231,7 +257,7 @@ void vtkBrumeRadianceTextures::ForEachObject(
   const brume::ParallelFor parallelFor = vtkBrumeSMP::ParallelFor();
   for (std::size_t o = 0; o < this->Objects.size(); ++o)
   {
-    if (this->Objects[o]->IsViewDependent())
+    if (this->Objects[o]->KeepsHits())
     {
       step(o, parallelFor);
     }
@@ -356,9 +382,15 @@ bool vtkBrumeRadianceTextures::Add(
   {
     this->Objects[o]->SetParticleFlux(request.ParticleFlux);
     this->Objects[o]->SetRunShare(request.Run.EndParticle / request.Run.Particles);
-    errors[o] = this->Objects[o]->Add(request.Hits, groups.Index.data() + groups.Offset[o],
-      groups.Offset[o + 1] - groups.Offset[o], this->Particles / request.Run.Particles,
-      firstEstimate ? request.Eye : this->ObjectEye[o], request.ThresholdFlux, objectFor, complete);
+    // A fixed view estimates toward the eye it binned toward; FollowView()
+    // then says whether the viewpoint has moved since.
+    brume::ObjectRadiance& radiance = *this->Objects[o];
+    const brume::Vec3 eye = radiance.IsViewFixed() ? radiance.GetFixedEye()
+      : firstEstimate                               ? request.Eye
+                                                    : this->ObjectEye[o];
+    errors[o] = radiance.Add(request.Hits, groups.Index.data() + groups.Offset[o],
+      groups.Offset[o + 1] - groups.Offset[o], this->Particles / request.Run.Particles, eye,
+      request.ThresholdFlux, objectFor, complete);
   };
   this->ForEachObject(add);
   if (!this->AgreeOnObjects(errors, "Cannot add particles to"))
@@ -378,7 +410,11 @@ bool vtkBrumeRadianceTextures::Add(
   if (firstEstimate)
   {
     this->ComputeDirect();
-    this->ObjectEye.assign(this->Objects.size(), request.Eye);
+    for (std::size_t o = 0; o < this->Objects.size(); ++o)
+    {
+      const brume::ObjectRadiance& radiance = *this->Objects[o];
+      this->ObjectEye[o] = radiance.IsViewFixed() ? radiance.GetFixedEye() : request.Eye;
+    }
   }
   this->Accumulated = true;
   this->MirrorsCurrent = false;
@@ -422,7 +458,7 @@ bool vtkBrumeRadianceTextures::SetDirectional(
   return true;
 }
 
-void vtkBrumeRadianceTextures::FollowView(
+bool vtkBrumeRadianceTextures::FollowView(
   const vtkBrumeReconstructionRequest& request, bool incremental, vtkBrumeReconstructionWork& work)
 {
   // A new viewpoint: only view-dependent textures change.
@@ -441,13 +477,23 @@ void vtkBrumeRadianceTextures::FollowView(
     {
       if (moved[o])
       {
-        radiance.UpdateView(last, parallelFor);
+        radiance.UpdateView(last, parallelFor); // never fixed: no mirror sees those
       }
       continue;
     }
+    if (radiance.IsViewFixed() && this->Accumulated)
+    {
+      vtkErrorWithObjectMacro(this->Filter,
+        "The viewpoint changed, but '"
+          << this->Sources[o].Name
+          << "' was binned toward the last one (FixedView) from particles the hits no longer "
+             "hold (batches or added particles): trace from FirstParticle 0 again, or turn "
+             "FixedView off.");
+      return false;
+    }
     // Textures that hold added particles have no single hits input to be
     // rebuilt from: they are always updated incrementally.
-    if (incremental || this->Accumulated)
+    if ((incremental || this->Accumulated) && !radiance.IsViewFixed())
     {
       radiance.UpdateView(eye, parallelFor);
       ++work.ViewUpdates;
@@ -458,6 +504,10 @@ void vtkBrumeRadianceTextures::FollowView(
       {
         brume::GroupHitsByObject(request.Hits, this->Scene.NumberOfObjects(), groups, parallelFor);
       }
+      if (radiance.IsViewFixed())
+      {
+        radiance.FixView(eye);
+      }
       radiance.SetParticleFlux(request.ParticleFlux);
       radiance.Build(request.Hits, groups.Index.data() + groups.Offset[o],
         groups.Offset[o + 1] - groups.Offset[o], eye, request.ThresholdFlux, parallelFor);
@@ -466,6 +516,7 @@ void vtkBrumeRadianceTextures::FollowView(
     this->Outputs[o] = nullptr;
     this->ObjectEye[o] = eye;
   }
+  return true;
 }
 
 void vtkBrumeRadianceTextures::TakeReduction(vtkTypeInt64& bytes, double& seconds)

@@ -58,6 +58,8 @@ struct vtkBrumeReconstructionSettings
   int MirrorResolution = 0;
   bool CentroidMatching = true;
   bool SparseMedia = true; // heterogeneous media's textures in the sparse form
+  bool FixedView = false;  // view-dependent objects binned toward one eye
+  bool DirectionalMedia = false; // with FixedView: anisotropic media keep their hits
 
   bool operator==(const vtkBrumeReconstructionSettings& o) const
   {
@@ -67,7 +69,8 @@ struct vtkBrumeReconstructionSettings
       this->HistogramRefinement == o.HistogramRefinement &&
       this->DirectLightResolution == o.DirectLightResolution &&
       this->MirrorResolution == o.MirrorResolution &&
-      this->CentroidMatching == o.CentroidMatching && this->SparseMedia == o.SparseMedia;
+      this->CentroidMatching == o.CentroidMatching && this->SparseMedia == o.SparseMedia &&
+      this->FixedView == o.FixedView && this->DirectionalMedia == o.DirectionalMedia;
   }
 };
 
@@ -130,9 +133,11 @@ public:
    * View-dependent textures toward `request.Eye`: incrementally, or rebuilt
    * from the hits (textures holding added particles are always updated
    * incrementally: no single hits input holds them); then the mirrors'
-   * reflections toward it (brume::MirrorReflection).
+   * reflections toward it (brume::MirrorReflection). Textures binned
+   * toward a fixed view are rebuilt from the hits; false (reported) where
+   * the hits no longer hold their run.
    */
-  void FollowView(const vtkBrumeReconstructionRequest& request, bool incremental,
+  bool FollowView(const vtkBrumeReconstructionRequest& request, bool incremental,
     vtkBrumeReconstructionWork& work);
 
   /// The textures as the output collection (unchanged textures: the same datasets).
@@ -181,6 +186,9 @@ private:
   // for which view-dependent objects are seen from a planar mirror's
   // mirrored eye: those it turned (true) must be turned back.
   bool PlanReflections();
+  // FixedView: the view-dependent objects no reflection sees from
+  // elsewhere (and, with DirectionalMedia, no medium) bin toward `eye`.
+  void FixViews(const vtkBrumeReconstructionSettings& settings, const brume::Vec3& eye);
   std::vector<bool> ReflectMirrors(const brume::Vec3& eye);
 
   vtkAlgorithm* Filter;

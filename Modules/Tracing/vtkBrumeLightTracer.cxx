@@ -29,6 +29,12 @@
 
 vtkStandardNewMacro(vtkBrumeLightTracer);
 
+double vtkBrumeLightTracer::ExpectedHitBytes(vtkTypeInt64 particles)
+{
+  // A particle stores one hit per interaction; a few per particle is typical.
+  return 4.0 * static_cast<double>(particles) * sizeof(brume::Hit);
+}
+
 namespace
 {
 // Particles per block: blocks, not threads, own the output order.
@@ -367,8 +373,7 @@ int vtkBrumeLightTracer::RequestData(
   const vtkTypeInt64 pieceFirst = runFirst + (endParticle - runFirst) * piece / pieces;
   const vtkTypeInt64 pieceEnd = runFirst + (endParticle - runFirst) * (piece + 1) / pieces;
   const vtkTypeInt64 traced = pieceEnd - pieceFirst;
-  // A particle stores one hit per interaction; a few per particle is typical.
-  const double expectedBytes = 4.0 * static_cast<double>(traced) * sizeof(brume::Hit);
+  const double expectedBytes = ExpectedHitBytes(traced);
   if (expectedBytes > static_cast<double>(this->MemoryLimit))
   {
     vtkErrorMacro("" << traced << " particles would need about " << expectedBytes / (1 << 20)

@@ -148,10 +148,15 @@ public:
   ///@{
   /**
    * Memory the stored hits may take, in bytes (default 8 GiB). The tracer
-   * refuses particle counts whose expected hits would not fit.
+   * refuses particle counts whose expected hits would not fit
+   * (ExpectedHitBytes() of the particles it traces at once): trace larger
+   * runs in batches (FirstParticle, EndParticle).
    */
   vtkSetMacro(MemoryLimit, vtkTypeInt64);
   vtkGetMacro(MemoryLimit, vtkTypeInt64);
+  /// What the hits of `particles` particles are expected to take, in bytes:
+  /// four hits a particle (the default scene stores 2.7).
+  static double ExpectedHitBytes(vtkTypeInt64 particles);
   ///@}
 
   vtkMTimeType GetMTime() override;

@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <memory>
 
 using namespace brume;
 
@@ -760,4 +761,124 @@ TEST(Reconstruction, SurfaceTexelsFollowWhereTheScatteredLightIs)
   EXPECT_NEAR(concentrationOf(400000, 0.25f, 0), 1.75, 0.05);
   // Evenly lit: 1.
   EXPECT_NEAR(concentrationOf(400000, 1.f, 1), 1.0, 0.02);
+}
+
+namespace
+{
+// A closed box of Phong walls (view dependent) around a cube of anisotropic
+// fog, lit by a point light: every object keeps its hits unless its view is fixed.
+Scene GlossyFogScene()
+{
+  Material phong;
+  phong.Type = MaterialType::Phong;
+  phong.Reflectance = Vec3(0.4f, 0.5f, 0.3f);
+  phong.Specular = Vec3(0.3f);
+  phong.Exponent = 12.f;
+  Scene scene;
+  scene.Surfaces = brume::testing::ClosedBox(phong);
+  Medium fog;
+  fog.Name = "fog";
+  fog.Bounds = { Vec3(-0.5f), Vec3(0.5f) };
+  fog.G = 0.85f; // a peak set apart: the remainder's phase function weighs the hits
+  scene.Media = { fog };
+  Light light;
+  light.Type = LightType::Point;
+  light.Position = Vec3(0.2f, 0.7f, 0.1f);
+  scene.Lights = { light };
+  return scene;
+}
+
+std::vector<std::unique_ptr<ObjectRadiance>> GlossyFogObjects(const Scene& scene)
+{
+  std::vector<std::unique_ptr<ObjectRadiance>> objects;
+  for (const Surface& s : scene.Surfaces)
+  {
+    objects.emplace_back(new ObjectRadiance(s, MakeChart(s, nullptr), { 12, 12 }, 2));
+  }
+  objects.emplace_back(new ObjectRadiance(scene.Media[0], { 8, 8, 8 }, 2));
+  return objects;
+}
+}
+
+TEST(Reconstruction, AFixedViewBinsToTheTexturesOfKeptHitsBitForBit)
+{
+  // What a fixed view bins as the hits come must be what kept hits give
+  // toward the same eye, bit for bit: in one build, and in batches whose
+  // last estimates (the hits of the earlier ones no longer held).
+  const Scene scene = GlossyFogScene();
+  ASSERT_EQ(scene.Validate(), "");
+  Vec3 power;
+  const HitStore store(Trace(scene, 60000, TraceSettings(), &power));
+  const HitArrays hits = store.View();
+  ObjectHits groups;
+  ASSERT_EQ(GroupHitsByObject(hits, scene.NumberOfObjects(), groups), "");
+  const Vec3 eye(0.3f, -0.2f, 0.9f);
+  const double particleFlux = (power.x + power.y + power.z) / 3.0 / 60000.0;
+  const double threshold = 64.0 * particleFlux;
+  const auto kept = GlossyFogObjects(scene);
+  const auto fixed = GlossyFogObjects(scene);
+  const auto batched = GlossyFogObjects(scene);
+  // Batches: the first half of the hits, then the second (hit order).
+  for (std::size_t o = 0; o < kept.size(); ++o)
+  {
+    ASSERT_TRUE(kept[o]->IsViewDependent()) << o;
+    const std::uint32_t* index = groups.Index.data() + groups.Offset[o];
+    const std::size_t count = groups.Offset[o + 1] - groups.Offset[o];
+    ASSERT_GT(count, 1000u) << o;
+    for (auto* set : { &kept, &fixed, &batched })
+    {
+      (*set)[o]->SetParticleFlux(particleFlux);
+    }
+    fixed[o]->FixView(eye);
+    batched[o]->FixView(eye);
+    EXPECT_TRUE(fixed[o]->IsViewFixed());
+    EXPECT_FALSE(fixed[o]->KeepsHits());
+    EXPECT_TRUE(kept[o]->KeepsHits());
+    ASSERT_EQ(kept[o]->Build(hits, index, count, eye, threshold, SerialFor()), "");
+    ASSERT_EQ(fixed[o]->Build(hits, index, count, eye, threshold, SerialFor()), "");
+    const std::size_t half = count / 2;
+    ASSERT_EQ(batched[o]->Build(hits, index, half, eye, threshold, SerialFor(), false), "");
+    ASSERT_EQ(batched[o]->Add(hits, index + half, count - half, 1.0, eye, threshold,
+                brume::testing::ThreadedFor(2, 7)),
+      "");
+    EXPECT_EQ(fixed[o]->GetRadiance(), kept[o]->GetRadiance()) << o;
+    EXPECT_EQ(batched[o]->GetRadiance(), kept[o]->GetRadiance()) << o;
+    EXPECT_EQ(fixed[o]->GetExtinction(), kept[o]->GetExtinction()) << o;
+  }
+  // The texture is the eye's: another eye's differs (the test can fail).
+  ASSERT_EQ(kept.back()->UpdateView(Vec3(-0.9f, 0.1f, 0.2f), SerialFor()), "");
+  EXPECT_NE(kept.back()->GetRadiance(), fixed.back()->GetRadiance());
+}
+
+TEST(Reconstruction, AFixedViewRefusesAnotherEye)
+{
+  const Scene scene = GlossyFogScene();
+  const HitStore store(Trace(scene, 5000, TraceSettings()));
+  const HitArrays hits = store.View();
+  ObjectHits groups;
+  ASSERT_EQ(GroupHitsByObject(hits, scene.NumberOfObjects(), groups), "");
+  const std::size_t fog = scene.Surfaces.size();
+  const std::uint32_t* index = groups.Index.data() + groups.Offset[fog];
+  const std::size_t count = groups.Offset[fog + 1] - groups.Offset[fog];
+  ObjectRadiance medium(scene.Media[0], { 4, 4, 4 }, 2);
+  const Vec3 eye(0.f, 0.f, 0.9f), other(0.5f, 0.f, 0.9f);
+  medium.FixView(eye);
+  EXPECT_NE(medium.Build(hits, index, count, other, 1e-3, SerialFor()).find("fixed viewpoint"),
+    std::string::npos);
+  ASSERT_EQ(medium.Build(hits, index, count, eye, 1e-3, SerialFor()), "");
+  const std::vector<float> texture = medium.GetRadiance();
+  EXPECT_EQ(medium.UpdateView(eye, SerialFor()), "");
+  EXPECT_NE(medium.UpdateView(other, SerialFor()).find("keeps no hits"), std::string::npos);
+  EXPECT_NE(medium.Add(hits, index, count, 0.5, other, 1e-3, SerialFor()), "");
+  EXPECT_NE(medium.BuildDirectional(2, SerialFor()), "");
+  EXPECT_EQ(medium.GetRadiance(), texture) << "a refused call leaves the texture as it was";
+  // A view-independent object is not fixed.
+  ObjectRadiance wall(scene.Surfaces[0], MakeChart(scene.Surfaces[0], nullptr), { 4, 4 }, 2);
+  Scene diffuse = scene;
+  diffuse.Surfaces[0].Mat = Material();
+  ObjectRadiance lambertian(diffuse.Surfaces[0], MakeChart(diffuse.Surfaces[0], nullptr), { 4, 4 }, 2);
+  lambertian.FixView(eye);
+  EXPECT_FALSE(lambertian.IsViewFixed());
+  wall.FixView(eye);
+  EXPECT_TRUE(wall.IsViewFixed());
 }

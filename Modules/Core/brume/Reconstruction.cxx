@@ -95,6 +95,28 @@ Vec3 ObjectRadiance::SourceAt(const Vec3& albedo, const Vec3& texel, bool direct
   return s;
 }
 
+void ObjectRadiance::FixView(const Vec3& eye)
+{
+  this->ViewFixed = this->ViewDependent;
+  this->FixedEye = eye;
+  this->FixedNormals = this->ViewFixed && this->SurfaceRef ? this->UnitNormals() : std::vector<Vec3>();
+}
+
+namespace
+{
+bool SameEye(const Vec3& a, const Vec3& b)
+{
+  return a.x == b.x && a.y == b.y && a.z == b.z;
+}
+
+std::string FixedViewError(const Vec3& fixed)
+{
+  return "the texture is binned toward the fixed viewpoint (" + std::to_string(fixed.x) + ", " +
+    std::to_string(fixed.y) + ", " + std::to_string(fixed.z) +
+    ") and keeps no hits to follow another";
+}
+}
+
 bool ObjectRadiance::FromFront(const HitArrays& hits, std::uint32_t i) const
 {
   // The particle travels against the front (winding) normal of its triangle.
@@ -108,6 +130,10 @@ std::string ObjectRadiance::Build(const HitArrays& hits, const std::uint32_t* in
   std::size_t count, const Vec3& eye, double thresholdFlux, const ParallelFor& parallelFor,
   bool estimate)
 {
+  if (this->ViewFixed && !SameEye(eye, this->FixedEye))
+  {
+    return FixedViewError(this->FixedEye);
+  }
   const std::string error =
     this->BuildHistograms(hits, index, count, thresholdFlux, parallelFor, estimate);
   if (!error.empty() || !estimate)
@@ -152,9 +178,10 @@ std::string ObjectRadiance::BuildHistograms(const HitArrays& hits, const std::ui
   {
     this->SumsExponent = static_cast<int>(this->Reduction->Max(this->SumsExponent));
   }
-  // View-independent objects keep exact sums (for Add()); the others keep hits.
-  this->WeightSums = this->ViewDependent ? ExactHistogram() : this->NewSums(1);
-  this->ValueSums = this->ViewDependent ? ExactHistogram() : this->NewSums(3);
+  // View-independent objects (and fixed views) keep exact sums (for
+  // Add()); the others keep hits.
+  this->WeightSums = this->KeepsHits() ? ExactHistogram() : this->NewSums(1);
+  this->ValueSums = this->KeepsHits() ? ExactHistogram() : this->NewSums(3);
   this->SumsClamped = false;
   this->Regions.clear();
   this->Directional.clear();
@@ -191,6 +218,10 @@ std::string ObjectRadiance::Add(const HitArrays& hits, const std::uint32_t* inde
   {
     return "the flux scale of the particles already binned must be positive and finite";
   }
+  if (this->ViewFixed && !SameEye(eye, this->FixedEye))
+  {
+    return FixedViewError(this->FixedEye);
+  }
   const std::string error = this->Check(hits, index, count);
   if (!error.empty())
   {
@@ -198,7 +229,7 @@ std::string ObjectRadiance::Add(const HitArrays& hits, const std::uint32_t* inde
   }
   // The particles already binned were normalized by a smaller count: scale
   // them (exactly, when the count grows by a power of two), then bin the new.
-  if (this->ViewDependent)
+  if (this->KeepsHits())
   {
     const float s = static_cast<float>(scale);
     parallelFor(0, this->Kept.size(),
@@ -277,7 +308,7 @@ std::string ObjectRadiance::Check(
 void ObjectRadiance::SumHistograms(const Vec3& eye, const ParallelFor& parallelFor)
 {
   this->Eye = eye;
-  if (this->ViewDependent)
+  if (this->KeepsHits())
   {
     // The kept hits' incident flux, and their weighted flux toward the eye.
     if (!this->Pending.empty())
@@ -400,11 +431,16 @@ std::string ObjectRadiance::EstimateTexture(const ParallelFor& parallelFor)
   return this->Saturation();
 }
 
-void ObjectRadiance::UpdateView(const Vec3& eye, const ParallelFor& parallelFor)
+std::string ObjectRadiance::UpdateView(const Vec3& eye, const ParallelFor& parallelFor)
 {
   if (!this->ViewDependent)
   {
-    return;
+    return {};
+  }
+  if (this->ViewFixed)
+  {
+    // Its texture is toward the fixed eye already; no other can be made.
+    return SameEye(eye, this->FixedEye) ? std::string() : FixedViewError(this->FixedEye);
   }
   this->Eye = eye;
   this->WeighCells(eye, parallelFor);
@@ -415,6 +451,7 @@ void ObjectRadiance::UpdateView(const Vec3& eye, const ParallelFor& parallelFor)
     this->Estimate(parallelFor);
   }
   this->ShareTexture(parallelFor);
+  return {};
 }
 
 void ObjectRadiance::WeighCells(const Vec3& eye, const ParallelFor& parallelFor)
@@ -422,7 +459,6 @@ void ObjectRadiance::WeighCells(const Vec3& eye, const ParallelFor& parallelFor)
   this->ValueSums = this->NewSums(3);
   ExactHistogram& value = this->ValueSums;
   const Medium* medium = this->MediumRef;
-  const Surface* surface = this->SurfaceRef;
   // Media: the remainder of the phase function once its peak is set apart.
   const HenyeyGreenstein phase(medium ? this->Peaks[0].G : 0.f);
   const float remainder = static_cast<float>(1.0 - this->Peaks[0].Forward);
@@ -469,38 +505,15 @@ void ObjectRadiance::WeighCells(const Vec3& eye, const ParallelFor& parallelFor)
   else
   {
     // The triangles' normals, once per update rather than per hit.
-    std::vector<Vec3> normals(this->TriangleNormals.size());
-    for (std::size_t t = 0; t < normals.size(); ++t)
-    {
-      normals[t] = Normalize(this->TriangleNormals[t]);
-    }
+    const std::vector<Vec3> normals = this->UnitNormals();
     parallelFor(0, Ranges,
       [&](std::size_t begin, std::size_t end)
       {
         for (std::size_t k = this->RangeStart[begin]; k < this->RangeStart[end]; ++k)
         {
           const KeptHit& h = this->Kept[k];
-          const Vec3 pos(h.Position[0], h.Position[1], h.Position[2]);
-          const Vec3 dir(h.Direction[0], h.Direction[1], h.Direction[2]);
-          // The BRDF from the incoming direction to the eye.
-          const std::uint32_t t = h.Triangle;
-          const Material& m = surface->MaterialOf(t);
-          // A cast lobe is left out: the diffuse part alone.
-          const bool diffuseOnly =
-            this->LobeCast && m.Type == MaterialType::Phong && MirrorReflection::Casts(m);
-          Vec3 n = normals[t];
-          if (Dot(n, dir) > 0.f)
-          {
-            n = -n;
-          }
-          const Vec3 toEye = Normalize(eye - pos);
-          const Vec3 f =
-            diffuseOnly ? EvaluateDiffuseBrdf(m, n, -dir, toEye) : EvaluateBrdf(m, n, -dir, toEye);
           double v[3];
-          for (int ch = 0; ch < 3; ++ch)
-          {
-            v[ch] = static_cast<double>(f[ch]) * h.Flux[ch];
-          }
+          this->WeighHit(eye, h.Position, h.Direction, h.Flux, h.Triangle, normals, v);
           value.AddNonNegative(h.Cell, v);
         }
       });

@@ -237,6 +237,23 @@ public:
   bool IsViewDependent() const { return this->ViewDependent; }
 
   /**
+   * One viewpoint only. A view-dependent object keeps its hits (44 bytes
+   * each) so that a new eye re-weights them (UpdateView(),
+   * BuildDirectional()). Fixed toward `eye`, it bins each hit's flux
+   * weighted toward that eye as the hit comes, as a view-independent object
+   * bins its flux: nothing grows with its hits, batch after batch of a run,
+   * and its texture is bitwise the one its kept hits give toward the same
+   * eye (the same terms, in exact sums). Build() and Add() must then be
+   * toward `eye`; UpdateView() toward another eye and BuildDirectional() are
+   * refused. Call before Build(); no effect on view-independent objects.
+   */
+  void FixView(const Vec3& eye);
+  bool IsViewFixed() const { return this->ViewFixed; }
+  const Vec3& GetFixedEye() const { return this->FixedEye; }
+  /// Whether the object keeps its hits for later views.
+  bool KeepsHits() const { return this->ViewDependent && !this->ViewFixed; }
+
+  /**
    * Strongly forward-scattering media: the phase function's peak beyond an
    * asymmetry the representation resolves is set apart (SplitForwardPeak in
    * brume/Sampling.h): ResolvedG for the per-view textures (directional
@@ -456,8 +473,9 @@ public:
   /// Empty when Build() or Add() would accept these hits, otherwise why not.
   std::string Check(const HitArrays& hits, const std::uint32_t* index, std::size_t count) const;
 
-  /// Re-weights the kept hits toward `eye` and re-estimates (view-dependent objects).
-  void UpdateView(const Vec3& eye, const ParallelFor& parallelFor);
+  /// Re-weights the kept hits toward `eye` and re-estimates (view-dependent
+  /// objects). Empty, or why not (a view fixed toward another eye).
+  std::string UpdateView(const Vec3& eye, const ParallelFor& parallelFor);
 
   /**
    * Anisotropic media: per voxel, the spherical-harmonics projection up to
@@ -556,6 +574,15 @@ private:
   void CombineDirect(const ParallelFor& parallelFor);
   void AddDirectToDirectional(int order);
   void WeighCells(const Vec3& eye, const ParallelFor& parallelFor);
+  // The flux of a hit arriving at `position` along `direction` weighted
+  // toward `eye`: the phase function's remainder (media), or the BRDF of
+  // its triangle (surfaces, with `normals` the triangles' unit normals);
+  // WeighCells() and a fixed view's binning share it, term for term.
+  void WeighHit(const Vec3& eye, const float* position, const float* direction, const float* flux,
+    std::uint32_t triangle, const std::vector<Vec3>& normals, double* value) const;
+  std::vector<Vec3> UnitNormals() const;
+  // What a view-independent bin or a fixed view's adds for hit i at its cell.
+  void AddTerms(const HitArrays& hits, std::uint32_t i, std::uint32_t cell);
   void Estimate(const ParallelFor& parallelFor);
   void BuildAreaTable();
   // Heterogeneous media: the density's integral over each histogram cell
@@ -577,6 +604,9 @@ private:
   std::array<int, 3> Dims; // histogram
   int Refinement;
   bool ViewDependent = false;
+  bool ViewFixed = false; // FixView(): binned toward FixedEye, no hits kept
+  Vec3 FixedEye;
+  std::vector<Vec3> FixedNormals; // surfaces with a fixed view: UnitNormals()
   double CellVolume = 0.0; // media: one histogram cell's volume
   bool AlbedoVaries = false;
   Vec3 MediumAlbedo;       // media: sigma_s / sigma_t (1 where it varies)

@@ -20,6 +20,10 @@ std::string ObjectRadiance::BuildDirectional(int order, const ParallelFor& paral
   {
     return "directional radiance needs a texture already built";
   }
+  if (this->ViewFixed)
+  {
+    return "directional radiance needs the hits, which an object whose view is fixed does not keep";
+  }
   if (order < 0 || order > MaxShOrder)
   {
     return "the spherical-harmonics order must be in [0, " + std::to_string(MaxShOrder) + "]";

@@ -3,6 +3,7 @@
 // turning the camera recomputes only the view-dependent textures (a glossy
 // floor and the anisotropic fog), the others stay the same objects with the
 // same bits; objects without particles are reported, not fatal.
+#include "BrumeExpectFailure.h"
 #include "BrumeTestScenes.h"
 #include "vtkBrumeLightTracer.h"
 #include "vtkBrumeRadianceReconstruction.h"
@@ -24,6 +25,7 @@
 #include "vtkStringArray.h"
 
 #include <cstdlib>
+#include <algorithm>
 #include <cstring>
 #include <iostream>
 #include <map>
@@ -64,6 +66,151 @@ Snapshot Take(vtkPartitionedDataSetCollection* out)
     s.Copies[name] = copy;
   }
   return s;
+}
+}
+
+namespace
+{
+bool SameSnapshots(const Snapshot& a, const Snapshot& b, const char* what)
+{
+  bool same = a.Copies.size() == b.Copies.size();
+  for (const auto& entry : a.Copies)
+  {
+    if (!b.Copies.count(entry.first) || !SameBits(entry.second, b.Copies.at(entry.first)))
+    {
+      std::cerr << what << ": '" << entry.first << "' differs\n";
+      same = false;
+    }
+  }
+  return same;
+}
+
+// FixedView: the view-dependent objects bin toward the viewpoint and keep no
+// hits, to the bits of kept hits; a new viewpoint rebuilds them from the
+// hits, or fails where the hits no longer hold the run (batches); a mirror
+// keeps the objects it reflects as they were.
+bool TestFixedView(vtkPartitionedDataSetCollection* scene, vtkBrumeLightTracer* tracer,
+  vtkCamera* camera, const Snapshot& kept)
+{
+  bool ok = true;
+  vtkNew<vtkBrumeRadianceReconstruction> fixed;
+  fixed->SetInputDataObject(0, scene);
+  fixed->SetInputConnection(1, tracer->GetOutputPort());
+  fixed->SetCamera(camera);
+  fixed->FixedViewOn();
+  fixed->Update();
+  ok = SameSnapshots(Take(fixed->GetOutput()), kept, "fixed view against kept hits") && ok;
+  const vtkIdType objects = fixed->GetNumberOfTextureBuilds();
+
+  // A new viewpoint: the floor and the fog rebuilt from the hits, to the
+  // bits of kept hits turned there.
+  camera->Azimuth(25.0);
+  vtkNew<vtkBrumeRadianceReconstruction> turned;
+  turned->SetInputDataObject(0, scene);
+  turned->SetInputConnection(1, tracer->GetOutputPort());
+  turned->SetCamera(camera);
+  turned->Update();
+  fixed->Update();
+  if (fixed->GetNumberOfTextureBuilds() != objects + 2 || fixed->GetNumberOfViewUpdates() != 0)
+  {
+    std::cerr << "fixed view turned: expected " << objects + 2 << " builds and no update, got "
+              << fixed->GetNumberOfTextureBuilds() << " and " << fixed->GetNumberOfViewUpdates()
+              << "\n";
+    ok = false;
+  }
+  ok = SameSnapshots(Take(fixed->GetOutput()), Take(turned->GetOutput()), "fixed view turned") &&
+    ok;
+
+  // Batches: the fixed view bins each batch toward the viewpoint, to the
+  // bits of the batches' kept hits; turned, it has nothing to rebuild from.
+  vtkNew<vtkBrumeLightTracer> batches;
+  batches->SetInputData(scene);
+  batches->SetNumberOfParticles(100000);
+  vtkNew<vtkBrumeRadianceReconstruction> batchedFixed, batchedKept;
+  for (vtkBrumeRadianceReconstruction* r : { batchedFixed.Get(), batchedKept.Get() })
+  {
+    r->SetInputDataObject(0, scene);
+    r->SetInputConnection(1, batches->GetOutputPort());
+    r->SetCamera(camera);
+    r->AccumulateParticlesOn();
+  }
+  batchedFixed->FixedViewOn();
+  for (vtkIdType first = 0; first < 100000; first += 40000)
+  {
+    batches->SetFirstParticle(first);
+    batches->SetEndParticle(std::min<vtkIdType>(first + 40000, 100000));
+    batchedFixed->Update();
+    batchedKept->Update();
+  }
+  ok = SameSnapshots(Take(batchedFixed->GetOutput()), Take(batchedKept->GetOutput()),
+         "batches, fixed view against kept hits") &&
+    ok;
+  camera->Azimuth(-25.0);
+  ok = ExpectFailure("batches, fixed view turned", batchedFixed, "FixedView") && ok;
+
+  if (!batchedKept->GetExecutive()->Update() || batchedKept->GetNumberOfViewUpdates() != 2)
+  {
+    std::cerr << "batches, kept hits turned: expected 2 view updates\n";
+    ok = false;
+  }
+
+  // The camera moved between two batches: the run is estimated toward the
+  // eye it was binned toward, and the move is reported.
+  vtkNew<vtkBrumeRadianceReconstruction> movedBetween;
+  movedBetween->SetInputDataObject(0, scene);
+  movedBetween->SetInputConnection(1, batches->GetOutputPort());
+  movedBetween->SetCamera(camera);
+  movedBetween->AccumulateParticlesOn();
+  movedBetween->FixedViewOn();
+  batches->SetFirstParticle(0);
+  batches->SetEndParticle(50000);
+  movedBetween->Update();
+  camera->Azimuth(10.0);
+  batches->SetFirstParticle(50000);
+  batches->SetEndParticle(100000);
+  ok = ExpectFailure("batches, camera moved between them", movedBetween, "FixedView") && ok;
+  camera->Azimuth(-10.0);
+
+  // A mirror floor reflects the fog from its mirrored eye: with FixedView,
+  // the fog still keeps its hits and follows the camera incrementally; the
+  // floor is fixed, rebuilt when the camera turns, to the bits of kept hits.
+  const auto mirrorScene = DefaultSceneWithMirrorFloor();
+  vtkNew<vtkBrumeLightTracer> mirrorTracer;
+  mirrorTracer->SetInputData(mirrorScene);
+  mirrorTracer->SetNumberOfParticles(20000);
+  vtkNew<vtkBrumeRadianceReconstruction> mirror, mirrorKept;
+  for (vtkBrumeRadianceReconstruction* r : { mirror.Get(), mirrorKept.Get() })
+  {
+    r->SetInputDataObject(0, mirrorScene);
+    r->SetInputConnection(1, mirrorTracer->GetOutputPort());
+    r->SetCamera(camera);
+    r->SetMirrorResolution(32);
+  }
+  mirror->FixedViewOn();
+  mirror->Update();
+  mirrorKept->Update();
+  ok = SameSnapshots(Take(mirror->GetOutput()), Take(mirrorKept->GetOutput()),
+         "mirror scene, fixed view against kept hits") &&
+    ok;
+  const vtkIdType mirrorBuilds = mirror->GetNumberOfTextureBuilds();
+  camera->Azimuth(5.0);
+  mirror->Update();
+  mirrorKept->Update();
+  camera->Azimuth(-5.0);
+  ok = SameSnapshots(Take(mirror->GetOutput()), Take(mirrorKept->GetOutput()),
+         "mirror scene turned, fixed view against kept hits") &&
+    ok;
+  if (mirror->GetNumberOfViewUpdates() < 1 ||
+    mirror->GetNumberOfTextureBuilds() != mirrorBuilds + 1)
+  {
+    std::cerr << "mirror scene with FixedView: the fog should follow the camera incrementally "
+                 "and the fixed floor be rebuilt, got "
+              << mirror->GetNumberOfViewUpdates() << " updates and "
+              << mirror->GetNumberOfTextureBuilds() - mirrorBuilds << " builds\n";
+    ok = false;
+  }
+  std::cout << "fixed view: " << (ok ? "as kept hits" : "FAILED") << "\n";
+  return ok;
 }
 }
 
@@ -140,6 +287,8 @@ int TestReconstructionViews(int, char*[])
       ok = false;
     }
   }
+
+  ok = TestFixedView(scene, tracer, camera, rebuilt) && ok;
 
   // An object no particle reaches: a warning, and a texture of its emission.
   vtkNew<vtkBrumeLightTracer> few;
