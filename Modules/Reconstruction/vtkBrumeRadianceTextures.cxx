@@ -385,9 +385,11 @@ bool vtkBrumeRadianceTextures::Add(
     // A fixed view estimates toward the eye it binned toward; FollowView()
     // then says whether the viewpoint has moved since.
     brume::ObjectRadiance& radiance = *this->Objects[o];
-    const brume::Vec3 eye = radiance.IsViewFixed() ? radiance.GetFixedEye()
-      : firstEstimate                               ? request.Eye
-                                                    : this->ObjectEye[o];
+    brume::Vec3 eye = firstEstimate ? request.Eye : this->ObjectEye[o];
+    if (radiance.IsViewFixed())
+    {
+      eye = radiance.GetFixedEye();
+    }
     errors[o] = radiance.Add(request.Hits, groups.Index.data() + groups.Offset[o],
       groups.Offset[o + 1] - groups.Offset[o], this->Particles / request.Run.Particles, eye,
       request.ThresholdFlux, objectFor, complete);

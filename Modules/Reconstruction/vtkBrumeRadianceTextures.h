@@ -57,8 +57,8 @@ struct vtkBrumeReconstructionSettings
   int DirectLightResolution = 0; // 0: no deterministic single scattering
   int MirrorResolution = 0;
   bool CentroidMatching = true;
-  bool SparseMedia = true; // heterogeneous media's textures in the sparse form
-  bool FixedView = false;  // view-dependent objects binned toward one eye
+  bool SparseMedia = true;       // heterogeneous media's textures in the sparse form
+  bool FixedView = false;        // view-dependent objects binned toward one eye
   bool DirectionalMedia = false; // with FixedView: anisotropic media keep their hits
 
   bool operator==(const vtkBrumeReconstructionSettings& o) const

@@ -876,7 +876,8 @@ TEST(Reconstruction, AFixedViewRefusesAnotherEye)
   ObjectRadiance wall(scene.Surfaces[0], MakeChart(scene.Surfaces[0], nullptr), { 4, 4 }, 2);
   Scene diffuse = scene;
   diffuse.Surfaces[0].Mat = Material();
-  ObjectRadiance lambertian(diffuse.Surfaces[0], MakeChart(diffuse.Surfaces[0], nullptr), { 4, 4 }, 2);
+  ObjectRadiance lambertian(
+    diffuse.Surfaces[0], MakeChart(diffuse.Surfaces[0], nullptr), { 4, 4 }, 2);
   lambertian.FixView(eye);
   EXPECT_FALSE(lambertian.IsViewFixed());
   wall.FixView(eye);

@@ -79,7 +79,8 @@ ObjectRadiance::ObjectRadiance(const Medium& medium, std::array<int, 3> resoluti
   }
 }
 
-Vec3 ObjectRadiance::SourceAt(const Vec3& albedo, const Vec3& texel, bool directional, Vec3& factor) const
+Vec3 ObjectRadiance::SourceAt(
+  const Vec3& albedo, const Vec3& texel, bool directional, Vec3& factor) const
 {
   if (!this->AlbedoVaries)
   {
@@ -99,7 +100,8 @@ void ObjectRadiance::FixView(const Vec3& eye)
 {
   this->ViewFixed = this->ViewDependent;
   this->FixedEye = eye;
-  this->FixedNormals = this->ViewFixed && this->SurfaceRef ? this->UnitNormals() : std::vector<Vec3>();
+  this->FixedNormals =
+    this->ViewFixed && this->SurfaceRef ? this->UnitNormals() : std::vector<Vec3>();
 }
 
 namespace

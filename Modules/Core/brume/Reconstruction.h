@@ -607,9 +607,9 @@ private:
   bool ViewFixed = false; // FixView(): binned toward FixedEye, no hits kept
   Vec3 FixedEye;
   std::vector<Vec3> FixedNormals; // surfaces with a fixed view: UnitNormals()
-  double CellVolume = 0.0; // media: one histogram cell's volume
+  double CellVolume = 0.0;        // media: one histogram cell's volume
   bool AlbedoVaries = false;
-  Vec3 MediumAlbedo;       // media: sigma_s / sigma_t (1 where it varies)
+  Vec3 MediumAlbedo; // media: sigma_s / sigma_t (1 where it varies)
   // Media: the phase function's peak set apart, per view and directional.
   ForwardPeak Peaks[2];
   Vec3 ExtinctionFactors[2] = { Vec3(1.f), Vec3(1.f) };

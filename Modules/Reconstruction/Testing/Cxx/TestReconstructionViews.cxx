@@ -24,8 +24,8 @@
 #include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
 
-#include <cstdlib>
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <iostream>
 #include <map>
@@ -85,6 +85,18 @@ bool SameSnapshots(const Snapshot& a, const Snapshot& b, const char* what)
   return same;
 }
 
+// A reconstruction of `scene` from `tracer`'s hits toward `camera`.
+vtkSmartPointer<vtkBrumeRadianceReconstruction> Reconstruct(vtkPartitionedDataSetCollection* scene,
+  vtkBrumeLightTracer* tracer, vtkCamera* camera, bool fixedView)
+{
+  auto r = vtkSmartPointer<vtkBrumeRadianceReconstruction>::New();
+  r->SetInputDataObject(0, scene);
+  r->SetInputConnection(1, tracer->GetOutputPort());
+  r->SetCamera(camera);
+  r->SetFixedView(fixedView);
+  return r;
+}
+
 // FixedView: the view-dependent objects bin toward the viewpoint and keep no
 // hits, to the bits of kept hits; a new viewpoint rebuilds them from the
 // hits, or fails where the hits no longer hold the run (batches); a mirror
@@ -93,11 +105,7 @@ bool TestFixedView(vtkPartitionedDataSetCollection* scene, vtkBrumeLightTracer* 
   vtkCamera* camera, const Snapshot& kept)
 {
   bool ok = true;
-  vtkNew<vtkBrumeRadianceReconstruction> fixed;
-  fixed->SetInputDataObject(0, scene);
-  fixed->SetInputConnection(1, tracer->GetOutputPort());
-  fixed->SetCamera(camera);
-  fixed->FixedViewOn();
+  const auto fixed = Reconstruct(scene, tracer, camera, true);
   fixed->Update();
   ok = SameSnapshots(Take(fixed->GetOutput()), kept, "fixed view against kept hits") && ok;
   const vtkIdType objects = fixed->GetNumberOfTextureBuilds();
@@ -105,10 +113,7 @@ bool TestFixedView(vtkPartitionedDataSetCollection* scene, vtkBrumeLightTracer* 
   // A new viewpoint: the floor and the fog rebuilt from the hits, to the
   // bits of kept hits turned there.
   camera->Azimuth(25.0);
-  vtkNew<vtkBrumeRadianceReconstruction> turned;
-  turned->SetInputDataObject(0, scene);
-  turned->SetInputConnection(1, tracer->GetOutputPort());
-  turned->SetCamera(camera);
+  const auto turned = Reconstruct(scene, tracer, camera, false);
   turned->Update();
   fixed->Update();
   if (fixed->GetNumberOfTextureBuilds() != objects + 2 || fixed->GetNumberOfViewUpdates() != 0)
@@ -118,23 +123,18 @@ bool TestFixedView(vtkPartitionedDataSetCollection* scene, vtkBrumeLightTracer* 
               << "\n";
     ok = false;
   }
-  ok = SameSnapshots(Take(fixed->GetOutput()), Take(turned->GetOutput()), "fixed view turned") &&
-    ok;
+  ok =
+    SameSnapshots(Take(fixed->GetOutput()), Take(turned->GetOutput()), "fixed view turned") && ok;
 
   // Batches: the fixed view bins each batch toward the viewpoint, to the
   // bits of the batches' kept hits; turned, it has nothing to rebuild from.
   vtkNew<vtkBrumeLightTracer> batches;
   batches->SetInputData(scene);
   batches->SetNumberOfParticles(100000);
-  vtkNew<vtkBrumeRadianceReconstruction> batchedFixed, batchedKept;
-  for (vtkBrumeRadianceReconstruction* r : { batchedFixed.Get(), batchedKept.Get() })
-  {
-    r->SetInputDataObject(0, scene);
-    r->SetInputConnection(1, batches->GetOutputPort());
-    r->SetCamera(camera);
-    r->AccumulateParticlesOn();
-  }
-  batchedFixed->FixedViewOn();
+  const auto batchedFixed = Reconstruct(scene, batches, camera, true);
+  const auto batchedKept = Reconstruct(scene, batches, camera, false);
+  batchedFixed->AccumulateParticlesOn();
+  batchedKept->AccumulateParticlesOn();
   for (vtkIdType first = 0; first < 100000; first += 40000)
   {
     batches->SetFirstParticle(first);
@@ -156,12 +156,8 @@ bool TestFixedView(vtkPartitionedDataSetCollection* scene, vtkBrumeLightTracer* 
 
   // The camera moved between two batches: the run is estimated toward the
   // eye it was binned toward, and the move is reported.
-  vtkNew<vtkBrumeRadianceReconstruction> movedBetween;
-  movedBetween->SetInputDataObject(0, scene);
-  movedBetween->SetInputConnection(1, batches->GetOutputPort());
-  movedBetween->SetCamera(camera);
+  const auto movedBetween = Reconstruct(scene, batches, camera, true);
   movedBetween->AccumulateParticlesOn();
-  movedBetween->FixedViewOn();
   batches->SetFirstParticle(0);
   batches->SetEndParticle(50000);
   movedBetween->Update();
@@ -178,15 +174,10 @@ bool TestFixedView(vtkPartitionedDataSetCollection* scene, vtkBrumeLightTracer* 
   vtkNew<vtkBrumeLightTracer> mirrorTracer;
   mirrorTracer->SetInputData(mirrorScene);
   mirrorTracer->SetNumberOfParticles(20000);
-  vtkNew<vtkBrumeRadianceReconstruction> mirror, mirrorKept;
-  for (vtkBrumeRadianceReconstruction* r : { mirror.Get(), mirrorKept.Get() })
-  {
-    r->SetInputDataObject(0, mirrorScene);
-    r->SetInputConnection(1, mirrorTracer->GetOutputPort());
-    r->SetCamera(camera);
-    r->SetMirrorResolution(32);
-  }
-  mirror->FixedViewOn();
+  const auto mirror = Reconstruct(mirrorScene, mirrorTracer, camera, true);
+  const auto mirrorKept = Reconstruct(mirrorScene, mirrorTracer, camera, false);
+  mirror->SetMirrorResolution(32);
+  mirrorKept->SetMirrorResolution(32);
   mirror->Update();
   mirrorKept->Update();
   ok = SameSnapshots(Take(mirror->GetOutput()), Take(mirrorKept->GetOutput()),
