@@ -42,13 +42,22 @@
 #include "vtk_nlohmannjson.h"
 #include VTK_NLOHMANN_JSON(json.hpp)
 
+#include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <string>
 #include <vector>
+
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+extern char** environ;
 
 namespace
 {
@@ -433,6 +442,146 @@ void BenchRendering(vtkAlgorithm* source, vtkAlgorithm* tracer, double update, R
 }
 }
 
+namespace
+{
+// One `brume` command (this executable) as a new process, from its start
+// to its exit: the wall seconds, or -1 (said) when it fails. With `line`
+// not empty, the seconds until it printed a line beginning so instead.
+double TimeCommand(const std::vector<std::string>& arguments, const std::string& line = {})
+{
+  std::error_code error;
+  const std::string self = std::filesystem::read_symlink("/proc/self/exe", error).string();
+  if (error)
+  {
+    std::fprintf(stderr, "brume bench: cannot find its own executable: %s\n",
+      error.message().c_str());
+    return -1.0;
+  }
+  std::vector<std::string> words{ self };
+  words.insert(words.end(), arguments.begin(), arguments.end());
+  std::vector<char*> argv;
+  for (std::string& word : words)
+  {
+    argv.push_back(word.data());
+  }
+  argv.push_back(nullptr);
+  int out[2];
+  if (pipe(out) != 0)
+  {
+    std::perror("brume bench: pipe");
+    return -1.0;
+  }
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, out[1], STDOUT_FILENO);
+  posix_spawn_file_actions_addclose(&actions, out[0]);
+  posix_spawn_file_actions_addclose(&actions, out[1]);
+  pid_t child = 0;
+  const auto start = std::chrono::steady_clock::now();
+  const int spawned = posix_spawn(&child, self.c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  close(out[1]);
+  if (spawned != 0)
+  {
+    close(out[0]);
+    std::fprintf(stderr, "brume bench: cannot start %s: %s\n", self.c_str(), std::strerror(spawned));
+    return -1.0;
+  }
+  // Its output, line by line (read to the end, so that it never blocks).
+  double seconds = -1.0;
+  std::string text, pending;
+  char buffer[4096];
+  for (ssize_t n; (n = read(out[0], buffer, sizeof(buffer))) != 0;)
+  {
+    if (n < 0)
+    {
+      if (errno == EINTR)
+      {
+        continue;
+      }
+      break;
+    }
+    pending.append(buffer, static_cast<std::size_t>(n));
+    for (std::size_t end; (end = pending.find('\n')) != std::string::npos;)
+    {
+      if (!line.empty() && seconds < 0.0 && pending.compare(0, line.size(), line) == 0)
+      {
+        seconds = Seconds(start);
+      }
+      text += pending.substr(0, end + 1);
+      pending.erase(0, end + 1);
+    }
+  }
+  close(out[0]);
+  int status = 0;
+  while (waitpid(child, &status, 0) < 0 && errno == EINTR)
+  {
+  }
+  if (line.empty())
+  {
+    seconds = Seconds(start);
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || seconds < 0.0)
+  {
+    std::fprintf(stderr, "brume bench: '%s' failed%s:\n%s", words[1].c_str(),
+      seconds < 0.0 && !line.empty() ? (" before printing '" + line + "'").c_str() : "",
+      text.c_str());
+    return -1.0;
+  }
+  return seconds;
+}
+
+double Median(std::vector<double> values)
+{
+  std::sort(values.begin(), values.end());
+  return values[values.size() / 2];
+}
+
+// Whole commands as a user runs them, each a new process (start-up, scene,
+// tracing, reconstruction, frame): `brume render -o FILE.png` to its exit,
+// and `brume view` to its first image on screen; medians of three.
+bool BenchWholeCommands(const BenchOptions& options, Report& report)
+{
+  std::error_code error;
+  const auto directory = std::filesystem::temp_directory_path(error) /
+    ("brume-bench-" + std::to_string(static_cast<long long>(getpid())));
+  std::filesystem::create_directories(directory, error);
+  if (error)
+  {
+    std::fprintf(stderr, "brume bench: cannot make %s: %s\n", directory.string().c_str(),
+      error.message().c_str());
+    return false;
+  }
+  const std::vector<std::string> budget{ "--particles", std::to_string(options.Particles),
+    "--seed", std::to_string(options.Seed) };
+  std::vector<std::string> render{ "render", "-o", (directory / "bench.png").string() };
+  std::vector<std::string> view{ "view", "--orbit", "1" };
+  render.insert(render.end(), budget.begin(), budget.end());
+  view.insert(view.end(), budget.begin(), budget.end());
+  std::vector<double> renders, views;
+  for (int run = 0; run < 3; ++run)
+  {
+    renders.push_back(TimeCommand(render));
+    views.push_back(TimeCommand(view, "first image:"));
+    if (renders.back() < 0.0 || views.back() < 0.0)
+    {
+      std::filesystem::remove_all(directory, error);
+      return false;
+    }
+  }
+  std::filesystem::remove_all(directory, error);
+  const double whole = Median(renders), first = Median(views);
+  std::printf("whole commands     %8.3f s  brume render -o FILE.png, process start to file "
+              "written; %.3f s brume view to its first image (medians of 3)\n",
+    whole, first);
+  report.Add("whole_command", whole, "s", "<= 1.0",
+    "brume render -o FILE.png, process start to exit, 512x512, median of 3");
+  report.Add("viewer_first_image", first, "s", "",
+    "brume view, process start to its first image, 512x512, median of 3");
+  return true;
+}
+}
+
 int RunBench(const BenchOptions& options)
 {
   const auto particles = options.Particles;
@@ -555,6 +704,10 @@ int RunBench(const BenchOptions& options)
   const double update = BenchReconstruction(source, tracer, report);
   BenchRendering(source, tracer, update, report);
   BenchMirror(source->GetOutput(), static_cast<vtkIdType>(particles), options.Seed, report);
+  if (!BenchWholeCommands(options, report))
+  {
+    return 1;
+  }
   report.PrintSummary();
   if (!options.Json.empty())
   {

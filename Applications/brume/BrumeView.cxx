@@ -109,11 +109,13 @@ public:
     this->Reconstruction->AccumulateParticlesOn();
     this->Reconstruction->SetDirectionalRadiance(this->Options.Directional);
     this->Reconstruction->SetDirectionalOrder(this->Options.Order);
+    const auto reconstructionStart = Clock::now();
     if (!this->Reconstruction->GetExecutive()->Update())
     {
       std::cerr << "brume: reconstruction failed.\n";
       return false;
     }
+    this->FirstReconstruction = Milliseconds(reconstructionStart);
 
     this->Renderer->SetBackground(0, 0, 0);
     this->Display->SetExposure(this->Options.Render.Exposure);
@@ -293,9 +295,20 @@ public:
     this->Overlay->SetInput(text);
   }
 
+  // The first image on screen: how long since `start` (the command's
+  // start), and its phases (`brume bench` times the line from outside).
+  void PrintFirstImage(Clock::time_point start) const
+  {
+    std::printf("first image: %.3f s after the command started (tracing %.3f s, reconstruction "
+                "%.3f s, first frame %.3f s with texture upload and shader compilation)\n",
+      Milliseconds(start) / 1000.0, this->LastTrace / 1000.0, this->FirstReconstruction / 1000.0,
+      (this->LastUpdate + this->LastRender) / 1000.0);
+    std::fflush(stdout);
+  }
+
   const ViewOptions& Options;
   long long Particles;
-  double LastUpdate = 0.0, LastRender = 0.0, LastTrace = 0.0;
+  double LastUpdate = 0.0, LastRender = 0.0, LastTrace = 0.0, FirstReconstruction = 0.0;
   Clock::time_point OverlayShown;
   bool MediaVisible = true;
   int Screenshots = 0;
@@ -310,7 +323,7 @@ public:
 
 // N frames around the focal point, each timed; prints medians and 95th
 // percentiles and the work the reconstruction did during the orbit.
-int Orbit(Viewer& viewer, const ViewOptions& options)
+int Orbit(Viewer& viewer, const ViewOptions& options, Clock::time_point commandStart)
 {
   if (!options.FramesOut.empty())
   {
@@ -322,9 +335,15 @@ int Orbit(Viewer& viewer, const ViewOptions& options)
       return 1;
     }
   }
-  // The camera moves all along: the media at the moving sample distance.
+  // The first image, at full resolution as the interactive viewer's, then
+  // a frame at the moving sample distance (the camera moves all along):
+  // they compile shaders and upload every texture, and are not counted.
+  if (!viewer.Frame())
+  {
+    return 1;
+  }
+  viewer.PrintFirstImage(commandStart);
   viewer.Actors->SetImageSampleDistance(options.MovingSampleDistance);
-  // The first frame compiles shaders and uploads every texture: not counted.
   if (!viewer.Frame())
   {
     return 1;
@@ -391,6 +410,7 @@ int Orbit(Viewer& viewer, const ViewOptions& options)
 
 int RunView(const ViewOptions& options)
 {
+  const auto commandStart = Clock::now();
   ViewOptions resolved = options;
   // The scene first: a bad file is reported with or without a display.
   const vtkSmartPointer<vtkAlgorithm> scene = LoadScene(resolved.Render);
@@ -417,7 +437,7 @@ int RunView(const ViewOptions& options)
     {
       viewer.Key(key);
     }
-    return Orbit(viewer, resolved);
+    return Orbit(viewer, resolved, commandStart);
   }
 
   // Interactive: before each frame the textures follow the camera; after it
@@ -493,6 +513,8 @@ int RunView(const ViewOptions& options)
   interactor->AddObserver(vtkCommand::CharEvent, keys, 1.0);
   interactor->Initialize();
   viewer.Window->Render();
+  viewer.Window->WaitForCompletion();
+  viewer.PrintFirstImage(commandStart);
 
   // --exit-after N: a timer presses the --keys through the interactor, then
   // turns the camera 5 degrees a frame for N frames and quits (for tests and
