@@ -202,10 +202,16 @@ void AddRender(CLI::App& app, RenderOptions& o)
     ->add_option("--batch", o.Batch,
       "trace and bin the particles N at a time: only one\n"
       "batch's hits are held (default: all at once, or\n"
-      "batches of 10^7 where the run's hits would exceed the\n"
-      "tracer's 8 GiB; one process only)")
+      "batches of at most 10^7 that fit --memory-limit where\n"
+      "the run's hits would not; one process only)")
     ->transform(Integer(1, 10000000000LL, "an integer in [1, 1e10]"))
     ->type_name("N");
+  render
+    ->add_option("--memory-limit", o.MemoryLimit,
+      "GiB the hits of one trace may take (default 8): a run\n"
+      "whose hits would not fit is traced in batches that do")
+    ->transform(Number(0.001, 1e6, "a number in [0.001, 1e6]"))
+    ->type_name("GIB");
   render->add_flag("--reference", o.Reference,
     "render with the unbiased path tracer instead (no\n"
     "display needed); .vti adds the per-pixel 'Variance'");

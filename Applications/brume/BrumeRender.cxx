@@ -44,9 +44,9 @@
 
 namespace
 {
-// Particles per batch of a run too large for one (about 1.3 GB of hits in
-// the default scene).
-constexpr long long AutomaticBatch = 10000000;
+// Particles per batch of a run too large for one, at most (about 1.3 GB of
+// hits in the default scene; larger batches were no faster).
+constexpr long long LargestAutomaticBatch = 10000000;
 
 double Seconds(std::chrono::steady_clock::time_point start)
 {
@@ -324,16 +324,18 @@ int RunRender(RenderOptions options)
     return 2;
   }
   vtkNew<vtkBrumeLightTracer> tracer;
+  tracer->SetMemoryLimit(static_cast<vtkTypeInt64>(options.MemoryLimit * 1073741824.0));
   // A run whose hits would not fit the tracer's memory at once is traced in
-  // batches, as --batch does: the particle count is bounded by time.
+  // batches that do, as --batch does: the particle count is bounded by time.
+  const double limit = static_cast<double>(tracer->GetMemoryLimit());
   if (options.Batch == 0 && processes == 1 &&
-    vtkBrumeLightTracer::ExpectedHitBytes(options.Particles) >
-      static_cast<double>(tracer->GetMemoryLimit()))
+    vtkBrumeLightTracer::ExpectedHitBytes(options.Particles) > limit)
   {
-    options.Batch = AutomaticBatch;
-    std::printf("%lld particles: traced in batches of %lld, their hits exceeding the tracer's "
-                "memory limit at once (--batch sets the size)\n",
-      options.Particles, options.Batch);
+    const auto fit = static_cast<long long>(limit / vtkBrumeLightTracer::ExpectedHitBytes(1));
+    options.Batch = std::max(1LL, std::min(LargestAutomaticBatch, fit));
+    std::printf("%lld particles: traced in batches of %lld, their hits exceeding the memory "
+                "limit (%g GiB) at once (--batch sets the size, --memory-limit the limit)\n",
+      options.Particles, options.Batch, options.MemoryLimit);
   }
   tracer->SetInputConnection(scene->GetOutputPort());
   tracer->SetNumberOfParticles(options.Particles);

@@ -26,6 +26,7 @@ struct RenderOptions
   int Supersample = 1;          // render K x K pixels per output pixel and average them
   bool Timings = false;
   long long Batch = 0;    // particles per batch (0: all at once)
+  double MemoryLimit = 8.0; // GiB the hits of one trace may take (vtkBrumeLightTracer)
   bool Reference = false; // the unbiased path tracer instead of the three phases
   int SamplesPerPixel = 64;
   int MaxDepth = 1024; // interactions after which a particle or a path stops
