@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "brume/Reconstruction.h"
+#include "brume/ReconstructionWeights.h"
 
 #include "brume/Material.h"
 #include "brume/Reflection.h"

@@ -3,6 +3,7 @@
 // the cell of every hit, one pass in hit order for view-independent objects,
 // the kept hits grouped by cell for view-dependent ones.
 #include "brume/Reconstruction.h"
+#include "brume/ReconstructionWeights.h"
 
 #include "brume/DirectLight.h"
 #include "brume/Material.h"
@@ -173,47 +174,6 @@ std::vector<Vec3> ObjectRadiance::UnitNormals() const
     normals[t] = Normalize(this->TriangleNormals[t]);
   }
   return normals;
-}
-
-void ObjectRadiance::WeighHit(const Vec3& eye, const float* position, const float* direction,
-  const float* flux, std::uint32_t triangle, const std::vector<Vec3>& normals, double* value) const
-{
-  if (this->MediumRef)
-  {
-    // The remainder of the phase function once its peak is set apart, from
-    // the direction of travel to the eye: WeighCells() evaluates the same
-    // expression in vectorized blocks.
-    const HenyeyGreenstein phase(this->Peaks[0].G);
-    const float remainder = static_cast<float>(1.0 - this->Peaks[0].Forward);
-    const float dx = eye.x - position[0], dy = eye.y - position[1], dz = eye.z - position[2];
-    const float cosine = (direction[0] * dx + direction[1] * dy + direction[2] * dz) /
-      std::sqrt(dx * dx + dy * dy + dz * dz);
-    const float p = remainder * phase.Evaluate(cosine);
-    for (int c = 0; c < 3; ++c)
-    {
-      value[c] = static_cast<double>(p) * flux[c];
-    }
-    return;
-  }
-  const Vec3 pos(position[0], position[1], position[2]);
-  const Vec3 dir(direction[0], direction[1], direction[2]);
-  // The BRDF from the incoming direction to the eye.
-  const Material& m = this->SurfaceRef->MaterialOf(triangle);
-  // A cast lobe is left out: the diffuse part alone.
-  const bool diffuseOnly =
-    this->LobeCast && m.Type == MaterialType::Phong && MirrorReflection::Casts(m);
-  Vec3 n = normals[triangle];
-  if (Dot(n, dir) > 0.f)
-  {
-    n = -n;
-  }
-  const Vec3 toEye = Normalize(eye - pos);
-  const Vec3 f =
-    diffuseOnly ? EvaluateDiffuseBrdf(m, n, -dir, toEye) : EvaluateBrdf(m, n, -dir, toEye);
-  for (int c = 0; c < 3; ++c)
-  {
-    value[c] = static_cast<double>(f[c]) * flux[c];
-  }
 }
 
 inline void ObjectRadiance::AddTerms(const HitArrays& hits, std::uint32_t i, std::uint32_t cell)
