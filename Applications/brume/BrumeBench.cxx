@@ -542,6 +542,12 @@ double Median(std::vector<double> values)
 // and `brume view` to its first image on screen; medians of three.
 bool BenchWholeCommands(const BenchOptions& options, Report& report)
 {
+  // Both commands render: skipped, as the frames are, without a window.
+  if (!vtkBrumeRenderWindowSelection::Install())
+  {
+    std::printf("whole commands     skipped: %s\n", vtkBrumeRenderWindowSelection::GetLastError());
+    return true;
+  }
   std::error_code error;
   const auto directory = std::filesystem::temp_directory_path(error) /
     ("brume-bench-" + std::to_string(static_cast<long long>(getpid())));
