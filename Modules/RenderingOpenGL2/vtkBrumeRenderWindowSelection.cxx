@@ -93,10 +93,18 @@ bool Choose(const std::string& requested, Selection& s)
     s.Error = "the render window must be 'x', 'egl', 'osmesa' or 'auto', not '" + kind + "'";
     return false;
   }
+  const char* display = std::getenv("DISPLAY");
+  const bool hasDisplay = display && *display;
   if (kind == "auto")
   {
-    const char* display = std::getenv("DISPLAY");
-    kind = display && *display ? "x" : "egl";
+    kind = hasDisplay ? "x" : "egl";
+  }
+  if (kind == "x" && !hasDisplay)
+  {
+    // VTK's X window would abort the process on its first render.
+    s.Error = "the X window needs an X display, and DISPLAY is not set (egl and osmesa need "
+              "none)";
+    return false;
   }
   if (kind == "x")
   {
