@@ -53,6 +53,7 @@
 #include <string>
 #include <vector>
 
+#include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -444,20 +445,36 @@ void BenchRendering(vtkAlgorithm* source, vtkAlgorithm* tracer, double update, R
 
 namespace
 {
+// The environment of the commands the bench starts: its own, without what
+// tells a process that mpirun started it (each command is one process).
+std::vector<std::string> ChildEnvironment()
+{
+  std::vector<std::string> variables;
+  for (char** v = environ; *v; ++v)
+  {
+    const std::string variable = *v;
+    bool launcher = false;
+    for (const char* prefix : { "OMPI_", "PMI_", "PMIX_", "HYDRA_", "MPIR_" })
+    {
+      launcher = launcher || variable.compare(0, std::strlen(prefix), prefix) == 0;
+    }
+    if (!launcher)
+    {
+      variables.push_back(variable);
+    }
+  }
+  return variables;
+}
+
 // One `brume` command (this executable) as a new process, from its start
 // to its exit: the wall seconds, or -1 (said) when it fails. With `line`
 // not empty, the seconds until it printed a line beginning so instead.
 double TimeCommand(const std::vector<std::string>& arguments, const std::string& line = {})
 {
-  std::error_code error;
-  const std::string self = std::filesystem::read_symlink("/proc/self/exe", error).string();
-  if (error)
-  {
-    std::fprintf(stderr, "brume bench: cannot find its own executable: %s\n",
-      error.message().c_str());
-    return -1.0;
-  }
-  std::vector<std::string> words{ self };
+  // /proc/self/exe itself: the running executable even if its file was
+  // replaced by a rebuild meanwhile.
+  const char* self = "/proc/self/exe";
+  std::vector<std::string> words{ "brume" };
   words.insert(words.end(), arguments.begin(), arguments.end());
   std::vector<char*> argv;
   for (std::string& word : words)
@@ -465,26 +482,31 @@ double TimeCommand(const std::vector<std::string>& arguments, const std::string&
     argv.push_back(word.data());
   }
   argv.push_back(nullptr);
+  std::vector<std::string> variables = ChildEnvironment();
+  std::vector<char*> envp;
+  for (std::string& variable : variables)
+  {
+    envp.push_back(variable.data());
+  }
+  envp.push_back(nullptr);
   int out[2];
-  if (pipe(out) != 0)
+  if (pipe2(out, O_CLOEXEC) != 0)
   {
     std::perror("brume bench: pipe");
     return -1.0;
   }
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, out[1], STDOUT_FILENO);
-  posix_spawn_file_actions_addclose(&actions, out[0]);
-  posix_spawn_file_actions_addclose(&actions, out[1]);
+  posix_spawn_file_actions_adddup2(&actions, out[1], STDOUT_FILENO); // clears close-on-exec
   pid_t child = 0;
   const auto start = std::chrono::steady_clock::now();
-  const int spawned = posix_spawn(&child, self.c_str(), &actions, nullptr, argv.data(), environ);
+  const int spawned = posix_spawn(&child, self, &actions, nullptr, argv.data(), envp.data());
   posix_spawn_file_actions_destroy(&actions);
   close(out[1]);
   if (spawned != 0)
   {
     close(out[0]);
-    std::fprintf(stderr, "brume bench: cannot start %s: %s\n", self.c_str(), std::strerror(spawned));
+    std::fprintf(stderr, "brume bench: cannot start %s: %s\n", self, std::strerror(spawned));
     return -1.0;
   }
   // Its output, line by line (read to the end, so that it never blocks).
@@ -514,16 +536,17 @@ double TimeCommand(const std::vector<std::string>& arguments, const std::string&
   }
   close(out[0]);
   int status = 0;
-  while (waitpid(child, &status, 0) < 0 && errno == EINTR)
+  pid_t waited = 0;
+  while ((waited = waitpid(child, &status, 0)) < 0 && errno == EINTR)
   {
   }
   if (line.empty())
   {
     seconds = Seconds(start);
   }
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || seconds < 0.0)
+  if (waited != child || !WIFEXITED(status) || WEXITSTATUS(status) != 0 || seconds < 0.0)
   {
-    std::fprintf(stderr, "brume bench: '%s' failed%s:\n%s", words[1].c_str(),
+    std::fprintf(stderr, "brume bench: 'brume %s' failed%s:\n%s", words[1].c_str(),
       seconds < 0.0 && !line.empty() ? (" before printing '" + line + "'").c_str() : "",
       text.c_str());
     return -1.0;
@@ -548,18 +571,24 @@ bool BenchWholeCommands(const BenchOptions& options, Report& report)
     std::printf("whole commands     skipped: %s\n", vtkBrumeRenderWindowSelection::GetLastError());
     return true;
   }
+  // A directory of its own for the image (mkdtemp: made new, private).
   std::error_code error;
-  const auto directory = std::filesystem::temp_directory_path(error) /
-    ("brume-bench-" + std::to_string(static_cast<long long>(getpid())));
-  std::filesystem::create_directories(directory, error);
+  std::filesystem::path temporary = std::filesystem::temp_directory_path(error);
   if (error)
   {
-    std::fprintf(stderr, "brume bench: cannot make %s: %s\n", directory.string().c_str(),
-      error.message().c_str());
+    temporary = "/tmp";
+  }
+  std::string name = (temporary / "brume-bench-XXXXXX").string();
+  if (!mkdtemp(name.data()))
+  {
+    std::fprintf(
+      stderr, "brume bench: cannot make a directory %s: %s\n", name.c_str(), std::strerror(errno));
     return false;
   }
-  const std::vector<std::string> budget{ "--particles", std::to_string(options.Particles),
-    "--seed", std::to_string(options.Seed) };
+  const std::filesystem::path directory = name;
+  // The same budget, and the window this bench renders in.
+  const std::vector<std::string> budget{ "--particles", std::to_string(options.Particles), "--seed",
+    std::to_string(options.Seed), "--window", vtkBrumeRenderWindowSelection::GetInstalled() };
   std::vector<std::string> render{ "render", "-o", (directory / "bench.png").string() };
   std::vector<std::string> view{ "view", "--orbit", "1" };
   render.insert(render.end(), budget.begin(), budget.end());
@@ -710,17 +739,15 @@ int RunBench(const BenchOptions& options)
   const double update = BenchReconstruction(source, tracer, report);
   BenchRendering(source, tracer, update, report);
   BenchMirror(source->GetOutput(), static_cast<vtkIdType>(particles), options.Seed, report);
-  if (!BenchWholeCommands(options, report))
-  {
-    return 1;
-  }
+  // A command that fails is said, its figures left out, the others kept.
+  const bool commands = BenchWholeCommands(options, report);
   report.PrintSummary();
   if (!options.Json.empty())
   {
     const nlohmann::json run = { { "particles", particles }, { "seed", options.Seed },
       { "threads", vtkSMPTools::GetEstimatedNumberOfThreads() },
       { "smp_backend", vtkSMPTools::GetBackend() } };
-    return report.WriteJson(options.Json, run) ? 0 : 1;
+    return report.WriteJson(options.Json, run) && commands ? 0 : 1;
   }
-  return 0;
+  return commands ? 0 : 1;
 }

@@ -9,7 +9,6 @@
 #include "vtkBrumeSMP.h"
 #include "vtkVersion.h"
 
-#include <cstdlib>
 #include <iostream>
 
 int main(int argc, char* argv[])
@@ -29,11 +28,6 @@ int main(int argc, char* argv[])
   {
     std::cerr << "brume: " << vtkBrumeRenderWindowSelection::GetLastError() << ".\n";
     return 1;
-  }
-  if (!line.Window.empty())
-  {
-    // The commands `brume bench` starts draw in the same kind of window.
-    setenv("BRUME_RENDER_WINDOW", line.Window.c_str(), 1);
   }
   using Command = BrumeCommandLine::Command;
   switch (line.Run)

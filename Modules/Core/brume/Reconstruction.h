@@ -578,8 +578,9 @@ private:
   // toward `eye`: the phase function's remainder (media), or the BRDF of
   // its triangle (surfaces, with `normals` the triangles' unit normals);
   // WeighCells() and a fixed view's binning share it, term for term.
-  void WeighHit(const Vec3& eye, const float* position, const float* direction, const float* flux,
-    std::uint32_t triangle, const std::vector<Vec3>& normals, double* value) const;
+  inline void WeighHit(const Vec3& eye, const float* position, const float* direction,
+    const float* flux, std::uint32_t triangle, const std::vector<Vec3>& normals,
+    double* value) const;
   std::vector<Vec3> UnitNormals() const;
   // What a view-independent bin or a fixed view's adds for hit i at its cell.
   void AddTerms(const HitArrays& hits, std::uint32_t i, std::uint32_t cell);
