@@ -131,7 +131,7 @@ public:
   ///@{
   /**
    * One viewpoint only (default off). View-dependent objects (glossy
-   * surfaces, anisotropic media held per view) keep their hits (44 bytes
+   * surfaces, anisotropic media held per view) keep their hits (48 bytes
    * each) so that a new viewpoint re-weights them without new particles:
    * in a run traced in batches (AccumulateParticles) their hits are the
    * memory that grows with the particles. On, they bin each hit's flux

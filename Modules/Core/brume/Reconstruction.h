@@ -237,7 +237,7 @@ public:
   bool IsViewDependent() const { return this->ViewDependent; }
 
   /**
-   * One viewpoint only. A view-dependent object keeps its hits (44 bytes
+   * One viewpoint only. A view-dependent object keeps its hits (48 bytes
    * each) so that a new eye re-weights them (UpdateView(),
    * BuildDirectional()). Fixed toward `eye`, it bins each hit's flux
    * weighted toward that eye as the hit comes, as a view-independent object
@@ -615,7 +615,7 @@ private:
   ForwardPeak Peaks[2];
   Vec3 ExtinctionFactors[2] = { Vec3(1.f), Vec3(1.f) };
 
-  // View-dependent objects keep their hits (44 bytes each), grouped by
+  // View-dependent objects keep their hits (48 bytes each), grouped by
   // ranges of histogram cells and in hit order within a range.
   struct KeptHit
   {
@@ -623,6 +623,7 @@ private:
     std::uint32_t Cell, Triangle;
     float Growth; // HitArrays::GrowthScale
   };
+  static_assert(sizeof(KeptHit) == 48, "KeptHit layout changed: update the documentation");
   using KeptHits = std::vector<KeptHit, UninitializedAllocator<KeptHit>>;
   KeptHits Kept;
   std::vector<std::size_t> RangeStart;
