@@ -469,6 +469,8 @@ std::vector<std::string> ChildEnvironment()
 // One `brume` command (this executable) as a new process, from its start
 // to its exit: the wall seconds, or -1 (said) when it fails. With `line`
 // not empty, the seconds until it printed a line beginning so instead.
+// (posix_spawn rather than vtksys::Process: the child's environment must
+// leave out the MPI launcher's variables, which vtksys cannot set.)
 double TimeCommand(const std::vector<std::string>& arguments, const std::string& line = {})
 {
   // /proc/self/exe itself: the running executable even if its file was
@@ -476,19 +478,19 @@ double TimeCommand(const std::vector<std::string>& arguments, const std::string&
   const char* self = "/proc/self/exe";
   std::vector<std::string> words{ "brume" };
   words.insert(words.end(), arguments.begin(), arguments.end());
-  std::vector<char*> argv;
-  for (std::string& word : words)
-  {
-    argv.push_back(word.data());
-  }
-  argv.push_back(nullptr);
   std::vector<std::string> variables = ChildEnvironment();
-  std::vector<char*> envp;
-  for (std::string& variable : variables)
+  // The null-terminated arrays posix_spawn takes, over the strings above.
+  auto pointers = [](std::vector<std::string>& strings)
   {
-    envp.push_back(variable.data());
-  }
-  envp.push_back(nullptr);
+    std::vector<char*> p;
+    for (std::string& s : strings)
+    {
+      p.push_back(s.data());
+    }
+    p.push_back(nullptr);
+    return p;
+  };
+  std::vector<char*> argv = pointers(words), envp = pointers(variables);
   int out[2];
   if (pipe2(out, O_CLOEXEC) != 0)
   {
