@@ -232,7 +232,7 @@ bool vtkBrumeRadianceTextures::CheckHits(
   return this->Agree(hitsOk);
 }
 
-void vtkBrumeRadianceTextures::ForEachObject(
+void vtkBrumeRadianceTextures::ForEachObject(const brume::ObjectHits& groups,
   const std::function<void(std::size_t, const brume::ParallelFor&)>& step)
 {
   const brume::ParallelFor serialFor = brume::SerialFor();
@@ -246,6 +246,12 @@ void vtkBrumeRadianceTextures::ForEachObject(
       independent.push_back(o);
     }
   }
+  // The most hits first (their work is about proportional to their hits):
+  // the threads that take the small objects last end about together.
+  // Each object's result does not depend on which thread builds it when.
+  auto hitsOf = [&](std::size_t o) { return groups.Offset[o + 1] - groups.Offset[o]; };
+  std::stable_sort(independent.begin(), independent.end(),
+    [&](std::size_t a, std::size_t b) { return hitsOf(a) > hitsOf(b); });
   vtkSMPTools::For(0, static_cast<vtkIdType>(independent.size()), 1,
     [&](vtkIdType begin, vtkIdType end)
     {
@@ -277,7 +283,7 @@ bool vtkBrumeRadianceTextures::BuildObjects(const vtkBrumeReconstructionRequest&
   }
   else
   {
-    this->ForEachObject(
+    this->ForEachObject(groups,
       [&](std::size_t o, const brume::ParallelFor& objectFor)
       {
         this->Objects[o]->SetParticleFlux(request.ParticleFlux);
@@ -333,7 +339,7 @@ bool vtkBrumeRadianceTextures::BuildDistributed(const vtkBrumeReconstructionRequ
   // Every process's hits were checked before (CheckHits): a failure here
   // is one process's alone (a term beyond the exact sums' bound), and every
   // process stops, without entering a reduction.
-  this->ForEachObject(bin);
+  this->ForEachObject(groups, bin);
   if (!this->AgreeOnObjects(errors, "Cannot reconstruct"))
   {
     return false;
@@ -348,7 +354,7 @@ bool vtkBrumeRadianceTextures::BuildDistributed(const vtkBrumeReconstructionRequ
     object->SumHistograms(request.Eye, parallelFor);
   }
   this->Filter->UpdateProgress(0.6);
-  this->ForEachObject([&](std::size_t o, const brume::ParallelFor& objectFor)
+  this->ForEachObject(groups, [&](std::size_t o, const brume::ParallelFor& objectFor)
     { errors[o] = this->Objects[o]->EstimateTexture(objectFor); });
   if (!this->AgreeOnObjects(errors, "Cannot reconstruct"))
   {
@@ -394,7 +400,7 @@ bool vtkBrumeRadianceTextures::Add(
       groups.Offset[o + 1] - groups.Offset[o], this->Particles / request.Run.Particles, eye,
       request.ThresholdFlux, objectFor, complete);
   };
-  this->ForEachObject(add);
+  this->ForEachObject(groups, add);
   if (!this->AgreeOnObjects(errors, "Cannot add particles to"))
   {
     return false;

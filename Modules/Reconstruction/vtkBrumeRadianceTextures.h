@@ -165,9 +165,11 @@ private:
   bool BuildDistributed(const vtkBrumeReconstructionRequest& request,
     const brume::ObjectHits& groups, std::vector<std::string>& errors);
   // step(o, parallelFor) for every object: the view-independent ones
-  // concurrently, each on one thread (a single pass in hit order), then the
-  // view-dependent ones, each on every thread.
-  void ForEachObject(const std::function<void(std::size_t, const brume::ParallelFor&)>& step);
+  // concurrently, each on one thread (a single pass in hit order), those
+  // with the most hits in `groups` first, then the view-dependent ones,
+  // each on every thread.
+  void ForEachObject(const brume::ObjectHits& groups,
+    const std::function<void(std::size_t, const brume::ParallelFor&)>& step);
   bool Agree(bool ok);
   // Reports each object's error ("what 'name': error.") and agrees with the
   // other processes: true when no process had one.

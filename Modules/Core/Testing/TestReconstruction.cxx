@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -606,6 +607,61 @@ TEST(Reconstruction, LargeHistogramsBinByRangesOfCellsToTheSameSums)
     compare(
       radiance.GetWeightHistogram(), w, res > 2 ? "large wall weights" : "small wall weights");
     compare(radiance.GetValueHistogram(), v, res > 2 ? "large wall values" : "small wall values");
+  }
+}
+
+TEST(Reconstruction, HitsOnAndBeyondTheCellBoundariesBinWhereFloorPutsThem)
+{
+  // A medium's box [0, 1]^3 in 4 x 4 x 4 histogram cells (texture 2^3,
+  // refinement 2): a hit's cell along each axis is floor(4 q) clamped to
+  // [0, 3], on the faces between cells (q = 0.25: cell 1), on the box's
+  // lower and upper faces (q = 0: cell 0, q = 1: cell 3), just below and
+  // above them and far beyond (clamped), and at the largest float below a
+  // face (the cell before it).
+  Medium fog;
+  fog.Name = "fog";
+  fog.Bounds = { Vec3(0.f), Vec3(1.f) };
+  fog.SigmaS = Vec3(0.5f);
+  fog.G = 0.f;
+  ASSERT_EQ(fog.Validate(), "");
+  const float below = std::nextafter(0.5f, 0.f);
+  const std::vector<std::array<float, 4>> cases = {
+    // x, y, z, and the expected cell along each (all three the same).
+    { 0.f, 0.f, 0.f, 0 },
+    { 0.25f, 0.25f, 0.25f, 1 },
+    { 0.5f, 0.5f, 0.5f, 2 },
+    { below, below, below, 1 },
+    { 0.75f, 0.75f, 0.75f, 3 },
+    { 1.f, 1.f, 1.f, 3 },
+    { -1e-7f, -1e-7f, -1e-7f, 0 },
+    { 1.0000001f, 1.0000001f, 1.0000001f, 3 },
+    { -1e30f, -1e30f, -1e30f, 0 },
+    { 1e30f, 1e30f, 1e30f, 3 },
+  };
+  for (const auto& c : cases)
+  {
+    HitStore store;
+    // The hit of interest, then one in cell (0, 0, 3) to tell the axes apart.
+    store.Position = { c[0], c[1], c[2], 0.1f, 0.1f, 0.9f };
+    store.Direction = { 0.f, 0.f, 1.f, 0.f, 0.f, 1.f };
+    store.Flux = { 1.f, 1.f, 1.f, 2.f, 2.f, 2.f };
+    store.Object = { 0, 0 };
+    store.Triangle = { 0, 0 };
+    store.Emitter = { 0, 0 };
+    store.Depth = { 1, 1 };
+    const std::uint32_t index[2] = { 0, 1 };
+    ObjectRadiance medium(fog, { 2, 2, 2 }, 2);
+    ASSERT_EQ(medium.Build(store.View(), index, 2, Vec3(0.f, 0.f, 5.f), 1e-12, SerialFor()), "");
+    const Histogram weights = medium.GetWeightHistogram();
+    ASSERT_EQ(weights.GetValues().size(), 64u);
+    const auto cell = static_cast<std::size_t>(c[3]);
+    const std::size_t expected = (cell * 4 + cell) * 4 + cell;
+    const std::size_t other = (3 * 4 + 0) * 4 + 0;
+    for (std::size_t k = 0; k < 64; ++k)
+    {
+      const double want = (k == expected ? 1.0 : 0.0) + (k == other ? 2.0 : 0.0);
+      EXPECT_DOUBLE_EQ(weights.GetValues()[k], want) << "hit at " << c[0] << ", cell " << k;
+    }
   }
 }
 

@@ -88,7 +88,8 @@ public:
         this->AddOne(cell * N + c, values[c]);
         continue;
       }
-      const std::uint64_t k = static_cast<std::uint64_t>(x + 0.5);
+      // Below 2^62: the signed conversion (one instruction) gives the same k.
+      const auto k = static_cast<std::uint64_t>(static_cast<std::int64_t>(x + 0.5));
       const std::uint64_t sum = low[c] + k;
       low[c] = sum;
       if (sum < k) // carried

@@ -120,15 +120,6 @@ std::string FixedViewError(const Vec3& fixed)
 }
 }
 
-bool ObjectRadiance::FromFront(const HitArrays& hits, std::uint32_t i) const
-{
-  // The particle travels against the front (winding) normal of its triangle.
-  const std::uint32_t t = hits.Triangle ? hits.Triangle[i] : 0;
-  const Vec3& n = this->TriangleNormals[t < this->TriangleNormals.size() ? t : 0];
-  const Vec3 d(hits.Direction[3 * i], hits.Direction[3 * i + 1], hits.Direction[3 * i + 2]);
-  return Dot(n, d) < 0.f;
-}
-
 std::string ObjectRadiance::Build(const HitArrays& hits, const std::uint32_t* index,
   std::size_t count, const Vec3& eye, double thresholdFlux, const ParallelFor& parallelFor,
   bool estimate)
@@ -319,20 +310,7 @@ void ObjectRadiance::SumHistograms(const Vec3& eye, const ParallelFor& parallelF
       this->MergePending(parallelFor);
     }
     this->DeferMerge = false;
-    this->WeightSums = this->NewSums(1);
-    ExactHistogram& weights = this->WeightSums;
-    parallelFor(0, Ranges,
-      [&](std::size_t begin, std::size_t end)
-      {
-        for (std::size_t k = this->RangeStart[begin]; k < this->RangeStart[end]; ++k)
-        {
-          const float* f = this->Kept[k].Flux;
-          const double w[1] = { (static_cast<double>(f[0]) + f[1] + f[2]) / 3.0 *
-            this->Kept[k].Growth };
-          weights.AddNonNegative(this->Kept[k].Cell, w);
-        }
-      });
-    this->WeighCells(eye, parallelFor);
+    this->WeighCells(eye, parallelFor, true);
   }
   // One message for both histograms.
   this->Reduce(this->WeightSums, &this->ValueSums);
@@ -457,10 +435,23 @@ std::string ObjectRadiance::UpdateView(const Vec3& eye, const ParallelFor& paral
   return {};
 }
 
-void ObjectRadiance::WeighCells(const Vec3& eye, const ParallelFor& parallelFor)
+void ObjectRadiance::WeighCells(const Vec3& eye, const ParallelFor& parallelFor, bool weights)
 {
   this->ValueSums = this->NewSums(3);
   ExactHistogram& value = this->ValueSums;
+  if (weights)
+  {
+    this->WeightSums = this->NewSums(1);
+  }
+  ExactHistogram& weight = this->WeightSums;
+  // The kept hits' incident flux, with their weighted flux in the same pass
+  // over them (exact sums: the order of the terms does not matter).
+  auto addWeight = [&](const KeptHit& h)
+  {
+    const double w[1] = { (static_cast<double>(h.Flux[0]) + h.Flux[1] + h.Flux[2]) / 3.0 *
+      h.Growth };
+    weight.AddNonNegative(h.Cell, w);
+  };
   const Medium* medium = this->MediumRef;
   // Media: the remainder of the phase function once its peak is set apart.
   const HenyeyGreenstein phase(medium ? this->Peaks[0].G : 0.f);
@@ -501,6 +492,10 @@ void ObjectRadiance::WeighCells(const Vec3& eye, const ParallelFor& parallelFor)
             const double v[3] = { static_cast<double>(p[i]) * h.Flux[0],
               static_cast<double>(p[i]) * h.Flux[1], static_cast<double>(p[i]) * h.Flux[2] };
             value.AddNonNegative(h.Cell, v);
+            if (weights)
+            {
+              addWeight(h);
+            }
           }
         }
       });
@@ -518,6 +513,10 @@ void ObjectRadiance::WeighCells(const Vec3& eye, const ParallelFor& parallelFor)
           double v[3];
           this->WeighHit(eye, h.Position, h.Direction, h.Flux, h.Triangle, normals, v);
           value.AddNonNegative(h.Cell, v);
+          if (weights)
+          {
+            addWeight(h);
+          }
         }
       });
   }

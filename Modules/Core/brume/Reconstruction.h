@@ -573,7 +573,9 @@ private:
   Vec3 OutputPosition(std::size_t texel) const;
   void CombineDirect(const ParallelFor& parallelFor);
   void AddDirectToDirectional(int order);
-  void WeighCells(const Vec3& eye, const ParallelFor& parallelFor);
+  // The kept hits' weighted flux toward `eye` into ValueSums, and with
+  // `weights` their incident flux into WeightSums (the same for every eye).
+  void WeighCells(const Vec3& eye, const ParallelFor& parallelFor, bool weights = false);
   // The flux of a hit arriving at `position` along `direction` weighted
   // toward `eye`: the phase function's remainder (media), or the BRDF of
   // its triangle (surfaces, with `normals` the triangles' unit normals);

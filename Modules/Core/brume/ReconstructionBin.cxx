@@ -45,6 +45,11 @@ public:
     , UU(Dot(chart.Frame.U, chart.Frame.U))
     , VV(Dot(chart.Frame.V, chart.Frame.V))
   {
+    for (int a = 0; a < 3; ++a)
+    {
+      this->Size[a] = dims[a];
+      this->Top[a] = dims[a] - 1;
+    }
   }
 
   std::uint32_t operator()(const HitArrays& hits, std::uint32_t i) const
@@ -73,20 +78,29 @@ public:
   }
 
 private:
+  // The cell of (s, t, r) in [0, 1)^3, clamped to the grid (NaN: cell 0).
   std::uint32_t Index(double s, double t, double r) const
   {
-    std::array<int, 3> c{};
-    const double q[3] = { s, t, r };
-    for (int a = 0; a < 3; ++a)
+    const std::size_t c0 = this->Cell(s, 0), c1 = this->Cell(t, 1);
+    const std::size_t c2 = this->Top[2] > 0.0 ? this->Cell(r, 2) : 0;
+    return static_cast<std::uint32_t>((c2 * this->Dims[1] + c1) * this->Dims[0] + c0);
+  }
+  // floor(q n) clamped to [0, n - 1] along axis a, without floor(): x >= 0
+  // exactly when floor(x) >= 0, x >= n - 1 exactly when floor(x) >= n - 1
+  // (an integer), and truncation is floor in between. A third of the
+  // binning's instructions went to floor()'s expansion (SSE2 has no roundsd).
+  std::size_t Cell(double q, int a) const
+  {
+    const double x = q * this->Size[a];
+    if (!(x >= 0.0))
     {
-      const double x = std::floor(q[a] * this->Dims[a]);
-      c[a] = x >= 0.0 ? static_cast<int>(std::min<double>(x, this->Dims[a] - 1)) : 0;
+      return 0;
     }
-    return static_cast<std::uint32_t>(
-      (static_cast<std::size_t>(c[2]) * this->Dims[1] + c[1]) * this->Dims[0] + c[0]);
+    return static_cast<std::size_t>(static_cast<int>(std::min(x, this->Top[a])));
   }
 
   const std::array<int, 3>& Dims;
+  double Size[3], Top[3]; // Dims and Dims - 1
   const Medium* MediumRef;
   const Surface* SurfaceRef;
   const SurfaceChart& Chart;
@@ -94,6 +108,16 @@ private:
   Box Bounds;
   float UU, VV;
 };
+}
+
+// Here, where the binning calls it for every hit: inlined.
+inline bool ObjectRadiance::FromFront(const HitArrays& hits, std::uint32_t i) const
+{
+  // The particle travels against the front (winding) normal of its triangle.
+  const std::uint32_t t = hits.Triangle ? hits.Triangle[i] : 0;
+  const Vec3& n = this->TriangleNormals[t < this->TriangleNormals.size() ? t : 0];
+  const Vec3 d(hits.Direction[3 * i], hits.Direction[3 * i + 1], hits.Direction[3 * i + 2]);
+  return Dot(n, d) < 0.f;
 }
 
 template <typename CellOf, typename Write>
@@ -285,7 +309,8 @@ void ObjectRadiance::KeepHits(const HitArrays& hits, const std::uint32_t* index,
     index = front.data();
     count = front.size();
   }
-  std::vector<std::uint32_t> cellOf(count);
+  // Every element written below, in parallel: not zeroed first.
+  std::vector<std::uint32_t, UninitializedAllocator<std::uint32_t>> cellOf(count);
   parallelFor(0, count,
     [&](std::size_t begin, std::size_t end)
     {
