@@ -7,6 +7,7 @@
 
 #include "vtkAlgorithm.h"
 #include "vtkBrumeProcesses.h"
+#include "vtkBrumeSMP.h"
 #include "vtkDataArray.h"
 #include "vtkDataObject.h"
 #include "vtkFieldData.h"
@@ -154,6 +155,7 @@ bool vtkBrumeRadianceTextures::CreateObjects(const vtkBrumeReconstructionSetting
   const std::size_t deltaLights = settings.DirectLightResolution > 0 && hits.Emitter && hits.Depth
     ? this->Scene.Lights.size()
     : 0;
+  const brume::ParallelFor parallelFor = vtkBrumeSMP::ParallelFor();
   for (std::size_t o = 0; o < objects; ++o)
   {
     const std::uint32_t* index = groups.Index.data() + groups.Offset[o];
@@ -163,12 +165,12 @@ bool vtkBrumeRadianceTextures::CreateObjects(const vtkBrumeReconstructionSetting
     if (o >= surfaces)
     {
       brume::CountHitsOverPilotGrid(
-        hits, index, count, this->Scene.Media[o - surfaces].Bounds, pilot);
+        hits, index, count, this->Scene.Media[o - surfaces].Bounds, pilot, parallelFor);
     }
     else if (deltaLights > 0 && this->Scene.Surfaces[o].ComputePlanarFrame(frame))
     {
       brume::CountHitsOverPilotGrid(
-        hits, index, count, frame, this->Scene.LightEmitterId(0), deltaLights, pilot);
+        hits, index, count, frame, this->Scene.LightEmitterId(0), deltaLights, pilot, parallelFor);
     }
     counts.insert(counts.end(), pilot.begin(), pilot.end());
     pilotStart[o + 1] = pilotStart[o] + pilot.size();

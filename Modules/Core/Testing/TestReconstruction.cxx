@@ -733,9 +733,13 @@ TEST(Reconstruction, MediaTexelsFollowWhereTheHitsAre)
     HitArrays hits;
     hits.Position = positions.data();
     hits.Count = static_cast<std::size_t>(n);
-    std::vector<std::int64_t> counts;
+    std::vector<std::int64_t> counts, threaded;
     CountHitsOverPilotGrid(hits, index.data(), index.size(), box, counts);
     EXPECT_EQ(counts.size(), 4096u);
+    // Counted in chunks on threads (ranges handed out last first): the same.
+    CountHitsOverPilotGrid(
+      hits, index.data(), index.size(), box, threaded, brume::testing::ThreadedFor(3, 5));
+    EXPECT_EQ(threaded, counts);
     std::int64_t total = 0;
     for (const std::int64_t c : counts)
     {

@@ -123,7 +123,7 @@ double MediumHitsPerTexel(const Medium& medium, std::size_t hitCount, double thr
  */
 std::array<int, 3> PilotGridResolution(const Box& box);
 void CountHitsOverPilotGrid(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
-  const Box& box, std::vector<std::int64_t>& counts);
+  const Box& box, std::vector<std::int64_t>& counts, const ParallelFor& parallelFor = SerialFor());
 
 /**
  * The same for a planar surface: its hits counted over a pilot grid of its
@@ -135,7 +135,7 @@ void CountHitsOverPilotGrid(const HitArrays& hits, const std::uint32_t* index, s
 std::array<int, 3> PilotGridResolution(const PlanarFrame& frame);
 void CountHitsOverPilotGrid(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
   const PlanarFrame& frame, std::size_t firstDeltaEmitter, std::size_t deltaLights,
-  std::vector<std::int64_t>& counts);
+  std::vector<std::int64_t>& counts, const ParallelFor& parallelFor = SerialFor());
 
 /// The largest factor HitConcentration() returns.
 constexpr double MaxHitConcentration = 8.0;

@@ -42,13 +42,55 @@ std::array<int, 3> PilotGridResolution(const Box& box)
   return ChooseResolution(box.Extent(), 4096, 1.0, 1, 64);
 }
 
+namespace
+{
+// Counts the cells cellOf(k) of items [0, count) into `counts` (already
+// sized) in fixed chunks of items, each into counts of its own, on the
+// threads of parallelFor: whole numbers, so the sums do not depend on how
+// the chunks are split or added.
+template <typename CellOf>
+void CountInChunks(
+  std::size_t count, CellOf cellOf, std::vector<std::int64_t>& counts, const ParallelFor& parallelFor)
+{
+  const std::size_t chunks = std::clamp<std::size_t>(count / 65536, 1, 16);
+  std::vector<std::vector<std::int64_t>> partial(chunks);
+  parallelFor(0, chunks,
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t chunk = begin; chunk < end; ++chunk)
+      {
+        std::vector<std::int64_t>& mine = partial[chunk];
+        mine.assign(counts.size(), 0);
+        const std::size_t first = count * chunk / chunks, last = count * (chunk + 1) / chunks;
+        for (std::size_t k = first; k < last; ++k)
+        {
+          const std::size_t cell = cellOf(k);
+          if (cell < mine.size())
+          {
+            ++mine[cell];
+          }
+        }
+      }
+    });
+  for (const std::vector<std::int64_t>& mine : partial)
+  {
+    for (std::size_t c = 0; c < counts.size(); ++c)
+    {
+      counts[c] += mine[c];
+    }
+  }
+}
+
+constexpr std::size_t Skipped = ~std::size_t(0);
+}
+
 void CountHitsOverPilotGrid(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
-  const Box& box, std::vector<std::int64_t>& counts)
+  const Box& box, std::vector<std::int64_t>& counts, const ParallelFor& parallelFor)
 {
   const std::array<int, 3> res = PilotGridResolution(box);
   counts.resize(static_cast<std::size_t>(res[0]) * res[1] * res[2], 0);
   const Vec3 extent = box.Extent();
-  for (std::size_t k = 0; k < count; ++k)
+  auto cellOf = [&](std::size_t k)
   {
     const float* p = hits.Position + 3 * static_cast<std::size_t>(index[k]);
     int c[3];
@@ -58,8 +100,9 @@ void CountHitsOverPilotGrid(const HitArrays& hits, const std::uint32_t* index, s
       // Hits on the box's faces (or a hair beyond) count in its edge cells.
       c[a] = std::clamp(static_cast<int>(u * static_cast<float>(res[a])), 0, res[a] - 1);
     }
-    ++counts[(static_cast<std::size_t>(c[2]) * res[1] + c[1]) * res[0] + c[0]];
-  }
+    return (static_cast<std::size_t>(c[2]) * res[1] + c[1]) * res[0] + c[0];
+  };
+  CountInChunks(count, cellOf, counts, parallelFor);
 }
 
 std::array<int, 3> PilotGridResolution(const PlanarFrame& frame)
@@ -69,20 +112,20 @@ std::array<int, 3> PilotGridResolution(const PlanarFrame& frame)
 
 void CountHitsOverPilotGrid(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
   const PlanarFrame& frame, std::size_t firstDeltaEmitter, std::size_t deltaLights,
-  std::vector<std::int64_t>& counts)
+  std::vector<std::int64_t>& counts, const ParallelFor& parallelFor)
 {
   const std::array<int, 3> res = PilotGridResolution(frame);
   counts.resize(static_cast<std::size_t>(res[0]) * res[1], 0);
   const float uu = Dot(frame.U, frame.U), vv = Dot(frame.V, frame.V);
   const bool direct = deltaLights > 0 && hits.Emitter && hits.Depth;
-  for (std::size_t k = 0; k < count; ++k)
+  auto cellOf = [&](std::size_t k)
   {
     const std::size_t i = index[k];
     if (direct &&
       DirectLight::IsFirstInteraction(
         hits.Emitter[i], hits.Depth[i], firstDeltaEmitter, deltaLights))
     {
-      continue;
+      return Skipped;
     }
     const Vec3 d =
       Vec3(hits.Position[3 * i], hits.Position[3 * i + 1], hits.Position[3 * i + 2]) - frame.Origin;
@@ -93,8 +136,9 @@ void CountHitsOverPilotGrid(const HitArrays& hits, const std::uint32_t* index, s
     {
       c[a] = std::clamp(static_cast<int>(q[a] * static_cast<float>(res[a])), 0, res[a] - 1);
     }
-    ++counts[static_cast<std::size_t>(c[1]) * res[0] + c[0]];
-  }
+    return static_cast<std::size_t>(c[1]) * res[0] + c[0];
+  };
+  CountInChunks(count, cellOf, counts, parallelFor);
 }
 
 double HitConcentration(const std::vector<std::int64_t>& counts)
