@@ -131,10 +131,11 @@ public:
   ///@{
   /**
    * One viewpoint only (default off). View-dependent objects (glossy
-   * surfaces, anisotropic media held per view) keep their hits (48 bytes
-   * each) so that a new viewpoint re-weights them without new particles:
-   * in a run traced in batches (AccumulateParticles) their hits are the
-   * memory that grows with the particles. On, they bin each hit's flux
+   * surfaces, anisotropic media held per view) keep their hits (40 bytes
+   * each, up to 48 with a surface's triangle and an aimed light's scale) so
+   * that a new viewpoint re-weights them without new particles: in a run
+   * traced in batches (AccumulateParticles) their hits are the memory that
+   * grows with the particles. On, they bin each hit's flux
    * weighted toward the viewpoint as it comes, as view-independent objects
    * do, and keep nothing: a batched run holds one batch's hits at a time
    * whatever its count, and the textures are bitwise those of kept hits

@@ -354,7 +354,8 @@ bool vtkBrumeRadianceTextures::BuildDistributed(const vtkBrumeReconstructionRequ
     object->SumHistograms(request.Eye, parallelFor);
   }
   this->Filter->UpdateProgress(0.6);
-  this->ForEachObject(groups, [&](std::size_t o, const brume::ParallelFor& objectFor)
+  this->ForEachObject(groups,
+    [&](std::size_t o, const brume::ParallelFor& objectFor)
     { errors[o] = this->Objects[o]->EstimateTexture(objectFor); });
   if (!this->AgreeOnObjects(errors, "Cannot reconstruct"))
   {

@@ -910,6 +910,86 @@ TEST(Reconstruction, AFixedViewBinsToTheTexturesOfKeptHitsBitForBit)
   EXPECT_NE(kept.back()->GetRadiance(), fixed.back()->GetRadiance());
 }
 
+TEST(Reconstruction, KeptHitsInBatchesKeepTheirTrianglesAndGrowthScales)
+{
+  // Kept hits hold a surface's triangle and, once a light was aimed, each
+  // hit's growth scale beside them: batches (held, then merged) must give
+  // the textures of one build, also when the first batch's hits have no
+  // aim classes and the second's do (the first batch's scales are then 1),
+  // and toward a fixed eye the same bits.
+  const Scene scene = GlossyFogScene();
+  ASSERT_EQ(scene.Validate(), "");
+  Vec3 power;
+  const HitStore store(Trace(scene, 60000, TraceSettings(), &power));
+  ObjectHits groups;
+  ASSERT_EQ(GroupHitsByObject(store.View(), scene.NumberOfObjects(), groups), "");
+  // Aim classes: none for the first half of every object's hits (class 0,
+  // scale 1), then classes 1 and 2 (scales 0.5 and 3) by turns.
+  std::vector<std::uint8_t> aim(store.Object.size(), 0);
+  for (std::size_t o = 0; o + 1 < groups.Offset.size(); ++o)
+  {
+    const std::size_t count = groups.Offset[o + 1] - groups.Offset[o];
+    for (std::size_t k = count / 2; k < count; ++k)
+    {
+      aim[groups.Index[groups.Offset[o] + k]] = static_cast<std::uint8_t>(1 + k % 2);
+    }
+  }
+  std::vector<double> scales(3 * 65536);
+  for (std::size_t e = 0; e < 65536; ++e)
+  {
+    scales[3 * e] = 1.0;
+    scales[3 * e + 1] = 0.5;
+    scales[3 * e + 2] = 3.0;
+  }
+  HitArrays aimed = store.View();
+  aimed.Aim = aim.data();
+  aimed.GrowthScales = scales.data();
+  const HitArrays unaimed = store.View();
+  const Vec3 eye(0.3f, -0.2f, 0.9f);
+  const double particleFlux = (power.x + power.y + power.z) / 3.0 / 60000.0;
+  const double threshold = 64.0 * particleFlux;
+  const auto once = GlossyFogObjects(scene);
+  const auto batched = GlossyFogObjects(scene);
+  const auto fixed = GlossyFogObjects(scene);
+  const auto plain = GlossyFogObjects(scene);
+  for (std::size_t o = 0; o < once.size(); ++o)
+  {
+    const std::uint32_t* index = groups.Index.data() + groups.Offset[o];
+    const std::size_t count = groups.Offset[o + 1] - groups.Offset[o];
+    const std::size_t half = count / 2;
+    for (auto* set : { &once, &batched, &fixed, &plain })
+    {
+      (*set)[o]->SetParticleFlux(particleFlux);
+    }
+    fixed[o]->FixView(eye);
+    ASSERT_EQ(once[o]->Build(aimed, index, count, eye, threshold, SerialFor()), "");
+    ASSERT_EQ(plain[o]->Build(unaimed, index, count, eye, threshold, SerialFor()), "");
+    for (auto* set : { &batched, &fixed })
+    {
+      ASSERT_EQ((*set)[o]->Build(unaimed, index, half, eye, threshold, SerialFor(), false), "");
+      ASSERT_EQ((*set)[o]->Add(aimed, index + half, count - half, 1.0, eye, threshold,
+                  brume::testing::ThreadedFor(2, 7)),
+        "");
+    }
+    EXPECT_EQ(batched[o]->GetRadiance(), once[o]->GetRadiance()) << o;
+    EXPECT_EQ(fixed[o]->GetRadiance(), once[o]->GetRadiance()) << o;
+    // The regions grow by the weights, which hold the scales (the test can
+    // fail: without them, other weights).
+    EXPECT_EQ(
+      batched[o]->GetWeightHistogram().GetValues(), once[o]->GetWeightHistogram().GetValues())
+      << o;
+    EXPECT_EQ(fixed[o]->GetWeightHistogram().GetValues(), once[o]->GetWeightHistogram().GetValues())
+      << o;
+    EXPECT_NE(plain[o]->GetWeightHistogram().GetValues(), once[o]->GetWeightHistogram().GetValues())
+      << o;
+    // Turned, the batches' kept hits re-weigh as one build's.
+    const Vec3 turned(-0.9f, 0.1f, 0.2f);
+    ASSERT_EQ(once[o]->UpdateView(turned, SerialFor()), "");
+    ASSERT_EQ(batched[o]->UpdateView(turned, brume::testing::ThreadedFor(3, 5)), "");
+    EXPECT_EQ(batched[o]->GetRadiance(), once[o]->GetRadiance()) << o;
+  }
+}
+
 TEST(Reconstruction, AFixedViewRefusesAnotherEye)
 {
   const Scene scene = GlossyFogScene();

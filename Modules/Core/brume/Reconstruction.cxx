@@ -145,9 +145,9 @@ std::string ObjectRadiance::BuildHistograms(const HitArrays& hits, const std::ui
 {
   this->Built = false;
   this->Estimated = false;
-  this->Pending.clear();
+  this->Pending.Clear();
   this->DeferMerge = !estimate;
-  this->Kept.clear();
+  this->Kept.Clear();
   this->RangeStart.assign(Ranges + 1, 0);
   this->ThresholdFlux = thresholdFlux;
   const std::string error = this->Check(hits, index, count);
@@ -226,18 +226,18 @@ std::string ObjectRadiance::Add(const HitArrays& hits, const std::uint32_t* inde
   if (this->KeepsHits())
   {
     const float s = static_cast<float>(scale);
-    parallelFor(0, this->Kept.size(),
+    parallelFor(0, this->Kept.Size(),
       [&](std::size_t begin, std::size_t end)
       {
         for (std::size_t k = begin; k < end; ++k)
         {
-          for (float& f : this->Kept[k].Flux)
+          for (float& f : this->Kept.Hits[k].Flux)
           {
             f *= s;
           }
         }
       });
-    for (KeptHit& h : this->Pending) // batches not yet merged (scale 1 in practice)
+    for (KeptHit& h : this->Pending.Hits) // batches not yet merged (scale 1 in practice)
     {
       for (float& f : h.Flux)
       {
@@ -305,7 +305,7 @@ void ObjectRadiance::SumHistograms(const Vec3& eye, const ParallelFor& parallelF
   if (this->KeepsHits())
   {
     // The kept hits' incident flux, and their weighted flux toward the eye.
-    if (!this->Pending.empty())
+    if (!this->Pending.Empty())
     {
       this->MergePending(parallelFor);
     }
@@ -446,10 +446,10 @@ void ObjectRadiance::WeighCells(const Vec3& eye, const ParallelFor& parallelFor,
   ExactHistogram& weight = this->WeightSums;
   // The kept hits' incident flux, with their weighted flux in the same pass
   // over them (exact sums: the order of the terms does not matter).
-  auto addWeight = [&](const KeptHit& h)
+  auto addWeight = [&](const KeptHit& h, std::size_t k)
   {
     const double w[1] = { (static_cast<double>(h.Flux[0]) + h.Flux[1] + h.Flux[2]) / 3.0 *
-      h.Growth };
+      this->Kept.GrowthOf(k) };
     weight.AddNonNegative(h.Cell, w);
   };
   const Medium* medium = this->MediumRef;
@@ -472,7 +472,7 @@ void ObjectRadiance::WeighCells(const Vec3& eye, const ParallelFor& parallelFor,
           const std::size_t n = std::min(Block, last - first);
           for (std::size_t i = 0; i < Block; ++i)
           {
-            const KeptHit& h = this->Kept[first + std::min(i, n - 1)];
+            const KeptHit& h = this->Kept.Hits[first + std::min(i, n - 1)];
             dx[i] = eye.x - h.Position[0];
             dy[i] = eye.y - h.Position[1];
             dz[i] = eye.z - h.Position[2];
@@ -488,13 +488,13 @@ void ObjectRadiance::WeighCells(const Vec3& eye, const ParallelFor& parallelFor,
           }
           for (std::size_t i = 0; i < n; ++i)
           {
-            const KeptHit& h = this->Kept[first + i];
+            const KeptHit& h = this->Kept.Hits[first + i];
             const double v[3] = { static_cast<double>(p[i]) * h.Flux[0],
               static_cast<double>(p[i]) * h.Flux[1], static_cast<double>(p[i]) * h.Flux[2] };
             value.AddNonNegative(h.Cell, v);
             if (weights)
             {
-              addWeight(h);
+              addWeight(h, first + i);
             }
           }
         }
@@ -509,13 +509,14 @@ void ObjectRadiance::WeighCells(const Vec3& eye, const ParallelFor& parallelFor,
       {
         for (std::size_t k = this->RangeStart[begin]; k < this->RangeStart[end]; ++k)
         {
-          const KeptHit& h = this->Kept[k];
+          const KeptHit& h = this->Kept.Hits[k];
           double v[3];
-          this->WeighHit(eye, h.Position, h.Direction, h.Flux, h.Triangle, normals, v);
+          this->WeighHit(
+            eye, h.Position, h.Direction, h.Flux, this->Kept.TriangleOf(k), normals, v);
           value.AddNonNegative(h.Cell, v);
           if (weights)
           {
-            addWeight(h);
+            addWeight(h, k);
           }
         }
       });

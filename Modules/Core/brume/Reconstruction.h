@@ -237,8 +237,8 @@ public:
   bool IsViewDependent() const { return this->ViewDependent; }
 
   /**
-   * One viewpoint only. A view-dependent object keeps its hits (48 bytes
-   * each) so that a new eye re-weights them (UpdateView(),
+   * One viewpoint only. A view-dependent object keeps its hits (40 bytes
+   * each, up to 48: KeptHits) so that a new eye re-weights them (UpdateView(),
    * BuildDirectional()). Fixed toward `eye`, it bins each hit's flux
    * weighted toward that eye as the hit comes, as a view-independent object
    * bins its flux: nothing grows with its hits, batch after batch of a run,
@@ -617,16 +617,57 @@ private:
   ForwardPeak Peaks[2];
   Vec3 ExtinctionFactors[2] = { Vec3(1.f), Vec3(1.f) };
 
-  // View-dependent objects keep their hits (48 bytes each), grouped by
-  // ranges of histogram cells and in hit order within a range.
+  // View-dependent objects keep their hits, grouped by ranges of histogram
+  // cells and in hit order within a range: 40 bytes each, 4 more for a
+  // surface's triangle (its BRDF toward the eye) and 4 more for the growth
+  // scale (HitArrays::GrowthScale) once a light was aimed, kept beside them
+  // in the same order, so that a fog under an unaimed light keeps 40.
   struct KeptHit
   {
     float Position[3], Direction[3], Flux[3];
-    std::uint32_t Cell, Triangle;
-    float Growth; // HitArrays::GrowthScale
+    std::uint32_t Cell;
   };
-  static_assert(sizeof(KeptHit) == 48, "KeptHit layout changed: update the documentation");
-  using KeptHits = std::vector<KeptHit, UninitializedAllocator<KeptHit>>;
+  static_assert(sizeof(KeptHit) == 40, "KeptHit layout changed: update the documentation");
+  template <typename T>
+  using Uninitialized = std::vector<T, UninitializedAllocator<T>>;
+  struct KeptHits
+  {
+    Uninitialized<KeptHit> Hits;
+    Uninitialized<std::uint32_t> Triangle; // empty, or one per hit
+    Uninitialized<float> Growth;           // empty (every scale 1), or one per hit
+
+    std::size_t Size() const { return this->Hits.size(); }
+    void Clear()
+    {
+      this->Hits.clear();
+      this->Triangle.clear();
+      this->Growth.clear();
+    }
+    bool Empty() const { return this->Hits.empty(); }
+    std::uint32_t TriangleOf(std::size_t k) const
+    {
+      return this->Triangle.empty() ? 0 : this->Triangle[k];
+    }
+    float GrowthOf(std::size_t k) const { return this->Growth.empty() ? 1.f : this->Growth[k]; }
+    // n hits, the new ones left for the caller to write: with triangles
+    // when asked, with growth scales when asked or already kept (the hits
+    // kept so far scale 1 when the first aimed ones come).
+    void Resize(std::size_t n, bool triangles, bool growth);
+    void Reserve(std::size_t n, bool triangles, bool growth);
+    // Hit k of `from` into place `to` (its arrays, where this one has them).
+    void Set(std::size_t to, const KeptHits& from, std::size_t k)
+    {
+      this->Hits[to] = from.Hits[k];
+      if (!this->Triangle.empty())
+      {
+        this->Triangle[to] = from.TriangleOf(k);
+      }
+      if (!this->Growth.empty())
+      {
+        this->Growth[to] = from.GrowthOf(k);
+      }
+    }
+  };
   KeptHits Kept;
   std::vector<std::size_t> RangeStart;
   // Batches that do not estimate: their hits in hit order, merged into
@@ -635,11 +676,12 @@ private:
   KeptHits Pending;
   bool DeferMerge = false;
   void MergePending(const ParallelFor& parallelFor);
-  // Merges `count` new hits (cellOf(k), write(k, out)) after Kept's hits of
-  // each range of cells, stably.
+  // Merges `count` new hits (cellOf(k), write(k, merged, position)) after
+  // Kept's hits of each range of cells, stably; with growth scales where
+  // `growth` (the new hits have them) or Kept has them.
   template <typename CellOf, typename Write>
   void MergeIntoRanges(
-    std::size_t count, CellOf cellOf, Write write, const ParallelFor& parallelFor);
+    std::size_t count, CellOf cellOf, Write write, bool growth, const ParallelFor& parallelFor);
 
   // The histograms' exact sums (view-independent objects: kept for Add()).
   ExactHistogram WeightSums;

@@ -120,9 +120,42 @@ inline bool ObjectRadiance::FromFront(const HitArrays& hits, std::uint32_t i) co
   return Dot(n, d) < 0.f;
 }
 
+void ObjectRadiance::KeptHits::Resize(std::size_t n, bool triangles, bool growth)
+{
+  const std::size_t before = this->Hits.size();
+  this->Hits.resize(n);
+  if (triangles)
+  {
+    this->Triangle.resize(n);
+  }
+  if (growth || !this->Growth.empty())
+  {
+    const bool scaled = !this->Growth.empty();
+    this->Growth.resize(n);
+    if (!scaled)
+    {
+      std::fill(
+        this->Growth.begin(), this->Growth.begin() + static_cast<std::ptrdiff_t>(before), 1.f);
+    }
+  }
+}
+
+void ObjectRadiance::KeptHits::Reserve(std::size_t n, bool triangles, bool growth)
+{
+  this->Hits.reserve(n);
+  if (triangles)
+  {
+    this->Triangle.reserve(n);
+  }
+  if (growth || !this->Growth.empty())
+  {
+    this->Growth.reserve(n);
+  }
+}
+
 template <typename CellOf, typename Write>
 void ObjectRadiance::MergeIntoRanges(
-  std::size_t count, CellOf cellOf, Write write, const ParallelFor& parallelFor)
+  std::size_t count, CellOf cellOf, Write write, bool growth, const ParallelFor& parallelFor)
 {
   // The new hits grouped by ranges of cells (a stable counting sort): each
   // range is then one task, and a cell's sum follows hit order. A range
@@ -133,7 +166,9 @@ void ObjectRadiance::MergeIntoRanges(
   { return static_cast<std::size_t>(cellOf(k)) * Ranges / cells; };
   StableGrouping grouping(count, Ranges);
   const std::vector<std::size_t>& added = grouping.Count(rangeOf, parallelFor);
-  KeptHits merged(this->Kept.size() + count); // every element written below
+  KeptHits merged; // every element written below
+  merged.Resize(
+    this->Kept.Size() + count, this->SurfaceRef != nullptr, growth || !this->Kept.Growth.empty());
   std::vector<std::size_t> mergedStart(Ranges + 1, 0);
   std::vector<std::size_t> firstAdded(Ranges);
   for (std::size_t r = 0; r < Ranges; ++r)
@@ -141,23 +176,34 @@ void ObjectRadiance::MergeIntoRanges(
     firstAdded[r] = mergedStart[r] + (this->RangeStart[r + 1] - this->RangeStart[r]);
     mergedStart[r + 1] = firstAdded[r] + added[r];
   }
-  if (!this->Kept.empty())
+  if (!this->Kept.Empty())
   {
     parallelFor(0, Ranges,
       [&](std::size_t begin, std::size_t end)
       {
         for (std::size_t r = begin; r < end; ++r)
         {
-          std::copy(this->Kept.begin() + static_cast<std::ptrdiff_t>(this->RangeStart[r]),
-            this->Kept.begin() + static_cast<std::ptrdiff_t>(this->RangeStart[r + 1]),
-            merged.begin() + static_cast<std::ptrdiff_t>(mergedStart[r]));
+          const std::size_t first = this->RangeStart[r], n = this->RangeStart[r + 1] - first;
+          std::copy_n(this->Kept.Hits.begin() + static_cast<std::ptrdiff_t>(first), n,
+            merged.Hits.begin() + static_cast<std::ptrdiff_t>(mergedStart[r]));
+          for (std::size_t k = 0; k < n; ++k)
+          {
+            if (!merged.Triangle.empty())
+            {
+              merged.Triangle[mergedStart[r] + k] = this->Kept.TriangleOf(first + k);
+            }
+            if (!merged.Growth.empty())
+            {
+              merged.Growth[mergedStart[r] + k] = this->Kept.GrowthOf(first + k);
+            }
+          }
         }
       });
   }
   grouping.Place(
-    firstAdded, rangeOf, [&](std::size_t k, std::size_t position) { write(k, merged[position]); },
+    firstAdded, rangeOf, [&](std::size_t k, std::size_t position) { write(k, merged, position); },
     parallelFor);
-  this->Kept.swap(merged);
+  this->Kept = std::move(merged);
   this->RangeStart.swap(mergedStart);
 }
 
@@ -319,43 +365,54 @@ void ObjectRadiance::KeepHits(const HitArrays& hits, const std::uint32_t* index,
         cellOf[k] = cellOfHit(hits, index[k]);
       }
     });
-  auto keep = [&](std::size_t k, KeptHit& out)
+  // Growth scales are kept once a light was aimed (all 1 otherwise).
+  const bool growth = hits.Aim != nullptr;
+  auto keep = [&](std::size_t k, KeptHits& out, std::size_t p)
   {
     const std::size_t i = index[k];
+    KeptHit& h = out.Hits[p];
     // Element by element: std::copy of three floats is a memmove call.
     for (int a = 0; a < 3; ++a)
     {
-      out.Position[a] = hits.Position[3 * i + a];
-      out.Direction[a] = hits.Direction[3 * i + a];
-      out.Flux[a] = hits.Flux[3 * i + a];
+      h.Position[a] = hits.Position[3 * i + a];
+      h.Direction[a] = hits.Direction[3 * i + a];
+      h.Flux[a] = hits.Flux[3 * i + a];
     }
-    out.Cell = cellOf[k];
-    out.Triangle = hits.Triangle ? hits.Triangle[i] : 0;
-    out.Growth = static_cast<float>(hits.GrowthScale(i));
+    h.Cell = cellOf[k];
+    if (!out.Triangle.empty())
+    {
+      out.Triangle[p] = hits.Triangle ? hits.Triangle[i] : 0;
+    }
+    if (!out.Growth.empty())
+    {
+      out.Growth[p] = static_cast<float>(hits.GrowthScale(i));
+    }
   };
-  if (!this->DeferMerge && this->Pending.empty())
+  if (!this->DeferMerge && this->Pending.Empty())
   {
     this->MergeIntoRanges(
-      count, [&](std::size_t k) { return cellOf[k]; }, keep, parallelFor);
+      count, [&](std::size_t k) { return cellOf[k]; }, keep, growth, parallelFor);
     return;
   }
   // A batch of a run: its hits wait, in hit order, for the batch that
   // estimates, which merges them all at once.
-  const std::size_t before = this->Pending.size();
-  if (this->Pending.capacity() < before + count)
+  const std::size_t before = this->Pending.Size();
+  const bool triangles = this->SurfaceRef != nullptr;
+  if (this->Pending.Hits.capacity() < before + count)
   {
     // Room for the run's hits at once, 5 % to spare, where its share is known.
     const double share = this->RunShare > 0.0 && this->RunShare < 1.0 ? this->RunShare : 1.0;
     const double expected = 1.05 * static_cast<double>(before + count) / share;
-    this->Pending.reserve(std::max(before + count, static_cast<std::size_t>(expected)));
+    this->Pending.Reserve(
+      std::max(before + count, static_cast<std::size_t>(expected)), triangles, growth);
   }
-  this->Pending.resize(before + count);
+  this->Pending.Resize(before + count, triangles, growth);
   parallelFor(0, count,
     [&](std::size_t begin, std::size_t end)
     {
       for (std::size_t k = begin; k < end; ++k)
       {
-        keep(k, this->Pending[before + k]);
+        keep(k, this->Pending, before + k);
       }
     });
   if (!this->DeferMerge)
@@ -368,9 +425,10 @@ void ObjectRadiance::MergePending(const ParallelFor& parallelFor)
 {
   // Kept ends as if each batch had been merged in turn.
   this->MergeIntoRanges(
-    this->Pending.size(), [&](std::size_t k) { return this->Pending[k].Cell; },
-    [&](std::size_t k, KeptHit& out) { out = this->Pending[k]; }, parallelFor);
-  KeptHits().swap(this->Pending);
+    this->Pending.Size(), [&](std::size_t k) { return this->Pending.Hits[k].Cell; },
+    [&](std::size_t k, KeptHits& out, std::size_t p) { out.Set(p, this->Pending, k); },
+    !this->Pending.Growth.empty(), parallelFor);
+  this->Pending = KeptHits(); // its memory freed
 }
 
 } // namespace brume

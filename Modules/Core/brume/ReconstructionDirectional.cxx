@@ -50,7 +50,7 @@ std::string ObjectRadiance::BuildDirectional(int order, const ParallelFor& paral
         const double remainder = 1.0 - this->Peaks[1].Forward;
         for (std::size_t k = this->RangeStart[begin]; k < this->RangeStart[end]; ++k)
         {
-          const KeptHit& h = this->Kept[k];
+          const KeptHit& h = this->Kept.Hits[k];
           EvaluateSh(order, Vec3(h.Direction[0], h.Direction[1], h.Direction[2]), y);
           for (int j = 0; j < kn; ++j)
           {

@@ -49,8 +49,8 @@ namespace
 // threads of parallelFor: whole numbers, so the sums do not depend on how
 // the chunks are split or added.
 template <typename CellOf>
-void CountInChunks(
-  std::size_t count, CellOf cellOf, std::vector<std::int64_t>& counts, const ParallelFor& parallelFor)
+void CountInChunks(std::size_t count, CellOf cellOf, std::vector<std::int64_t>& counts,
+  const ParallelFor& parallelFor)
 {
   const std::size_t chunks = std::clamp<std::size_t>(count / 65536, 1, 16);
   std::vector<std::vector<std::int64_t>> partial(chunks);
