@@ -848,6 +848,21 @@ Scene GlossyFogScene()
   return scene;
 }
 
+// 60,000 particles of GlossyFogScene(), their hits grouped by object, an
+// eye, the particle flux and a threshold of 64 particles.
+struct GlossyFogRun
+{
+  static constexpr std::uint64_t Particles = 60000;
+  Scene Setting = GlossyFogScene();
+  Vec3 Power;
+  HitStore Store{ Trace(Setting, Particles, TraceSettings(), &Power) };
+  ObjectHits Groups;
+  std::string GroupError = GroupHitsByObject(Store.View(), Setting.NumberOfObjects(), Groups);
+  Vec3 Eye{ 0.3f, -0.2f, 0.9f };
+  double ParticleFlux = (Power.x + Power.y + Power.z) / 3.0 / static_cast<double>(Particles);
+  double Threshold = 64.0 * ParticleFlux;
+};
+
 std::vector<std::unique_ptr<ObjectRadiance>> GlossyFogObjects(const Scene& scene)
 {
   std::vector<std::unique_ptr<ObjectRadiance>> objects;
@@ -865,16 +880,14 @@ TEST(Reconstruction, AFixedViewBinsToTheTexturesOfKeptHitsBitForBit)
   // What a fixed view bins as the hits come must be what kept hits give
   // toward the same eye, bit for bit: in one build, and in batches whose
   // last estimates (the hits of the earlier ones no longer held).
-  const Scene scene = GlossyFogScene();
+  const GlossyFogRun run;
+  const Scene& scene = run.Setting;
   ASSERT_EQ(scene.Validate(), "");
-  Vec3 power;
-  const HitStore store(Trace(scene, 60000, TraceSettings(), &power));
-  const HitArrays hits = store.View();
-  ObjectHits groups;
-  ASSERT_EQ(GroupHitsByObject(hits, scene.NumberOfObjects(), groups), "");
-  const Vec3 eye(0.3f, -0.2f, 0.9f);
-  const double particleFlux = (power.x + power.y + power.z) / 3.0 / 60000.0;
-  const double threshold = 64.0 * particleFlux;
+  ASSERT_EQ(run.GroupError, "");
+  const HitArrays hits = run.Store.View();
+  const ObjectHits& groups = run.Groups;
+  const Vec3 eye = run.Eye;
+  const double particleFlux = run.ParticleFlux, threshold = run.Threshold;
   const auto kept = GlossyFogObjects(scene);
   const auto fixed = GlossyFogObjects(scene);
   const auto batched = GlossyFogObjects(scene);
@@ -917,12 +930,12 @@ TEST(Reconstruction, KeptHitsInBatchesKeepTheirTrianglesAndGrowthScales)
   // the textures of one build, also when the first batch's hits have no
   // aim classes and the second's do (the first batch's scales are then 1),
   // and toward a fixed eye the same bits.
-  const Scene scene = GlossyFogScene();
+  const GlossyFogRun run;
+  const Scene& scene = run.Setting;
   ASSERT_EQ(scene.Validate(), "");
-  Vec3 power;
-  const HitStore store(Trace(scene, 60000, TraceSettings(), &power));
-  ObjectHits groups;
-  ASSERT_EQ(GroupHitsByObject(store.View(), scene.NumberOfObjects(), groups), "");
+  ASSERT_EQ(run.GroupError, "");
+  const HitStore& store = run.Store;
+  const ObjectHits& groups = run.Groups;
   // Aim classes: none for the first half of every object's hits (class 0,
   // scale 1), then classes 1 and 2 (scales 0.5 and 3) by turns.
   std::vector<std::uint8_t> aim(store.Object.size(), 0);
@@ -945,9 +958,8 @@ TEST(Reconstruction, KeptHitsInBatchesKeepTheirTrianglesAndGrowthScales)
   aimed.Aim = aim.data();
   aimed.GrowthScales = scales.data();
   const HitArrays unaimed = store.View();
-  const Vec3 eye(0.3f, -0.2f, 0.9f);
-  const double particleFlux = (power.x + power.y + power.z) / 3.0 / 60000.0;
-  const double threshold = 64.0 * particleFlux;
+  const Vec3 eye = run.Eye;
+  const double particleFlux = run.ParticleFlux, threshold = run.Threshold;
   const auto once = GlossyFogObjects(scene);
   const auto batched = GlossyFogObjects(scene);
   const auto fixed = GlossyFogObjects(scene);
