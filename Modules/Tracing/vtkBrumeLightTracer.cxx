@@ -20,6 +20,7 @@
 #include "vtkUnsignedCharArray.h"
 #include "vtkUnsignedIntArray.h"
 #include "vtkUnsignedShortArray.h"
+#include "vtkWeakPointer.h"
 
 #include "brume/LightTracer.h"
 
@@ -78,8 +79,12 @@ struct TraceBlocks
 // moves large blocks with mremap, without copying, so growth needs no second
 // copy of the hits. VTK takes the buffers over (freed with free()).
 // An array of an output's hits, with the buffer and size it was handed.
+// Between executions the tracer holds it weakly (it neither keeps the hits
+// alive nor stops ReleaseDataFlag or a consumer from letting them go); the
+// next execution holds it (Array) while it takes the buffer back.
 struct HandedArray
 {
+  vtkWeakPointer<vtkDataArray> Weak;
   vtkSmartPointer<vtkDataArray> Array;
   const void* Buffer = nullptr;
   vtkIdType Size = 0;
@@ -234,7 +239,8 @@ struct OutputHits
       buffer.HandTo(array.GetPointer(), components * n);
       if (handed)
       {
-        handed->push_back({ array, array->GetVoidPointer(0), array->GetSize() });
+        handed->push_back(
+          { array.GetPointer(), nullptr, array->GetVoidPointer(0), array->GetSize() });
       }
       return array;
     };
@@ -276,8 +282,18 @@ void AddTuple(vtkPolyData* output, const char* name, const T& v)
 
 struct vtkBrumeLightTracer::BatchMemory
 {
-  std::vector<std::vector<brume::Hit>> BlockHits;
-  std::vector<HandedArray> Handed; // the last output's hit arrays
+  std::vector<std::vector<brume::Hit>> BlockHits; // between the batches of a run only
+  std::vector<HandedArray> Handed;                // the last output's hit arrays, held weakly
+
+  // Holds the handed arrays that are still alive (before the output lets
+  // them go), so that the ones no one else holds can be taken back.
+  void HoldHanded()
+  {
+    for (HandedArray& h : this->Handed)
+    {
+      h.Array = h.Weak.GetPointer();
+    }
+  }
 };
 
 vtkBrumeLightTracer::vtkBrumeLightTracer()
@@ -330,6 +346,20 @@ int vtkBrumeLightTracer::FillInputPortInformation(int, vtkInformation* info)
   return 1;
 }
 
+vtkTypeBool vtkBrumeLightTracer::ProcessRequest(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  // The executive asks which outputs will not be generated just before it
+  // lets go of the output's data (PrepareForNewData) and executes: the last
+  // output's arrays are held from here, so that RequestData can write into
+  // those no one else holds.
+  if (this->Reused && request->Has(vtkDemandDrivenPipeline::REQUEST_DATA_NOT_GENERATED()))
+  {
+    this->Reused->HoldHanded();
+  }
+  return this->Superclass::ProcessRequest(request, inputVector, outputVector);
+}
+
 int vtkBrumeLightTracer::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -338,6 +368,9 @@ int vtkBrumeLightTracer::RequestData(
   vtkPartitionedDataSetCollection* input = collection;
   auto* output = vtkPolyData::GetData(outputVector, 0);
   this->LastRayCount = 0;
+  // The last output's arrays (ProcessRequest holds them now): taken back
+  // below, or let go at any return.
+  std::unique_ptr<BatchMemory> reused = std::move(this->Reused);
 
   const vtkTypeInt64 particles = this->NumberOfParticles;
   if (particles < 1 || particles > vtkTypeInt64(10000000000LL))
@@ -413,18 +446,18 @@ int vtkBrumeLightTracer::RequestData(
   const brume::LightTracer tracer(scene, caster, settings);
 
   // Output arrays, grown batch by batch (realloc of large blocks moves pages
-  // without copying), so the hits are never held twice. Within a run traced
-  // in batches, each batch writes where the last one's hits were, when no
-  // one holds them any more: a fresh page costs a fault on first touch
-  // (microseconds each), and a batch of 10^7 particles fills 1.2 GB.
-  std::unique_ptr<BatchMemory> reused = std::move(this->Reused);
+  // without copying), so the hits are never held twice. Each execution (the
+  // next batch of a run, or a new run: another seed, count or scene)
+  // writes where the last output's hits were, when no one else holds them
+  // any more: a fresh page costs a fault on first touch (microseconds
+  // each), and 10^6 particles of the default scene fill 121 MB.
   if (!reused)
   {
     reused.reset(new BatchMemory);
   }
   OutputHits out;
   out.WithAim = aims;
-  output->Initialize(); // lets go of the last batch's arrays
+  output->Initialize(); // lets go of the last execution's arrays
   out.Adopt(reused->Handed);
   reused->Handed.clear();
   const vtkTypeInt64 blocks = (traced + ParticlesPerBlock - 1) / ParticlesPerBlock;
@@ -484,13 +517,15 @@ int vtkBrumeLightTracer::RequestData(
     this->UpdateProgress(0.99 * static_cast<double>(k + 1) / static_cast<double>(batches));
   }
   this->LastRayCount = static_cast<vtkTypeInt64>(sum.Rays);
-  // Kept for the next batch only while the run goes on.
+  // The block buffers are kept for the next batch only while the run goes
+  // on; the output's arrays are remembered (weakly) for any next execution.
   const bool runGoesOn = endParticle < particles && !this->GetAbortExecute();
-  out.Attach(output, stored, runGoesOn ? &reused->Handed : nullptr);
-  if (runGoesOn)
+  out.Attach(output, stored, &reused->Handed);
+  if (!runGoesOn)
   {
-    this->Reused = std::move(reused);
+    std::vector<std::vector<brume::Hit>>().swap(reused->BlockHits);
   }
+  this->Reused = std::move(reused);
   AddTuple(output, vtkBrumeHitConversion::TotalPowerName, tracer.GetTotalPower());
   if (aims)
   {

@@ -17,7 +17,12 @@
  * `NumberOfRays`.
  *
  * Memory: hits are appended batch by batch to the output arrays (45 bytes
- * per hit), so the peak stays near 49 bytes per stored hit.
+ * per hit), so the peak stays near 49 bytes per stored hit. An execution
+ * writes its hits into the buffers of the last output's arrays where no one
+ * else holds them (the next batch of a run, or a new run after a change of
+ * seed, count or scene), so that re-tracing does not pay the first touch of
+ * fresh memory again; an array a consumer still holds is never written, and
+ * the tracer holds none of them between executions.
  *
  * Particles are traced in fixed blocks with vtkSMPTools; each particle's
  * random stream depends only on (Seed, particle index), so the output is
@@ -171,6 +176,9 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  /// Holds the last output's hit arrays just before an execution lets them go.
+  vtkTypeBool ProcessRequest(
+    vtkInformation* request, vtkInformationVector** inInfo, vtkInformationVector* outInfo) override;
 
   vtkTypeInt64 NumberOfParticles = 1000000;
   vtkTypeInt64 FirstParticle = 0;
@@ -185,8 +193,10 @@ protected:
   vtkSmartPointer<vtkLightCollection> Lights;
 
 private:
-  // Between the batches of one run: the block buffers and the output's hit
-  // arrays, reused by the next batch (their pages already mapped).
+  // Between the batches of one run: the block buffers; between any two
+  // executions: the output's hit arrays, held weakly, whose buffers the next
+  // execution writes again where no one else holds them (their pages
+  // already mapped).
   struct BatchMemory;
   std::unique_ptr<BatchMemory> Reused;
 

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Batches of one run write where the last batch's hits were, unless someone
-// still holds them: an array a consumer keeps is never written again, and
-// every batch's hits are those of a fresh tracer.
+// Batches of one run, and new runs, write where the last output's hits
+// were, unless someone still holds them: an array a consumer keeps is never
+// written again, and every batch's and run's hits are those of a fresh
+// tracer.
 #include "vtkBrumeDefaultSceneSource.h"
 #include "vtkBrumeLightTracer.h"
 #include "vtkDataArray.h"
@@ -36,6 +37,20 @@ vtkSmartPointer<vtkPolyData> FreshBatch(
   tracer->SetNumberOfParticles(Particles);
   tracer->SetFirstParticle(first);
   tracer->SetEndParticle(end);
+  tracer->Update();
+  auto copy = vtkSmartPointer<vtkPolyData>::New();
+  copy->DeepCopy(tracer->GetOutput());
+  return copy;
+}
+
+// The hits of a whole run, from a tracer of its own.
+vtkSmartPointer<vtkPolyData> FreshRun(
+  vtkBrumeDefaultSceneSource* scene, vtkTypeInt64 particles, vtkIdType seed)
+{
+  vtkNew<vtkBrumeLightTracer> tracer;
+  tracer->SetInputConnection(scene->GetOutputPort());
+  tracer->SetNumberOfParticles(particles);
+  tracer->SetSeed(seed);
   tracer->Update();
   auto copy = vtkSmartPointer<vtkPolyData>::New();
   copy->DeepCopy(tracer->GetOutput());
@@ -134,5 +149,38 @@ int TestBatchMemory(int, char*[])
   tracer->SetEndParticle(20000);
   tracer->Update();
   ok = SameHits(tracer->GetOutput(), FreshBatch(scene, 0, 20000), "a new run's batch 1") && ok;
+
+  // Whole runs: a new run (another seed) writes where the last run's hits
+  // were, unless a consumer holds them, here through the points object.
+  tracer->SetFirstParticle(0);
+  tracer->SetEndParticle(0);
+  tracer->SetNumberOfParticles(20000);
+  tracer->Update();
+  vtkSmartPointer<vtkPoints> heldPoints = tracer->GetOutput()->GetPoints();
+  auto heldPositions = vtkSmartPointer<vtkDataArray>::Take(heldPoints->GetData()->NewInstance());
+  heldPositions->DeepCopy(heldPoints->GetData());
+  tracer->SetSeed(5);
+  tracer->Update();
+  ok = SameHits(tracer->GetOutput(), FreshRun(scene, 20000, 5), "a run after a run") && ok;
+  if (!SameBytes(heldPoints->GetData(), heldPositions))
+  {
+    std::cerr << "a new run wrote into the positions a consumer still holds\n";
+    ok = false;
+  }
+  heldPoints = nullptr;
+  // Twice more, no one holding the hits: the second writes where the first's
+  // were, a run with more particles grows them.
+  tracer->SetSeed(6);
+  tracer->Update();
+  ok = SameHits(tracer->GetOutput(), FreshRun(scene, 20000, 6), "a run after a run, reused") && ok;
+  tracer->SetNumberOfParticles(50000);
+  tracer->Update();
+  ok = SameHits(tracer->GetOutput(), FreshRun(scene, 50000, 6), "a larger run, reused") && ok;
+  // The output released between runs (ReleaseDataFlag does so downstream):
+  // the tracer held nothing, and the next run starts afresh.
+  tracer->GetOutput()->ReleaseData();
+  tracer->SetSeed(7);
+  tracer->Update();
+  ok = SameHits(tracer->GetOutput(), FreshRun(scene, 50000, 7), "a run after released data") && ok;
   return ok ? 0 : 1;
 }
