@@ -116,6 +116,14 @@ struct GrowingBuffer
     return values <= this->Capacity ||
       this->Reallocate(std::max(values, this->Capacity + this->Capacity / 2));
   }
+  // At most `values` kept (an adopted buffer larger than a run needs).
+  void Cap(std::size_t values)
+  {
+    if (this->Data && this->Capacity > values)
+    {
+      this->Reallocate(values); // a shrink: on failure the buffer stays as it was
+    }
+  }
   template <typename Array>
   void HandTo(Array* array, vtkIdType values)
   {
@@ -171,6 +179,20 @@ struct OutputHits
       this->Flux.Reallocate(3 * m) && this->Object.Reallocate(m) && this->Emitter.Reallocate(m) &&
       this->Depth.Reallocate(m) && this->Triangle.Reallocate(m) &&
       (!this->WithAim || this->Aim.Reallocate(m));
+  }
+
+  // Keeps at most room for n hits of the buffers taken back.
+  void Cap(vtkIdType n)
+  {
+    const auto m = static_cast<std::size_t>(n);
+    this->Points.Cap(3 * m);
+    this->Direction.Cap(3 * m);
+    this->Flux.Cap(3 * m);
+    this->Object.Cap(m);
+    this->Emitter.Cap(m);
+    this->Depth.Cap(m);
+    this->Triangle.Cap(m);
+    this->Aim.Cap(m);
   }
 
   void Write(vtkIdType offset, const std::vector<brume::Hit>& hits)
@@ -460,6 +482,9 @@ int vtkBrumeLightTracer::RequestData(
   output->Initialize(); // lets go of the last execution's arrays
   out.Adopt(reused->Handed);
   reused->Handed.clear();
+  // A run much smaller than the last keeps no more of its memory than twice
+  // the hits it is expected to store (ExpectedHitBytes' four a particle).
+  out.Cap(static_cast<vtkIdType>(8 * traced));
   const vtkTypeInt64 blocks = (traced + ParticlesPerBlock - 1) / ParticlesPerBlock;
   std::vector<std::vector<brume::Hit>>& blockHits = reused->BlockHits;
   std::vector<brume::TraceCounters> counters;

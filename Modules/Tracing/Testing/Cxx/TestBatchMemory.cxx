@@ -176,6 +176,13 @@ int TestBatchMemory(int, char*[])
   tracer->SetNumberOfParticles(50000);
   tracer->Update();
   ok = SameHits(tracer->GetOutput(), FreshRun(scene, 50000, 6), "a larger run, reused") && ok;
+  // A much smaller run keeps at most twice its expected hits of that memory.
+  tracer->SetNumberOfParticles(2000);
+  tracer->Update();
+  ok = SameHits(tracer->GetOutput(), FreshRun(scene, 2000, 6), "a smaller run, reused") && ok;
+  tracer->SetNumberOfParticles(50000);
+  tracer->Update();
+  ok = SameHits(tracer->GetOutput(), FreshRun(scene, 50000, 6), "a larger run again") && ok;
   // The output released between runs (ReleaseDataFlag does so downstream):
   // the tracer held nothing, and the next run starts afresh.
   tracer->GetOutput()->ReleaseData();
