@@ -21,8 +21,9 @@
  * writes its hits into the buffers of the last output's arrays where no one
  * else holds them (the next batch of a run, or a new run after a change of
  * seed, count or scene), so that re-tracing does not pay the first touch of
- * fresh memory again; an array a consumer still holds is never written, and
- * the tracer holds none of them between executions.
+ * fresh memory again (a much smaller run keeps at most twice its expected
+ * hits of that memory); an array a consumer still holds is never written,
+ * and the tracer holds none of them between executions.
  *
  * Particles are traced in fixed blocks with vtkSMPTools; each particle's
  * random stream depends only on (Seed, particle index), so the output is
