@@ -20,12 +20,13 @@
 #include "vtkUnsignedCharArray.h"
 #include "vtkUnsignedIntArray.h"
 #include "vtkUnsignedShortArray.h"
-#include "vtkWeakPointer.h"
 
 #include "brume/LightTracer.h"
 
 #include <algorithm>
 #include <cstdlib>
+#include <mutex>
+#include <unordered_map>
 #include <vector>
 
 vtkStandardNewMacro(vtkBrumeLightTracer);
@@ -77,18 +78,76 @@ struct TraceBlocks
 
 // The output arrays of the hits (45 bytes per hit), grown with realloc: glibc
 // moves large blocks with mremap, without copying, so growth needs no second
-// copy of the hits. VTK takes the buffers over (freed with free()).
-// An array of an output's hits, with the buffer and size it was handed.
-// Between executions the tracer holds it weakly (it neither keeps the hits
-// alive nor stops ReleaseDataFlag or a consumer from letting them go); the
-// next execution holds it (Array) while it takes the buffer back.
-struct HandedArray
+// copy of the hits. VTK takes the buffers over, to free them through
+// ReturnOrFree.
+enum Slot
 {
-  vtkWeakPointer<vtkDataArray> Weak;
-  vtkSmartPointer<vtkDataArray> Array;
-  const void* Buffer = nullptr;
-  vtkIdType Size = 0;
+  PointsSlot,
+  DirectionSlot,
+  FluxSlot,
+  ObjectSlot,
+  EmitterSlot,
+  DepthSlot,
+  TriangleSlot,
+  AimSlot,
+  Slots
 };
+}
+
+// Where the buffers a tracer handed to its output come back: VTK frees a
+// buffer (ReturnOrFree) when no array, and no array sharing its vtkBuffer
+// (vtkDataArray::ShallowCopy), references it any more; one freed while its
+// tracer lets go of its last output, just before it executes again, is kept
+// for that execution to write into; any other is freed.
+struct vtkBrumeLightTracerReturnedBuffers
+{
+  bool Expecting = false;
+  void* Buffer[Slots] = {};
+  std::size_t Bytes[Slots] = {};
+};
+
+namespace
+{
+// Every buffer handed to an output array and not yet freed: its tracer (null
+// once that tracer is gone), slot and size. Never destroyed: arrays may be
+// freed during the process's exit.
+struct HandOut
+{
+  vtkBrumeLightTracerReturnedBuffers* Owner;
+  int Slot;
+  std::size_t Bytes;
+};
+std::mutex& HandOutMutex()
+{
+  static auto* mutex = new std::mutex;
+  return *mutex;
+}
+std::unordered_map<void*, HandOut>& HandedOut()
+{
+  static auto* handed = new std::unordered_map<void*, HandOut>;
+  return *handed;
+}
+
+// The free function of the output's hit arrays.
+void ReturnOrFree(void* buffer)
+{
+  {
+    const std::lock_guard<std::mutex> lock(HandOutMutex());
+    const auto it = HandedOut().find(buffer);
+    if (it != HandedOut().end())
+    {
+      const HandOut h = it->second;
+      HandedOut().erase(it);
+      if (h.Owner && h.Owner->Expecting && !h.Owner->Buffer[h.Slot])
+      {
+        h.Owner->Buffer[h.Slot] = buffer;
+        h.Owner->Bytes[h.Slot] = h.Bytes;
+        return;
+      }
+    }
+  }
+  std::free(buffer);
+}
 
 template <typename T>
 struct GrowingBuffer
@@ -124,31 +183,26 @@ struct GrowingBuffer
       this->Reallocate(values); // a shrink: on failure the buffer stays as it was
     }
   }
+  // Hands the buffer to `array`, which frees it through ReturnOrFree.
   template <typename Array>
-  void HandTo(Array* array, vtkIdType values)
+  void HandTo(Array* array, vtkIdType values, vtkBrumeLightTracerReturnedBuffers* owner, int slot)
   {
-    array->SetArray(this->Data, values, 0, vtkAbstractArray::VTK_DATA_ARRAY_FREE);
-    this->Data = nullptr;
-  }
-  // Takes back the buffer of an array this tracer handed out, where no one
-  // else holds the array any more and it still holds the very buffer handed
-  // (from realloc: a buffer set on it since may be anyone's): VTK stops
-  // owning it, and its pages, already mapped, are written again.
-  template <typename Array>
-  void Adopt(const HandedArray& handed)
-  {
-    auto* array = Array::SafeDownCast(handed.Array);
-    if (this->Data || !array || array->GetReferenceCount() != 1 ||
-      array->GetVoidPointer(0) != handed.Buffer || array->GetSize() != handed.Size ||
-      handed.Size < 1)
     {
-      return;
+      const std::lock_guard<std::mutex> lock(HandOutMutex());
+      HandedOut()[this->Data] = { owner, slot, this->Capacity * sizeof(T) };
     }
-    T* p = array->GetPointer(0);
-    const auto capacity = static_cast<std::size_t>(array->GetSize());
-    array->SetArray(p, static_cast<vtkIdType>(capacity), 1); // 1: no longer freed by VTK
-    this->Data = p;
-    this->Capacity = capacity;
+    array->SetArray(this->Data, values, 0, vtkAbstractArray::VTK_DATA_ARRAY_USER_DEFINED);
+    array->SetArrayFreeFunction(ReturnOrFree);
+    this->Data = nullptr;
+    this->Capacity = 0;
+  }
+  // Takes a returned buffer (ReturnedBuffers): its pages, already mapped,
+  // are written again.
+  void Adopt(void* buffer, std::size_t bytes)
+  {
+    std::free(this->Data);
+    this->Data = static_cast<T*>(buffer);
+    this->Capacity = bytes / sizeof(T);
   }
 };
 
@@ -229,41 +283,63 @@ struct OutputHits
     }
   }
 
-  // The arrays of the last batch's output, in the order Attach() makes them.
-  void Adopt(const std::vector<HandedArray>& handed)
+  // Takes the buffers of the last output that came back; the bytes taken.
+  std::size_t Adopt(vtkBrumeLightTracerReturnedBuffers& returned)
   {
-    if (handed.size() != (this->WithAim ? 8u : 7u))
+    const std::lock_guard<std::mutex> lock(HandOutMutex());
+    std::size_t bytes = 0;
+    for (int slot = 0; slot < Slots; ++slot)
     {
-      return;
+      void* buffer = returned.Buffer[slot];
+      if (!buffer)
+      {
+        continue;
+      }
+      const std::size_t size = returned.Bytes[slot];
+      switch (slot)
+      {
+        case PointsSlot:
+          this->Points.Adopt(buffer, size);
+          break;
+        case DirectionSlot:
+          this->Direction.Adopt(buffer, size);
+          break;
+        case FluxSlot:
+          this->Flux.Adopt(buffer, size);
+          break;
+        case ObjectSlot:
+          this->Object.Adopt(buffer, size);
+          break;
+        case EmitterSlot:
+          this->Emitter.Adopt(buffer, size);
+          break;
+        case DepthSlot:
+          this->Depth.Adopt(buffer, size);
+          break;
+        case TriangleSlot:
+          this->Triangle.Adopt(buffer, size);
+          break;
+        default:
+          this->Aim.Adopt(buffer, size);
+          break;
+      }
+      returned.Buffer[slot] = nullptr;
+      bytes += size;
     }
-    if (this->WithAim)
-    {
-      this->Aim.Adopt<vtkUnsignedCharArray>(handed[7]);
-    }
-    this->Points.Adopt<vtkFloatArray>(handed[0]);
-    this->Direction.Adopt<vtkFloatArray>(handed[1]);
-    this->Flux.Adopt<vtkFloatArray>(handed[2]);
-    this->Object.Adopt<vtkUnsignedShortArray>(handed[3]);
-    this->Emitter.Adopt<vtkUnsignedShortArray>(handed[4]);
-    this->Depth.Adopt<vtkUnsignedCharArray>(handed[5]);
-    this->Triangle.Adopt<vtkUnsignedIntArray>(handed[6]);
+    return bytes;
   }
 
-  // Hands the buffers to the output's arrays; `handed` (if not null) keeps
-  // them for the next batch of the run.
-  void Attach(vtkPolyData* output, vtkIdType n, std::vector<HandedArray>* handed)
+  // Hands the buffers to the output's arrays, which free them through
+  // ReturnOrFree (back to `owner` when it expects them).
+  void Attach(vtkPolyData* output, vtkIdType n, vtkBrumeLightTracerReturnedBuffers* owner)
   {
     this->Reallocate(n); // shrink to fit
+    int slot = 0;
     auto make = [&](auto array, auto& buffer, const char* name, int components)
     {
       array->SetName(name);
       array->SetNumberOfComponents(components);
-      buffer.HandTo(array.GetPointer(), components * n);
-      if (handed)
-      {
-        handed->push_back(
-          { array.GetPointer(), nullptr, array->GetVoidPointer(0), array->GetSize() });
-      }
+      buffer.HandTo(array.GetPointer(), components * n, owner, slot++);
       return array;
     };
     auto points = make(vtkSmartPointer<vtkFloatArray>::New(), this->Points, "Points", 3);
@@ -304,27 +380,33 @@ void AddTuple(vtkPolyData* output, const char* name, const T& v)
 
 struct vtkBrumeLightTracer::BatchMemory
 {
-  std::vector<std::vector<brume::Hit>> BlockHits; // between the batches of a run only
-  std::vector<HandedArray> Handed;                // the last output's hit arrays, held weakly
-
-  // Holds the handed arrays that are still alive (before the output lets
-  // them go), so that the ones no one else holds can be taken back.
-  void HoldHanded()
-  {
-    for (HandedArray& h : this->Handed)
-    {
-      h.Array = h.Weak.GetPointer();
-    }
-  }
+  std::vector<std::vector<brume::Hit>> BlockHits;
 };
 
 vtkBrumeLightTracer::vtkBrumeLightTracer()
   : Lights(vtkSmartPointer<vtkLightCollection>::New())
+  , Returned(new vtkBrumeLightTracerReturnedBuffers)
 {
   this->SetNumberOfInputPorts(1);
 }
 
-vtkBrumeLightTracer::~vtkBrumeLightTracer() = default;
+vtkBrumeLightTracer::~vtkBrumeLightTracer()
+{
+  // The output's arrays may outlive the tracer: their buffers are freed.
+  const std::lock_guard<std::mutex> lock(HandOutMutex());
+  for (auto& handed : HandedOut())
+  {
+    if (handed.second.Owner == this->Returned.get())
+    {
+      handed.second.Owner = nullptr;
+    }
+  }
+  for (void*& buffer : this->Returned->Buffer)
+  {
+    std::free(buffer);
+    buffer = nullptr;
+  }
+}
 
 void vtkBrumeLightTracer::AddLight(vtkLight* light)
 {
@@ -372,14 +454,24 @@ vtkTypeBool vtkBrumeLightTracer::ProcessRequest(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   // The executive asks which outputs will not be generated just before it
-  // lets go of the output's data (PrepareForNewData) and executes: the last
-  // output's arrays are held from here, so that RequestData can write into
-  // those no one else holds.
-  if (this->Reused && request->Has(vtkDemandDrivenPipeline::REQUEST_DATA_NOT_GENERATED()))
+  // lets go of the output's data (PrepareForNewData) and executes: the
+  // output lets go of its data here instead, while the buffers that VTK
+  // frees come back to this tracer (those no one references any more).
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkDataObject* output = outInfo ? outInfo->Get(vtkDataObject::DATA_OBJECT()) : nullptr;
+  if (output && request->Has(vtkDemandDrivenPipeline::REQUEST_DATA_NOT_GENERATED()))
   {
-    this->Reused->HoldHanded();
+    this->SetExpecting(true);
+    output->PrepareForNewData();
+    this->SetExpecting(false);
   }
   return this->Superclass::ProcessRequest(request, inputVector, outputVector);
+}
+
+void vtkBrumeLightTracer::SetExpecting(bool expecting)
+{
+  const std::lock_guard<std::mutex> lock(HandOutMutex());
+  this->Returned->Expecting = expecting;
 }
 
 int vtkBrumeLightTracer::RequestData(
@@ -390,8 +482,11 @@ int vtkBrumeLightTracer::RequestData(
   vtkPartitionedDataSetCollection* input = collection;
   auto* output = vtkPolyData::GetData(outputVector, 0);
   this->LastRayCount = 0;
-  // The last output's arrays (ProcessRequest holds them now): taken back
-  // below, or let go at any return.
+  this->LastReusedBytes = 0;
+  // The buffers of the last output that came back (ProcessRequest): written
+  // again below, or freed at any return.
+  OutputHits out;
+  const std::size_t returnedBytes = out.Adopt(*this->Returned);
   std::unique_ptr<BatchMemory> reused = std::move(this->Reused);
 
   const vtkTypeInt64 particles = this->NumberOfParticles;
@@ -477,14 +572,14 @@ int vtkBrumeLightTracer::RequestData(
   {
     reused.reset(new BatchMemory);
   }
-  OutputHits out;
   out.WithAim = aims;
-  output->Initialize(); // lets go of the last execution's arrays
-  out.Adopt(reused->Handed);
-  reused->Handed.clear();
+  output->Initialize();
   // A run much smaller than the last keeps no more of its memory than twice
-  // the hits it is expected to store (ExpectedHitBytes' four a particle).
-  out.Cap(static_cast<vtkIdType>(8 * traced));
+  // the hits it is expected to store: as many a particle as the last run
+  // stored, or ExpectedHitBytes' four, whichever is more.
+  const double hitsPerParticle = std::max(4.0, this->LastHitsPerParticle);
+  out.Cap(static_cast<vtkIdType>(2.0 * hitsPerParticle * static_cast<double>(traced)));
+  this->LastReusedBytes = static_cast<vtkTypeInt64>(returnedBytes);
   const vtkTypeInt64 blocks = (traced + ParticlesPerBlock - 1) / ParticlesPerBlock;
   std::vector<std::vector<brume::Hit>>& blockHits = reused->BlockHits;
   std::vector<brume::TraceCounters> counters;
@@ -543,14 +638,14 @@ int vtkBrumeLightTracer::RequestData(
   }
   this->LastRayCount = static_cast<vtkTypeInt64>(sum.Rays);
   // The block buffers are kept for the next batch only while the run goes
-  // on; the output's arrays are remembered (weakly) for any next execution.
+  // on; the output's buffers come back to any next execution.
   const bool runGoesOn = endParticle < particles && !this->GetAbortExecute();
-  out.Attach(output, stored, &reused->Handed);
-  if (!runGoesOn)
+  out.Attach(output, stored, this->Returned.get());
+  this->LastHitsPerParticle = static_cast<double>(stored) / static_cast<double>(traced);
+  if (runGoesOn)
   {
-    std::vector<std::vector<brume::Hit>>().swap(reused->BlockHits);
+    this->Reused = std::move(reused);
   }
-  this->Reused = std::move(reused);
   AddTuple(output, vtkBrumeHitConversion::TotalPowerName, tracer.GetTotalPower());
   if (aims)
   {

@@ -18,12 +18,16 @@
  *
  * Memory: hits are appended batch by batch to the output arrays (45 bytes
  * per hit), so the peak stays near 49 bytes per stored hit. An execution
- * writes its hits into the buffers of the last output's arrays where no one
- * else holds them (the next batch of a run, or a new run after a change of
- * seed, count or scene), so that re-tracing does not pay the first touch of
- * fresh memory again (a much smaller run keeps at most twice its expected
- * hits of that memory); an array a consumer still holds is never written,
- * and the tracer holds none of them between executions.
+ * writes its hits into the buffers of the last output's arrays (the next
+ * batch of a run, or a new run after a change of seed, count or scene), so
+ * that re-tracing does not pay the first touch of fresh memory again: the
+ * arrays free their buffers through the tracer, and a buffer VTK frees
+ * while the output lets go of its data, just before the execution, comes
+ * back to it (a much smaller run keeps at most twice its expected hits of
+ * that memory). A buffer still referenced, by an array a consumer holds or
+ * one sharing its vtkBuffer (vtkDataArray::ShallowCopy), is never freed,
+ * so never written; the tracer holds none of them between executions, and
+ * one freed then (ReleaseDataFlag) is freed indeed.
  *
  * Particles are traced in fixed blocks with vtkSMPTools; each particle's
  * random stream depends only on (Seed, particle index), so the output is
@@ -45,6 +49,7 @@
 
 class vtkLight;
 class vtkLightCollection;
+struct vtkBrumeLightTracerReturnedBuffers;
 
 class VTKBRUMETRACING_EXPORT vtkBrumeLightTracer : public vtkPolyDataAlgorithm
 {
@@ -170,6 +175,19 @@ public:
   /// Rays cast by the last execution (for benchmarks).
   vtkGetMacro(LastRayCount, vtkTypeInt64);
 
+  /**
+   * Bytes of the last output's hit arrays that the last execution wrote its
+   * hits into again (for benchmarks and tests): those whose buffers VTK
+   * freed, no array referencing them any more, when the output let go of
+   * them just before the execution.
+   */
+  vtkGetMacro(LastReusedBytes, vtkTypeInt64);
+
+  /// Lets the output go of its data just before an execution, taking back
+  /// the hit buffers that no one references any more.
+  vtkTypeBool ProcessRequest(
+    vtkInformation* request, vtkInformationVector** inInfo, vtkInformationVector* outInfo) override;
+
 protected:
   vtkBrumeLightTracer();
   ~vtkBrumeLightTracer() override;
@@ -177,9 +195,6 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  /// Holds the last output's hit arrays just before an execution lets them go.
-  vtkTypeBool ProcessRequest(
-    vtkInformation* request, vtkInformationVector** inInfo, vtkInformationVector* outInfo) override;
 
   vtkTypeInt64 NumberOfParticles = 1000000;
   vtkTypeInt64 FirstParticle = 0;
@@ -191,15 +206,19 @@ protected:
   bool SplitHeavyParticles = true;
   vtkTypeInt64 MemoryLimit = vtkTypeInt64(8) << 30;
   vtkTypeInt64 LastRayCount = 0;
+  vtkTypeInt64 LastReusedBytes = 0;
+  double LastHitsPerParticle = 0.0;
   vtkSmartPointer<vtkLightCollection> Lights;
 
 private:
-  // Between the batches of one run: the block buffers; between any two
-  // executions: the output's hit arrays, held weakly, whose buffers the next
-  // execution writes again where no one else holds them (their pages
-  // already mapped).
+  // Between the batches of one run: the block buffers, reused by the next
+  // batch (their pages already mapped).
   struct BatchMemory;
   std::unique_ptr<BatchMemory> Reused;
+  // The output's hit buffers that came back when it let go of them, for the
+  // execution that follows to write into (their pages already mapped).
+  std::unique_ptr<vtkBrumeLightTracerReturnedBuffers> Returned;
+  void SetExpecting(bool expecting);
 
   vtkBrumeLightTracer(const vtkBrumeLightTracer&) = delete;
   void operator=(const vtkBrumeLightTracer&) = delete;

@@ -151,7 +151,9 @@ int TestBatchMemory(int, char*[])
   ok = SameHits(tracer->GetOutput(), FreshBatch(scene, 0, 20000), "a new run's batch 1") && ok;
 
   // Whole runs: a new run (another seed) writes where the last run's hits
-  // were, unless a consumer holds them, here through the points object.
+  // were, but never into a buffer still referenced: here the positions,
+  // through the points object, and the flux, through an array that shares
+  // its buffer (vtkDataArray::ShallowCopy shares the vtkBuffer, not the array).
   tracer->SetFirstParticle(0);
   tracer->SetEndParticle(0);
   tracer->SetNumberOfParticles(20000);
@@ -159,6 +161,11 @@ int TestBatchMemory(int, char*[])
   vtkSmartPointer<vtkPoints> heldPoints = tracer->GetOutput()->GetPoints();
   auto heldPositions = vtkSmartPointer<vtkDataArray>::Take(heldPoints->GetData()->NewInstance());
   heldPositions->DeepCopy(heldPoints->GetData());
+  vtkDataArray* flux = tracer->GetOutput()->GetPointData()->GetArray("Flux");
+  auto sharedFlux = vtkSmartPointer<vtkDataArray>::Take(flux->NewInstance());
+  sharedFlux->ShallowCopy(flux);
+  auto fluxValues = vtkSmartPointer<vtkDataArray>::Take(flux->NewInstance());
+  fluxValues->DeepCopy(flux);
   tracer->SetSeed(5);
   tracer->Update();
   ok = SameHits(tracer->GetOutput(), FreshRun(scene, 20000, 5), "a run after a run") && ok;
@@ -167,27 +174,71 @@ int TestBatchMemory(int, char*[])
     std::cerr << "a new run wrote into the positions a consumer still holds\n";
     ok = false;
   }
+  if (!SameBytes(sharedFlux, fluxValues))
+  {
+    std::cerr << "a new run wrote into the flux an array shares\n";
+    ok = false;
+  }
+  // Five of the seven arrays came back (the aim array is absent here).
+  const vtkTypeInt64 partlyReused = tracer->GetLastReusedBytes();
   heldPoints = nullptr;
+  sharedFlux = nullptr;
   // Twice more, no one holding the hits: the second writes where the first's
-  // were, a run with more particles grows them.
+  // were (every array), a run with more particles grows them.
   tracer->SetSeed(6);
   tracer->Update();
   ok = SameHits(tracer->GetOutput(), FreshRun(scene, 20000, 6), "a run after a run, reused") && ok;
+  const vtkTypeInt64 hits = tracer->GetOutput()->GetNumberOfPoints();
+  const vtkTypeInt64 unheld = tracer->GetLastReusedBytes();
+  // The last run's arrays, all but the positions and the flux (24 bytes a
+  // hit of 45), came back to it; this run's (as many hits) all of them.
+  std::cout << "reused " << partlyReused << " bytes with the positions and flux held, " << unheld
+            << " with nothing held\n";
+  if (partlyReused <= 0 || unheld <= partlyReused || unheld < 45 * hits * 9 / 10)
+  {
+    std::cerr << "the runs did not write where the last run's hits were (" << partlyReused
+              << " and " << unheld << " bytes reused)\n";
+    ok = false;
+  }
   tracer->SetNumberOfParticles(50000);
   tracer->Update();
   ok = SameHits(tracer->GetOutput(), FreshRun(scene, 50000, 6), "a larger run, reused") && ok;
   // A much smaller run keeps at most twice its expected hits of that memory.
+  const vtkTypeInt64 larger = tracer->GetOutput()->GetNumberOfPoints();
   tracer->SetNumberOfParticles(2000);
   tracer->Update();
   ok = SameHits(tracer->GetOutput(), FreshRun(scene, 2000, 6), "a smaller run, reused") && ok;
+  if (tracer->GetLastReusedBytes() != 45 * larger)
+  {
+    std::cerr << "the smaller run took back " << tracer->GetLastReusedBytes() << " bytes, not "
+              << 45 * larger << "\n";
+    ok = false;
+  }
   tracer->SetNumberOfParticles(50000);
   tracer->Update();
   ok = SameHits(tracer->GetOutput(), FreshRun(scene, 50000, 6), "a larger run again") && ok;
   // The output released between runs (ReleaseDataFlag does so downstream):
-  // the tracer held nothing, and the next run starts afresh.
+  // its buffers were freed then, not kept, and the next run starts afresh.
   tracer->GetOutput()->ReleaseData();
   tracer->SetSeed(7);
   tracer->Update();
   ok = SameHits(tracer->GetOutput(), FreshRun(scene, 50000, 7), "a run after released data") && ok;
+  if (tracer->GetLastReusedBytes() != 0)
+  {
+    std::cerr << "a run after released data reused " << tracer->GetLastReusedBytes()
+              << " bytes: the tracer kept buffers the output had let go\n";
+    ok = false;
+  }
+  // An output that outlives its tracer frees its buffers itself.
+  vtkSmartPointer<vtkPolyData> orphan;
+  {
+    vtkNew<vtkBrumeLightTracer> shortLived;
+    shortLived->SetInputConnection(scene->GetOutputPort());
+    shortLived->SetNumberOfParticles(2000);
+    shortLived->Update();
+    orphan = shortLived->GetOutput();
+  }
+  ok = SameHits(orphan, FreshRun(scene, 2000, 0), "an output that outlived its tracer") && ok;
+  orphan = nullptr;
   return ok ? 0 : 1;
 }
