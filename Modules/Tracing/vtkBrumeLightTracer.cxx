@@ -216,37 +216,48 @@ struct OutputHits
   GrowingBuffer<unsigned char> Aim;
   bool WithAim = false;
 
+  // f(slot, buffer, components) for each buffer this output has (the aim's
+  // where lights are aimed), or for every one.
+  template <typename F>
+  void ForEach(F&& f, bool every = false)
+  {
+    f(PointsSlot, this->Points, 3);
+    f(DirectionSlot, this->Direction, 3);
+    f(FluxSlot, this->Flux, 3);
+    f(ObjectSlot, this->Object, 1);
+    f(EmitterSlot, this->Emitter, 1);
+    f(DepthSlot, this->Depth, 1);
+    f(TriangleSlot, this->Triangle, 1);
+    if (this->WithAim || every)
+    {
+      f(AimSlot, this->Aim, 1);
+    }
+  }
+
   bool Resize(vtkIdType n)
   {
-    const auto m = static_cast<std::size_t>(n);
-    return this->Points.Resize(3 * m) && this->Direction.Resize(3 * m) &&
-      this->Flux.Resize(3 * m) && this->Object.Resize(m) && this->Emitter.Resize(m) &&
-      this->Depth.Resize(m) && this->Triangle.Resize(m) && (!this->WithAim || this->Aim.Resize(m));
+    bool ok = true;
+    this->ForEach([&](int, auto& buffer, int components)
+      { ok = ok && buffer.Resize(components * static_cast<std::size_t>(n)); });
+    return ok;
   }
 
   // Room for n hits at once (pages are mapped only when written), or
   // exactly n (shrink to fit).
   bool Reallocate(vtkIdType n)
   {
-    const auto m = static_cast<std::size_t>(n);
-    return this->Points.Reallocate(3 * m) && this->Direction.Reallocate(3 * m) &&
-      this->Flux.Reallocate(3 * m) && this->Object.Reallocate(m) && this->Emitter.Reallocate(m) &&
-      this->Depth.Reallocate(m) && this->Triangle.Reallocate(m) &&
-      (!this->WithAim || this->Aim.Reallocate(m));
+    bool ok = true;
+    this->ForEach([&](int, auto& buffer, int components)
+      { ok = ok && buffer.Reallocate(components * static_cast<std::size_t>(n)); });
+    return ok;
   }
 
   // Keeps at most room for n hits of the buffers taken back.
   void Cap(vtkIdType n)
   {
-    const auto m = static_cast<std::size_t>(n);
-    this->Points.Cap(3 * m);
-    this->Direction.Cap(3 * m);
-    this->Flux.Cap(3 * m);
-    this->Object.Cap(m);
-    this->Emitter.Cap(m);
-    this->Depth.Cap(m);
-    this->Triangle.Cap(m);
-    this->Aim.Cap(m);
+    this->ForEach([&](int, auto& buffer, int components)
+      { buffer.Cap(components * static_cast<std::size_t>(n)); },
+      true);
   }
 
   void Write(vtkIdType offset, const std::vector<brume::Hit>& hits)
@@ -288,44 +299,17 @@ struct OutputHits
   {
     const std::lock_guard<std::mutex> lock(HandOutMutex());
     std::size_t bytes = 0;
-    for (int slot = 0; slot < Slots; ++slot)
-    {
-      void* buffer = returned.Buffer[slot];
-      if (!buffer)
+    this->ForEach(
+      [&](int slot, auto& buffer, int)
       {
-        continue;
-      }
-      const std::size_t size = returned.Bytes[slot];
-      switch (slot)
-      {
-        case PointsSlot:
-          this->Points.Adopt(buffer, size);
-          break;
-        case DirectionSlot:
-          this->Direction.Adopt(buffer, size);
-          break;
-        case FluxSlot:
-          this->Flux.Adopt(buffer, size);
-          break;
-        case ObjectSlot:
-          this->Object.Adopt(buffer, size);
-          break;
-        case EmitterSlot:
-          this->Emitter.Adopt(buffer, size);
-          break;
-        case DepthSlot:
-          this->Depth.Adopt(buffer, size);
-          break;
-        case TriangleSlot:
-          this->Triangle.Adopt(buffer, size);
-          break;
-        default:
-          this->Aim.Adopt(buffer, size);
-          break;
-      }
-      returned.Buffer[slot] = nullptr;
-      bytes += size;
-    }
+        if (returned.Buffer[slot])
+        {
+          buffer.Adopt(returned.Buffer[slot], returned.Bytes[slot]);
+          bytes += returned.Bytes[slot];
+          returned.Buffer[slot] = nullptr;
+        }
+      },
+      true);
     return bytes;
   }
 

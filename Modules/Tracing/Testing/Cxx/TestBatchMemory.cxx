@@ -28,13 +28,15 @@ bool SameBytes(vtkDataArray* a, vtkDataArray* b)
       a->GetNumberOfValues() * a->GetDataTypeSize()) == 0;
 }
 
-// The hits of batch [first, end) of the run, from a tracer of its own.
-vtkSmartPointer<vtkPolyData> FreshBatch(
-  vtkBrumeDefaultSceneSource* scene, vtkTypeInt64 first, vtkTypeInt64 end)
+// The hits of particles [first, end) of a run (end 0: all), from a tracer
+// of its own.
+vtkSmartPointer<vtkPolyData> FreshRun(vtkBrumeDefaultSceneSource* scene, vtkTypeInt64 particles,
+  vtkIdType seed, vtkTypeInt64 first = 0, vtkTypeInt64 end = 0)
 {
   vtkNew<vtkBrumeLightTracer> tracer;
   tracer->SetInputConnection(scene->GetOutputPort());
-  tracer->SetNumberOfParticles(Particles);
+  tracer->SetNumberOfParticles(particles);
+  tracer->SetSeed(seed);
   tracer->SetFirstParticle(first);
   tracer->SetEndParticle(end);
   tracer->Update();
@@ -43,18 +45,11 @@ vtkSmartPointer<vtkPolyData> FreshBatch(
   return copy;
 }
 
-// The hits of a whole run, from a tracer of its own.
-vtkSmartPointer<vtkPolyData> FreshRun(
-  vtkBrumeDefaultSceneSource* scene, vtkTypeInt64 particles, vtkIdType seed)
+// The hits of batch [first, end) of the run of Particles.
+vtkSmartPointer<vtkPolyData> FreshBatch(
+  vtkBrumeDefaultSceneSource* scene, vtkTypeInt64 first, vtkTypeInt64 end)
 {
-  vtkNew<vtkBrumeLightTracer> tracer;
-  tracer->SetInputConnection(scene->GetOutputPort());
-  tracer->SetNumberOfParticles(particles);
-  tracer->SetSeed(seed);
-  tracer->Update();
-  auto copy = vtkSmartPointer<vtkPolyData>::New();
-  copy->DeepCopy(tracer->GetOutput());
-  return copy;
+  return FreshRun(scene, Particles, 0, first, end);
 }
 
 bool SameHits(vtkPolyData* a, vtkPolyData* b, const char* what)
