@@ -676,11 +676,12 @@ int RunBench(const BenchOptions& options)
   start = std::chrono::steady_clock::now();
   tracer->Update();
   const double againTime = Seconds(start);
+  const double reusedMB = static_cast<double>(tracer->GetLastReusedBytes()) / 1e6;
   tracer->SetSeed(options.Seed);
   tracer->Update();
   std::printf("tracing again      %8.3f s  (another seed in the same process: its hits written "
-              "where the last run's were)\n",
-    againTime);
+              "where the last run's were, %.0f MB)\n",
+    againTime, reusedMB);
   report.Add(
     "particle_tracing_again", againTime, "s", "", "another seed, the last output's memory reused");
 
