@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumeLightTracer.h"
+#include "vtkBrumeLightTracerOutput.h"
 
 #include "vtkBrumeHitConversion.h"
 #include "vtkBrumeSceneConversion.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
-#include "vtkFloatArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkLight.h"
@@ -13,20 +13,14 @@
 #include "vtkObjectFactory.h"
 #include "vtkPartitionedDataSetCollection.h"
 #include "vtkPointData.h"
-#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
-#include "vtkUnsignedCharArray.h"
-#include "vtkUnsignedIntArray.h"
-#include "vtkUnsignedShortArray.h"
 
 #include "brume/LightTracer.h"
 
 #include <algorithm>
 #include <cstdlib>
-#include <mutex>
-#include <unordered_map>
 #include <vector>
 
 vtkStandardNewMacro(vtkBrumeLightTracer);
@@ -76,281 +70,6 @@ struct TraceBlocks
   }
 };
 
-// The output arrays of the hits (45 bytes per hit), grown with realloc: glibc
-// moves large blocks with mremap, without copying, so growth needs no second
-// copy of the hits. VTK takes the buffers over, to free them through
-// ReturnOrFree.
-enum Slot
-{
-  PointsSlot,
-  DirectionSlot,
-  FluxSlot,
-  ObjectSlot,
-  EmitterSlot,
-  DepthSlot,
-  TriangleSlot,
-  AimSlot,
-  Slots
-};
-}
-
-// Where the buffers a tracer handed to its output come back: VTK frees a
-// buffer (ReturnOrFree) when no array, and no array sharing its vtkBuffer
-// (vtkDataArray::ShallowCopy), references it any more; one freed while its
-// tracer lets go of its last output, just before it executes again, is kept
-// for that execution to write into; any other is freed.
-struct vtkBrumeLightTracerReturnedBuffers
-{
-  bool Expecting = false;
-  void* Buffer[Slots] = {};
-  std::size_t Bytes[Slots] = {};
-};
-
-namespace
-{
-// Every buffer handed to an output array and not yet freed: its tracer (null
-// once that tracer is gone), slot and size. Never destroyed: arrays may be
-// freed during the process's exit.
-struct HandOut
-{
-  vtkBrumeLightTracerReturnedBuffers* Owner;
-  int Slot;
-  std::size_t Bytes;
-};
-std::mutex& HandOutMutex()
-{
-  static auto* mutex = new std::mutex;
-  return *mutex;
-}
-std::unordered_map<void*, HandOut>& HandedOut()
-{
-  static auto* handed = new std::unordered_map<void*, HandOut>;
-  return *handed;
-}
-
-// The free function of the output's hit arrays.
-void ReturnOrFree(void* buffer)
-{
-  {
-    const std::lock_guard<std::mutex> lock(HandOutMutex());
-    const auto it = HandedOut().find(buffer);
-    if (it != HandedOut().end())
-    {
-      const HandOut h = it->second;
-      HandedOut().erase(it);
-      if (h.Owner && h.Owner->Expecting && !h.Owner->Buffer[h.Slot])
-      {
-        h.Owner->Buffer[h.Slot] = buffer;
-        h.Owner->Bytes[h.Slot] = h.Bytes;
-        return;
-      }
-    }
-  }
-  std::free(buffer);
-}
-
-template <typename T>
-struct GrowingBuffer
-{
-  T* Data = nullptr;
-  std::size_t Capacity = 0; // in values
-  ~GrowingBuffer() { std::free(this->Data); }
-  // Exactly `values` (to reserve, or to shrink to fit).
-  bool Reallocate(std::size_t values)
-  {
-    void* p = std::realloc(this->Data, std::max<std::size_t>(1, values) * sizeof(T));
-    if (!p)
-    {
-      return false;
-    }
-    this->Data = static_cast<T*>(p);
-    this->Capacity = values;
-    return true;
-  }
-  // Room for `values`, growing by half at least: a realloc that glibc
-  // cannot remap (its mmap threshold rises once large blocks are freed)
-  // copies the buffer, so it must not happen at every batch.
-  bool Resize(std::size_t values)
-  {
-    return values <= this->Capacity ||
-      this->Reallocate(std::max(values, this->Capacity + this->Capacity / 2));
-  }
-  // At most `values` kept (an adopted buffer larger than a run needs).
-  void Cap(std::size_t values)
-  {
-    if (this->Data && this->Capacity > values)
-    {
-      this->Reallocate(values); // a shrink: on failure the buffer stays as it was
-    }
-  }
-  // Hands the buffer to `array`, which frees it through ReturnOrFree.
-  template <typename Array>
-  void HandTo(Array* array, vtkIdType values, vtkBrumeLightTracerReturnedBuffers* owner, int slot)
-  {
-    {
-      const std::lock_guard<std::mutex> lock(HandOutMutex());
-      HandedOut()[this->Data] = { owner, slot, this->Capacity * sizeof(T) };
-    }
-    array->SetArray(this->Data, values, 0, vtkAbstractArray::VTK_DATA_ARRAY_USER_DEFINED);
-    array->SetArrayFreeFunction(ReturnOrFree);
-    this->Data = nullptr;
-    this->Capacity = 0;
-  }
-  // Takes a returned buffer (ReturnedBuffers): its pages, already mapped,
-  // are written again.
-  void Adopt(void* buffer, std::size_t bytes)
-  {
-    std::free(this->Data);
-    this->Data = static_cast<T*>(buffer);
-    this->Capacity = bytes / sizeof(T);
-  }
-};
-
-struct OutputHits
-{
-  GrowingBuffer<float> Points, Direction, Flux;
-  GrowingBuffer<unsigned short> Object, Emitter;
-  GrowingBuffer<unsigned char> Depth;
-  GrowingBuffer<unsigned int> Triangle;
-  // Only where a light is aimed (vtkBrumeLightTracer::MediumAimFraction).
-  GrowingBuffer<unsigned char> Aim;
-  bool WithAim = false;
-
-  // f(slot, buffer, components) for each buffer this output has (the aim's
-  // where lights are aimed), or for every one.
-  template <typename F>
-  void ForEach(F&& f, bool every = false)
-  {
-    f(PointsSlot, this->Points, 3);
-    f(DirectionSlot, this->Direction, 3);
-    f(FluxSlot, this->Flux, 3);
-    f(ObjectSlot, this->Object, 1);
-    f(EmitterSlot, this->Emitter, 1);
-    f(DepthSlot, this->Depth, 1);
-    f(TriangleSlot, this->Triangle, 1);
-    if (this->WithAim || every)
-    {
-      f(AimSlot, this->Aim, 1);
-    }
-  }
-
-  bool Resize(vtkIdType n)
-  {
-    bool ok = true;
-    this->ForEach([&](int, auto& buffer, int components)
-      { ok = ok && buffer.Resize(components * static_cast<std::size_t>(n)); });
-    return ok;
-  }
-
-  // Room for n hits at once (pages are mapped only when written), or
-  // exactly n (shrink to fit).
-  bool Reallocate(vtkIdType n)
-  {
-    bool ok = true;
-    this->ForEach([&](int, auto& buffer, int components)
-      { ok = ok && buffer.Reallocate(components * static_cast<std::size_t>(n)); });
-    return ok;
-  }
-
-  // Keeps at most room for n hits of the buffers taken back.
-  void Cap(vtkIdType n)
-  {
-    this->ForEach([&](int, auto& buffer, int components)
-      { buffer.Cap(components * static_cast<std::size_t>(n)); },
-      true);
-  }
-
-  void Write(vtkIdType offset, const std::vector<brume::Hit>& hits)
-  {
-    float* p = this->Points.Data + 3 * offset;
-    float* d = this->Direction.Data + 3 * offset;
-    float* f = this->Flux.Data + 3 * offset;
-    unsigned short* o = this->Object.Data + offset;
-    unsigned short* e = this->Emitter.Data + offset;
-    unsigned char* depth = this->Depth.Data + offset;
-    unsigned int* triangle = this->Triangle.Data + offset;
-    for (std::size_t i = 0; i < hits.size(); ++i)
-    {
-      const brume::Hit& h = hits[i];
-      // Element by element: std::copy of three floats is a memmove call.
-      for (int a = 0; a < 3; ++a)
-      {
-        p[3 * i + a] = h.Position[a];
-        d[3 * i + a] = h.Direction[a];
-        f[3 * i + a] = h.Flux[a];
-      }
-      o[i] = h.Object;
-      e[i] = h.Emitter;
-      depth[i] = h.Depth;
-      triangle[i] = h.Triangle;
-    }
-    if (this->WithAim)
-    {
-      unsigned char* aim = this->Aim.Data + offset;
-      for (std::size_t i = 0; i < hits.size(); ++i)
-      {
-        aim[i] = hits[i].Aim;
-      }
-    }
-  }
-
-  // Takes the buffers of the last output that came back; the bytes taken.
-  std::size_t Adopt(vtkBrumeLightTracerReturnedBuffers& returned)
-  {
-    const std::lock_guard<std::mutex> lock(HandOutMutex());
-    std::size_t bytes = 0;
-    this->ForEach(
-      [&](int slot, auto& buffer, int)
-      {
-        if (returned.Buffer[slot])
-        {
-          buffer.Adopt(returned.Buffer[slot], returned.Bytes[slot]);
-          bytes += returned.Bytes[slot];
-          returned.Buffer[slot] = nullptr;
-        }
-      },
-      true);
-    return bytes;
-  }
-
-  // Hands the buffers to the output's arrays, which free them through
-  // ReturnOrFree (back to `owner` when it expects them).
-  void Attach(vtkPolyData* output, vtkIdType n, vtkBrumeLightTracerReturnedBuffers* owner)
-  {
-    this->Reallocate(n); // shrink to fit
-    int slot = 0;
-    auto make = [&](auto array, auto& buffer, const char* name, int components)
-    {
-      array->SetName(name);
-      array->SetNumberOfComponents(components);
-      buffer.HandTo(array.GetPointer(), components * n, owner, slot++);
-      return array;
-    };
-    auto points = make(vtkSmartPointer<vtkFloatArray>::New(), this->Points, "Points", 3);
-    vtkNew<vtkPoints> pts;
-    pts->SetData(points);
-    output->SetPoints(pts);
-    vtkPointData* pd = output->GetPointData();
-    pd->AddArray(make(vtkSmartPointer<vtkFloatArray>::New(), this->Direction,
-      vtkBrumeHitConversion::DirectionName, 3));
-    pd->AddArray(
-      make(vtkSmartPointer<vtkFloatArray>::New(), this->Flux, vtkBrumeHitConversion::FluxName, 3));
-    pd->AddArray(make(vtkSmartPointer<vtkUnsignedShortArray>::New(), this->Object,
-      vtkBrumeHitConversion::ObjectIdName, 1));
-    pd->AddArray(make(vtkSmartPointer<vtkUnsignedShortArray>::New(), this->Emitter,
-      vtkBrumeHitConversion::EmitterIdName, 1));
-    pd->AddArray(make(vtkSmartPointer<vtkUnsignedCharArray>::New(), this->Depth,
-      vtkBrumeHitConversion::DepthName, 1));
-    pd->AddArray(make(vtkSmartPointer<vtkUnsignedIntArray>::New(), this->Triangle,
-      vtkBrumeHitConversion::TriangleIdName, 1));
-    if (this->WithAim)
-    {
-      pd->AddArray(make(vtkSmartPointer<vtkUnsignedCharArray>::New(), this->Aim,
-        vtkBrumeHitConversion::AimName, 1));
-    }
-  }
-};
-
 template <typename T>
 void AddTuple(vtkPolyData* output, const char* name, const T& v)
 {
@@ -374,23 +93,8 @@ vtkBrumeLightTracer::vtkBrumeLightTracer()
   this->SetNumberOfInputPorts(1);
 }
 
-vtkBrumeLightTracer::~vtkBrumeLightTracer()
-{
-  // The output's arrays may outlive the tracer: their buffers are freed.
-  const std::lock_guard<std::mutex> lock(HandOutMutex());
-  for (auto& handed : HandedOut())
-  {
-    if (handed.second.Owner == this->Returned.get())
-    {
-      handed.second.Owner = nullptr;
-    }
-  }
-  for (void*& buffer : this->Returned->Buffer)
-  {
-    std::free(buffer);
-    buffer = nullptr;
-  }
-}
+// The output's arrays may outlive the tracer: they free their buffers then.
+vtkBrumeLightTracer::~vtkBrumeLightTracer() = default;
 
 void vtkBrumeLightTracer::AddLight(vtkLight* light)
 {
@@ -445,17 +149,11 @@ vtkTypeBool vtkBrumeLightTracer::ProcessRequest(
   vtkDataObject* output = outInfo ? outInfo->Get(vtkDataObject::DATA_OBJECT()) : nullptr;
   if (output && request->Has(vtkDemandDrivenPipeline::REQUEST_DATA_NOT_GENERATED()))
   {
-    this->SetExpecting(true);
+    this->Returned->SetExpecting(true);
     output->PrepareForNewData();
-    this->SetExpecting(false);
+    this->Returned->SetExpecting(false);
   }
   return this->Superclass::ProcessRequest(request, inputVector, outputVector);
-}
-
-void vtkBrumeLightTracer::SetExpecting(bool expecting)
-{
-  const std::lock_guard<std::mutex> lock(HandOutMutex());
-  this->Returned->Expecting = expecting;
 }
 
 int vtkBrumeLightTracer::RequestData(
@@ -469,7 +167,7 @@ int vtkBrumeLightTracer::RequestData(
   this->LastReusedBytes = 0;
   // The buffers of the last output that came back (ProcessRequest): written
   // again below, or freed at any return.
-  OutputHits out;
+  vtkBrumeLightTracerOutput out;
   const std::size_t returnedBytes = out.Adopt(*this->Returned);
   std::unique_ptr<BatchMemory> reused = std::move(this->Reused);
 

@@ -218,7 +218,6 @@ private:
   // The output's hit buffers that came back when it let go of them, for the
   // execution that follows to write into (their pages already mapped).
   std::unique_ptr<vtkBrumeLightTracerReturnedBuffers> Returned;
-  void SetExpecting(bool expecting);
 
   vtkBrumeLightTracer(const vtkBrumeLightTracer&) = delete;
   void operator=(const vtkBrumeLightTracer&) = delete;
