@@ -23,8 +23,8 @@
  * that re-tracing does not pay the first touch of fresh memory again: the
  * arrays free their buffers through the tracer, and a buffer VTK frees
  * while the output lets go of its data, just before the execution, comes
- * back to it (a much smaller run keeps at most twice its expected hits of
- * that memory). A buffer still referenced, by an array a consumer holds or
+ * back to it (a much smaller run keeps room for at most twice the hits a
+ * particle of the last run stored, four at least). A buffer still referenced, by an array a consumer holds or
  * one sharing its vtkBuffer (vtkDataArray::ShallowCopy), is never freed,
  * so never written; the tracer holds none of them between executions, and
  * one freed then (ReleaseDataFlag) is freed indeed.
