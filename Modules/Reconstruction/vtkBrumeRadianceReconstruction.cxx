@@ -279,8 +279,16 @@ bool vtkBrumeRadianceReconstruction::Plan(const vtkBrumeReconstructionRequest& r
   {
     return true;
   }
+  // The kept hits' buffers of the textures replaced go to the new ones (a
+  // rebuild after new hits writes where the last build's were); the rest of
+  // the textures replaced is freed before the new ones are built.
+  std::vector<brume::ObjectRadiance::KeptHits> spare;
+  if (textures)
+  {
+    spare = textures->ReleaseKeptMemory();
+  }
   this->Textures.reset(new vtkBrumeRadianceTextures(this, this->Controller));
-  if (!this->Textures->Build(request, settings, *this->WorkDone))
+  if (!this->Textures->Build(request, settings, *this->WorkDone, std::move(spare)))
   {
     this->Textures.reset();
     return false;

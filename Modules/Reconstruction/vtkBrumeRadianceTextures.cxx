@@ -75,8 +75,19 @@ bool vtkBrumeRadianceTextures::Continues(const vtkBrumeHitConversion::RunInfo& r
   return run.Particles == this->Particles || this->EndParticle == this->Particles;
 }
 
+std::vector<brume::ObjectRadiance::KeptHits> vtkBrumeRadianceTextures::ReleaseKeptMemory()
+{
+  std::vector<brume::ObjectRadiance::KeptHits> memory;
+  for (auto& object : this->Objects)
+  {
+    memory.push_back(object->ReleaseKeptMemory());
+  }
+  return memory;
+}
+
 bool vtkBrumeRadianceTextures::Build(const vtkBrumeReconstructionRequest& request,
-  const vtkBrumeReconstructionSettings& settings, vtkBrumeReconstructionWork& work)
+  const vtkBrumeReconstructionSettings& settings, vtkBrumeReconstructionWork& work,
+  std::vector<brume::ObjectRadiance::KeptHits> spare)
 {
   this->SceneCollection = request.Scene;
   // The scene's lights and those its tracer was given (the hits name them).
@@ -105,6 +116,12 @@ bool vtkBrumeRadianceTextures::Build(const vtkBrumeReconstructionRequest& reques
     return false;
   }
   this->FixViews(settings, request.Eye);
+  // The objects that keep hits write them where the last build's were.
+  for (std::size_t o = 0; o < spare.size() && o < this->Objects.size(); ++o)
+  {
+    this->Objects[o]->ReuseKeptMemory(std::move(spare[o]), groups.Offset[o + 1] - groups.Offset[o]);
+  }
+  spare.clear();
   if (!this->CheckHits(request.Hits, groups) || !this->BuildObjects(request, groups, work))
   {
     return false;

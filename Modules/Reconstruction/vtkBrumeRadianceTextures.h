@@ -119,9 +119,19 @@ public:
   bool IsComplete() const { return this->EndParticle >= this->Particles; }
   double GetSeed() const { return this->Seed; }
 
-  /// Every texture from the hits. False (errors reported) on failure.
+  /**
+   * Every texture from the hits. False (errors reported) on failure.
+   * `spare`: the kept hits' buffers of the textures this build replaces
+   * (ReleaseKeptMemory()), object by object, for the objects that keep
+   * hits to write into (brume::ObjectRadiance::ReuseKeptMemory).
+   */
   bool Build(const vtkBrumeReconstructionRequest& request,
-    const vtkBrumeReconstructionSettings& settings, vtkBrumeReconstructionWork& work);
+    const vtkBrumeReconstructionSettings& settings, vtkBrumeReconstructionWork& work,
+    std::vector<brume::ObjectRadiance::KeptHits> spare = {});
+
+  /// The kept hits' buffers of every object, emptied, for the textures
+  /// that replace these (Build()'s `spare`).
+  std::vector<brume::ObjectRadiance::KeptHits> ReleaseKeptMemory();
 
   /// The hits of a progressive step, added to every texture's histograms.
   bool Add(const vtkBrumeReconstructionRequest& request, vtkBrumeReconstructionWork& work);

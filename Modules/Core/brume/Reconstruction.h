@@ -617,6 +617,7 @@ private:
   ForwardPeak Peaks[2];
   Vec3 ExtinctionFactors[2] = { Vec3(1.f), Vec3(1.f) };
 
+public:
   // View-dependent objects keep their hits, grouped by ranges of histogram
   // cells and in hit order within a range: 40 bytes each, 4 more for a
   // surface's triangle (its BRDF toward the eye) and 4 more for the growth
@@ -668,6 +669,23 @@ private:
       }
     }
   };
+
+  /**
+   * The buffers of the hits this object keeps, emptied (their capacity
+   * kept), for the same object of a later build: a rebuild after new hits
+   * (another seed or count) then writes its kept hits where the last
+   * build's were, their pages already mapped (a fresh page costs a fault on
+   * first touch). The object keeps none afterwards.
+   */
+  KeptHits ReleaseKeptMemory();
+  /**
+   * Takes buffers ReleaseKeptMemory() gave, where this object keeps hits
+   * and they hold room for no more than twice its `hits`, four thousand at
+   * least; otherwise they are freed. Call before Build().
+   */
+  void ReuseKeptMemory(KeptHits&& memory, std::size_t hits);
+
+private:
   KeptHits Kept;
   std::vector<std::size_t> RangeStart;
   // Batches that do not estimate: their hits in hit order, merged into

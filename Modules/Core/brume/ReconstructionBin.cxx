@@ -166,9 +166,22 @@ void ObjectRadiance::MergeIntoRanges(
   { return static_cast<std::size_t>(cellOf(k)) * Ranges / cells; };
   StableGrouping grouping(count, Ranges);
   const std::vector<std::size_t>& added = grouping.Count(rangeOf, parallelFor);
-  KeptHits merged; // every element written below
-  merged.Resize(
-    this->Kept.Size() + count, this->SurfaceRef != nullptr, growth || !this->Kept.Growth.empty());
+  // With nothing kept yet (a build), the hits are written into the kept
+  // hits' own buffers (ReuseKeptMemory: pages a last build already mapped);
+  // a merge reads the kept hits while it writes, into buffers of its own.
+  const bool hadKept = !this->Kept.Empty();
+  KeptHits separate;
+  KeptHits& merged = hadKept ? separate : this->Kept; // every element written below
+  const std::size_t total = this->Kept.Size() + count;
+  const bool triangles = this->SurfaceRef != nullptr;
+  const bool scales = growth || !this->Kept.Growth.empty();
+  if (!hadKept && this->Kept.Hits.capacity() < total)
+  {
+    // 5 % to spare (pages are mapped only when written), so that the next
+    // build's hits, as many give or take the noise, fit where these were.
+    this->Kept.Reserve(total + total / 20, triangles, scales);
+  }
+  merged.Resize(total, triangles, scales);
   std::vector<std::size_t> mergedStart(Ranges + 1, 0);
   std::vector<std::size_t> firstAdded(Ranges);
   for (std::size_t r = 0; r < Ranges; ++r)
@@ -176,7 +189,7 @@ void ObjectRadiance::MergeIntoRanges(
     firstAdded[r] = mergedStart[r] + (this->RangeStart[r + 1] - this->RangeStart[r]);
     mergedStart[r + 1] = firstAdded[r] + added[r];
   }
-  if (!this->Kept.Empty())
+  if (hadKept)
   {
     parallelFor(0, Ranges,
       [&](std::size_t begin, std::size_t end)
@@ -203,7 +216,10 @@ void ObjectRadiance::MergeIntoRanges(
   grouping.Place(
     firstAdded, rangeOf, [&](std::size_t k, std::size_t position) { write(k, merged, position); },
     parallelFor);
-  this->Kept = std::move(merged);
+  if (hadKept)
+  {
+    this->Kept = std::move(separate);
+  }
   this->RangeStart.swap(mergedStart);
 }
 
@@ -418,6 +434,26 @@ void ObjectRadiance::KeepHits(const HitArrays& hits, const std::uint32_t* index,
   if (!this->DeferMerge)
   {
     this->MergePending(parallelFor);
+  }
+}
+
+ObjectRadiance::KeptHits ObjectRadiance::ReleaseKeptMemory()
+{
+  KeptHits memory = std::move(this->Kept);
+  this->Kept = KeptHits();
+  memory.Clear();
+  this->RangeStart.assign(Ranges + 1, 0);
+  return memory;
+}
+
+void ObjectRadiance::ReuseKeptMemory(KeptHits&& memory, std::size_t hits)
+{
+  KeptHits given = std::move(memory);
+  if (this->KeepsHits() && this->Kept.Empty() &&
+    given.Hits.capacity() <= std::max<std::size_t>(2 * hits, 4096))
+  {
+    given.Clear();
+    this->Kept = std::move(given);
   }
 }
 

@@ -281,6 +281,24 @@ int TestReconstructionViews(int, char*[])
 
   ok = TestFixedView(scene, tracer, camera, rebuilt) && ok;
 
+  // New hits (other seeds): the rebuilt textures' objects that keep hits
+  // write them where the last build's were; the textures are a fresh
+  // filter's, bit for bit.
+  for (const vtkIdType seed : { 5, 6 })
+  {
+    tracer->SetSeed(seed);
+    reconstruction->Update();
+    vtkNew<vtkBrumeRadianceReconstruction> fresh;
+    fresh->SetInputDataObject(0, scene);
+    fresh->SetInputConnection(1, tracer->GetOutputPort());
+    fresh->SetCamera(camera);
+    fresh->Update();
+    ok = SameSnapshots(Take(reconstruction->GetOutput()), Take(fresh->GetOutput()),
+           "a rebuild after new hits against a fresh reconstruction") &&
+      ok;
+  }
+  tracer->SetSeed(0);
+
   // An object no particle reaches: a warning, and a texture of its emission.
   vtkNew<vtkBrumeLightTracer> few;
   few->SetInputData(scene);
