@@ -589,8 +589,9 @@ bool BenchWholeCommands(const BenchOptions& options, Report& report)
   }
   const std::filesystem::path directory = name;
   // The same budget, and the window this bench renders in.
-  const std::vector<std::string> budget{ "--particles", std::to_string(options.Particles), "--seed",
-    std::to_string(options.Seed), "--window", vtkBrumeRenderWindowSelection::GetInstalled() };
+  const std::vector<std::string> budget{ "--particles", std::to_string(*options.Particles),
+    "--seed", std::to_string(options.Seed), "--window",
+    vtkBrumeRenderWindowSelection::GetInstalled() };
   std::vector<std::string> render{ "render", "-o", (directory / "bench.png").string() };
   std::vector<std::string> view{ "view", "--orbit", "1" };
   render.insert(render.end(), budget.begin(), budget.end());
@@ -619,10 +620,15 @@ bool BenchWholeCommands(const BenchOptions& options, Report& report)
 }
 }
 
-int RunBench(const BenchOptions& options)
+int RunBench(const BenchOptions& given)
 {
-  const auto particles = options.Particles;
-  Report report(particles == 1000000);
+  // The budget: the one given, else the light tracer's default (whose
+  // figures the targets are stated for).
+  const long long defaultParticles = vtkNew<vtkBrumeLightTracer>()->GetNumberOfParticles();
+  BenchOptions options = given;
+  options.Particles = given.Particles.value_or(defaultParticles);
+  const long long particles = *options.Particles;
+  Report report(particles == defaultParticles);
   if (!options.Json.empty())
   {
     // Told before the minutes of measuring, not after.

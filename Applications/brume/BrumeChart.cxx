@@ -5,12 +5,16 @@
 #include "BrumeCommands.h"
 #include "BrumeRender.h"
 
+#include "vtkAlgorithmOutput.h"
 #include "vtkBrumeErrorChart.h"
+#include "vtkBrumePipeline.h"
+#include "vtkBrumeRadianceReconstruction.h"
 #include "vtkBrumeReferenceCache.h"
 #include "vtkBrumeStabilitySweep.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkExecutive.h"
+#include "vtkNew.h"
 #include "vtkStringArray.h"
 #include "vtkTable.h"
 
@@ -153,7 +157,7 @@ int RunSweep(const ChartOptions& options, vtkAlgorithm* scene, const SceneNames&
   sweep->SetMinParticles(options.MinParticles);
   sweep->SetMaxParticles(options.MaxParticles);
   sweep->SetReferenceSamples(options.ReferenceSamples);
-  sweep->SetRadiosityThreshold(options.Threshold);
+  sweep->SetRadiosityThreshold(*options.Threshold);
   sweep->SetSeed(static_cast<vtkIdType>(options.Seed));
   sweep->SetDirectionalOrder(options.ShOrder);
   sweep->SetCacheDirectory(options.CacheDirectory.c_str());
@@ -213,7 +217,7 @@ int RunErrorChart(const ChartOptions& options, vtkAlgorithm* scene, const SceneN
   chart->SetMaxParticles(options.MaxParticles);
   chart->SetMaxSamples(options.MaxSamples);
   chart->SetReferenceSamples(options.ReferenceSamples);
-  chart->SetRadiosityThreshold(options.Threshold);
+  chart->SetRadiosityThreshold(*options.Threshold);
   chart->SetSeed(static_cast<vtkIdType>(options.Seed));
   chart->SetDirectionalOrder(options.ShOrder);
   chart->SetCacheDirectory(options.CacheDirectory.c_str());
@@ -254,14 +258,16 @@ int RunChart(const ChartOptions& given)
   }
   RenderOptions sceneOptions;
   sceneOptions.Scene = options.Scene;
-  const vtkSmartPointer<vtkAlgorithm> scene = LoadScene(sceneOptions);
-  if (!scene)
+  vtkNew<vtkBrumePipeline> pipeline;
+  if (!ConfigurePipeline(pipeline, sceneOptions))
   {
     return 1;
   }
-  if (!options.ThresholdSet)
+  vtkAlgorithm* scene = pipeline->GetInputConnection()->GetProducer();
+  if (!options.Threshold)
   {
-    options.Threshold = sceneOptions.Threshold; // the scene file's, or 128
+    // The scene file's, else the reconstruction's default.
+    options.Threshold = pipeline->GetReconstruction()->GetRadiosityThreshold();
   }
   const SceneNames names = NamesOf(options.Scene);
   return options.Sweep ? RunSweep(options, scene, names) : RunErrorChart(options, scene, names);

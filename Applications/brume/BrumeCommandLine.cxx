@@ -3,8 +3,15 @@
 
 #include "BrumeOptions.h"
 
+#include "vtkBrumeLightTracer.h"
+#include "vtkBrumePipeline.h"
+#include "vtkBrumeRadianceReconstruction.h"
+#include "vtkNew.h"
+
 #include <CLI/CLI.hpp>
 
+#include <array>
+#include <cstdio>
 #include <cstdlib>
 #include <memory>
 #include <string>
@@ -68,77 +75,100 @@ CLI::App* AddCommand(
   return command;
 }
 
-void AddSeed(CLI::App* command, std::uint64_t& seed)
+// The defaults the help states, read from the objects that own them
+// (vtkBrumePipeline and its filters), so that none is written twice.
+struct Defaults
 {
-  command->add_option("--seed", seed, "seed of the particles' random streams (default 0)")
+  long long Particles, Seed, MaxDepth;
+  int Width, Height;
+  double Exposure, Threshold, MediumAim, MemoryGiB;
+};
+
+Defaults ReadDefaults()
+{
+  vtkNew<vtkBrumePipeline> pipeline;
+  vtkBrumeLightTracer* tracer = pipeline->GetTracer();
+  return { static_cast<long long>(tracer->GetNumberOfParticles()),
+    static_cast<long long>(tracer->GetSeed()), tracer->GetMaximumDepth(), pipeline->GetSize()[0],
+    pipeline->GetSize()[1], pipeline->GetExposure(),
+    pipeline->GetReconstruction()->GetRadiosityThreshold(), tracer->GetMediumAimFraction(),
+    static_cast<double>(tracer->GetMemoryLimit()) / 1073741824.0 };
+}
+
+// A default as the help writes it: 1000000, 0.2, 512x512.
+std::string Text(double value)
+{
+  char text[32];
+  std::snprintf(text, sizeof(text), "%g", value);
+  return text;
+}
+
+std::string Text(long long value)
+{
+  return std::to_string(value);
+}
+
+void AddSeed(CLI::App* command, std::uint64_t& seed, const Defaults& d)
+{
+  command
+    ->add_option(
+      "--seed", seed, "seed of the particles' random streams (default " + Text(d.Seed) + ")")
     ->transform(Integer(0, 9223372036854775807LL, "a non-negative integer"))
     ->type_name("S");
 }
 
-// What render and view say of the options they share.
+// What render and view say of the options they share (the default follows).
 struct SceneHelp
 {
-  const char* Particles;
-  const char* Size;
-  const char* Exposure;
-  const char* Threshold;
+  std::string Particles;
+  std::string Size;
+  std::string Exposure;
+  std::string Threshold;
 };
 
-// The scene and how it is traced and shown (render and view). Each option
-// given is recorded (ParticlesSet...): the scene file's render settings
-// give the others.
-void AddSceneOptions(CLI::App* command, RenderOptions& o, const SceneHelp& help)
+// The scene and how it is traced and shown (render and view). An option not
+// given stays unset: the scene file's render settings, else the owning
+// filter's default, give it.
+void AddSceneOptions(CLI::App* command, RenderOptions& o, const SceneHelp& help, const Defaults& d)
 {
   command->add_option("SCENE", o.Scene, "a scene file, or 'default' (the built-in scene)");
   command
     ->add_option_function<long long>(
-      "--particles",
-      [&o](const long long& n)
-      {
-        o.Particles = n;
-        o.ParticlesSet = true;
-      },
-      help.Particles)
+      "--particles", [&o](const long long& n) { o.Particles = n; },
+      help.Particles + " (default " + Text(d.Particles) + ")")
     ->transform(Integer(1, 10000000000LL, "an integer in [1, 1e10]"))
     ->type_name("N");
   command
     ->add_option_function<std::uint64_t>(
-      "--seed",
-      [&o](const std::uint64_t& seed)
-      {
-        o.Seed = seed;
-        o.SeedSet = true;
-      },
-      "seed of the particles' random streams (default 0)")
+      "--seed", [&o](const std::uint64_t& seed) { o.Seed = seed; },
+      "seed of the particles' random streams (default " + Text(d.Seed) + ")")
     ->transform(Integer(0, 9223372036854775807LL, "a non-negative integer"))
     ->type_name("S");
   command
     ->add_option_function<std::string>(
       "--size",
-      [&o](const std::string& size) { o.SizeSet = ParseSize(size, 16384, o.Width, o.Height); },
-      help.Size)
+      [&o](const std::string& text)
+      {
+        std::array<int, 2> size{};
+        if (ParseSize(text, 16384, size[0], size[1]))
+        {
+          o.Size = size;
+        }
+      },
+      help.Size + " (default " + Text(static_cast<long long>(d.Width)) + "x" +
+        Text(static_cast<long long>(d.Height)) + ")")
     ->transform(Size(16384))
     ->type_name("WxH");
   command
     ->add_option_function<double>(
-      "--exposure",
-      [&o](const double& exposure)
-      {
-        o.Exposure = exposure;
-        o.ExposureSet = true;
-      },
-      help.Exposure)
+      "--exposure", [&o](const double& exposure) { o.Exposure = exposure; },
+      help.Exposure + " (default " + Text(d.Exposure) + ")")
     ->transform(Number(0.0, 1e12, "a non-negative number"))
     ->type_name("E");
   command
     ->add_option_function<double>(
-      "--threshold",
-      [&o](const double& threshold)
-      {
-        o.Threshold = threshold;
-        o.ThresholdSet = true;
-      },
-      help.Threshold)
+      "--threshold", [&o](const double& threshold) { o.Threshold = threshold; },
+      help.Threshold + " (default " + Text(d.Threshold) + ")")
     ->transform(Number(1e-6, 1e12, "a positive number"))
     ->type_name("T");
   command->add_flag_callback(
@@ -148,12 +178,15 @@ void AddSceneOptions(CLI::App* command, RenderOptions& o, const SceneHelp& help)
     "computing it with shadow rays (sharper shafts and\n"
     "shadows; the default)");
   command
-    ->add_option("--aim", o.MediumAim,
+    ->add_option_function<double>(
+      "--aim", [&o](const double& aim) { o.MediumAim = aim; },
       "fraction of a directional light's particles aimed at\n"
       "the part of its beam that reaches the media, where it\n"
       "covers at most a quarter of the beam (a cloud over a\n"
-      "wide ground, a window; default 0.2, 0: the beam\n"
-      "uniformly)")
+      "wide ground, a window; default " +
+        Text(d.MediumAim) +
+        ", 0: the beam\n"
+        "uniformly)")
     ->transform(Number(0.0, 0.99, "a number in [0, 0.99]"))
     ->type_name("F");
   command->add_flag_callback(
@@ -171,7 +204,7 @@ void AddSceneOptions(CLI::App* command, RenderOptions& o, const SceneHelp& help)
     "cloud's edge)");
 }
 
-void AddRender(CLI::App& app, RenderOptions& o)
+void AddRender(CLI::App& app, RenderOptions& o, const Defaults& d)
 {
   CLI::App* render = AddCommand(app, "render", "brume render [SCENE] -o OUTPUT [options]",
     "Renders a scene with participating media in three phases (particle tracing,\n"
@@ -187,9 +220,9 @@ void AddRender(CLI::App& app, RenderOptions& o)
     ->type_name("FILE")
     ->required();
   AddSceneOptions(render, o,
-    { "particles traced from the lights (default 1000000)",
-      "image size in pixels (default 512x512)", "PNG exposure multiplier (default 1)",
-      "radiosity threshold of the density estimation, in\nparticles (default 128)" });
+    { "particles traced from the lights", "image size in pixels", "PNG exposure multiplier",
+      "radiosity threshold of the density estimation, in\nparticles" },
+    d);
   render
     ->add_option("--supersample", o.Supersample,
       "average K x K samples of each pixel's area (K^2 frames,\n"
@@ -199,7 +232,8 @@ void AddRender(CLI::App& app, RenderOptions& o)
     ->type_name("K");
   render->add_flag("--timings", o.Timings, "print the time of each phase (as the paper's Table 1)");
   render
-    ->add_option("--batch", o.Batch,
+    ->add_option_function<long long>(
+      "--batch", [&o](const long long& n) { o.Batch = n; },
       "trace and bin the particles N at a time: only one\n"
       "batch's hits are held (default: all at once, or\n"
       "batches of at most 10^7 that fit --memory-limit where\n"
@@ -207,9 +241,11 @@ void AddRender(CLI::App& app, RenderOptions& o)
     ->transform(Integer(1, 10000000000LL, "an integer in [1, 1e10]"))
     ->type_name("N");
   render
-    ->add_option("--memory-limit", o.MemoryLimit,
-      "GiB the hits of one trace may take (default 8): a run\n"
-      "whose hits would not fit is traced in batches that do")
+    ->add_option_function<double>(
+      "--memory-limit", [&o](const double& gib) { o.MemoryLimit = gib; },
+      "GiB the hits of one trace may take (default " + Text(d.MemoryGiB) +
+        "): a run\n"
+        "whose hits would not fit is traced in batches that do")
     ->transform(Number(0.001, 1e6, "a number in [0.001, 1e6]"))
     ->type_name("GIB");
   render->add_flag("--reference", o.Reference,
@@ -219,15 +255,17 @@ void AddRender(CLI::App& app, RenderOptions& o)
     ->transform(Integer(1, 1000000, "an integer in [1, 1e6]"))
     ->type_name("N");
   render
-    ->add_option("--max-depth", o.MaxDepth,
+    ->add_option_function<int>(
+      "--max-depth", [&o](const int& depth) { o.MaxDepth = depth; },
       "interactions after which particles (and --reference's\n"
       "paths) stop: 1 renders the light scattered or reflected\n"
-      "once, 2 adds the light scattered twice... (default 1024)")
+      "once, 2 adds the light scattered twice... (default " +
+        Text(d.MaxDepth) + ")")
     ->transform(Integer(1, 1000000, "an integer in [1, 1e6]"))
     ->type_name("N");
 }
 
-void AddView(CLI::App& app, ViewOptions& o)
+void AddView(CLI::App& app, ViewOptions& o, const Defaults& d)
 {
   CLI::App* view = AddCommand(app, "view", "brume view [SCENE] [options]",
     "Opens an interactive window (trackball camera) on a scene (default: the\n"
@@ -236,8 +274,9 @@ void AddView(CLI::App& app, ViewOptions& o)
     "incrementally, then the frame is rendered. With --orbit the camera circles\n"
     "the scene instead, off screen, and the frame times are printed.");
   AddSceneOptions(view, o.Render,
-    { "particles traced at the start (default 1000000)", "window size (default 512x512)",
-      "display exposure (default 1)", "radiosity threshold, in particles (default 128)" });
+    { "particles traced at the start", "window size", "display exposure",
+      "radiosity threshold, in particles" },
+    d);
   view
     ->add_option_function<std::string>(
       "--mode", [&o](const std::string& mode) { o.Directional = mode == "sh"; },
@@ -314,7 +353,7 @@ void AddView(CLI::App& app, ViewOptions& o)
 const char* const SlabUsage =
   "brume validate slab --albedo A --optical-thickness B --g G [--particles N] [--seed S]";
 
-void AddValidate(CLI::App& app, SlabOptions& o)
+void AddValidate(CLI::App& app, SlabOptions& o, const Defaults& d)
 {
   CLI::App* validate = AddCommand(app, "validate", SlabUsage,
     "Checks the particle tracer against published values; the experiment: slab.");
@@ -350,10 +389,10 @@ void AddValidate(CLI::App& app, SlabOptions& o)
     ->transform(Integer(
       2, 10000000000LL, "an integer in [2, 1e10] (a standard error needs at least 2 particles)"))
     ->type_name("N");
-  AddSeed(slab, o.Seed);
+  AddSeed(slab, o.Seed, d);
 }
 
-void AddBench(CLI::App& app, BenchOptions& o)
+void AddBench(CLI::App& app, BenchOptions& o, const Defaults& d)
 {
   CLI::App* bench = AddCommand(app, "bench", "brume bench [--particles N] [--seed S] [--json FILE]",
     "Traces the built-in scene and casts the same rays through Embree alone;\n"
@@ -361,16 +400,19 @@ void AddBench(CLI::App& app, BenchOptions& o)
     "memory per stored hit; then the reconstruction's full and per-view times\n"
     "and, with a display, frame times against vtkGPUVolumeRayCastMapper; last,\n"
     "every figure beside its target.");
-  bench->add_option("--particles", o.Particles, "particles traced (default 1000000)")
+  bench
+    ->add_option_function<long long>(
+      "--particles", [&o](const long long& n) { o.Particles = n; },
+      "particles traced (default " + Text(d.Particles) + ")")
     ->transform(Integer(1, 10000000000LL, "an integer in [1, 1e10]"))
     ->type_name("N");
-  AddSeed(bench, o.Seed);
+  AddSeed(bench, o.Seed, d);
   bench->add_option("--json", o.Json, "also write the figures, targets and verdicts as JSON")
     ->transform(NotEmpty("a file name"))
     ->type_name("FILE");
 }
 
-void AddChart(CLI::App& app, ChartOptions& o)
+void AddChart(CLI::App& app, ChartOptions& o, const Defaults& d)
 {
   CLI::App* chart =
     AddCommand(app, "chart", "brume chart [SCENE] [-o chart.png] [--csv chart.csv] [options]",
@@ -418,14 +460,10 @@ void AddChart(CLI::App& app, ChartOptions& o)
     ->type_name("N");
   chart
     ->add_option_function<double>(
-      "--threshold",
-      [&o](const double& threshold)
-      {
-        o.Threshold = threshold;
-        o.ThresholdSet = true;
-      },
+      "--threshold", [&o](const double& threshold) { o.Threshold = threshold; },
       "the pipeline's radiosity threshold, in particles\n"
-      "(default: the scene file's, else 128)")
+      "(default: the scene file's, else " +
+        Text(d.Threshold) + ")")
     ->transform(Number(1e-6, 1e12, "a positive number"))
     ->type_name("T");
   chart
@@ -522,11 +560,12 @@ int ParseCommandLine(
 
   line = BrumeCommandLine();
   line.Chart.CacheDirectory = DefaultCacheDirectory();
-  AddRender(app, line.Render);
-  AddView(app, line.View);
-  AddValidate(app, line.Slab);
-  AddBench(app, line.Bench);
-  AddChart(app, line.Chart);
+  const Defaults defaults = ReadDefaults();
+  AddRender(app, line.Render, defaults);
+  AddView(app, line.View, defaults);
+  AddValidate(app, line.Slab, defaults);
+  AddBench(app, line.Bench, defaults);
+  AddChart(app, line.Chart, defaults);
   for (const char* name : { "render", "view", "bench", "chart" })
   {
     app.get_subcommand(name)

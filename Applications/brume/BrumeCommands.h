@@ -4,6 +4,7 @@
 #define BrumeCommands_h
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 struct SlabOptions
@@ -20,7 +21,7 @@ int RunValidateSlab(const SlabOptions& options);
 
 struct BenchOptions
 {
-  long long Particles = 1000000;
+  std::optional<long long> Particles; // unset: the light tracer's default
   std::uint64_t Seed = 0;
   /// Where to write the figures as JSON (none when empty).
   std::string Json;
@@ -40,8 +41,7 @@ struct ChartOptions
   long long MaxParticles = 10000000;
   int MaxSamples = 1024;
   int ReferenceSamples = 16384;
-  double Threshold = 128.0;
-  bool ThresholdSet = false; // else the scene file's render.threshold, if any
+  std::optional<double> Threshold; // unset: the scene file's render.threshold, else the default
   std::uint64_t Seed = 0;
   bool Sweep = false;
   int ShOrder = 3;       // spherical-harmonics order of the SH rows

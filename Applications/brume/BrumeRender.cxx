@@ -2,23 +2,20 @@
 #include "BrumeRender.h"
 #include "BrumeProgress.h"
 
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeDefaultSceneSource.h"
 #include "vtkBrumeFloatImageCapture.h"
 #include "vtkBrumeLightTracer.h"
+#include "vtkBrumePipeline.h"
 #include "vtkBrumeProcesses.h"
 #include "vtkBrumeRadianceReconstruction.h"
 #include "vtkBrumeReferencePathTracer.h"
 #include "vtkBrumeRenderWindowSelection.h"
-#include "vtkBrumeSceneActors.h"
-#include "vtkBrumeSceneCamera.h"
 #include "vtkBrumeSceneReader.h"
-#include "vtkCamera.h"
-#include "vtkCommunicator.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDataArray.h"
 #include "vtkExecutive.h"
 #include "vtkFieldData.h"
-#include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkMultiProcessController.h"
@@ -26,12 +23,7 @@
 #include "vtkPNGWriter.h"
 #include "vtkPartitionedDataSet.h"
 #include "vtkPartitionedDataSetCollection.h"
-#include "vtkPointData.h"
-#include "vtkPolyData.h"
-#include "vtkRenderWindow.h"
-#include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
-#include "vtkUnsignedCharArray.h"
 #include "vtkXMLImageDataWriter.h"
 
 #include <algorithm>
@@ -44,10 +36,6 @@
 
 namespace
 {
-// Particles per batch of a run too large for one, at most (about 1.3 GB of
-// hits in the default scene; larger batches were no faster).
-constexpr long long LargestAutomaticBatch = 10000000;
-
 double Seconds(std::chrono::steady_clock::time_point start)
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -79,74 +67,96 @@ bool HasDisplay(const char* what, bool window)
   return true;
 }
 
-vtkSmartPointer<vtkAlgorithm> LoadScene(RenderOptions& options)
+namespace
 {
-  vtkSmartPointer<vtkAlgorithm> source;
-  if (options.Scene.empty() || options.Scene == "default")
+vtkSmartPointer<vtkAlgorithm> SceneSource(const std::string& scene)
+{
+  if (scene.empty() || scene == "default")
   {
-    source = vtkSmartPointer<vtkBrumeDefaultSceneSource>::New();
+    return vtkSmartPointer<vtkBrumeDefaultSceneSource>::New();
   }
-  else
-  {
-    auto reader = vtkSmartPointer<vtkBrumeSceneReader>::New();
-    reader->SetFileName(options.Scene.c_str());
-    source = reader;
-  }
-  if (!source->GetExecutive()->Update())
+  auto reader = vtkSmartPointer<vtkBrumeSceneReader>::New();
+  reader->SetFileName(scene.c_str());
+  return reader;
+}
+}
+
+bool ConfigurePipeline(vtkBrumePipeline* pipeline, const RenderOptions& options)
+{
+  const vtkSmartPointer<vtkAlgorithm> source = SceneSource(options.Scene);
+  pipeline->SetInputConnection(source->GetOutputPort());
+  // The scene's render settings, then what the user gave.
+  if (!pipeline->ApplySceneSettings())
   {
     std::cerr << "brume: cannot load the scene '" << options.Scene << "' (see the error above).\n";
-    return nullptr;
-  }
-  vtkFieldData* fd = source->GetOutputDataObject(0)->GetFieldData();
-  auto value = [&](const char* name, int component, double& out)
-  {
-    vtkDataArray* a = fd->GetArray(name);
-    if (a && a->GetNumberOfTuples() > 0 && component < a->GetNumberOfComponents())
-    {
-      out = a->GetComponent(0, component);
-      return true;
-    }
     return false;
-  };
-  double v = 0;
-  if (!options.ParticlesSet && value("BrumeRenderParticles", 0, v))
-  {
-    options.Particles = static_cast<long long>(v);
   }
-  if (!options.SizeSet && value("BrumeRenderSize", 0, v))
+  vtkBrumeLightTracer* tracer = pipeline->GetTracer();
+  vtkBrumeRadianceReconstruction* reconstruction = pipeline->GetReconstruction();
+  if (options.Particles)
   {
-    options.Width = static_cast<int>(v);
-    value("BrumeRenderSize", 1, v);
-    options.Height = static_cast<int>(v);
+    tracer->SetNumberOfParticles(*options.Particles);
   }
-  if (!options.ThresholdSet && value("BrumeRenderThreshold", 0, v))
+  if (options.Seed)
   {
-    options.Threshold = v;
+    tracer->SetSeed(static_cast<vtkIdType>(*options.Seed)); // at most 2^63 - 1
   }
-  if (!options.SeedSet && value("BrumeRenderSeed", 0, v))
+  if (options.MaxDepth)
   {
-    options.Seed = static_cast<std::uint64_t>(v);
+    tracer->SetMaximumDepth(*options.MaxDepth);
   }
-  if (!options.ExposureSet && value("BrumeRenderExposure", 0, v))
+  if (options.MediumAim)
   {
-    options.Exposure = v;
+    tracer->SetMediumAimFraction(*options.MediumAim);
   }
-  return source;
+  if (options.SplitHeavy)
+  {
+    tracer->SetSplitHeavyParticles(*options.SplitHeavy);
+  }
+  if (options.MemoryLimit)
+  {
+    tracer->SetMemoryLimit(static_cast<vtkTypeInt64>(*options.MemoryLimit * 1073741824.0));
+  }
+  if (options.Threshold)
+  {
+    reconstruction->SetRadiosityThreshold(*options.Threshold);
+  }
+  if (options.DirectLight)
+  {
+    reconstruction->SetDirectLighting(*options.DirectLight);
+  }
+  if (options.CentroidMatching)
+  {
+    reconstruction->SetCentroidMatching(*options.CentroidMatching);
+  }
+  if (options.Size)
+  {
+    pipeline->SetSize((*options.Size)[0], (*options.Size)[1]);
+  }
+  if (options.Exposure)
+  {
+    pipeline->SetExposure(*options.Exposure);
+  }
+  if (options.Batch)
+  {
+    pipeline->SetBatchSize(*options.Batch);
+  }
+  return true;
 }
 
 namespace
 {
 // Writes next to the output under a temporary name and renames it on
 // success, so that a failure never leaves a partial image behind.
-int WriteImage(vtkImageData* radiance, const RenderOptions& options, bool png)
+int WriteImage(vtkImageData* radiance, vtkBrumePipeline* pipeline, const std::string& output)
 {
-  const std::string partial = options.Output + ".partial";
+  const std::string partial = output + ".partial";
   bool ok = false;
-  if (png)
+  if (EndsWith(output, ".png"))
   {
     vtkNew<vtkPNGWriter> writer;
     writer->SetFileName(partial.c_str());
-    writer->SetInputData(vtkBrumeFloatImageCapture::ToneMap(radiance, options.Exposure));
+    writer->SetInputData(pipeline->ToneMap(radiance));
     writer->Write();
     ok = writer->GetErrorCode() == 0;
   }
@@ -155,38 +165,39 @@ int WriteImage(vtkImageData* radiance, const RenderOptions& options, bool png)
     vtkNew<vtkXMLImageDataWriter> writer;
     writer->SetFileName(partial.c_str());
     writer->SetInputData(radiance);
-    writer->SetDataModeToBinary(); // readable despite expat reparse deferral (see README)
+    writer->SetDataModeToBinary(); // inline: VTK 9.2 misreads appended data under expat 2.5
     ok = writer->Write() != 0;
   }
   std::error_code error;
   if (ok)
   {
-    std::filesystem::rename(partial, options.Output, error);
+    std::filesystem::rename(partial, output, error);
     ok = !error;
   }
   if (!ok)
   {
     std::filesystem::remove(partial, error);
-    std::cerr << "brume: could not write " << options.Output << "\n";
+    std::cerr << "brume: could not write " << output << "\n";
     return 1;
   }
   return 0;
 }
 
-// The reference image: the unbiased path tracer (no display needed).
-int RunReference(RenderOptions options, bool png)
+// The reference image: the unbiased path tracer (no display needed), with
+// the pipeline's scene, size, seed, depth and camera.
+int RunReference(const RenderOptions& options)
 {
-  const vtkSmartPointer<vtkAlgorithm> scene = LoadScene(options);
-  if (!scene)
+  vtkNew<vtkBrumePipeline> pipeline;
+  if (!ConfigurePipeline(pipeline, options))
   {
     return 1;
   }
   vtkNew<vtkBrumeReferencePathTracer> reference;
-  reference->SetInputConnection(scene->GetOutputPort());
-  reference->SetSize(options.Width, options.Height);
+  reference->SetInputConnection(pipeline->GetInputConnection());
+  reference->SetSize(pipeline->GetSize());
   reference->SetSamplesPerPixel(options.SamplesPerPixel);
-  reference->SetSeed(options.Seed);
-  reference->SetMaximumDepth(options.MaxDepth);
+  reference->SetSeed(pipeline->GetTracer()->GetSeed());
+  reference->SetMaximumDepth(pipeline->GetTracer()->GetMaximumDepth());
   BrumeShowProgress(reference, "path tracing");
   const auto start = std::chrono::steady_clock::now();
   if (!reference->GetExecutive()->Update())
@@ -198,19 +209,13 @@ int RunReference(RenderOptions options, bool png)
   if (options.Timings)
   {
     std::printf("reference path tracing %8.3f s   %d samples per pixel at %dx%d\n", seconds,
-      options.SamplesPerPixel, options.Width, options.Height);
+      options.SamplesPerPixel, pipeline->GetSize()[0], pipeline->GetSize()[1]);
   }
-  return WriteImage(reference->GetOutput(), options, png);
+  return WriteImage(reference->GetOutput(), pipeline, options.Output);
 }
+
 // What `--timings` prints: each phase's time (the paper's Table 1), then
 // the memory of every radiance texture.
-struct PhaseTimes
-{
-  double Tracing, Reconstructing, FirstFrame, Frame, ReductionSeconds;
-  vtkTypeInt64 ReductionBytes;
-  long long Hits, Rays; // this process's, over every batch
-};
-
 void PrintTextureMemory(vtkPartitionedDataSetCollection* textures)
 {
   double total = 0.0;
@@ -239,10 +244,11 @@ void PrintTextureMemory(vtkPartitionedDataSetCollection* textures)
         megabytes);
       // A sparse grid: the bricks it stores of those its box holds.
       vtkFieldData* fd = image->GetFieldData();
-      const bool source = fd->GetArray("SourceBrickSlots") != nullptr;
-      vtkDataArray* slots = fd->GetArray(source ? "SourceBrickSlots" : "ExtinctionBrickSlots");
-      vtkDataArray* samples =
-        fd->GetArray(source ? "SourceRadianceBrickSamples" : "ExtinctionBrickSamples");
+      const bool source = fd->GetArray(vtkBrumeNames::SourceBrickSlots) != nullptr;
+      vtkDataArray* slots = fd->GetArray(
+        source ? vtkBrumeNames::SourceBrickSlots : vtkBrumeNames::ExtinctionBrickSlots);
+      vtkDataArray* samples = fd->GetArray(
+        source ? vtkBrumeNames::SourceRadianceBrickSamples : vtkBrumeNames::ExtinctionBrickSamples);
       if (slots && samples)
       {
         std::printf("   sparse: %lld of %lld bricks",
@@ -255,23 +261,26 @@ void PrintTextureMemory(vtkPartitionedDataSetCollection* textures)
   std::printf("  %-28s %-18s %23s %9.2f\n", "all textures", "", "", total);
 }
 
-void PrintTimings(const RenderOptions& options, vtkPartitionedDataSetCollection* textures,
-  const PhaseTimes& t, int processes)
+void PrintTimings(vtkBrumePipeline* pipeline, int processes)
 {
+  vtkBrumeLightTracer* tracer = pipeline->GetTracer();
+  const long long particles = tracer->GetNumberOfParticles();
+  const long long batch = pipeline->GetPlannedBatchSize();
   std::printf("phase                time (s)\n");
-  std::printf("particle tracing     %8.3f   %lld particles, %lld hits, %lld rays", t.Tracing,
-    options.Particles, t.Hits, t.Rays);
-  if (options.Batch > 0 && options.Batch < options.Particles)
+  std::printf("particle tracing     %8.3f   %lld particles, %lld hits, %lld rays",
+    pipeline->GetTracingSeconds(), particles, static_cast<long long>(pipeline->GetNumberOfHits()),
+    static_cast<long long>(pipeline->GetNumberOfRays()));
+  if (batch < particles)
   {
-    std::printf(" in batches of %lld", options.Batch);
+    std::printf(" in batches of %lld", batch);
   }
   std::printf(processes > 1 ? " (process 0 of %d; time: the slowest)\n" : "\n", processes);
-  std::printf("reconstruction       %8.3f", t.Reconstructing);
+  std::printf("reconstruction       %8.3f", pipeline->GetReconstructionSeconds());
   if (processes > 1)
   {
     std::printf("   histograms summed across processes: %.1f MB sent and received in all, "
                 "%.3f s in the reduction (the slowest process)\n",
-      static_cast<double>(t.ReductionBytes) / 1e6, t.ReductionSeconds);
+      static_cast<double>(pipeline->GetReductionBytes()) / 1e6, pipeline->GetReductionSeconds());
   }
   else
   {
@@ -279,22 +288,22 @@ void PrintTimings(const RenderOptions& options, vtkPartitionedDataSetCollection*
   }
   std::printf("rendering            %8.3f   per frame at %dx%d (first frame %.3f s, with "
               "texture upload and shader compilation)\n",
-    t.Frame, options.Width, options.Height, t.FirstFrame);
-  PrintTextureMemory(textures);
+    pipeline->GetFrameSeconds(), pipeline->GetSize()[0], pipeline->GetSize()[1],
+    pipeline->GetFirstFrameSeconds());
+  PrintTextureMemory(pipeline->GetTextures());
 }
 }
 
-int RunRender(RenderOptions options)
+int RunRender(const RenderOptions& options)
 {
-  const bool png = EndsWith(options.Output, ".png");
-  if (!png && !EndsWith(options.Output, ".vti"))
+  if (!EndsWith(options.Output, ".png") && !EndsWith(options.Output, ".vti"))
   {
     std::cerr << "brume: the output must end in .png or .vti: " << options.Output << "\n";
     return 2;
   }
   if (options.Reference)
   {
-    return RunReference(options, png);
+    return RunReference(options);
   }
   // Under mpirun every process traces its share of the particles, the
   // histograms are summed across processes, process 0 renders and writes.
@@ -304,8 +313,8 @@ int RunRender(RenderOptions options)
   const int processes = vtkBrumeProcesses::GetSize(controller);
 
   // The scene first: a bad file is reported with or without a display.
-  const vtkSmartPointer<vtkAlgorithm> scene = LoadScene(options);
-  if (!vtkBrumeProcesses::AllSucceeded(scene != nullptr, "loading the scene"))
+  vtkNew<vtkBrumePipeline> pipeline;
+  if (!vtkBrumeProcesses::AllSucceeded(ConfigurePipeline(pipeline, options), "loading the scene"))
   {
     return 1;
   }
@@ -313,8 +322,7 @@ int RunRender(RenderOptions options)
   {
     return 1;
   }
-
-  if (options.Batch > 0 && processes > 1)
+  if (options.Batch && processes > 1)
   {
     if (rank == 0)
     {
@@ -323,145 +331,49 @@ int RunRender(RenderOptions options)
     }
     return 2;
   }
-  vtkNew<vtkBrumeLightTracer> tracer;
-  tracer->SetMemoryLimit(static_cast<vtkTypeInt64>(options.MemoryLimit * 1073741824.0));
+  vtkBrumeLightTracer* tracer = pipeline->GetTracer();
   // A run whose hits would not fit the tracer's memory at once is traced in
   // batches that do, as --batch does: the particle count is bounded by time.
-  const double limit = static_cast<double>(tracer->GetMemoryLimit());
-  if (options.Batch == 0 && processes == 1 &&
-    vtkBrumeLightTracer::ExpectedHitBytes(options.Particles) > limit)
+  if (pipeline->IsBatchedForMemory())
   {
-    const auto fit = static_cast<long long>(limit / vtkBrumeLightTracer::ExpectedHitBytes(1));
-    options.Batch = std::max(1LL, std::min(LargestAutomaticBatch, fit));
     std::printf("%lld particles: traced in batches of %lld, their hits exceeding the memory "
                 "limit (%g GiB) at once (--batch sets the size, --memory-limit the limit)\n",
-      options.Particles, options.Batch, options.MemoryLimit);
+      static_cast<long long>(tracer->GetNumberOfParticles()),
+      static_cast<long long>(pipeline->GetPlannedBatchSize()),
+      options.MemoryLimit ? *options.MemoryLimit
+                          : static_cast<double>(tracer->GetMemoryLimit()) / 1073741824.0);
   }
-  tracer->SetInputConnection(scene->GetOutputPort());
-  tracer->SetNumberOfParticles(options.Particles);
-  tracer->SetSeed(options.Seed);
-  tracer->SetMaximumDepth(options.MaxDepth);
-  tracer->SetMediumAimFraction(options.MediumAim);
-  tracer->SetSplitHeavyParticles(options.SplitHeavy);
-  double position[3], focal[3], up[3], angle;
-  vtkBrumeSceneCamera::GetSceneCamera(scene->GetOutputDataObject(0), position, focal, up, angle);
-  vtkNew<vtkBrumeRadianceReconstruction> reconstruction;
-  reconstruction->SetInputConnection(0, scene->GetOutputPort());
-  reconstruction->SetInputConnection(1, tracer->GetOutputPort());
-  reconstruction->SetEyePosition(position);
-  reconstruction->SetRadiosityThreshold(options.Threshold);
-  reconstruction->SetDirectLighting(options.DirectLight);
-  reconstruction->SetCentroidMatching(options.CentroidMatching);
   // One image, one viewpoint: view-dependent objects bin toward it and keep
   // no hits, so that a run in batches holds one batch's hits at a time.
-  reconstruction->SetFixedView(true);
+  pipeline->GetReconstruction()->SetFixedView(true);
   if (rank == 0)
   {
     BrumeShowProgress(tracer, "particle tracing");
-    BrumeShowProgress(reconstruction, "reconstruction");
+    BrumeShowProgress(pipeline->GetReconstruction(), "reconstruction");
   }
-  // Phases 1 and 2, at once or batch by batch (each batch's hits binned,
-  // then released when the next is traced).
-  const long long batch = options.Batch > 0 ? options.Batch : options.Particles;
-  reconstruction->SetAccumulateParticles(batch < options.Particles);
-  double tracing = 0.0, reconstructing = 0.0;
-  long long hits = 0, rays = 0;
-  for (long long first = 0; first < options.Particles; first += batch)
+  // Phases 1 and 2, on every process.
+  if (!pipeline->Update())
   {
-    tracer->SetFirstParticle(first);
-    tracer->SetEndParticle(std::min(first + batch, options.Particles));
-    auto start = std::chrono::steady_clock::now();
-    const bool traced = tracer->UpdatePiece(rank, processes, 0) != 0;
-    if (!traced)
-    {
-      std::cerr << "brume: particle tracing failed.\n";
-    }
-    if (!vtkBrumeProcesses::AllSucceeded(traced, "particle tracing"))
-    {
-      return 1;
-    }
-    // The slowest process's tracing time.
-    tracing += vtkBrumeProcesses::Max(controller, Seconds(start));
-    hits += tracer->GetOutput()->GetNumberOfPoints();
-    rays += tracer->GetLastRayCount();
-    start = std::chrono::steady_clock::now();
-    const bool reconstructed = reconstruction->UpdatePiece(rank, processes, 0) != 0;
-    if (!reconstructed)
-    {
-      std::cerr << "brume: reconstruction failed.\n";
-    }
-    if (!vtkBrumeProcesses::AllSucceeded(reconstructed, "reconstruction"))
-    {
-      return 1;
-    }
-    reconstructing += Seconds(start);
+    std::cerr << "brume: " << pipeline->GetFailedPhase() << " failed.\n";
+    return 1;
   }
-  const vtkTypeInt64 reductionBytes =
-    vtkBrumeProcesses::Sum(controller, reconstruction->GetLastReductionBytes());
-  const double reductionSeconds =
-    vtkBrumeProcesses::Max(controller, reconstruction->GetLastReductionSeconds());
   if (rank != 0)
   {
     return 0; // process 0 renders
   }
-
   // Phase 3: textured surfaces, then the media as slices.
-  vtkNew<vtkRenderer> renderer;
-  renderer->SetBackground(0, 0, 0);
-  vtkNew<vtkRenderWindow> window;
-  window->SetOffScreenRendering(1);
-  window->SetMultiSamples(0);
-  const int k = options.Supersample;
-  window->SetSize(options.Width, options.Height);
-  window->AddRenderer(renderer);
-  vtkNew<vtkBrumeSceneActors> actors;
-  actors->SetInputData(reconstruction->GetOutput());
-  if (!actors->AddToRenderer(renderer))
-  {
-    return 1;
-  }
-  vtkCamera* camera = renderer->GetActiveCamera();
-  camera->SetPosition(position);
-  camera->SetFocalPoint(focal);
-  camera->SetViewUp(up);
-  camera->SetViewAngle(angle);
-  renderer->ResetCameraClippingRange();
-  vtkNew<vtkBrumeFloatImageCapture> capture;
-  capture->Attach(renderer);
-  auto start = std::chrono::steady_clock::now();
-  window->Render();
-  const double firstFrame = Seconds(start);
-  // The steady per-view cost (textures already resident): a second frame,
-  // or the mean of the k^2 frames whose mean is each pixel's area.
-  start = std::chrono::steady_clock::now();
-  double frame = 0.0;
-  vtkSmartPointer<vtkImageData> radiance;
-  if (k == 1)
-  {
-    window->Render();
-    frame = Seconds(start);
-    radiance = capture->Capture();
-  }
-  else
-  {
-    radiance = capture->CaptureSupersampled(k);
-    frame = Seconds(start) / (k * k);
-  }
+  const vtkSmartPointer<vtkImageData> radiance = pipeline->RenderImage(options.Supersample);
   if (!radiance)
   {
     return 1;
   }
-
-  if (const int rc = WriteImage(radiance, options, png))
+  if (const int rc = WriteImage(radiance, pipeline, options.Output))
   {
     return rc;
   }
-
   if (options.Timings)
   {
-    PhaseTimes times{ tracing, reconstructing, firstFrame, frame, reductionSeconds, reductionBytes,
-      hits, rays };
-    PrintTimings(options, reconstruction->GetOutput(), times, processes);
+    PrintTimings(pipeline, processes);
   }
   return 0;
 }

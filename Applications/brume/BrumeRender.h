@@ -1,50 +1,55 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The three-phase pipeline behind `brume render`.
+// `brume render`, and what render and view share: the options a user gives
+// and how they set the pipeline (vtkBrumePipeline).
 #ifndef BrumeRender_h
 #define BrumeRender_h
 
-#include "vtkAlgorithm.h"
-#include "vtkSmartPointer.h"
-
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 
-struct RenderOptions
-{
-  std::string Scene;  // empty: the built-in default scene
-  std::string Output; // .png or .vti
-  long long Particles = 1000000;
-  std::uint64_t Seed = 0;
-  int Width = 512;
-  int Height = 512;
-  double Exposure = 1.0;
-  double Threshold = 128.0;
-  bool DirectLight = true;      // deterministic single scattering (vtkBrumeRadianceReconstruction)
-  bool CentroidMatching = true; // media textures matched to their estimates' centroids
-  double MediumAim = 0.2;       // directional lights' particles aimed at the media
-  bool SplitHeavy = true;       // heavy particles split where they head into a medium
-  int Supersample = 1;          // render K x K pixels per output pixel and average them
-  bool Timings = false;
-  long long Batch = 0;    // particles per batch (0: all at once)
-  double MemoryLimit = 8.0; // GiB the hits of one trace may take (vtkBrumeLightTracer)
-  bool Reference = false; // the unbiased path tracer instead of the three phases
-  int SamplesPerPixel = 64;
-  int MaxDepth = 1024; // interactions after which a particle or a path stops
-  // Which settings the command line gave (a scene file's render settings
-  // give the others).
-  bool ParticlesSet = false, SizeSet = false, ThresholdSet = false, SeedSet = false,
-       ExposureSet = false;
-};
-
-/// Runs the pipeline and writes the image; returns the process exit code.
-int RunRender(RenderOptions options);
+class vtkBrumePipeline;
 
 /**
- * The scene: the built-in one (empty or "default"), or a scene file, loaded
- * and validated; its render settings fill the options the command line did
- * not give. Null, with the reason on stderr, when it cannot be loaded.
+ * What the command line gave. A setting left unset is the scene file's
+ * (its `render` block) where it has one, else the default of the filter
+ * that owns it (vtkBrumeLightTracer, vtkBrumeRadianceReconstruction,
+ * vtkBrumePipeline): no default is repeated here. Only the command's own
+ * choices have values here.
  */
-vtkSmartPointer<vtkAlgorithm> LoadScene(RenderOptions& options);
+struct RenderOptions
+{
+  std::string Scene;  // empty or "default": the built-in default scene
+  std::string Output; // .png or .vti
+  std::optional<long long> Particles;
+  std::optional<std::uint64_t> Seed;
+  std::optional<std::array<int, 2>> Size; // width, height
+  std::optional<double> Exposure;
+  std::optional<double> Threshold;
+  std::optional<bool> DirectLight;      // deterministic single scattering
+  std::optional<bool> CentroidMatching; // media textures matched to their estimates' centroids
+  std::optional<double> MediumAim;      // directional lights' particles aimed at the media
+  std::optional<bool> SplitHeavy;       // heavy particles split where they head into a medium
+  std::optional<long long> Batch;       // particles per batch
+  std::optional<double> MemoryLimit;    // GiB the hits of one trace may take
+  std::optional<int> MaxDepth;          // interactions after which a particle or a path stops
+  // The command's own choices.
+  int Supersample = 1;      // render K x K pixels per output pixel and average them
+  bool Timings = false;     // print each phase's time
+  bool Reference = false;   // the unbiased path tracer instead of the three phases
+  int SamplesPerPixel = 64; // of --reference
+};
+
+/**
+ * Points `pipeline` at the options' scene, loads it (a bad file is
+ * reported on stderr, false), takes its render settings and camera, then
+ * sets what the options give.
+ */
+bool ConfigurePipeline(vtkBrumePipeline* pipeline, const RenderOptions& options);
+
+/// Runs the pipeline and writes the image; returns the process exit code.
+int RunRender(const RenderOptions& options);
 
 /// True when `what` can render: through X when DISPLAY names a display,
 /// else through EGL (vtkBrumeRenderWindowSelection); with `window`, only

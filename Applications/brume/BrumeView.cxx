@@ -4,13 +4,12 @@
 
 #include "vtkBrumeDisplayPass.h"
 #include "vtkBrumeLightTracer.h"
+#include "vtkBrumePipeline.h"
 #include "vtkBrumeRadianceReconstruction.h"
 #include "vtkBrumeSceneActors.h"
-#include "vtkBrumeSceneCamera.h"
 #include "vtkBrumeSliceVolumeMapper.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
-#include "vtkExecutive.h"
 #include "vtkInteractorStyleTrackballCamera.h"
 #include "vtkNew.h"
 #include "vtkPNGWriter.h"
@@ -75,57 +74,37 @@ std::string Thousands(long long n)
 class Viewer
 {
 public:
-  explicit Viewer(const ViewOptions& options)
+  // `pipeline`: configured (ConfigurePipeline), with a display installed.
+  Viewer(const ViewOptions& options, vtkBrumePipeline* pipeline)
     : Options(options)
-    , Particles(options.Render.Particles)
+    , Pipeline(pipeline)
   {
   }
 
-  bool Start(vtkAlgorithm* scene)
+  // The pipeline, configured from the options; phases 1 and 2, then the
+  // window around the scene's props.
+  bool Start()
   {
-    this->Tracer->SetInputConnection(scene->GetOutputPort());
-    this->Tracer->SetSeed(static_cast<vtkIdType>(this->Options.Render.Seed));
-    this->Tracer->SetMediumAimFraction(this->Options.Render.MediumAim);
-    this->Tracer->SetSplitHeavyParticles(this->Options.Render.SplitHeavy);
-    BrumeShowProgress(this->Tracer, "particle tracing");
-    if (!this->Trace(0, this->Particles))
-    {
-      return false;
-    }
-    double position[3], focal[3], up[3], angle;
-    vtkBrumeSceneCamera::GetSceneCamera(scene->GetOutputDataObject(0), position, focal, up, angle);
-    vtkCamera* camera = this->Renderer->GetActiveCamera();
-    camera->SetPosition(position);
-    camera->SetFocalPoint(focal);
-    camera->SetViewUp(up);
-    camera->SetViewAngle(angle);
-
-    this->Reconstruction->SetInputConnection(0, scene->GetOutputPort());
-    this->Reconstruction->SetInputConnection(1, this->Tracer->GetOutputPort());
-    this->Reconstruction->SetCamera(camera);
-    this->Reconstruction->SetRadiosityThreshold(this->Options.Render.Threshold);
-    this->Reconstruction->SetDirectLighting(this->Options.Render.DirectLight);
-    this->Reconstruction->SetCentroidMatching(this->Options.Render.CentroidMatching);
-    this->Reconstruction->AccumulateParticlesOn();
+    this->Pipeline->ProgressiveOn(); // p adds particles to the histograms
     this->Reconstruction->SetDirectionalRadiance(this->Options.Directional);
     this->Reconstruction->SetDirectionalOrder(this->Options.Order);
-    const auto reconstructionStart = Clock::now();
-    if (!this->Reconstruction->GetExecutive()->Update())
+    BrumeShowProgress(this->Pipeline->GetTracer(), "particle tracing");
+    if (!this->Pipeline->Update())
     {
-      std::cerr << "brume: reconstruction failed.\n";
+      std::cerr << "brume: " << this->Pipeline->GetFailedPhase() << " failed.\n";
       return false;
     }
-    this->FirstReconstruction = Milliseconds(reconstructionStart);
+    this->LastTrace = 1000.0 * this->Pipeline->GetTracingSeconds();
+    this->FirstReconstruction = 1000.0 * this->Pipeline->GetReconstructionSeconds();
 
     this->Renderer->SetBackground(0, 0, 0);
-    this->Display->SetExposure(this->Options.Render.Exposure);
+    this->Display->SetExposure(this->Pipeline->GetExposure());
     this->Renderer->SetPass(this->Display);
     this->Window->SetMultiSamples(0);
-    this->Window->SetSize(this->Options.Render.Width, this->Options.Render.Height);
+    this->Window->SetSize(this->Pipeline->GetSize());
     this->Window->SetWindowName("Brume");
     this->Window->AddRenderer(this->Renderer);
-    this->Actors->SetInputData(this->Reconstruction->GetOutput());
-    if (!this->Actors->AddToRenderer(this->Renderer))
+    if (!this->Pipeline->AddToRenderer(this->Renderer))
     {
       return false;
     }
@@ -151,20 +130,9 @@ public:
     return true;
   }
 
-  // Traces particles [first, total) of a run of `total`.
-  bool Trace(long long first, long long total)
+  long long Particles() const
   {
-    const auto start = Clock::now();
-    this->Tracer->SetFirstParticle(first);
-    this->Tracer->SetNumberOfParticles(total);
-    if (!this->Tracer->GetExecutive()->Update())
-    {
-      std::cerr << "brume: particle tracing failed.\n";
-      return false;
-    }
-    this->LastTrace = Milliseconds(start);
-    this->Particles = total;
-    return true;
+    return static_cast<long long>(this->Pipeline->GetTracer()->GetNumberOfParticles());
   }
 
   // Brings the textures up to date with the camera and the settings; false
@@ -173,8 +141,7 @@ public:
   {
     const auto start = Clock::now();
     this->Renderer->ResetCameraClippingRange();
-    if (!this->Reconstruction->GetExecutive()->Update() ||
-      !this->Actors->UpdateInputs(this->Reconstruction->GetOutput()))
+    if (!this->Pipeline->UpdateView())
     {
       std::cerr << "brume: reconstruction failed.\n";
       return false;
@@ -229,22 +196,21 @@ public:
   // Doubles the particles; on failure the viewer keeps the textures it has.
   void MoreParticles()
   {
-    const long long first = this->Tracer->GetFirstParticle(), total = this->Particles;
+    const long long total = this->Particles();
     if (total > 5000000000LL)
     {
       std::cerr << "brume: already " << Thousands(total) << " particles; not adding more.\n";
       return;
     }
-    if (this->Trace(total, 2 * total) && this->Update())
+    const auto start = Clock::now();
+    this->Renderer->ResetCameraClippingRange();
+    if (this->Pipeline->AddParticles(total))
     {
+      this->LastTrace = 1000.0 * this->Pipeline->GetTracingSeconds();
+      this->LastUpdate = Milliseconds(start) - this->LastTrace;
       return;
     }
-    // Back to the step the textures hold: the tracer runs it again and the
-    // reconstruction recognizes it as nothing new.
     std::cerr << "brume: cannot add particles; keeping " << Thousands(total) << ".\n";
-    this->Tracer->SetFirstParticle(first);
-    this->Tracer->SetNumberOfParticles(total);
-    this->Particles = total;
   }
 
   bool Save(const std::string& file)
@@ -289,7 +255,7 @@ public:
       "%s particles (traced in %.2f s)   media: %s\n"
       "last frame: update %.1f ms, render %.1f ms\n"
       "p more particles   d paper / SH   m medium   s screenshot   q quit",
-      Thousands(this->Particles).c_str(), this->LastTrace / 1000.0,
+      Thousands(this->Particles()).c_str(), this->LastTrace / 1000.0,
       this->Reconstruction->GetDirectionalRadiance() ? "spherical harmonics" : "per view (paper)",
       this->LastUpdate, this->LastRender);
     this->Overlay->SetInput(text);
@@ -307,17 +273,16 @@ public:
   }
 
   const ViewOptions& Options;
-  long long Particles;
   double LastUpdate = 0.0, LastRender = 0.0, LastTrace = 0.0, FirstReconstruction = 0.0;
   Clock::time_point OverlayShown;
   bool MediaVisible = true;
   int Screenshots = 0;
-  vtkNew<vtkBrumeLightTracer> Tracer;
-  vtkNew<vtkBrumeRadianceReconstruction> Reconstruction;
+  vtkSmartPointer<vtkBrumePipeline> Pipeline;
+  vtkBrumeRadianceReconstruction* Reconstruction = Pipeline->GetReconstruction();
+  vtkBrumeSceneActors* Actors = Pipeline->GetActors();
   vtkNew<vtkRenderer> Renderer;
   vtkNew<vtkRenderWindow> Window;
   vtkNew<vtkBrumeDisplayPass> Display;
-  vtkNew<vtkBrumeSceneActors> Actors;
   vtkNew<vtkTextActor> Overlay;
 };
 
@@ -391,11 +356,11 @@ int Orbit(Viewer& viewer, const ViewOptions& options, Clock::time_point commandS
     viewer.ShowOverlay();
   }
   std::printf("orbit: %d frames at %dx%d, media %s at image sample distance %g, %s particles\n",
-    options.Orbit, options.Render.Width, options.Render.Height,
+    options.Orbit, viewer.Pipeline->GetSize()[0], viewer.Pipeline->GetSize()[1],
     !reconstruction->GetDirectionalRadiance() ? "per view (paper)"
       : options.PerFragment                   ? "spherical harmonics (per fragment)"
                                               : "spherical harmonics (per voxel)",
-    viewer.Actors->GetLastImageSampleDistance(), Thousands(viewer.Particles).c_str());
+    viewer.Actors->GetLastImageSampleDistance(), Thousands(viewer.Particles()).c_str());
   std::printf("per frame        median (ms)   95th percentile (ms)\n");
   std::printf("update           %11.2f   %20.2f\n", Quantile(update, 0.5), Quantile(update, 0.95));
   std::printf("render           %11.2f   %20.2f\n", Quantile(render, 0.5), Quantile(render, 0.95));
@@ -411,10 +376,10 @@ int Orbit(Viewer& viewer, const ViewOptions& options, Clock::time_point commandS
 int RunView(const ViewOptions& options)
 {
   const auto commandStart = Clock::now();
-  ViewOptions resolved = options;
+  const ViewOptions& resolved = options;
   // The scene first: a bad file is reported with or without a display.
-  const vtkSmartPointer<vtkAlgorithm> scene = LoadScene(resolved.Render);
-  if (!scene)
+  vtkNew<vtkBrumePipeline> pipeline;
+  if (!ConfigurePipeline(pipeline, resolved.Render))
   {
     return 1;
   }
@@ -422,12 +387,12 @@ int RunView(const ViewOptions& options)
   {
     return 1;
   }
-  Viewer viewer(resolved);
+  Viewer viewer(resolved, pipeline);
   if (resolved.Orbit > 0)
   {
     viewer.Window->SetOffScreenRendering(1);
   }
-  if (!viewer.Start(scene))
+  if (!viewer.Start())
   {
     return 1;
   }
@@ -564,7 +529,7 @@ int RunView(const ViewOptions& options)
   if (resolved.ExitAfter > 0)
   {
     std::printf("interactive: %d frames, %s particles, media %s\n", resolved.ExitAfter,
-      Thousands(viewer.Particles).c_str(),
+      Thousands(viewer.Particles()).c_str(),
       viewer.Reconstruction->GetDirectionalRadiance() ? "spherical harmonics" : "per view (paper)");
     std::printf("texture builds during the frames: %lld\n",
       static_cast<long long>(viewer.Reconstruction->GetNumberOfTextureBuilds() - script.Builds));

@@ -1,10 +1,10 @@
-// A downstream program: traces the built-in scene and reconstructs its textures.
+// A downstream program: the built-in scene through Brume's pipeline object
+// (tracing and reconstruction; vtkBrumePipeline::RenderImage would draw it).
 #include "vtkBrumeDefaultSceneSource.h"
 #include "vtkBrumeLightTracer.h"
-#include "vtkBrumeRadianceReconstruction.h"
+#include "vtkBrumePipeline.h"
 #include "vtkNew.h"
 #include "vtkPartitionedDataSetCollection.h"
-#include "vtkPolyData.h"
 
 #include <cstdlib>
 #include <iostream>
@@ -12,15 +12,16 @@
 int main()
 {
   vtkNew<vtkBrumeDefaultSceneSource> scene;
-  vtkNew<vtkBrumeLightTracer> tracer;
-  tracer->SetInputConnection(scene->GetOutputPort());
-  tracer->SetNumberOfParticles(20000);
-  vtkNew<vtkBrumeRadianceReconstruction> reconstruction;
-  reconstruction->SetInputConnection(0, scene->GetOutputPort());
-  reconstruction->SetInputConnection(1, tracer->GetOutputPort());
-  reconstruction->Update();
-  const auto hits = tracer->GetOutput()->GetNumberOfPoints();
-  const auto objects = reconstruction->GetOutput()->GetNumberOfPartitionedDataSets();
+  vtkNew<vtkBrumePipeline> pipeline;
+  pipeline->SetInputConnection(scene->GetOutputPort());
+  pipeline->GetTracer()->SetNumberOfParticles(20000);
+  if (!pipeline->Update())
+  {
+    std::cerr << "downstream: " << pipeline->GetFailedPhase() << " failed\n";
+    return EXIT_FAILURE;
+  }
+  const auto hits = pipeline->GetNumberOfHits();
+  const auto objects = pipeline->GetTextures()->GetNumberOfPartitionedDataSets();
   std::cout << "downstream: " << hits << " hits, " << objects << " textures\n";
   return hits > 0 && objects == 7 ? EXIT_SUCCESS : EXIT_FAILURE;
 }

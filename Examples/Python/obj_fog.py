@@ -17,7 +17,6 @@ from vtkmodules.vtkCommonDataModel import (vtkCompositeDataSet, vtkImageData,
 from vtkmodules.vtkFiltersSources import vtkPlaneSource
 from vtkmodules.vtkIOGeometry import vtkOBJReader
 from vtkmodules.vtkIOImage import vtkPNGWriter
-from vtkmodules.vtkRenderingCore import vtkRenderer, vtkRenderWindow
 
 import brume
 
@@ -84,36 +83,19 @@ def build_scene(obj_file):
 
 
 def render(scene, output, particles=300000, size=256):
-    """The three phases, then the float image tone-mapped to a PNG."""
-    tracer = brume.vtkBrumeLightTracer()
-    tracer.SetInputData(scene)
-    tracer.SetNumberOfParticles(particles)
-    reconstruction = brume.vtkBrumeRadianceReconstruction()
-    reconstruction.SetInputDataObject(0, scene)
-    reconstruction.SetInputConnection(1, tracer.GetOutputPort())
-
-    renderer = vtkRenderer()
-    window = vtkRenderWindow()
-    window.SetOffScreenRendering(1)
-    window.SetMultiSamples(0)
-    window.SetSize(size, size)
-    window.AddRenderer(renderer)
-    camera = renderer.GetActiveCamera()
+    """The three phases through one object, then the image tone-mapped to a PNG."""
+    pipeline = brume.vtkBrumePipeline()
+    pipeline.SetInputData(scene)
+    pipeline.GetTracer().SetNumberOfParticles(particles)
+    pipeline.SetSize(size, size)
+    camera = pipeline.GetCamera()
     camera.SetPosition(0, 0, 4)
     camera.SetFocalPoint(0, 0, 0)
     camera.SetViewUp(0, 1, 0)
     camera.SetViewAngle(40)
-    reconstruction.SetCamera(camera)
-    reconstruction.Update()
-
-    actors = brume.vtkBrumeSceneActors()
-    actors.SetInputData(reconstruction.GetOutput())
-    actors.AddToRenderer(renderer)
-    renderer.ResetCameraClippingRange()
-    capture = brume.vtkBrumeFloatImageCapture()
-    capture.Attach(renderer)
-    window.Render()
-    image = brume.vtkBrumeFloatImageCapture.ToneMap(capture.Capture(), 1.0)
+    if not pipeline.Update():
+        raise RuntimeError("brume: " + pipeline.GetFailedPhase() + " failed")
+    image = pipeline.ToneMap(pipeline.RenderImage())
     writer = vtkPNGWriter()
     writer.SetFileName(output)
     writer.SetInputData(image)

@@ -159,27 +159,18 @@ def render_brume(wavelet, prop, size, particles):
     scene.GetPartitionedDataSet(0).GetPartition(0).GetFieldData().AddArray(reflectance)
 
     start = time.perf_counter()
-    tracer = brume.vtkBrumeLightTracer()
-    tracer.SetInputData(scene)
-    tracer.SetNumberOfParticles(particles)
+    pipeline = brume.vtkBrumePipeline()
+    pipeline.SetInputData(scene)
+    pipeline.GetTracer().SetNumberOfParticles(particles)
     for light in lights(physical=True):
-        tracer.AddLight(light)
-    reconstruction = brume.vtkBrumeRadianceReconstruction()
-    reconstruction.SetInputDataObject(0, scene)
-    reconstruction.SetInputConnection(1, tracer.GetOutputPort())
-    renderer, win = window(size)
-    reconstruction.SetCamera(set_camera(renderer))
-    reconstruction.Update()
-    actors = brume.vtkBrumeSceneActors()
-    actors.SetInputData(reconstruction.GetOutput())
-    actors.AddToRenderer(renderer)
-    renderer.ResetCameraClippingRange()
-    capture = brume.vtkBrumeFloatImageCapture()
-    capture.Attach(renderer)
-    win.Render()
-    radiance = capture.Capture()
+        pipeline.GetTracer().AddLight(light)
+    pipeline.SetSize(size, size)
+    pipeline.SetCamera(set_camera(vtkRenderer()))
+    if not pipeline.Update():
+        raise RuntimeError("brume: " + pipeline.GetFailedPhase() + " failed")
+    radiance = pipeline.RenderImage()
     seconds = time.perf_counter() - start
-    return brume.vtkBrumeFloatImageCapture.ToneMap(radiance, 1.0), radiance, seconds
+    return pipeline.ToneMap(radiance), radiance, seconds
 
 
 def main():

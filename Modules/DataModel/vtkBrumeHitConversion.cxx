@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumeHitConversion.h"
 
+#include "vtkBrumeDataModelNames.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -16,19 +17,19 @@
 #include <cmath>
 #include <cstdint>
 
-const char* const vtkBrumeHitConversion::DirectionName = "Direction";
-const char* const vtkBrumeHitConversion::FluxName = "Flux";
-const char* const vtkBrumeHitConversion::ObjectIdName = "ObjectId";
-const char* const vtkBrumeHitConversion::EmitterIdName = "EmitterId";
-const char* const vtkBrumeHitConversion::DepthName = "Depth";
-const char* const vtkBrumeHitConversion::TriangleIdName = "TriangleId";
-const char* const vtkBrumeHitConversion::AimName = "Aim";
-const char* const vtkBrumeHitConversion::AimWeightsName = "AimWeights";
-const char* const vtkBrumeHitConversion::TotalPowerName = "TotalPower";
-const char* const vtkBrumeHitConversion::NumberOfParticlesName = "NumberOfParticles";
-const char* const vtkBrumeHitConversion::FirstParticleName = "FirstParticle";
-const char* const vtkBrumeHitConversion::EndParticleName = "EndParticle";
-const char* const vtkBrumeHitConversion::SeedName = "Seed";
+const char* const vtkBrumeHitConversion::DirectionName = vtkBrumeNames::Direction;
+const char* const vtkBrumeHitConversion::FluxName = vtkBrumeNames::Flux;
+const char* const vtkBrumeHitConversion::ObjectIdName = vtkBrumeNames::ObjectId;
+const char* const vtkBrumeHitConversion::EmitterIdName = vtkBrumeNames::EmitterId;
+const char* const vtkBrumeHitConversion::DepthName = vtkBrumeNames::Depth;
+const char* const vtkBrumeHitConversion::TriangleIdName = vtkBrumeNames::TriangleId;
+const char* const vtkBrumeHitConversion::AimName = vtkBrumeNames::Aim;
+const char* const vtkBrumeHitConversion::AimWeightsName = vtkBrumeNames::AimWeights;
+const char* const vtkBrumeHitConversion::TotalPowerName = vtkBrumeNames::TotalPower;
+const char* const vtkBrumeHitConversion::NumberOfParticlesName = vtkBrumeNames::NumberOfParticles;
+const char* const vtkBrumeHitConversion::FirstParticleName = vtkBrumeNames::FirstParticle;
+const char* const vtkBrumeHitConversion::EndParticleName = vtkBrumeNames::EndParticle;
+const char* const vtkBrumeHitConversion::SeedName = vtkBrumeNames::Seed;
 
 namespace
 {

@@ -2,6 +2,7 @@
 #include "vtkBrumeRadianceConversion.h"
 #include "vtkBrumeSMP.h"
 
+#include "vtkBrumeDataModelNames.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
@@ -126,19 +127,20 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromSurface(
   texture->SetDimensions(res[0], res[1], 1);
   texture->SetSpacing(1.0 / res[0], 1.0 / res[1], 1.0);
   texture->SetOrigin(0.5 / res[0], 0.5 / res[1], 0.0);
-  texture->GetPointData()->SetScalars(NewRGB("Radiance", radiance.GetOutputRadiance()));
+  texture->GetPointData()->SetScalars(
+    NewRGB(vtkBrumeNames::Radiance, radiance.GetOutputRadiance()));
   if (chart.Type == brume::SurfaceChart::Kind::Planar)
   {
-    AddVec3(texture->GetFieldData(), "BrumeTextureOrigin", chart.Frame.Origin);
-    AddVec3(texture->GetFieldData(), "BrumeTextureU", chart.Frame.U);
-    AddVec3(texture->GetFieldData(), "BrumeTextureV", chart.Frame.V);
+    AddVec3(texture->GetFieldData(), vtkBrumeNames::TextureOrigin, chart.Frame.Origin);
+    AddVec3(texture->GetFieldData(), vtkBrumeNames::TextureU, chart.Frame.U);
+    AddVec3(texture->GetFieldData(), vtkBrumeNames::TextureV, chart.Frame.V);
   }
-  AddString(texture->GetFieldData(), "BrumeTextureChart", ChartName(chart.Type));
-  AddString(texture->GetFieldData(), "BrumeObjectKind", "surface");
+  AddString(texture->GetFieldData(), vtkBrumeNames::TextureChart, ChartName(chart.Type));
+  AddString(texture->GetFieldData(), vtkBrumeNames::ObjectKind, "surface");
 
   vtkNew<vtkPolyData> mapped;
   vtkNew<vtkFloatArray> tcoords;
-  tcoords->SetName("TextureCoordinates");
+  tcoords->SetName(vtkBrumeNames::TextureCoordinates);
   tcoords->SetNumberOfComponents(2);
   if (chart.Type == brume::SurfaceChart::Kind::Atlas)
   {
@@ -149,7 +151,7 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromSurface(
     MapInPlace(chart, sceneSurface, mapped, tcoords);
   }
   mapped->GetPointData()->SetTCoords(tcoords);
-  AddString(mapped->GetFieldData(), "BrumeObjectKind", "surface");
+  AddString(mapped->GetFieldData(), vtkBrumeNames::ObjectKind, "surface");
 
   auto pds = vtkSmartPointer<vtkPartitionedDataSet>::New();
   pds->SetNumberOfPartitions(2);
@@ -184,22 +186,22 @@ vtkSmartPointer<vtkImageData> vtkBrumeRadianceConversion::NativeExtinction(
   extinction->SetSpacing(extent.x / native[0], extent.y / native[1], extent.z / native[2]);
   vtkFieldData* fd = extinction->GetFieldData();
   vtkNew<vtkIntArray> slots;
-  slots->SetName("ExtinctionBrickSlots");
+  slots->SetName(vtkBrumeNames::ExtinctionBrickSlots);
   slots->SetNumberOfValues(static_cast<vtkIdType>(density.GetSlots().size()));
   std::copy(density.GetSlots().begin(), density.GetSlots().end(), slots->GetPointer(0));
   fd->AddArray(slots);
   vtkNew<vtkFloatArray> values;
-  values->SetName("ExtinctionBrickValues");
+  values->SetName(vtkBrumeNames::ExtinctionBrickValues);
   values->SetNumberOfValues(static_cast<vtkIdType>(density.GetConstants().size()));
   std::copy(density.GetConstants().begin(), density.GetConstants().end(), values->GetPointer(0));
   fd->AddArray(values);
   vtkNew<vtkFloatArray> samples;
-  samples->SetName("ExtinctionBrickSamples");
+  samples->SetName(vtkBrumeNames::ExtinctionBrickSamples);
   samples->SetNumberOfValues(static_cast<vtkIdType>(density.GetSamples().size()));
   std::copy(density.GetSamples().begin(), density.GetSamples().end(), samples->GetPointer(0));
   fd->AddArray(samples);
   vtkNew<vtkDoubleArray> scale;
-  scale->SetName("ExtinctionScale");
+  scale->SetName(vtkBrumeNames::ExtinctionScale);
   scale->SetNumberOfComponents(3);
   const brume::Vec3 sigmaT = medium.SigmaT();
   scale->InsertNextTuple3(sigmaT.x, sigmaT.y, sigmaT.z);
@@ -226,10 +228,10 @@ vtkSmartPointer<vtkImageData> vtkBrumeRadianceConversion::NativeExtinction(
     // One point (or all at one scalar): any range past it holds the end values.
     const float hi = last > lo ? last : lo + std::max(1.f, std::abs(lo));
     vtkNew<vtkFloatArray> table;
-    table->SetName("ExtinctionTransferFunction");
+    table->SetName(vtkBrumeNames::ExtinctionTransferFunction);
     table->SetNumberOfValues(TransferFunctionSamples);
     vtkNew<vtkFloatArray> albedo;
-    albedo->SetName("AlbedoTransferFunction");
+    albedo->SetName(vtkBrumeNames::AlbedoTransferFunction);
     albedo->SetNumberOfComponents(3);
     albedo->SetNumberOfTuples(colors ? TransferFunctionSamples : 0);
     const brume::Vec3 albedoScale = medium.Albedo();
@@ -250,12 +252,12 @@ vtkSmartPointer<vtkImageData> vtkBrumeRadianceConversion::NativeExtinction(
       fd->AddArray(albedo);
     }
     vtkNew<vtkDoubleArray> range;
-    range->SetName("ExtinctionTransferRange");
+    range->SetName(vtkBrumeNames::ExtinctionTransferRange);
     range->SetNumberOfComponents(2);
     range->InsertNextTuple2(lo, hi);
     fd->AddArray(range);
   }
-  AddString(fd, "BrumeObjectKind", "medium extinction");
+  AddString(fd, vtkBrumeNames::ObjectKind, "medium extinction");
   return extinction;
 }
 
@@ -272,17 +274,17 @@ double vtkBrumeRadianceConversion::Classify(vtkDataArray* table, const double ra
 vtkSmartPointer<vtkImageData> vtkBrumeRadianceConversion::DenseExtinction(vtkImageData* sparse)
 {
   vtkFieldData* fd = sparse ? sparse->GetFieldData() : nullptr;
-  vtkDataArray* slots = fd ? fd->GetArray("ExtinctionBrickSlots") : nullptr;
-  vtkDataArray* values = fd ? fd->GetArray("ExtinctionBrickValues") : nullptr;
-  vtkDataArray* samples = fd ? fd->GetArray("ExtinctionBrickSamples") : nullptr;
-  vtkDataArray* scale = fd ? fd->GetArray("ExtinctionScale") : nullptr;
+  vtkDataArray* slots = fd ? fd->GetArray(vtkBrumeNames::ExtinctionBrickSlots) : nullptr;
+  vtkDataArray* values = fd ? fd->GetArray(vtkBrumeNames::ExtinctionBrickValues) : nullptr;
+  vtkDataArray* samples = fd ? fd->GetArray(vtkBrumeNames::ExtinctionBrickSamples) : nullptr;
+  vtkDataArray* scale = fd ? fd->GetArray(vtkBrumeNames::ExtinctionScale) : nullptr;
   if (!slots || !values || !samples || !scale || scale->GetNumberOfComponents() != 3)
   {
     return nullptr;
   }
   // Classified scalars: sigma_t of each cell's scalar (at the centres).
-  vtkDataArray* table = fd->GetArray("ExtinctionTransferFunction");
-  vtkDataArray* rangeArray = fd->GetArray("ExtinctionTransferRange");
+  vtkDataArray* table = fd->GetArray(vtkBrumeNames::ExtinctionTransferFunction);
+  vtkDataArray* rangeArray = fd->GetArray(vtkBrumeNames::ExtinctionTransferRange);
   double range[2] = { 0.0, 1.0 };
   if (table && rangeArray)
   {
@@ -309,7 +311,7 @@ vtkSmartPointer<vtkImageData> vtkBrumeRadianceConversion::DenseExtinction(vtkIma
   dense->SetOrigin(sparse->GetOrigin());
   dense->SetSpacing(sparse->GetSpacing());
   vtkNew<vtkFloatArray> sigmaT;
-  sigmaT->SetName("Extinction");
+  sigmaT->SetName(vtkBrumeNames::Extinction);
   sigmaT->SetNumberOfComponents(3);
   sigmaT->SetNumberOfTuples(static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2]);
   for (int k = 0; k < dims[2]; ++k)
@@ -335,7 +337,7 @@ vtkSmartPointer<vtkImageData> vtkBrumeRadianceConversion::DenseExtinction(vtkIma
         }
       }
   dense->GetCellData()->SetScalars(sigmaT);
-  AddString(dense->GetFieldData(), "BrumeObjectKind", "medium extinction");
+  AddString(dense->GetFieldData(), vtkBrumeNames::ObjectKind, "medium extinction");
   return dense;
 }
 
@@ -369,14 +371,14 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
   const bool sparse = bricks && extinction && bricks->GetDims() == res;
   vtkCellData* cd = texture->GetCellData();
   vtkFieldData* fd = texture->GetFieldData();
-  // A cell array, or in the sparse form the field array name + "BrickSamples".
+  // A cell array, or in the sparse form the field array BrickSamplesName(name).
   auto add = [&](const char* name, const std::vector<float>& values, int components)
   {
     auto a = vtkSmartPointer<vtkFloatArray>::New();
     a->SetNumberOfComponents(components);
     if (sparse)
     {
-      a->SetName((std::string(name) + "BrickSamples").c_str());
+      a->SetName(vtkBrumeNames::BrickSamplesName(name).c_str());
       const std::vector<float> gathered = bricks->Gather(values, components);
       a->SetNumberOfTuples(static_cast<vtkIdType>(gathered.size() / components));
       std::copy(gathered.begin(), gathered.end(), a->GetPointer(0));
@@ -393,7 +395,7 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
   if (sparse)
   {
     vtkNew<vtkIntArray> slots;
-    slots->SetName("SourceBrickSlots");
+    slots->SetName(vtkBrumeNames::SourceBrickSlots);
     slots->SetNumberOfValues(static_cast<vtkIdType>(bricks->GetSlots().size()));
     std::copy(bricks->GetSlots().begin(), bricks->GetSlots().end(), slots->GetPointer(0));
     fd->AddArray(slots);
@@ -404,7 +406,7 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
   // the texel, so that the emission sigma_t a X is kept; the extinction
   // takes one factor, that of the medium's sigma_t-weighted mean albedo.
   const bool albedoTable = radiance.HasVaryingAlbedo() && extinction &&
-    extinction->GetFieldData()->GetArray("AlbedoTransferFunction");
+    extinction->GetFieldData()->GetArray(vtkBrumeNames::AlbedoTransferFunction);
   const bool bake = radiance.HasVaryingAlbedo() && !albedoTable;
   std::vector<brume::Vec3> texelAlbedo;
   brume::Vec3 bakedFactor(1.f);
@@ -496,28 +498,28 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
         mean[3 * t + c] = std::max(0.f, brume::ShY00 * coefficients[t * components + c]);
       }
     }
-    add("SourceRadiance", mean, 3);
-    add("SourceRadianceSH", coefficients, components);
+    add(vtkBrumeNames::SourceRadiance, mean, 3);
+    add(vtkBrumeNames::SourceRadianceSH, coefficients, components);
     vtkNew<vtkDoubleArray> g;
-    g->SetName("BrumePhaseAsymmetry");
+    g->SetName(vtkBrumeNames::PhaseAsymmetry);
     g->InsertNextValue(radiance.GetPeak(true).G); // the remainder's, past DirectionalResolvedG
     fd->AddArray(g);
   }
   else
   {
-    add("SourceRadiance", baked(radiance.GetOutputRadiance(), 3), 3);
+    add(vtkBrumeNames::SourceRadiance, baked(radiance.GetOutputRadiance(), 3), 3);
   }
   if (albedoTable)
   {
     // The mapper draws sigma_t a X and extinguishes sigma_t (1 - a Forward).
     vtkNew<vtkDoubleArray> forward;
-    forward->SetName("BrumeForwardFraction");
+    forward->SetName(vtkBrumeNames::ForwardFraction);
     forward->InsertNextValue(radiance.GetPeak(directional).Forward);
     fd->AddArray(forward);
   }
   if (!sparse)
   {
-    cd->SetActiveScalars("SourceRadiance");
+    cd->SetActiveScalars(vtkBrumeNames::SourceRadiance);
   }
   // A strongly forward medium's peak is drawn as transport: at the
   // extinction times this factor, with S per unit of it.
@@ -525,7 +527,7 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
   if (factor.x != 1.f || factor.y != 1.f || factor.z != 1.f)
   {
     vtkNew<vtkDoubleArray> f;
-    f->SetName("BrumeExtinctionFactor");
+    f->SetName(vtkBrumeNames::ExtinctionFactor);
     f->SetNumberOfComponents(3);
     f->InsertNextTuple3(factor.x, factor.y, factor.z);
     fd->AddArray(f);
@@ -535,7 +537,7 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
     const std::vector<float>& sigmaT =
       directional ? radiance.GetExtinction() : radiance.GetOutputExtinction();
     auto* kept = previous
-      ? vtkFloatArray::SafeDownCast(previous->GetCellData()->GetArray("Extinction"))
+      ? vtkFloatArray::SafeDownCast(previous->GetCellData()->GetArray(vtkBrumeNames::Extinction))
       : nullptr;
     if (kept && kept->GetNumberOfComponents() == 3 &&
       static_cast<std::size_t>(kept->GetNumberOfValues()) == sigmaT.size() &&
@@ -545,10 +547,10 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
     }
     else
     {
-      cd->AddArray(NewRGB("Extinction", sigmaT));
+      cd->AddArray(NewRGB(vtkBrumeNames::Extinction, sigmaT));
     }
   }
-  AddString(fd, "BrumeObjectKind", "medium");
+  AddString(fd, vtkBrumeNames::ObjectKind, "medium");
   auto pds = vtkSmartPointer<vtkPartitionedDataSet>::New();
   pds->SetNumberOfPartitions(extinction ? 2 : 1);
   pds->SetPartition(0, texture);

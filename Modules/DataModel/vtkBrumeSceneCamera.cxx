@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumeSceneCamera.h"
 
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeSceneConversion.h"
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
@@ -68,10 +69,10 @@ bool vtkBrumeSceneCamera::GetSceneCamera(vtkDataObject* scene, double position[3
 {
   DefaultView(position, focalPoint, viewUp, viewAngle);
   vtkFieldData* fd = scene ? scene->GetFieldData() : nullptr;
-  return ReadTuple(fd, "BrumeCameraPosition", 3, position) &&
-    ReadTuple(fd, "BrumeCameraFocalPoint", 3, focalPoint) &&
-    ReadTuple(fd, "BrumeCameraViewUp", 3, viewUp) &&
-    ReadTuple(fd, "BrumeCameraViewAngle", 1, &viewAngle);
+  return ReadTuple(fd, vtkBrumeNames::CameraPosition, 3, position) &&
+    ReadTuple(fd, vtkBrumeNames::CameraFocalPoint, 3, focalPoint) &&
+    ReadTuple(fd, vtkBrumeNames::CameraViewUp, 3, viewUp) &&
+    ReadTuple(fd, vtkBrumeNames::CameraViewAngle, 1, &viewAngle);
 }
 
 bool vtkBrumeSceneCamera::SetFromScene(vtkDataObject* scene, vtkCamera* camera)
@@ -92,8 +93,8 @@ bool vtkBrumeSceneCamera::SetFromScene(vtkDataObject* scene, vtkCamera* camera)
 void vtkBrumeSceneCamera::WriteToScene(vtkCamera* camera, vtkFieldData* fieldData)
 {
   const double angle = camera->GetViewAngle();
-  WriteTuple(fieldData, "BrumeCameraPosition", camera->GetPosition(), 3);
-  WriteTuple(fieldData, "BrumeCameraFocalPoint", camera->GetFocalPoint(), 3);
-  WriteTuple(fieldData, "BrumeCameraViewUp", camera->GetViewUp(), 3);
-  WriteTuple(fieldData, "BrumeCameraViewAngle", &angle, 1);
+  WriteTuple(fieldData, vtkBrumeNames::CameraPosition, camera->GetPosition(), 3);
+  WriteTuple(fieldData, vtkBrumeNames::CameraFocalPoint, camera->GetFocalPoint(), 3);
+  WriteTuple(fieldData, vtkBrumeNames::CameraViewUp, camera->GetViewUp(), 3);
+  WriteTuple(fieldData, vtkBrumeNames::CameraViewAngle, &angle, 1);
 }

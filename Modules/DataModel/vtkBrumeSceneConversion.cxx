@@ -2,6 +2,7 @@
 #include "vtkBrumeSceneConversion.h"
 
 #include "vtkAlgorithm.h"
+#include "vtkBrumeDataModelNames.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkCompositeDataSet.h"
@@ -64,29 +65,29 @@ std::string ReadMaterial(vtkFieldData* fd, brume::Material& m)
 {
   std::string error;
   if (auto* type =
-        fd ? vtkStringArray::SafeDownCast(fd->GetAbstractArray("BrumeMaterial")) : nullptr)
+        fd ? vtkStringArray::SafeDownCast(fd->GetAbstractArray(vtkBrumeNames::Material)) : nullptr)
   {
     if (type->GetNumberOfValues() < 1 || !ReadMaterialType(type->GetValue(0), m.Type))
     {
       return "has a BrumeMaterial that is not 'lambertian', 'phong' or 'mirror'";
     }
   }
-  ReadVec3(fd, "BrumeReflectance", m.Reflectance, error);
+  ReadVec3(fd, vtkBrumeNames::Reflectance, m.Reflectance, error);
   if (error.empty())
   {
-    ReadVec3(fd, "BrumeSpecular", m.Specular, error);
+    ReadVec3(fd, vtkBrumeNames::Specular, m.Specular, error);
   }
   if (error.empty())
   {
     double e = 0.0;
-    if (ReadField(fd, "BrumeExponent", 1, &e, error))
+    if (ReadField(fd, vtkBrumeNames::Exponent, 1, &e, error))
     {
       m.Exponent = static_cast<float>(e);
     }
   }
   if (error.empty())
   {
-    ReadVec3(fd, "BrumeEmission", m.Emission, error);
+    ReadVec3(fd, vtkBrumeNames::Emission, m.Emission, error);
   }
   return error;
 }
@@ -97,8 +98,8 @@ std::string ReadCellMaterials(vtkPolyData* pd, const brume::Material& base,
   const std::vector<vtkIdType>& triangleCells, std::vector<brume::Material>& materials)
 {
   vtkCellData* cd = pd->GetCellData();
-  const char* names[] = { "BrumeMaterial", "BrumeReflectance", "BrumeSpecular", "BrumeExponent",
-    "BrumeEmission" };
+  const char* names[] = { vtkBrumeNames::Material, vtkBrumeNames::Reflectance,
+    vtkBrumeNames::Specular, vtkBrumeNames::Exponent, vtkBrumeNames::Emission };
   const int components[] = { 1, 3, 3, 1, 3 };
   vtkDataArray* arrays[5];
   bool any = false;
@@ -257,7 +258,8 @@ void CoverWithBeam(brume::Light& l, const brume::Scene& scene)
 
 std::string vtkBrumeSceneConversion::ConvertFieldLights(vtkFieldData* fd, brume::Scene& scene)
 {
-  auto* types = fd ? vtkStringArray::SafeDownCast(fd->GetAbstractArray("BrumeLightType")) : nullptr;
+  auto* types =
+    fd ? vtkStringArray::SafeDownCast(fd->GetAbstractArray(vtkBrumeNames::LightType)) : nullptr;
   if (!types)
   {
     return {};
@@ -269,10 +271,10 @@ std::string vtkBrumeSceneConversion::ConvertFieldLights(vtkFieldData* fd, brume:
     return a && a->GetNumberOfComponents() == components && a->GetNumberOfTuples() == n ? a
                                                                                         : nullptr;
   };
-  vtkDataArray* position = array("BrumeLightPosition", 3);
-  vtkDataArray* direction = array("BrumeLightDirection", 3);
-  vtkDataArray* intensity = array("BrumeLightIntensity", 3);
-  vtkDataArray* cone = array("BrumeLightConeAngle", 1);
+  vtkDataArray* position = array(vtkBrumeNames::LightPosition, 3);
+  vtkDataArray* direction = array(vtkBrumeNames::LightDirection, 3);
+  vtkDataArray* intensity = array(vtkBrumeNames::LightIntensity, 3);
+  vtkDataArray* cone = array(vtkBrumeNames::LightConeAngle, 1);
   if (!position || !direction || !intensity || !cone)
   {
     return "the scene's lights need BrumeLightPosition, BrumeLightDirection, BrumeLightIntensity "
@@ -322,11 +324,11 @@ void vtkBrumeSceneConversion::AppendFieldLights(
   {
     return;
   }
-  auto* types = vtkStringArray::SafeDownCast(fd->GetAbstractArray("BrumeLightType"));
+  auto* types = vtkStringArray::SafeDownCast(fd->GetAbstractArray(vtkBrumeNames::LightType));
   if (!types)
   {
     vtkNew<vtkStringArray> created;
-    created->SetName("BrumeLightType");
+    created->SetName(vtkBrumeNames::LightType);
     fd->AddArray(created);
     types = created;
   }
@@ -339,10 +341,10 @@ void vtkBrumeSceneConversion::AppendFieldLights(
     const double direction[3] = { l.Direction.x, l.Direction.y, l.Direction.z };
     const double intensity[3] = { l.Intensity.x, l.Intensity.y, l.Intensity.z };
     const double cone = l.ConeAngle;
-    AppendTuple(fd, "BrumeLightPosition", position, 3);
-    AppendTuple(fd, "BrumeLightDirection", direction, 3);
-    AppendTuple(fd, "BrumeLightIntensity", intensity, 3);
-    AppendTuple(fd, "BrumeLightConeAngle", &cone, 1);
+    AppendTuple(fd, vtkBrumeNames::LightPosition, position, 3);
+    AppendTuple(fd, vtkBrumeNames::LightDirection, direction, 3);
+    AppendTuple(fd, vtkBrumeNames::LightIntensity, intensity, 3);
+    AppendTuple(fd, vtkBrumeNames::LightConeAngle, &cone, 1);
   }
 }
 

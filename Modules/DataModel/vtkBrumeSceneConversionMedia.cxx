@@ -4,6 +4,7 @@
 // the medium has one.
 #include "vtkBrumeSceneConversionInternals.h"
 
+#include "vtkBrumeDataModelNames.h"
 #include "vtkCellData.h"
 #include "vtkImageData.h"
 #include "vtkMatrix3x3.h"
@@ -26,10 +27,10 @@ namespace
 std::string ReadOpacityFunction(
   vtkFieldData* fd, std::optional<brume::OpacityTransferFunction>& function)
 {
-  vtkDataArray* points = fd ? fd->GetArray("BrumeScalarOpacity") : nullptr;
+  vtkDataArray* points = fd ? fd->GetArray(vtkBrumeNames::ScalarOpacity) : nullptr;
   std::string error;
   double unit = 1.0;
-  const bool hasUnit = ReadField(fd, "BrumeScalarOpacityUnitDistance", 1, &unit, error);
+  const bool hasUnit = ReadField(fd, vtkBrumeNames::ScalarOpacityUnitDistance, 1, &unit, error);
   if (!error.empty())
   {
     return error;
@@ -65,12 +66,12 @@ std::string ReadOpacityFunction(
 std::string ReadColorFunction(
   vtkFieldData* fd, std::optional<brume::ColorTransferFunction>& function)
 {
-  vtkDataArray* points = fd ? fd->GetArray("BrumeScalarColor") : nullptr;
+  vtkDataArray* points = fd ? fd->GetArray(vtkBrumeNames::ScalarColor) : nullptr;
   if (!points)
   {
     return {};
   }
-  if (!fd->GetArray("BrumeScalarOpacity"))
+  if (!fd->GetArray(vtkBrumeNames::ScalarOpacity))
   {
     return "has a BrumeScalarColor without a BrumeScalarOpacity transfer function";
   }
@@ -128,18 +129,18 @@ std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
 {
   std::string error;
   vtkFieldData* fd = image->GetFieldData();
-  if (!ReadVec3(fd, "BrumeSigmaA", m.SigmaA, error) ||
-    !ReadVec3(fd, "BrumeSigmaS", m.SigmaS, error))
+  if (!ReadVec3(fd, vtkBrumeNames::SigmaA, m.SigmaA, error) ||
+    !ReadVec3(fd, vtkBrumeNames::SigmaS, m.SigmaS, error))
   {
     return error.empty() ? "lacks the BrumeSigmaA or BrumeSigmaS field array" : error;
   }
   double g = 0.0;
-  if (ReadField(fd, "BrumeG", 1, &g, error))
+  if (ReadField(fd, vtkBrumeNames::G, 1, &g, error))
   {
     m.G = static_cast<float>(g);
   }
   double scale = 1.0;
-  ReadField(fd, "BrumeDensityScale", 1, &scale, error);
+  ReadField(fd, vtkBrumeNames::DensityScale, 1, &scale, error);
   if (!error.empty())
   {
     return error;
@@ -153,7 +154,7 @@ std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
   m.SigmaS = m.SigmaS * static_cast<float>(scale);
 
   // A sparse OpenVDB grid, used in place.
-  const std::string vdbFile = ReadString(fd, "BrumeVDBFile");
+  const std::string vdbFile = ReadString(fd, vtkBrumeNames::VDBFile);
   if (!vdbFile.empty())
   {
     // With a transfer function, the grid's values are scalars it classifies.
@@ -165,8 +166,8 @@ std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
       return error;
     }
     std::shared_ptr<const brume::DensityField> density = opacity
-      ? brume::VdbDensity::LoadScalars(vdbFile, ReadString(fd, "BrumeVDBGrid"), error)
-      : brume::VdbDensity::Load(vdbFile, ReadString(fd, "BrumeVDBGrid"), error);
+      ? brume::VdbDensity::LoadScalars(vdbFile, ReadString(fd, vtkBrumeNames::VDBGrid), error)
+      : brume::VdbDensity::Load(vdbFile, ReadString(fd, vtkBrumeNames::VDBGrid), error);
     if (!density)
     {
       return error;
@@ -180,7 +181,7 @@ std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
   m.Bounds = { { static_cast<float>(b[0]), static_cast<float>(b[2]), static_cast<float>(b[4]) },
     { static_cast<float>(b[1]), static_cast<float>(b[3]), static_cast<float>(b[5]) } };
   // A density array: named by BrumeDensityArray, else the active scalars.
-  const std::string name = ReadString(fd, "BrumeDensityArray");
+  const std::string name = ReadString(fd, vtkBrumeNames::DensityArray);
   vtkDataArray* density = nullptr;
   bool cells = false;
   if (!name.empty())
@@ -203,7 +204,8 @@ std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
   }
   if (!density)
   {
-    if (fd->GetAbstractArray("BrumeScalarOpacity") || fd->GetAbstractArray("BrumeScalarColor"))
+    if (fd->GetAbstractArray(vtkBrumeNames::ScalarOpacity) ||
+      fd->GetAbstractArray(vtkBrumeNames::ScalarColor))
     {
       return "has a transfer function (BrumeScalarOpacity or BrumeScalarColor) but no scalars "
              "to classify";
@@ -220,7 +222,7 @@ std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
     return error;
   }
   double component = 0.0;
-  if (ReadField(fd, "BrumeScalarComponent", 1, &component, error) && !opacity)
+  if (ReadField(fd, vtkBrumeNames::ScalarComponent, 1, &component, error) && !opacity)
   {
     return "has a BrumeScalarComponent without a BrumeScalarOpacity transfer function";
   }
@@ -242,7 +244,7 @@ std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
     return os.str();
   }
   brume::GridDensity::Interpolation interpolation = brume::GridDensity::Interpolation::Linear;
-  const std::string interpolationName = ReadString(fd, "BrumeInterpolation");
+  const std::string interpolationName = ReadString(fd, vtkBrumeNames::Interpolation);
   if (interpolationName == "nearest")
   {
     interpolation = brume::GridDensity::Interpolation::Nearest;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumeVolumePropertyMedium.h"
 
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeSceneConversion.h"
 #include "vtkCharArray.h"
 #include "vtkColorTransferFunction.h"
@@ -361,32 +362,31 @@ int vtkBrumeVolumePropertyMedium::RequestData(
   vtkNew<vtkFieldData> fd;
   fd->DeepCopy(dataset->GetFieldData());
   const double sigmaA[3] = { 1.0 - this->Albedo[0], 1.0 - this->Albedo[1], 1.0 - this->Albedo[2] };
-  SetField(fd, "BrumeSigmaA", sigmaA, 3);
-  SetField(fd, "BrumeSigmaS", this->Albedo, 3);
+  SetField(fd, vtkBrumeNames::SigmaA, sigmaA, 3);
+  SetField(fd, vtkBrumeNames::SigmaS, this->Albedo, 3);
   const double g =
     std::clamp(static_cast<double>(property->GetScatteringAnisotropy()), -0.999, 0.999);
-  SetField(fd, "BrumeG", &g, 1);
+  SetField(fd, vtkBrumeNames::G, &g, 1);
   const double component = this->Component;
-  SetField(fd, "BrumeScalarComponent", &component, 1);
-  SetField(fd, "BrumeScalarOpacityUnitDistance", &unit, 1);
-  SetString(fd, "BrumeDensityArray", scalars->GetName());
-  SetString(fd, "BrumeInterpolation",
-    property->GetInterpolationType() == VTK_NEAREST_INTERPOLATION ? "nearest"
-                                                                              : "linear");
+  SetField(fd, vtkBrumeNames::ScalarComponent, &component, 1);
+  SetField(fd, vtkBrumeNames::ScalarOpacityUnitDistance, &unit, 1);
+  SetString(fd, vtkBrumeNames::DensityArray, scalars->GetName());
+  SetString(fd, vtkBrumeNames::Interpolation,
+    property->GetInterpolationType() == VTK_NEAREST_INTERPOLATION ? "nearest" : "linear");
   vtkNew<vtkDoubleArray> function;
-  function->SetName("BrumeScalarOpacity");
+  function->SetName(vtkBrumeNames::ScalarOpacity);
   function->SetNumberOfComponents(2);
   for (const auto& p : points)
   {
     function->InsertNextTuple(p.data());
   }
-  fd->RemoveArray("BrumeScalarOpacity");
+  fd->RemoveArray(vtkBrumeNames::ScalarOpacity);
   fd->AddArray(function);
-  fd->RemoveArray("BrumeScalarColor");
+  fd->RemoveArray(vtkBrumeNames::ScalarColor);
   if (!colors.empty())
   {
     vtkNew<vtkDoubleArray> color;
-    color->SetName("BrumeScalarColor");
+    color->SetName(vtkBrumeNames::ScalarColor);
     color->SetNumberOfComponents(4);
     for (const auto& p : colors)
     {
@@ -394,8 +394,8 @@ int vtkBrumeVolumePropertyMedium::RequestData(
     }
     fd->AddArray(color);
   }
-  fd->RemoveArray("BrumeDensityScale");
-  fd->RemoveArray("BrumeVDBFile");
+  fd->RemoveArray(vtkBrumeNames::DensityScale);
+  fd->RemoveArray(vtkBrumeNames::VDBFile);
   output->SetFieldData(fd);
   return 1;
 }

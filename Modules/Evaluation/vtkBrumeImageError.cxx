@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumeImageError.h"
 
+#include "vtkBrumeDataModelNames.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
@@ -103,7 +104,7 @@ double BlockError(
 
 vtkDataArray* Radiance(vtkImageData* image)
 {
-  vtkDataArray* a = image ? image->GetPointData()->GetArray("Radiance") : nullptr;
+  vtkDataArray* a = image ? image->GetPointData()->GetArray(vtkBrumeNames::Radiance) : nullptr;
   return a && a->GetNumberOfComponents() == 3 ? a : nullptr;
 }
 
@@ -203,7 +204,7 @@ bool vtkBrumeImageError::Compare(vtkImageData* image, vtkImageData* reference, v
 
 bool vtkBrumeImageError::IsFinite(vtkImageData* image)
 {
-  vtkDataArray* a = image ? image->GetPointData()->GetArray("Radiance") : nullptr;
+  vtkDataArray* a = image ? image->GetPointData()->GetArray(vtkBrumeNames::Radiance) : nullptr;
   if (!a)
   {
     return false;

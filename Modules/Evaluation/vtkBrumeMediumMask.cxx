@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumeMediumMask.h"
 
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeEvaluationView.h"
 #include "vtkBrumeSceneConversion.h"
 #include "vtkCamera.h"
@@ -71,7 +72,7 @@ int vtkBrumeMediumMask::RequestData(
     vtkBrumeEvaluationView::Pinhole(vtkBrumeEvaluationView::Camera(scene, this->Camera), w, h);
 
   vtkNew<vtkUnsignedCharArray> mask;
-  mask->SetName("MediumMask");
+  mask->SetName(vtkBrumeNames::MediumMask);
   mask->SetNumberOfTuples(static_cast<vtkIdType>(w) * h);
   unsigned char* inside = mask->GetPointer(0);
   vtkSMPTools::For(0, h,

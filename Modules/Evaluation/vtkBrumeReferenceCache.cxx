@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumeReferenceCache.h"
 
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeEvaluationView.h"
 #include "vtkBrumeReferencePathTracer.h"
 #include "vtkCamera.h"
@@ -49,7 +50,7 @@ vtkSmartPointer<vtkImageData> ReadCached(const std::filesystem::path& path)
   vtkNew<vtkXMLImageDataReader> reader;
   reader->SetFileName(path.string().c_str());
   reader->Update();
-  if (!reader->GetOutput()->GetPointData()->GetArray("Radiance"))
+  if (!reader->GetOutput()->GetPointData()->GetArray(vtkBrumeNames::Radiance))
   {
     return nullptr;
   }
@@ -126,7 +127,7 @@ int vtkBrumeReferenceCache::RequestData(
   vtkNew<vtkXMLImageDataWriter> writer;
   writer->SetFileName(this->FileName.c_str());
   writer->SetInputData(output);
-  writer->SetDataModeToBinary(); // readable despite expat reparse deferral (see README)
+  writer->SetDataModeToBinary(); // inline: VTK 9.2 misreads appended data under expat 2.5
   if (error || !writer->Write())
   {
     vtkWarningMacro("Could not keep the reference in " << this->FileName << ".");

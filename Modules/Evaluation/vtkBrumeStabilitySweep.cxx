@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumeStabilitySweep.h"
 
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeErrorPlot.h"
 #include "vtkBrumeEvaluationTable.h"
 #include "vtkBrumeEvaluationView.h"
@@ -76,9 +77,9 @@ void SetMaterial(Scene* scene, int object, const char* type)
 {
   vtkFieldData* fd = ObjectData(scene, object)->GetFieldData();
   vtkNew<vtkStringArray> a;
-  a->SetName("BrumeMaterial");
+  a->SetName(vtkBrumeNames::Material);
   a->InsertNextValue(type);
-  fd->RemoveArray("BrumeMaterial");
+  fd->RemoveArray(vtkBrumeNames::Material);
   fd->AddArray(a);
 }
 
@@ -94,16 +95,16 @@ void AddMediumCases(std::vector<Case>& cases, int medium, const std::string& nam
 {
   for (double g : { -0.99, -0.5, 0.0, 0.5, 0.9, 0.99 })
   {
-    cases.push_back(
-      { "g", std::to_string(g), name, [=](Scene* s) { SetField(s, medium, "BrumeG", { g }); }, n });
+    cases.push_back({ "g", std::to_string(g), name,
+      [=](Scene* s) { SetField(s, medium, vtkBrumeNames::G, { g }); }, n });
   }
   for (double k : { 0.001, 0.1, 1.0, 10.0, 100.0, 1000.0 })
   {
     cases.push_back({ "optical thickness", std::to_string(1.1 * k), name,
       [=](Scene* s)
       {
-        SetField(s, medium, "BrumeSigmaS", { k, k, k });
-        SetField(s, medium, "BrumeSigmaA", { 0.1 * k, 0.1 * k, 0.1 * k });
+        SetField(s, medium, vtkBrumeNames::SigmaS, { k, k, k });
+        SetField(s, medium, vtkBrumeNames::SigmaA, { 0.1 * k, 0.1 * k, 0.1 * k });
       },
       n });
   }
@@ -112,8 +113,8 @@ void AddMediumCases(std::vector<Case>& cases, int medium, const std::string& nam
     cases.push_back({ "albedo", std::to_string(a), name,
       [=](Scene* s)
       {
-        SetField(s, medium, "BrumeSigmaS", { 1.1 * a, 1.1 * a, 1.1 * a });
-        SetField(s, medium, "BrumeSigmaA", { 1.1 * (1 - a), 1.1 * (1 - a), 1.1 * (1 - a) });
+        SetField(s, medium, vtkBrumeNames::SigmaS, { 1.1 * a, 1.1 * a, 1.1 * a });
+        SetField(s, medium, vtkBrumeNames::SigmaA, { 1.1 * (1 - a), 1.1 * (1 - a), 1.1 * (1 - a) });
       },
       n });
   }
@@ -125,26 +126,26 @@ void AddSurfaceCases(std::vector<Case>& cases, int surface, const std::string& n
     [=](Scene* s)
     {
       SetMaterial(s, surface, "phong");
-      SetField(s, surface, "BrumeReflectance", { 0.2, 0.2, 0.2 });
-      SetField(s, surface, "BrumeSpecular", { 0.6, 0.6, 0.6 });
-      SetField(s, surface, "BrumeExponent", { 50 });
+      SetField(s, surface, vtkBrumeNames::Reflectance, { 0.2, 0.2, 0.2 });
+      SetField(s, surface, vtkBrumeNames::Specular, { 0.6, 0.6, 0.6 });
+      SetField(s, surface, vtkBrumeNames::Exponent, { 50 });
     },
     n });
   cases.push_back({ name, "glossy e=1000", "",
     [=](Scene* s)
     {
       SetMaterial(s, surface, "phong");
-      SetField(s, surface, "BrumeReflectance", { 0.2, 0.2, 0.2 });
-      SetField(s, surface, "BrumeSpecular", { 0.6, 0.6, 0.6 });
-      SetField(s, surface, "BrumeExponent", { 1000 });
+      SetField(s, surface, vtkBrumeNames::Reflectance, { 0.2, 0.2, 0.2 });
+      SetField(s, surface, vtkBrumeNames::Specular, { 0.6, 0.6, 0.6 });
+      SetField(s, surface, vtkBrumeNames::Exponent, { 1000 });
     },
     n });
   cases.push_back({ name, "mirror", "",
     [=](Scene* s)
     {
       SetMaterial(s, surface, "mirror");
-      SetField(s, surface, "BrumeReflectance", { 0, 0, 0 });
-      SetField(s, surface, "BrumeSpecular", { 0.9, 0.9, 0.9 });
+      SetField(s, surface, vtkBrumeNames::Reflectance, { 0, 0, 0 });
+      SetField(s, surface, vtkBrumeNames::Specular, { 0.9, 0.9, 0.9 });
     },
     n });
 }
@@ -224,8 +225,8 @@ struct Row
 // mean radiance. An image equal to the truth would score about this much.
 double ReferenceNoise(vtkImageData* reference)
 {
-  vtkDataArray* radiance = reference->GetPointData()->GetArray("Radiance");
-  vtkDataArray* variance = reference->GetPointData()->GetArray("Variance");
+  vtkDataArray* radiance = reference->GetPointData()->GetArray(vtkBrumeNames::Radiance);
+  vtkDataArray* variance = reference->GetPointData()->GetArray(vtkBrumeNames::Variance);
   if (!radiance || !variance || variance->GetNumberOfTuples() != radiance->GetNumberOfTuples())
   {
     return 0.0;

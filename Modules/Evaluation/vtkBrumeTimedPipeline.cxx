@@ -5,10 +5,9 @@
 #include "vtkBrumeEvaluationView.h"
 #include "vtkBrumeFloatImageCapture.h"
 #include "vtkBrumeLightTracer.h"
+#include "vtkBrumePipeline.h"
 #include "vtkBrumeRadianceReconstruction.h"
-#include "vtkBrumeSceneActors.h"
 #include "vtkCamera.h"
-#include "vtkExecutive.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -41,9 +40,45 @@ void Draw(vtkRenderWindow* window)
 }
 }
 
-vtkBrumeTimedPipeline::vtkBrumeTimedPipeline() = default;
+vtkBrumeTimedPipeline::vtkBrumeTimedPipeline()
+  : Pipeline(vtkSmartPointer<vtkBrumePipeline>::New())
+{
+}
 
 vtkBrumeTimedPipeline::~vtkBrumeTimedPipeline() = default;
+
+vtkBrumePipeline* vtkBrumeTimedPipeline::GetPipeline()
+{
+  return this->Pipeline;
+}
+
+vtkMTimeType vtkBrumeTimedPipeline::GetMTime()
+{
+  return std::max({ this->Superclass::GetMTime(), this->Pipeline->GetMTime(),
+    this->Pipeline->GetTracer()->GetMTime(), this->Pipeline->GetReconstruction()->GetMTime() });
+}
+
+// A shortcut to a setting of one of the pipeline's filters.
+#define brumeForward(Name, Type, Filter)                                                           \
+  void vtkBrumeTimedPipeline::Set##Name(Type value)                                                \
+  {                                                                                                \
+    this->Pipeline->Get##Filter()->Set##Name(value);                                               \
+  }                                                                                                \
+  Type vtkBrumeTimedPipeline::Get##Name()                                                          \
+  {                                                                                                \
+    return this->Pipeline->Get##Filter()->Get##Name();                                             \
+  }
+
+brumeForward(NumberOfParticles, vtkTypeInt64, Tracer);
+brumeForward(Seed, vtkIdType, Tracer);
+brumeForward(MaximumDepth, int, Tracer);
+brumeForward(MediumAimFraction, double, Tracer);
+brumeForward(SplitHeavyParticles, bool, Tracer);
+brumeForward(RadiosityThreshold, double, Reconstruction);
+brumeForward(CentroidMatching, bool, Reconstruction);
+brumeForward(DirectionalRadiance, bool, Reconstruction);
+brumeForward(DirectionalOrder, int, Reconstruction);
+#undef brumeForward
 
 int vtkBrumeTimedPipeline::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
@@ -58,7 +93,6 @@ int vtkBrumeTimedPipeline::RequestData(
   }
   const vtkSmartPointer<vtkCamera> camera = vtkBrumeEvaluationView::Camera(scene, this->Camera);
   vtkNew<vtkRenderer> renderer;
-  renderer->SetActiveCamera(camera);
   vtkNew<vtkRenderWindow> window;
   window->SetOffScreenRendering(1);
   window->SetMultiSamples(0);
@@ -68,29 +102,18 @@ int vtkBrumeTimedPipeline::RequestData(
   capture->Attach(renderer);
 
   const auto start = std::chrono::steady_clock::now();
-  vtkNew<vtkBrumeLightTracer> tracer;
-  tracer->SetInputData(scene);
-  tracer->SetNumberOfParticles(this->NumberOfParticles);
-  tracer->SetSeed(this->Seed);
-  tracer->SetMaximumDepth(this->MaximumDepth);
-  tracer->SetMediumAimFraction(this->MediumAimFraction);
-  tracer->SetSplitHeavyParticles(this->SplitHeavyParticles);
-  vtkNew<vtkBrumeRadianceReconstruction> reconstruction;
-  reconstruction->SetInputDataObject(0, scene);
-  reconstruction->SetInputConnection(1, tracer->GetOutputPort());
-  reconstruction->SetCamera(camera);
-  reconstruction->SetRadiosityThreshold(this->RadiosityThreshold);
-  reconstruction->SetCentroidMatching(this->CentroidMatching);
-  reconstruction->SetDirectionalRadiance(this->DirectionalRadiance);
-  reconstruction->SetDirectionalOrder(this->DirectionalOrder);
-  if (!reconstruction->GetExecutive()->Update())
+  vtkBrumePipeline* pipeline = this->Pipeline;
+  pipeline->SetInputData(scene);
+  pipeline->SetCamera(camera);
+  // The full run every time: traced and reconstructed again even where
+  // only the camera changed since the last execution.
+  pipeline->GetTracer()->Modified();
+  if (!pipeline->Update())
   {
     vtkErrorMacro("The pipeline failed on this scene (see the error above).");
     return 0;
   }
-  vtkNew<vtkBrumeSceneActors> actors;
-  actors->SetInputData(reconstruction->GetOutput());
-  if (!actors->AddToRenderer(renderer))
+  if (!pipeline->AddToRenderer(renderer))
   {
     vtkErrorMacro("Could not make the scene's props (see the error above).");
     return 0;
@@ -112,13 +135,11 @@ int vtkBrumeTimedPipeline::RequestData(
   // A new viewpoint: come back to this one from 2 degrees away (drawn
   // there, so that every per-view step runs again).
   camera->Azimuth(-2.0);
-  reconstruction->Update();
-  actors->UpdateInputs(reconstruction->GetOutput());
+  pipeline->UpdateView();
   Draw(window);
   camera->Azimuth(2.0);
   const auto viewStart = std::chrono::steady_clock::now();
-  reconstruction->Update();
-  actors->UpdateInputs(reconstruction->GetOutput());
+  pipeline->UpdateView();
   if (!capture->CaptureSupersampled(this->Supersampling))
   {
     vtkErrorMacro("Could not read the new view's frame back.");
@@ -133,17 +154,10 @@ void vtkBrumeTimedPipeline::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Size: " << this->Size[0] << " x " << this->Size[1] << "\n";
   os << indent << "Supersampling: " << this->Supersampling << "\n";
-  os << indent << "NumberOfParticles: " << this->NumberOfParticles << "\n";
-  os << indent << "Seed: " << this->Seed << "\n";
-  os << indent << "MaximumDepth: " << this->MaximumDepth << "\n";
-  os << indent << "RadiosityThreshold: " << this->RadiosityThreshold << "\n";
-  os << indent << "CentroidMatching: " << this->CentroidMatching << "\n";
-  os << indent << "MediumAimFraction: " << this->MediumAimFraction << "\n";
-  os << indent << "SplitHeavyParticles: " << this->SplitHeavyParticles << "\n";
-  os << indent << "DirectionalRadiance: " << this->DirectionalRadiance << "\n";
-  os << indent << "DirectionalOrder: " << this->DirectionalOrder << "\n";
   os << indent << "MeasureNewView: " << this->MeasureNewView << "\n";
   os << indent << "Camera: " << this->Camera << "\n";
   os << indent << "NewViewSeconds: " << this->NewViewSeconds << "\n";
   os << indent << "FullSeconds: " << this->FullSeconds << "\n";
+  os << indent << "Pipeline:\n";
+  this->Pipeline->PrintSelf(os, indent.GetNextIndent());
 }

@@ -6,12 +6,10 @@
  * Runs the fast pipeline on the input scene as `brume render` does, and
  * times it:
  *
- * 1. light tracing (vtkBrumeLightTracer, NumberOfParticles, Seed), radiance
- *    reconstruction (vtkBrumeRadianceReconstruction for the camera, with
- *    RadiosityThreshold and, when DirectionalRadiance is on, the media's
- *    spherical harmonics up to DirectionalOrder) and the off-screen frame
- *    (vtkBrumeSceneActors; Supersampling^2 renders read back and averaged
- *    by vtkBrumeFloatImageCapture): the full time, `FullSeconds`;
+ * 1. the pipeline (vtkBrumePipeline: light tracing, radiance reconstruction
+ *    for the camera and the scene's props) and the off-screen frame
+ *    (Supersampling^2 renders read back and averaged by
+ *    vtkBrumeFloatImageCapture): the full time, `FullSeconds`;
  * 2. when MeasureNewView is on, a new viewpoint: the camera turns 2 degrees
  *    in azimuth and a frame is drawn there (untimed, so that every per-view
  *    step runs again), then it turns back and the reconstruction's
@@ -36,6 +34,9 @@
 
 #include "vtkBrumeEvaluationModule.h" // For export macro
 #include "vtkBrumeViewImageAlgorithm.h"
+#include "vtkSmartPointer.h" // For Pipeline
+
+class vtkBrumePipeline;
 
 class VTKBRUMEEVALUATION_EXPORT vtkBrumeTimedPipeline : public vtkBrumeViewImageAlgorithm
 {
@@ -50,54 +51,44 @@ public:
   vtkGetMacro(Supersampling, int);
   ///@}
 
-  ///@{
-  /// Particles traced (default 1,000,000).
-  vtkSetMacro(NumberOfParticles, vtkTypeInt64);
-  vtkGetMacro(NumberOfParticles, vtkTypeInt64);
-  ///@}
+  /**
+   * The pipeline it runs (vtkBrumePipeline): every setting of the phases is
+   * set there, on the filter that owns it, and defaulted there. The
+   * setters below are shortcuts to the same settings.
+   */
+  vtkBrumePipeline* GetPipeline();
 
   ///@{
-  /// Seed of the light tracer (default 0).
-  vtkSetMacro(Seed, vtkIdType);
-  vtkGetMacro(Seed, vtkIdType);
-  ///@}
-
-  ///@{
-  /// The light tracer's MaximumDepth (default 1024): 1 keeps the light
-  /// scattered or reflected once (vtkBrumeReferencePathTracer's MaximumDepth
-  /// of the same value renders the same light).
-  vtkSetClampMacro(MaximumDepth, int, 1, 1000000);
-  vtkGetMacro(MaximumDepth, int);
-  ///@}
-
-  ///@{
-  /// The reconstruction's radiosity threshold (default 128 hits).
-  vtkSetMacro(RadiosityThreshold, double);
-  vtkGetMacro(RadiosityThreshold, double);
-  ///@}
-
-  ///@{
-  /// The light tracer's MediumAimFraction (default 0.2).
-  vtkSetClampMacro(MediumAimFraction, double, 0.0, 0.99);
-  vtkGetMacro(MediumAimFraction, double);
-  /// The light tracer's SplitHeavyParticles (default on).
-  vtkSetMacro(SplitHeavyParticles, bool);
-  vtkGetMacro(SplitHeavyParticles, bool);
+  /// The light tracer's NumberOfParticles, Seed, MaximumDepth (1 keeps the
+  /// light scattered or reflected once: vtkBrumeReferencePathTracer's
+  /// MaximumDepth of the same value renders the same light),
+  /// MediumAimFraction and SplitHeavyParticles.
+  void SetNumberOfParticles(vtkTypeInt64 particles);
+  vtkTypeInt64 GetNumberOfParticles();
+  void SetSeed(vtkIdType seed);
+  vtkIdType GetSeed();
+  void SetMaximumDepth(int depth);
+  int GetMaximumDepth();
+  void SetMediumAimFraction(double fraction);
+  double GetMediumAimFraction();
+  void SetSplitHeavyParticles(bool split);
+  bool GetSplitHeavyParticles();
   vtkBooleanMacro(SplitHeavyParticles, bool);
-
-  /// The reconstruction's CentroidMatching (default on).
-  vtkSetMacro(CentroidMatching, bool);
-  vtkGetMacro(CentroidMatching, bool);
-  vtkBooleanMacro(CentroidMatching, bool);
   ///@}
 
   ///@{
-  /// Directional (spherical-harmonics) media, and their order (default off, 3).
-  vtkSetMacro(DirectionalRadiance, bool);
-  vtkGetMacro(DirectionalRadiance, bool);
+  /// The reconstruction's RadiosityThreshold, CentroidMatching,
+  /// DirectionalRadiance (spherical-harmonics media) and DirectionalOrder.
+  void SetRadiosityThreshold(double threshold);
+  double GetRadiosityThreshold();
+  void SetCentroidMatching(bool matching);
+  bool GetCentroidMatching();
+  vtkBooleanMacro(CentroidMatching, bool);
+  void SetDirectionalRadiance(bool directional);
+  bool GetDirectionalRadiance();
   vtkBooleanMacro(DirectionalRadiance, bool);
-  vtkSetMacro(DirectionalOrder, int);
-  vtkGetMacro(DirectionalOrder, int);
+  void SetDirectionalOrder(int order);
+  int GetDirectionalOrder();
   ///@}
 
   ///@{
@@ -118,22 +109,16 @@ protected:
   ~vtkBrumeTimedPipeline() override;
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  vtkMTimeType GetMTime() override;
 
   int Supersampling = 4;
-  vtkTypeInt64 NumberOfParticles = 1000000;
-  vtkIdType Seed = 0;
-  int MaximumDepth = 1024;
-  double RadiosityThreshold = 128.0;
-  bool CentroidMatching = true;
-  double MediumAimFraction = 0.2;
-  bool SplitHeavyParticles = true;
-  bool DirectionalRadiance = false;
-  int DirectionalOrder = 3;
   bool MeasureNewView = true;
   double FullSeconds = 0;
   double NewViewSeconds = 0;
 
 private:
+  vtkSmartPointer<vtkBrumePipeline> Pipeline;
+
   vtkBrumeTimedPipeline(const vtkBrumeTimedPipeline&) = delete;
   void operator=(const vtkBrumeTimedPipeline&) = delete;
 };

@@ -4,6 +4,7 @@
 #include "brume/VdbDensity.h"
 #include "brume/VdbGrid.h"
 
+#include "vtkBrumeDataModelNames.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -119,9 +120,9 @@ int vtkBrumeOpenVDBReader::RequestData(
     output->SetDimensions(2, 2, 2);
     output->SetSpacing((dim[0] - 1) * voxel[0], (dim[1] - 1) * voxel[1], (dim[2] - 1) * voxel[2]);
     vtkNew<vtkStringArray> file, gridName;
-    file->SetName("BrumeVDBFile");
+    file->SetName(vtkBrumeNames::VDBFile);
     file->InsertNextValue(std::filesystem::absolute(this->FileName).string());
-    gridName->SetName("BrumeVDBGrid");
+    gridName->SetName(vtkBrumeNames::VDBGrid);
     gridName->InsertNextValue(name);
     output->GetFieldData()->AddArray(file);
     output->GetFieldData()->AddArray(gridName);

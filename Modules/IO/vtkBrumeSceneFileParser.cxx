@@ -2,6 +2,7 @@
 #include "vtkBrumeSceneFileParser.h"
 #include "vtkBrumeSceneFileParserInternals.h"
 
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeSceneCamera.h"
 #include "vtkBrumeSceneConversion.h"
 #include "vtkBrumeSceneFileChecks.h"
@@ -181,10 +182,11 @@ bool vtkBrumeSceneFileParser::ParseMaterial(
       p.Fail(m + ".type", "expected 'lambertian', 'phong' or 'mirror', not '" + type + "'");
       return false;
     }
-    AddString(sfd, "BrumeMaterial", type);
+    AddString(sfd, vtkBrumeNames::Material, type);
   }
-  for (const auto& key : { std::make_pair("reflectance", "BrumeReflectance"),
-         std::make_pair("specular", "BrumeSpecular"), std::make_pair("emission", "BrumeEmission") })
+  for (const auto& key : { std::make_pair("reflectance", vtkBrumeNames::Reflectance),
+         std::make_pair("specular", vtkBrumeNames::Specular),
+         std::make_pair("emission", vtkBrumeNames::Emission) })
   {
     if (material.contains(key.first))
     {
@@ -204,7 +206,7 @@ bool vtkBrumeSceneFileParser::ParseMaterial(
     {
       return false;
     }
-    AddTuple(sfd, "BrumeExponent", &e, 1);
+    AddTuple(sfd, vtkBrumeNames::Exponent, &e, 1);
   }
   return true;
 }
@@ -261,11 +263,11 @@ bool vtkBrumeSceneFileParser::ParseLight(const json& l, std::size_t i)
     p.Fail(at + (type == "directional" ? ".irradiance" : ".intensity"), "the light has zero power");
     return false;
   }
-  AddString(fd, "BrumeLightType", type);
-  AddTuple(fd, "BrumeLightPosition", position, 3);
-  AddTuple(fd, "BrumeLightDirection", direction, 3);
-  AddTuple(fd, "BrumeLightIntensity", power, 3);
-  AddTuple(fd, "BrumeLightConeAngle", &cone, 1);
+  AddString(fd, vtkBrumeNames::LightType, type);
+  AddTuple(fd, vtkBrumeNames::LightPosition, position, 3);
+  AddTuple(fd, vtkBrumeNames::LightDirection, direction, 3);
+  AddTuple(fd, vtkBrumeNames::LightIntensity, power, 3);
+  AddTuple(fd, vtkBrumeNames::LightConeAngle, &cone, 1);
   return true;
 }
 
@@ -304,10 +306,10 @@ bool vtkBrumeSceneFileParser::ParseCamera(const json& root)
     p.Fail("camera.view_up", "zero or parallel to the view direction");
     return false;
   }
-  AddTuple(fd, "BrumeCameraPosition", position, 3);
-  AddTuple(fd, "BrumeCameraFocalPoint", focal, 3);
-  AddTuple(fd, "BrumeCameraViewUp", up, 3);
-  AddTuple(fd, "BrumeCameraViewAngle", &angle, 1);
+  AddTuple(fd, vtkBrumeNames::CameraPosition, position, 3);
+  AddTuple(fd, vtkBrumeNames::CameraFocalPoint, focal, 3);
+  AddTuple(fd, vtkBrumeNames::CameraViewUp, up, 3);
+  AddTuple(fd, vtkBrumeNames::CameraViewAngle, &angle, 1);
   return true;
 }
 
@@ -333,11 +335,11 @@ bool vtkBrumeSceneFileParser::ParseRender(const json& root)
   {
     return false;
   }
-  AddTuple(fd, "BrumeRenderParticles", &particles, 1);
-  AddTuple(fd, "BrumeRenderSize", size, 2);
-  AddTuple(fd, "BrumeRenderThreshold", &threshold, 1);
-  AddTuple(fd, "BrumeRenderSeed", &seed, 1);
-  AddTuple(fd, "BrumeRenderExposure", &exposure, 1);
+  AddTuple(fd, vtkBrumeNames::RenderParticles, &particles, 1);
+  AddTuple(fd, vtkBrumeNames::RenderSize, size, 2);
+  AddTuple(fd, vtkBrumeNames::RenderThreshold, &threshold, 1);
+  AddTuple(fd, vtkBrumeNames::RenderSeed, &seed, 1);
+  AddTuple(fd, vtkBrumeNames::RenderExposure, &exposure, 1);
   return true;
 }
 

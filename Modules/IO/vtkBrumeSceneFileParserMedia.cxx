@@ -5,6 +5,7 @@
 #include "vtkBrumeSceneFileParser.h"
 #include "vtkBrumeSceneFileParserInternals.h"
 
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeSceneFileChecks.h"
 #include "vtkDoubleArray.h"
 #include "vtkExecutive.h"
@@ -78,10 +79,10 @@ bool vtkBrumeSceneFileParser::ParseMedium(const json& m, std::size_t i)
     return false;
   }
   vtkFieldData* mfd = image->GetFieldData();
-  AddTuple(mfd, "BrumeSigmaA", sa, 3);
-  AddTuple(mfd, "BrumeSigmaS", ss, 3);
-  AddTuple(mfd, "BrumeG", &g, 1);
-  AddTuple(mfd, "BrumeDensityScale", &scale, 1);
+  AddTuple(mfd, vtkBrumeNames::SigmaA, sa, 3);
+  AddTuple(mfd, vtkBrumeNames::SigmaS, ss, 3);
+  AddTuple(mfd, vtkBrumeNames::G, &g, 1);
+  AddTuple(mfd, vtkBrumeNames::DensityScale, &scale, 1);
   vtkBrumeSceneConversion::AddObject(this->Scene, image, name);
   this->ObjectFields.emplace_back(name, at);
   return true;
@@ -102,14 +103,14 @@ bool vtkBrumeSceneFileParser::ParseVdb(
     p.Fail(at + ".density.vdb", "no file '" + relative(file).string() + "'");
     return false;
   }
-  AddString(image->GetFieldData(), "BrumeVDBFile", relative(file).string());
+  AddString(image->GetFieldData(), vtkBrumeNames::VDBFile, relative(file).string());
   if (density.contains("grid"))
   {
     if (!p.String(density["grid"], at + ".density.grid", grid))
     {
       return false;
     }
-    AddString(image->GetFieldData(), "BrumeVDBGrid", grid);
+    AddString(image->GetFieldData(), vtkBrumeNames::VDBGrid, grid);
   }
   if (density.contains("transfer_function") &&
     !this->ParseTransferFunction(density, at + ".density", image))
@@ -131,7 +132,7 @@ bool vtkBrumeSceneFileParser::ParseTransferFunction(
     {
       return false;
     }
-    AddTuple(fd, "BrumeScalarComponent", &component, 1);
+    AddTuple(fd, vtkBrumeNames::ScalarComponent, &component, 1);
   }
   const json& f = density["transfer_function"];
   const std::string tf = at + ".transfer_function";
@@ -145,7 +146,7 @@ bool vtkBrumeSceneFileParser::ParseTransferFunction(
     return p.Fail(tf + ".opacity", "expected [[scalar, opacity], ...] with at least one point");
   }
   vtkNew<vtkDoubleArray> points;
-  points->SetName("BrumeScalarOpacity");
+  points->SetName(vtkBrumeNames::ScalarOpacity);
   points->SetNumberOfComponents(2);
   for (std::size_t i = 0; i < opacity.size(); ++i)
   {
@@ -177,7 +178,7 @@ bool vtkBrumeSceneFileParser::ParseTransferFunction(
         tf + ".color", "expected [[scalar, red, green, blue], ...] with at least one point");
     }
     vtkNew<vtkDoubleArray> colors;
-    colors->SetName("BrumeScalarColor");
+    colors->SetName(vtkBrumeNames::ScalarColor);
     colors->SetNumberOfComponents(4);
     for (std::size_t i = 0; i < color.size(); ++i)
     {
@@ -213,7 +214,7 @@ bool vtkBrumeSceneFileParser::ParseTransferFunction(
   {
     return false;
   }
-  AddTuple(fd, "BrumeScalarOpacityUnitDistance", &unit, 1);
+  AddTuple(fd, vtkBrumeNames::ScalarOpacityUnitDistance, &unit, 1);
   if (f.contains("interpolation"))
   {
     std::string interpolation;
@@ -226,7 +227,7 @@ bool vtkBrumeSceneFileParser::ParseTransferFunction(
       return p.Fail(
         tf + ".interpolation", "expected 'linear' or 'nearest', not '" + interpolation + "'");
     }
-    AddString(fd, "BrumeInterpolation", interpolation);
+    AddString(fd, vtkBrumeNames::Interpolation, interpolation);
   }
   return true;
 }
@@ -357,7 +358,7 @@ vtkSmartPointer<vtkImageData> vtkBrumeSceneFileParser::ParseDensity(
       {
         return nullptr;
       }
-      AddString(image->GetFieldData(), "BrumeDensityArray", array);
+      AddString(image->GetFieldData(), vtkBrumeNames::DensityArray, array);
     }
     if (density.contains("transfer_function") &&
       !this->ParseTransferFunction(density, at + ".density", image))

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumeSceneWriter.h"
 
+#include "vtkBrumeDataModelNames.h"
 #include "vtkCellData.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDataArray.h"
@@ -68,7 +69,7 @@ std::string WriteSurface(
   vtkNew<vtkXMLPolyDataWriter> writer;
   writer->SetFileName((path.parent_path() / file).string().c_str());
   writer->SetInputData(surface);
-  writer->SetDataModeToBinary(); // readable despite expat reparse deferral (see README)
+  writer->SetDataModeToBinary(); // inline: VTK 9.2 misreads appended data under expat 2.5
   if (!writer->Write())
   {
     return "Cannot write " + file + ".";
@@ -77,14 +78,15 @@ std::string WriteSurface(
   s["file"] = file;
   json material = json::object();
   vtkFieldData* fd = surface->GetFieldData();
-  const std::string type = StringField(fd, "BrumeMaterial");
+  const std::string type = StringField(fd, vtkBrumeNames::Material);
   if (!type.empty())
   {
     material["type"] = type;
   }
-  for (const auto& key : { std::make_pair("reflectance", "BrumeReflectance"),
-         std::make_pair("specular", "BrumeSpecular"), std::make_pair("emission", "BrumeEmission"),
-         std::make_pair("exponent", "BrumeExponent") })
+  for (const auto& key : { std::make_pair("reflectance", vtkBrumeNames::Reflectance),
+         std::make_pair("specular", vtkBrumeNames::Specular),
+         std::make_pair("emission", vtkBrumeNames::Emission),
+         std::make_pair("exponent", vtkBrumeNames::Exponent) })
   {
     if (vtkDataArray* a = fd->GetArray(key.second))
     {
@@ -98,7 +100,7 @@ std::string WriteSurface(
 // A dense medium's scalar-opacity transfer function, if it has one.
 void WriteTransferFunction(vtkFieldData* fd, json& density)
 {
-  vtkDataArray* points = fd->GetArray("BrumeScalarOpacity");
+  vtkDataArray* points = fd->GetArray(vtkBrumeNames::ScalarOpacity);
   if (!points)
   {
     return;
@@ -109,7 +111,7 @@ void WriteTransferFunction(vtkFieldData* fd, json& density)
   {
     f["opacity"].push_back(json::array({ points->GetComponent(i, 0), points->GetComponent(i, 1) }));
   }
-  if (vtkDataArray* color = fd->GetArray("BrumeScalarColor"))
+  if (vtkDataArray* color = fd->GetArray(vtkBrumeNames::ScalarColor))
   {
     f["color"] = json::array();
     for (vtkIdType i = 0; i < color->GetNumberOfTuples(); ++i)
@@ -118,16 +120,16 @@ void WriteTransferFunction(vtkFieldData* fd, json& density)
         color->GetComponent(i, 2), color->GetComponent(i, 3) }));
     }
   }
-  if (vtkDataArray* unit = fd->GetArray("BrumeScalarOpacityUnitDistance"))
+  if (vtkDataArray* unit = fd->GetArray(vtkBrumeNames::ScalarOpacityUnitDistance))
   {
     f["unit_distance"] = unit->GetTuple1(0);
   }
-  const std::string interpolation = StringField(fd, "BrumeInterpolation");
+  const std::string interpolation = StringField(fd, vtkBrumeNames::Interpolation);
   if (!interpolation.empty())
   {
     f["interpolation"] = interpolation;
   }
-  if (vtkDataArray* component = fd->GetArray("BrumeScalarComponent"))
+  if (vtkDataArray* component = fd->GetArray(vtkBrumeNames::ScalarComponent))
   {
     density["component"] = static_cast<int>(component->GetTuple1(0));
   }
@@ -141,23 +143,23 @@ std::string WriteMedium(
   const std::string stem = path.stem().string();
   vtkFieldData* fd = medium->GetFieldData();
   m["name"] = name;
-  for (const auto& key :
-    { std::make_pair("sigma_a", "BrumeSigmaA"), std::make_pair("sigma_s", "BrumeSigmaS") })
+  for (const auto& key : { std::make_pair("sigma_a", vtkBrumeNames::SigmaA),
+         std::make_pair("sigma_s", vtkBrumeNames::SigmaS) })
   {
     if (vtkDataArray* a = fd->GetArray(key.second))
     {
       m[key.first] = Tuple(a);
     }
   }
-  if (vtkDataArray* g = fd->GetArray("BrumeG"))
+  if (vtkDataArray* g = fd->GetArray(vtkBrumeNames::G))
   {
     m["g"] = g->GetTuple1(0);
   }
-  if (vtkDataArray* s = fd->GetArray("BrumeDensityScale"))
+  if (vtkDataArray* s = fd->GetArray(vtkBrumeNames::DensityScale))
   {
     m["density_scale"] = s->GetTuple1(0);
   }
-  const std::string vdb = StringField(fd, "BrumeVDBFile");
+  const std::string vdb = StringField(fd, vtkBrumeNames::VDBFile);
   const bool dense = medium->GetPointData()->GetNumberOfArrays() > 0 ||
     medium->GetCellData()->GetNumberOfArrays() > 0;
   double b[6];
@@ -170,7 +172,7 @@ std::string WriteMedium(
   if (!vdb.empty())
   {
     m["density"]["vdb"] = std::filesystem::absolute(vdb).string();
-    const std::string grid = StringField(fd, "BrumeVDBGrid");
+    const std::string grid = StringField(fd, vtkBrumeNames::VDBGrid);
     if (!grid.empty())
     {
       m["density"]["grid"] = grid;
@@ -183,13 +185,13 @@ std::string WriteMedium(
     vtkNew<vtkXMLImageDataWriter> writer;
     writer->SetFileName((path.parent_path() / file).string().c_str());
     writer->SetInputData(medium);
-    writer->SetDataModeToBinary(); // readable despite expat reparse deferral (see README)
+    writer->SetDataModeToBinary(); // inline: VTK 9.2 misreads appended data under expat 2.5
     if (!writer->Write())
     {
       return "Cannot write " + file + ".";
     }
     m["density"]["vti"] = file;
-    const std::string array = StringField(fd, "BrumeDensityArray");
+    const std::string array = StringField(fd, vtkBrumeNames::DensityArray);
     if (!array.empty())
     {
       m["density"]["array"] = array;
@@ -202,7 +204,7 @@ std::string WriteMedium(
 // The lights of the collection's field data.
 void WriteLights(vtkFieldData* fd, json& root)
 {
-  if (auto* types = vtkStringArray::SafeDownCast(fd->GetAbstractArray("BrumeLightType")))
+  if (auto* types = vtkStringArray::SafeDownCast(fd->GetAbstractArray(vtkBrumeNames::LightType)))
   {
     for (vtkIdType i = 0; i < types->GetNumberOfValues(); ++i)
     {
@@ -211,20 +213,20 @@ void WriteLights(vtkFieldData* fd, json& root)
       l["type"] = type;
       if (type != "directional")
       {
-        l["position"] = Tuple(fd->GetArray("BrumeLightPosition"), i);
-        l["intensity"] = Tuple(fd->GetArray("BrumeLightIntensity"), i);
+        l["position"] = Tuple(fd->GetArray(vtkBrumeNames::LightPosition), i);
+        l["intensity"] = Tuple(fd->GetArray(vtkBrumeNames::LightIntensity), i);
       }
       else
       {
-        l["irradiance"] = Tuple(fd->GetArray("BrumeLightIntensity"), i);
+        l["irradiance"] = Tuple(fd->GetArray(vtkBrumeNames::LightIntensity), i);
       }
       if (type != "point")
       {
-        l["direction"] = Tuple(fd->GetArray("BrumeLightDirection"), i);
+        l["direction"] = Tuple(fd->GetArray(vtkBrumeNames::LightDirection), i);
       }
       if (type == "spot")
       {
-        l["cone_angle"] = fd->GetArray("BrumeLightConeAngle")->GetTuple1(i);
+        l["cone_angle"] = fd->GetArray(vtkBrumeNames::LightConeAngle)->GetTuple1(i);
       }
       root["lights"].push_back(l);
     }
@@ -234,9 +236,10 @@ void WriteLights(vtkFieldData* fd, json& root)
 // The camera and render settings of the collection's field data.
 void WriteSettings(vtkFieldData* fd, json& root)
 {
-  const std::pair<const char*, const char*> camera[] = { { "position", "BrumeCameraPosition" },
-    { "focal_point", "BrumeCameraFocalPoint" }, { "view_up", "BrumeCameraViewUp" },
-    { "view_angle", "BrumeCameraViewAngle" } };
+  using Key = std::pair<const char*, const char*>;
+  const Key camera[] = { { "position", vtkBrumeNames::CameraPosition },
+    { "focal_point", vtkBrumeNames::CameraFocalPoint }, { "view_up", vtkBrumeNames::CameraViewUp },
+    { "view_angle", vtkBrumeNames::CameraViewAngle } };
   for (const auto& key : camera)
   {
     if (vtkDataArray* a = fd->GetArray(key.second))
@@ -245,9 +248,9 @@ void WriteSettings(vtkFieldData* fd, json& root)
         a->GetNumberOfComponents() == 1 ? json(a->GetTuple1(0)) : Tuple(a);
     }
   }
-  const std::pair<const char*, const char*> render[] = { { "particles", "BrumeRenderParticles" },
-    { "size", "BrumeRenderSize" }, { "threshold", "BrumeRenderThreshold" },
-    { "seed", "BrumeRenderSeed" }, { "exposure", "BrumeRenderExposure" } };
+  const Key render[] = { { "particles", vtkBrumeNames::RenderParticles },
+    { "size", vtkBrumeNames::RenderSize }, { "threshold", vtkBrumeNames::RenderThreshold },
+    { "seed", vtkBrumeNames::RenderSeed }, { "exposure", vtkBrumeNames::RenderExposure } };
   for (const auto& key : render)
   {
     if (vtkDataArray* a = fd->GetArray(key.second))

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumeRadianceReconstruction.h"
 
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeHitConversion.h"
 #include "vtkBrumeProcesses.h"
 #include "vtkBrumeRadianceTextures.h"
@@ -79,7 +80,7 @@ int vtkBrumeRadianceReconstruction::RequestData(
     // output says how far the run is.
     this->CountWork();
     vtkNew<vtkDoubleArray> binned;
-    binned->SetName("BrumeParticlesBinned");
+    binned->SetName(vtkBrumeNames::ParticlesBinned);
     binned->SetNumberOfComponents(2);
     binned->InsertNextTuple2(this->Textures->GetEndParticle(), this->Textures->GetParticles());
     output->GetFieldData()->AddArray(binned);
@@ -111,12 +112,12 @@ int vtkBrumeRadianceReconstruction::RequestData(
     // Where the textures radiate toward, and whether any depends on it:
     // what a renderer that follows its camera compares with.
     vtkNew<vtkDoubleArray> eye;
-    eye->SetName("BrumeEyePosition");
+    eye->SetName(vtkBrumeNames::EyePosition);
     eye->SetNumberOfComponents(3);
     eye->InsertNextTuple3(request.Eye.x, request.Eye.y, request.Eye.z);
     output->GetFieldData()->AddArray(eye);
     vtkNew<vtkIntArray> viewDependent;
-    viewDependent->SetName("BrumeViewDependentObjects");
+    viewDependent->SetName(vtkBrumeNames::ViewDependentObjects);
     viewDependent->InsertNextValue(this->Textures->NumberOfViewDependentOutputs());
     output->GetFieldData()->AddArray(viewDependent);
   }

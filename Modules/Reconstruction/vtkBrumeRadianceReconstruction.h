@@ -185,7 +185,7 @@ public:
    * mean over directions. vtkBrumeSliceVolumeMapper evaluates the source
    * radiance toward the eye per fragment (brume/SphericalHarmonics.h), so a
    * view change costs only the render. Accurate where |g| is moderate (see
-   * the README's accuracy table); the per-view mode stays exact for any g.
+   * Documentation/evaluation.md, the sweep table); the per-view mode stays exact for any g.
    * Glossy surfaces stay per view.
    */
   vtkSetMacro(DirectionalRadiance, bool);

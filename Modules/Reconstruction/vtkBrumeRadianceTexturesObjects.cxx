@@ -6,6 +6,7 @@
 #include "vtkBrumeRadianceTextures.h"
 
 #include "vtkAlgorithm.h"
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeProcesses.h"
 #include "vtkBrumeSMP.h"
 #include "vtkDataArray.h"
@@ -61,7 +62,7 @@ std::unique_ptr<brume::ObjectRadiance> vtkBrumeRadianceTextures::CreateObject(st
   const auto& source = this->Sources[o];
   vtkDataObject* sceneObject =
     this->SceneCollection->GetPartitionedDataSet(source.CollectionIndex)->GetPartition(0);
-  vtkDataArray* override = sceneObject->GetFieldData()->GetArray("BrumeTextureResolution");
+  vtkDataArray* override = sceneObject->GetFieldData()->GetArray(vtkBrumeNames::TextureResolution);
   const int perObject =
     override && override->GetNumberOfTuples() > 0 ? static_cast<int>(override->GetTuple1(0)) : 0;
   if (hitCount == 0)

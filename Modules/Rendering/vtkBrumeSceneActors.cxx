@@ -2,6 +2,7 @@
 #include "vtkBrumeSceneActors.h"
 
 #include "vtkActor.h"
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeSliceVolumeMapper.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -132,9 +133,9 @@ struct vtkBrumeSceneActors::Entry
 
 std::string vtkBrumeSceneActors::GetObjectKind(vtkDataObject* texture)
 {
-  auto* kind = texture
-    ? vtkStringArray::SafeDownCast(texture->GetFieldData()->GetAbstractArray("BrumeObjectKind"))
-    : nullptr;
+  auto* kind = texture ? vtkStringArray::SafeDownCast(
+                           texture->GetFieldData()->GetAbstractArray(vtkBrumeNames::ObjectKind))
+                       : nullptr;
   return kind && kind->GetNumberOfValues() > 0 ? kind->GetValue(0) : std::string();
 }
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumeSliceVolumeMapper.h"
 
+#include "vtkBrumeDataModelNames.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
@@ -20,7 +21,7 @@ namespace
 // function's g.
 std::string CheckAsymmetry(vtkFieldData* fd, const char* coefficients)
 {
-  vtkDataArray* g = fd->GetArray("BrumePhaseAsymmetry");
+  vtkDataArray* g = fd->GetArray(vtkBrumeNames::PhaseAsymmetry);
   if (!g || g->GetNumberOfTuples() < 1 || !(std::abs(g->GetTuple1(0)) < 1.0))
   {
     return std::string("directional radiance ('") + coefficients +
@@ -59,7 +60,7 @@ std::string vtkBrumeSliceVolumeMapper::ValidateInput(vtkImageData* image)
       return "the medium image needs a positive spacing";
     }
   }
-  if (vtkDataArray* forward = image->GetFieldData()->GetArray("BrumeForwardFraction"))
+  if (vtkDataArray* forward = image->GetFieldData()->GetArray(vtkBrumeNames::ForwardFraction))
   {
     const double f = forward->GetNumberOfTuples() > 0 ? forward->GetTuple1(0) : -1.0;
     if (!(f >= 0.0 && f < 1.0))
@@ -74,8 +75,8 @@ std::string vtkBrumeSliceVolumeMapper::ValidateInput(vtkImageData* image)
     const int dims[3] = { pointDims[0] - 1, pointDims[1] - 1, pointDims[2] - 1 };
     return ValidateSourceBricks(image, dims);
   }
-  vtkDataArray* source = image->GetCellData()->GetArray("SourceRadiance");
-  vtkDataArray* extinction = image->GetCellData()->GetArray("Extinction");
+  vtkDataArray* source = image->GetCellData()->GetArray(vtkBrumeNames::SourceRadiance);
+  vtkDataArray* extinction = image->GetCellData()->GetArray(vtkBrumeNames::Extinction);
   if (!source || !extinction || source->GetNumberOfComponents() != 3 ||
     (extinction->GetNumberOfComponents() != 1 && extinction->GetNumberOfComponents() != 3) ||
     source->GetNumberOfTuples() != cells || extinction->GetNumberOfTuples() != cells)
@@ -83,7 +84,7 @@ std::string vtkBrumeSliceVolumeMapper::ValidateInput(vtkImageData* image)
     return "the medium image needs the cell arrays 'SourceRadiance' (3 components) and "
            "'Extinction' (1 or 3 components), one tuple per cell";
   }
-  if (vtkDataArray* sh = image->GetCellData()->GetArray("SourceRadianceSH"))
+  if (vtkDataArray* sh = image->GetCellData()->GetArray(vtkBrumeNames::SourceRadianceSH))
   {
     const int order = DirectionalOrder(sh->GetNumberOfComponents());
     if (order < 1 || sh->GetNumberOfTuples() != cells)
@@ -91,22 +92,22 @@ std::string vtkBrumeSliceVolumeMapper::ValidateInput(vtkImageData* image)
       return "the cell array 'SourceRadianceSH' needs 3 (order + 1)^2 components (order 1 to 3), "
              "one tuple per cell";
     }
-    return CheckAsymmetry(image->GetFieldData(), "SourceRadianceSH");
+    return CheckAsymmetry(image->GetFieldData(), vtkBrumeNames::SourceRadianceSH);
   }
   return {};
 }
 
 bool vtkBrumeSliceVolumeMapper::IsSparseSource(vtkImageData* image)
 {
-  return image && image->GetFieldData()->GetArray("SourceBrickSlots") != nullptr;
+  return image && image->GetFieldData()->GetArray(vtkBrumeNames::SourceBrickSlots) != nullptr;
 }
 
 std::string vtkBrumeSliceVolumeMapper::ValidateSourceBricks(vtkImageData* image, const int cells[3])
 {
   vtkFieldData* fd = image->GetFieldData();
-  vtkDataArray* slots = fd->GetArray("SourceBrickSlots");
-  vtkDataArray* source = fd->GetArray("SourceRadianceBrickSamples");
-  vtkDataArray* sh = fd->GetArray("SourceRadianceSHBrickSamples");
+  vtkDataArray* slots = fd->GetArray(vtkBrumeNames::SourceBrickSlots);
+  vtkDataArray* source = fd->GetArray(vtkBrumeNames::SourceRadianceBrickSamples);
+  vtkDataArray* sh = fd->GetArray(vtkBrumeNames::SourceRadianceSHBrickSamples);
   vtkIdType bricks = 1;
   for (int a = 0; a < 3; ++a)
   {
@@ -139,7 +140,7 @@ std::string vtkBrumeSliceVolumeMapper::ValidateSourceBricks(vtkImageData* image,
         " names a slot that 'SourceRadianceBrickSamples' does not hold";
     }
   }
-  return sh ? CheckAsymmetry(fd, "SourceRadianceSHBrickSamples") : std::string();
+  return sh ? CheckAsymmetry(fd, vtkBrumeNames::SourceRadianceSHBrickSamples) : std::string();
 }
 
 vtkSmartPointer<vtkDataArray> vtkBrumeSliceVolumeMapper::DenseSourceArray(
@@ -157,8 +158,8 @@ vtkSmartPointer<vtkDataArray> vtkBrumeSliceVolumeMapper::DenseSourceArray(
   image->GetDimensions(pointDims);
   const int cells[3] = { pointDims[0] - 1, pointDims[1] - 1, pointDims[2] - 1 };
   vtkFieldData* fd = image->GetFieldData();
-  vtkDataArray* slots = fd->GetArray("SourceBrickSlots");
-  vtkDataArray* samples = fd->GetArray((std::string(name) + "BrickSamples").c_str());
+  vtkDataArray* slots = fd->GetArray(vtkBrumeNames::SourceBrickSlots);
+  vtkDataArray* samples = fd->GetArray(vtkBrumeNames::BrickSamplesName(name).c_str());
   if (cells[0] < 1 || cells[1] < 1 || cells[2] < 1 || !samples ||
     !ValidateSourceBricks(image, cells).empty())
   {
@@ -223,9 +224,9 @@ vtkMTimeType vtkBrumeSliceVolumeMapper::GetMTime()
 std::string vtkBrumeSliceVolumeMapper::ValidateBricks(
   const int pointDims[3], vtkFieldData* fd, vtkDataArray* samples)
 {
-  vtkDataArray* slots = fd->GetArray("ExtinctionBrickSlots");
-  vtkDataArray* values = fd->GetArray("ExtinctionBrickValues");
-  vtkDataArray* scale = fd->GetArray("ExtinctionScale");
+  vtkDataArray* slots = fd->GetArray(vtkBrumeNames::ExtinctionBrickSlots);
+  vtkDataArray* values = fd->GetArray(vtkBrumeNames::ExtinctionBrickValues);
+  vtkDataArray* scale = fd->GetArray(vtkBrumeNames::ExtinctionScale);
   vtkIdType bricks = 1;
   for (int a = 0; a < 3; ++a)
   {
@@ -243,8 +244,8 @@ std::string vtkBrumeSliceVolumeMapper::ValidateBricks(
            "'ExtinctionBrickValues' (one value per brick), 'ExtinctionBrickSamples' (" +
       std::to_string(brickCells) + " values per slot) and 'ExtinctionScale' (3 components)";
   }
-  vtkDataArray* table = fd->GetArray("ExtinctionTransferFunction");
-  vtkDataArray* range = fd->GetArray("ExtinctionTransferRange");
+  vtkDataArray* table = fd->GetArray(vtkBrumeNames::ExtinctionTransferFunction);
+  vtkDataArray* range = fd->GetArray(vtkBrumeNames::ExtinctionTransferRange);
   if (table || range)
   {
     if (!table || !range || table->GetNumberOfComponents() != 1 || table->GetNumberOfTuples() < 2 ||
@@ -267,7 +268,7 @@ std::string vtkBrumeSliceVolumeMapper::ValidateBricks(
           " is negative or not finite";
       }
     }
-    if (vtkDataArray* albedo = fd->GetArray("AlbedoTransferFunction"))
+    if (vtkDataArray* albedo = fd->GetArray(vtkBrumeNames::AlbedoTransferFunction))
     {
       if (albedo->GetNumberOfComponents() != 3 ||
         albedo->GetNumberOfTuples() != table->GetNumberOfTuples())
@@ -285,7 +286,7 @@ std::string vtkBrumeSliceVolumeMapper::ValidateBricks(
       }
     }
   }
-  else if (fd->GetArray("AlbedoTransferFunction"))
+  else if (fd->GetArray(vtkBrumeNames::AlbedoTransferFunction))
   {
     return "'AlbedoTransferFunction' needs classified scalars ('ExtinctionTransferFunction')";
   }
@@ -318,7 +319,7 @@ std::string vtkBrumeSliceVolumeMapper::ValidateExtinction(
   const vtkIdType cells =
     static_cast<vtkIdType>(pointDims[0] - 1) * (pointDims[1] - 1) * (pointDims[2] - 1);
   vtkFieldData* fd = extinction->GetFieldData();
-  if (vtkDataArray* samples = fd->GetArray("ExtinctionBrickSamples"))
+  if (vtkDataArray* samples = fd->GetArray(vtkBrumeNames::ExtinctionBrickSamples))
   {
     const std::string problem = ValidateBricks(pointDims, fd, samples);
     if (!problem.empty())
@@ -328,7 +329,7 @@ std::string vtkBrumeSliceVolumeMapper::ValidateExtinction(
   }
   else
   {
-    vtkDataArray* e = extinction->GetCellData()->GetArray("Extinction");
+    vtkDataArray* e = extinction->GetCellData()->GetArray(vtkBrumeNames::Extinction);
     if (!e || (e->GetNumberOfComponents() != 1 && e->GetNumberOfComponents() != 3) ||
       e->GetNumberOfTuples() != cells)
     {

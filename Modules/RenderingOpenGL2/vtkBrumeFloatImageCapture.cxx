@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumeFloatImageCapture.h"
 
+#include "vtkBrumeDataModelNames.h"
 #include "vtkCamera.h"
 #include "vtkFloatArray.h"
 #include "vtkFramebufferPass.h"
@@ -115,7 +116,7 @@ vtkSmartPointer<vtkImageData> vtkBrumeFloatImageCapture::CaptureSupersampled(int
     return nullptr;
   }
   vtkNew<vtkFloatArray> radiance;
-  radiance->SetName("Radiance");
+  radiance->SetName(vtkBrumeNames::Radiance);
   radiance->SetNumberOfComponents(3);
   radiance->SetNumberOfValues(static_cast<vtkIdType>(total.size()));
   for (std::size_t v = 0; v < total.size(); ++v)
@@ -131,8 +132,9 @@ vtkSmartPointer<vtkImageData> vtkBrumeFloatImageCapture::CaptureSupersampled(int
 vtkSmartPointer<vtkImageData> vtkBrumeFloatImageCapture::ToneMap(
   vtkImageData* radiance, double exposure)
 {
-  auto* in = radiance ? vtkFloatArray::SafeDownCast(radiance->GetPointData()->GetArray("Radiance"))
-                      : nullptr;
+  auto* in = radiance
+    ? vtkFloatArray::SafeDownCast(radiance->GetPointData()->GetArray(vtkBrumeNames::Radiance))
+    : nullptr;
   if (!in || in->GetNumberOfComponents() != 3)
   {
     return nullptr;

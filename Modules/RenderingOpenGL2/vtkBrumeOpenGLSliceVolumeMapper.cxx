@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumeOpenGLSliceVolumeMapper.h"
 
+#include "vtkBrumeDataModelNames.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkCellData.h"
@@ -228,14 +229,14 @@ bool vtkBrumeOpenGLSliceVolumeMapper::PrepareSlices(
       impl.ExtinctionScale[a] = static_cast<float>((bounds[2 * a + 1] - bounds[2 * a]) / extent);
       impl.ExtinctionOffset[a] = static_cast<float>((bounds[2 * a] - e[2 * a]) / extent);
     }
-    vtkDataArray* factor = input->GetFieldData()->GetArray("BrumeExtinctionFactor");
+    vtkDataArray* factor = input->GetFieldData()->GetArray(vtkBrumeNames::ExtinctionFactor);
     for (int c = 0; c < 3; ++c)
     {
       const double f =
         factor && factor->GetNumberOfComponents() == 3 ? factor->GetComponent(0, c) : 1.0;
       impl.ExtinctionFactor[c] = f > 0.0 && f <= 1.0 ? static_cast<float>(f) : 1.f;
     }
-    vtkDataArray* forward = input->GetFieldData()->GetArray("BrumeForwardFraction");
+    vtkDataArray* forward = input->GetFieldData()->GetArray(vtkBrumeNames::ForwardFraction);
     const double fraction =
       forward && forward->GetNumberOfTuples() > 0 ? forward->GetTuple1(0) : 0.0;
     impl.ForwardFraction = fraction > 0.0 && fraction < 1.0 ? static_cast<float>(fraction) : 0.f;

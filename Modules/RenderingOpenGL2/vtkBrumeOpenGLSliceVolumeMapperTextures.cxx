@@ -4,6 +4,7 @@
 // evaluation toward the eye.
 #include "vtkBrumeOpenGLSliceVolumeMapperInternals.h"
 
+#include "vtkBrumeDataModelNames.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
@@ -138,11 +139,12 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadTextures(
   const vtkIdType cells = static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2];
   std::vector<float>& s = impl.SourceValues;
   // The source radiance per cell (expanded from the sparse form's bricks).
-  const vtkIdType badSource = ToRgba(DenseSourceArray(input, "SourceRadiance"), cells, false, s);
+  const vtkIdType badSource =
+    ToRgba(DenseSourceArray(input, vtkBrumeNames::SourceRadiance), cells, false, s);
   // The extinction array of the last upload, unmodified (a view update
   // keeps it: vtkBrumeRadianceConversion::FromMedium): its values are known.
   // The sparse form has none (ExtinctionData replaces it).
-  vtkDataArray* extinction = input->GetCellData()->GetArray("Extinction");
+  vtkDataArray* extinction = input->GetCellData()->GetArray(vtkBrumeNames::Extinction);
   const bool known = !this->ExtinctionData && extinction == impl.ExtinctionArray &&
     extinction->GetMTime() == impl.ExtinctionArrayTime &&
     impl.ExtinctionValues.size() == 4 * static_cast<std::size_t>(cells);
@@ -264,7 +266,7 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadExtinction(vtkOpenGLRenderWindow* re
   int pointDims[3];
   grid->GetDimensions(pointDims);
   const int dims[3] = { pointDims[0] - 1, pointDims[1] - 1, pointDims[2] - 1 };
-  impl.Bricked = grid->GetFieldData()->GetArray("ExtinctionBrickSamples") != nullptr;
+  impl.Bricked = grid->GetFieldData()->GetArray(vtkBrumeNames::ExtinctionBrickSamples) != nullptr;
   if (impl.Bricked ? !this->UploadBricks(grid, dims, renWin, filter)
                    : !this->UploadDenseExtinction(grid, dims, renWin, filter))
   {
@@ -282,7 +284,8 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadDenseExtinction(
   Internals& impl = *this->Impl;
   const vtkIdType cells = static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2];
   std::vector<float> e;
-  const vtkIdType bad = ToRgba(grid->GetCellData()->GetArray("Extinction"), cells, true, e);
+  const vtkIdType bad =
+    ToRgba(grid->GetCellData()->GetArray(vtkBrumeNames::Extinction), cells, true, e);
   if (bad < cells)
   {
     vtkErrorMacro("Cannot draw this medium: its extinction must be finite and non-negative "
@@ -306,10 +309,10 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   impl.ExtinctionValues.clear();
   impl.ConstantExtinction = false;
   vtkFieldData* fd = grid->GetFieldData();
-  vtkDataArray* slots = fd->GetArray("ExtinctionBrickSlots");
-  vtkDataArray* values = fd->GetArray("ExtinctionBrickValues");
-  vtkDataArray* samples = fd->GetArray("ExtinctionBrickSamples");
-  vtkDataArray* scale = fd->GetArray("ExtinctionScale");
+  vtkDataArray* slots = fd->GetArray(vtkBrumeNames::ExtinctionBrickSlots);
+  vtkDataArray* values = fd->GetArray(vtkBrumeNames::ExtinctionBrickValues);
+  vtkDataArray* samples = fd->GetArray(vtkBrumeNames::ExtinctionBrickSamples);
+  vtkDataArray* scale = fd->GetArray(vtkBrumeNames::ExtinctionScale);
   constexpr int B = ExtinctionBrickSize;
   constexpr vtkIdType BrickCells = B * B * B;
   const vtkIdType slotCount = samples->GetNumberOfTuples() / BrickCells;
@@ -334,7 +337,7 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   double largest = 0.0; // the largest value, stored or constant, before the scale
   auto invalid = [](double v) { return !(v >= 0.0) || !std::isfinite(v); };
   // Scalars a transfer function classifies may be negative; its table bounds sigma_t.
-  vtkDataArray* transfer = fd->GetArray("ExtinctionTransferFunction");
+  vtkDataArray* transfer = fd->GetArray(vtkBrumeNames::ExtinctionTransferFunction);
   impl.Classified = transfer != nullptr;
   impl.Albedo = false;
   auto invalidSample = [&](double v) { return impl.Classified ? !std::isfinite(v) : invalid(v); };
@@ -419,12 +422,12 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadTransferFunction(
   // One row of the table (resampled to the GPU's widest texture if need
   // be), filtered linearly; its largest value bounds sigma_t.
   Internals& impl = *this->Impl;
-  vtkDataArray* transfer = fd->GetArray("ExtinctionTransferFunction");
-  vtkDataArray* range = fd->GetArray("ExtinctionTransferRange");
+  vtkDataArray* transfer = fd->GetArray(vtkBrumeNames::ExtinctionTransferFunction);
+  vtkDataArray* range = fd->GetArray(vtkBrumeNames::ExtinctionTransferRange);
   int maxWidth = 0;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxWidth);
   // A varying albedo: in the same row, green to alpha.
-  vtkDataArray* albedo = fd->GetArray("AlbedoTransferFunction");
+  vtkDataArray* albedo = fd->GetArray(vtkBrumeNames::AlbedoTransferFunction);
   impl.Albedo = albedo != nullptr;
   const int channels = impl.Albedo ? 4 : 1;
   const vtkIdType n = transfer->GetNumberOfTuples();
@@ -470,7 +473,7 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadDirectional(vtkImageData* input,
   impl.Order = 0;
   impl.FragmentOrder = 0;
   impl.Voxels.clear();
-  vtkSmartPointer<vtkDataArray> sh = DenseSourceArray(input, "SourceRadianceSH");
+  vtkSmartPointer<vtkDataArray> sh = DenseSourceArray(input, vtkBrumeNames::SourceRadianceSH);
   const int order = sh ? DirectionalOrder(sh->GetNumberOfComponents()) : -1;
   if (order <= 0)
   {
@@ -527,7 +530,8 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadDirectional(vtkImageData* input,
     impl.EvaluatedEye[0] = std::numeric_limits<float>::quiet_NaN(); // evaluate below
   }
   impl.Order = order;
-  impl.G = static_cast<float>(input->GetFieldData()->GetArray("BrumePhaseAsymmetry")->GetTuple1(0));
+  impl.G = static_cast<float>(
+    input->GetFieldData()->GetArray(vtkBrumeNames::PhaseAsymmetry)->GetTuple1(0));
   return true;
 }
 

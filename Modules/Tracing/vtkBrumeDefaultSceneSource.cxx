@@ -4,6 +4,7 @@
 #include "vtkBrumeSceneCamera.h"
 #include "vtkBrumeSceneConversion.h"
 
+#include "vtkBrumeDataModelNames.h"
 #include "vtkCellArray.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDoubleArray.h"
@@ -74,10 +75,10 @@ int vtkBrumeDefaultSceneSource::RequestData(
     vtkNew<vtkPolyData> pd;
     pd->SetPoints(points);
     pd->SetPolys(polys);
-    AddVec3(pd->GetFieldData(), "BrumeReflectance", s.Mat.Reflectance.x, s.Mat.Reflectance.y,
-      s.Mat.Reflectance.z);
-    AddVec3(
-      pd->GetFieldData(), "BrumeEmission", s.Mat.Emission.x, s.Mat.Emission.y, s.Mat.Emission.z);
+    AddVec3(pd->GetFieldData(), vtkBrumeNames::Reflectance, s.Mat.Reflectance.x,
+      s.Mat.Reflectance.y, s.Mat.Reflectance.z);
+    AddVec3(pd->GetFieldData(), vtkBrumeNames::Emission, s.Mat.Emission.x, s.Mat.Emission.y,
+      s.Mat.Emission.z);
     vtkBrumeSceneConversion::AddObject(output, pd, s.Name);
   }
   if (this->IncludeMedium)
@@ -89,19 +90,19 @@ int vtkBrumeDefaultSceneSource::RequestData(
       const brume::Vec3 e = m.Bounds.Extent();
       box->SetSpacing(e.x, e.y, e.z);
       box->SetDimensions(2, 2, 2);
-      AddVec3(box->GetFieldData(), "BrumeSigmaA", m.SigmaA.x, m.SigmaA.y, m.SigmaA.z);
-      AddVec3(box->GetFieldData(), "BrumeSigmaS", m.SigmaS.x, m.SigmaS.y, m.SigmaS.z);
-      AddScalar(box->GetFieldData(), "BrumeG", m.G);
+      AddVec3(box->GetFieldData(), vtkBrumeNames::SigmaA, m.SigmaA.x, m.SigmaA.y, m.SigmaA.z);
+      AddVec3(box->GetFieldData(), vtkBrumeNames::SigmaS, m.SigmaS.x, m.SigmaS.y, m.SigmaS.z);
+      AddScalar(box->GetFieldData(), vtkBrumeNames::G, m.G);
       vtkBrumeSceneConversion::AddObject(output, box, m.Name);
     }
   }
   vtkFieldData* fd = output->GetFieldData();
   double position[3], focal[3], up[3], angle;
   vtkBrumeSceneCamera::GetDefault(position, focal, up, angle);
-  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeCameraPosition", position, 3);
-  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeCameraFocalPoint", focal, 3);
-  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeCameraViewUp", up, 3);
-  AddScalar(fd, "BrumeCameraViewAngle", angle);
+  vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::CameraPosition, position, 3);
+  vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::CameraFocalPoint, focal, 3);
+  vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::CameraViewUp, up, 3);
+  AddScalar(fd, vtkBrumeNames::CameraViewAngle, angle);
   return 1;
 }
 

@@ -2,6 +2,7 @@
 #include "vtkBrumeLightTracer.h"
 #include "vtkBrumeLightTracerOutput.h"
 
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeHitConversion.h"
 #include "vtkBrumeSceneConversion.h"
 #include "vtkDoubleArray.h"
@@ -359,7 +360,7 @@ int vtkBrumeLightTracer::RequestData(
   end->InsertNextValue(static_cast<double>(endParticle));
   output->GetFieldData()->AddArray(end);
   vtkNew<vtkDoubleArray> pieceRange;
-  pieceRange->SetName("PieceParticles"); // [first, end) traced by this piece
+  pieceRange->SetName(vtkBrumeNames::PieceParticles); // [first, end) traced by this piece
   pieceRange->SetNumberOfComponents(2);
   pieceRange->InsertNextTuple2(static_cast<double>(pieceFirst), static_cast<double>(pieceEnd));
   output->GetFieldData()->AddArray(pieceRange);
@@ -368,14 +369,14 @@ int vtkBrumeLightTracer::RequestData(
   seed->InsertNextValue(static_cast<double>(this->Seed));
   output->GetFieldData()->AddArray(seed);
   vtkNew<vtkDoubleArray> rays;
-  rays->SetName("NumberOfRays");
+  rays->SetName(vtkBrumeNames::NumberOfRays);
   rays->InsertNextValue(static_cast<double>(sum.Rays));
   output->GetFieldData()->AddArray(rays);
-  AddTuple(output, "EmittedFlux", sum.Emitted);
-  AddTuple(output, "AbsorbedFlux", sum.Absorbed);
-  AddTuple(output, "EscapedFlux", sum.Escaped);
-  AddTuple(output, "TruncatedFlux", sum.Truncated);
-  AddTuple(output, "EstimatorNetFlux", sum.EstimatorNet);
+  AddTuple(output, vtkBrumeNames::EmittedFlux, sum.Emitted);
+  AddTuple(output, vtkBrumeNames::AbsorbedFlux, sum.Absorbed);
+  AddTuple(output, vtkBrumeNames::EscapedFlux, sum.Escaped);
+  AddTuple(output, vtkBrumeNames::TruncatedFlux, sum.Truncated);
+  AddTuple(output, vtkBrumeNames::EstimatorNetFlux, sum.EstimatorNet);
   vtkBrumeSceneConversion::AppendFieldLights(givenLights, output->GetFieldData());
   this->UpdateProgress(1.0);
   return 1;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumeReferencePathTracer.h"
 
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeSceneCamera.h"
 #include "vtkBrumeSceneConversion.h"
 #include "vtkCamera.h"
@@ -142,10 +143,10 @@ int vtkBrumeReferencePathTracer::RequestData(
 
   const vtkIdType pixels = static_cast<vtkIdType>(camera.Width) * camera.Height;
   vtkNew<vtkFloatArray> radiance, variance;
-  radiance->SetName("Radiance");
+  radiance->SetName(vtkBrumeNames::Radiance);
   radiance->SetNumberOfComponents(3);
   radiance->SetNumberOfTuples(pixels);
-  variance->SetName("Variance");
+  variance->SetName(vtkBrumeNames::Variance);
   variance->SetNumberOfComponents(3);
   variance->SetNumberOfTuples(pixels);
   float* mean = radiance->GetPointer(0);

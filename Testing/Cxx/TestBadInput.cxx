@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Bad input gets a clear error and a failed RequestData, never a crash.
 #include "BrumeExpectFailure.h"
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeDefaultSceneSource.h"
 #include "vtkBrumeLightTracer.h"
 #include "vtkBrumeRadianceReconstruction.h"
@@ -95,23 +96,23 @@ int TestBadInput(int, char*[])
   bool ok = true;
 
   auto scene = DefaultScene();
-  SetField(Object(scene, "fog"), "BrumeSigmaS", nan, 1, 1);
+  SetField(Object(scene, "fog"), vtkBrumeNames::SigmaS, nan, 1, 1);
   ok &= TracerFails("NaN sigma_s", scene, "non-finite");
 
   scene = DefaultScene();
-  SetField(Object(scene, "fog"), "BrumeSigmaA", -0.1, -0.1, -0.1);
+  SetField(Object(scene, "fog"), vtkBrumeNames::SigmaA, -0.1, -0.1, -0.1);
   ok &= TracerFails("negative sigma_a", scene, "negative");
 
   scene = DefaultScene();
-  Object(scene, "fog")->GetFieldData()->GetArray("BrumeG")->SetTuple1(0, 1.0);
+  Object(scene, "fog")->GetFieldData()->GetArray(vtkBrumeNames::G)->SetTuple1(0, 1.0);
   ok &= TracerFails("g = 1", scene, "|g| >= 1");
 
   scene = DefaultScene();
-  SetField(Object(scene, "light"), "BrumeEmission", 0, 0, 0);
+  SetField(Object(scene, "light"), vtkBrumeNames::Emission, 0, 0, 0);
   ok &= TracerFails("no light", scene, "no light");
 
   scene = DefaultScene();
-  SetField(Object(scene, "light"), "BrumeEmission", 15, nan, 15);
+  SetField(Object(scene, "light"), vtkBrumeNames::Emission, 15, nan, 15);
   ok &= TracerFails("NaN emission", scene, "emission");
 
   scene = vtkSmartPointer<vtkPartitionedDataSetCollection>::New();
@@ -130,7 +131,7 @@ int TestBadInput(int, char*[])
   ok &= TracerFails("degenerate floor", scene, "degenerate");
 
   scene = DefaultScene();
-  AddString(Object(scene, "fog"), "BrumeDensityArray", "density");
+  AddString(Object(scene, "fog"), vtkBrumeNames::DensityArray, "density");
   ok &= TracerFails("medium naming a missing density array", scene, "no density array");
 
   scene = DefaultScene();
@@ -148,12 +149,12 @@ int TestBadInput(int, char*[])
   {
     const std::string path = TemporaryPath("corrupt.vdb");
     std::ofstream(path) << "this is not an OpenVDB file";
-    AddString(Object(scene, "fog"), "BrumeVDBFile", path);
+    AddString(Object(scene, "fog"), vtkBrumeNames::VDBFile, path);
   }
   ok &= TracerFails("corrupt VDB file", scene, "is not a valid OpenVDB file");
 
   scene = DefaultScene();
-  AddString(Object(scene, "fog"), "BrumeVDBFile", "/nonexistent/fog.vdb");
+  AddString(Object(scene, "fog"), vtkBrumeNames::VDBFile, "/nonexistent/fog.vdb");
   ok &= TracerFails("missing VDB file", scene, "cannot open OpenVDB file");
 
   scene = DefaultScene();
@@ -167,14 +168,14 @@ int TestBadInput(int, char*[])
     });
 
   scene = DefaultScene();
-  AddString(Object(scene, "floor"), "BrumeMaterial", "velvet");
-  ok &= TracerFails("unknown material", scene, "BrumeMaterial");
+  AddString(Object(scene, "floor"), vtkBrumeNames::Material, "velvet");
+  ok &= TracerFails("unknown material", scene, vtkBrumeNames::Material);
 
   scene = DefaultScene();
-  SetField(Object(scene, "floor"), "BrumeReflectance", 0.8, 0.8, 0.8);
+  SetField(Object(scene, "floor"), vtkBrumeNames::Reflectance, 0.8, 0.8, 0.8);
   {
     vtkNew<vtkDoubleArray> specular;
-    specular->SetName("BrumeSpecular");
+    specular->SetName(vtkBrumeNames::Specular);
     specular->SetNumberOfComponents(3);
     specular->InsertNextTuple3(0.5, 0.5, 0.5);
     Object(scene, "floor")->GetFieldData()->AddArray(specular);
@@ -211,7 +212,7 @@ int TestBadInput(int, char*[])
   };
   vtkNew<vtkPolyData> bare;
   bare->ShallowCopy(tracer->GetOutput());
-  bare->GetPointData()->RemoveArray("Flux");
+  bare->GetPointData()->RemoveArray(vtkBrumeNames::Flux);
   ok &= reconstruct(bare, "hits without Flux", "lack", {});
   ok &= reconstruct(tracer->GetOutput(), "zero threshold", "RadiosityThreshold",
     [](vtkBrumeRadianceReconstruction* r) { r->SetRadiosityThreshold(0.0); });
@@ -220,19 +221,19 @@ int TestBadInput(int, char*[])
   vtkNew<vtkPolyData> noPower;
   noPower->ShallowCopy(tracer->GetOutput());
   noPower->SetFieldData(nullptr);
-  ok &= reconstruct(noPower, "hits without TotalPower", "TotalPower", {});
+  ok &= reconstruct(noPower, "hits without TotalPower", vtkBrumeNames::TotalPower, {});
   // A scene object asking for a texture beyond the limit.
   vtkNew<vtkPartitionedDataSetCollection> huge;
   huge->DeepCopy(scene);
   vtkNew<vtkDoubleArray> texels;
-  texels->SetName("BrumeTextureResolution");
+  texels->SetName(vtkBrumeNames::TextureResolution);
   texels->InsertNextValue(100000);
   huge->GetPartitionedDataSet(0)->GetPartition(0)->GetFieldData()->AddArray(texels);
   {
     vtkNew<vtkBrumeRadianceReconstruction> r;
     r->SetInputDataObject(0, huge);
     r->SetInputDataObject(1, tracer->GetOutput());
-    ok &= ExpectFailure("absurd per-object resolution", r, "BrumeTextureResolution");
+    ok &= ExpectFailure("absurd per-object resolution", r, vtkBrumeNames::TextureResolution);
   }
 
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;

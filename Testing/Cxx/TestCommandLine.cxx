@@ -4,6 +4,11 @@
 // the cross-option checks, and the exit code and message of usage errors.
 #include "BrumeCommandLine.h"
 
+#include "vtkBrumeLightTracer.h"
+#include "vtkBrumePipeline.h"
+#include "vtkNew.h"
+
+#include <array>
 #include <cstdlib>
 #include <iostream>
 #include <sstream>
@@ -69,25 +74,45 @@ void TestRender()
   Parsed p = Parse({ "render", "-o", "x.png" });
   const RenderOptions& r = p.Line.Render;
   Check(p.Code == -1 && p.Line.Run == Command::Render, "render -o x.png runs");
-  Check(r.Output == "x.png" && r.Scene.empty() && r.Particles == 1000000 && r.Seed == 0 &&
-      r.Width == 512 && r.Height == 512 && r.Exposure == 1.0 && r.Threshold == 128.0 &&
-      !r.Timings && !r.Reference && r.SamplesPerPixel == 64,
+  Check(r.Output == "x.png" && r.Scene.empty() && !r.Timings && !r.Reference &&
+      r.SamplesPerPixel == 64 && r.Supersample == 1,
     "render defaults");
-  Check(!r.ParticlesSet && !r.SeedSet && !r.SizeSet && !r.ExposureSet && !r.ThresholdSet,
-    "render: options not given leave the scene file's settings");
+  Check(!r.Particles && !r.Seed && !r.Size && !r.Exposure && !r.Threshold && !r.DirectLight &&
+      !r.CentroidMatching && !r.MediumAim && !r.SplitHeavy && !r.Batch && !r.MemoryLimit &&
+      !r.MaxDepth,
+    "render: options not given stay unset (the scene file's settings, else the filters' "
+    "defaults)");
 
   p = Parse({ "render", "scene.json", "--particles", "010", "--seed", "7", "--size", "64x32",
     "--exposure", "2.5", "--threshold", "0.1", "--timings", "--reference", "--spp", "16",
     "--output", "x.vti", "--particles", "20" });
   const RenderOptions& g = p.Line.Render;
   Check(p.Code == -1 && g.Scene == "scene.json" && g.Output == "x.vti", "render SCENE --output");
-  Check(g.Particles == 20 && g.Seed == 7 && g.Width == 64 && g.Height == 32 && g.Exposure == 2.5 &&
-      g.Threshold == 0.1 && g.Timings && g.Reference && g.SamplesPerPixel == 16,
+  Check(g.Particles == 20 && g.Seed == 7u && g.Size == std::array<int, 2>{ 64, 32 } &&
+      g.Exposure == 2.5 && g.Threshold == 0.1 && g.Timings && g.Reference &&
+      g.SamplesPerPixel == 16,
     "render: the values given, the last of a repeated option");
-  Check(g.ParticlesSet && g.SeedSet && g.SizeSet && g.ExposureSet && g.ThresholdSet,
-    "render: the options given are recorded");
+  p = Parse({ "render", "-o", "x.png", "--no-direct-light", "--no-split", "--no-centroid-matching",
+    "--aim", "0.5", "--batch", "1000", "--memory-limit", "2", "--max-depth", "3" });
+  const RenderOptions& f = p.Line.Render;
+  Check(p.Code == -1 && f.DirectLight == false && f.SplitHeavy == false &&
+      f.CentroidMatching == false && f.MediumAim == 0.5 && f.Batch == 1000 &&
+      f.MemoryLimit == 2.0 && f.MaxDepth == 3,
+    "render: flags and the tracer's options are recorded");
   Check(Parse({ "render", "-o", "x.png", "--particles", "010" }).Line.Render.Particles == 10,
     "integers are decimal");
+  // The help states the defaults of the objects that own them.
+  vtkNew<vtkBrumePipeline> defaults;
+  const std::string help = Parse({ "render", "--help" }).Out;
+  for (const std::string& stated :
+    { "(default " + std::to_string(defaults->GetTracer()->GetNumberOfParticles()) + ")",
+      "(default " + std::to_string(defaults->GetSize()[0]) + "x" +
+        std::to_string(defaults->GetSize()[1]) + ")",
+      "(default " + std::to_string(defaults->GetTracer()->GetMaximumDepth()) + ")" })
+  {
+    Check(help.find(stated) != std::string::npos,
+      "render --help states the owner's default " + stated + ":\n" + help);
+  }
 
   ExpectUsageError({ "render" }, "--output");
   ExpectUsageError({ "render", "-o" }, "--output");
@@ -113,15 +138,15 @@ void TestView()
   const ViewOptions& v = p.Line.View;
   Check(p.Code == -1 && p.Line.Run == Command::View && !v.Directional && v.Order == 3 &&
       !v.PerFragment && v.Orbit == 0 && v.Keys.empty() && v.Overlay && v.ExitAfter == 0 &&
-      v.Render.Width == 512 && !v.Render.SizeSet,
+      !v.Render.Size,
     "view defaults");
 
   p = Parse({ "view", "s.json", "--mode", "sh", "--order", "2", "--sh-evaluation", "fragment",
     "--no-overlay", "--keys", "pds", "--exit-after", "3", "--size", "96x64" });
   const ViewOptions& w = p.Line.View;
   Check(p.Code == -1 && w.Render.Scene == "s.json" && w.Directional && w.Order == 2 &&
-      w.PerFragment && !w.Overlay && w.Keys == "pds" && w.ExitAfter == 3 && w.Render.Width == 96 &&
-      w.Render.Height == 64 && w.Render.SizeSet,
+      w.PerFragment && !w.Overlay && w.Keys == "pds" && w.ExitAfter == 3 &&
+      w.Render.Size == std::array<int, 2>{ 96, 64 },
     "view: the values given; s with --exit-after");
   p = Parse({ "view", "--orbit", "6", "--frames-out", "frames", "--csv", "o.csv", "--keys", "ppdm",
     "--mode", "paper" });

@@ -3,6 +3,7 @@
 // VTK's own reader: the expected size, a finite float RGB `Radiance` array.
 // (Appended XML data does not read back where expat defers reparsing, as
 // Debian 12's does; Brume writes inline binary.)
+#include "vtkBrumeDataModelNames.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
@@ -25,8 +26,8 @@ int TestReadRadiance(int argc, char* argv[])
   reader->Update();
   int dims[3];
   reader->GetOutput()->GetDimensions(dims);
-  auto* radiance =
-    vtkFloatArray::SafeDownCast(reader->GetOutput()->GetPointData()->GetArray("Radiance"));
+  auto* radiance = vtkFloatArray::SafeDownCast(
+    reader->GetOutput()->GetPointData()->GetArray(vtkBrumeNames::Radiance));
   if (dims[0] != std::atoi(argv[2]) || dims[1] != std::atoi(argv[3]) || !radiance ||
     radiance->GetNumberOfComponents() != 3)
   {

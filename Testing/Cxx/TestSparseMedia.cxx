@@ -5,6 +5,7 @@
 // voxel and per fragment), and costs less where the medium fills little of
 // its box.
 //   TestSparseMedia DIR
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeFloatImageCapture.h"
 #include "vtkBrumeLightTracer.h"
 #include "vtkBrumeRadianceReconstruction.h"
@@ -159,7 +160,7 @@ int TestSparseMedia(int argc, char* argv[])
       continue;
     }
     Check(!vtkBrumeSliceVolumeMapper::IsSparseSource(dense.Texture) &&
-        dense.Texture->GetCellData()->GetArray("Extinction") != nullptr,
+        dense.Texture->GetCellData()->GetArray(vtkBrumeNames::Extinction) != nullptr,
       name + ": SparseMedia off gives the cell arrays");
     Check(vtkBrumeSliceVolumeMapper::IsSparseSource(sparse.Texture) &&
         sparse.Texture->GetCellData()->GetNumberOfArrays() == 0,
@@ -187,12 +188,12 @@ int TestSparseMedia(int argc, char* argv[])
 
     // The expanded source radiance is the dense one wherever a brick is
     // stored; bricks between the balls are dropped.
-    for (const char* array : { "SourceRadiance", "SourceRadianceSH" })
+    for (const char* array : { vtkBrumeNames::SourceRadiance, vtkBrumeNames::SourceRadianceSH })
     {
       vtkDataArray* full = dense.Texture->GetCellData()->GetArray(array);
       if (!full)
       {
-        Check(std::string(array) == "SourceRadianceSH" && !c.Directional,
+        Check(std::string(array) == vtkBrumeNames::SourceRadianceSH && !c.Directional,
           name + ": the dense form's " + array);
         continue;
       }
@@ -215,7 +216,8 @@ int TestSparseMedia(int argc, char* argv[])
       {
         edge[e] = vtkBrumeSliceVolumeMapper::SourceBrickEdge(cells[e]);
       }
-      vtkDataArray* slots = sparse.Texture->GetFieldData()->GetArray("SourceBrickSlots");
+      vtkDataArray* slots =
+        sparse.Texture->GetFieldData()->GetArray(vtkBrumeNames::SourceBrickSlots);
       vtkIdType wrong = 0, dropped = 0, cell = 0;
       for (int k = 0; k < cells[2]; ++k)
         for (int j = 0; j < cells[1]; ++j)
@@ -249,18 +251,19 @@ int TestSparseMedia(int argc, char* argv[])
   {
     vtkNew<vtkImageData> bad;
     bad->DeepCopy(r.Texture);
-    vtkDataArray* slots = bad->GetFieldData()->GetArray("SourceBrickSlots");
+    vtkDataArray* slots = bad->GetFieldData()->GetArray(vtkBrumeNames::SourceBrickSlots);
     slots->SetTuple1(0, 1e6);
     Check(vtkBrumeSliceVolumeMapper::ValidateInput(bad).find("slot") != std::string::npos,
       "a slot past the samples is refused: " + vtkBrumeSliceVolumeMapper::ValidateInput(bad));
-    Check(vtkBrumeSliceVolumeMapper::DenseSourceArray(bad, "SourceRadiance") == nullptr,
+    Check(
+      vtkBrumeSliceVolumeMapper::DenseSourceArray(bad, vtkBrumeNames::SourceRadiance) == nullptr,
       "and is not expanded");
     bad->DeepCopy(r.Texture);
-    bad->GetFieldData()->GetArray("SourceBrickSlots")->SetNumberOfTuples(1);
+    bad->GetFieldData()->GetArray(vtkBrumeNames::SourceBrickSlots)->SetNumberOfTuples(1);
     Check(!vtkBrumeSliceVolumeMapper::ValidateInput(bad).empty(),
       "too few slots for the grid are refused");
     bad->DeepCopy(r.Texture);
-    bad->GetFieldData()->RemoveArray("SourceRadianceBrickSamples");
+    bad->GetFieldData()->RemoveArray(vtkBrumeNames::SourceRadianceBrickSamples);
     Check(
       !vtkBrumeSliceVolumeMapper::ValidateInput(bad).empty(), "slots without samples are refused");
   }

@@ -8,6 +8,7 @@
 // albedo given as one colour; bad functions, arrays and components fail
 // with a clear error.
 #include "BrumeExpectFailure.h"
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeFloatImageCapture.h"
 #include "vtkBrumeLightTracer.h"
 #include "vtkBrumeRadianceConversion.h"
@@ -116,16 +117,16 @@ vtkSmartPointer<vtkPartitionedDataSetCollection> Scene(vtkImageData* medium, boo
   }
   const char* type = "point";
   vtkNew<vtkStringArray> types;
-  types->SetName("BrumeLightType");
+  types->SetName(vtkBrumeNames::LightType);
   types->InsertNextValue(type);
   scene->GetFieldData()->AddArray(types);
   const double position[3] = { 0.8, 1.5, 0.9 }, direction[3] = { 0, -1, 0 },
                intensity[3] = { 4, 4, 4 }, cone = 180;
   vtkFieldData* fd = scene->GetFieldData();
-  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeLightPosition", position, 3);
-  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeLightDirection", direction, 3);
-  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeLightIntensity", intensity, 3);
-  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeLightConeAngle", &cone, 1);
+  vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::LightPosition, position, 3);
+  vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::LightDirection, direction, 3);
+  vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::LightIntensity, intensity, 3);
+  vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::LightConeAngle, &cone, 1);
   return scene;
 }
 
@@ -283,8 +284,10 @@ void TestClassification()
   curved->AddPoint(100, 0.8, 0.5, 0.0);
   property->SetScalarOpacity(curved);
   Check(filter->GetExecutive()->Update() == 1, "a curved function runs");
-  Check(filter->GetOutput()->GetFieldData()->GetArray("BrumeScalarOpacity")->GetNumberOfTuples() ==
-      filter->GetSampledFunctionPoints(),
+  Check(filter->GetOutput()
+          ->GetFieldData()
+          ->GetArray(vtkBrumeNames::ScalarOpacity)
+          ->GetNumberOfTuples() == filter->GetSampledFunctionPoints(),
     "a curved function is sampled");
   brume::Medium curvedMedium;
   Check(ConvertMedium(filter->GetOutput(), curvedMedium).empty(), "the curved function converts");
@@ -317,8 +320,8 @@ void TestClassification()
     auto* native = medium && medium->GetNumberOfPartitions() > 1
       ? vtkImageData::SafeDownCast(medium->GetPartition(1))
       : nullptr;
-    Check(native && native->GetFieldData()->GetArray("ExtinctionTransferFunction") &&
-        native->GetFieldData()->GetArray("ExtinctionTransferRange"),
+    Check(native && native->GetFieldData()->GetArray(vtkBrumeNames::ExtinctionTransferFunction) &&
+        native->GetFieldData()->GetArray(vtkBrumeNames::ExtinctionTransferRange),
       "partition 1 holds the transfer function's table");
     vtkSmartPointer<vtkImageData> dense =
       native ? vtkBrumeRadianceConversion::DenseExtinction(native) : nullptr;
@@ -333,7 +336,8 @@ void TestClassification()
         continue; // the step: one table sample wide
       }
       const double expected = -std::log1p(-opacity->GetValue(scalar)) / 0.25;
-      const double got = dense->GetCellData()->GetArray("Extinction")->GetComponent(point, 0);
+      const double got =
+        dense->GetCellData()->GetArray(vtkBrumeNames::Extinction)->GetComponent(point, 0);
       Check(std::abs(got - expected) <= 1e-4 * expected + 1e-6,
         "native cell " + std::to_string(point) + ": " + std::to_string(got) + " against " +
           std::to_string(expected));
@@ -456,8 +460,8 @@ void TestConstantFunctionIsTheConstantDensity()
   density->Fill(-std::log1p(-0.35f) / 0.5f);
   constant->GetPointData()->SetScalars(density);
   const double sa[3] = { 0.2, 0.2, 0.2 }, ss[3] = { 0.8, 0.8, 0.8 };
-  vtkBrumeSceneConversion::AppendTuple(constant->GetFieldData(), "BrumeSigmaA", sa, 3);
-  vtkBrumeSceneConversion::AppendTuple(constant->GetFieldData(), "BrumeSigmaS", ss, 3);
+  vtkBrumeSceneConversion::AppendTuple(constant->GetFieldData(), vtkBrumeNames::SigmaA, sa, 3);
+  vtkBrumeSceneConversion::AppendTuple(constant->GetFieldData(), vtkBrumeNames::SigmaS, ss, 3);
   vtkSmartPointer<vtkImageData> reference = Render(Scene(constant));
 
   Check(classified && reference, "both pipelines render");
@@ -529,7 +533,7 @@ void TestColour()
   filter->SetVolumeProperty(property);
   filter->SetAlbedo(0.9, 0.8, 0.5);
   Check(filter->GetExecutive()->Update() == 1, "the filter runs with a colour");
-  vtkDataArray* points = filter->GetOutput()->GetFieldData()->GetArray("BrumeScalarColor");
+  vtkDataArray* points = filter->GetOutput()->GetFieldData()->GetArray(vtkBrumeNames::ScalarColor);
   Check(points && points->GetNumberOfTuples() == 3 && points->GetNumberOfComponents() == 4 &&
       points->GetComponent(1, 0) == 45 && points->GetComponent(2, 3) == 1.0,
     "an RGB function's points are taken node for node");
@@ -543,8 +547,8 @@ void TestColour()
   byParts->SetInterpolationType(VTK_LINEAR_INTERPOLATION);
   byParts->SetAlbedo(0.9, 0.8, 0.5);
   Check(byParts->GetExecutive()->Update() == 1, "the filter runs with functions set one by one");
-  for (const char* name : { "BrumeScalarOpacity", "BrumeScalarColor",
-         "BrumeScalarOpacityUnitDistance", "BrumeSigmaS", "BrumeG" })
+  for (const char* name : { vtkBrumeNames::ScalarOpacity, vtkBrumeNames::ScalarColor,
+         vtkBrumeNames::ScalarOpacityUnitDistance, vtkBrumeNames::SigmaS, vtkBrumeNames::G })
   {
     vtkDataArray* x = filter->GetOutput()->GetFieldData()->GetArray(name);
     vtkDataArray* y = byParts->GetOutput()->GetFieldData()->GetArray(name);
@@ -600,7 +604,7 @@ void TestColour()
   // ParaView's colour maps interpolate in other spaces: sampled.
   colour->SetColorSpaceToDiverging();
   filter->Update();
-  points = filter->GetOutput()->GetFieldData()->GetArray("BrumeScalarColor");
+  points = filter->GetOutput()->GetFieldData()->GetArray(vtkBrumeNames::ScalarColor);
   Check(points && points->GetNumberOfTuples() == filter->GetSampledFunctionPoints(),
     "a diverging function is sampled");
   Check(ConvertMedium(filter->GetOutput(), m).empty(), "the sampled colour converts");
@@ -610,7 +614,7 @@ void TestColour()
   // Off, or a grey function: one albedo everywhere.
   filter->ColorAsAlbedoOff();
   filter->Update();
-  Check(!filter->GetOutput()->GetFieldData()->GetArray("BrumeScalarColor") &&
+  Check(!filter->GetOutput()->GetFieldData()->GetArray(vtkBrumeNames::ScalarColor) &&
       ConvertMedium(filter->GetOutput(), m).empty() && !m.HasVaryingAlbedo(),
     "ColorAsAlbedo off: no colour");
   filter->ColorAsAlbedoOn();
@@ -618,7 +622,7 @@ void TestColour()
   grey->AddPoint(0, 0.5);
   property->SetColor(grey);
   filter->Update();
-  Check(!filter->GetOutput()->GetFieldData()->GetArray("BrumeScalarColor"),
+  Check(!filter->GetOutput()->GetFieldData()->GetArray(vtkBrumeNames::ScalarColor),
     "a grey function does not colour the albedo");
 
   // A constant colour with Albedo 1 draws the image of that colour given
@@ -670,15 +674,15 @@ void TestColour()
   Check(
     edit(
       [](vtkFieldData* fd) {
-        fd->GetArray("BrumeScalarColor")->SetComponent(0, 0, std::nan(""));
+        fd->GetArray(vtkBrumeNames::ScalarColor)->SetComponent(0, 0, std::nan(""));
       }).find("BrumeScalarColor transfer function that colour point 0") != std::string::npos,
     "a NaN colour scalar");
   Check(
     edit(
       [](vtkFieldData* fd)
       {
-        fd->RemoveArray("BrumeScalarOpacity");
-        fd->RemoveArray("BrumeScalarOpacityUnitDistance");
+        fd->RemoveArray(vtkBrumeNames::ScalarOpacity);
+        fd->RemoveArray(vtkBrumeNames::ScalarOpacityUnitDistance);
       }).find("BrumeScalarColor without a BrumeScalarOpacity") != std::string::npos,
     "a colour without an opacity");
   Check(
@@ -686,10 +690,10 @@ void TestColour()
       [](vtkFieldData* fd)
       {
         vtkNew<vtkDoubleArray> three;
-        three->SetName("BrumeScalarColor");
+        three->SetName(vtkBrumeNames::ScalarColor);
         three->SetNumberOfComponents(3);
         three->InsertNextTuple3(0, 1, 1);
-        fd->RemoveArray("BrumeScalarColor");
+        fd->RemoveArray(vtkBrumeNames::ScalarColor);
         fd->AddArray(three);
       }).find("(scalar, red, green, blue) tuples") != std::string::npos,
     "a colour of three components");
@@ -796,7 +800,7 @@ void TestBadInput()
   };
   auto setPoints = [](vtkFieldData* fd, double s0, double a0)
   {
-    vtkDataArray* points = fd->GetArray("BrumeScalarOpacity");
+    vtkDataArray* points = fd->GetArray(vtkBrumeNames::ScalarOpacity);
     points->SetTuple2(0, s0, a0);
   };
   Check(
@@ -807,26 +811,29 @@ void TestBadInput()
     edit([&](vtkFieldData* fd) { setPoints(fd, 0.0, INFINITY); }).find("opacity outside [0, 1]") !=
       std::string::npos,
     "an infinite opacity");
-  Check(edit([](vtkFieldData* fd) { fd->GetArray("BrumeScalarComponent")->SetTuple1(0, 1); })
-          .find("BrumeScalarComponent 1, but its array") != std::string::npos,
+  Check(
+    edit(
+      [](vtkFieldData* fd) {
+        fd->GetArray(vtkBrumeNames::ScalarComponent)->SetTuple1(0, 1);
+      }).find("BrumeScalarComponent 1, but its array") != std::string::npos,
     "component out of range in field data");
   Check(
     edit(
       [](vtkFieldData* fd) {
-        fd->GetArray("BrumeScalarOpacityUnitDistance")->SetTuple1(0, 0);
+        fd->GetArray(vtkBrumeNames::ScalarOpacityUnitDistance)->SetTuple1(0, 0);
       }).find("unit distance") != std::string::npos,
     "a zero unit distance");
   Check(
     edit(
       [](vtkFieldData* fd) {
-        vtkStringArray::SafeDownCast(fd->GetAbstractArray("BrumeInterpolation"))
+        vtkStringArray::SafeDownCast(fd->GetAbstractArray(vtkBrumeNames::Interpolation))
           ->SetValue(0, "cubic");
       }).find("BrumeInterpolation 'cubic'") != std::string::npos,
     "an unknown interpolation");
   Check(
     edit(
       [](vtkFieldData* fd) {
-        vtkStringArray::SafeDownCast(fd->GetAbstractArray("BrumeDensityArray"))
+        vtkStringArray::SafeDownCast(fd->GetAbstractArray(vtkBrumeNames::DensityArray))
           ->SetValue(0, "absent");
       }).find("no density array 'absent'") != std::string::npos,
     "an array that does not exist");

@@ -117,5 +117,5 @@ endforeach ()
 if (failures)
   message(FATAL_ERROR "instruction counts beyond ${TOLERANCE} % of the stored figures: "
     "${failures}. A change this large updates ${STORED} in the same commit "
-    "(README, \"Instruction counts\").")
+    "(Documentation/testing.md, \"Instruction counts\").")
 endif ()

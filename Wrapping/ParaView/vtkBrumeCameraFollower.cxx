@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumeCameraFollower.h"
 
+#include "vtkBrumeDataModelNames.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkCommand.h"
@@ -36,8 +37,9 @@ bool ViewIndependent(vtkSMSourceProxy* source, unsigned int port)
     return false;
   }
   vtkPVDataInformation* info = source->GetDataInformation(port);
-  vtkPVArrayInformation* array =
-    info ? info->GetArrayInformation("BrumeViewDependentObjects", vtkDataObject::FIELD) : nullptr;
+  vtkPVArrayInformation* array = info
+    ? info->GetArrayInformation(vtkBrumeNames::ViewDependentObjects, vtkDataObject::FIELD)
+    : nullptr;
   if (!array || array->GetNumberOfComponents() != 1)
   {
     return false;

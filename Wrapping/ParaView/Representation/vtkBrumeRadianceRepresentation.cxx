@@ -2,6 +2,7 @@
 #include "vtkBrumeRadianceRepresentation.h"
 
 #include "vtkBoundingBox.h"
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeRadianceReconstruction.h"
 #include "vtkBrumeSceneActors.h"
 #include "vtkCamera.h"
@@ -76,7 +77,7 @@ std::string LayoutOf(vtkDataObject* data)
 bool EyeOf(vtkPartitionedDataSetCollection* textures, double eye[3])
 {
   auto* array = vtkDoubleArray::SafeDownCast(
-    textures ? textures->GetFieldData()->GetArray("BrumeEyePosition") : nullptr);
+    textures ? textures->GetFieldData()->GetArray(vtkBrumeNames::EyePosition) : nullptr);
   if (!array || array->GetNumberOfComponents() != 3 || array->GetNumberOfTuples() < 1)
   {
     return false;
@@ -119,7 +120,7 @@ vtkBrumeRadianceReconstruction* FindReconstruction(vtkAlgorithm* algorithm)
 int ViewDependentObjects(vtkPartitionedDataSetCollection* textures)
 {
   auto* array = vtkIntArray::SafeDownCast(
-    textures ? textures->GetFieldData()->GetArray("BrumeViewDependentObjects") : nullptr);
+    textures ? textures->GetFieldData()->GetArray(vtkBrumeNames::ViewDependentObjects) : nullptr);
   return array && array->GetNumberOfValues() > 0 ? array->GetValue(0) : 0;
 }
 }
@@ -246,7 +247,7 @@ int vtkBrumeRadianceRepresentation::ProcessViewRequest(
     // With translucent geometry in the view, the render view's default
     // (DepthPeelingForVolumes) would draw the media inside VTK's dual depth
     // peeling, once per peel; Brume's slices blend themselves, once.
-    // The README says so; the view's property shows the old value.
+    // Documentation/paraview.md says so; the view's property shows the old value.
     if (this->Renderer && this->ShowMedia)
     {
       this->Renderer->SetUseDepthPeelingForVolumes(false);

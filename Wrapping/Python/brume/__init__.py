@@ -28,6 +28,7 @@ from .vtkBrumeReconstruction import *  # noqa: F401,F403
 from .vtkBrumeRendering import *  # noqa: F401,F403
 from .vtkBrumeRenderingOpenGL2 import *  # noqa: F401,F403
 from .vtkBrumeIO import *  # noqa: F401,F403
+from .vtkBrumePipeline import *  # noqa: F401,F403
 from .vtkBrumeEvaluation import *  # noqa: F401,F403
 
 # Render windows on X when DISPLAY names a display, else on EGL (no X

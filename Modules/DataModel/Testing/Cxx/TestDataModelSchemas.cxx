@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The data the phases exchange: the scene's camera, the hit schema and the
 // radiance-texture schema round-trip, and malformed data fails cleanly.
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeDefaultSceneSource.h"
 #include "vtkBrumeHitConversion.h"
 #include "vtkBrumeRadianceConversion.h"
@@ -125,13 +126,14 @@ void TestHits()
   vtkNew<vtkPolyData> noPower;
   noPower->ShallowCopy(data);
   noPower->GetFieldData()->RemoveArray(vtkBrumeHitConversion::TotalPowerName);
-  Check(vtkBrumeHitConversion::ReadHits(noPower, view, run, copy).find("TotalPower") !=
+  Check(vtkBrumeHitConversion::ReadHits(noPower, view, run, copy).find(vtkBrumeNames::TotalPower) !=
       std::string::npos,
     "missing TotalPower is named");
   vtkNew<vtkPolyData> noFlux;
   noFlux->DeepCopy(data);
   noFlux->GetPointData()->RemoveArray(vtkBrumeHitConversion::FluxName);
-  Check(vtkBrumeHitConversion::ReadHits(noFlux, view, run, copy).find("Flux") != std::string::npos,
+  Check(vtkBrumeHitConversion::ReadHits(noFlux, view, run, copy).find(vtkBrumeNames::Flux) !=
+      std::string::npos,
     "a missing Flux array is named");
 
   // An aimed run's classes and weights (emitter 7 is the hits' light).
@@ -145,8 +147,8 @@ void TestHits()
     aim->InsertNextValue(a);
   }
   aimed->GetPointData()->AddArray(aim);
-  Check(
-    vtkBrumeHitConversion::ReadHits(aimed, view, run, copy).find("AimWeights") != std::string::npos,
+  Check(vtkBrumeHitConversion::ReadHits(aimed, view, run, copy).find(vtkBrumeNames::AimWeights) !=
+      std::string::npos,
     "an Aim array without AimWeights is named");
   vtkNew<vtkDoubleArray> weights;
   weights->SetName(vtkBrumeHitConversion::AimWeightsName);
@@ -165,8 +167,8 @@ void TestHits()
       aimedBack.size() == 3 && aimedBack[2].Aim == 2,
     "hits read back with their classes");
   weights->SetComponent(7, 2, 0.0);
-  Check(
-    vtkBrumeHitConversion::ReadHits(aimed, view, run, copy).find("AimWeights") != std::string::npos,
+  Check(vtkBrumeHitConversion::ReadHits(aimed, view, run, copy).find(vtkBrumeNames::AimWeights) !=
+      std::string::npos,
     "a weight of 0 is refused");
   weights->SetComponent(7, 2, 0.05);
   aim->SetValue(1, 3);
@@ -203,13 +205,13 @@ void TestTextures()
   int dims[3];
   texture->GetDimensions(dims);
   Check(dims[0] == 8 && dims[1] == 4 && dims[2] == 1, "surface texture dimensions");
-  vtkDataArray* radiance = texture->GetPointData()->GetArray("Radiance");
+  vtkDataArray* radiance = texture->GetPointData()->GetArray(vtkBrumeNames::Radiance);
   Check(radiance && radiance->GetNumberOfComponents() == 3 && radiance->GetNumberOfTuples() == 32,
     "surface Radiance array");
   Check(radiance && radiance->GetComponent(0, 0) == wall.Mat.Emission.x,
     "an unlit texel holds the emission");
-  auto* kind =
-    vtkStringArray::SafeDownCast(texture->GetFieldData()->GetAbstractArray("BrumeObjectKind"));
+  auto* kind = vtkStringArray::SafeDownCast(
+    texture->GetFieldData()->GetAbstractArray(vtkBrumeNames::ObjectKind));
   Check(kind && kind->GetValue(0) == "surface", "surface kind");
   vtkDataArray* tcoords = mapped ? mapped->GetPointData()->GetTCoords() : nullptr;
   Check(tcoords && tcoords->GetNumberOfTuples() == mapped->GetNumberOfPoints(),
@@ -229,11 +231,12 @@ void TestTextures()
   auto* volume = vtkImageData::SafeDownCast(volumePds->GetPartition(0));
   volume->GetDimensions(dims);
   Check(dims[0] == 5 && dims[1] == 4 && dims[2] == 3, "medium grid: one cell per voxel");
-  vtkDataArray* extinction = volume->GetCellData()->GetArray("Extinction");
+  vtkDataArray* extinction = volume->GetCellData()->GetArray(vtkBrumeNames::Extinction);
   Check(extinction && extinction->GetNumberOfTuples() == 24 &&
       std::abs(extinction->GetComponent(0, 0) - (fog.SigmaA.x + fog.SigmaS.x)) < 1e-6,
     "medium Extinction is sigma_a + sigma_s");
-  Check(volume->GetCellData()->GetArray("SourceRadiance") != nullptr, "medium SourceRadiance");
+  Check(volume->GetCellData()->GetArray(vtkBrumeNames::SourceRadiance) != nullptr,
+    "medium SourceRadiance");
   double bounds[6];
   volume->GetBounds(bounds);
   Check(std::abs(bounds[0] - fog.Bounds.lower.x) < 1e-6 &&

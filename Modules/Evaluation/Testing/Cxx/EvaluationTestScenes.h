@@ -4,6 +4,7 @@
 #ifndef EvaluationTestScenes_h
 #define EvaluationTestScenes_h
 
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeSceneConversion.h"
 #include "vtkBrumeTimedPipeline.h"
 #include "vtkCellArray.h"
@@ -31,8 +32,8 @@
 inline void RowProfile(vtkImageData* image, int size, int first, int last,
   std::vector<double>& mean, std::vector<double>* error, int channel = -1)
 {
-  vtkDataArray* radiance = image->GetPointData()->GetArray("Radiance");
-  vtkDataArray* variance = image->GetPointData()->GetArray("Variance");
+  vtkDataArray* radiance = image->GetPointData()->GetArray(vtkBrumeNames::Radiance);
+  vtkDataArray* variance = image->GetPointData()->GetArray(vtkBrumeNames::Variance);
   const int rows = last - first + 1;
   mean.assign(size, 0.0);
   if (error)
@@ -92,8 +93,8 @@ inline bool WithinBand(const std::vector<double>& expected, const std::vector<do
 /// pixels at (bx, by), and (with a Variance array) its standard error.
 inline double BlockMean(vtkImageData* image, int bx, int by, int block, double* error)
 {
-  vtkDataArray* radiance = image->GetPointData()->GetArray("Radiance");
-  vtkDataArray* variance = image->GetPointData()->GetArray("Variance");
+  vtkDataArray* radiance = image->GetPointData()->GetArray(vtkBrumeNames::Radiance);
+  vtkDataArray* variance = image->GetPointData()->GetArray(vtkBrumeNames::Variance);
   const int width = image->GetDimensions()[0];
   double sum = 0.0, v2 = 0.0;
   for (int y = by; y < by + block; ++y)
@@ -135,8 +136,10 @@ inline void AddQuad(vtkPartitionedDataSetCollection* scene, const std::string& n
   surface->SetPoints(points);
   surface->SetPolys(polys);
   const double reflectance[3] = { 0.6, 0.6, 0.6 }, emitted[3] = { emission, emission, emission };
-  vtkBrumeSceneConversion::AppendTuple(surface->GetFieldData(), "BrumeReflectance", reflectance, 3);
-  vtkBrumeSceneConversion::AppendTuple(surface->GetFieldData(), "BrumeEmission", emitted, 3);
+  vtkBrumeSceneConversion::AppendTuple(
+    surface->GetFieldData(), vtkBrumeNames::Reflectance, reflectance, 3);
+  vtkBrumeSceneConversion::AppendTuple(
+    surface->GetFieldData(), vtkBrumeNames::Emission, emitted, 3);
   vtkBrumeSceneConversion::AddObject(scene, surface, name);
 }
 
@@ -149,9 +152,9 @@ inline void AddMedium(vtkPartitionedDataSetCollection* scene, const std::string&
   box->SetSpacing(upper[0] - lower[0], upper[1] - lower[1], upper[2] - lower[2]);
   box->SetDimensions(2, 2, 2);
   const double sigmaA[3] = { 0.1, 0.1, 0.1 }, sigmaS[3] = { 0.9, 0.9, 0.9 }, g = 0.3;
-  vtkBrumeSceneConversion::AppendTuple(box->GetFieldData(), "BrumeSigmaA", sigmaA, 3);
-  vtkBrumeSceneConversion::AppendTuple(box->GetFieldData(), "BrumeSigmaS", sigmaS, 3);
-  vtkBrumeSceneConversion::AppendTuple(box->GetFieldData(), "BrumeG", &g, 1);
+  vtkBrumeSceneConversion::AppendTuple(box->GetFieldData(), vtkBrumeNames::SigmaA, sigmaA, 3);
+  vtkBrumeSceneConversion::AppendTuple(box->GetFieldData(), vtkBrumeNames::SigmaS, sigmaS, 3);
+  vtkBrumeSceneConversion::AppendTuple(box->GetFieldData(), vtkBrumeNames::G, &g, 1);
   vtkBrumeSceneConversion::AddObject(scene, box, name);
 }
 
@@ -178,9 +181,9 @@ inline void AddDensityGrid(vtkPartitionedDataSetCollection* scene, const std::st
           static_cast<float>(density(-1 + i * spacing, -1 + j * spacing, -1 + k * spacing)));
       }
   grid->GetPointData()->SetScalars(values);
-  vtkBrumeSceneConversion::AppendTuple(grid->GetFieldData(), "BrumeSigmaA", sigmaA, 3);
-  vtkBrumeSceneConversion::AppendTuple(grid->GetFieldData(), "BrumeSigmaS", sigmaS, 3);
-  vtkBrumeSceneConversion::AppendTuple(grid->GetFieldData(), "BrumeG", &g, 1);
+  vtkBrumeSceneConversion::AppendTuple(grid->GetFieldData(), vtkBrumeNames::SigmaA, sigmaA, 3);
+  vtkBrumeSceneConversion::AppendTuple(grid->GetFieldData(), vtkBrumeNames::SigmaS, sigmaS, 3);
+  vtkBrumeSceneConversion::AppendTuple(grid->GetFieldData(), vtkBrumeNames::G, &g, 1);
   vtkBrumeSceneConversion::AddObject(scene, grid, name);
 }
 
@@ -193,14 +196,14 @@ inline void AddLight(vtkPartitionedDataSetCollection* scene, const char* kind,
 {
   vtkFieldData* fd = scene->GetFieldData();
   vtkNew<vtkStringArray> type;
-  type->SetName("BrumeLightType");
+  type->SetName(vtkBrumeNames::LightType);
   type->InsertNextValue(kind);
   fd->AddArray(type);
   const double power[3] = { intensity, intensity, intensity }, cone = 180;
-  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeLightPosition", position, 3);
-  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeLightDirection", direction, 3);
-  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeLightIntensity", power, 3);
-  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeLightConeAngle", &cone, 1);
+  vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::LightPosition, position, 3);
+  vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::LightDirection, direction, 3);
+  vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::LightIntensity, power, 3);
+  vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::LightConeAngle, &cone, 1);
 }
 
 /// Adds a point light (radiant intensity `intensity` W/sr per channel).
@@ -248,10 +251,10 @@ inline void SetSceneCamera(vtkPartitionedDataSetCollection* scene, const double 
 {
   vtkFieldData* fd = scene->GetFieldData();
   const double up[3] = { 0, 1, 0 };
-  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeCameraPosition", position, 3);
-  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeCameraFocalPoint", focalPoint, 3);
-  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeCameraViewUp", up, 3);
-  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeCameraViewAngle", &viewAngle, 1);
+  vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::CameraPosition, position, 3);
+  vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::CameraFocalPoint, focalPoint, 3);
+  vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::CameraViewUp, up, 3);
+  vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::CameraViewAngle, &viewAngle, 1);
 }
 
 /// A gallery: a floor ("stage"), a back wall ("backdrop"), a small emitter

@@ -13,6 +13,7 @@
 //   TestForwardPeak [OUTPUT_DIR]
 #include "EvaluationTestScenes.h"
 
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeReferencePathTracer.h"
 #include "vtkBrumeRenderWindowSelection.h"
 #include "vtkBrumeTimedPipeline.h"
@@ -46,9 +47,9 @@ vtkSmartPointer<vtkPartitionedDataSetCollection> SlabScene()
   box->SetSpacing(1.6, 1.6, 1.0);
   box->SetDimensions(2, 2, 2);
   const double sigmaA[3] = { 0.2, 0.2, 0.2 }, sigmaS[3] = { 1.8, 1.8, 1.8 }, g = 0.99;
-  vtkBrumeSceneConversion::AppendTuple(box->GetFieldData(), "BrumeSigmaA", sigmaA, 3);
-  vtkBrumeSceneConversion::AppendTuple(box->GetFieldData(), "BrumeSigmaS", sigmaS, 3);
-  vtkBrumeSceneConversion::AppendTuple(box->GetFieldData(), "BrumeG", &g, 1);
+  vtkBrumeSceneConversion::AppendTuple(box->GetFieldData(), vtkBrumeNames::SigmaA, sigmaA, 3);
+  vtkBrumeSceneConversion::AppendTuple(box->GetFieldData(), vtkBrumeNames::SigmaS, sigmaS, 3);
+  vtkBrumeSceneConversion::AppendTuple(box->GetFieldData(), vtkBrumeNames::G, &g, 1);
   vtkBrumeSceneConversion::AddObject(scene, box, "forward mist");
   const double eye[3] = { 0, 0, 4 }, target[3] = { 0, 0, 0 };
   SetSceneCamera(scene, eye, target, 30);

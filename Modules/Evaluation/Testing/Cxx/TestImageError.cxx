@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // vtkBrumeImageError on synthetic images with known errors.
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeImageError.h"
 #include "vtkCallbackCommand.h"
 #include "vtkDoubleArray.h"
@@ -50,7 +51,7 @@ vtkSmartPointer<vtkImageData> Image(
   {
     radiance = vtkSmartPointer<vtkFloatArray>::New();
   }
-  radiance->SetName("Radiance");
+  radiance->SetName(vtkBrumeNames::Radiance);
   radiance->SetNumberOfComponents(3);
   radiance->SetNumberOfTuples(static_cast<vtkIdType>(w) * h);
   for (int y = 0; y < h; ++y)
@@ -72,7 +73,7 @@ vtkSmartPointer<vtkImageData> Image(
 vtkSmartPointer<vtkImageData> Mask(int w, int h, const std::function<bool(int, int)>& inside)
 {
   vtkNew<vtkUnsignedCharArray> mask;
-  mask->SetName("MediumMask");
+  mask->SetName(vtkBrumeNames::MediumMask);
   mask->SetNumberOfTuples(static_cast<vtkIdType>(w) * h);
   for (int y = 0; y < h; ++y)
   {

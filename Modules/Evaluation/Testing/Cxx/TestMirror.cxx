@@ -16,6 +16,7 @@
 //   TestMirror [OUTPUT_DIR]
 #include "EvaluationTestScenes.h"
 
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeDefaultSceneSource.h"
 #include "vtkBrumeReferencePathTracer.h"
 #include "vtkBrumeRenderWindowSelection.h"
@@ -68,17 +69,17 @@ vtkSmartPointer<vtkPartitionedDataSetCollection> MirrorScene(
     }
     vtkFieldData* fd = scene->GetPartitionedDataSet(i)->GetPartition(0)->GetFieldData();
     vtkNew<vtkStringArray> material;
-    material->SetName("BrumeMaterial");
+    material->SetName(vtkBrumeNames::Material);
     material->InsertNextValue(type);
-    fd->RemoveArray("BrumeMaterial");
+    fd->RemoveArray(vtkBrumeNames::Material);
     fd->AddArray(material);
     const double diffuse[3] = { rhoD, rhoD, rhoD }, specular[3] = { rhoS, rhoS, rhoS };
-    fd->RemoveArray("BrumeReflectance");
-    fd->RemoveArray("BrumeSpecular");
-    fd->RemoveArray("BrumeExponent");
-    vtkBrumeSceneConversion::AppendTuple(fd, "BrumeReflectance", diffuse, 3);
-    vtkBrumeSceneConversion::AppendTuple(fd, "BrumeSpecular", specular, 3);
-    vtkBrumeSceneConversion::AppendTuple(fd, "BrumeExponent", &e, 1);
+    fd->RemoveArray(vtkBrumeNames::Reflectance);
+    fd->RemoveArray(vtkBrumeNames::Specular);
+    fd->RemoveArray(vtkBrumeNames::Exponent);
+    vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::Reflectance, diffuse, 3);
+    vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::Specular, specular, 3);
+    vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::Exponent, &e, 1);
   }
   return scene;
 }
@@ -86,7 +87,7 @@ vtkSmartPointer<vtkPartitionedDataSetCollection> MirrorScene(
 // Whether a pixel of the block is brighter than `level` (channel mean).
 bool Brighter(vtkImageData* image, int bx, int by, double level)
 {
-  vtkDataArray* radiance = image->GetPointData()->GetArray("Radiance");
+  vtkDataArray* radiance = image->GetPointData()->GetArray(vtkBrumeNames::Radiance);
   for (int y = by; y < by + Block; ++y)
   {
     for (int x = bx; x < bx + Block; ++x)

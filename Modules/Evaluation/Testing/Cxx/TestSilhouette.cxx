@@ -7,6 +7,7 @@
 //   TestSilhouette [OUTPUT_DIR]
 #include "EvaluationTestScenes.h"
 
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeReferencePathTracer.h"
 #include "vtkBrumeRenderWindowSelection.h"
 #include "vtkBrumeTimedPipeline.h"
@@ -49,7 +50,7 @@ vtkSmartPointer<vtkPartitionedDataSetCollection> BallScene()
 // The middle rows' profile (channels' mean).
 std::vector<double> Profile(vtkImageData* image)
 {
-  vtkDataArray* radiance = image->GetPointData()->GetArray("Radiance");
+  vtkDataArray* radiance = image->GetPointData()->GetArray(vtkBrumeNames::Radiance);
   std::vector<double> p(Size, 0.0);
   for (int x = 0; x < Size; ++x)
   {

@@ -22,6 +22,7 @@
 //   TestTransferFunctionStep [colour] [OUTPUT_DIR]
 #include "EvaluationTestScenes.h"
 
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeReferencePathTracer.h"
 #include "vtkBrumeRenderWindowSelection.h"
 #include "vtkBrumeTimedPipeline.h"
@@ -59,7 +60,7 @@ vtkSmartPointer<vtkPartitionedDataSetCollection> StepScene(bool colour)
   // the albedo red below the step and blue above.
   vtkFieldData* fd = scene->GetPartitionedDataSet(0)->GetPartition(0)->GetFieldData();
   vtkNew<vtkDoubleArray> opacity;
-  opacity->SetName("BrumeScalarOpacity");
+  opacity->SetName(vtkBrumeNames::ScalarOpacity);
   opacity->SetNumberOfComponents(2);
   opacity->InsertNextTuple2(-1.0, colour ? 0.3 : 0.15);
   opacity->InsertNextTuple2(Step, colour ? 0.3 : 0.15);
@@ -69,7 +70,7 @@ vtkSmartPointer<vtkPartitionedDataSetCollection> StepScene(bool colour)
   if (colour)
   {
     vtkNew<vtkDoubleArray> colors;
-    colors->SetName("BrumeScalarColor");
+    colors->SetName(vtkBrumeNames::ScalarColor);
     colors->SetNumberOfComponents(4);
     colors->InsertNextTuple4(-1.0, 0.95, 0.3, 0.2);
     colors->InsertNextTuple4(Step, 0.95, 0.3, 0.2);
@@ -78,7 +79,7 @@ vtkSmartPointer<vtkPartitionedDataSetCollection> StepScene(bool colour)
     fd->AddArray(colors);
   }
   const double unit = 0.5;
-  vtkBrumeSceneConversion::AppendTuple(fd, "BrumeScalarOpacityUnitDistance", &unit, 1);
+  vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::ScalarOpacityUnitDistance, &unit, 1);
   const double light[3] = { 0.3, -0.4, -1.0 };
   AddDirectionalLight(scene, light, 5.0);
   const double eye[3] = { 0, 0, 4 }, target[3] = { 0, 0, 0 };

@@ -14,6 +14,7 @@
 //                                   the measurement scenes built on the shared volumes
 //                                   (Testing/Data/SharedVdbScenes) read, and their light
 //                                   reaches their medium; skipped without the volumes
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeDefaultSceneSource.h"
 #include "vtkBrumeHitConversion.h"
 #include "vtkBrumeLightTracer.h"
@@ -83,8 +84,8 @@ bool SameHits(vtkPolyData* a, vtkPolyData* b)
               << "\n";
     return false;
   }
-  vtkDataArray* fa = a->GetPointData()->GetArray("Flux");
-  vtkDataArray* fb = b->GetPointData()->GetArray("Flux");
+  vtkDataArray* fa = a->GetPointData()->GetArray(vtkBrumeNames::Flux);
+  vtkDataArray* fb = b->GetPointData()->GetArray(vtkBrumeNames::Flux);
   for (vtkIdType i = 0; i < a->GetNumberOfPoints(); ++i)
   {
     double pa[3], pb[3];
@@ -121,7 +122,7 @@ int RoundTrip(
 
   // Camera and render settings survive too.
   vtkDataArray* camera =
-    reader->GetOutputDataObject(0)->GetFieldData()->GetArray("BrumeCameraPosition");
+    reader->GetOutputDataObject(0)->GetFieldData()->GetArray(vtkBrumeNames::CameraPosition);
   Check(camera && camera->GetComponent(0, 2) == 4.0, "the camera position survives the round trip");
 
   vtkNew<vtkBrumeSceneReader> shipped;

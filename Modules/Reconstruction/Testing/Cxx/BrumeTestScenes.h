@@ -3,6 +3,7 @@
 #ifndef BrumeTestScenes_h
 #define BrumeTestScenes_h
 
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeDefaultSceneSource.h"
 #include "vtkCellData.h"
 #include "vtkCompositeDataSet.h"
@@ -38,15 +39,15 @@ inline vtkSmartPointer<vtkPartitionedDataSetCollection> DefaultSceneWithGlossyFl
     {
       vtkFieldData* fd = scene->GetPartitionedDataSet(i)->GetPartition(0)->GetFieldData();
       vtkNew<vtkStringArray> type;
-      type->SetName("BrumeMaterial");
+      type->SetName(vtkBrumeNames::Material);
       type->InsertNextValue("phong");
       fd->AddArray(type);
       vtkNew<vtkDoubleArray> specular;
-      specular->SetName("BrumeSpecular");
+      specular->SetName(vtkBrumeNames::Specular);
       specular->SetNumberOfComponents(3);
       specular->InsertNextTuple3(0.2, 0.2, 0.2);
       fd->AddArray(specular);
-      fd->GetArray("BrumeReflectance")->SetTuple3(0, 0.5, 0.5, 0.5);
+      fd->GetArray(vtkBrumeNames::Reflectance)->SetTuple3(0, 0.5, 0.5, 0.5);
     }
   }
   return scene;
@@ -61,9 +62,10 @@ inline vtkSmartPointer<vtkPartitionedDataSetCollection> DefaultSceneWithMirrorFl
     if (std::string(scene->GetMetaData(i)->Get(vtkCompositeDataSet::NAME())) == "floor")
     {
       vtkFieldData* fd = scene->GetPartitionedDataSet(i)->GetPartition(0)->GetFieldData();
-      vtkStringArray::SafeDownCast(fd->GetAbstractArray("BrumeMaterial"))->SetValue(0, "mirror");
-      fd->GetArray("BrumeSpecular")->SetTuple3(0, 0.9, 0.9, 0.9);
-      fd->GetArray("BrumeReflectance")->SetTuple3(0, 0, 0, 0);
+      vtkStringArray::SafeDownCast(fd->GetAbstractArray(vtkBrumeNames::Material))
+        ->SetValue(0, "mirror");
+      fd->GetArray(vtkBrumeNames::Specular)->SetTuple3(0, 0.9, 0.9, 0.9);
+      fd->GetArray(vtkBrumeNames::Reflectance)->SetTuple3(0, 0, 0, 0);
     }
   }
   return scene;

@@ -6,6 +6,7 @@
 // view-dependent histograms summed again), and with directional media.
 #include "BrumeTestScenes.h"
 
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeLightTracer.h"
 #include "vtkBrumeRadianceReconstruction.h"
 #include "vtkCallbackCommand.h"
@@ -80,7 +81,7 @@ int TestDistributedReconstruction(int argc, char* argv[])
     hits->DeepCopy(tracer->GetOutput());
     if (rank == 1 && hits->GetNumberOfPoints() > 0)
     {
-      vtkUnsignedShortArray::SafeDownCast(hits->GetPointData()->GetArray("ObjectId"))
+      vtkUnsignedShortArray::SafeDownCast(hits->GetPointData()->GetArray(vtkBrumeNames::ObjectId))
         ->SetValue(0, 999);
     }
     vtkNew<vtkBrumeRadianceReconstruction> broken;

@@ -6,6 +6,7 @@
 // camera without any reconstruction, then return to per-view textures that
 // equal a fresh reconstruction's.
 #include "BrumeTestScenes.h"
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeLightTracer.h"
 #include "vtkBrumeRadianceReconstruction.h"
 #include "vtkCallbackCommand.h"
@@ -225,11 +226,12 @@ int TestProgressiveDirectional(int, char*[])
   directional->DirectionalRadianceOn();
   directional->Update();
   vtkDataObject* fog = Fog(directional->GetOutput());
-  vtkDataArray* sh = vtkImageData::SafeDownCast(fog)->GetCellData()->GetArray("SourceRadianceSH");
+  vtkDataArray* sh =
+    vtkImageData::SafeDownCast(fog)->GetCellData()->GetArray(vtkBrumeNames::SourceRadianceSH);
   // Order 3: 3 x 16 components.
   if (!sh || sh->GetNumberOfComponents() != 48 ||
     directional->GetNumberOfDirectionalBuilds() != 1 ||
-    !fog->GetFieldData()->GetArray("BrumePhaseAsymmetry"))
+    !fog->GetFieldData()->GetArray(vtkBrumeNames::PhaseAsymmetry))
   {
     std::cerr << "the directional fog lacks its coefficients\n";
     ok = false;

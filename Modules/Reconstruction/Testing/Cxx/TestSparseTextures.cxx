@@ -4,6 +4,7 @@
 // active voxels, one in a box eight times as large, cost the same (within
 // 10 %), and the sparse grid expands to the density's own values.
 //   TestSparseTextures DIR
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeLightTracer.h"
 #include "vtkBrumeRadianceConversion.h"
 #include "vtkBrumeRadianceReconstruction.h"
@@ -132,7 +133,7 @@ int TestSparseTextures(int argc, char* argv[])
     double pcoords[3];
     Check(dense->ComputeStructuredCoordinates(centre, ijk, pcoords) != 0, "the centre is inside");
     const vtkIdType id = dense->ComputeCellId(ijk);
-    vtkDataArray* sigmaT = dense->GetCellData()->GetArray("Extinction");
+    vtkDataArray* sigmaT = dense->GetCellData()->GetArray(vtkBrumeNames::Extinction);
     Check(std::abs(sigmaT->GetComponent(id, 0) - 0.31 * 0.5) < 1e-6,
       "sigma_t at a ball's centre voxel is 0.31 * 0.5, not " +
         std::to_string(sigmaT->GetComponent(id, 0)));

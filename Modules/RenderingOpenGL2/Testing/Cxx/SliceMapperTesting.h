@@ -6,6 +6,7 @@
 #define SliceMapperTesting_h
 
 #include "vtkActor.h"
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeFloatImageCapture.h"
 #include "vtkBrumeSliceVolumeMapper.h"
 #include "vtkCamera.h"
@@ -52,9 +53,9 @@ inline vtkSmartPointer<vtkImageData> Medium(const double box[6], const std::vect
   image->SetOrigin(box[0], box[2], box[4]);
   image->SetSpacing(box[1] - box[0], box[3] - box[2], (box[5] - box[4]) / nz);
   vtkNew<vtkFloatArray> source, extinction;
-  source->SetName("SourceRadiance");
+  source->SetName(vtkBrumeNames::SourceRadiance);
   source->SetNumberOfComponents(3);
-  extinction->SetName("Extinction");
+  extinction->SetName(vtkBrumeNames::Extinction);
   extinction->SetNumberOfComponents(3);
   for (const Layer& l : layers)
   {

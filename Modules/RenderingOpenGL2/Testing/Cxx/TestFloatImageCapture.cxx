@@ -6,6 +6,7 @@
 // at K = 4), K = 1 samples the pixels' centres, and the camera's window
 // centre is restored.
 #include "vtkActor.h"
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeFloatImageCapture.h"
 #include "vtkCamera.h"
 #include "vtkFloatArray.h"
@@ -73,7 +74,8 @@ int TestFloatImageCapture(int, char*[])
 
   auto pixel = [](vtkImageData* image, int x, int y)
   {
-    auto* radiance = vtkFloatArray::SafeDownCast(image->GetPointData()->GetArray("Radiance"));
+    auto* radiance =
+      vtkFloatArray::SafeDownCast(image->GetPointData()->GetArray(vtkBrumeNames::Radiance));
     return radiance ? static_cast<double>(radiance->GetTypedComponent(y * 16 + x, 0)) : -1.0;
   };
   window->Render(); // K = 1 reads the frame as drawn

@@ -4,6 +4,7 @@
 // extinction, occlusion by opaque geometry, depth order of overlapping
 // volumes, scalars classified by a transfer function, and bad input.
 #include "vtkActor.h"
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeFloatImageCapture.h"
 #include "vtkBrumeSliceVolumeMapper.h"
 #include "vtkCallbackCommand.h"
@@ -133,7 +134,7 @@ bool BadInput()
   const Layer fog{ { 1.0, 1.0, 1.0 }, { 1.0, 1.0, 1.0 } };
   std::vector<std::pair<std::string, vtkSmartPointer<vtkImageData>>> cases;
   auto noArrays = Medium(box, { fog });
-  noArrays->GetCellData()->RemoveArray("Extinction");
+  noArrays->GetCellData()->RemoveArray(vtkBrumeNames::Extinction);
   cases.emplace_back("no Extinction array", noArrays);
   auto zero = Medium(box, { fog });
   zero->SetSpacing(1.0, 0.0, 1.0);
@@ -199,7 +200,7 @@ bool Directional()
       float y[16];
       brume::EvaluateSh(order, wp, y);
       vtkNew<vtkFloatArray> sh;
-      sh->SetName("SourceRadianceSH");
+      sh->SetName(vtkBrumeNames::SourceRadianceSH);
       sh->SetNumberOfComponents(3 * k);
       sh->SetNumberOfTuples(1);
       for (int j = 0; j < k; ++j)
@@ -211,7 +212,7 @@ bool Directional()
       }
       image->GetCellData()->AddArray(sh);
       vtkNew<vtkDoubleArray> asymmetry;
-      asymmetry->SetName("BrumePhaseAsymmetry");
+      asymmetry->SetName(vtkBrumeNames::PhaseAsymmetry);
       asymmetry->InsertNextValue(g);
       image->GetFieldData()->AddArray(asymmetry);
       auto volume = Volume(image, 1.0 / 16.0, true);
@@ -248,7 +249,7 @@ bool NativeExtinction()
   grid->SetOrigin(box[0], box[2], box[4]);
   grid->SetSpacing(1.0 / 8.0, 1.0 / 8.0, 1.0);
   vtkNew<vtkFloatArray> extinction;
-  extinction->SetName("Extinction");
+  extinction->SetName(vtkBrumeNames::Extinction);
   extinction->SetNumberOfComponents(3);
   for (int j = 0; j < 8; ++j)
   {
@@ -321,7 +322,7 @@ bool SparseExtinction()
   };
   auto dense = grid();
   vtkNew<vtkFloatArray> extinction;
-  extinction->SetName("Extinction");
+  extinction->SetName(vtkBrumeNames::Extinction);
   extinction->SetNumberOfComponents(3);
   for (int k = 0; k < n[2]; ++k)
     for (int j = 0; j < n[1]; ++j)
@@ -339,10 +340,10 @@ bool SparseExtinction()
     bricks[a] = vtkBrumeSliceVolumeMapper::ExtinctionBricksAlong(n[a]);
   }
   vtkNew<vtkIntArray> slots;
-  slots->SetName("ExtinctionBrickSlots");
+  slots->SetName(vtkBrumeNames::ExtinctionBrickSlots);
   vtkNew<vtkFloatArray> values, samples;
-  values->SetName("ExtinctionBrickValues");
-  samples->SetName("ExtinctionBrickSamples");
+  values->SetName(vtkBrumeNames::ExtinctionBrickValues);
+  samples->SetName(vtkBrumeNames::ExtinctionBrickSamples);
   int constant = 0;
   for (int bk = 0; bk < bricks[2]; ++bk)
     for (int bj = 0; bj < bricks[1]; ++bj)
@@ -371,7 +372,7 @@ bool SparseExtinction()
         }
       }
   vtkNew<vtkDoubleArray> perDensity;
-  perDensity->SetName("ExtinctionScale");
+  perDensity->SetName(vtkBrumeNames::ExtinctionScale);
   perDensity->SetNumberOfComponents(3);
   perDensity->InsertNextTuple(scale.data());
   for (vtkDataArray* a : { static_cast<vtkDataArray*>(slots), static_cast<vtkDataArray*>(values),
@@ -464,7 +465,7 @@ bool ThickSkin()
   grid->SetOrigin(box[0], box[2], box[4]);
   grid->SetSpacing(1.0, 1.0, 1.0 / fineCells);
   vtkNew<vtkFloatArray> extinction;
-  extinction->SetName("Extinction");
+  extinction->SetName(vtkBrumeNames::Extinction);
   for (int k = 0; k < fineCells; ++k)
   {
     const double z = box[4] + (k + 0.5) / fineCells;
@@ -535,12 +536,12 @@ bool ClassifiedExtinction()
   grid->SetSpacing(1.0 / 8.0, 1.0 / 4.0, 1.0);
   const int B = vtkBrumeSliceVolumeMapper::ExtinctionBrickSize;
   vtkNew<vtkIntArray> slots;
-  slots->SetName("ExtinctionBrickSlots");
+  slots->SetName(vtkBrumeNames::ExtinctionBrickSlots);
   slots->InsertNextValue(0);
   vtkNew<vtkFloatArray> values, samples, table;
-  values->SetName("ExtinctionBrickValues");
+  values->SetName(vtkBrumeNames::ExtinctionBrickValues);
   values->InsertNextValue(0.f);
-  samples->SetName("ExtinctionBrickSamples");
+  samples->SetName(vtkBrumeNames::ExtinctionBrickSamples);
   for (int k = 0; k < B; ++k)
     for (int j = 0; j < B; ++j)
       for (int i = 0; i < B; ++i)
@@ -548,7 +549,7 @@ bool ClassifiedExtinction()
         samples->InsertNextValue(static_cast<float>(std::min(i, 7)) / 7.f);
       }
   // The function's extinction at 4096 scalars over [0, 1].
-  table->SetName("ExtinctionTransferFunction");
+  table->SetName(vtkBrumeNames::ExtinctionTransferFunction);
   const int n = 4096;
   for (int i = 0; i < n; ++i)
   {
@@ -556,10 +557,10 @@ bool ClassifiedExtinction()
     table->InsertNextValue(static_cast<float>(-std::log1p(-(s < step ? low : high))));
   }
   vtkNew<vtkDoubleArray> range, perUnit;
-  range->SetName("ExtinctionTransferRange");
+  range->SetName(vtkBrumeNames::ExtinctionTransferRange);
   range->SetNumberOfComponents(2);
   range->InsertNextTuple2(0.0, 1.0);
-  perUnit->SetName("ExtinctionScale");
+  perUnit->SetName(vtkBrumeNames::ExtinctionScale);
   perUnit->SetNumberOfComponents(3);
   perUnit->InsertNextTuple(scale.data());
   for (vtkDataArray* a : { static_cast<vtkDataArray*>(slots), static_cast<vtkDataArray*>(values),

@@ -3,6 +3,7 @@
 // were, unless someone still holds them: an array a consumer keeps is never
 // written again, and every batch's and run's hits are those of a fresh
 // tracer.
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeDefaultSceneSource.h"
 #include "vtkBrumeLightTracer.h"
 #include "vtkDataArray.h"
@@ -80,11 +81,12 @@ int TestBatchMemory(int, char*[])
   tracer->SetFirstParticle(0);
   tracer->SetEndParticle(20000);
   tracer->Update();
-  vtkSmartPointer<vtkDataArray> held = tracer->GetOutput()->GetPointData()->GetArray("Flux");
+  vtkSmartPointer<vtkDataArray> held =
+    tracer->GetOutput()->GetPointData()->GetArray(vtkBrumeNames::Flux);
   auto heldValues = vtkSmartPointer<vtkDataArray>::Take(held->NewInstance());
   heldValues->DeepCopy(held);
   const void* directionBuffer =
-    tracer->GetOutput()->GetPointData()->GetArray("Direction")->GetVoidPointer(0);
+    tracer->GetOutput()->GetPointData()->GetArray(vtkBrumeNames::Direction)->GetVoidPointer(0);
   ok = SameHits(tracer->GetOutput(), FreshBatch(scene, 0, 20000), "batch 1") && ok;
 
   // Batch 2 reuses the arrays no one holds (Direction), not the one kept.
@@ -97,7 +99,7 @@ int TestBatchMemory(int, char*[])
     std::cerr << "batch 2 wrote into the flux array a consumer still holds\n";
     ok = false;
   }
-  if (tracer->GetOutput()->GetPointData()->GetArray("Flux") == held.GetPointer())
+  if (tracer->GetOutput()->GetPointData()->GetArray(vtkBrumeNames::Flux) == held.GetPointer())
   {
     std::cerr << "batch 2's output still shows the kept flux array\n";
     ok = false;
@@ -105,7 +107,7 @@ int TestBatchMemory(int, char*[])
   // realloc may move a reused buffer; glibc keeps large ones where they are
   // when they shrink or grow in place, so this is informative only.
   const bool reusedInPlace =
-    tracer->GetOutput()->GetPointData()->GetArray("Direction")->GetVoidPointer(0) ==
+    tracer->GetOutput()->GetPointData()->GetArray(vtkBrumeNames::Direction)->GetVoidPointer(0) ==
     directionBuffer;
   std::cout << "batch 2 wrote its directions "
             << (reusedInPlace ? "where batch 1's were" : "elsewhere (moved by realloc)") << "\n";
@@ -113,7 +115,7 @@ int TestBatchMemory(int, char*[])
   // A consumer that gives an output array a buffer of its own (VTK does not
   // free it) must get it back untouched: the tracer takes back only the
   // buffers it handed out.
-  vtkDataArray* emitter = tracer->GetOutput()->GetPointData()->GetArray("EmitterId");
+  vtkDataArray* emitter = tracer->GetOutput()->GetPointData()->GetArray(vtkBrumeNames::EmitterId);
   std::vector<unsigned short> own(static_cast<std::size_t>(emitter->GetNumberOfValues()), 7);
   emitter->SetVoidArray(own.data(), static_cast<vtkIdType>(own.size()), 1);
 
@@ -133,7 +135,7 @@ int TestBatchMemory(int, char*[])
       break;
     }
   }
-  vtkDataArray* last = tracer->GetOutput()->GetPointData()->GetArray("Direction");
+  vtkDataArray* last = tracer->GetOutput()->GetPointData()->GetArray(vtkBrumeNames::Direction);
   if (last->GetReferenceCount() != 1)
   {
     std::cerr << "after the run's last batch the tracer still holds its arrays ("
@@ -156,7 +158,7 @@ int TestBatchMemory(int, char*[])
   vtkSmartPointer<vtkPoints> heldPoints = tracer->GetOutput()->GetPoints();
   auto heldPositions = vtkSmartPointer<vtkDataArray>::Take(heldPoints->GetData()->NewInstance());
   heldPositions->DeepCopy(heldPoints->GetData());
-  vtkDataArray* flux = tracer->GetOutput()->GetPointData()->GetArray("Flux");
+  vtkDataArray* flux = tracer->GetOutput()->GetPointData()->GetArray(vtkBrumeNames::Flux);
   auto sharedFlux = vtkSmartPointer<vtkDataArray>::Take(flux->NewInstance());
   sharedFlux->ShallowCopy(flux);
   auto fluxValues = vtkSmartPointer<vtkDataArray>::Take(flux->NewInstance());

@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The same seed gives identical particle hits with 1 and with 2 threads.
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeDefaultSceneSource.h"
 #include "vtkBrumeLightTracer.h"
 #include "vtkBrumeReferencePathTracer.h"
+#include "vtkConvertToMultiBlockDataSet.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
-#include "vtkConvertToMultiBlockDataSet.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
@@ -81,7 +82,8 @@ int TestTracerDeterminism(int, char*[])
     std::cerr << "Hit positions differ between 1 and 2 threads.\n";
     return EXIT_FAILURE;
   }
-  for (const char* name : { "Direction", "Flux", "ObjectId", "EmitterId", "Depth" })
+  for (const char* name : { vtkBrumeNames::Direction, vtkBrumeNames::Flux, vtkBrumeNames::ObjectId,
+         vtkBrumeNames::EmitterId, vtkBrumeNames::Depth })
   {
     if (!SameBytes(one->GetPointData()->GetArray(name), two->GetPointData()->GetArray(name)))
     {
@@ -114,7 +116,7 @@ int TestTracerDeterminism(int, char*[])
   }
   // The reference renderer too.
   auto a = Reference(1), b = Reference(2);
-  for (const char* name : { "Radiance", "Variance" })
+  for (const char* name : { vtkBrumeNames::Radiance, vtkBrumeNames::Variance })
   {
     if (!SameBytes(a->GetPointData()->GetArray(name), b->GetPointData()->GetArray(name)))
     {
