@@ -157,6 +157,173 @@ vtkTypeBool vtkBrumeLightTracer::ProcessRequest(
   return this->Superclass::ProcessRequest(request, inputVector, outputVector);
 }
 
+// [first, end) of the run, and this piece's share of it; false (with an
+// error) when the counts are out of range or the hits would not fit.
+bool vtkBrumeLightTracer::PlanParticles(vtkInformation* outInfo, ParticleRange& range)
+{
+  range.Particles = this->NumberOfParticles;
+  if (range.Particles < 1 || range.Particles > vtkTypeInt64(10000000000LL))
+  {
+    vtkErrorMacro("NumberOfParticles must be in [1, 1e10], not " << range.Particles << ".");
+    return false;
+  }
+  range.End = this->EndParticle > 0 ? this->EndParticle : range.Particles;
+  if (range.End > range.Particles)
+  {
+    vtkErrorMacro("EndParticle must be in [1, NumberOfParticles = "
+      << range.Particles << "] (or 0: " << range.Particles << "), not " << range.End << ".");
+    return false;
+  }
+  range.First = this->FirstParticle;
+  if (range.First < 0 || range.First >= range.End)
+  {
+    vtkErrorMacro("FirstParticle must be in [0, EndParticle - 1 = " << range.End - 1 << "], not "
+                                                                    << range.First << ".");
+    return false;
+  }
+  // A piece of the pipeline (one process of a distributed run) traces its
+  // share of [FirstParticle, EndParticle); each particle's stream
+  // depends only on (seed, index), so the pieces together are the whole run.
+  const int piece = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    : 0;
+  const int pieces = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    ? std::max(1, outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()))
+    : 1;
+  const vtkTypeInt64 runFirst = range.First;
+  range.PieceFirst = runFirst + (range.End - runFirst) * piece / pieces;
+  range.PieceEnd = runFirst + (range.End - runFirst) * (piece + 1) / pieces;
+  const vtkTypeInt64 traced = range.PieceEnd - range.PieceFirst;
+  const double expectedBytes = ExpectedHitBytes(traced);
+  if (expectedBytes > static_cast<double>(this->MemoryLimit))
+  {
+    vtkErrorMacro("" << traced << " particles would need about " << expectedBytes / (1 << 20)
+                     << " MiB of hits, more than MemoryLimit (" << this->MemoryLimit / (1 << 20)
+                     << " MiB).");
+    return false;
+  }
+  return true;
+}
+
+// Traces this piece's particles in up to twenty batches of blocks, each
+// batch's hits copied into the output's arrays as they come; false (with an
+// error) when they cannot be stored.
+bool vtkBrumeLightTracer::TraceBatches(const brume::LightTracer& tracer, const ParticleRange& range,
+  BatchMemory& memory, vtkBrumeLightTracerOutput& out, brume::TraceCounters& sum, vtkIdType& stored)
+{
+  const vtkTypeInt64 traced = range.PieceEnd - range.PieceFirst;
+  const vtkTypeInt64 blocks = (traced + ParticlesPerBlock - 1) / ParticlesPerBlock;
+  std::vector<std::vector<brume::Hit>>& blockHits = memory.BlockHits;
+  std::vector<brume::TraceCounters> counters;
+  const vtkTypeInt64 batches = std::min<vtkTypeInt64>(blocks, 20);
+  stored = 0;
+  for (vtkTypeInt64 k = 0; k < batches && !this->GetAbortExecute(); ++k)
+  {
+    const vtkTypeInt64 begin = blocks * k / batches, end = blocks * (k + 1) / batches;
+    // Block buffers are reused from batch to batch: their pages are already
+    // mapped, so storing a hit costs no page fault.
+    blockHits.resize(static_cast<std::size_t>(end - begin));
+    for (auto& block : blockHits)
+    {
+      block.clear();
+    }
+    counters.assign(static_cast<std::size_t>(end - begin), {});
+    TraceBlocks functor{ tracer, blockHits, counters, range.Particles, range.PieceFirst,
+      range.PieceEnd, begin };
+    vtkSMPTools::For(0, end - begin, functor);
+    std::size_t batchHits = 0;
+    for (std::size_t b = 0; b < blockHits.size(); ++b)
+    {
+      batchHits += blockHits[b].size();
+      sum.Add(counters[b]);
+    }
+    // After the first batch, room for the hits all batches will likely
+    // hold (its hits per particle, 5 % more): one allocation, not twenty.
+    const bool firstBatch = k == 0 && batches > 1;
+    const vtkIdType expected = firstBatch
+      ? static_cast<vtkIdType>(1.05 * static_cast<double>(batchHits) * static_cast<double>(blocks) /
+          static_cast<double>(end - begin)) +
+        1024
+      : 0;
+    if (!(firstBatch ? out.Reallocate(std::max<vtkIdType>(expected, stored + batchHits))
+                     : out.Resize(stored + static_cast<vtkIdType>(batchHits))))
+    {
+      vtkErrorMacro("Out of memory storing " << stored + batchHits << " particle hits.");
+      return false;
+    }
+    // Copy the blocks to their places in parallel.
+    std::vector<vtkIdType> offsets(blockHits.size() + 1, stored);
+    for (std::size_t b = 0; b < blockHits.size(); ++b)
+    {
+      offsets[b + 1] = offsets[b] + static_cast<vtkIdType>(blockHits[b].size());
+    }
+    vtkSMPTools::For(0, static_cast<vtkIdType>(blockHits.size()),
+      [&](vtkIdType first, vtkIdType last)
+      {
+        for (vtkIdType b = first; b < last; ++b)
+        {
+          out.Write(offsets[b], blockHits[b]);
+        }
+      });
+    stored = offsets.back();
+    this->UpdateProgress(0.99 * static_cast<double>(k + 1) / static_cast<double>(batches));
+  }
+  return true;
+}
+
+namespace
+{
+void AddValue(vtkPolyData* output, const char* name, double value)
+{
+  vtkNew<vtkDoubleArray> a;
+  a->SetName(name);
+  a->InsertNextValue(value);
+  output->GetFieldData()->AddArray(a);
+}
+
+// What the reconstruction reads of the run beside the hits: the emitted
+// power, the aimed lights' weights, the run's and this piece's particles,
+// the seed, the rays and the energy balance.
+void WriteRunFields(vtkPolyData* output, const brume::Scene& scene,
+  const brume::LightTracer& tracer, bool aims, const vtkTypeInt64 range[5], vtkIdType seed,
+  const brume::TraceCounters& sum)
+{
+  AddTuple(output, vtkBrumeHitConversion::TotalPowerName, tracer.GetTotalPower());
+  if (aims)
+  {
+    // The weight of each class of Aim, emitter id by emitter id: the
+    // objects' (emissive surfaces are never aimed), then the lights'.
+    vtkNew<vtkDoubleArray> weights;
+    weights->SetName(vtkBrumeHitConversion::AimWeightsName);
+    weights->SetNumberOfComponents(3);
+    for (std::size_t o = 0; o < scene.NumberOfObjects(); ++o)
+    {
+      weights->InsertNextTuple3(1.0, 1.0, 1.0);
+    }
+    for (const brume::Light& l : scene.Lights)
+    {
+      weights->InsertNextTuple3(l.EmissionWeight(0), l.EmissionWeight(1), l.EmissionWeight(2));
+    }
+    output->GetFieldData()->AddArray(weights);
+  }
+  AddValue(output, vtkBrumeHitConversion::NumberOfParticlesName, static_cast<double>(range[0]));
+  AddValue(output, vtkBrumeHitConversion::FirstParticleName, static_cast<double>(range[1]));
+  AddValue(output, vtkBrumeHitConversion::EndParticleName, static_cast<double>(range[2]));
+  vtkNew<vtkDoubleArray> pieceRange;
+  pieceRange->SetName(vtkBrumeNames::PieceParticles); // [first, end) traced by this piece
+  pieceRange->SetNumberOfComponents(2);
+  pieceRange->InsertNextTuple2(static_cast<double>(range[3]), static_cast<double>(range[4]));
+  output->GetFieldData()->AddArray(pieceRange);
+  AddValue(output, vtkBrumeHitConversion::SeedName, static_cast<double>(seed));
+  AddValue(output, vtkBrumeNames::NumberOfRays, static_cast<double>(sum.Rays));
+  AddTuple(output, vtkBrumeNames::EmittedFlux, sum.Emitted);
+  AddTuple(output, vtkBrumeNames::AbsorbedFlux, sum.Absorbed);
+  AddTuple(output, vtkBrumeNames::EscapedFlux, sum.Escaped);
+  AddTuple(output, vtkBrumeNames::TruncatedFlux, sum.Truncated);
+  AddTuple(output, vtkBrumeNames::EstimatorNetFlux, sum.EstimatorNet);
+}
+}
+
 int vtkBrumeLightTracer::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -172,48 +339,12 @@ int vtkBrumeLightTracer::RequestData(
   const std::size_t returnedBytes = out.Adopt(*this->Returned);
   std::unique_ptr<BatchMemory> reused = std::move(this->Reused);
 
-  const vtkTypeInt64 particles = this->NumberOfParticles;
-  if (particles < 1 || particles > vtkTypeInt64(10000000000LL))
+  ParticleRange range;
+  if (!this->PlanParticles(outputVector->GetInformationObject(0), range))
   {
-    vtkErrorMacro("NumberOfParticles must be in [1, 1e10], not " << particles << ".");
     return 0;
   }
-  const vtkTypeInt64 endParticle = this->EndParticle > 0 ? this->EndParticle : particles;
-  if (endParticle > particles)
-  {
-    vtkErrorMacro("EndParticle must be in [1, NumberOfParticles = "
-      << particles << "] (or 0: " << particles << "), not " << endParticle << ".");
-    return 0;
-  }
-  const vtkTypeInt64 firstParticle = this->FirstParticle;
-  if (firstParticle < 0 || firstParticle >= endParticle)
-  {
-    vtkErrorMacro("FirstParticle must be in [0, EndParticle - 1 = " << endParticle - 1 << "], not "
-                                                                    << firstParticle << ".");
-    return 0;
-  }
-  // A piece of the pipeline (one process of a distributed run) traces its
-  // share of [FirstParticle, EndParticle); each particle's stream
-  // depends only on (seed, index), so the pieces together are the whole run.
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  const int piece = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
-    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
-    : 0;
-  const int pieces = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
-    ? std::max(1, outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()))
-    : 1;
-  const vtkTypeInt64 runFirst = firstParticle;
-  const vtkTypeInt64 pieceFirst = runFirst + (endParticle - runFirst) * piece / pieces;
-  const vtkTypeInt64 pieceEnd = runFirst + (endParticle - runFirst) * (piece + 1) / pieces;
-  const vtkTypeInt64 traced = pieceEnd - pieceFirst;
-  const double expectedBytes = ExpectedHitBytes(traced);
-  if (expectedBytes > static_cast<double>(this->MemoryLimit))
-  {
-    vtkErrorMacro("" << traced << " particles would need about " << expectedBytes / (1 << 20)
-                     << " MiB of hits, more than MemoryLimit (" << this->MemoryLimit / (1 << 20)
-                     << " MiB).");
-    return 0;
-  }
+  const vtkTypeInt64 traced = range.PieceEnd - range.PieceFirst;
 
   brume::Scene scene;
   if (!vtkBrumeSceneConversion::ToTracedScene(this, input, this->Seed, this->Lights, scene))
@@ -263,120 +394,25 @@ int vtkBrumeLightTracer::RequestData(
   const double hitsPerParticle = std::max(4.0, this->LastHitsPerParticle);
   out.Cap(static_cast<vtkIdType>(2.0 * hitsPerParticle * static_cast<double>(traced)));
   this->LastReusedBytes = static_cast<vtkTypeInt64>(returnedBytes);
-  const vtkTypeInt64 blocks = (traced + ParticlesPerBlock - 1) / ParticlesPerBlock;
-  std::vector<std::vector<brume::Hit>>& blockHits = reused->BlockHits;
-  std::vector<brume::TraceCounters> counters;
   brume::TraceCounters sum;
-  const vtkTypeInt64 batches = std::min<vtkTypeInt64>(blocks, 20);
   vtkIdType stored = 0;
-  for (vtkTypeInt64 k = 0; k < batches && !this->GetAbortExecute(); ++k)
+  if (!this->TraceBatches(tracer, range, *reused, out, sum, stored))
   {
-    const vtkTypeInt64 begin = blocks * k / batches, end = blocks * (k + 1) / batches;
-    // Block buffers are reused from batch to batch: their pages are already
-    // mapped, so storing a hit costs no page fault.
-    blockHits.resize(static_cast<std::size_t>(end - begin));
-    for (auto& block : blockHits)
-    {
-      block.clear();
-    }
-    counters.assign(static_cast<std::size_t>(end - begin), {});
-    TraceBlocks functor{ tracer, blockHits, counters, particles, pieceFirst, pieceEnd, begin };
-    vtkSMPTools::For(0, end - begin, functor);
-    std::size_t batchHits = 0;
-    for (std::size_t b = 0; b < blockHits.size(); ++b)
-    {
-      batchHits += blockHits[b].size();
-      sum.Add(counters[b]);
-    }
-    // After the first batch, room for the hits all batches will likely
-    // hold (its hits per particle, 5 % more): one allocation, not twenty.
-    const bool firstBatch = k == 0 && batches > 1;
-    const vtkIdType expected = firstBatch
-      ? static_cast<vtkIdType>(1.05 * static_cast<double>(batchHits) * static_cast<double>(blocks) /
-          static_cast<double>(end - begin)) +
-        1024
-      : 0;
-    if (!(firstBatch ? out.Reallocate(std::max<vtkIdType>(expected, stored + batchHits))
-                     : out.Resize(stored + static_cast<vtkIdType>(batchHits))))
-    {
-      vtkErrorMacro("Out of memory storing " << stored + batchHits << " particle hits.");
-      return 0;
-    }
-    // Copy the blocks to their places in parallel.
-    std::vector<vtkIdType> offsets(blockHits.size() + 1, stored);
-    for (std::size_t b = 0; b < blockHits.size(); ++b)
-    {
-      offsets[b + 1] = offsets[b] + static_cast<vtkIdType>(blockHits[b].size());
-    }
-    vtkSMPTools::For(0, static_cast<vtkIdType>(blockHits.size()),
-      [&](vtkIdType first, vtkIdType last)
-      {
-        for (vtkIdType b = first; b < last; ++b)
-        {
-          out.Write(offsets[b], blockHits[b]);
-        }
-      });
-    stored = offsets.back();
-    this->UpdateProgress(0.99 * static_cast<double>(k + 1) / static_cast<double>(batches));
+    return 0;
   }
   this->LastRayCount = static_cast<vtkTypeInt64>(sum.Rays);
   // The block buffers are kept for the next batch only while the run goes
   // on; the output's buffers come back to any next execution.
-  const bool runGoesOn = endParticle < particles && !this->GetAbortExecute();
+  const bool runGoesOn = range.End < range.Particles && !this->GetAbortExecute();
   out.Attach(output, stored, this->Returned.get());
   this->LastHitsPerParticle = static_cast<double>(stored) / static_cast<double>(traced);
   if (runGoesOn)
   {
     this->Reused = std::move(reused);
   }
-  AddTuple(output, vtkBrumeHitConversion::TotalPowerName, tracer.GetTotalPower());
-  if (aims)
-  {
-    // The weight of each class of Aim, emitter id by emitter id: the
-    // objects' (emissive surfaces are never aimed), then the lights'.
-    vtkNew<vtkDoubleArray> weights;
-    weights->SetName(vtkBrumeHitConversion::AimWeightsName);
-    weights->SetNumberOfComponents(3);
-    for (std::size_t o = 0; o < scene.NumberOfObjects(); ++o)
-    {
-      weights->InsertNextTuple3(1.0, 1.0, 1.0);
-    }
-    for (const brume::Light& l : scene.Lights)
-    {
-      weights->InsertNextTuple3(l.EmissionWeight(0), l.EmissionWeight(1), l.EmissionWeight(2));
-    }
-    output->GetFieldData()->AddArray(weights);
-  }
-  vtkNew<vtkDoubleArray> count;
-  count->SetName(vtkBrumeHitConversion::NumberOfParticlesName);
-  count->InsertNextValue(static_cast<double>(particles));
-  output->GetFieldData()->AddArray(count);
-  vtkNew<vtkDoubleArray> first;
-  first->SetName(vtkBrumeHitConversion::FirstParticleName);
-  first->InsertNextValue(static_cast<double>(firstParticle));
-  output->GetFieldData()->AddArray(first);
-  vtkNew<vtkDoubleArray> end;
-  end->SetName(vtkBrumeHitConversion::EndParticleName);
-  end->InsertNextValue(static_cast<double>(endParticle));
-  output->GetFieldData()->AddArray(end);
-  vtkNew<vtkDoubleArray> pieceRange;
-  pieceRange->SetName(vtkBrumeNames::PieceParticles); // [first, end) traced by this piece
-  pieceRange->SetNumberOfComponents(2);
-  pieceRange->InsertNextTuple2(static_cast<double>(pieceFirst), static_cast<double>(pieceEnd));
-  output->GetFieldData()->AddArray(pieceRange);
-  vtkNew<vtkDoubleArray> seed;
-  seed->SetName(vtkBrumeHitConversion::SeedName);
-  seed->InsertNextValue(static_cast<double>(this->Seed));
-  output->GetFieldData()->AddArray(seed);
-  vtkNew<vtkDoubleArray> rays;
-  rays->SetName(vtkBrumeNames::NumberOfRays);
-  rays->InsertNextValue(static_cast<double>(sum.Rays));
-  output->GetFieldData()->AddArray(rays);
-  AddTuple(output, vtkBrumeNames::EmittedFlux, sum.Emitted);
-  AddTuple(output, vtkBrumeNames::AbsorbedFlux, sum.Absorbed);
-  AddTuple(output, vtkBrumeNames::EscapedFlux, sum.Escaped);
-  AddTuple(output, vtkBrumeNames::TruncatedFlux, sum.Truncated);
-  AddTuple(output, vtkBrumeNames::EstimatorNetFlux, sum.EstimatorNet);
+  const vtkTypeInt64 fields[5] = { range.Particles, range.First, range.End, range.PieceFirst,
+    range.PieceEnd };
+  WriteRunFields(output, scene, tracer, aims, fields, this->Seed, sum);
   vtkBrumeSceneConversion::AppendFieldLights(givenLights, output->GetFieldData());
   this->UpdateProgress(1.0);
   return 1;

@@ -24,10 +24,10 @@
  * arrays free their buffers through the tracer, and a buffer VTK frees
  * while the output lets go of its data, just before the execution, comes
  * back to it (a much smaller run keeps room for at most twice the hits a
- * particle of the last run stored, four at least). A buffer still referenced, by an array a consumer holds or
- * one sharing its vtkBuffer (vtkDataArray::ShallowCopy), is never freed,
- * so never written; the tracer holds none of them between executions, and
- * one freed then (ReleaseDataFlag) is freed indeed.
+ * particle of the last run stored, four at least). A buffer still referenced, by an array a
+ * consumer holds or one sharing its vtkBuffer (vtkDataArray::ShallowCopy), is never freed, so never
+ * written; the tracer holds none of them between executions, and one freed then (ReleaseDataFlag)
+ * is freed indeed.
  *
  * Particles are traced in fixed blocks with vtkSMPTools; each particle's
  * random stream depends only on (Seed, particle index), so the output is
@@ -49,7 +49,13 @@
 
 class vtkLight;
 class vtkLightCollection;
+class vtkBrumeLightTracerOutput;
 struct vtkBrumeLightTracerReturnedBuffers;
+namespace brume
+{
+class LightTracer;
+struct TraceCounters;
+}
 
 class VTKBRUMETRACING_EXPORT vtkBrumeLightTracer : public vtkPolyDataAlgorithm
 {
@@ -214,6 +220,16 @@ private:
   // Between the batches of one run: the block buffers, reused by the next
   // batch (their pages already mapped).
   struct BatchMemory;
+  // The particles of a run and of this piece: [First, End) of Particles,
+  // this piece's [PieceFirst, PieceEnd).
+  struct ParticleRange
+  {
+    vtkTypeInt64 Particles = 0, First = 0, End = 0, PieceFirst = 0, PieceEnd = 0;
+  };
+  bool PlanParticles(vtkInformation* outInfo, ParticleRange& range);
+  bool TraceBatches(const brume::LightTracer& tracer, const ParticleRange& range,
+    BatchMemory& memory, vtkBrumeLightTracerOutput& out, brume::TraceCounters& sum,
+    vtkIdType& stored);
   std::unique_ptr<BatchMemory> Reused;
   // The output's hit buffers that came back when it let go of them, for the
   // execution that follows to write into (their pages already mapped).
