@@ -23,6 +23,7 @@
 #include "brume/TransferFunction.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -114,6 +115,175 @@ void MapInPlace(const brume::SurfaceChart& chart, vtkPolyData* sceneSurface, vtk
     {
       tcoords->SetTuple2(i, given->GetComponent(i, 0), given->GetComponent(i, 1));
     }
+  }
+}
+
+// A medium texture's source array: a cell array, or in the sparse form
+// (`bricks` given) the field array BrickSamplesName(name).
+void AddSourceArray(vtkImageData* texture, const brume::SparseTexture* bricks, const char* name,
+  const std::vector<float>& values, int components)
+{
+  auto a = vtkSmartPointer<vtkFloatArray>::New();
+  a->SetNumberOfComponents(components);
+  if (bricks)
+  {
+    a->SetName(vtkBrumeNames::BrickSamplesName(name).c_str());
+    const std::vector<float> gathered = bricks->Gather(values, components);
+    a->SetNumberOfTuples(static_cast<vtkIdType>(gathered.size() / components));
+    std::copy(gathered.begin(), gathered.end(), a->GetPointer(0));
+    texture->GetFieldData()->AddArray(a);
+  }
+  else
+  {
+    a->SetName(name);
+    a->SetNumberOfTuples(static_cast<vtkIdType>(values.size() / components));
+    std::copy(values.begin(), values.end(), a->GetPointer(0));
+    texture->GetCellData()->AddArray(a);
+  }
+}
+
+// A varying albedo baked into a medium's texture (on a grid without the
+// albedo's table): per texel, and the extinction's factor.
+struct BakedAlbedo
+{
+  std::vector<brume::Vec3> Texel;
+  brume::Vec3 Factor = brume::Vec3(1.f);
+};
+
+// Per texel, the albedo's sigma_t-weighted mean over 2^3 points of the
+// texel, so that the emission sigma_t a X is kept; the extinction takes one
+// factor, that of the medium's sigma_t-weighted mean albedo.
+BakedAlbedo BakeAlbedo(const brume::ObjectRadiance& radiance, const brume::Medium& medium,
+  bool directional, const std::array<int, 3>& res, const brume::Vec3& extent)
+{
+  BakedAlbedo baked;
+  std::vector<brume::Vec3>& texelAlbedo = baked.Texel;
+  const std::size_t texels = static_cast<std::size_t>(res[0]) * res[1] * res[2];
+  const brume::Vec3 cell(extent.x / res[0], extent.y / res[1], extent.z / res[2]);
+  texelAlbedo.resize(texels);
+  std::vector<double> texelWeight(texels);
+  vtkBrumeSMP::ParallelFor()(0, texels,
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t t = begin; t < end; ++t)
+      {
+        const int i = static_cast<int>(t % res[0]), j = static_cast<int>((t / res[0]) % res[1]),
+                  k = static_cast<int>(t / (static_cast<std::size_t>(res[0]) * res[1]));
+        double sum[3] = { 0.0, 0.0, 0.0 }, weight = 0.0;
+        for (int q = 0; q < 8; ++q)
+        {
+          const brume::Vec3 p = medium.Bounds.lower +
+            cell *
+              brume::Vec3(static_cast<float>(i) + ((q & 1) ? 0.75f : 0.25f),
+                static_cast<float>(j) + ((q & 2) ? 0.75f : 0.25f),
+                static_cast<float>(k) + ((q & 4) ? 0.75f : 0.25f));
+          const double w = medium.SigmaTAt(p).x;
+          const brume::Vec3 a = medium.AlbedoAt(p);
+          for (int c = 0; c < 3; ++c)
+          {
+            sum[c] += w * a[c];
+          }
+          weight += w;
+        }
+        const brume::Vec3 centre = medium.AlbedoAt(medium.Bounds.lower +
+          cell *
+            brume::Vec3(static_cast<float>(i) + 0.5f, static_cast<float>(j) + 0.5f,
+              static_cast<float>(k) + 0.5f));
+        texelAlbedo[t] = weight > 0.0
+          ? brume::Vec3(static_cast<float>(sum[0] / weight), static_cast<float>(sum[1] / weight),
+              static_cast<float>(sum[2] / weight))
+          : centre;
+        texelWeight[t] = weight;
+      }
+    });
+  double sum[3] = { 0.0, 0.0, 0.0 }, weight = 0.0;
+  for (std::size_t t = 0; t < texels; ++t)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      sum[c] += texelWeight[t] * texelAlbedo[t][c];
+    }
+    weight += texelWeight[t];
+  }
+  const float forward = radiance.GetPeak(directional).Forward;
+  for (int c = 0; c < 3; ++c)
+  {
+    baked.Factor[c] = 1.f - (weight > 0.0 ? static_cast<float>(sum[c] / weight) : 1.f) * forward;
+  }
+  return baked;
+}
+
+// A medium texture's source radiance (toward the eye, or the directional
+// projection), with `albedo` applied where it is baked (given).
+void AddSourceRadiance(vtkImageData* texture, const brume::SparseTexture* bricks,
+  const brume::ObjectRadiance& radiance, bool directional, const BakedAlbedo* albedo)
+{
+  // The source's values, the albedo applied where it is baked.
+  std::vector<float> bakedValues;
+  auto baked = [&](const std::vector<float>& values, int components) -> const std::vector<float>&
+  {
+    if (!albedo)
+    {
+      return values;
+    }
+    bakedValues = values;
+    for (std::size_t t = 0; t < albedo->Texel.size(); ++t)
+    {
+      for (int c = 0; c < components; ++c)
+      {
+        bakedValues[t * components + c] *= albedo->Texel[t][c % 3] / albedo->Factor[c % 3];
+      }
+    }
+    return bakedValues;
+  };
+  if (directional)
+  {
+    // The projection, and as SourceRadiance its mean over directions (the
+    // l = 0 term: c_00 Y_00).
+    const int order = radiance.GetDirectionalOrder();
+    const int components = 3 * brume::ShCoefficients(order);
+    const std::vector<float>& coefficients = baked(radiance.GetDirectional(), components);
+    std::vector<float> mean(3 * (coefficients.size() / components));
+    for (std::size_t t = 0; t < mean.size() / 3; ++t)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        mean[3 * t + c] = std::max(0.f, brume::ShY00 * coefficients[t * components + c]);
+      }
+    }
+    AddSourceArray(texture, bricks, vtkBrumeNames::SourceRadiance, mean, 3);
+    AddSourceArray(texture, bricks, vtkBrumeNames::SourceRadianceSH, coefficients, components);
+    vtkNew<vtkDoubleArray> g;
+    g->SetName(vtkBrumeNames::PhaseAsymmetry);
+    g->InsertNextValue(radiance.GetPeak(true).G); // the remainder's, past DirectionalResolvedG
+    texture->GetFieldData()->AddArray(g);
+  }
+  else
+  {
+    AddSourceArray(
+      texture, bricks, vtkBrumeNames::SourceRadiance, baked(radiance.GetOutputRadiance(), 3), 3);
+  }
+}
+
+// A dense texture's Extinction cell array: `previous`'s where it holds the
+// same values (renderers then see the same array), a new one otherwise.
+void AddTextureExtinction(
+  vtkCellData* cd, const brume::ObjectRadiance& radiance, bool directional, vtkImageData* previous)
+{
+  const std::vector<float>& sigmaT =
+    directional ? radiance.GetExtinction() : radiance.GetOutputExtinction();
+  auto* kept = previous
+    ? vtkFloatArray::SafeDownCast(previous->GetCellData()->GetArray(vtkBrumeNames::Extinction))
+    : nullptr;
+  if (kept && kept->GetNumberOfComponents() == 3 &&
+    static_cast<std::size_t>(kept->GetNumberOfValues()) == sigmaT.size() &&
+    std::equal(sigmaT.begin(), sigmaT.end(), kept->GetPointer(0)))
+  {
+    cd->AddArray(kept);
+  }
+  else
+  {
+    cd->AddArray(NewRGB(vtkBrumeNames::Extinction, sigmaT));
   }
 }
 }
@@ -371,27 +541,6 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
   const bool sparse = bricks && extinction && bricks->GetDims() == res;
   vtkCellData* cd = texture->GetCellData();
   vtkFieldData* fd = texture->GetFieldData();
-  // A cell array, or in the sparse form the field array BrickSamplesName(name).
-  auto add = [&](const char* name, const std::vector<float>& values, int components)
-  {
-    auto a = vtkSmartPointer<vtkFloatArray>::New();
-    a->SetNumberOfComponents(components);
-    if (sparse)
-    {
-      a->SetName(vtkBrumeNames::BrickSamplesName(name).c_str());
-      const std::vector<float> gathered = bricks->Gather(values, components);
-      a->SetNumberOfTuples(static_cast<vtkIdType>(gathered.size() / components));
-      std::copy(gathered.begin(), gathered.end(), a->GetPointer(0));
-      fd->AddArray(a);
-    }
-    else
-    {
-      a->SetName(name);
-      a->SetNumberOfTuples(static_cast<vtkIdType>(values.size() / components));
-      std::copy(values.begin(), values.end(), a->GetPointer(0));
-      cd->AddArray(a);
-    }
-  };
   if (sparse)
   {
     vtkNew<vtkIntArray> slots;
@@ -402,113 +551,17 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
   }
   // A varying albedo is applied by the mapper where its extinction carries
   // the albedo's table. On a grid that has none (a coarsened one) it is
-  // applied here, per texel: its sigma_t-weighted mean over 2^3 points of
-  // the texel, so that the emission sigma_t a X is kept; the extinction
-  // takes one factor, that of the medium's sigma_t-weighted mean albedo.
+  // baked into the texture here (BakeAlbedo).
   const bool albedoTable = radiance.HasVaryingAlbedo() && extinction &&
     extinction->GetFieldData()->GetArray(vtkBrumeNames::AlbedoTransferFunction);
   const bool bake = radiance.HasVaryingAlbedo() && !albedoTable;
-  std::vector<brume::Vec3> texelAlbedo;
-  brume::Vec3 bakedFactor(1.f);
+  BakedAlbedo albedo;
   if (bake)
   {
-    const std::size_t texels = static_cast<std::size_t>(res[0]) * res[1] * res[2];
-    const brume::Vec3 cell(extent.x / res[0], extent.y / res[1], extent.z / res[2]);
-    texelAlbedo.resize(texels);
-    std::vector<double> texelWeight(texels);
-    vtkBrumeSMP::ParallelFor()(0, texels,
-      [&](std::size_t begin, std::size_t end)
-      {
-        for (std::size_t t = begin; t < end; ++t)
-        {
-          const int i = static_cast<int>(t % res[0]), j = static_cast<int>((t / res[0]) % res[1]),
-                    k = static_cast<int>(t / (static_cast<std::size_t>(res[0]) * res[1]));
-          double sum[3] = { 0.0, 0.0, 0.0 }, weight = 0.0;
-          for (int q = 0; q < 8; ++q)
-          {
-            const brume::Vec3 p = medium.Bounds.lower +
-              cell *
-                brume::Vec3(static_cast<float>(i) + ((q & 1) ? 0.75f : 0.25f),
-                  static_cast<float>(j) + ((q & 2) ? 0.75f : 0.25f),
-                  static_cast<float>(k) + ((q & 4) ? 0.75f : 0.25f));
-            const double w = medium.SigmaTAt(p).x;
-            const brume::Vec3 a = medium.AlbedoAt(p);
-            for (int c = 0; c < 3; ++c)
-            {
-              sum[c] += w * a[c];
-            }
-            weight += w;
-          }
-          const brume::Vec3 centre = medium.AlbedoAt(medium.Bounds.lower +
-            cell *
-              brume::Vec3(static_cast<float>(i) + 0.5f, static_cast<float>(j) + 0.5f,
-                static_cast<float>(k) + 0.5f));
-          texelAlbedo[t] = weight > 0.0
-            ? brume::Vec3(static_cast<float>(sum[0] / weight), static_cast<float>(sum[1] / weight),
-                static_cast<float>(sum[2] / weight))
-            : centre;
-          texelWeight[t] = weight;
-        }
-      });
-    double sum[3] = { 0.0, 0.0, 0.0 }, weight = 0.0;
-    for (std::size_t t = 0; t < texels; ++t)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        sum[c] += texelWeight[t] * texelAlbedo[t][c];
-      }
-      weight += texelWeight[t];
-    }
-    const float forward = radiance.GetPeak(directional).Forward;
-    for (int c = 0; c < 3; ++c)
-    {
-      bakedFactor[c] = 1.f - (weight > 0.0 ? static_cast<float>(sum[c] / weight) : 1.f) * forward;
-    }
+    albedo = BakeAlbedo(radiance, medium, directional, res, extent);
   }
-  // The source's values, the albedo applied where it is baked.
-  std::vector<float> bakedValues;
-  auto baked = [&](const std::vector<float>& values, int components) -> const std::vector<float>&
-  {
-    if (!bake)
-    {
-      return values;
-    }
-    bakedValues = values;
-    for (std::size_t t = 0; t < texelAlbedo.size(); ++t)
-    {
-      for (int c = 0; c < components; ++c)
-      {
-        bakedValues[t * components + c] *= texelAlbedo[t][c % 3] / bakedFactor[c % 3];
-      }
-    }
-    return bakedValues;
-  };
-  if (directional)
-  {
-    // The projection, and as SourceRadiance its mean over directions (the
-    // l = 0 term: c_00 Y_00).
-    const int order = radiance.GetDirectionalOrder();
-    const int components = 3 * brume::ShCoefficients(order);
-    const std::vector<float>& coefficients = baked(radiance.GetDirectional(), components);
-    std::vector<float> mean(3 * (coefficients.size() / components));
-    for (std::size_t t = 0; t < mean.size() / 3; ++t)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        mean[3 * t + c] = std::max(0.f, brume::ShY00 * coefficients[t * components + c]);
-      }
-    }
-    add(vtkBrumeNames::SourceRadiance, mean, 3);
-    add(vtkBrumeNames::SourceRadianceSH, coefficients, components);
-    vtkNew<vtkDoubleArray> g;
-    g->SetName(vtkBrumeNames::PhaseAsymmetry);
-    g->InsertNextValue(radiance.GetPeak(true).G); // the remainder's, past DirectionalResolvedG
-    fd->AddArray(g);
-  }
-  else
-  {
-    add(vtkBrumeNames::SourceRadiance, baked(radiance.GetOutputRadiance(), 3), 3);
-  }
+  AddSourceRadiance(
+    texture, sparse ? bricks : nullptr, radiance, directional, bake ? &albedo : nullptr);
   if (albedoTable)
   {
     // The mapper draws sigma_t a X and extinguishes sigma_t (1 - a Forward).
@@ -523,7 +576,7 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
   }
   // A strongly forward medium's peak is drawn as transport: at the
   // extinction times this factor, with S per unit of it.
-  const brume::Vec3 factor = bake ? bakedFactor : radiance.GetExtinctionFactor(directional);
+  const brume::Vec3 factor = bake ? albedo.Factor : radiance.GetExtinctionFactor(directional);
   if (factor.x != 1.f || factor.y != 1.f || factor.z != 1.f)
   {
     vtkNew<vtkDoubleArray> f;
@@ -534,21 +587,7 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
   }
   if (!sparse)
   {
-    const std::vector<float>& sigmaT =
-      directional ? radiance.GetExtinction() : radiance.GetOutputExtinction();
-    auto* kept = previous
-      ? vtkFloatArray::SafeDownCast(previous->GetCellData()->GetArray(vtkBrumeNames::Extinction))
-      : nullptr;
-    if (kept && kept->GetNumberOfComponents() == 3 &&
-      static_cast<std::size_t>(kept->GetNumberOfValues()) == sigmaT.size() &&
-      std::equal(sigmaT.begin(), sigmaT.end(), kept->GetPointer(0)))
-    {
-      cd->AddArray(kept);
-    }
-    else
-    {
-      cd->AddArray(NewRGB(vtkBrumeNames::Extinction, sigmaT));
-    }
+    AddTextureExtinction(cd, radiance, directional, previous);
   }
   AddString(fd, vtkBrumeNames::ObjectKind, "medium");
   auto pds = vtkSmartPointer<vtkPartitionedDataSet>::New();

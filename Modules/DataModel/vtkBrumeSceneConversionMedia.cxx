@@ -123,12 +123,11 @@ void SetClassified(brume::Medium& m, std::shared_ptr<const brume::DensityField> 
   m.SetDensity(std::make_shared<brume::ClassifiedDensity>(std::move(scalars), std::move(*opacity)));
 }
 
-}
-
-std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
+// The medium's coefficients (BrumeSigmaA, BrumeSigmaS, BrumeG), scaled by
+// BrumeDensityScale. Empty when valid.
+std::string ReadCoefficients(vtkFieldData* fd, brume::Medium& m)
 {
   std::string error;
-  vtkFieldData* fd = image->GetFieldData();
   if (!ReadVec3(fd, vtkBrumeNames::SigmaA, m.SigmaA, error) ||
     !ReadVec3(fd, vtkBrumeNames::SigmaS, m.SigmaS, error))
   {
@@ -152,38 +151,40 @@ std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
   // Density scales the coefficients.
   m.SigmaA = m.SigmaA * static_cast<float>(scale);
   m.SigmaS = m.SigmaS * static_cast<float>(scale);
+  return {};
+}
 
-  // A sparse OpenVDB grid, used in place.
-  const std::string vdbFile = ReadString(fd, vtkBrumeNames::VDBFile);
-  if (!vdbFile.empty())
+// The density of a sparse OpenVDB grid, used in place. With a transfer
+// function, the grid's values are scalars it classifies.
+std::string LoadVdbDensity(vtkFieldData* fd, const std::string& vdbFile, brume::Medium& m)
+{
+  std::optional<brume::OpacityTransferFunction> opacity;
+  std::optional<brume::ColorTransferFunction> colors;
+  std::string error = ReadTransferFunctions(fd, opacity, colors);
+  if (!error.empty())
   {
-    // With a transfer function, the grid's values are scalars it classifies.
-    std::optional<brume::OpacityTransferFunction> opacity;
-    std::optional<brume::ColorTransferFunction> colors;
-    error = ReadTransferFunctions(fd, opacity, colors);
-    if (!error.empty())
-    {
-      return error;
-    }
-    std::shared_ptr<const brume::DensityField> density = opacity
-      ? brume::VdbDensity::LoadScalars(vdbFile, ReadString(fd, vtkBrumeNames::VDBGrid), error)
-      : brume::VdbDensity::Load(vdbFile, ReadString(fd, vtkBrumeNames::VDBGrid), error);
-    if (!density)
-    {
-      return error;
-    }
-    SetClassified(m, std::move(density), opacity, colors);
-    return {};
+    return error;
   }
+  std::shared_ptr<const brume::DensityField> density = opacity
+    ? brume::VdbDensity::LoadScalars(vdbFile, ReadString(fd, vtkBrumeNames::VDBGrid), error)
+    : brume::VdbDensity::Load(vdbFile, ReadString(fd, vtkBrumeNames::VDBGrid), error);
+  if (!density)
+  {
+    return error;
+  }
+  SetClassified(m, std::move(density), opacity, colors);
+  return {};
+}
 
-  double b[6];
-  image->GetBounds(b);
-  m.Bounds = { { static_cast<float>(b[0]), static_cast<float>(b[2]), static_cast<float>(b[4]) },
-    { static_cast<float>(b[1]), static_cast<float>(b[3]), static_cast<float>(b[5]) } };
-  // A density array: named by BrumeDensityArray, else the active scalars.
+// The image's density array: named by BrumeDensityArray, else the active
+// scalars (point data first); `cells` when it is cell data. Null when the
+// image has none; empty unless the named array is missing.
+std::string FindDensityArray(
+  vtkImageData* image, vtkFieldData* fd, vtkDataArray*& density, bool& cells)
+{
   const std::string name = ReadString(fd, vtkBrumeNames::DensityArray);
-  vtkDataArray* density = nullptr;
-  bool cells = false;
+  density = nullptr;
+  cells = false;
   if (!name.empty())
   {
     density = image->GetPointData()->GetArray(name.c_str());
@@ -201,6 +202,76 @@ std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
   {
     density = image->GetCellData()->GetScalars();
     cells = density != nullptr;
+  }
+  return {};
+}
+
+// BrumeInterpolation: linear (the default) or nearest. Empty when valid.
+std::string ReadInterpolation(vtkFieldData* fd, brume::GridDensity::Interpolation& interpolation)
+{
+  interpolation = brume::GridDensity::Interpolation::Linear;
+  const std::string interpolationName = ReadString(fd, vtkBrumeNames::Interpolation);
+  if (interpolationName == "nearest")
+  {
+    interpolation = brume::GridDensity::Interpolation::Nearest;
+  }
+  else if (!interpolationName.empty() && interpolationName != "linear")
+  {
+    return "has a BrumeInterpolation '" + interpolationName + "' (expected linear or nearest)";
+  }
+  return {};
+}
+
+// Component `c` of the density array's tuples: scalars a transfer function
+// classifies (`classified`: any finite value), else densities (finite and
+// not negative). Empty when valid.
+std::string ReadDensityValues(
+  vtkDataArray* density, int c, bool classified, std::vector<float>& values)
+{
+  values.assign(static_cast<std::size_t>(density->GetNumberOfTuples()), 0.f);
+  for (vtkIdType i = 0; i < density->GetNumberOfTuples(); ++i)
+  {
+    const double v = density->GetComponent(i, c);
+    if (!std::isfinite(v))
+    {
+      return classified ? "has non-finite scalars" : "has negative or non-finite densities";
+    }
+    if (!classified && !(v >= 0.0))
+    {
+      return "has negative or non-finite densities";
+    }
+    values[i] = static_cast<float>(v);
+  }
+  return {};
+}
+}
+
+std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
+{
+  vtkFieldData* fd = image->GetFieldData();
+  std::string error = ReadCoefficients(fd, m);
+  if (!error.empty())
+  {
+    return error;
+  }
+
+  // A sparse OpenVDB grid, used in place.
+  const std::string vdbFile = ReadString(fd, vtkBrumeNames::VDBFile);
+  if (!vdbFile.empty())
+  {
+    return LoadVdbDensity(fd, vdbFile, m);
+  }
+
+  double b[6];
+  image->GetBounds(b);
+  m.Bounds = { { static_cast<float>(b[0]), static_cast<float>(b[2]), static_cast<float>(b[4]) },
+    { static_cast<float>(b[1]), static_cast<float>(b[3]), static_cast<float>(b[5]) } };
+  vtkDataArray* density = nullptr;
+  bool cells = false;
+  error = FindDensityArray(image, fd, density, cells);
+  if (!error.empty())
+  {
+    return error;
   }
   if (!density)
   {
@@ -243,15 +314,11 @@ std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
        << (components == 1 ? " component" : " components");
     return os.str();
   }
-  brume::GridDensity::Interpolation interpolation = brume::GridDensity::Interpolation::Linear;
-  const std::string interpolationName = ReadString(fd, vtkBrumeNames::Interpolation);
-  if (interpolationName == "nearest")
+  brume::GridDensity::Interpolation interpolation;
+  error = ReadInterpolation(fd, interpolation);
+  if (!error.empty())
   {
-    interpolation = brume::GridDensity::Interpolation::Nearest;
-  }
-  else if (!interpolationName.empty() && interpolationName != "linear")
-  {
-    return "has a BrumeInterpolation '" + interpolationName + "' (expected linear or nearest)";
+    return error;
   }
   const double* direction = image->GetDirectionMatrix()->GetData();
   const double identity[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
@@ -269,20 +336,11 @@ std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
       d = std::max(1, d - 1);
     }
   }
-  const int c = static_cast<int>(component);
-  std::vector<float> values(static_cast<std::size_t>(density->GetNumberOfTuples()));
-  for (vtkIdType i = 0; i < density->GetNumberOfTuples(); ++i)
+  std::vector<float> values;
+  error = ReadDensityValues(density, static_cast<int>(component), opacity.has_value(), values);
+  if (!error.empty())
   {
-    const double v = density->GetComponent(i, c);
-    if (!std::isfinite(v))
-    {
-      return opacity ? "has non-finite scalars" : "has negative or non-finite densities";
-    }
-    if (!opacity && !(v >= 0.0))
-    {
-      return "has negative or non-finite densities";
-    }
-    values[i] = static_cast<float>(v);
+    return error;
   }
   SetClassified(m,
     std::make_shared<brume::GridDensity>(m.Bounds, n, std::move(values), cells, interpolation),

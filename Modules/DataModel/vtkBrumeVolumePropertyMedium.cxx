@@ -104,10 +104,38 @@ std::vector<std::array<double, 4>> Points(vtkColorTransferFunction* f, int sampl
   points.clear();
   for (int i = 0; i < samples; ++i)
   {
-    points.push_back({ lo + (hi - lo) * i / (samples - 1), rgb[3 * i], rgb[3 * i + 1],
-      rgb[3 * i + 2] });
+    points.push_back(
+      { lo + (hi - lo) * i / (samples - 1), rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2] });
   }
   return points;
+}
+
+// Replaces the transfer functions' field arrays: BrumeScalarOpacity, and
+// BrumeScalarColor only with `colors`.
+void SetFunctionFields(vtkFieldData* fd, const std::vector<std::array<double, 2>>& points,
+  const std::vector<std::array<double, 4>>& colors)
+{
+  vtkNew<vtkDoubleArray> function;
+  function->SetName(vtkBrumeNames::ScalarOpacity);
+  function->SetNumberOfComponents(2);
+  for (const auto& p : points)
+  {
+    function->InsertNextTuple(p.data());
+  }
+  fd->RemoveArray(vtkBrumeNames::ScalarOpacity);
+  fd->AddArray(function);
+  fd->RemoveArray(vtkBrumeNames::ScalarColor);
+  if (!colors.empty())
+  {
+    vtkNew<vtkDoubleArray> color;
+    color->SetName(vtkBrumeNames::ScalarColor);
+    color->SetNumberOfComponents(4);
+    for (const auto& p : colors)
+    {
+      color->InsertNextTuple(p.data());
+    }
+    fd->AddArray(color);
+  }
 }
 }
 
@@ -213,24 +241,15 @@ bool vtkBrumeVolumePropertyMedium::ChooseSamplingDimensions(
   }
 }
 
-int vtkBrumeVolumePropertyMedium::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+vtkSmartPointer<vtkVolumeProperty> vtkBrumeVolumePropertyMedium::EffectiveProperty()
 {
-  vtkDataSet* dataset = vtkDataSet::GetData(inputVector[0]);
-  vtkImageData* output = vtkImageData::GetData(outputVector);
-  if (!dataset || !output)
-  {
-    vtkErrorMacro("needs a vtkDataSet input");
-    return 0;
-  }
-  // The property, or one made of the functions set one by one.
   vtkSmartPointer<vtkVolumeProperty> property = this->VolumeProperty;
   if (!property)
   {
     if (!this->ScalarOpacity)
     {
       vtkErrorMacro("has no VolumeProperty (nor a ScalarOpacity function)");
-      return 0;
+      return nullptr;
     }
     property = vtkSmartPointer<vtkVolumeProperty>::New();
     property->SetScalarOpacity(this->Component, this->ScalarOpacity);
@@ -242,25 +261,28 @@ int vtkBrumeVolumePropertyMedium::RequestData(
     property->SetInterpolationType(this->InterpolationType);
     property->SetScatteringAnisotropy(static_cast<float>(this->ScatteringAnisotropy));
   }
-  int association = 0;
-  vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector, association);
+  return property;
+}
+
+bool vtkBrumeVolumePropertyMedium::CheckInputArray(vtkDataArray* scalars)
+{
   if (!scalars)
   {
     vtkErrorMacro("finds no array to process (point or cell scalars, or the one named by "
                   "SetInputArrayToProcess) in its input");
-    return 0;
+    return false;
   }
   if (!scalars->GetName() || !*scalars->GetName())
   {
     vtkErrorMacro("needs the array to process to have a name");
-    return 0;
+    return false;
   }
   if (this->Component >= scalars->GetNumberOfComponents())
   {
     vtkErrorMacro("has Component " << this->Component << " but the array '" << scalars->GetName()
                                    << "' has " << scalars->GetNumberOfComponents()
                                    << " components");
-    return 0;
+    return false;
   }
   for (int c = 0; c < 3; ++c)
   {
@@ -268,8 +290,83 @@ int vtkBrumeVolumePropertyMedium::RequestData(
     {
       vtkErrorMacro("has an Albedo outside [0, 1]: " << this->Albedo[0] << ", " << this->Albedo[1]
                                                      << ", " << this->Albedo[2]);
-      return 0;
+      return false;
     }
+  }
+  return true;
+}
+
+vtkSmartPointer<vtkImageData> vtkBrumeVolumePropertyMedium::ResampleToImage(vtkDataSet* dataset,
+  vtkDataArray* scalars, const float* outsideScalar, vtkInformationVector* outputVector)
+{
+  int dims[3] = { this->SamplingDimensions[0], this->SamplingDimensions[1],
+    this->SamplingDimensions[2] };
+  if ((dims[0] < 2 || dims[1] < 2 || dims[2] < 2) &&
+    !ChooseSamplingDimensions(dataset, this->MaximumSampledPoints, dims))
+  {
+    vtkErrorMacro("cannot resample a " << dataset->GetClassName()
+                                       << " without cells or with flat bounds to an image");
+    return nullptr;
+  }
+  vtkNew<vtkResampleToImage> resample;
+  resample->SetInputDataObject(dataset);
+  resample->SetSamplingDimensions(dims);
+  resample->Update();
+  vtkSmartPointer<vtkImageData> input = resample->GetOutput();
+  vtkDataArray* probed = input->GetPointData()->GetArray(scalars->GetName());
+  auto* valid =
+    vtkCharArray::SafeDownCast(input->GetPointData()->GetArray(resample->GetMaskArrayName()));
+  if (!probed || !valid)
+  {
+    vtkErrorMacro(
+      "lost the array '" << scalars->GetName() << "' resampling the " << dataset->GetClassName());
+    return nullptr;
+  }
+  // Points outside the dataset: a scalar the function takes to 0.
+  for (vtkIdType i = 0; i < probed->GetNumberOfTuples(); ++i)
+  {
+    if (!valid->GetValue(i))
+    {
+      for (int c = 0; c < probed->GetNumberOfComponents(); ++c)
+      {
+        probed->SetComponent(i, c, outsideScalar ? *outsideScalar : 0.0);
+      }
+    }
+  }
+  if (!outsideScalar)
+  {
+    vtkWarningMacro("resampled points outside the "
+      << dataset->GetClassName() << " take the scalar 0, and the function has no opacity 0");
+  }
+  input->GetPointData()->RemoveArray(resample->GetMaskArrayName());
+  int extent[6];
+  input->GetExtent(extent);
+  outputVector->GetInformationObject(0)->Set(
+    vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
+  return input;
+}
+
+int vtkBrumeVolumePropertyMedium::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkDataSet* dataset = vtkDataSet::GetData(inputVector[0]);
+  vtkImageData* output = vtkImageData::GetData(outputVector);
+  if (!dataset || !output)
+  {
+    vtkErrorMacro("needs a vtkDataSet input");
+    return 0;
+  }
+  // The property, or one made of the functions set one by one.
+  vtkSmartPointer<vtkVolumeProperty> property = this->EffectiveProperty();
+  if (!property)
+  {
+    return 0;
+  }
+  int association = 0;
+  vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector, association);
+  if (!this->CheckInputArray(scalars))
+  {
+    return 0;
   }
   vtkPiecewiseFunction* opacity = property->GetScalarOpacity(this->Component);
   const std::vector<std::array<double, 2>> points = Points(opacity, this->SampledFunctionPoints);
@@ -289,13 +386,13 @@ int vtkBrumeVolumePropertyMedium::RequestData(
   std::vector<std::array<double, 4>> colors;
   if (this->ColorAsAlbedo && property->GetColorChannels(this->Component) == 3)
   {
-    colors = Points(
-      property->GetRGBTransferFunction(this->Component), this->SampledFunctionPoints);
+    colors = Points(property->GetRGBTransferFunction(this->Component), this->SampledFunctionPoints);
     std::vector<brume::ColorTransferFunction::Node> colorNodes;
     for (const auto& p : colors)
     {
       colorNodes.push_back({ static_cast<float>(p[0]),
-        brume::Vec3(static_cast<float>(p[1]), static_cast<float>(p[2]), static_cast<float>(p[3])) });
+        brume::Vec3(
+          static_cast<float>(p[1]), static_cast<float>(p[2]), static_cast<float>(p[3])) });
     }
     error = brume::ColorTransferFunction::Validate(colorNodes);
     if (!error.empty())
@@ -310,52 +407,15 @@ int vtkBrumeVolumePropertyMedium::RequestData(
   vtkSmartPointer<vtkImageData> input = vtkImageData::SafeDownCast(dataset);
   if (!input)
   {
-    int dims[3] = { this->SamplingDimensions[0], this->SamplingDimensions[1],
-      this->SamplingDimensions[2] };
-    if ((dims[0] < 2 || dims[1] < 2 || dims[2] < 2) &&
-      !ChooseSamplingDimensions(dataset, this->MaximumSampledPoints, dims))
-    {
-      vtkErrorMacro("cannot resample a " << dataset->GetClassName()
-                                         << " without cells or with flat bounds to an image");
-      return 0;
-    }
-    vtkNew<vtkResampleToImage> resample;
-    resample->SetInputDataObject(dataset);
-    resample->SetSamplingDimensions(dims);
-    resample->Update();
-    input = resample->GetOutput();
-    vtkDataArray* probed = input->GetPointData()->GetArray(scalars->GetName());
-    auto* valid =
-      vtkCharArray::SafeDownCast(input->GetPointData()->GetArray(resample->GetMaskArrayName()));
-    if (!probed || !valid)
-    {
-      vtkErrorMacro(
-        "lost the array '" << scalars->GetName() << "' resampling the " << dataset->GetClassName());
-      return 0;
-    }
-    // Points outside the dataset: a scalar the function takes to 0.
+    // Points outside the dataset take a scalar the function takes to 0.
     auto none = std::find_if(nodes.begin(), nodes.end(),
       [](const brume::OpacityTransferFunction::Node& n) { return n.Opacity == 0.f; });
-    for (vtkIdType i = 0; i < probed->GetNumberOfTuples(); ++i)
+    input = this->ResampleToImage(
+      dataset, scalars, none != nodes.end() ? &none->Scalar : nullptr, outputVector);
+    if (!input)
     {
-      if (!valid->GetValue(i))
-      {
-        for (int c = 0; c < probed->GetNumberOfComponents(); ++c)
-        {
-          probed->SetComponent(i, c, none != nodes.end() ? none->Scalar : 0.0);
-        }
-      }
+      return 0;
     }
-    if (none == nodes.end())
-    {
-      vtkWarningMacro("resampled points outside the "
-        << dataset->GetClassName() << " take the scalar 0, and the function has no opacity 0");
-    }
-    input->GetPointData()->RemoveArray(resample->GetMaskArrayName());
-    int extent[6];
-    input->GetExtent(extent);
-    outputVector->GetInformationObject(0)->Set(
-      vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
   }
 
   output->ShallowCopy(input);
@@ -373,27 +433,7 @@ int vtkBrumeVolumePropertyMedium::RequestData(
   SetString(fd, vtkBrumeNames::DensityArray, scalars->GetName());
   SetString(fd, vtkBrumeNames::Interpolation,
     property->GetInterpolationType() == VTK_NEAREST_INTERPOLATION ? "nearest" : "linear");
-  vtkNew<vtkDoubleArray> function;
-  function->SetName(vtkBrumeNames::ScalarOpacity);
-  function->SetNumberOfComponents(2);
-  for (const auto& p : points)
-  {
-    function->InsertNextTuple(p.data());
-  }
-  fd->RemoveArray(vtkBrumeNames::ScalarOpacity);
-  fd->AddArray(function);
-  fd->RemoveArray(vtkBrumeNames::ScalarColor);
-  if (!colors.empty())
-  {
-    vtkNew<vtkDoubleArray> color;
-    color->SetName(vtkBrumeNames::ScalarColor);
-    color->SetNumberOfComponents(4);
-    for (const auto& p : colors)
-    {
-      color->InsertNextTuple(p.data());
-    }
-    fd->AddArray(color);
-  }
+  SetFunctionFields(fd, points, colors);
   fd->RemoveArray(vtkBrumeNames::DensityScale);
   fd->RemoveArray(vtkBrumeNames::VDBFile);
   output->SetFieldData(fd);

@@ -65,7 +65,9 @@
 #include "vtkSmartPointer.h" // For the functions set one by one
 
 class vtkColorTransferFunction;
+class vtkDataArray;
 class vtkDataSet;
+class vtkImageData;
 class vtkPiecewiseFunction;
 class vtkVolumeProperty;
 
@@ -167,6 +169,18 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
+
+  // RequestData's steps. The property to apply: VolumeProperty, or one made
+  // of the functions set one by one (null, after an error, without either).
+  vtkSmartPointer<vtkVolumeProperty> EffectiveProperty();
+  // Whether the array to process and the settings can make a medium (an
+  // error says why not).
+  bool CheckInputArray(vtkDataArray* scalars);
+  // A dataset other than an image resampled to one, with `scalars` probed
+  // (null after an error): points outside the dataset take *outsideScalar,
+  // or 0 with a warning when it is null. Sets the output's whole extent.
+  vtkSmartPointer<vtkImageData> ResampleToImage(vtkDataSet* dataset, vtkDataArray* scalars,
+    const float* outsideScalar, vtkInformationVector* outputVector);
 
   vtkVolumeProperty* VolumeProperty = nullptr;
   vtkSmartPointer<vtkPiecewiseFunction> ScalarOpacity;

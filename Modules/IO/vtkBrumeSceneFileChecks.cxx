@@ -244,49 +244,84 @@ bool PlyBodyConsistent(std::istream& in, const std::filesystem::path& file,
   return true;
 }
 
-// VTK's PLY parser asserts on a file shorter than its header promises: check
-// the header's element counts against what the file holds first.
-bool PlyLooksComplete(const std::filesystem::path& file, std::string& error)
+// A PLY header line's first 120 bytes as printable text (control and
+// non-ASCII bytes as \xHH).
+std::string PlyShownLine(const std::string& line)
 {
-  std::ifstream in(file, std::ios::binary);
-  std::string line, format;
-  double minimumBytes = 0, rows = 0, rowBytes = 0;
-  bool headerEnded = false;
-  const auto size = PlyTypeSize;
-  std::vector<PlyElement> elements;
-  // VTK's parser dereferences what a malformed header leaves out (a property
-  // before any element, a property with no type): accept the grammar only.
+  std::string shown;
+  for (const char c : line.substr(0, 120))
+  {
+    const auto b = static_cast<unsigned char>(c);
+    if (b >= 32 && b < 127)
+    {
+      shown += c;
+    }
+    else
+    {
+      const char* hex = "0123456789abcdef";
+      shown += std::string("\\x") + hex[b >> 4] + hex[b & 15];
+    }
+  }
+  return shown;
+}
+
+// Adds a 'property' line's property (`rest`: the words after the keyword) to
+// the last element and its least bytes to `rowBytes`; returns why the line is
+// malformed, empty when it is not.
+std::string AddPlyProperty(const std::string& line, const std::vector<std::string>& rest,
+  std::vector<PlyElement>& elements, double& rowBytes)
+{
+  const std::string& name = rest.empty() ? line : rest.back();
+  const auto& properties = elements.back().Properties;
+  if (std::any_of(
+        properties.begin(), properties.end(), [&](const PlyProperty& p) { return p.Name == name; }))
+  {
+    return "a second property of that name in its element";
+  }
+  if (!rest.empty() && rest[0] == "list")
+  {
+    if (rest.size() != 4 || PlyTypeSize(rest[1]) == 0 || PlyTypeSize(rest[2]) == 0)
+    {
+      return "expected 'property list COUNT_TYPE ITEM_TYPE NAME'";
+    }
+    rowBytes += PlyTypeSize(rest[1]); // a list holds at least its count
+    elements.back().Properties.push_back({ true, rest[1], rest[2], rest[3] });
+  }
+  else
+  {
+    if (rest.size() != 2 || PlyTypeSize(rest[0]) == 0)
+    {
+      return "expected 'property TYPE NAME'";
+    }
+    rowBytes += PlyTypeSize(rest[0]);
+    elements.back().Properties.push_back({ false, "", rest[0], rest[1] });
+  }
+  return std::string();
+}
+
+struct PlyHeader
+{
+  std::string Format;
+  std::vector<PlyElement> Elements;
+  double MinimumBytes = 0; // of data, with each list counted by its count
+};
+
+// Reads the header lines after the 'ply' magic, through end_header. VTK's
+// parser dereferences what a malformed header leaves out (a property before
+// any element, a property with no type): accept the grammar only.
+bool ReadPlyHeader(
+  std::istream& in, const std::filesystem::path& file, PlyHeader& header, std::string& error)
+{
+  std::string line;
+  double rows = 0, rowBytes = 0;
+  bool headerEnded = false, inElement = false;
   auto malformed = [&](const std::string& why)
   {
-    // The line as printable text (control and non-ASCII bytes as \xHH).
-    std::string shown;
-    for (const char c : line.substr(0, 120))
-    {
-      const auto b = static_cast<unsigned char>(c);
-      if (b >= 32 && b < 127)
-      {
-        shown += c;
-      }
-      else
-      {
-        const char* hex = "0123456789abcdef";
-        shown += std::string("\\x") + hex[b >> 4] + hex[b & 15];
-      }
-    }
-    error = "'" + file.string() + "': malformed PLY header line '" + shown + "' (" + why + ")";
+    error = "'" + file.string() + "': malformed PLY header line '" + PlyShownLine(line) + "' (" +
+      why + ")";
     return false;
   };
-  bool inElement = false;
-  if (!in)
-  {
-    error = "cannot open '" + file.string() + "'";
-    return false;
-  }
-  if (!std::getline(in, line) || line.rfind("ply", 0) != 0)
-  {
-    error = "'" + file.string() + "' is not a PLY file (no 'ply' magic)";
-    return false;
-  }
+  std::vector<PlyElement>& elements = header.Elements;
   while (std::getline(in, line))
   {
     if (!line.empty() && line.back() == '\r')
@@ -322,11 +357,11 @@ bool PlyLooksComplete(const std::filesystem::path& file, std::string& error)
       {
         return malformed("expected 'format ascii|binary_little_endian|binary_big_endian VERSION'");
       }
-      format = rest[0];
+      header.Format = rest[0];
     }
     else if (word == "element")
     {
-      minimumBytes += rows * rowBytes;
+      header.MinimumBytes += rows * rowBytes;
       rowBytes = 0;
       if (rest.size() != 2 || rest[1].empty() ||
         rest[1].find_first_not_of("0123456789") != std::string::npos)
@@ -357,30 +392,10 @@ bool PlyLooksComplete(const std::filesystem::path& file, std::string& error)
       {
         return malformed("a property before any element");
       }
-      const std::string& name = rest.empty() ? line : rest.back();
-      const auto& properties = elements.back().Properties;
-      if (std::any_of(properties.begin(), properties.end(),
-            [&](const PlyProperty& p) { return p.Name == name; }))
+      const std::string why = AddPlyProperty(line, rest, elements, rowBytes);
+      if (!why.empty())
       {
-        return malformed("a second property of that name in its element");
-      }
-      if (!rest.empty() && rest[0] == "list")
-      {
-        if (rest.size() != 4 || size(rest[1]) == 0 || size(rest[2]) == 0)
-        {
-          return malformed("expected 'property list COUNT_TYPE ITEM_TYPE NAME'");
-        }
-        rowBytes += size(rest[1]); // a list holds at least its count
-        elements.back().Properties.push_back({ true, rest[1], rest[2], rest[3] });
-      }
-      else
-      {
-        if (rest.size() != 2 || size(rest[0]) == 0)
-        {
-          return malformed("expected 'property TYPE NAME'");
-        }
-        rowBytes += size(rest[0]);
-        elements.back().Properties.push_back({ false, "", rest[0], rest[1] });
+        return malformed(why);
       }
     }
     else if (word != "comment" && word != "obj_info" && word != "end_header" && !word.empty())
@@ -393,7 +408,7 @@ bool PlyLooksComplete(const std::filesystem::path& file, std::string& error)
       {
         return malformed("the element before has no property");
       }
-      minimumBytes += rows * rowBytes;
+      header.MinimumBytes += rows * rowBytes;
       headerEnded = true;
       break;
     }
@@ -403,13 +418,38 @@ bool PlyLooksComplete(const std::filesystem::path& file, std::string& error)
     error = "'" + file.string() + "': the PLY header has no end_header";
     return false;
   }
-  if (format.empty())
+  if (header.Format.empty())
   {
     error = "'" + file.string() + "': the PLY header has no format line";
     return false;
   }
+  return true;
+}
+
+// VTK's PLY parser asserts on a file shorter than its header promises: check
+// the header's element counts against what the file holds first.
+bool PlyLooksComplete(const std::filesystem::path& file, std::string& error)
+{
+  std::ifstream in(file, std::ios::binary);
+  std::string line;
+  if (!in)
+  {
+    error = "cannot open '" + file.string() + "'";
+    return false;
+  }
+  if (!std::getline(in, line) || line.rfind("ply", 0) != 0)
+  {
+    error = "'" + file.string() + "' is not a PLY file (no 'ply' magic)";
+    return false;
+  }
+  PlyHeader header;
+  if (!ReadPlyHeader(in, file, header, error))
+  {
+    return false;
+  }
   // What VTK's reader dereferences without checking: a vertex element with
   // x, y and z, and the faces' vertex_indices list.
+  const std::vector<PlyElement>& elements = header.Elements;
   auto has = [&](const char* element, const char* property, bool list)
   {
     for (const PlyElement& e : elements)
@@ -439,16 +479,16 @@ bool PlyLooksComplete(const std::filesystem::path& file, std::string& error)
   const auto body = in.tellg();
   in.seekg(0, std::ios::end);
   const double available = static_cast<double>(in.tellg() - body);
-  if (format != "ascii" && available < minimumBytes)
+  if (header.Format != "ascii" && available < header.MinimumBytes)
   {
     error = "'" + file.string() + "' is truncated: the header needs at least " +
-      std::to_string(static_cast<long long>(minimumBytes)) + " bytes of data, the file holds " +
-      std::to_string(static_cast<long long>(available));
+      std::to_string(static_cast<long long>(header.MinimumBytes)) +
+      " bytes of data, the file holds " + std::to_string(static_cast<long long>(available));
     return false;
   }
   in.clear();
   in.seekg(body);
-  return PlyBodyConsistent(in, file, format, elements, error);
+  return PlyBodyConsistent(in, file, header.Format, header.Elements, error);
 }
 
 // VTK's OBJ reader indexes its points, texture coordinates and normals with

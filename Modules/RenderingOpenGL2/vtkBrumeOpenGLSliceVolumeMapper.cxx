@@ -78,6 +78,161 @@ void CountFrame(vtkObject* caller, unsigned long, void*, void*)
     : 0;
   info->Set(vtkBrumeOpenGLSliceVolumeMapper::FRAME(), frame + 1);
 }
+
+// A corner of a slice's polygon, and its angle about the polygon's centre.
+struct SlicePoint
+{
+  Vec World, Data;
+  double Angle;
+};
+
+// The slices' spacing, in world units, when SliceSpacing is 0 (automatic).
+// Slices half a voxel of the source apart but no closer than 1/40 of the
+// medium's longest side, and at most four cells of the extinction's own
+// grid apart. Each slab of the sum is exact for its sigma_t (sampled
+// across the slice's plane at full resolution); only the source radiance
+// is sampled along the view at the slices, and it is smooth along most
+// rays. Fine source grids (direct light computed per texel) would
+// otherwise cost hundreds of slices: god-rays.json, 64^3 source, 128x128
+// supersampled 4x under llvmpipe, block error 4.74 % half a voxel apart
+// (0.27 s a frame), 4.72 % two voxels (85 ms), 5.27 % eight (43 ms); at
+// 1/40 of the side, 3.58 % against 3.60 % at 1/48 (threshold 64), a 512 x
+// 512 view 103 against 120 ms, and the WDAS cloud 2.08 against 2.06 %,
+// 69 against 77 ms. Sources of 20 voxels or fewer a side keep half a
+// voxel. The
+// WDAS cloud, 128x128: 3.77 % one fine cell apart, 3.79 % four, 3.80 %
+// half a source voxel; a new 512x512 view 165, 53 and 46 ms.
+// In an optically thick medium a slab several optical depths deep shows
+// the source at its slice, up to half the slab inside the medium's lit
+// skin, not at the skin itself: the dragon (sigma_t up to 20.4 per metre,
+// 3.6 optical depths a slab by the rules above) came out too dark, its
+// single scattering alone 1.73 % from the path tracer's. So slabs hold at
+// most MaxSlabDepth optical depths at the largest sigma_t, but are no
+// thinner than one fine cell: the dragon's are then one cell (1.08 %;
+// half a cell or a quarter no better, 1.12 and 1.19 %). smoke.vdb (3.5
+// optical depths a slab before), two seeds: block error 1.06, 1.12 % ->
+// 0.99, 1.10 %, per-pixel 2.21, 2.28 % -> 2.04, 2.15 %, a 512x512 frame
+// 152 -> 196 ms; one optical depth is no better (2.01, 2.12 %) at three
+// times the frame's cost. The clouds stay under two optical depths a
+// slab and keep their slices.
+// `extinction` is the extinction's own grid (null without), `maxExtinction`
+// its largest sigma_t per data unit.
+double AutomaticSpacing(vtkMatrix4x4* model, vtkImageData* input, vtkImageData* extinction,
+  double maxExtinction, const Vec cornersWC[8])
+{
+  // World units per data unit along data axis a.
+  auto axisScale = [&](int a)
+  {
+    return std::sqrt(model->GetElement(0, a) * model->GetElement(0, a) +
+      model->GetElement(1, a) * model->GetElement(1, a) +
+      model->GetElement(2, a) * model->GetElement(2, a));
+  };
+  auto smallestCell = [&](vtkImageData* grid)
+  {
+    double cell = VTK_DOUBLE_MAX;
+    const double* spacing = grid->GetSpacing();
+    for (int a = 0; a < 3; ++a)
+    {
+      cell = std::min(cell, axisScale(a) * spacing[a]);
+    }
+    return cell;
+  };
+  double longest = 0.0; // the medium's longest side, in world units
+  for (int a = 0; a < 3; ++a)
+  {
+    const Vec& far = cornersWC[1 << a];
+    const Vec side{ far[0] - cornersWC[0][0], far[1] - cornersWC[0][1], far[2] - cornersWC[0][2] };
+    longest = std::max(longest, std::sqrt(Dot(side, side)));
+  }
+  double automatic = std::max(0.5 * smallestCell(input), longest / 40.0);
+  if (extinction)
+  {
+    const double fine = smallestCell(extinction);
+    automatic = std::min(automatic, 4.0 * fine);
+    // Optically thick media: slabs at most MaxSlabDepth deep at the
+    // largest sigma_t, but no closer than one fine cell.
+    // sigma_t per world unit: per data unit over the model's smallest scale.
+    const double modelScale = std::min({ axisScale(0), axisScale(1), axisScale(2) });
+    const double maxSigma = modelScale > 0.0 ? maxExtinction / modelScale : 0.0;
+    if (maxSigma > 0.0)
+    {
+      automatic = std::min(automatic, std::max(fine, MaxSlabDepth / maxSigma));
+    }
+  }
+  return automatic;
+}
+
+// The polygon where a slice's plane cuts the box of `corners` (data) and
+// `cornersWC` (world), the corners' signed distances to the plane `f`: its
+// corners in order of angle in the plane (axes u, v). Returns their count,
+// under 3 when the plane misses the box.
+int CutPolygon(const Vec corners[8], const Vec cornersWC[8], const double f[8], const Vec& u,
+  const Vec& v, SlicePoint polygon[6])
+{
+  int n = 0;
+  for (const auto& edge : BoxEdges)
+  {
+    const double fa = f[edge[0]], fb = f[edge[1]];
+    if ((fa < 0.0) == (fb < 0.0) || n == 6)
+    {
+      continue;
+    }
+    const double t = fa / (fa - fb);
+    SlicePoint& p = polygon[n++];
+    for (int a = 0; a < 3; ++a)
+    {
+      p.World[a] = cornersWC[edge[0]][a] + t * (cornersWC[edge[1]][a] - cornersWC[edge[0]][a]);
+      p.Data[a] = corners[edge[0]][a] + t * (corners[edge[1]][a] - corners[edge[0]][a]);
+    }
+  }
+  if (n < 3)
+  {
+    return n;
+  }
+  Vec centre{ 0, 0, 0 };
+  for (int i = 0; i < n; ++i)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      centre[a] += polygon[i].World[a] / n;
+    }
+  }
+  for (int i = 0; i < n; ++i)
+  {
+    const SlicePoint& p = polygon[i];
+    const Vec r{ p.World[0] - centre[0], p.World[1] - centre[1], p.World[2] - centre[2] };
+    polygon[i].Angle = std::atan2(Dot(r, v), Dot(r, u));
+  }
+  // By angle; stable, as std::sort is on so few points (which GCC 12 warns
+  // about once inlined here).
+  std::stable_sort(polygon, polygon + n,
+    [](const SlicePoint& a, const SlicePoint& b) { return a.Angle < b.Angle; });
+  return n;
+}
+
+// Appends the polygon as a fan of triangles: per vertex its world position,
+// then its texture coordinates over the box (`bounds`, `extent`).
+void EmitPolygon(const SlicePoint* polygon, int n, const double bounds[6], const Vec& extent,
+  std::vector<float>& out)
+{
+  auto emit = [&](const SlicePoint& p)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      out.push_back(static_cast<float>(p.World[a]));
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      out.push_back(static_cast<float>((p.Data[a] - bounds[2 * a]) / extent[a]));
+    }
+  };
+  for (int i = 1; i + 1 < n; ++i)
+  {
+    emit(polygon[0]);
+    emit(polygon[i]);
+    emit(polygon[i + 1]);
+  }
+}
 }
 
 struct vtkBrumeOpenGLSliceVolumeMapper::Slice
@@ -277,73 +432,8 @@ void vtkBrumeOpenGLSliceVolumeMapper::CutSlices(
   {
     return; // entirely behind the camera
   }
-  // Slices half a voxel of the source apart but no closer than 1/40 of the
-  // medium's longest side, and at most four cells of the extinction's own
-  // grid apart. Each slab of the sum is exact for its sigma_t (sampled
-  // across the slice's plane at full resolution); only the source radiance
-  // is sampled along the view at the slices, and it is smooth along most
-  // rays. Fine source grids (direct light computed per texel) would
-  // otherwise cost hundreds of slices: god-rays.json, 64^3 source, 128x128
-  // supersampled 4x under llvmpipe, block error 4.74 % half a voxel apart
-  // (0.27 s a frame), 4.72 % two voxels (85 ms), 5.27 % eight (43 ms); at
-  // 1/40 of the side, 3.58 % against 3.60 % at 1/48 (threshold 64), a 512 x
-  // 512 view 103 against 120 ms, and the WDAS cloud 2.08 against 2.06 %,
-  // 69 against 77 ms. Sources of 20 voxels or fewer a side keep half a
-  // voxel. The
-  // WDAS cloud, 128x128: 3.77 % one fine cell apart, 3.79 % four, 3.80 %
-  // half a source voxel; a new 512x512 view 165, 53 and 46 ms.
-  // In an optically thick medium a slab several optical depths deep shows
-  // the source at its slice, up to half the slab inside the medium's lit
-  // skin, not at the skin itself: the dragon (sigma_t up to 20.4 per metre,
-  // 3.6 optical depths a slab by the rules above) came out too dark, its
-  // single scattering alone 1.73 % from the path tracer's. So slabs hold at
-  // most MaxSlabDepth optical depths at the largest sigma_t, but are no
-  // thinner than one fine cell: the dragon's are then one cell (1.08 %;
-  // half a cell or a quarter no better, 1.12 and 1.19 %). smoke.vdb (3.5
-  // optical depths a slab before), two seeds: block error 1.06, 1.12 % ->
-  // 0.99, 1.10 %, per-pixel 2.21, 2.28 % -> 2.04, 2.15 %, a 512x512 frame
-  // 152 -> 196 ms; one optical depth is no better (2.01, 2.12 %) at three
-  // times the frame's cost. The clouds stay under two optical depths a
-  // slab and keep their slices.
-  // World units per data unit along data axis a.
-  auto axisScale = [&](int a)
-  {
-    return std::sqrt(model->GetElement(0, a) * model->GetElement(0, a) +
-      model->GetElement(1, a) * model->GetElement(1, a) +
-      model->GetElement(2, a) * model->GetElement(2, a));
-  };
-  auto smallestCell = [&](vtkImageData* grid)
-  {
-    double cell = VTK_DOUBLE_MAX;
-    const double* spacing = grid->GetSpacing();
-    for (int a = 0; a < 3; ++a)
-    {
-      cell = std::min(cell, axisScale(a) * spacing[a]);
-    }
-    return cell;
-  };
-  double longest = 0.0; // the medium's longest side, in world units
-  for (int a = 0; a < 3; ++a)
-  {
-    const Vec& far = cornersWC[1 << a];
-    const Vec side{ far[0] - cornersWC[0][0], far[1] - cornersWC[0][1], far[2] - cornersWC[0][2] };
-    longest = std::max(longest, std::sqrt(Dot(side, side)));
-  }
-  double automatic = std::max(0.5 * smallestCell(input), longest / 40.0);
-  if (this->ExtinctionData)
-  {
-    const double fine = smallestCell(this->ExtinctionData);
-    automatic = std::min(automatic, 4.0 * fine);
-    // Optically thick media: slabs at most MaxSlabDepth deep at the
-    // largest sigma_t, but no closer than one fine cell.
-    // sigma_t per world unit: per data unit over the model's smallest scale.
-    const double modelScale = std::min({ axisScale(0), axisScale(1), axisScale(2) });
-    const double maxSigma = modelScale > 0.0 ? this->Impl->MaxExtinction / modelScale : 0.0;
-    if (maxSigma > 0.0)
-    {
-      automatic = std::min(automatic, std::max(fine, MaxSlabDepth / maxSigma));
-    }
-  }
+  const double automatic =
+    AutomaticSpacing(model, input, this->ExtinctionData, this->Impl->MaxExtinction, cornersWC);
   const double requested = this->SliceSpacing > 0.0 ? this->SliceSpacing : automatic;
   const int count =
     static_cast<int>(std::min(8192.0, std::max(1.0, std::ceil((dmax - dmin) / requested))));
@@ -373,66 +463,14 @@ void vtkBrumeOpenGLSliceVolumeMapper::CutSlices(
         Dot({ cornersWC[c][0] - eye[0], cornersWC[c][1] - eye[1], cornersWC[c][2] - eye[2] }, dop) -
         d;
     }
-    struct Point
-    {
-      Vec World, Data;
-      double Angle;
-    };
-    Point polygon[6];
-    int n = 0;
-    for (const auto& edge : BoxEdges)
-    {
-      const double fa = f[edge[0]], fb = f[edge[1]];
-      if ((fa < 0.0) == (fb < 0.0) || n == 6)
-      {
-        continue;
-      }
-      const double t = fa / (fa - fb);
-      Point& p = polygon[n++];
-      for (int a = 0; a < 3; ++a)
-      {
-        p.World[a] = cornersWC[edge[0]][a] + t * (cornersWC[edge[1]][a] - cornersWC[edge[0]][a]);
-        p.Data[a] = corners[edge[0]][a] + t * (corners[edge[1]][a] - corners[edge[0]][a]);
-      }
-    }
+    SlicePoint polygon[6];
+    const int n = CutPolygon(corners, cornersWC, f, u, v, polygon);
     if (n < 3)
     {
       continue;
     }
-    Vec centre{ 0, 0, 0 };
-    for (int i = 0; i < n; ++i)
-    {
-      for (int a = 0; a < 3; ++a)
-      {
-        centre[a] += polygon[i].World[a] / n;
-      }
-    }
-    for (int i = 0; i < n; ++i)
-    {
-      const Point& p = polygon[i];
-      const Vec r{ p.World[0] - centre[0], p.World[1] - centre[1], p.World[2] - centre[2] };
-      polygon[i].Angle = std::atan2(Dot(r, v), Dot(r, u));
-    }
-    std::sort(
-      polygon, polygon + n, [](const Point& a, const Point& b) { return a.Angle < b.Angle; });
     Slice slice{ this, d, static_cast<float>(delta), out.size(), 0 };
-    auto emit = [&](const Point& p)
-    {
-      for (int a = 0; a < 3; ++a)
-      {
-        out.push_back(static_cast<float>(p.World[a]));
-      }
-      for (int a = 0; a < 3; ++a)
-      {
-        out.push_back(static_cast<float>((p.Data[a] - bounds[2 * a]) / extent[a]));
-      }
-    };
-    for (int i = 1; i + 1 < n; ++i)
-    {
-      emit(polygon[0]);
-      emit(polygon[i]);
-      emit(polygon[i + 1]);
-    }
+    EmitPolygon(polygon, n, bounds, extent, out);
     slice.Floats = out.size() - slice.First;
     slices.push_back(slice);
     ++this->LastNumberOfSlices;

@@ -86,6 +86,14 @@ private:
    * drawn, where the context cannot.
    */
   bool DrawReduced(vtkRenderer* ren, double distance, const std::vector<vtkVolume*>& volumes);
+  // DrawReduced's steps: the warning that sends the media to full
+  // resolution from then on (false), the slices drawn into the coarse
+  // buffer (false after that warning), and the coarse buffer upsampled over
+  // the window.
+  struct ReducedLayout;
+  bool FailReduced(const char* what);
+  bool DrawCoarse(vtkRenderer* ren, const ReducedLayout& layout);
+  void Upsample(vtkRenderer* ren, const ReducedLayout& layout);
 
   struct Internals;
   std::unique_ptr<Internals> Impl;

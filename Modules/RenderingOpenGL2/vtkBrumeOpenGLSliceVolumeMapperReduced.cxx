@@ -97,6 +97,42 @@ bool ClearErrors()
   }
   return none;
 }
+
+// Copies the window's depth (what the opaque props left) under `depthRect`
+// into `fullDepth`, read from the framebuffer being drawn; the viewport's
+// origin is (x, y).
+void CopyWindowDepth(
+  vtkOpenGLState* state, vtkTextureObject* fullDepth, int x, int y, const int depthRect[4])
+{
+  unsigned int drawBinding = 0, drawBuffer = 0;
+  state->GetCurrentDrawFramebufferState(drawBinding, drawBuffer);
+  state->PushReadFramebufferBinding();
+  state->vtkglBindFramebuffer(GL_READ_FRAMEBUFFER, drawBinding);
+  // (vtkTextureObject::CopyFromFrameBuffer ignores the destination corner.)
+  fullDepth->Activate();
+  glCopyTexSubImage2D(GL_TEXTURE_2D, 0, depthRect[0], depthRect[1], x + depthRect[0],
+    y + depthRect[1], depthRect[2] - depthRect[0], depthRect[3] - depthRect[1]);
+  fullDepth->Deactivate();
+  state->PopReadFramebufferBinding();
+}
+}
+
+// Where DrawReduced's passes draw: the viewport's size and origin, the
+// coarse buffer's size, the media's rectangle on screen (full pixels) and
+// the coarse pixels it touches and one more around.
+struct vtkBrumeOpenGLSliceVolumeMapper::ReducedLayout
+{
+  double Distance;
+  int Width, Height, X, Y;
+  int Coarse[2];
+  int Rect[4], CoarseRect[4];
+};
+
+bool vtkBrumeOpenGLSliceVolumeMapper::FailReduced(const char* what)
+{
+  vtkWarningMacro("Media drawn at full resolution: " << what << ".");
+  this->Impl->ReducedFailed = true;
+  return false;
 }
 
 bool vtkBrumeOpenGLSliceVolumeMapper::DrawReduced(
@@ -135,33 +171,16 @@ bool vtkBrumeOpenGLSliceVolumeMapper::DrawReduced(
     std::min(width, static_cast<int>(std::ceil(coarseRect[2] * distance))),
     std::min(height, static_cast<int>(std::ceil(coarseRect[3] * distance))) };
   ClearErrors();
-  auto fail = [&](const char* what)
-  {
-    vtkWarningMacro("Media drawn at full resolution: " << what << ".");
-    impl.ReducedFailed = true;
-    return false;
-  };
   if (!Size2D(impl.FullDepth, renWin, width, height, true) ||
     !Size2D(impl.CoarseDepth, renWin, coarse[0], coarse[1], true) ||
     !Size2D(impl.CoarseMedia, renWin, coarse[0], coarse[1], false))
   {
-    return fail("its buffers could not be allocated");
+    return this->FailReduced("its buffers could not be allocated");
   }
-  // The window's depth (what the opaque props left), read from the
-  // framebuffer being drawn.
-  unsigned int drawBinding = 0, drawBuffer = 0;
-  state->GetCurrentDrawFramebufferState(drawBinding, drawBuffer);
-  state->PushReadFramebufferBinding();
-  state->vtkglBindFramebuffer(GL_READ_FRAMEBUFFER, drawBinding);
-  // (vtkTextureObject::CopyFromFrameBuffer ignores the destination corner.)
-  impl.FullDepth->Activate();
-  glCopyTexSubImage2D(GL_TEXTURE_2D, 0, depthRect[0], depthRect[1], x + depthRect[0],
-    y + depthRect[1], depthRect[2] - depthRect[0], depthRect[3] - depthRect[1]);
-  impl.FullDepth->Deactivate();
-  state->PopReadFramebufferBinding();
+  CopyWindowDepth(state, impl.FullDepth, x, y, depthRect);
   if (!ClearErrors())
   {
-    return fail("the window's depth could not be read");
+    return this->FailReduced("the window's depth could not be read");
   }
 
   if (!impl.CoarseDepthPass)
@@ -173,58 +192,81 @@ bool vtkBrumeOpenGLSliceVolumeMapper::DrawReduced(
   }
   if (!impl.CoarseDepthPass->Program || !impl.UpsamplePass->Program)
   {
-    return fail("its shaders could not be built");
+    return this->FailReduced("its shaders could not be built");
   }
 
+  const ReducedLayout layout{ distance, width, height, x, y, { coarse[0], coarse[1] },
+    { rect[0], rect[1], rect[2], rect[3] },
+    { coarseRect[0], coarseRect[1], coarseRect[2], coarseRect[3] } };
+  if (!this->DrawCoarse(ren, layout))
   {
-    // The coarse buffer: its depth, then the slices.
-    vtkOpenGLState::ScopedglViewport viewportSaver(state);
-    vtkOpenGLState::ScopedglEnableDisable blendSaver(state, GL_BLEND);
-    vtkOpenGLState::ScopedglEnableDisable depthSaver(state, GL_DEPTH_TEST);
-    vtkOpenGLState::ScopedglDepthMask depthMaskSaver(state);
-    vtkOpenGLState::ScopedglDepthFunc depthFuncSaver(state);
-    vtkOpenGLState::ScopedglEnableDisable scissorSaver(state, GL_SCISSOR_TEST);
-    state->PushFramebufferBindings();
-    impl.CoarseFramebuffer->SetContext(renWin);
-    impl.CoarseFramebuffer->Bind();
-    impl.CoarseFramebuffer->AddColorAttachment(0, impl.CoarseMedia);
-    impl.CoarseFramebuffer->AddDepthAttachment(impl.CoarseDepth);
-    impl.CoarseFramebuffer->ActivateDrawBuffer(0);
-    if (!impl.CoarseFramebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER))
-    {
-      state->PopFramebufferBindings();
-      return fail("its framebuffer is incomplete");
-    }
-    vtkOpenGLState::ScopedglScissor scissorBoxSaver(state);
-    state->vtkglEnable(GL_SCISSOR_TEST);
-    state->vtkglScissor(
-      coarseRect[0], coarseRect[1], coarseRect[2] - coarseRect[0], coarseRect[3] - coarseRect[1]);
-    state->vtkglViewport(0, 0, coarse[0], coarse[1]);
-    state->vtkglDisable(GL_BLEND);
-    state->vtkglEnable(GL_DEPTH_TEST);
-    state->vtkglDepthFunc(GL_ALWAYS);
-    state->vtkglDepthMask(GL_TRUE);
-    renWin->GetShaderCache()->ReadyShaderProgram(impl.CoarseDepthPass->Program);
-    impl.FullDepth->Activate();
-    vtkShaderProgram* program = impl.CoarseDepthPass->Program;
-    program->SetUniformi("fullDepth", impl.FullDepth->GetTextureUnit());
-    const int fullSize[2] = { width, height };
-    program->SetUniform2i("fullSize", fullSize);
-    program->SetUniform2i("coarseSize", coarse);
-    program->SetUniformf("sampleDistance", static_cast<float>(distance));
-    impl.CoarseDepthPass->Render();
-    impl.FullDepth->Deactivate();
-    // The slices are tested against the coarse depth as against the window's.
-    state->vtkglDepthFunc(GL_LEQUAL);
-    this->DrawRuns(ren, true);
-    state->PopFramebufferBindings();
+    return false;
   }
+  this->Upsample(ren, layout);
+  return true;
+}
 
+bool vtkBrumeOpenGLSliceVolumeMapper::DrawCoarse(vtkRenderer* ren, const ReducedLayout& layout)
+{
+  // The coarse buffer: its depth, then the slices.
+  Internals& impl = *this->Impl;
+  auto* renWin = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
+  vtkOpenGLState* state = renWin->GetState();
+  vtkOpenGLState::ScopedglViewport viewportSaver(state);
+  vtkOpenGLState::ScopedglEnableDisable blendSaver(state, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable depthSaver(state, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglDepthMask depthMaskSaver(state);
+  vtkOpenGLState::ScopedglDepthFunc depthFuncSaver(state);
+  vtkOpenGLState::ScopedglEnableDisable scissorSaver(state, GL_SCISSOR_TEST);
+  state->PushFramebufferBindings();
+  impl.CoarseFramebuffer->SetContext(renWin);
+  impl.CoarseFramebuffer->Bind();
+  impl.CoarseFramebuffer->AddColorAttachment(0, impl.CoarseMedia);
+  impl.CoarseFramebuffer->AddDepthAttachment(impl.CoarseDepth);
+  impl.CoarseFramebuffer->ActivateDrawBuffer(0);
+  if (!impl.CoarseFramebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER))
+  {
+    state->PopFramebufferBindings();
+    return this->FailReduced("its framebuffer is incomplete");
+  }
+  const int* coarseRect = layout.CoarseRect;
+  vtkOpenGLState::ScopedglScissor scissorBoxSaver(state);
+  state->vtkglEnable(GL_SCISSOR_TEST);
+  state->vtkglScissor(
+    coarseRect[0], coarseRect[1], coarseRect[2] - coarseRect[0], coarseRect[3] - coarseRect[1]);
+  state->vtkglViewport(0, 0, layout.Coarse[0], layout.Coarse[1]);
+  state->vtkglDisable(GL_BLEND);
+  state->vtkglEnable(GL_DEPTH_TEST);
+  state->vtkglDepthFunc(GL_ALWAYS);
+  state->vtkglDepthMask(GL_TRUE);
+  renWin->GetShaderCache()->ReadyShaderProgram(impl.CoarseDepthPass->Program);
+  impl.FullDepth->Activate();
+  vtkShaderProgram* program = impl.CoarseDepthPass->Program;
+  program->SetUniformi("fullDepth", impl.FullDepth->GetTextureUnit());
+  const int fullSize[2] = { layout.Width, layout.Height };
+  program->SetUniform2i("fullSize", fullSize);
+  program->SetUniform2i("coarseSize", layout.Coarse);
+  program->SetUniformf("sampleDistance", static_cast<float>(layout.Distance));
+  impl.CoarseDepthPass->Render();
+  impl.FullDepth->Deactivate();
+  // The slices are tested against the coarse depth as against the window's.
+  state->vtkglDepthFunc(GL_LEQUAL);
+  this->DrawRuns(ren, true);
+  state->PopFramebufferBindings();
+  return true;
+}
+
+void vtkBrumeOpenGLSliceVolumeMapper::Upsample(vtkRenderer* ren, const ReducedLayout& layout)
+{
   // Upsampled over the window: C = L + T C_behind.
+  Internals& impl = *this->Impl;
+  auto* renWin = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
+  vtkOpenGLState* state = renWin->GetState();
+  const int* rect = layout.Rect;
   vtkOpenGLState::ScopedglEnableDisable scissorSaver(state, GL_SCISSOR_TEST);
   vtkOpenGLState::ScopedglScissor scissorBoxSaver(state);
   state->vtkglEnable(GL_SCISSOR_TEST);
-  state->vtkglScissor(x + rect[0], y + rect[1], rect[2] - rect[0], rect[3] - rect[1]);
+  state->vtkglScissor(layout.X + rect[0], layout.Y + rect[1], rect[2] - rect[0], rect[3] - rect[1]);
   vtkOpenGLState::ScopedglEnableDisable blendSaver(state, GL_BLEND);
   vtkOpenGLState::ScopedglEnableDisable depthSaver(state, GL_DEPTH_TEST);
   vtkOpenGLState::ScopedglBlendFuncSeparate blendFuncSaver(state);
@@ -239,10 +281,10 @@ bool vtkBrumeOpenGLSliceVolumeMapper::DrawReduced(
   program->SetUniformi("fullDepth", impl.FullDepth->GetTextureUnit());
   program->SetUniformi("coarseDepth", impl.CoarseDepth->GetTextureUnit());
   program->SetUniformi("coarseMedia", impl.CoarseMedia->GetTextureUnit());
-  const int fullSize[2] = { width, height };
+  const int fullSize[2] = { layout.Width, layout.Height };
   program->SetUniform2i("fullSize", fullSize);
-  program->SetUniform2i("coarseSize", coarse);
-  program->SetUniformf("sampleDistance", static_cast<float>(distance));
+  program->SetUniform2i("coarseSize", layout.Coarse);
+  program->SetUniformf("sampleDistance", static_cast<float>(layout.Distance));
   vtkCamera* camera = ren->GetActiveCamera();
   const double* range = camera->GetClippingRange();
   const float clipping[2] = { static_cast<float>(range[0]), static_cast<float>(range[1]) };
@@ -252,5 +294,4 @@ bool vtkBrumeOpenGLSliceVolumeMapper::DrawReduced(
   impl.FullDepth->Deactivate();
   impl.CoarseDepth->Deactivate();
   impl.CoarseMedia->Deactivate();
-  return true;
 }

@@ -46,6 +46,15 @@ struct VdbDensity::Internals
     return this
       ->Leaves[(static_cast<std::size_t>(k) * this->LeafDims[1] + j) * this->LeafDims[0] + i];
   }
+
+  // LoadGrid's steps, given the grid's active box (index space). The
+  // majorants over the density's bounds, the blocks' value ranges for
+  // scalars, and the occupied values; false, with `error`, at an active
+  // value that is not finite (or a negative density).
+  static bool BuildMajorants(VdbDensity& density, const openvdb::FloatGrid& grid,
+    const openvdb::CoordBBox& bbox, float background, bool scalars, std::string& error);
+  // Leaves, LeafOrigin and LeafDims.
+  void BuildLeafTable(const openvdb::FloatGrid& grid, const openvdb::CoordBBox& bbox);
 };
 
 VdbDensity::VdbDensity()
@@ -148,6 +157,139 @@ bool VdbDensity::ValueRanges(std::vector<float>& lo, std::vector<float>& hi) con
   return true;
 }
 
+bool VdbDensity::Internals::BuildMajorants(VdbDensity& density, const openvdb::FloatGrid& grid,
+  const openvdb::CoordBBox& bbox, float background, bool scalars, std::string& error)
+{
+  Internals& impl = *density.Impl;
+  const openvdb::Coord lo = bbox.min();
+  // Majorants per 8^3 block of the active box: a voxel's value reaches the
+  // trilinear samples within one voxel of its centre.
+  constexpr int B = 8;
+  MajorantGrid& mg = density.Majorants;
+  mg.Bounds = density.Bounds;
+  const openvdb::Coord dim = bbox.dim();
+  for (int a = 0; a < 3; ++a)
+  {
+    mg.Dims[a] = (dim[a] + 2 + B - 1) / B; // the box spans dim + 2 voxels
+  }
+  // Blocks are B voxels wide: the majorant grid's box is a whole number of blocks.
+  for (int a = 0; a < 3; ++a)
+  {
+    mg.Bounds.upper[a] = static_cast<float>(
+      mg.Bounds.lower[a] + static_cast<double>(mg.Dims[a]) * B * impl.VoxelSize[a]);
+  }
+  mg.Max.assign(static_cast<std::size_t>(mg.Dims[0]) * mg.Dims[1] * mg.Dims[2], background);
+  // Scalars: each block's range of the values its samples interpolate (its
+  // voxels and one more layer around), the background where one of those
+  // voxels is inactive (counted in `activeAround`).
+  std::vector<double> activeAround;
+  if (scalars)
+  {
+    impl.RangeLow.assign(mg.Max.size(), std::numeric_limits<float>::infinity());
+    impl.RangeHigh.assign(mg.Max.size(), -std::numeric_limits<float>::infinity());
+    activeAround.assign(mg.Max.size(), 0.0);
+  }
+  auto blockOf = [&](int a, double index)
+  {
+    const int b = static_cast<int>(std::floor((index - (lo[a] - 1.0)) / B));
+    return std::min(mg.Dims[a] - 1, std::max(0, b));
+  };
+  for (auto it = grid.cbeginValueOn(); it; ++it)
+  {
+    const float v = *it;
+    if (!std::isfinite(v) || (!scalars && !(v >= 0.f)))
+    {
+      error = "OpenVDB grid '" + grid.getName() + "' has negative or non-finite " +
+        (scalars ? "scalars" : "densities");
+      return false;
+    }
+    if (v > 0.f)
+    {
+      const double voxels = static_cast<double>(it.getVoxelCount());
+      density.OccupiedValues += voxels;
+      density.OccupiedSum += voxels * v;
+    }
+    if (v <= background && !scalars)
+    {
+      continue;
+    }
+    openvdb::CoordBBox region;
+    it.getBoundingBox(region);
+    int b0[3], b1[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      b0[a] = blockOf(a, region.min()[a] - 1.0);
+      b1[a] = blockOf(a, region.max()[a] + 1.0);
+    }
+    for (int k = b0[2]; k <= b1[2]; ++k)
+      for (int j = b0[1]; j <= b1[1]; ++j)
+        for (int i = b0[0]; i <= b1[0]; ++i)
+        {
+          const std::size_t b = (static_cast<std::size_t>(k) * mg.Dims[1] + j) * mg.Dims[0] + i;
+          mg.Max[b] = std::max(mg.Max[b], v);
+          if (scalars)
+          {
+            impl.RangeLow[b] = std::min(impl.RangeLow[b], v);
+            impl.RangeHigh[b] = std::max(impl.RangeHigh[b], v);
+            const int block[3] = { i, j, k };
+            double overlap = 1.0;
+            for (int a = 0; a < 3; ++a)
+            {
+              const int first = lo[a] - 1 + block[a] * B - 1, last = first + B + 1;
+              overlap *=
+                std::max(0, std::min(region.max()[a], last) - std::max(region.min()[a], first) + 1);
+            }
+            activeAround[b] += overlap;
+          }
+        }
+  }
+  for (std::size_t b = 0; b < activeAround.size(); ++b)
+  {
+    if (activeAround[b] < static_cast<double>((B + 2) * (B + 2) * (B + 2)))
+    {
+      impl.RangeLow[b] = std::min(impl.RangeLow[b], background);
+      impl.RangeHigh[b] = std::max(impl.RangeHigh[b], background);
+    }
+  }
+  return true;
+}
+
+void VdbDensity::Internals::BuildLeafTable(
+  const openvdb::FloatGrid& grid, const openvdb::CoordBBox& bbox)
+{
+  const openvdb::Coord lo = bbox.min(), hi = bbox.max();
+  // The leaf table, where it takes at most 2^24 pointers (128 MiB).
+  for (int a = 0; a < 3; ++a)
+  {
+    this->LeafOrigin[a] = ((lo[a] - 8) >> 3) * 8; // arithmetic shift: floor division by 8
+    this->LeafDims[a] = ((hi[a] + 8) >> 3) - (this->LeafOrigin[a] >> 3) + 1;
+  }
+  const double leafCells =
+    static_cast<double>(this->LeafDims[0]) * this->LeafDims[1] * this->LeafDims[2];
+  if (leafCells <= static_cast<double>(1 << 24))
+  {
+    this->Leaves.assign(static_cast<std::size_t>(leafCells), nullptr);
+    for (auto leaf = grid.constTree().cbeginLeaf(); leaf; ++leaf)
+    {
+      const openvdb::Coord origin = leaf->origin();
+      const int i = (origin[0] >> 3) - (this->LeafOrigin[0] >> 3);
+      const int j = (origin[1] >> 3) - (this->LeafOrigin[1] >> 3);
+      const int k = (origin[2] >> 3) - (this->LeafOrigin[2] >> 3);
+      if (i >= 0 && j >= 0 && k >= 0 && i < this->LeafDims[0] && j < this->LeafDims[1] &&
+        k < this->LeafDims[2])
+      {
+        this
+          ->Leaves[(static_cast<std::size_t>(k) * this->LeafDims[1] + j) * this->LeafDims[0] + i] =
+          leaf->buffer().data();
+      }
+    }
+  }
+  else
+  {
+    this->LeafDims[0] = this->LeafDims[1] = this->LeafDims[2] = 0;
+  }
+}
+
 std::shared_ptr<VdbDensity> VdbDensity::LoadGrid(
   const std::string& fileName, const std::string& gridName, bool scalars, std::string& error)
 {
@@ -193,125 +335,12 @@ std::shared_ptr<VdbDensity> VdbDensity::LoadGrid(
     density->Bounds.upper[a] =
       static_cast<float>(impl.Origin[a] + (hi[a] + 1.0) * impl.VoxelSize[a]);
   }
-  // Majorants per 8^3 block of the active box: a voxel's value reaches the
-  // trilinear samples within one voxel of its centre.
-  constexpr int B = 8;
-  MajorantGrid& mg = density->Majorants;
-  mg.Bounds = density->Bounds;
-  const openvdb::Coord dim = bbox.dim();
-  for (int a = 0; a < 3; ++a)
+  if (!Internals::BuildMajorants(*density, *grid, bbox, background, scalars, error))
   {
-    mg.Dims[a] = (dim[a] + 2 + B - 1) / B; // the box spans dim + 2 voxels
-  }
-  // Blocks are B voxels wide: the majorant grid's box is a whole number of blocks.
-  for (int a = 0; a < 3; ++a)
-  {
-    mg.Bounds.upper[a] = static_cast<float>(
-      mg.Bounds.lower[a] + static_cast<double>(mg.Dims[a]) * B * impl.VoxelSize[a]);
-  }
-  mg.Max.assign(static_cast<std::size_t>(mg.Dims[0]) * mg.Dims[1] * mg.Dims[2], background);
-  // Scalars: each block's range of the values its samples interpolate (its
-  // voxels and one more layer around), the background where one of those
-  // voxels is inactive (counted in `activeAround`).
-  std::vector<double> activeAround;
-  if (scalars)
-  {
-    impl.RangeLow.assign(mg.Max.size(), std::numeric_limits<float>::infinity());
-    impl.RangeHigh.assign(mg.Max.size(), -std::numeric_limits<float>::infinity());
-    activeAround.assign(mg.Max.size(), 0.0);
-  }
-  auto blockOf = [&](int a, double index)
-  {
-    const int b = static_cast<int>(std::floor((index - (lo[a] - 1.0)) / B));
-    return std::min(mg.Dims[a] - 1, std::max(0, b));
-  };
-  for (auto it = grid->cbeginValueOn(); it; ++it)
-  {
-    const float v = *it;
-    if (!std::isfinite(v) || (!scalars && !(v >= 0.f)))
-    {
-      error = "OpenVDB grid '" + grid->getName() + "' has negative or non-finite " +
-        (scalars ? "scalars" : "densities");
-      return nullptr;
-    }
-    if (v > 0.f)
-    {
-      const double voxels = static_cast<double>(it.getVoxelCount());
-      density->OccupiedValues += voxels;
-      density->OccupiedSum += voxels * v;
-    }
-    if (v <= background && !scalars)
-    {
-      continue;
-    }
-    openvdb::CoordBBox region;
-    it.getBoundingBox(region);
-    int b0[3], b1[3];
-    for (int a = 0; a < 3; ++a)
-    {
-      b0[a] = blockOf(a, region.min()[a] - 1.0);
-      b1[a] = blockOf(a, region.max()[a] + 1.0);
-    }
-    for (int k = b0[2]; k <= b1[2]; ++k)
-      for (int j = b0[1]; j <= b1[1]; ++j)
-        for (int i = b0[0]; i <= b1[0]; ++i)
-        {
-          const std::size_t b = (static_cast<std::size_t>(k) * mg.Dims[1] + j) * mg.Dims[0] + i;
-          mg.Max[b] = std::max(mg.Max[b], v);
-          if (scalars)
-          {
-            impl.RangeLow[b] = std::min(impl.RangeLow[b], v);
-            impl.RangeHigh[b] = std::max(impl.RangeHigh[b], v);
-            const int block[3] = { i, j, k };
-            double overlap = 1.0;
-            for (int a = 0; a < 3; ++a)
-            {
-              const int first = lo[a] - 1 + block[a] * B - 1, last = first + B + 1;
-              overlap *=
-                std::max(0, std::min(region.max()[a], last) - std::max(region.min()[a], first) + 1);
-            }
-            activeAround[b] += overlap;
-          }
-        }
-  }
-  for (std::size_t b = 0; b < activeAround.size(); ++b)
-  {
-    if (activeAround[b] < static_cast<double>((B + 2) * (B + 2) * (B + 2)))
-    {
-      impl.RangeLow[b] = std::min(impl.RangeLow[b], background);
-      impl.RangeHigh[b] = std::max(impl.RangeHigh[b], background);
-    }
+    return nullptr;
   }
   impl.Grid = grid;
-  // The leaf table, where it takes at most 2^24 pointers (128 MiB).
-  for (int a = 0; a < 3; ++a)
-  {
-    impl.LeafOrigin[a] = ((lo[a] - 8) >> 3) * 8; // arithmetic shift: floor division by 8
-    impl.LeafDims[a] = ((hi[a] + 8) >> 3) - (impl.LeafOrigin[a] >> 3) + 1;
-  }
-  const double leafCells =
-    static_cast<double>(impl.LeafDims[0]) * impl.LeafDims[1] * impl.LeafDims[2];
-  if (leafCells <= static_cast<double>(1 << 24))
-  {
-    impl.Leaves.assign(static_cast<std::size_t>(leafCells), nullptr);
-    for (auto leaf = grid->constTree().cbeginLeaf(); leaf; ++leaf)
-    {
-      const openvdb::Coord origin = leaf->origin();
-      const int i = (origin[0] >> 3) - (impl.LeafOrigin[0] >> 3);
-      const int j = (origin[1] >> 3) - (impl.LeafOrigin[1] >> 3);
-      const int k = (origin[2] >> 3) - (impl.LeafOrigin[2] >> 3);
-      if (i >= 0 && j >= 0 && k >= 0 && i < impl.LeafDims[0] && j < impl.LeafDims[1] &&
-        k < impl.LeafDims[2])
-      {
-        impl.Leaves[(static_cast<std::size_t>(k) * impl.LeafDims[1] + j) * impl.LeafDims[0] + i] =
-          leaf->buffer().data();
-      }
-    }
-  }
-  else
-  {
-    impl.LeafDims[0] = impl.LeafDims[1] = impl.LeafDims[2] = 0;
-  }
+  impl.BuildLeafTable(*grid, bbox);
   // The native cells in all; a background above 0 fills the rest.
   const std::array<int, 3> cells = density->NativeResolution();
   density->GridValues = static_cast<double>(cells[0]) * cells[1] * cells[2];
