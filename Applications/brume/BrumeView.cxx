@@ -371,42 +371,73 @@ int Orbit(Viewer& viewer, const ViewOptions& options, Clock::time_point commandS
     static_cast<long long>(reconstruction->GetNumberOfViewUpdates() - updates));
   return 0;
 }
+
+// While the camera moves the media are drawn coarser; the style renders
+// once more at full resolution when the button is released.
+void CoarserWhileMoving(Viewer& viewer, vtkInteractorStyle* style)
+{
+  vtkNew<vtkCallbackCommand> moving, still;
+  moving->SetClientData(&viewer);
+  moving->SetCallback(
+    [](vtkObject*, unsigned long, void* data, void*)
+    {
+      auto* view = static_cast<Viewer*>(data);
+      view->Actors->SetImageSampleDistance(view->Options.MovingSampleDistance);
+    });
+  still->SetClientData(&viewer);
+  still->SetCallback([](vtkObject*, unsigned long, void* data, void*)
+    { static_cast<Viewer*>(data)->Actors->SetImageSampleDistance(1.0); });
+  style->AddObserver(vtkCommand::StartInteractionEvent, moving);
+  style->AddObserver(vtkCommand::EndInteractionEvent, still);
 }
 
-int RunView(const ViewOptions& options)
+// --exit-after N: a timer presses the --keys through the interactor, then
+// turns the camera 5 degrees a frame for N frames and quits (for tests and
+// demonstrations of the interactive path itself).
+struct Script
 {
-  const auto commandStart = Clock::now();
-  const ViewOptions& resolved = options;
-  // The scene first: a bad file is reported with or without a display.
-  vtkNew<vtkBrumePipeline> pipeline;
-  if (!ConfigurePipeline(pipeline, resolved.Render))
-  {
-    return 1;
-  }
-  if (!HasDisplay("the viewer", resolved.Orbit == 0))
-  {
-    return 1;
-  }
-  Viewer viewer(resolved, pipeline);
-  if (resolved.Orbit > 0)
-  {
-    viewer.Window->SetOffScreenRendering(1);
-  }
-  if (!viewer.Start())
-  {
-    return 1;
-  }
-  if (resolved.Orbit > 0)
-  {
-    for (const char key : resolved.Keys)
-    {
-      viewer.Key(key);
-    }
-    return Orbit(viewer, resolved, commandStart);
-  }
+  Viewer* View;
+  vtkRenderWindowInteractor* Interactor;
+  std::string Keys;
+  int Frames, Done;
+  vtkIdType Builds, Updates;
+};
 
-  // Interactive: before each frame the textures follow the camera; after it
-  // the overlay shows what the frame cost.
+void InstallScript(Script& script, vtkRenderWindowInteractor* interactor, vtkCallbackCommand* tick)
+{
+  tick->SetClientData(&script);
+  tick->SetCallback(
+    [](vtkObject*, unsigned long, void* data, void*)
+    {
+      auto* run = static_cast<Script*>(data);
+      for (const char key : run->Keys)
+      {
+        run->Interactor->SetKeyCode(key);
+        run->Interactor->InvokeEvent(vtkCommand::CharEvent, nullptr);
+      }
+      if (run->Done == 0)
+      {
+        // The keys' own renders are not counted.
+        run->Builds = run->View->Reconstruction->GetNumberOfTextureBuilds();
+        run->Updates = run->View->Reconstruction->GetNumberOfViewUpdates();
+      }
+      run->Keys.clear();
+      if (run->Done++ == run->Frames)
+      {
+        run->Interactor->TerminateApp();
+        return;
+      }
+      run->View->Renderer->GetActiveCamera()->Azimuth(5.0);
+      run->Interactor->Render();
+    });
+  interactor->AddObserver(vtkCommand::TimerEvent, tick);
+  interactor->CreateRepeatingTimer(1);
+}
+
+// The interactive window: before each frame the textures follow the camera;
+// after it the overlay shows what the frame cost.
+int Interact(Viewer& viewer, const ViewOptions& options, Clock::time_point commandStart)
+{
   vtkNew<vtkRenderWindowInteractor> interactor;
   vtkNew<vtkInteractorStyleTrackballCamera> style;
   interactor->SetInteractorStyle(style);
@@ -459,21 +490,7 @@ int RunView(const ViewOptions& options)
     });
   viewer.Window->AddObserver(vtkCommand::StartEvent, before);
   viewer.Window->AddObserver(vtkCommand::EndEvent, after);
-  // While the camera moves the media are drawn coarser; the style renders
-  // once more at full resolution when the button is released.
-  vtkNew<vtkCallbackCommand> moving, still;
-  moving->SetClientData(&viewer);
-  moving->SetCallback(
-    [](vtkObject*, unsigned long, void* data, void*)
-    {
-      auto* view = static_cast<Viewer*>(data);
-      view->Actors->SetImageSampleDistance(view->Options.MovingSampleDistance);
-    });
-  still->SetClientData(&viewer);
-  still->SetCallback([](vtkObject*, unsigned long, void* data, void*)
-    { static_cast<Viewer*>(data)->Actors->SetImageSampleDistance(1.0); });
-  style->AddObserver(vtkCommand::StartInteractionEvent, moving);
-  style->AddObserver(vtkCommand::EndInteractionEvent, still);
+  CoarserWhileMoving(viewer, style);
   // Before the style's own keys (p picks, s shows surfaces).
   interactor->AddObserver(vtkCommand::CharEvent, keys, 1.0);
   interactor->Initialize();
@@ -481,54 +498,19 @@ int RunView(const ViewOptions& options)
   viewer.Window->WaitForCompletion();
   viewer.PrintFirstImage(commandStart);
 
-  // --exit-after N: a timer presses the --keys through the interactor, then
-  // turns the camera 5 degrees a frame for N frames and quits (for tests and
-  // demonstrations of the interactive path itself).
-  struct Script
-  {
-    Viewer* View;
-    vtkRenderWindowInteractor* Interactor;
-    std::string Keys;
-    int Frames, Done;
-    vtkIdType Builds, Updates;
-  } script{ &viewer, interactor, resolved.Keys, resolved.ExitAfter, 0,
+  // --exit-after N: a timer presses the --keys, turns the camera and quits.
+  Script script{ &viewer, interactor, options.Keys, options.ExitAfter, 0,
     viewer.Reconstruction->GetNumberOfTextureBuilds(),
     viewer.Reconstruction->GetNumberOfViewUpdates() };
   vtkNew<vtkCallbackCommand> tick;
-  if (resolved.ExitAfter > 0)
+  if (options.ExitAfter > 0)
   {
-    tick->SetClientData(&script);
-    tick->SetCallback(
-      [](vtkObject*, unsigned long, void* data, void*)
-      {
-        auto* run = static_cast<Script*>(data);
-        for (const char key : run->Keys)
-        {
-          run->Interactor->SetKeyCode(key);
-          run->Interactor->InvokeEvent(vtkCommand::CharEvent, nullptr);
-        }
-        if (run->Done == 0)
-        {
-          // The keys' own renders are not counted.
-          run->Builds = run->View->Reconstruction->GetNumberOfTextureBuilds();
-          run->Updates = run->View->Reconstruction->GetNumberOfViewUpdates();
-        }
-        run->Keys.clear();
-        if (run->Done++ == run->Frames)
-        {
-          run->Interactor->TerminateApp();
-          return;
-        }
-        run->View->Renderer->GetActiveCamera()->Azimuth(5.0);
-        run->Interactor->Render();
-      });
-    interactor->AddObserver(vtkCommand::TimerEvent, tick);
-    interactor->CreateRepeatingTimer(1);
+    InstallScript(script, interactor, tick);
   }
   interactor->Start();
-  if (resolved.ExitAfter > 0)
+  if (options.ExitAfter > 0)
   {
-    std::printf("interactive: %d frames, %s particles, media %s\n", resolved.ExitAfter,
+    std::printf("interactive: %d frames, %s particles, media %s\n", options.ExitAfter,
       Thousands(viewer.Particles()).c_str(),
       viewer.Reconstruction->GetDirectionalRadiance() ? "spherical harmonics" : "per view (paper)");
     std::printf("texture builds during the frames: %lld\n",
@@ -537,4 +519,38 @@ int RunView(const ViewOptions& options)
       static_cast<long long>(viewer.Reconstruction->GetNumberOfViewUpdates() - script.Updates));
   }
   return failed ? 1 : 0;
+}
+}
+
+int RunView(const ViewOptions& options)
+{
+  const auto commandStart = Clock::now();
+  // The scene first: a bad file is reported with or without a display.
+  vtkNew<vtkBrumePipeline> pipeline;
+  if (!ConfigurePipeline(pipeline, options.Render))
+  {
+    return 1;
+  }
+  if (!HasDisplay("the viewer", options.Orbit == 0))
+  {
+    return 1;
+  }
+  Viewer viewer(options, pipeline);
+  if (options.Orbit > 0)
+  {
+    viewer.Window->SetOffScreenRendering(1);
+  }
+  if (!viewer.Start())
+  {
+    return 1;
+  }
+  if (options.Orbit > 0)
+  {
+    for (const char key : options.Keys)
+    {
+      viewer.Key(key);
+    }
+    return Orbit(viewer, options, commandStart);
+  }
+  return Interact(viewer, options, commandStart);
 }
