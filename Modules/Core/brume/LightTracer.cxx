@@ -247,6 +247,40 @@ bool Reflect(const Material& material, const Vec3& n, const Vec3& position, Rand
 }
 }
 
+// A heavy particle heading into a medium (the light the ground reflects
+// into a cloud) splits into r = w1 / w2 particles of an aimed particle's
+// weight: n of them, n = floor(r) or floor(r) + 1 with the probability of
+// r's fraction (E[n] = r), each carrying flux / r, so that the expected
+// flux is the particle's. They are aimed particles from there on (class 2:
+// the reconstruction counts each as one aimed particle), on streams of
+// their own, and walk this segment anew, each its own free flight and
+// scattering in the medium.
+void LightTracer::Split(std::uint64_t index, Random& rng, const Emitter& emitter,
+  const Light& aimedLight, const Walker& w, std::vector<Hit>& hits, TraceCounters& counters,
+  ParticleExit* exit, RayLog* rays) const
+{
+  const Vec3& flux = w.Flux;
+  const double ratio = static_cast<double>(aimedLight.EmissionWeight(1)) /
+    static_cast<double>(aimedLight.EmissionWeight(2));
+  const double r = std::min(ratio, static_cast<double>(MaxSplit));
+  const double whole = std::floor(r);
+  const int n = static_cast<int>(whole) + (rng.NextDouble() < r - whole ? 1 : 0);
+  Walker child = w;
+  child.Flux = flux * static_cast<float>(1.0 / r);
+  child.InitialFlux = static_cast<float>(w.InitialFlux / r);
+  child.Aim = 2;
+  TallyChange(counters.EstimatorNet, flux, child.Flux * static_cast<float>(n));
+  if (exit)
+  {
+    exit->Children = n;
+  }
+  for (int k = 0; k < n; ++k)
+  {
+    Random childRng(this->Settings.Seed, ChildStream(index, k));
+    this->Walk(index, childRng, emitter, child, hits, counters, nullptr, rays);
+  }
+}
+
 void LightTracer::Walk(std::uint64_t index, Random& rng, const Emitter& emitter, Walker w,
   std::vector<Hit>& hits, TraceCounters& counters, ParticleExit* exit, RayLog* rays) const
 {
@@ -312,33 +346,7 @@ void LightTracer::Walk(std::uint64_t index, Random& rng, const Emitter& emitter,
 
     if (aimedLight && this->CrossesMedium(origin, direction, tSurface))
     {
-      // A heavy particle heading into a medium (the light the ground
-      // reflects into a cloud) splits into r = w1 / w2 particles of an
-      // aimed particle's weight: n of them, n = floor(r) or floor(r) + 1
-      // with the probability of r's fraction (E[n] = r), each carrying
-      // flux / r, so that the expected flux is the particle's. They are
-      // aimed particles from there on (class 2: the reconstruction counts
-      // each as one aimed particle), on streams of their own, and walk this
-      // segment anew, each its own free flight and scattering in the medium.
-      const double ratio = static_cast<double>(aimedLight->EmissionWeight(1)) /
-        static_cast<double>(aimedLight->EmissionWeight(2));
-      const double r = std::min(ratio, static_cast<double>(MaxSplit));
-      const double whole = std::floor(r);
-      const int n = static_cast<int>(whole) + (rng.NextDouble() < r - whole ? 1 : 0);
-      Walker child = w;
-      child.Flux = flux * static_cast<float>(1.0 / r);
-      child.InitialFlux = static_cast<float>(w.InitialFlux / r);
-      child.Aim = 2;
-      TallyChange(counters.EstimatorNet, flux, child.Flux * static_cast<float>(n));
-      if (exit)
-      {
-        exit->Children = n;
-      }
-      for (int k = 0; k < n; ++k)
-      {
-        Random childRng(this->Settings.Seed, ChildStream(index, k));
-        this->Walk(index, childRng, emitter, child, hits, counters, nullptr, rays);
-      }
+      this->Split(index, rng, emitter, *aimedLight, w, hits, counters, exit, rays);
       return;
     }
 

@@ -197,6 +197,11 @@ private:
   void Walk(std::uint64_t index, Random& rng, const Emitter& emitter, Walker w,
     std::vector<Hit>& hits, TraceCounters& counters, ParticleExit* exit, RayLog* rays) const;
 
+  /// A heavy particle `w` of `aimedLight` heading into a medium, split into
+  /// aimed particles that walk on (Walk's heavy-particle case).
+  void Split(std::uint64_t index, Random& rng, const Emitter& emitter, const Light& aimedLight,
+    const Walker& w, std::vector<Hit>& hits, TraceCounters& counters, ParticleExit* exit,
+    RayLog* rays) const;
   /// Whether the segment o + t d, t in [0, tEnd], crosses a medium's box.
   bool CrossesMedium(const Vec3& o, const Vec3& d, float tEnd) const;
   /// Russian roulette after interaction w.Depth; false when the particle ends.

@@ -31,6 +31,69 @@ Vec3 TexelCentre(std::size_t t, const std::array<int, 3>& dims)
 constexpr std::size_t ArrivalFloats = 6;
 // Points per axis of a texel on a shadow's edge.
 constexpr int RefinedSamples = 4;
+
+// The texels of `read` and their face neighbours along the first `used`
+// axes (a medium's texels near its density, whose shadow rays are cast).
+std::vector<std::uint8_t> WithFaceNeighbours(
+  const std::vector<std::uint8_t>& read, const std::array<int, 3>& dims, int used)
+{
+  const std::size_t nx = dims[0], nxy = nx * dims[1];
+  const std::size_t texels = nxy * dims[2];
+  std::vector<std::uint8_t> cast = read;
+  for (std::size_t t = 0; t < texels; ++t)
+  {
+    const int c[3] = { static_cast<int>(t % nx), static_cast<int>((t % nxy) / nx),
+      static_cast<int>(t / nxy) };
+    for (int a = 0; a < used && !read[t]; ++a)
+    {
+      const std::size_t stride = a == 0 ? 1 : (a == 1 ? nx : nxy);
+      if ((c[a] > 0 && read[t - stride]) || (c[a] + 1 < dims[a] && read[t + stride]))
+      {
+        cast[t] = 1;
+      }
+    }
+  }
+  return cast;
+}
+
+// Per texel and light, whether the texel lies on a shadow's or a beam's
+// edge: lit while a face neighbour is not, or the reverse (texels outside
+// `read`, when given, are left out).
+std::vector<std::uint8_t> LightEdges(const std::vector<float>& arrivals, std::size_t lights,
+  const std::vector<std::uint8_t>& read, const std::array<int, 3>& dims, int used)
+{
+  const std::size_t nx = dims[0], nxy = nx * dims[1];
+  const std::size_t texels = nxy * dims[2];
+  auto lit = [&](std::size_t t, std::size_t l)
+  {
+    const float* a = &arrivals[(t * lights + l) * ArrivalFloats];
+    return a[0] > 0.f || a[1] > 0.f || a[2] > 0.f;
+  };
+  std::vector<std::uint8_t> edge(texels * lights, 0);
+  for (std::size_t t = 0; t < texels; ++t)
+  {
+    if (!read.empty() && !read[t])
+    {
+      continue;
+    }
+    const int c[3] = { static_cast<int>(t % nx), static_cast<int>((t % nxy) / nx),
+      static_cast<int>(t / nxy) };
+    for (std::size_t l = 0; l < lights; ++l)
+    {
+      const bool here = lit(t, l);
+      for (int a = 0; a < used && !edge[t * lights + l]; ++a)
+      {
+        const std::size_t stride = a == 0 ? 1 : (a == 1 ? nx : nxy);
+        if ((c[a] > 0 && lit(t - stride, l) != here) ||
+          (c[a] + 1 < dims[a] && lit(t + stride, l) != here))
+        {
+          edge[t * lights + l] = 1;
+        }
+      }
+    }
+  }
+  return edge;
+}
 }
 
 bool ObjectRadiance::SupportsDirect() const
@@ -128,25 +191,11 @@ void ObjectRadiance::ComputeDirect(const ParallelFor& parallelFor)
   // others stay 0, as no image shows them. Their face neighbours' rays are
   // cast too, so that the edges below are found as with every texel.
   const int used = this->MediumRef ? 3 : 2;
-  const std::size_t nx = dims[0], nxy = nx * dims[1];
   std::vector<std::uint8_t> read, cast;
   if (this->MediumRef && !this->NativeDensity.Empty())
   {
     read = SparseTexture::CellsRead(dims, this->MediumRef->Bounds, this->NativeDensity);
-    cast = read;
-    for (std::size_t t = 0; t < texels; ++t)
-    {
-      const int c[3] = { static_cast<int>(t % nx), static_cast<int>((t % nxy) / nx),
-        static_cast<int>(t / nxy) };
-      for (int a = 0; a < used && !read[t]; ++a)
-      {
-        const std::size_t stride = a == 0 ? 1 : (a == 1 ? nx : nxy);
-        if ((c[a] > 0 && read[t - stride]) || (c[a] + 1 < dims[a] && read[t + stride]))
-        {
-          cast[t] = 1;
-        }
-      }
-    }
+    cast = WithFaceNeighbours(read, dims, used);
   }
   // 1. One shadow ray per texel centre.
   parallelFor(mine[0], mine[1],
@@ -172,34 +221,7 @@ void ObjectRadiance::ComputeDirect(const ParallelFor& parallelFor)
   // not, or the reverse) hold the mean over RefinedSamples^d stratified
   // points of the texel instead: the edge then lies where it is, not half
   // way between two texel centres, once the renderer interpolates.
-  auto lit = [&](std::size_t t, std::size_t l)
-  {
-    const float* a = &arrivals[(t * lights + l) * ArrivalFloats];
-    return a[0] > 0.f || a[1] > 0.f || a[2] > 0.f;
-  };
-  std::vector<std::uint8_t> edge(texels * lights, 0);
-  for (std::size_t t = 0; t < texels; ++t)
-  {
-    if (!read.empty() && !read[t])
-    {
-      continue;
-    }
-    const int c[3] = { static_cast<int>(t % nx), static_cast<int>((t % nxy) / nx),
-      static_cast<int>(t / nxy) };
-    for (std::size_t l = 0; l < lights; ++l)
-    {
-      const bool here = lit(t, l);
-      for (int a = 0; a < used && !edge[t * lights + l]; ++a)
-      {
-        const std::size_t stride = a == 0 ? 1 : (a == 1 ? nx : nxy);
-        if ((c[a] > 0 && lit(t - stride, l) != here) ||
-          (c[a] + 1 < dims[a] && lit(t + stride, l) != here))
-        {
-          edge[t * lights + l] = 1;
-        }
-      }
-    }
-  }
+  const std::vector<std::uint8_t> edge = LightEdges(arrivals, lights, read, dims, used);
   const Vec3 texel = (this->MediumRef ? this->MediumRef->Bounds.Extent() : Vec3(1.f)) /
     Vec3(static_cast<float>(dims[0]), static_cast<float>(dims[1]), static_cast<float>(dims[2]));
   const PlanarFrame& frame = this->Chart.Frame;
