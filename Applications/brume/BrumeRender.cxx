@@ -69,6 +69,16 @@ bool HasDisplay(const char* what, bool window)
 
 namespace
 {
+// Sets `value` through `set` where the user gave it.
+template <typename T, typename Set>
+void IfGiven(const std::optional<T>& value, Set set)
+{
+  if (value)
+  {
+    set(*value);
+  }
+}
+
 vtkSmartPointer<vtkAlgorithm> SceneSource(const std::string& scene)
 {
   if (scene.empty() || scene == "default")
@@ -93,54 +103,22 @@ bool ConfigurePipeline(vtkBrumePipeline* pipeline, const RenderOptions& options)
   }
   vtkBrumeLightTracer* tracer = pipeline->GetTracer();
   vtkBrumeRadianceReconstruction* reconstruction = pipeline->GetReconstruction();
-  if (options.Particles)
-  {
-    tracer->SetNumberOfParticles(*options.Particles);
-  }
-  if (options.Seed)
-  {
-    tracer->SetSeed(static_cast<vtkIdType>(*options.Seed)); // at most 2^63 - 1
-  }
-  if (options.MaxDepth)
-  {
-    tracer->SetMaximumDepth(*options.MaxDepth);
-  }
-  if (options.MediumAim)
-  {
-    tracer->SetMediumAimFraction(*options.MediumAim);
-  }
-  if (options.SplitHeavy)
-  {
-    tracer->SetSplitHeavyParticles(*options.SplitHeavy);
-  }
-  if (options.MemoryLimit)
-  {
-    tracer->SetMemoryLimit(static_cast<vtkTypeInt64>(*options.MemoryLimit * 1073741824.0));
-  }
-  if (options.Threshold)
-  {
-    reconstruction->SetRadiosityThreshold(*options.Threshold);
-  }
-  if (options.DirectLight)
-  {
-    reconstruction->SetDirectLighting(*options.DirectLight);
-  }
-  if (options.CentroidMatching)
-  {
-    reconstruction->SetCentroidMatching(*options.CentroidMatching);
-  }
-  if (options.Size)
-  {
-    pipeline->SetSize((*options.Size)[0], (*options.Size)[1]);
-  }
-  if (options.Exposure)
-  {
-    pipeline->SetExposure(*options.Exposure);
-  }
-  if (options.Batch)
-  {
-    pipeline->SetBatchSize(*options.Batch);
-  }
+  IfGiven(options.Particles, [&](long long n) { tracer->SetNumberOfParticles(n); });
+  // At most 2^63 - 1 (the option's range).
+  IfGiven(options.Seed, [&](std::uint64_t s) { tracer->SetSeed(static_cast<vtkIdType>(s)); });
+  IfGiven(options.MaxDepth, [&](int depth) { tracer->SetMaximumDepth(depth); });
+  IfGiven(options.MediumAim, [&](double aim) { tracer->SetMediumAimFraction(aim); });
+  IfGiven(options.SplitHeavy, [&](bool split) { tracer->SetSplitHeavyParticles(split); });
+  IfGiven(options.MemoryLimit,
+    [&](double gib) { tracer->SetMemoryLimit(static_cast<vtkTypeInt64>(gib * 1073741824.0)); });
+  IfGiven(options.Threshold, [&](double t) { reconstruction->SetRadiosityThreshold(t); });
+  IfGiven(options.DirectLight, [&](bool direct) { reconstruction->SetDirectLighting(direct); });
+  IfGiven(
+    options.CentroidMatching, [&](bool match) { reconstruction->SetCentroidMatching(match); });
+  IfGiven(
+    options.Size, [&](const std::array<int, 2>& size) { pipeline->SetSize(size[0], size[1]); });
+  IfGiven(options.Exposure, [&](double exposure) { pipeline->SetExposure(exposure); });
+  IfGiven(options.Batch, [&](long long batch) { pipeline->SetBatchSize(batch); });
   return true;
 }
 

@@ -2,8 +2,10 @@
 #include "vtkBrumeEvaluationAlgorithm.h"
 
 #include "vtkBrumeEvaluationTable.h"
+#include "vtkBrumeRadianceReconstruction.h"
 #include "vtkCamera.h"
 #include "vtkInformation.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkTable.h"
 
@@ -13,6 +15,7 @@
 vtkCxxSetObjectMacro(vtkBrumeEvaluationAlgorithm, Camera, vtkCamera);
 
 vtkBrumeEvaluationAlgorithm::vtkBrumeEvaluationAlgorithm()
+  : RadiosityThreshold(vtkNew<vtkBrumeRadianceReconstruction>()->GetRadiosityThreshold())
 {
   this->SetSceneName("scene");
 }

@@ -48,7 +48,7 @@ public:
   ///@}
 
   ///@{
-  /// The reconstruction's radiosity threshold (default 128 hits).
+  /// The reconstruction's radiosity threshold (default: the reconstruction's).
   vtkSetMacro(RadiosityThreshold, double);
   vtkGetMacro(RadiosityThreshold, double);
   ///@}
@@ -108,7 +108,7 @@ protected:
   vtkTypeInt64 MinParticles = 100;
   vtkTypeInt64 MaxParticles = 1000000;
   int ReferenceSamples = 4096;
-  double RadiosityThreshold = 128.0;
+  double RadiosityThreshold; // vtkBrumeRadianceReconstruction's default
   vtkIdType Seed = 0;
   int DirectionalOrder = 3;
   vtkCamera* Camera = nullptr;
