@@ -3,6 +3,7 @@
 #include "BrumeBench.h"
 
 #include "vtkAlgorithmOutput.h"
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeDefaultSceneSource.h"
 #include "vtkBrumeLightTracer.h"
 #include "vtkBrumeRadianceReconstruction.h"
@@ -145,15 +146,15 @@ void BenchMirror(
     }
     vtkFieldData* fd = scene->GetPartitionedDataSet(i)->GetPartition(0)->GetFieldData();
     vtkNew<vtkStringArray> material;
-    material->SetName("BrumeMaterial");
+    material->SetName(vtkBrumeNames::Material);
     material->InsertNextValue("mirror");
-    fd->RemoveArray("BrumeMaterial");
+    fd->RemoveArray(vtkBrumeNames::Material);
     fd->AddArray(material);
     const double zero[3] = { 0, 0, 0 }, specular[3] = { 0.9, 0.9, 0.9 };
-    fd->RemoveArray("BrumeReflectance");
-    fd->RemoveArray("BrumeSpecular");
-    vtkBrumeSceneConversion::AppendTuple(fd, "BrumeReflectance", zero, 3);
-    vtkBrumeSceneConversion::AppendTuple(fd, "BrumeSpecular", specular, 3);
+    fd->RemoveArray(vtkBrumeNames::Reflectance);
+    fd->RemoveArray(vtkBrumeNames::Specular);
+    vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::Reflectance, zero, 3);
+    vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::Specular, specular, 3);
   }
   vtkNew<vtkBrumeLightTracer> tracer;
   tracer->SetInputData(scene);
@@ -228,7 +229,7 @@ void BenchRendering(vtkAlgorithm* source, vtkAlgorithm* tracer, double update, R
   {
     auto* image = vtkImageData::SafeDownCast(
       reconstruction->GetOutput()->GetPartitionedDataSet(i)->GetPartition(0));
-    if (image && image->GetCellData()->GetArray("SourceRadiance"))
+    if (image && image->GetCellData()->GetArray(vtkBrumeNames::SourceRadiance))
     {
       medium = image;
     }
@@ -258,7 +259,7 @@ void BenchRendering(vtkAlgorithm* source, vtkAlgorithm* tracer, double update, R
   rgba->SetSpacing(spacing);
   rgba->SetOrigin(
     origin[0] + spacing[0] / 2, origin[1] + spacing[1] / 2, origin[2] + spacing[2] / 2);
-  vtkDataArray* radiance = medium->GetCellData()->GetArray("SourceRadiance");
+  vtkDataArray* radiance = medium->GetCellData()->GetArray(vtkBrumeNames::SourceRadiance);
   vtkDataArray* extinction = medium->GetCellData()->GetArray("Extinction");
   vtkNew<vtkFloatArray> values;
   values->SetNumberOfComponents(4);
