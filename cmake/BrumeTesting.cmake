@@ -12,7 +12,7 @@ function (brume_test_driver name)
   add_executable("${name}" ${sources})
   target_include_directories("${name}" PRIVATE
     "${CMAKE_CURRENT_SOURCE_DIR}" "${PROJECT_SOURCE_DIR}/Testing/Cxx")
-  target_link_libraries("${name}" PRIVATE Brume::DataModel ${arg_LIBRARIES})
+  target_link_libraries("${name}" PRIVATE Brume::DataModel Brume::Conversion ${arg_LIBRARIES})
   brume_set_warnings("${name}")
   if (arg_RENDERING)
     target_link_libraries("${name}" PRIVATE

@@ -2,7 +2,7 @@
 #include "vtkBrumeSceneCamera.h"
 
 #include "vtkBrumeDataModelNames.h"
-#include "vtkBrumeSceneConversion.h"
+#include "vtkBrumeFieldTuple.h"
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
 #include "vtkDataObject.h"
@@ -26,13 +26,6 @@ bool ReadTuple(vtkFieldData* fd, const char* name, int n, double* values)
   }
   a->GetTuple(0, values);
   return true;
-}
-
-// Replaces the field array `name` by one tuple (the scene schema's writer).
-void WriteTuple(vtkFieldData* fd, const char* name, const double* values, int n)
-{
-  fd->RemoveArray(name);
-  vtkBrumeSceneConversion::AppendTuple(fd, name, values, n);
 }
 
 void DefaultView(double position[3], double focalPoint[3], double viewUp[3], double& viewAngle)
@@ -93,8 +86,8 @@ bool vtkBrumeSceneCamera::SetFromScene(vtkDataObject* scene, vtkCamera* camera)
 void vtkBrumeSceneCamera::WriteToScene(vtkCamera* camera, vtkFieldData* fieldData)
 {
   const double angle = camera->GetViewAngle();
-  WriteTuple(fieldData, vtkBrumeNames::CameraPosition, camera->GetPosition(), 3);
-  WriteTuple(fieldData, vtkBrumeNames::CameraFocalPoint, camera->GetFocalPoint(), 3);
-  WriteTuple(fieldData, vtkBrumeNames::CameraViewUp, camera->GetViewUp(), 3);
-  WriteTuple(fieldData, vtkBrumeNames::CameraViewAngle, &angle, 1);
+  vtkBrumeFieldTuple::Set(fieldData, vtkBrumeNames::CameraPosition, camera->GetPosition(), 3);
+  vtkBrumeFieldTuple::Set(fieldData, vtkBrumeNames::CameraFocalPoint, camera->GetFocalPoint(), 3);
+  vtkBrumeFieldTuple::Set(fieldData, vtkBrumeNames::CameraViewUp, camera->GetViewUp(), 3);
+  vtkBrumeFieldTuple::Set(fieldData, vtkBrumeNames::CameraViewAngle, &angle, 1);
 }

@@ -2,7 +2,7 @@
 #include "vtkBrumeVolumePropertyMedium.h"
 
 #include "vtkBrumeDataModelNames.h"
-#include "vtkBrumeSceneConversion.h"
+#include "vtkBrumeFieldTuple.h"
 #include "vtkCharArray.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
@@ -36,13 +36,6 @@ vtkCxxSetObjectMacro(vtkBrumeVolumePropertyMedium, VolumeProperty, vtkVolumeProp
 
 namespace
 {
-// Replaces the field array `name` by one tuple of `n` values.
-void SetField(vtkFieldData* fd, const char* name, const double* values, int n)
-{
-  fd->RemoveArray(name);
-  vtkBrumeSceneConversion::AppendTuple(fd, name, values, n);
-}
-
 void SetString(vtkFieldData* fd, const char* name, const std::string& value)
 {
   vtkNew<vtkStringArray> a;
@@ -422,14 +415,14 @@ int vtkBrumeVolumePropertyMedium::RequestData(
   vtkNew<vtkFieldData> fd;
   fd->DeepCopy(dataset->GetFieldData());
   const double sigmaA[3] = { 1.0 - this->Albedo[0], 1.0 - this->Albedo[1], 1.0 - this->Albedo[2] };
-  SetField(fd, vtkBrumeNames::SigmaA, sigmaA, 3);
-  SetField(fd, vtkBrumeNames::SigmaS, this->Albedo, 3);
+  vtkBrumeFieldTuple::Set(fd, vtkBrumeNames::SigmaA, sigmaA, 3);
+  vtkBrumeFieldTuple::Set(fd, vtkBrumeNames::SigmaS, this->Albedo, 3);
   const double g =
     std::clamp(static_cast<double>(property->GetScatteringAnisotropy()), -0.999, 0.999);
-  SetField(fd, vtkBrumeNames::G, &g, 1);
+  vtkBrumeFieldTuple::Set(fd, vtkBrumeNames::G, &g, 1);
   const double component = this->Component;
-  SetField(fd, vtkBrumeNames::ScalarComponent, &component, 1);
-  SetField(fd, vtkBrumeNames::ScalarOpacityUnitDistance, &unit, 1);
+  vtkBrumeFieldTuple::Set(fd, vtkBrumeNames::ScalarComponent, &component, 1);
+  vtkBrumeFieldTuple::Set(fd, vtkBrumeNames::ScalarOpacityUnitDistance, &unit, 1);
   SetString(fd, vtkBrumeNames::DensityArray, scalars->GetName());
   SetString(fd, vtkBrumeNames::Interpolation,
     property->GetInterpolationType() == VTK_NEAREST_INTERPOLATION ? "nearest" : "linear");

@@ -159,7 +159,7 @@ public:
   /**
    * Progressive step: traces `count` more particles, continuing the run
    * (Progressive must be on), and brings the textures and the actors up to
-   * date. On failure the pipeline keeps the run it had.
+   * date. On failure the pipeline keeps the run it had. One process only.
    */
   bool AddParticles(vtkTypeInt64 count);
 
@@ -186,7 +186,8 @@ public:
    * 0 at the bottom): the second frame's (the first uploads the textures
    * and compiles the shaders), or, with `supersample` K > 1, the mean of
    * K^2 frames over each pixel's area (vtkBrumeFloatImageCapture). After
-   * Update(); null on failure.
+   * Update(); null on failure. It draws in a window of its own: the props
+   * move there from a renderer AddToRenderer() gave.
    */
   vtkSmartPointer<vtkImageData> RenderImage(int supersample = 1);
 
