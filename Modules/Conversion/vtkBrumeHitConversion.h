@@ -32,7 +32,7 @@
 #ifndef vtkBrumeHitConversion_h
 #define vtkBrumeHitConversion_h
 
-#include "vtkBrumeDataModelModule.h" // For export macro
+#include "vtkBrumeConversionModule.h" // For export macro
 #include "vtkSmartPointer.h"         // For return values
 
 #include "brume/LightTracer.h"    // For brume::Hit
@@ -43,7 +43,7 @@
 
 class vtkPolyData;
 
-class VTKBRUMEDATAMODEL_EXPORT vtkBrumeHitConversion
+class VTKBRUMECONVERSION_EXPORT vtkBrumeHitConversion
 {
 public:
   ///@{

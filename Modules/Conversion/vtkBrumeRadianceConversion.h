@@ -47,7 +47,7 @@
 #ifndef vtkBrumeRadianceConversion_h
 #define vtkBrumeRadianceConversion_h
 
-#include "vtkBrumeDataModelModule.h" // For export macro
+#include "vtkBrumeConversionModule.h" // For export macro
 #include "vtkSmartPointer.h"         // For return values
 
 #include "brume/Reconstruction.h" // For brume::ObjectRadiance
@@ -58,7 +58,7 @@ class vtkImageData;
 class vtkPartitionedDataSet;
 class vtkPolyData;
 
-class VTKBRUMEDATAMODEL_EXPORT vtkBrumeRadianceConversion
+class VTKBRUMECONVERSION_EXPORT vtkBrumeRadianceConversion
 {
 public:
   /**

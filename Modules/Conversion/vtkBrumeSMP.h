@@ -10,11 +10,11 @@
 #ifndef vtkBrumeSMP_h
 #define vtkBrumeSMP_h
 
-#include "vtkBrumeDataModelModule.h" // For export macro
+#include "vtkBrumeConversionModule.h" // For export macro
 
 #include "brume/Parallel.h" // For brume::ParallelFor
 
-class VTKBRUMEDATAMODEL_EXPORT vtkBrumeSMP
+class VTKBRUMECONVERSION_EXPORT vtkBrumeSMP
 {
 public:
   /// A brume::ParallelFor that runs on vtkSMPTools::For.

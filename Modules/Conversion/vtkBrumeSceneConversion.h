@@ -49,7 +49,7 @@
 #ifndef vtkBrumeSceneConversion_h
 #define vtkBrumeSceneConversion_h
 
-#include "vtkBrumeDataModelModule.h" // For export macro
+#include "vtkBrumeConversionModule.h" // For export macro
 #include "vtkSmartPointer.h"         // For return values
 
 #include "brume/Scene.h" // For brume::Scene
@@ -63,7 +63,7 @@ class vtkAlgorithm;
 class vtkLightCollection;
 class vtkPartitionedDataSetCollection;
 
-class VTKBRUMEDATAMODEL_EXPORT vtkBrumeSceneConversion
+class VTKBRUMECONVERSION_EXPORT vtkBrumeSceneConversion
 {
 public:
   /// Where each core object came from in the collection.
