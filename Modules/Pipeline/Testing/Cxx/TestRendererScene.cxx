@@ -1,0 +1,243 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// vtkBrumeRendererScene: what a vtkRenderer holds, as a Brume scene.
+// - Opaque actors become surfaces in world coordinates with their
+//   property's material (diffuse x colour; a Phong lobe where Specular > 0,
+//   scaled to conserve energy); translucent actors are left out.
+// - Volumes become media classified by their volume property, placed by
+//   their translation and scale; a rotated volume is refused.
+// - Lights come scaled by LightScale; a renderer without one gets a
+//   headlight.
+// - Nothing is rebuilt when only the camera moves; a property edit is.
+// - The scene renders through vtkBrumePipeline to a lit, finite image.
+#include "vtkActor.h"
+#include "vtkBrumeDataModelNames.h"
+#include "vtkBrumeLightTracer.h"
+#include "vtkBrumePipeline.h"
+#include "vtkBrumeRendererScene.h"
+#include "vtkCamera.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkCompositeDataSet.h"
+#include "vtkCubeSource.h"
+#include "vtkDataArray.h"
+#include "vtkExecutive.h"
+#include "vtkFieldData.h"
+#include "vtkFixedPointVolumeRayCastMapper.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkLight.h"
+#include "vtkNew.h"
+#include "vtkPartitionedDataSet.h"
+#include "vtkPartitionedDataSetCollection.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPlaneSource.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+#include "vtkRTAnalyticSource.h"
+#include "vtkRenderer.h"
+#include "vtkStringArray.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+
+#include <cmath>
+#include <iostream>
+#include <string>
+
+namespace
+{
+int Failures = 0;
+
+void Check(bool ok, const std::string& what)
+{
+  if (!ok)
+  {
+    std::cerr << "FAILED: " << what << "\n";
+    ++Failures;
+  }
+}
+
+bool Near(double a, double b)
+{
+  return std::abs(a - b) <= 1e-6 * std::max(1.0, std::abs(b));
+}
+
+// The object named `name` of a scene, or null.
+vtkDataObject* Object(vtkPartitionedDataSetCollection* scene, const std::string& name)
+{
+  for (unsigned int i = 0; i < scene->GetNumberOfPartitionedDataSets(); ++i)
+  {
+    if (scene->HasMetaData(i) && name == scene->GetMetaData(i)->Get(vtkCompositeDataSet::NAME()))
+    {
+      return scene->GetPartitionedDataSet(i)->GetPartition(0);
+    }
+  }
+  return nullptr;
+}
+
+double Component(vtkDataObject* object, const char* name, int c)
+{
+  vtkDataArray* a = object ? object->GetFieldData()->GetArray(name) : nullptr;
+  return a ? a->GetComponent(0, c) : -1.0;
+}
+
+std::string Material(vtkDataObject* object)
+{
+  auto* a = object ? vtkStringArray::SafeDownCast(
+                       object->GetFieldData()->GetAbstractArray(vtkBrumeNames::Material))
+                   : nullptr;
+  return a && a->GetNumberOfValues() > 0 ? a->GetValue(0) : std::string();
+}
+
+vtkSmartPointer<vtkActor> Actor(vtkAlgorithm* source, double r, double g, double b)
+{
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(source->GetOutputPort());
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetColor(r, g, b);
+  return actor;
+}
+}
+
+int TestRendererScene(int, char*[])
+{
+  vtkNew<vtkRenderer> renderer;
+  // A ground facing +y, a shiny box moved by its actor, a translucent box.
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetOrigin(-3, -1, 3);
+  plane->SetPoint1(3, -1, 3);
+  plane->SetPoint2(-3, -1, -3);
+  auto ground = Actor(plane, 0.6, 0.5, 0.4);
+  renderer->AddActor(ground);
+  vtkNew<vtkCubeSource> cube;
+  auto box = Actor(cube, 0.8, 0.2, 0.2);
+  box->SetPosition(0.5, 0, 0);
+  box->GetProperty()->SetSpecular(0.3);
+  box->GetProperty()->SetSpecularPower(40);
+  renderer->AddActor(box);
+  auto glass = Actor(cube, 0.2, 0.2, 0.8);
+  glass->GetProperty()->SetOpacity(0.5);
+  renderer->AddActor(glass);
+  // VTK's wavelet as a volume, scaled and moved.
+  vtkNew<vtkRTAnalyticSource> wavelet;
+  wavelet->SetWholeExtent(-4, 4, -4, 4, -4, 4);
+  vtkNew<vtkFixedPointVolumeRayCastMapper> volumeMapper;
+  volumeMapper->SetInputConnection(wavelet->GetOutputPort());
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(100, 0.0);
+  opacity->AddPoint(250, 0.5);
+  vtkNew<vtkColorTransferFunction> colour;
+  colour->AddRGBPoint(100, 1.0, 1.0, 1.0);
+  colour->AddRGBPoint(250, 1.0, 0.9, 0.8);
+  vtkNew<vtkVolumeProperty> property;
+  property->SetScalarOpacity(opacity);
+  property->SetColor(colour);
+  vtkNew<vtkVolume> volume;
+  volume->SetMapper(volumeMapper);
+  volume->SetProperty(property);
+  volume->SetScale(0.1);
+  volume->SetPosition(0, 1, 0);
+  renderer->AddVolume(volume);
+  vtkNew<vtkLight> light;
+  light->SetLightTypeToSceneLight();
+  light->SetPositional(true);
+  light->SetConeAngle(180);
+  light->SetPosition(0, 3, 2);
+  light->SetFocalPoint(0, 0, 0);
+  light->SetIntensity(20);
+  renderer->AddLight(light);
+  renderer->GetActiveCamera()->SetPosition(0, 1, 8);
+
+  vtkNew<vtkBrumeRendererScene> source;
+  source->SetRenderer(renderer);
+  source->SetLightScale(2);
+  source->Update();
+  vtkPartitionedDataSetCollection* scene = source->GetOutput();
+  Check(scene->GetNumberOfPartitionedDataSets() == 3,
+    "three objects: the ground, the box and the volume (the translucent box left out)");
+  vtkDataObject* floor = Object(scene, "actor 0");
+  Check(Material(floor) == "lambertian" &&
+      Near(Component(floor, vtkBrumeNames::Reflectance, 0), 0.6) &&
+      Near(Component(floor, vtkBrumeNames::Reflectance, 2), 0.4),
+    "the ground: Lambertian, Diffuse x DiffuseColor");
+  auto* shiny = vtkPolyData::SafeDownCast(Object(scene, "actor 1"));
+  // vtkProperty::SetColor sets the specular colour too: rho_s = 0.3 x colour,
+  // and the red channel's 0.8 + 0.24 scaled to 1.
+  Check(Material(shiny) == "phong" &&
+      Near(Component(shiny, vtkBrumeNames::Specular, 0), 0.24 / 1.04) &&
+      Near(Component(shiny, vtkBrumeNames::Reflectance, 0), 0.8 / 1.04) &&
+      Near(Component(shiny, vtkBrumeNames::Reflectance, 1), 0.2 / 1.04) &&
+      Near(Component(shiny, vtkBrumeNames::Exponent, 0), 40),
+    "the box: a Phong lobe, rho_d + rho_s scaled to 1 where they exceeded it");
+  double bounds[6] = { 0, 0, 0, 0, 0, 0 };
+  if (shiny)
+  {
+    shiny->GetBounds(bounds);
+  }
+  Check(
+    Near(bounds[0], 0.0) && Near(bounds[1], 1.0), "the box in world coordinates (moved by 0.5)");
+  Check(!Object(scene, "actor 2"), "the translucent box is left out");
+  auto* medium = vtkImageData::SafeDownCast(Object(scene, "volume 0"));
+  double extent[6] = { 0, 0, 0, 0, 0, 0 };
+  if (medium)
+  {
+    medium->GetBounds(extent);
+  }
+  Check(medium && Near(extent[0], -0.4) && Near(extent[1], 0.4) && Near(extent[2], 0.6) &&
+      Near(extent[3], 1.4) && medium->GetFieldData()->GetArray(vtkBrumeNames::ScalarOpacity),
+    "the volume: a classified medium, scaled by 0.1 and moved by 1 along y");
+  auto* types =
+    vtkStringArray::SafeDownCast(scene->GetFieldData()->GetAbstractArray(vtkBrumeNames::LightType));
+  Check(types && types->GetNumberOfValues() == 1 && types->GetValue(0) == "point" &&
+      Near(scene->GetFieldData()->GetArray(vtkBrumeNames::LightIntensity)->GetComponent(0, 1), 40),
+    "the point light, its intensity times LightScale");
+
+  // A camera move rebuilds nothing; a property edit does.
+  const vtkMTimeType built = scene->GetMTime();
+  renderer->GetActiveCamera()->Azimuth(20);
+  source->Update();
+  Check(source->GetOutput()->GetMTime() == built, "a camera move rebuilds nothing");
+  ground->GetProperty()->SetColor(0.2, 0.7, 0.3);
+  source->Update();
+  Check(source->GetOutput()->GetMTime() > built &&
+      Near(Component(Object(source->GetOutput(), "actor 0"), vtkBrumeNames::Reflectance, 1), 0.7),
+    "a colour edit rebuilds the scene");
+
+  // Through the pipeline: a lit, finite image.
+  vtkNew<vtkBrumePipeline> pipeline;
+  pipeline->SetInputConnection(source->GetOutputPort());
+  pipeline->SetCamera(renderer->GetActiveCamera());
+  pipeline->SetSize(48, 48);
+  pipeline->GetTracer()->SetNumberOfParticles(30000);
+  Check(pipeline->Update(), "the renderer's scene traces and reconstructs");
+  vtkSmartPointer<vtkImageData> image = pipeline->RenderImage();
+  auto* radiance =
+    image ? vtkFloatArray::SafeDownCast(image->GetPointData()->GetArray("Radiance")) : nullptr;
+  double sum = 0.0;
+  bool finite = radiance != nullptr;
+  for (vtkIdType i = 0; radiance && i < radiance->GetNumberOfValues(); ++i)
+  {
+    finite = finite && std::isfinite(radiance->GetValue(i));
+    sum += radiance->GetValue(i);
+  }
+  Check(finite && sum > 0.0, "its image is lit and finite");
+
+  // Without lights: a headlight; a rotated volume: refused.
+  renderer->RemoveAllLights();
+  source->Modified();
+  source->Update();
+  types = vtkStringArray::SafeDownCast(
+    source->GetOutput()->GetFieldData()->GetAbstractArray(vtkBrumeNames::LightType));
+  Check(types && types->GetNumberOfValues() == 1 && types->GetValue(0) == "directional",
+    "a renderer without lights gets a headlight");
+  volume->RotateY(30);
+  std::cerr << "(an error expected below)\n";
+  Check(source->GetExecutive()->Update() == 0, "a rotated volume is refused");
+  if (Failures == 0)
+  {
+    std::cout << "vtkBrumeRendererScene: surfaces, materials, volumes, lights, rebuilds: ok\n";
+  }
+  return Failures == 0 ? 0 : 1;
+}

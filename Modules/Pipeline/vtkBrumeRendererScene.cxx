@@ -1,0 +1,370 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkBrumeRendererScene.h"
+
+#include "vtkAbstractVolumeMapper.h"
+#include "vtkActor.h"
+#include "vtkActorCollection.h"
+#include "vtkAlgorithm.h"
+#include "vtkBrumeDataModelNames.h"
+#include "vtkBrumeFieldTuple.h"
+#include "vtkBrumeSceneConversion.h"
+#include "vtkBrumeVolumePropertyMedium.h"
+#include "vtkCamera.h"
+#include "vtkCellArray.h"
+#include "vtkDataSetSurfaceFilter.h"
+#include "vtkExecutive.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkMapper.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPartitionedDataSetCollection.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkProperty.h"
+#include "vtkRenderer.h"
+#include "vtkSmartPointer.h"
+#include "vtkStringArray.h"
+#include "vtkTimeStamp.h"
+#include "vtkVolume.h"
+#include "vtkVolumeCollection.h"
+#include "vtkVolumeProperty.h"
+#include "vtkWeakPointer.h"
+
+#include "brume/Scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkBrumeRendererScene);
+
+struct vtkBrumeRendererScene::vtkInternals
+{
+  vtkWeakPointer<vtkRenderer> Renderer;
+  // The props last seen, and when they last changed: vtkRenderer gathers
+  // its actors and volumes anew at every GetActors(), GetVolumes(), which
+  // modifies those collections each time.
+  std::vector<vtkProp*> Props;
+  vtkTimeStamp PropsChanged;
+};
+
+namespace
+{
+// Brings a mapper's input up to date; its dataset, or null.
+vtkDataSet* MapperInput(vtkAbstractMapper* mapper, int port = 0)
+{
+  if (!mapper || mapper->GetNumberOfInputConnections(port) < 1)
+  {
+    return nullptr;
+  }
+  vtkAlgorithm* producer = mapper->GetInputAlgorithm(port, 0);
+  if (producer)
+  {
+    producer->Update();
+  }
+  return vtkDataSet::SafeDownCast(mapper->GetInputDataObject(port, 0));
+}
+
+// The surface of `data` in world coordinates (`matrix` applied): its points
+// and polygons only (what a Brume surface is made of), or null when it has
+// no polygon.
+vtkSmartPointer<vtkPolyData> WorldSurface(vtkDataSet* data, vtkMatrix4x4* matrix)
+{
+  vtkSmartPointer<vtkPolyData> polygons = vtkPolyData::SafeDownCast(data);
+  if (!polygons)
+  {
+    vtkNew<vtkDataSetSurfaceFilter> surface;
+    surface->SetInputData(data);
+    surface->Update();
+    polygons = surface->GetOutput();
+  }
+  if (!polygons || !polygons->GetPoints() ||
+    polygons->GetNumberOfPolys() + polygons->GetNumberOfStrips() == 0)
+  {
+    return nullptr;
+  }
+  auto out = vtkSmartPointer<vtkPolyData>::New();
+  vtkPoints* in = polygons->GetPoints();
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToFloat();
+  points->SetNumberOfPoints(in->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < in->GetNumberOfPoints(); ++i)
+  {
+    double p[4] = { 0, 0, 0, 1 };
+    in->GetPoint(i, p);
+    matrix->MultiplyPoint(p, p);
+    points->SetPoint(i, p[0] / p[3], p[1] / p[3], p[2] / p[3]);
+  }
+  out->SetPoints(points);
+  out->SetPolys(polygons->GetPolys());
+  out->SetStrips(polygons->GetStrips());
+  return out;
+}
+
+// The actor's vtkProperty as a Brume material, in the surface's field data.
+void WriteMaterial(vtkProperty* property, vtkFieldData* fd)
+{
+  double diffuse[3], specular[3];
+  property->GetDiffuseColor(diffuse);
+  property->GetSpecularColor(specular);
+  const double kd = property->GetDiffuse();
+  const double ks = property->GetSpecular() > 0.0 ? property->GetSpecular() : 0.0;
+  double scale = 1.0;
+  for (int c = 0; c < 3; ++c)
+  {
+    diffuse[c] = std::max(0.0, kd * diffuse[c]);
+    specular[c] = std::max(0.0, ks * specular[c]);
+    // Energy conservation, rho_d + rho_s <= 1 per channel: both scaled down.
+    const double sum = diffuse[c] + specular[c];
+    scale = sum > 1.0 ? std::min(scale, 1.0 / sum) : scale;
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    diffuse[c] *= scale;
+    specular[c] *= scale;
+  }
+  vtkNew<vtkStringArray> material;
+  material->SetName(vtkBrumeNames::Material);
+  material->InsertNextValue(ks > 0.0 ? "phong" : "lambertian");
+  fd->AddArray(material);
+  vtkBrumeFieldTuple::Set(fd, vtkBrumeNames::Reflectance, diffuse, 3);
+  if (ks > 0.0)
+  {
+    const double exponent = std::max(1.0, property->GetSpecularPower());
+    vtkBrumeFieldTuple::Set(fd, vtkBrumeNames::Specular, specular, 3);
+    vtkBrumeFieldTuple::Set(fd, vtkBrumeNames::Exponent, &exponent, 1);
+  }
+}
+
+// The light as vtkBrumeLightTracer reads it, where it stands now (camera
+// lights and headlights included), its intensity scaled.
+vtkSmartPointer<vtkLight> SceneLight(vtkLight* light, double scale)
+{
+  auto copy = vtkSmartPointer<vtkLight>::New();
+  double position[3], focal[3];
+  light->GetTransformedPosition(position);
+  light->GetTransformedFocalPoint(focal);
+  copy->SetLightTypeToSceneLight();
+  copy->SetPosition(position);
+  copy->SetFocalPoint(focal);
+  copy->SetPositional(light->GetPositional());
+  copy->SetConeAngle(light->GetConeAngle());
+  copy->SetDiffuseColor(light->GetDiffuseColor());
+  copy->SetIntensity(light->GetIntensity() * scale);
+  return copy;
+}
+}
+
+vtkBrumeRendererScene::vtkBrumeRendererScene()
+  : Internals(new vtkInternals)
+{
+  this->SetNumberOfInputPorts(0);
+}
+
+vtkBrumeRendererScene::~vtkBrumeRendererScene()
+{
+  delete this->Internals;
+}
+
+void vtkBrumeRendererScene::SetRenderer(vtkRenderer* renderer)
+{
+  if (this->Internals->Renderer != renderer)
+  {
+    this->Internals->Renderer = renderer;
+    this->Modified();
+  }
+}
+
+vtkRenderer* vtkBrumeRendererScene::GetRenderer()
+{
+  return this->Internals->Renderer;
+}
+
+vtkMTimeType vtkBrumeRendererScene::GetMTime()
+{
+  vtkMTimeType t = this->Superclass::GetMTime();
+  vtkRenderer* renderer = this->Internals->Renderer;
+  if (!renderer)
+  {
+    return t;
+  }
+  auto input = [&t](vtkAbstractMapper* mapper)
+  {
+    if (!mapper)
+    {
+      return;
+    }
+    t = std::max(t, mapper->GetMTime());
+    if (mapper->GetNumberOfInputConnections(0) > 0)
+    {
+      if (vtkAlgorithm* producer = mapper->GetInputAlgorithm(0, 0))
+      {
+        t = std::max(t, producer->GetMTime());
+      }
+    }
+  };
+  std::vector<vtkProp*> props;
+  vtkActorCollection* actors = renderer->GetActors();
+  actors->InitTraversal();
+  while (vtkActor* actor = actors->GetNextActor())
+  {
+    t = std::max(t, actor->GetMTime()); // its matrix, property and visibility
+    input(actor->GetMapper());
+    props.push_back(actor);
+  }
+  vtkVolumeCollection* volumes = renderer->GetVolumes();
+  volumes->InitTraversal();
+  while (vtkVolume* volume = volumes->GetNextVolume())
+  {
+    t = std::max(t, volume->GetMTime()); // its property and transfer functions
+    input(volume->GetMapper());
+    props.push_back(volume);
+  }
+  if (props != this->Internals->Props)
+  {
+    this->Internals->Props = props;
+    this->Internals->PropsChanged.Modified();
+  }
+  t = std::max(t, this->Internals->PropsChanged.GetMTime());
+  // Scene lights only: the renderer moves headlights and camera lights with
+  // the camera, which rebuilds nothing.
+  vtkLightCollection* lights = renderer->GetLights();
+  t = std::max(t, lights->GetMTime());
+  lights->InitTraversal();
+  while (vtkLight* light = lights->GetNextItem())
+  {
+    t = light->LightTypeIsSceneLight() ? std::max(t, light->GetMTime()) : t;
+  }
+  return t;
+}
+
+int vtkBrumeRendererScene::RequestData(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  auto* output = vtkPartitionedDataSetCollection::GetData(outputVector, 0);
+  vtkRenderer* renderer = this->Internals->Renderer;
+  if (!renderer)
+  {
+    vtkErrorMacro("No renderer: SetRenderer first.");
+    return 0;
+  }
+  vtkNew<vtkPartitionedDataSetCollection> scene;
+  int index = 0;
+  vtkActorCollection* actors = renderer->GetActors();
+  actors->InitTraversal();
+  while (vtkActor* actor = actors->GetNextActor())
+  {
+    const std::string name = "actor " + std::to_string(index++);
+    if (!actor->GetVisibility() || actor->GetProperty()->GetOpacity() < 1.0)
+    {
+      continue; // Brume's surfaces are opaque
+    }
+    vtkDataSet* data = MapperInput(actor->GetMapper());
+    vtkSmartPointer<vtkPolyData> surface = data ? WorldSurface(data, actor->GetMatrix()) : nullptr;
+    if (!surface)
+    {
+      continue;
+    }
+    WriteMaterial(actor->GetProperty(), surface->GetFieldData());
+    vtkBrumeSceneConversion::AddObject(scene, surface, name);
+  }
+  index = 0;
+  vtkVolumeCollection* volumes = renderer->GetVolumes();
+  volumes->InitTraversal();
+  while (vtkVolume* volume = volumes->GetNextVolume())
+  {
+    const std::string name = "volume " + std::to_string(index++);
+    vtkDataSet* data = volume->GetVisibility() ? MapperInput(volume->GetMapper()) : nullptr;
+    if (!data)
+    {
+      continue;
+    }
+    vtkMatrix4x4* m = volume->GetMatrix();
+    for (int r = 0; r < 3; ++r)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        if ((r != c && m->GetElement(r, c) != 0.0) || (r == c && !(m->GetElement(r, c) > 0.0)))
+        {
+          vtkErrorMacro("" << name << " is rotated, mirrored or sheared: only a translation and "
+                           << "an axis-aligned scale of a volume can be lit.");
+          return 0;
+        }
+      }
+    }
+    vtkNew<vtkBrumeVolumePropertyMedium> medium;
+    medium->SetInputData(data);
+    medium->SetVolumeProperty(volume->GetProperty());
+    medium->SetAlbedo(this->Albedo);
+    if (!medium->GetExecutive()->Update())
+    {
+      vtkErrorMacro("" << name << " could not be made a medium (see the error above).");
+      return 0;
+    }
+    vtkNew<vtkImageData> placed;
+    placed->ShallowCopy(medium->GetOutput());
+    double origin[3], spacing[3];
+    placed->GetOrigin(origin);
+    placed->GetSpacing(spacing);
+    for (int a = 0; a < 3; ++a)
+    {
+      origin[a] = m->GetElement(a, a) * origin[a] + m->GetElement(a, 3);
+      spacing[a] *= m->GetElement(a, a);
+    }
+    placed->SetOrigin(origin);
+    placed->SetSpacing(spacing);
+    vtkBrumeSceneConversion::AddObject(scene, placed, name);
+  }
+  if (scene->GetNumberOfPartitionedDataSets() == 0)
+  {
+    vtkErrorMacro("The renderer holds no opaque actor with polygons and no volume to light.");
+    return 0;
+  }
+
+  // The lights, as vtkBrumeLightTracer reads vtkLights, in the scene.
+  vtkNew<vtkLightCollection> lights;
+  vtkLightCollection* given = renderer->GetLights();
+  given->InitTraversal();
+  while (vtkLight* light = given->GetNextItem())
+  {
+    if (light->GetSwitch())
+    {
+      lights->AddItem(SceneLight(light, this->LightScale));
+    }
+  }
+  if (lights->GetNumberOfItems() == 0)
+  {
+    // What VTK gives a renderer without lights: a headlight.
+    vtkNew<vtkLight> headlight;
+    vtkCamera* camera = renderer->GetActiveCamera();
+    headlight->SetPosition(camera->GetPosition());
+    headlight->SetFocalPoint(camera->GetFocalPoint());
+    lights->AddItem(SceneLight(headlight, this->LightScale));
+  }
+  brume::Scene converted;
+  const std::string error = vtkBrumeSceneConversion::ConvertLights(lights, converted);
+  if (!error.empty())
+  {
+    vtkErrorMacro("The renderer's lights: " << error << ".");
+    return 0;
+  }
+  vtkBrumeSceneConversion::AppendFieldLights(converted.Lights, scene->GetFieldData());
+  output->ShallowCopy(scene);
+  return 1;
+}
+
+void vtkBrumeRendererScene::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Renderer: " << this->Internals->Renderer.GetPointer() << "\n";
+  os << indent << "LightScale: " << this->LightScale << "\n";
+  os << indent << "Albedo: " << this->Albedo[0] << " " << this->Albedo[1] << " " << this->Albedo[2]
+     << "\n";
+}

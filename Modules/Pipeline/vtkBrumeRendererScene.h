@@ -1,0 +1,101 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkBrumeRendererScene
+ * @brief   the scene a vtkRenderer holds, as a Brume scene collection
+ *
+ * A source whose output is the Brume scene (see vtkBrumeSceneConversion) of
+ * a renderer's visible props and lights, so that what VTK draws with
+ * mappers, properties and volumes is what Brume lights:
+ *
+ * @code
+ * vtkNew<vtkBrumeRendererScene> scene;
+ * scene->SetRenderer(renderer);                 // the renderer you built
+ * vtkNew<vtkBrumePipeline> pipeline;
+ * pipeline->SetInputConnection(scene->GetOutputPort());
+ * pipeline->SetCamera(renderer->GetActiveCamera());
+ * pipeline->Update();
+ * @endcode
+ *
+ * - **Actors** (any vtkMapper whose input is a vtkDataSet; other than
+ *   polygonal data, its outer surface) become surfaces in world coordinates
+ *   (the actor's matrix applied). The vtkProperty gives the material:
+ *   Diffuse x DiffuseColor the diffuse reflectance; with Specular > 0 a
+ *   normalized Phong lobe of Specular x SpecularColor and SpecularPower
+ *   (both scaled down together where their sum would exceed 1). Actors
+ *   with Opacity < 1 are left out (Brume's surfaces are opaque), as are
+ *   props that are not vtkActors or vtkVolumes. Scalar colouring and
+ *   textures are not read: a surface has its property's colour.
+ * - **Volumes** become media classified by their vtkVolumeProperty
+ *   (vtkBrumeVolumePropertyMedium, its Albedo given here): images
+ *   directly, other datasets resampled. The volume's translation and
+ *   axis-aligned scale are applied; a rotated volume is refused.
+ * - **Lights**: the renderer's switched-on lights, Intensity x DiffuseColor
+ *   x LightScale read as W/sr (positional) or W/m^2 (directional), as
+ *   vtkBrumeLightTracer reads vtkLights. Headlights and camera lights are
+ *   taken where they stand when the scene is built; they do not follow the
+ *   camera afterwards. A renderer without a light gets what VTK would give
+ *   it: a directional light along the active camera's view.
+ *
+ * The output is rebuilt only when a prop, its mapper's input, a property,
+ * a volume property or a scene light changed (camera moves rebuild
+ * nothing). The camera is not part of the scene: give the renderer's to
+ * vtkBrumePipeline::SetCamera.
+ *
+ * @sa vtkBrumePipeline vtkBrumeVolumePropertyMedium vtkBrumeSceneConversion
+ */
+#ifndef vtkBrumeRendererScene_h
+#define vtkBrumeRendererScene_h
+
+#include "vtkBrumePipelineModule.h" // For export macro
+#include "vtkPartitionedDataSetCollectionAlgorithm.h"
+
+class vtkRenderer;
+
+class VTKBRUMEPIPELINE_EXPORT vtkBrumeRendererScene
+  : public vtkPartitionedDataSetCollectionAlgorithm
+{
+public:
+  static vtkBrumeRendererScene* New();
+  vtkTypeMacro(vtkBrumeRendererScene, vtkPartitionedDataSetCollectionAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// The renderer whose props and lights make the scene (held weakly: the
+  /// renderer usually owns what lights it).
+  void SetRenderer(vtkRenderer* renderer);
+  vtkRenderer* GetRenderer();
+  ///@}
+
+  ///@{
+  /// Multiplies every light's Intensity x DiffuseColor (default 1).
+  vtkSetClampMacro(LightScale, double, 0.0, 1e12);
+  vtkGetMacro(LightScale, double);
+  ///@}
+
+  ///@{
+  /// Single-scattering albedo of every volume's medium (default 0.8 0.8 0.8).
+  vtkSetVector3Macro(Albedo, double);
+  vtkGetVector3Macro(Albedo, double);
+  ///@}
+
+  /// Including the renderer's props, their data and the scene's lights.
+  vtkMTimeType GetMTime() override;
+
+protected:
+  vtkBrumeRendererScene();
+  ~vtkBrumeRendererScene() override;
+
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  double LightScale = 1.0;
+  double Albedo[3] = { 0.8, 0.8, 0.8 };
+
+private:
+  vtkBrumeRendererScene(const vtkBrumeRendererScene&) = delete;
+  void operator=(const vtkBrumeRendererScene&) = delete;
+
+  struct vtkInternals;
+  vtkInternals* Internals;
+};
+
+#endif
