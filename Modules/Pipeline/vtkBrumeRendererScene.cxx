@@ -20,6 +20,7 @@
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkMapper.h"
+#include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -40,6 +41,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -53,6 +55,8 @@ struct vtkBrumeRendererScene::vtkInternals
   // modifies those collections each time.
   std::vector<vtkProp*> Props;
   vtkTimeStamp PropsChanged;
+  // The props the last RequestData made part of the scene.
+  std::set<vtkProp*> Translated;
 };
 
 namespace
@@ -144,8 +148,9 @@ void WriteMaterial(vtkProperty* property, vtkFieldData* fd)
 }
 
 // The light as vtkBrumeLightTracer reads it, where it stands now (camera
-// lights and headlights included), its intensity scaled.
-vtkSmartPointer<vtkLight> SceneLight(vtkLight* light, double scale)
+// lights and headlights included), its intensity scaled; with `vtkUnits`,
+// Intensity 1 an irradiance of pi at the focal point.
+vtkSmartPointer<vtkLight> SceneLight(vtkLight* light, double scale, bool vtkUnits)
 {
   auto copy = vtkSmartPointer<vtkLight>::New();
   double position[3], focal[3];
@@ -157,7 +162,13 @@ vtkSmartPointer<vtkLight> SceneLight(vtkLight* light, double scale)
   copy->SetPositional(light->GetPositional());
   copy->SetConeAngle(light->GetConeAngle());
   copy->SetDiffuseColor(light->GetDiffuseColor());
-  copy->SetIntensity(light->GetIntensity() * scale);
+  double factor = scale;
+  if (vtkUnits)
+  {
+    const double d2 = vtkMath::Distance2BetweenPoints(position, focal);
+    factor *= vtkMath::Pi() * (light->GetPositional() ? d2 : 1.0);
+  }
+  copy->SetIntensity(light->GetIntensity() * factor);
   return copy;
 }
 }
@@ -256,6 +267,8 @@ int vtkBrumeRendererScene::RequestData(
     return 0;
   }
   vtkNew<vtkPartitionedDataSetCollection> scene;
+  std::set<vtkProp*>& translated = this->Internals->Translated;
+  translated.clear();
   int index = 0;
   vtkActorCollection* actors = renderer->GetActors();
   actors->InitTraversal();
@@ -274,6 +287,7 @@ int vtkBrumeRendererScene::RequestData(
     }
     WriteMaterial(actor->GetProperty(), surface->GetFieldData());
     vtkBrumeSceneConversion::AddObject(scene, surface, name);
+    translated.insert(actor);
   }
   index = 0;
   vtkVolumeCollection* volumes = renderer->GetVolumes();
@@ -321,6 +335,7 @@ int vtkBrumeRendererScene::RequestData(
     placed->SetOrigin(origin);
     placed->SetSpacing(spacing);
     vtkBrumeSceneConversion::AddObject(scene, placed, name);
+    translated.insert(volume);
   }
   if (scene->GetNumberOfPartitionedDataSets() == 0)
   {
@@ -336,7 +351,7 @@ int vtkBrumeRendererScene::RequestData(
   {
     if (light->GetSwitch())
     {
-      lights->AddItem(SceneLight(light, this->LightScale));
+      lights->AddItem(SceneLight(light, this->LightScale, !this->PhysicalLights));
     }
   }
   if (lights->GetNumberOfItems() == 0)
@@ -346,7 +361,7 @@ int vtkBrumeRendererScene::RequestData(
     vtkCamera* camera = renderer->GetActiveCamera();
     headlight->SetPosition(camera->GetPosition());
     headlight->SetFocalPoint(camera->GetFocalPoint());
-    lights->AddItem(SceneLight(headlight, this->LightScale));
+    lights->AddItem(SceneLight(headlight, this->LightScale, !this->PhysicalLights));
   }
   brume::Scene converted;
   const std::string error = vtkBrumeSceneConversion::ConvertLights(lights, converted);
@@ -360,10 +375,16 @@ int vtkBrumeRendererScene::RequestData(
   return 1;
 }
 
+bool vtkBrumeRendererScene::Translates(vtkProp* prop)
+{
+  return this->Internals->Translated.count(prop) > 0;
+}
+
 void vtkBrumeRendererScene::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Renderer: " << this->Internals->Renderer.GetPointer() << "\n";
+  os << indent << "PhysicalLights: " << this->PhysicalLights << "\n";
   os << indent << "LightScale: " << this->LightScale << "\n";
   os << indent << "Albedo: " << this->Albedo[0] << " " << this->Albedo[1] << " " << this->Albedo[2]
      << "\n";

@@ -29,12 +29,19 @@
  *   (vtkBrumeVolumePropertyMedium, its Albedo given here): images
  *   directly, other datasets resampled. The volume's translation and
  *   axis-aligned scale are applied; a rotated volume is refused.
- * - **Lights**: the renderer's switched-on lights, Intensity x DiffuseColor
- *   x LightScale read as W/sr (positional) or W/m^2 (directional), as
- *   vtkBrumeLightTracer reads vtkLights. Headlights and camera lights are
- *   taken where they stand when the scene is built; they do not follow the
- *   camera afterwards. A renderer without a light gets what VTK would give
- *   it: a directional light along the active camera's view.
+ * - **Lights**: the renderer's switched-on lights. VTK's intensities are
+ *   factors of its shading, not radiometric: by default (PhysicalLights
+ *   off) a light of Intensity 1 gives an irradiance of pi W/m^2 at its
+ *   focal point (a positional light: pi x its distance to the focal point
+ *   squared, in W/sr; a directional one: pi W/m^2), so that a white
+ *   Lambertian surface facing it there has a radiance of 1, as bright as
+ *   VTK shades it. With PhysicalLights on, Intensity x DiffuseColor is read
+ *   as W/sr (positional) or W/m^2 (directional), as vtkBrumeLightTracer
+ *   reads vtkLights. Both are multiplied by LightScale. Headlights and
+ *   camera lights are taken where they stand when the scene is built; they
+ *   do not follow the camera afterwards. A renderer without a light gets
+ *   what VTK would give it: a directional light along the active camera's
+ *   view.
  *
  * The output is rebuilt only when a prop, its mapper's input, a property,
  * a volume property or a scene light changed (camera moves rebuild
@@ -49,6 +56,7 @@
 #include "vtkBrumePipelineModule.h" // For export macro
 #include "vtkPartitionedDataSetCollectionAlgorithm.h"
 
+class vtkProp;
 class vtkRenderer;
 
 class VTKBRUMEPIPELINE_EXPORT vtkBrumeRendererScene
@@ -67,7 +75,14 @@ public:
   ///@}
 
   ///@{
-  /// Multiplies every light's Intensity x DiffuseColor (default 1).
+  /// Lights in W/sr and W/m^2 rather than VTK's shading factors (default off).
+  vtkSetMacro(PhysicalLights, bool);
+  vtkGetMacro(PhysicalLights, bool);
+  vtkBooleanMacro(PhysicalLights, bool);
+  ///@}
+
+  ///@{
+  /// Multiplies every light's power (default 1).
   vtkSetClampMacro(LightScale, double, 0.0, 1e12);
   vtkGetMacro(LightScale, double);
   ///@}
@@ -81,12 +96,17 @@ public:
   /// Including the renderer's props, their data and the scene's lights.
   vtkMTimeType GetMTime() override;
 
+  /// Whether the last update made `prop` part of the scene (the props it
+  /// did not are drawn by VTK as usual, see vtkBrumePass).
+  bool Translates(vtkProp* prop);
+
 protected:
   vtkBrumeRendererScene();
   ~vtkBrumeRendererScene() override;
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
+  bool PhysicalLights = false;
   double LightScale = 1.0;
   double Albedo[3] = { 0.8, 0.8, 0.8 };
 

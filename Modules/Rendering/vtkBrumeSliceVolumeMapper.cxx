@@ -9,6 +9,8 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkObjectFactory.h"
+#include "vtkRenderer.h"
+#include "vtkVolumeCollection.h"
 
 #include <algorithm>
 #include <cmath>
@@ -33,6 +35,25 @@ std::string CheckAsymmetry(vtkFieldData* fd, const char* coefficients)
 
 vtkBrumeSliceVolumeMapper::vtkBrumeSliceVolumeMapper() = default;
 vtkBrumeSliceVolumeMapper::~vtkBrumeSliceVolumeMapper() = default;
+
+void vtkBrumeSliceVolumeMapper::SetVolumeGroup(vtkVolumeCollection* volumes)
+{
+  if (this->VolumeGroup != volumes)
+  {
+    this->VolumeGroup = volumes;
+    this->Modified();
+  }
+}
+
+vtkVolumeCollection* vtkBrumeSliceVolumeMapper::GetVolumeGroup()
+{
+  return this->VolumeGroup;
+}
+
+vtkVolumeCollection* vtkBrumeSliceVolumeMapper::GetDrawnVolumes(vtkRenderer* ren)
+{
+  return this->VolumeGroup ? this->VolumeGroup.GetPointer() : ren->GetVolumes();
+}
 
 int vtkBrumeSliceVolumeMapper::FillInputPortInformation(int, vtkInformation* info)
 {
@@ -371,6 +392,7 @@ void vtkBrumeSliceVolumeMapper::SetImageSampleDistance(double distance)
 void vtkBrumeSliceVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "VolumeGroup: " << this->VolumeGroup.GetPointer() << "\n";
   os << indent << "SliceSpacing: " << this->SliceSpacing << "\n";
   os << indent << "WriteDepth: " << this->WriteDepth << "\n";
   os << indent << "RadianceScale: " << this->RadianceScale << "\n";

@@ -68,12 +68,15 @@
 #include "vtkVolumeMapper.h"
 
 #include "vtkSmartPointer.h" // For ExtinctionData
+#include "vtkWeakPointer.h"  // For VolumeGroup
 
 #include <string> // For ValidateInput
 
 class vtkDataArray;
 class vtkFieldData;
 class vtkImageData;
+class vtkRenderer;
+class vtkVolumeCollection;
 
 class VTKBRUMERENDERING_EXPORT vtkBrumeSliceVolumeMapper : public vtkVolumeMapper
 {
@@ -276,11 +279,23 @@ public:
   /// The order of a `SourceRadianceSH` array of so many components, or -1.
   static int DirectionalOrder(int components);
 
+  ///@{
+  /**
+   * The volumes a frame draws together, their slices merged far to near
+   * (default none: the renderer's volumes). For volumes drawn without
+   * being in the renderer: vtkBrumePass draws its own (held weakly).
+   */
+  void SetVolumeGroup(vtkVolumeCollection* volumes);
+  vtkVolumeCollection* GetVolumeGroup();
+  ///@}
+
 protected:
   vtkBrumeSliceVolumeMapper();
   ~vtkBrumeSliceVolumeMapper() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  /// The VolumeGroup, or the renderer's volumes without one.
+  vtkVolumeCollection* GetDrawnVolumes(vtkRenderer* ren);
 
   double SliceSpacing = 0.0;
   double ImageSampleDistance = 1.0;
@@ -290,6 +305,7 @@ protected:
   bool WriteDepth = false;
   int LastNumberOfSlices = 0;
   vtkSmartPointer<vtkImageData> ExtinctionData;
+  vtkWeakPointer<vtkVolumeCollection> VolumeGroup;
 
 private:
   // ValidateInput's sparse form: the source radiance's brick arrays

@@ -483,7 +483,7 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawAll(vtkRenderer* ren)
   std::vector<Slice> slices;
   std::vector<vtkBrumeOpenGLSliceVolumeMapper*> mappers;
   std::vector<vtkVolume*> drawn;
-  vtkVolumeCollection* volumes = ren->GetVolumes();
+  vtkVolumeCollection* volumes = this->GetDrawnVolumes(ren);
   vtkCollectionSimpleIterator it;
   volumes->InitTraversal(it);
   while (vtkVolume* volume = volumes->GetNextVolume(it))

@@ -26,6 +26,7 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkLight.h"
+#include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkPartitionedDataSet.h"
 #include "vtkPartitionedDataSetCollection.h"
@@ -190,9 +191,22 @@ int TestRendererScene(int, char*[])
     "the volume: a classified medium, scaled by 0.1 and moved by 1 along y");
   auto* types =
     vtkStringArray::SafeDownCast(scene->GetFieldData()->GetAbstractArray(vtkBrumeNames::LightType));
+  // VTK's units: Intensity 1 an irradiance of pi at the focal point, the
+  // origin, 13 m^2 away squared: 20 x 2 x pi x 13 W/sr.
   Check(types && types->GetNumberOfValues() == 1 && types->GetValue(0) == "point" &&
-      Near(scene->GetFieldData()->GetArray(vtkBrumeNames::LightIntensity)->GetComponent(0, 1), 40),
-    "the point light, its intensity times LightScale");
+      std::abs(scene->GetFieldData()->GetArray(vtkBrumeNames::LightIntensity)->GetComponent(0, 1) /
+          (40.0 * vtkMath::Pi() * 13.0) -
+        1.0) < 1e-6,
+    "the point light in VTK's units, times LightScale");
+  source->PhysicalLightsOn();
+  source->Update();
+  Check(Near(source->GetOutput()
+               ->GetFieldData()
+               ->GetArray(vtkBrumeNames::LightIntensity)
+               ->GetComponent(0, 1),
+          40),
+    "the point light in W/sr with PhysicalLights, times LightScale");
+  scene = source->GetOutput();
 
   // A camera move rebuilds nothing; a property edit does.
   const vtkMTimeType built = scene->GetMTime();

@@ -1,0 +1,166 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkBrumePass.h"
+
+#include "vtkBrumeDisplayPass.h"
+#include "vtkBrumePipeline.h"
+#include "vtkBrumeRendererScene.h"
+#include "vtkBrumeSceneActors.h"
+#include "vtkBrumeSliceVolumeMapper.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkProp.h"
+#include "vtkPropCollection.h"
+#include "vtkRenderState.h"
+#include "vtkRenderer.h"
+#include "vtkSmartPointer.h"
+#include "vtkVolume.h"
+#include "vtkVolumeCollection.h"
+
+#include <vector>
+
+vtkStandardNewMacro(vtkBrumePass);
+
+struct vtkBrumePass::vtkInternals
+{
+  vtkNew<vtkBrumeRendererScene> Scene;
+  vtkNew<vtkBrumePipeline> Pipeline;
+  vtkNew<vtkBrumeDisplayPass> Display;
+  // Holds Brume's props out of the user's renderer (whose actors make the
+  // scene); they are drawn through the render state.
+  vtkSmartPointer<vtkRenderer> Holder;
+  // Brume's volumes, which their slice mappers draw together (they are not
+  // in the renderer, whose volumes the mappers would otherwise draw).
+  vtkNew<vtkVolumeCollection> Volumes;
+  vtkMTimeType TracedScene = 0; // the scene's MTime at the last trace
+  bool Failed = false;
+};
+
+vtkBrumePass::vtkBrumePass()
+  : Internals(new vtkInternals)
+{
+  this->Internals->Pipeline->SetInputConnection(this->Internals->Scene->GetOutputPort());
+}
+
+vtkBrumePass::~vtkBrumePass()
+{
+  delete this->Internals;
+}
+
+vtkBrumePipeline* vtkBrumePass::GetPipeline()
+{
+  return this->Internals->Pipeline;
+}
+
+vtkBrumeRendererScene* vtkBrumePass::GetScene()
+{
+  return this->Internals->Scene;
+}
+
+// Brings the textures and Brume's props up to date with the renderer's
+// scene and camera: a trace after a change of the scene, otherwise a view
+// update. False (the reason said) when a phase fails.
+bool vtkBrumePass::Prepare(vtkRenderer* renderer)
+{
+  vtkInternals& in = *this->Internals;
+  in.Scene->SetRenderer(renderer);
+  in.Pipeline->SetCamera(renderer->GetActiveCamera());
+  const vtkMTimeType scene = in.Scene->GetMTime();
+  if (!in.Holder || scene > in.TracedScene)
+  {
+    // Tried once per change: a failing scene is not traced again every frame.
+    in.TracedScene = scene;
+    ++this->NumberOfTraces;
+    if (!in.Pipeline->Update())
+    {
+      vtkErrorMacro("Brume's " << in.Pipeline->GetFailedPhase()
+                               << " failed on the renderer's scene (see the error above).");
+      in.Failed = true;
+      return false;
+    }
+    in.Failed = false;
+    // The objects may differ from the last scene's: the props made anew.
+    in.Holder = vtkSmartPointer<vtkRenderer>::New();
+    if (!in.Pipeline->AddToRenderer(in.Holder))
+    {
+      in.Failed = true;
+      return false;
+    }
+    in.Volumes->RemoveAllItems();
+    vtkPropCollection* props = in.Pipeline->GetActors()->GetProps();
+    props->InitTraversal();
+    while (vtkProp* prop = props->GetNextProp())
+    {
+      if (auto* volume = vtkVolume::SafeDownCast(prop))
+      {
+        in.Volumes->AddItem(volume);
+        if (auto* mapper = vtkBrumeSliceVolumeMapper::SafeDownCast(volume->GetMapper()))
+        {
+          mapper->SetVolumeGroup(in.Volumes);
+        }
+      }
+    }
+    return true;
+  }
+  if (in.Failed)
+  {
+    return false;
+  }
+  if (!in.Pipeline->UpdateView())
+  {
+    vtkErrorMacro("Brume's " << in.Pipeline->GetFailedPhase() << " failed on a new view.");
+    return false;
+  }
+  return true;
+}
+
+void vtkBrumePass::Render(const vtkRenderState* s)
+{
+  this->NumberOfRenderedProps = 0;
+  vtkRenderer* renderer = s->GetRenderer();
+  vtkInternals& in = *this->Internals;
+  const bool lit = this->Prepare(renderer);
+  // Brume's props, then the renderer's that the scene does not hold.
+  std::vector<vtkProp*> props;
+  if (lit)
+  {
+    vtkPropCollection* brume = in.Pipeline->GetActors()->GetProps();
+    brume->InitTraversal();
+    while (vtkProp* prop = brume->GetNextProp())
+    {
+      props.push_back(prop);
+    }
+  }
+  for (int i = 0; i < s->GetPropArrayCount(); ++i)
+  {
+    vtkProp* prop = s->GetPropArray()[i];
+    if (!lit || !in.Scene->Translates(prop))
+    {
+      props.push_back(prop);
+    }
+  }
+  vtkRenderState state(renderer);
+  state.SetPropArrayAndCount(props.data(), static_cast<int>(props.size()));
+  state.SetFrameBuffer(s->GetFrameBuffer());
+  in.Display->SetExposure(in.Pipeline->GetExposure());
+  in.Display->Render(&state);
+  this->NumberOfRenderedProps = in.Display->GetNumberOfRenderedProps();
+}
+
+void vtkBrumePass::ReleaseGraphicsResources(vtkWindow* w)
+{
+  this->Internals->Display->ReleaseGraphicsResources(w);
+  vtkPropCollection* props = this->Internals->Pipeline->GetActors()->GetProps();
+  props->InitTraversal();
+  while (vtkProp* prop = props->GetNextProp())
+  {
+    prop->ReleaseGraphicsResources(w);
+  }
+}
+
+void vtkBrumePass::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "NumberOfTraces: " << this->NumberOfTraces << "\n";
+  os << indent << "Pipeline:\n";
+  this->Internals->Pipeline->PrintSelf(os, indent.GetNextIndent());
+}
