@@ -6,6 +6,7 @@
 //   brume render does), up to the display's 8-bit rounding.
 // - A camera orbit traces nothing again and updates the view-dependent
 //   textures; a colour edit traces once more.
+#include "VtkSceneTesting.h"
 #include "vtkActor.h"
 #include "vtkBrumeLightTracer.h"
 #include "vtkBrumePass.h"
@@ -53,15 +54,6 @@ void Check(bool ok, const std::string& what)
   }
 }
 
-vtkSmartPointer<vtkActor> AddActor(vtkRenderer* renderer, vtkAlgorithm* source)
-{
-  vtkNew<vtkPolyDataMapper> mapper;
-  mapper->SetInputConnection(source->GetOutputPort());
-  auto actor = vtkSmartPointer<vtkActor>::New();
-  actor->SetMapper(mapper);
-  renderer->AddActor(actor);
-  return actor;
-}
 }
 
 int TestBrumePass(int, char*[])
@@ -73,45 +65,17 @@ int TestBrumePass(int, char*[])
   window->SetMultiSamples(0);
   window->SetSize(Size, Size);
   window->AddRenderer(renderer);
-  vtkNew<vtkPlaneSource> plane;
-  plane->SetOrigin(-3, -1, 3);
-  plane->SetPoint1(3, -1, 3);
-  plane->SetPoint2(-3, -1, -3);
-  auto ground = AddActor(renderer, plane);
-  ground->GetProperty()->SetColor(0.7, 0.7, 0.7);
+  auto ground = AddGround(renderer, 0.7, 0.7, 0.7);
   vtkNew<vtkSphereSource> sphere;
   sphere->SetCenter(1, -0.4, 0);
   sphere->SetRadius(0.6);
-  auto ball = AddActor(renderer, sphere);
-  ball->GetProperty()->SetColor(0.9, 0.3, 0.2);
+  auto ball = AddActor(renderer, sphere, 0.9, 0.3, 0.2);
   ball->GetProperty()->SetSpecular(0.2);
   ball->GetProperty()->SetSpecularPower(30);
-  vtkNew<vtkRTAnalyticSource> wavelet;
-  wavelet->SetWholeExtent(-6, 6, -6, 6, -6, 6);
-  vtkNew<vtkFixedPointVolumeRayCastMapper> volumeMapper;
-  volumeMapper->SetInputConnection(wavelet->GetOutputPort());
-  vtkNew<vtkPiecewiseFunction> opacity;
-  opacity->AddPoint(90, 0.0);
-  opacity->AddPoint(280, 0.6);
-  vtkNew<vtkColorTransferFunction> colour;
-  colour->AddRGBPoint(90, 0.6, 0.7, 1.0);
-  colour->AddRGBPoint(280, 1.0, 0.9, 0.8);
-  vtkNew<vtkVolumeProperty> property;
-  property->SetScalarOpacity(opacity);
-  property->SetColor(colour);
-  vtkNew<vtkVolume> volume;
-  volume->SetMapper(volumeMapper);
-  volume->SetProperty(property);
-  volume->SetScale(0.1);
-  volume->SetPosition(-1, -0.2, 0);
-  renderer->AddVolume(volume);
-  vtkNew<vtkLight> light;
-  light->SetLightTypeToSceneLight();
-  light->SetPositional(true);
-  light->SetConeAngle(180);
-  light->SetPosition(1, 4, 3);
-  light->SetIntensity(30);
-  renderer->AddLight(light);
+  const double where[3] = { -1, -0.2, 0 };
+  AddWavelet(renderer, 6, 90, 280, 0.6, 0.1, where);
+  const double lightPosition[3] = { 1, 4, 3 };
+  AddPointLight(renderer, lightPosition, 30);
   vtkCamera* camera = renderer->GetActiveCamera();
   camera->SetPosition(0, 2, 7);
   camera->SetFocalPoint(0, -0.3, 0);

@@ -9,6 +9,7 @@
 //   headlight.
 // - Nothing is rebuilt when only the camera moves; a property edit is.
 // - The scene renders through vtkBrumePipeline to a lit, finite image.
+#include "VtkSceneTesting.h"
 #include "vtkActor.h"
 #include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeLightTracer.h"
@@ -91,64 +92,25 @@ std::string Material(vtkDataObject* object)
   return a && a->GetNumberOfValues() > 0 ? a->GetValue(0) : std::string();
 }
 
-vtkSmartPointer<vtkActor> Actor(vtkAlgorithm* source, double r, double g, double b)
-{
-  vtkNew<vtkPolyDataMapper> mapper;
-  mapper->SetInputConnection(source->GetOutputPort());
-  auto actor = vtkSmartPointer<vtkActor>::New();
-  actor->SetMapper(mapper);
-  actor->GetProperty()->SetColor(r, g, b);
-  return actor;
-}
 }
 
 int TestRendererScene(int, char*[])
 {
   vtkNew<vtkRenderer> renderer;
   // A ground facing +y, a shiny box moved by its actor, a translucent box.
-  vtkNew<vtkPlaneSource> plane;
-  plane->SetOrigin(-3, -1, 3);
-  plane->SetPoint1(3, -1, 3);
-  plane->SetPoint2(-3, -1, -3);
-  auto ground = Actor(plane, 0.6, 0.5, 0.4);
-  renderer->AddActor(ground);
+  auto ground = AddGround(renderer, 0.6, 0.5, 0.4);
   vtkNew<vtkCubeSource> cube;
-  auto box = Actor(cube, 0.8, 0.2, 0.2);
+  auto box = AddActor(renderer, cube, 0.8, 0.2, 0.2);
   box->SetPosition(0.5, 0, 0);
   box->GetProperty()->SetSpecular(0.3);
   box->GetProperty()->SetSpecularPower(40);
-  renderer->AddActor(box);
-  auto glass = Actor(cube, 0.2, 0.2, 0.8);
+  auto glass = AddActor(renderer, cube, 0.2, 0.2, 0.8);
   glass->GetProperty()->SetOpacity(0.5);
-  renderer->AddActor(glass);
   // VTK's wavelet as a volume, scaled and moved.
-  vtkNew<vtkRTAnalyticSource> wavelet;
-  wavelet->SetWholeExtent(-4, 4, -4, 4, -4, 4);
-  vtkNew<vtkFixedPointVolumeRayCastMapper> volumeMapper;
-  volumeMapper->SetInputConnection(wavelet->GetOutputPort());
-  vtkNew<vtkPiecewiseFunction> opacity;
-  opacity->AddPoint(100, 0.0);
-  opacity->AddPoint(250, 0.5);
-  vtkNew<vtkColorTransferFunction> colour;
-  colour->AddRGBPoint(100, 1.0, 1.0, 1.0);
-  colour->AddRGBPoint(250, 1.0, 0.9, 0.8);
-  vtkNew<vtkVolumeProperty> property;
-  property->SetScalarOpacity(opacity);
-  property->SetColor(colour);
-  vtkNew<vtkVolume> volume;
-  volume->SetMapper(volumeMapper);
-  volume->SetProperty(property);
-  volume->SetScale(0.1);
-  volume->SetPosition(0, 1, 0);
-  renderer->AddVolume(volume);
-  vtkNew<vtkLight> light;
-  light->SetLightTypeToSceneLight();
-  light->SetPositional(true);
-  light->SetConeAngle(180);
-  light->SetPosition(0, 3, 2);
-  light->SetFocalPoint(0, 0, 0);
-  light->SetIntensity(20);
-  renderer->AddLight(light);
+  const double up[3] = { 0, 1, 0 };
+  auto volume = AddWavelet(renderer, 4, 100, 250, 0.5, 0.1, up);
+  const double lightPosition[3] = { 0, 3, 2 };
+  AddPointLight(renderer, lightPosition, 20);
   renderer->GetActiveCamera()->SetPosition(0, 1, 8);
 
   vtkNew<vtkBrumeRendererScene> source;
