@@ -121,6 +121,9 @@ double BenchReconstruction(vtkAlgorithm* source, vtkAlgorithm* tracer, Report& r
 /// slice mapper and with vtkGPUVolumeRayCastMapper on the same volume.
 void BenchRendering(vtkAlgorithm* source, vtkAlgorithm* tracer, double update, Report& report);
 
+/// A VTK program's renderer lit through vtkBrumePass at `particles`.
+void BenchPass(long long particles, Report& report);
+
 /// A mirror at display time (the default scene with its floor a mirror).
 void BenchMirror(
   vtkDataObject* defaultScene, vtkIdType particles, std::uint64_t seed, Report& report);

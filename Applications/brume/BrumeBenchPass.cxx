@@ -1,0 +1,141 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// `brume bench`: a VTK program's renderer lit by Brume through its render
+// pass (vtkBrumePass): the first frame, a new view, the frame after an edit.
+#include "BrumeBench.h"
+
+#include "vtkActor.h"
+#include "vtkBrumeLightTracer.h"
+#include "vtkBrumePass.h"
+#include "vtkBrumePipeline.h"
+#include "vtkBrumeRenderWindowSelection.h"
+#include "vtkCamera.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkFixedPointVolumeRayCastMapper.h"
+#include "vtkLight.h"
+#include "vtkNew.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPlaneSource.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+#include "vtkRTAnalyticSource.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkSphereSource.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <vector>
+
+namespace BrumeBench
+{
+namespace
+{
+// The program of Examples/Python/vtk_scene_pass.py: a ground, a sphere,
+// VTK's Wavelet as a volume, one positional light of VTK intensity 1.
+vtkSmartPointer<vtkActor> BuildScene(vtkRenderer* renderer)
+{
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetOrigin(-4, -1, 4);
+  plane->SetPoint1(4, -1, 4);
+  plane->SetPoint2(-4, -1, -4);
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetCenter(1.3, -0.35, 0.3);
+  sphere->SetRadius(0.65);
+  sphere->SetThetaResolution(64);
+  sphere->SetPhiResolution(48);
+  vtkSmartPointer<vtkActor> ground;
+  for (vtkAlgorithm* source :
+    { static_cast<vtkAlgorithm*>(plane), static_cast<vtkAlgorithm*>(sphere) })
+  {
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputConnection(source->GetOutputPort());
+    vtkNew<vtkActor> actor;
+    actor->SetMapper(mapper);
+    actor->GetProperty()->SetColor(0.7, 0.7, 0.7);
+    renderer->AddActor(actor);
+    ground = ground ? ground : vtkSmartPointer<vtkActor>(actor);
+  }
+  vtkNew<vtkRTAnalyticSource> wavelet;
+  vtkNew<vtkFixedPointVolumeRayCastMapper> mapper;
+  mapper->SetInputConnection(wavelet->GetOutputPort());
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(90, 0.0);
+  opacity->AddPoint(170, 0.15);
+  opacity->AddPoint(280, 0.7);
+  vtkNew<vtkColorTransferFunction> colour;
+  colour->AddRGBPoint(90, 0.4, 0.6, 1.0);
+  colour->AddRGBPoint(280, 1.0, 0.85, 0.7);
+  vtkNew<vtkVolumeProperty> property;
+  property->SetScalarOpacity(opacity);
+  property->SetColor(colour);
+  vtkNew<vtkVolume> volume;
+  volume->SetMapper(mapper);
+  volume->SetProperty(property);
+  volume->SetScale(0.08);
+  volume->SetPosition(-1.0, -0.1, 0.0);
+  renderer->AddVolume(volume);
+  vtkNew<vtkLight> light;
+  light->SetLightTypeToSceneLight();
+  light->SetPositional(true);
+  light->SetConeAngle(180);
+  light->SetPosition(1.5, 4, 3);
+  renderer->AddLight(light);
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->SetPosition(0, 2.2, 8);
+  camera->SetFocalPoint(0, -0.3, 0);
+  camera->SetViewAngle(35);
+  renderer->ResetCameraClippingRange();
+  return ground;
+}
+
+double Frame(vtkRenderWindow* window)
+{
+  const auto start = std::chrono::steady_clock::now();
+  window->Render();
+  window->WaitForCompletion();
+  return Seconds(start);
+}
+}
+
+void BenchPass(long long particles, Report& report)
+{
+  if (!vtkBrumeRenderWindowSelection::Install())
+  {
+    std::printf("render pass        skipped: %s\n", vtkBrumeRenderWindowSelection::GetLastError());
+    return;
+  }
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkRenderWindow> window;
+  window->SetOffScreenRendering(1);
+  window->SetMultiSamples(0);
+  window->SetSize(512, 512);
+  window->AddRenderer(renderer);
+  const vtkSmartPointer<vtkActor> ground = BuildScene(renderer);
+  vtkNew<vtkBrumePass> pass;
+  pass->GetPipeline()->GetTracer()->SetNumberOfParticles(particles);
+  renderer->SetPass(pass);
+  const double first = Frame(window);
+  // New views: a 2 degree turn a frame, the median of 10.
+  std::vector<double> views;
+  for (int k = 0; k < 10; ++k)
+  {
+    renderer->GetActiveCamera()->Azimuth(2.0);
+    views.push_back(Frame(window));
+  }
+  std::sort(views.begin(), views.end());
+  const double view = 0.5 * (views[4] + views[5]);
+  // An edit: the ground's colour, traced and reconstructed again.
+  ground->GetProperty()->SetColor(0.6, 0.7, 0.8);
+  const double edit = Frame(window);
+  std::printf("render pass        %8.3f s first frame, %.1f ms a new view (median of 10), %.3f s "
+              "the frame after a colour edit (%d traces), 512x512, a VTK program's scene\n",
+    first, 1e3 * view, edit, pass->GetNumberOfTraces());
+  report.Add("pass_first_frame", first, "s", "",
+    "vtkBrumePass, a VTK program's first frame: its scene traced, reconstructed, drawn");
+  report.Add("pass_new_view", 1e3 * view, "ms", "<= 17", "a 2 degree turn, median of 10");
+  report.Add("pass_edit_frame", edit, "s", "<= 0.3", "after a vtkProperty colour edit");
+}
+}
