@@ -6,6 +6,7 @@
 #include "vtkBrumeRendererScene.h"
 #include "vtkBrumeSceneActors.h"
 #include "vtkBrumeSliceVolumeMapper.h"
+#include "vtkCamera.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkProp.h"
@@ -16,9 +17,22 @@
 #include "vtkVolume.h"
 #include "vtkVolumeCollection.h"
 
+#include <array>
 #include <vector>
 
 vtkStandardNewMacro(vtkBrumePass);
+
+namespace
+{
+// The eye: what the view-dependent textures radiate toward.
+std::array<double, 3> Eye(vtkCamera* camera)
+{
+  std::array<double, 3> eye{};
+  camera->GetPosition(eye.data());
+  return eye;
+}
+
+}
 
 struct vtkBrumePass::vtkInternals
 {
@@ -31,7 +45,8 @@ struct vtkBrumePass::vtkInternals
   // Brume's volumes, which their slice mappers draw together (they are not
   // in the renderer, whose volumes the mappers would otherwise draw).
   vtkNew<vtkVolumeCollection> Volumes;
-  vtkMTimeType TracedScene = 0; // the scene's MTime at the last trace
+  vtkMTimeType TracedScene = 0;     // the scene's MTime at the last trace
+  std::array<double, 3> ShownEye{}; // the eye at the last frame
   bool Failed = false;
 };
 
@@ -105,6 +120,10 @@ bool vtkBrumePass::Prepare(vtkRenderer* renderer)
   {
     return false;
   }
+  if (Eye(in.Pipeline->GetCamera()) != in.ShownEye)
+  {
+    ++this->NumberOfViewUpdates;
+  }
   if (!in.Pipeline->UpdateView())
   {
     vtkErrorMacro("Brume's " << in.Pipeline->GetFailedPhase() << " failed on a new view.");
@@ -119,6 +138,7 @@ void vtkBrumePass::Render(const vtkRenderState* s)
   vtkRenderer* renderer = s->GetRenderer();
   vtkInternals& in = *this->Internals;
   const bool lit = this->Prepare(renderer);
+  in.ShownEye = Eye(in.Pipeline->GetCamera());
   // Brume's props, then the renderer's that the scene does not hold.
   std::vector<vtkProp*> props;
   if (lit)
@@ -161,6 +181,7 @@ void vtkBrumePass::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "NumberOfTraces: " << this->NumberOfTraces << "\n";
+  os << indent << "NumberOfViewUpdates: " << this->NumberOfViewUpdates << "\n";
   os << indent << "Pipeline:\n";
   this->Internals->Pipeline->PrintSelf(os, indent.GetNextIndent());
 }

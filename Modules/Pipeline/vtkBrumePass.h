@@ -22,9 +22,9 @@
  *   when the scene changed (a prop, its data, a property, a volume
  *   property, a scene light, props added or removed); a camera move only
  *   updates the view-dependent textures (glossy surfaces, anisotropic
- *   media). GetNumberOfTraces() counts the traces; the reconstruction's
- *   own counters (GetPipeline()->GetReconstruction()) count texture builds
- *   and view updates.
+ *   media). GetNumberOfTraces() and GetNumberOfViewUpdates() count them;
+ *   the reconstruction's own counters (GetPipeline()->GetReconstruction())
+ *   count the textures built and updated.
  * - The phases' settings: GetPipeline() (particles, seed, threshold,
  *   exposure...). The renderer's active camera is the pipeline's.
  * - A failed phase leaves the frame black and says why (vtkErrorMacro).
@@ -59,14 +59,22 @@ public:
   /// How the renderer's scene becomes Brume's (LightScale, Albedo).
   vtkBrumeRendererScene* GetScene();
 
-  /// How many times the particles were traced (once, then once per edit).
+  ///@{
+  /**
+   * How many times the particles were traced (once, then once per edit of
+   * the scene), and how many frames updated the textures toward a new eye
+   * position without tracing (a camera orbit of N frames: N).
+   */
   vtkGetMacro(NumberOfTraces, int);
+  vtkGetMacro(NumberOfViewUpdates, int);
+  ///@}
 
 protected:
   vtkBrumePass();
   ~vtkBrumePass() override;
 
   int NumberOfTraces = 0;
+  int NumberOfViewUpdates = 0;
 
 private:
   vtkBrumePass(const vtkBrumePass&) = delete;
