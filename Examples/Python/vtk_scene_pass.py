@@ -113,9 +113,13 @@ def main():
 
     brume_pass = brume.vtkBrumePass()  # Brume
     renderer.SetPass(brume_pass)  # Brume
-    brume_pass.GetPipeline().GetTracer().SetNumberOfParticles(args.particles)
+    brume_pass.SetNumberOfParticles(args.particles)
+    window.Render()  # the first frame: a first progressive step
+    while not brume_pass.IsConverged():  # each frame doubles the particles
+        window.Render()
     brume_image = grab(window)
-    print("Brume traced", brume_pass.GetNumberOfTraces(), "time(s)")
+    print("Brume traced", brume_pass.GetNumberOfTraces(), "time(s), in",
+          brume_pass.GetNumberOfReconstructions(), "progressive steps")
 
     side = vtkImageAppend()
     side.SetAppendAxis(0)

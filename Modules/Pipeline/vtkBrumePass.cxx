@@ -2,11 +2,14 @@
 #include "vtkBrumePass.h"
 
 #include "vtkBrumeDisplayPass.h"
+#include "vtkBrumeLightTracer.h"
 #include "vtkBrumePipeline.h"
+#include "vtkBrumeRadianceReconstruction.h"
 #include "vtkBrumeRendererScene.h"
 #include "vtkBrumeSceneActors.h"
 #include "vtkBrumeSliceVolumeMapper.h"
 #include "vtkCamera.h"
+#include "vtkCommand.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkProp.h"
@@ -17,6 +20,7 @@
 #include "vtkVolume.h"
 #include "vtkVolumeCollection.h"
 
+#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -46,6 +50,7 @@ struct vtkBrumePass::vtkInternals
   // in the renderer, whose volumes the mappers would otherwise draw).
   vtkNew<vtkVolumeCollection> Volumes;
   vtkMTimeType TracedScene = 0;     // the scene's MTime at the last trace
+  bool Tried = false;               // traced (or tried to) at least once
   std::array<double, 3> ShownEye{}; // the eye at the last frame
   bool Failed = false;
 };
@@ -71,50 +76,109 @@ vtkBrumeRendererScene* vtkBrumePass::GetScene()
   return this->Internals->Scene;
 }
 
+bool vtkBrumePass::IsConverged()
+{
+  const vtkInternals& in = *this->Internals;
+  return in.Holder && !in.Failed &&
+    in.Pipeline->GetTracer()->GetNumberOfParticles() >= this->NumberOfParticles;
+}
+
+// Traces the scene anew: the whole budget, or its first progressive step
+// (the budget halved, rounding up, until it is at most FirstStepParticles),
+// at the resolutions the budget calls for.
+bool vtkBrumePass::Trace()
+{
+  vtkInternals& in = *this->Internals;
+  ++this->NumberOfTraces;
+  vtkTypeInt64 first = this->NumberOfParticles;
+  while (this->Progressive && first > this->FirstStepParticles)
+  {
+    first = first / 2 + first % 2;
+  }
+  in.Pipeline->SetProgressive(this->Progressive);
+  in.Pipeline->GetTracer()->SetNumberOfParticles(first);
+  in.Pipeline->GetReconstruction()->SetPlannedParticles(
+    this->Progressive ? this->NumberOfParticles : 0);
+  if (!in.Pipeline->Update())
+  {
+    vtkErrorMacro("Brume's " << in.Pipeline->GetFailedPhase()
+                             << " failed on the renderer's scene (see the error above).");
+    in.Failed = true;
+    return false;
+  }
+  in.Failed = false;
+  // The objects may differ from the last scene's: the props made anew.
+  in.Holder = vtkSmartPointer<vtkRenderer>::New();
+  if (!in.Pipeline->AddToRenderer(in.Holder))
+  {
+    in.Failed = true;
+    return false;
+  }
+  in.Volumes->RemoveAllItems();
+  vtkPropCollection* props = in.Pipeline->GetActors()->GetProps();
+  props->InitTraversal();
+  while (vtkProp* prop = props->GetNextProp())
+  {
+    if (auto* volume = vtkVolume::SafeDownCast(prop))
+    {
+      in.Volumes->AddItem(volume);
+      if (auto* mapper = vtkBrumeSliceVolumeMapper::SafeDownCast(volume->GetMapper()))
+      {
+        mapper->SetVolumeGroup(in.Volumes);
+      }
+    }
+  }
+  this->ReportProgress();
+  return true;
+}
+
+// A progressive step: as many particles again as the textures hold (what
+// is left of the budget at most), added to them.
+bool vtkBrumePass::Step()
+{
+  vtkInternals& in = *this->Internals;
+  const vtkTypeInt64 traced = in.Pipeline->GetTracer()->GetNumberOfParticles();
+  ++this->NumberOfSteps;
+  if (!in.Pipeline->AddParticles(std::min(traced, this->NumberOfParticles - traced)))
+  {
+    vtkErrorMacro("Brume's " << in.Pipeline->GetFailedPhase()
+                             << " failed adding particles (see the error above).");
+    in.Failed = true;
+    return false;
+  }
+  this->ReportProgress();
+  return true;
+}
+
+void vtkBrumePass::ReportProgress()
+{
+  double fraction =
+    static_cast<double>(this->Internals->Pipeline->GetTracer()->GetNumberOfParticles()) /
+    static_cast<double>(this->NumberOfParticles);
+  fraction = std::min(1.0, fraction);
+  this->InvokeEvent(vtkCommand::ProgressEvent, &fraction);
+}
+
 // Brings the textures and Brume's props up to date with the renderer's
-// scene and camera: a trace after a change of the scene, otherwise a view
-// update. False (the reason said) when a phase fails.
+// scene and camera: a trace after a change of the scene (or of the pass's
+// settings), a progressive step until the budget is reached, otherwise a
+// view update. False (the reason said) when a phase fails.
 bool vtkBrumePass::Prepare(vtkRenderer* renderer)
 {
   vtkInternals& in = *this->Internals;
   in.Scene->SetRenderer(renderer);
   in.Pipeline->SetCamera(renderer->GetActiveCamera());
-  const vtkMTimeType scene = in.Scene->GetMTime();
-  if (!in.Holder || scene > in.TracedScene)
+  const vtkMTimeType scene = std::max(in.Scene->GetMTime(), this->GetMTime());
+  if (!in.Tried || scene > in.TracedScene)
   {
+    in.Tried = true;
     // Tried once per change: a failing scene is not traced again every frame.
     in.TracedScene = scene;
-    ++this->NumberOfTraces;
-    if (!in.Pipeline->Update())
-    {
-      vtkErrorMacro("Brume's " << in.Pipeline->GetFailedPhase()
-                               << " failed on the renderer's scene (see the error above).");
-      in.Failed = true;
-      return false;
-    }
-    in.Failed = false;
-    // The objects may differ from the last scene's: the props made anew.
-    in.Holder = vtkSmartPointer<vtkRenderer>::New();
-    if (!in.Pipeline->AddToRenderer(in.Holder))
-    {
-      in.Failed = true;
-      return false;
-    }
-    in.Volumes->RemoveAllItems();
-    vtkPropCollection* props = in.Pipeline->GetActors()->GetProps();
-    props->InitTraversal();
-    while (vtkProp* prop = props->GetNextProp())
-    {
-      if (auto* volume = vtkVolume::SafeDownCast(prop))
-      {
-        in.Volumes->AddItem(volume);
-        if (auto* mapper = vtkBrumeSliceVolumeMapper::SafeDownCast(volume->GetMapper()))
-        {
-          mapper->SetVolumeGroup(in.Volumes);
-        }
-      }
-    }
-    return true;
+    const bool traced = this->Trace();
+    // What the trace itself touched (a mapper's default colour map, made
+    // on first use) is not an edit.
+    in.TracedScene = std::max({ in.TracedScene, in.Scene->GetMTime(), this->GetMTime() });
+    return traced;
   }
   if (in.Failed)
   {
@@ -123,6 +187,10 @@ bool vtkBrumePass::Prepare(vtkRenderer* renderer)
   if (Eye(in.Pipeline->GetCamera()) != in.ShownEye)
   {
     ++this->NumberOfViewUpdates;
+  }
+  if (!this->IsConverged())
+  {
+    return this->Step();
   }
   if (!in.Pipeline->UpdateView())
   {
@@ -180,7 +248,11 @@ void vtkBrumePass::ReleaseGraphicsResources(vtkWindow* w)
 void vtkBrumePass::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "NumberOfParticles: " << this->NumberOfParticles << "\n";
+  os << indent << "Progressive: " << this->Progressive << "\n";
+  os << indent << "FirstStepParticles: " << this->FirstStepParticles << "\n";
   os << indent << "NumberOfTraces: " << this->NumberOfTraces << "\n";
+  os << indent << "NumberOfSteps: " << this->NumberOfSteps << "\n";
   os << indent << "NumberOfViewUpdates: " << this->NumberOfViewUpdates << "\n";
   os << indent << "Pipeline:\n";
   this->Internals->Pipeline->PrintSelf(os, indent.GetNextIndent());

@@ -25,12 +25,26 @@
  *   media). GetNumberOfTraces() and GetNumberOfViewUpdates() count them;
  *   the reconstruction's own counters (GetPipeline()->GetReconstruction())
  *   count the textures built and updated.
- * - The phases' settings: GetPipeline() (particles, seed, threshold,
+ * - Progressive (on by default): after a change, the first frame shows
+ *   a small step of the budget (NumberOfParticles; the first step at most
+ *   FirstStepParticles), and each later Render() traces as many particles
+ *   again as the textures hold (the count doubles) until the budget is
+ *   reached: IsConverged() says when, and a vtkCommand::ProgressEvent
+ *   (call data: a double, the fraction of the budget traced) follows each
+ *   step. Each step's image is bitwise that of one run of its count at the
+ *   same texture resolutions (chosen once per change for the budget,
+ *   vtkBrumeRadianceReconstruction::SetPlannedParticles) when the budget
+ *   is the first step's count times a power of two (10^6 is 15625 x 2^6),
+ *   otherwise to float rounding at the last step. Keep rendering while
+ *   !IsConverged() (a timer in an interactive program).
+ * - The phases' other settings: GetPipeline() (seed, threshold,
  *   exposure...). The renderer's active camera is the pipeline's.
  * - A failed phase leaves the frame black and says why (vtkErrorMacro).
  *
- * Not yet: progressive refinement across frames, scalar colouring and
- * textures of surfaces (a surface has its property's colour).
+ * Surfaces coloured by scalars (the mapper's ScalarVisibility, its lookup
+ * table and scalar range, point or cell scalars) have those colours as
+ * their reflectance, per triangle (vtkBrumeRendererScene). Textures of
+ * actors are not read.
  *
  * @sa vtkBrumePipeline vtkBrumeRendererScene vtkBrumeDisplayPass
  */
@@ -60,12 +74,43 @@ public:
   vtkBrumeRendererScene* GetScene();
 
   ///@{
+  /// The particles traced per change of the scene (default 10^6, at least 1).
+  vtkSetClampMacro(NumberOfParticles, vtkTypeInt64, 1, VTK_TYPE_INT64_MAX);
+  vtkGetMacro(NumberOfParticles, vtkTypeInt64);
+  ///@}
+
+  ///@{
+  /// Progressive refinement across frames (default on); off, each change
+  /// traces the whole budget before its first frame.
+  vtkSetMacro(Progressive, bool);
+  vtkGetMacro(Progressive, bool);
+  vtkBooleanMacro(Progressive, bool);
+  ///@}
+
+  ///@{
   /**
-   * How many times the particles were traced (once, then once per edit of
-   * the scene), and how many frames updated the textures toward a new eye
-   * position without tracing (a camera orbit of N frames: N).
+   * The first step's particles at most (default 2^17 = 131072: about 0.1 s
+   * of tracing for the default scene on two cores). The first step is the
+   * budget halved until it is no more than this.
+   */
+  vtkSetClampMacro(FirstStepParticles, vtkTypeInt64, 1, VTK_TYPE_INT64_MAX);
+  vtkGetMacro(FirstStepParticles, vtkTypeInt64);
+  ///@}
+
+  /// True when the textures hold the whole budget of the current scene.
+  bool IsConverged();
+
+  ///@{
+  /**
+   * How many times tracing started anew (once, then once per edit of the
+   * scene), how many progressive steps added particles to a trace, how
+   * many times the textures were reconstructed (traces and steps), and how
+   * many frames updated the textures toward a new eye position (a camera
+   * orbit of N frames: N).
    */
   vtkGetMacro(NumberOfTraces, int);
+  vtkGetMacro(NumberOfSteps, int);
+  int GetNumberOfReconstructions() { return this->NumberOfTraces + this->NumberOfSteps; }
   vtkGetMacro(NumberOfViewUpdates, int);
   ///@}
 
@@ -73,7 +118,11 @@ protected:
   vtkBrumePass();
   ~vtkBrumePass() override;
 
+  vtkTypeInt64 NumberOfParticles = 1000000;
+  bool Progressive = true;
+  vtkTypeInt64 FirstStepParticles = 131072;
   int NumberOfTraces = 0;
+  int NumberOfSteps = 0;
   int NumberOfViewUpdates = 0;
 
 private:
@@ -81,6 +130,9 @@ private:
   void operator=(const vtkBrumePass&) = delete;
 
   bool Prepare(vtkRenderer* renderer);
+  bool Trace();
+  bool Step();
+  void ReportProgress();
 
   struct vtkInternals;
   vtkInternals* Internals;

@@ -11,27 +11,35 @@
 #include "vtkBrumeVolumePropertyMedium.h"
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkDataArray.h"
 #include "vtkDataSetSurfaceFilter.h"
 #include "vtkExecutive.h"
 #include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkIdList.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
+#include "vtkLookupTable.h"
 #include "vtkMapper.h"
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPartitionedDataSetCollection.h"
+#include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
+#include "vtkScalarsToColors.h"
 #include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
 #include "vtkTimeStamp.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkVolume.h"
 #include "vtkVolumeCollection.h"
 #include "vtkVolumeProperty.h"
@@ -76,24 +84,59 @@ vtkDataSet* MapperInput(vtkAbstractMapper* mapper, int port = 0)
   return vtkDataSet::SafeDownCast(mapper->GetInputDataObject(port, 0));
 }
 
-// The surface of `data` in world coordinates (`matrix` applied): its points
-// and polygons only (what a Brume surface is made of), or null when it has
-// no polygon.
-vtkSmartPointer<vtkPolyData> WorldSurface(vtkDataSet* data, vtkMatrix4x4* matrix)
+// The polygons of a prop's data in world coordinates, and where each of
+// their cells and points comes from in that data (colours are mapped there).
+struct WorldPolygons
 {
+  vtkSmartPointer<vtkPolyData> Surface;
+  std::vector<vtkIdType> InputCells;  // per cell of Surface
+  std::vector<vtkIdType> InputPoints; // per point of Surface
+};
+
+// The ids array `name` of a surface filter's output; identity without one.
+std::vector<vtkIdType> OriginalIds(
+  vtkDataSetAttributes* attributes, const char* name, vtkIdType count)
+{
+  std::vector<vtkIdType> ids(static_cast<std::size_t>(count));
+  vtkDataArray* original = name ? attributes->GetArray(name) : nullptr;
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    ids[i] = original ? static_cast<vtkIdType>(original->GetTuple1(i)) : i;
+  }
+  return ids;
+}
+
+// The surface of `data` in world coordinates (`matrix` applied): its points
+// and polygons only (what a Brume surface is made of); no Surface when it
+// has no polygon.
+WorldPolygons WorldSurface(vtkDataSet* data, vtkMatrix4x4* matrix)
+{
+  WorldPolygons world;
   vtkSmartPointer<vtkPolyData> polygons = vtkPolyData::SafeDownCast(data);
   if (!polygons)
   {
     vtkNew<vtkDataSetSurfaceFilter> surface;
     surface->SetInputData(data);
+    surface->PassThroughCellIdsOn();
+    surface->PassThroughPointIdsOn();
     surface->Update();
     polygons = surface->GetOutput();
   }
   if (!polygons || !polygons->GetPoints() ||
     polygons->GetNumberOfPolys() + polygons->GetNumberOfStrips() == 0)
   {
-    return nullptr;
+    return world;
   }
+  // The output holds polygons then strips: cells of `polygons` from the
+  // first polygon on (vertices and lines come first there).
+  const vtkIdType first = polygons->GetNumberOfVerts() + polygons->GetNumberOfLines();
+  const vtkIdType cells = polygons->GetNumberOfPolys() + polygons->GetNumberOfStrips();
+  const bool filtered = polygons.GetPointer() != data;
+  const std::vector<vtkIdType> cellIds =
+    OriginalIds(polygons->GetCellData(), filtered ? "vtkOriginalCellIds" : nullptr, first + cells);
+  world.InputCells.assign(cellIds.begin() + first, cellIds.end());
+  world.InputPoints = OriginalIds(polygons->GetPointData(),
+    filtered ? "vtkOriginalPointIds" : nullptr, polygons->GetNumberOfPoints());
   auto out = vtkSmartPointer<vtkPolyData>::New();
   vtkPoints* in = polygons->GetPoints();
   vtkNew<vtkPoints> points;
@@ -109,7 +152,25 @@ vtkSmartPointer<vtkPolyData> WorldSurface(vtkDataSet* data, vtkMatrix4x4* matrix
   out->SetPoints(points);
   out->SetPolys(polygons->GetPolys());
   out->SetStrips(polygons->GetStrips());
-  return out;
+  world.Surface = out;
+  return world;
+}
+
+// Diffuse and specular reflectances scaled down together where their sum
+// exceeds 1 in a channel (energy conservation, rho_d + rho_s <= 1).
+void Conserve(double diffuse[3], double specular[3])
+{
+  double scale = 1.0;
+  for (int c = 0; c < 3; ++c)
+  {
+    const double sum = diffuse[c] + specular[c];
+    scale = sum > 1.0 ? std::min(scale, 1.0 / sum) : scale;
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    diffuse[c] *= scale;
+    specular[c] *= scale;
+  }
 }
 
 // The actor's vtkProperty as a Brume material, in the surface's field data.
@@ -120,20 +181,12 @@ void WriteMaterial(vtkProperty* property, vtkFieldData* fd)
   property->GetSpecularColor(specular);
   const double kd = property->GetDiffuse();
   const double ks = property->GetSpecular() > 0.0 ? property->GetSpecular() : 0.0;
-  double scale = 1.0;
   for (int c = 0; c < 3; ++c)
   {
     diffuse[c] = std::max(0.0, kd * diffuse[c]);
     specular[c] = std::max(0.0, ks * specular[c]);
-    // Energy conservation, rho_d + rho_s <= 1 per channel: both scaled down.
-    const double sum = diffuse[c] + specular[c];
-    scale = sum > 1.0 ? std::min(scale, 1.0 / sum) : scale;
   }
-  for (int c = 0; c < 3; ++c)
-  {
-    diffuse[c] *= scale;
-    specular[c] *= scale;
-  }
+  Conserve(diffuse, specular);
   vtkNew<vtkStringArray> material;
   material->SetName(vtkBrumeNames::Material);
   material->InsertNextValue(ks > 0.0 ? "phong" : "lambertian");
@@ -144,6 +197,103 @@ void WriteMaterial(vtkProperty* property, vtkFieldData* fd)
     const double exponent = std::max(1.0, property->GetSpecularPower());
     vtkBrumeFieldTuple::Set(fd, vtkBrumeNames::Specular, specular, 3);
     vtkBrumeFieldTuple::Set(fd, vtkBrumeNames::Exponent, &exponent, 1);
+  }
+}
+
+// The colours the mapper gives its input's points (cellFlag 0) or cells
+// (1), mapped as VTK maps them for drawing; null where the actor has its
+// property's colour (scalar visibility off, no scalars, colouring by a
+// field-data tuple).
+vtkSmartPointer<vtkUnsignedCharArray> MappedColours(
+  vtkMapper* mapper, vtkDataSet* data, int& cellFlag)
+{
+  cellFlag = 0;
+  if (!mapper || !mapper->GetScalarVisibility())
+  {
+    return nullptr;
+  }
+  vtkAbstractArray* scalars = vtkAbstractMapper::GetAbstractScalars(data, mapper->GetScalarMode(),
+    mapper->GetArrayAccessMode(), mapper->GetArrayId(), mapper->GetArrayName(), cellFlag);
+  if (!scalars || cellFlag > 1)
+  {
+    return nullptr;
+  }
+  vtkScalarsToColors* table = mapper->GetLookupTable();
+  auto* values = vtkDataArray::SafeDownCast(scalars);
+  if (values && values->GetLookupTable())
+  {
+    table = values->GetLookupTable();
+  }
+  table->Build();
+  if (!mapper->GetUseLookupTableScalarRange())
+  {
+    table->SetRange(mapper->GetScalarRange());
+  }
+  return vtkSmartPointer<vtkUnsignedCharArray>::Take(
+    table->MapScalars(scalars, mapper->GetColorMode(), mapper->GetArrayComponent()));
+}
+
+// Per cell of the surface, Diffuse x the mapped colour (a point-coloured
+// cell: the mean of its points' colours) as the cell array
+// BrumeReflectance, with BrumeSpecular beside it where the property has a
+// lobe, both scaled as WriteMaterial scales the property's.
+void WriteColours(
+  const WorldPolygons& world, vtkUnsignedCharArray* colours, int cellFlag, vtkProperty* property)
+{
+  vtkPolyData* surface = world.Surface;
+  const vtkIdType cells = surface->GetNumberOfCells();
+  vtkNew<vtkFloatArray> reflectance;
+  reflectance->SetName(vtkBrumeNames::Reflectance);
+  reflectance->SetNumberOfComponents(3);
+  reflectance->SetNumberOfTuples(cells);
+  vtkNew<vtkFloatArray> specularity;
+  specularity->SetName(vtkBrumeNames::Specular);
+  specularity->SetNumberOfComponents(3);
+  specularity->SetNumberOfTuples(cells);
+  double specularColour[3];
+  property->GetSpecularColor(specularColour);
+  const double kd = std::max(0.0, property->GetDiffuse());
+  const double ks = property->GetSpecular() > 0.0 ? property->GetSpecular() : 0.0;
+  vtkNew<vtkIdList> points;
+  for (vtkIdType k = 0; k < cells; ++k)
+  {
+    double colour[3] = { 0, 0, 0 };
+    if (cellFlag == 1)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        colour[c] = colours->GetComponent(world.InputCells[k], c);
+      }
+    }
+    else
+    {
+      surface->GetCellPoints(k, points);
+      for (vtkIdType i = 0; i < points->GetNumberOfIds(); ++i)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          colour[c] += colours->GetComponent(world.InputPoints[points->GetId(i)], c);
+        }
+      }
+      for (int c = 0; c < 3; ++c)
+      {
+        colour[c] /= std::max<vtkIdType>(1, points->GetNumberOfIds());
+      }
+    }
+    double diffuse[3], specular[3];
+    for (int c = 0; c < 3; ++c)
+    {
+      diffuse[c] = kd * colour[c] / 255.0;
+      specular[c] = std::max(0.0, ks * specularColour[c]);
+    }
+    Conserve(diffuse, specular);
+    reflectance->SetTuple(k, diffuse);
+    specularity->SetTuple(k, specular);
+  }
+  surface->GetCellData()->AddArray(reflectance);
+  if (ks > 0.0)
+  {
+    surface->GetCellData()->AddArray(specularity);
   }
 }
 
@@ -280,13 +430,19 @@ int vtkBrumeRendererScene::RequestData(
       continue; // Brume's surfaces are opaque
     }
     vtkDataSet* data = MapperInput(actor->GetMapper());
-    vtkSmartPointer<vtkPolyData> surface = data ? WorldSurface(data, actor->GetMatrix()) : nullptr;
-    if (!surface)
+    const WorldPolygons world = data ? WorldSurface(data, actor->GetMatrix()) : WorldPolygons();
+    if (!world.Surface)
     {
       continue;
     }
-    WriteMaterial(actor->GetProperty(), surface->GetFieldData());
-    vtkBrumeSceneConversion::AddObject(scene, surface, name);
+    WriteMaterial(actor->GetProperty(), world.Surface->GetFieldData());
+    int cellFlag = 0;
+    if (vtkSmartPointer<vtkUnsignedCharArray> colours =
+          MappedColours(actor->GetMapper(), data, cellFlag))
+    {
+      WriteColours(world, colours, cellFlag, actor->GetProperty());
+    }
+    vtkBrumeSceneConversion::AddObject(scene, world.Surface, name);
     translated.insert(actor);
   }
   index = 0;

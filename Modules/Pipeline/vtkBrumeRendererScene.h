@@ -23,8 +23,17 @@
  *   normalized Phong lobe of Specular x SpecularColor and SpecularPower
  *   (both scaled down together where their sum would exceed 1). Actors
  *   with Opacity < 1 are left out (Brume's surfaces are opaque), as are
- *   props that are not vtkActors or vtkVolumes. Scalar colouring and
- *   textures are not read: a surface has its property's colour.
+ *   props that are not vtkActors or vtkVolumes.
+ * - **Scalar colouring**: where the mapper colours by scalars
+ *   (ScalarVisibility, its ScalarMode, array, lookup table and scalar
+ *   range, as VTK maps them), Diffuse x the mapped colour is the
+ *   reflectance, per triangle: a cell-coloured polygon has its cell's
+ *   colour, a point-coloured one the mean of its points' colours (a
+ *   coarse mesh coloured by point scalars is faceted: subdivide it). It
+ *   colours the light each bounce carries on (colour bleeding) as well as
+ *   what is shown. Such surfaces take their direct light from the
+ *   particles, not computed per texel. Colouring by a field-data tuple,
+ *   the mapped alpha and textures are not read.
  * - **Volumes** become media classified by their vtkVolumeProperty
  *   (vtkBrumeVolumePropertyMedium, its Albedo given here): images
  *   directly, other datasets resampled. The volume's translation and

@@ -238,7 +238,7 @@ bool vtkBrumeRadianceReconstruction::Plan(const vtkBrumeReconstructionRequest& r
     this->MediumResolution, this->HistogramRefinement,
     this->DirectLighting ? this->DirectLightResolution : 0, this->MirrorResolution,
     this->CentroidMatching, this->SparseMedia, this->FixedView,
-    this->FixedView && this->DirectionalRadiance };
+    this->FixedView && this->DirectionalRadiance, static_cast<double>(this->PlannedParticles) };
   vtkBrumeRadianceTextures* textures = this->Textures.get();
   const auto& run = request.Run;
   const bool sameSettings = textures && textures->SameSceneAndSettings(request, settings);
@@ -315,6 +315,7 @@ void vtkBrumeRadianceReconstruction::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RadiosityThreshold: " << this->RadiosityThreshold << "\n";
   os << indent << "SurfaceResolution: " << this->SurfaceResolution << "\n";
   os << indent << "MirrorResolution: " << this->MirrorResolution << "\n";
+  os << indent << "PlannedParticles: " << this->PlannedParticles << "\n";
   os << indent << "MediumResolution: " << this->MediumResolution << "\n";
   os << indent << "HistogramRefinement: " << this->HistogramRefinement << "\n";
   os << indent << "CentroidMatching: " << this->CentroidMatching << "\n";

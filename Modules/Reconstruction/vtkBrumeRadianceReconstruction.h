@@ -274,6 +274,20 @@ public:
 
   ///@{
   /**
+   * The run the automatic resolutions are chosen for (default 0: the run
+   * being reconstructed). A progressive run keeps its first step's
+   * resolutions (AccumulateParticles): given the count it will reach,
+   * its first step's textures get the texels that count's hits call for,
+   * as a run traced in batches does from its first batch (its hits
+   * scaled to the count), and its last step is estimated as finely as one
+   * run of that count. Counts below the run's own are ignored.
+   */
+  vtkSetClampMacro(PlannedParticles, vtkTypeInt64, 0, VTK_TYPE_INT64_MAX);
+  vtkGetMacro(PlannedParticles, vtkTypeInt64);
+  ///@}
+
+  ///@{
+  /**
    * Texels along the longer axis of a mirror's texture (default 512, at
    * most 4096): its reflection toward the eye, cast from every texel
    * through the scene's textures and media (brume::MirrorReflection), is
@@ -337,6 +351,7 @@ protected:
   int SurfaceResolution = 0;
   int MediumResolution = 0;
   int MirrorResolution = 512;
+  vtkTypeInt64 PlannedParticles = 0;
   int HistogramRefinement = 2;
   bool CentroidMatching = true;
   bool SparseMedia = true;

@@ -60,6 +60,7 @@ struct vtkBrumeReconstructionSettings
   bool SparseMedia = true;       // heterogeneous media's textures in the sparse form
   bool FixedView = false;        // view-dependent objects binned toward one eye
   bool DirectionalMedia = false; // with FixedView: anisotropic media keep their hits
+  double PlannedParticles = 0.0; // resolutions chosen for this many particles, if more
 
   bool operator==(const vtkBrumeReconstructionSettings& o) const
   {
@@ -70,7 +71,8 @@ struct vtkBrumeReconstructionSettings
       this->DirectLightResolution == o.DirectLightResolution &&
       this->MirrorResolution == o.MirrorResolution &&
       this->CentroidMatching == o.CentroidMatching && this->SparseMedia == o.SparseMedia &&
-      this->FixedView == o.FixedView && this->DirectionalMedia == o.DirectionalMedia;
+      this->FixedView == o.FixedView && this->DirectionalMedia == o.DirectionalMedia &&
+      this->PlannedParticles == o.PlannedParticles;
   }
 };
 

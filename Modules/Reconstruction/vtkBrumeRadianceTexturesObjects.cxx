@@ -123,12 +123,14 @@ bool vtkBrumeRadianceTextures::CreateObjects(const vtkBrumeReconstructionSetting
   const vtkBrumeHitConversion::RunInfo& run)
 {
   // Resolutions follow the hits of the whole run, on every process; from
-  // the first batch of a run traced in batches, its hits scaled to the run.
+  // the first batch of a run traced in batches, its hits scaled to the run
+  // (or to the planned count, where more: a progressive run's last step).
   // After the counts of every object come the hits of the media and of the
   // planar surfaces counted over their pilot grids (where the hits are,
   // brume::HitConcentration; a surface's without those the direct light
   // replaces).
-  const double scale = run.Particles / (run.EndParticle - run.FirstParticle);
+  const double scale =
+    std::max(run.Particles, settings.PlannedParticles) / (run.EndParticle - run.FirstParticle);
   const std::size_t objects = this->Scene.NumberOfObjects();
   const std::size_t surfaces = this->Scene.Surfaces.size();
   // Where lights were aimed, a hit counts for its particle's emission

@@ -6,6 +6,8 @@
 //   brume render does), up to the display's 8-bit rounding.
 // - A camera orbit traces nothing again and updates the view-dependent
 //   textures; a colour edit traces once more.
+// - Progressive frames: a quarter of the budget, then half, then all of
+//   it, each step's textures bitwise those of one run of its count.
 #include "VtkSceneTesting.h"
 #include "vtkActor.h"
 #include "vtkBrumeLightTracer.h"
@@ -13,8 +15,14 @@
 #include "vtkBrumePipeline.h"
 #include "vtkBrumeRadianceReconstruction.h"
 #include "vtkBrumeRendererScene.h"
+#include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
+#include "vtkCellData.h"
 #include "vtkColorTransferFunction.h"
+#include "vtkDataObjectTree.h"
+#include "vtkDataObjectTreeIterator.h"
+#include "vtkDataSet.h"
+#include "vtkFieldData.h"
 #include "vtkFixedPointVolumeRayCastMapper.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
@@ -35,8 +43,10 @@
 #include "vtkWindowToImageFilter.h"
 
 #include <cstdlib>
+#include <cstring>
 #include <iostream>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -52,6 +62,109 @@ void Check(bool ok, const std::string& what)
     std::cerr << "FAILED: " << what << "\n";
     ++Failures;
   }
+}
+
+// The textures of two reconstructions, bitwise: every array of every
+// object.
+bool SameTextures(vtkDataObject* a, vtkDataObject* b)
+{
+  auto* ca = vtkDataObjectTree::SafeDownCast(a);
+  auto* cb = vtkDataObjectTree::SafeDownCast(b);
+  if (!ca || !cb)
+  {
+    return false;
+  }
+  vtkSmartPointer<vtkDataObjectTreeIterator> ia;
+  ia.TakeReference(ca->NewTreeIterator());
+  vtkSmartPointer<vtkDataObjectTreeIterator> ib;
+  ib.TakeReference(cb->NewTreeIterator());
+  int compared = 0;
+  for (ia->InitTraversal(), ib->InitTraversal(); !ia->IsDoneWithTraversal();
+       ia->GoToNextItem(), ib->GoToNextItem())
+  {
+    auto* da = vtkDataSet::SafeDownCast(ia->GetCurrentDataObject());
+    auto* db =
+      ib->IsDoneWithTraversal() ? nullptr : vtkDataSet::SafeDownCast(ib->GetCurrentDataObject());
+    if (!da || !db)
+    {
+      return false;
+    }
+    for (vtkFieldData* fa : { static_cast<vtkFieldData*>(da->GetPointData()),
+           static_cast<vtkFieldData*>(da->GetCellData()), da->GetFieldData() })
+    {
+      vtkFieldData* fb = fa == da->GetPointData() ? static_cast<vtkFieldData*>(db->GetPointData())
+        : fa == da->GetCellData()                 ? static_cast<vtkFieldData*>(db->GetCellData())
+                                                  : db->GetFieldData();
+      for (int i = 0; i < fa->GetNumberOfArrays(); ++i)
+      {
+        vtkDataArray* x = fa->GetArray(i);
+        vtkDataArray* y = x && x->GetName() ? fb->GetArray(x->GetName()) : nullptr;
+        if (!x)
+        {
+          continue;
+        }
+        if (!y || x->GetDataType() != y->GetDataType() ||
+          x->GetNumberOfValues() != y->GetNumberOfValues() ||
+          std::memcmp(x->GetVoidPointer(0), y->GetVoidPointer(0),
+            static_cast<std::size_t>(x->GetNumberOfValues()) * x->GetDataTypeSize()) != 0)
+        {
+          return false;
+        }
+        ++compared;
+      }
+    }
+  }
+  return ib->IsDoneWithTraversal() && compared > 0;
+}
+
+// Progressive frames: a first step, then steps doubling the count to the
+// budget, each step's textures bitwise those of one run of its count (at
+// the same resolutions); a ProgressEvent after each.
+void TestProgressive(vtkRenderer* renderer, vtkRenderWindow* window, vtkBrumePass* pass)
+{
+  auto resolutions = [](vtkBrumePipeline* p)
+  {
+    p->GetReconstruction()->SetSurfaceResolution(24);
+    p->GetReconstruction()->SetMediumResolution(10);
+  };
+  resolutions(pass->GetPipeline());
+  pass->ProgressiveOn();
+  pass->SetFirstStepParticles(Particles / 4);
+  std::vector<double> progress;
+  vtkNew<vtkCallbackCommand> observer;
+  observer->SetClientData(&progress);
+  observer->SetCallback([](vtkObject*, unsigned long, void* clientData, void* callData)
+    { static_cast<std::vector<double>*>(clientData)->push_back(*static_cast<double*>(callData)); });
+  pass->AddObserver(vtkCommand::ProgressEvent, observer);
+  const int traces = pass->GetNumberOfTraces();
+  vtkNew<vtkBrumeRendererScene> scene;
+  scene->SetRenderer(renderer);
+  bool same = true;
+  int frames = 0;
+  for (; frames < 10 && (frames == 0 || !pass->IsConverged()); ++frames)
+  {
+    window->Render();
+    const vtkTypeInt64 count = pass->GetPipeline()->GetTracer()->GetNumberOfParticles();
+    vtkNew<vtkBrumePipeline> once;
+    once->SetInputConnection(scene->GetOutputPort());
+    once->SetCamera(renderer->GetActiveCamera());
+    once->GetTracer()->SetNumberOfParticles(count);
+    resolutions(once);
+    same = same && once->Update() &&
+      SameTextures(pass->GetPipeline()->GetReconstruction()->GetOutputDataObject(0),
+        once->GetReconstruction()->GetOutputDataObject(0));
+    std::cout << "progressive frame " << frames << ": " << count << " particles\n";
+  }
+  Check(frames == 3 && pass->IsConverged() && pass->GetNumberOfTraces() == traces + 1 &&
+      pass->GetNumberOfSteps() == 2,
+    "a change, then two steps: the budget's quarter, half and whole in three frames");
+  Check(same, "each step's textures are bitwise those of one run of its count");
+  Check(progress.size() == 3 && progress[0] == 0.25 && progress[1] == 0.5 && progress[2] == 1.0,
+    "a ProgressEvent after each step, with the fraction traced");
+  const int steps = pass->GetNumberOfSteps();
+  window->Render();
+  Check(pass->GetNumberOfSteps() == steps && pass->GetNumberOfTraces() == traces + 1,
+    "once converged, a frame traces nothing");
 }
 
 }
@@ -82,9 +195,10 @@ int TestBrumePass(int, char*[])
   camera->SetViewAngle(40);
   renderer->ResetCameraClippingRange();
 
-  // The added line (and the budget).
+  // The added line (and the budget, at once).
   vtkNew<vtkBrumePass> pass;
-  pass->GetPipeline()->GetTracer()->SetNumberOfParticles(Particles);
+  pass->SetNumberOfParticles(Particles);
+  pass->ProgressiveOff();
   renderer->SetPass(pass);
   window->Render();
   vtkNew<vtkWindowToImageFilter> grab;
@@ -142,22 +256,25 @@ int TestBrumePass(int, char*[])
   vtkBrumeRadianceReconstruction* reconstruction = pass->GetPipeline()->GetReconstruction();
   const vtkIdType updates = reconstruction->GetNumberOfViewUpdates();
 
-  for (int k = 0; k < 6; ++k)
+  for (int k = 0; k < 36; ++k)
   {
     camera->Azimuth(10);
     window->Render();
   }
   std::cout << "traces " << pass->GetNumberOfTraces() << ", view updates "
             << pass->GetNumberOfViewUpdates() << " after the orbit\n";
-  Check(pass->GetNumberOfTraces() == 1 && pass->GetNumberOfViewUpdates() == 6,
-    "a camera orbit of 6 frames: no new trace, 6 view updates");
-  Check(reconstruction->GetNumberOfViewUpdates() >= updates + 6,
+  Check(pass->GetNumberOfTraces() == 1 && pass->GetNumberOfViewUpdates() == 36 &&
+      pass->GetNumberOfReconstructions() == 1,
+    "a camera orbit of 36 frames: no new trace, 36 view updates");
+  Check(reconstruction->GetNumberOfViewUpdates() >= updates + 36,
     "each new view updates the view-dependent textures");
   ground->GetProperty()->SetColor(0.3, 0.6, 0.9);
   window->Render();
   window->Render();
-  Check(pass->GetNumberOfTraces() == 2 && pass->GetNumberOfViewUpdates() == 6,
+  Check(pass->GetNumberOfTraces() == 2 && pass->GetNumberOfViewUpdates() == 36,
     "a colour edit traces once more (and is no view update)");
+
+  TestProgressive(renderer, window, pass);
   if (Failures == 0)
   {
     std::cout << "vtkBrumePass: the explicit pipeline's image, traces only on edits: ok\n";

@@ -7,6 +7,8 @@
 //   their translation and scale; a rotated volume is refused.
 // - Lights come scaled by LightScale; a renderer without one gets a
 //   headlight.
+// - Scalar colouring: cells coloured through the mapper's colour map have
+//   those colours, times Diffuse, as their reflectance.
 // - Nothing is rebuilt when only the camera moves; a property edit is.
 // - The scene renders through vtkBrumePipeline to a lit, finite image.
 #include "VtkSceneTesting.h"
@@ -16,10 +18,12 @@
 #include "vtkBrumePipeline.h"
 #include "vtkBrumeRendererScene.h"
 #include "vtkCamera.h"
+#include "vtkCellData.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkCubeSource.h"
 #include "vtkDataArray.h"
+#include "vtkDataSetMapper.h"
 #include "vtkExecutive.h"
 #include "vtkFieldData.h"
 #include "vtkFixedPointVolumeRayCastMapper.h"
@@ -90,6 +94,53 @@ std::string Material(vtkDataObject* object)
                        object->GetFieldData()->GetAbstractArray(vtkBrumeNames::Material))
                    : nullptr;
   return a && a->GetNumberOfValues() > 0 ? a->GetValue(0) : std::string();
+}
+
+void TestCellColours()
+{
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(3, 3, 1);
+  vtkNew<vtkFloatArray> values;
+  values->SetName("values");
+  for (int c = 0; c < 4; ++c)
+  {
+    values->InsertNextValue(static_cast<float>(c));
+  }
+  image->GetCellData()->SetScalars(values);
+  vtkNew<vtkColorTransferFunction> colours;
+  colours->AddRGBPoint(0.0, 1.0, 0.0, 0.0);
+  colours->AddRGBPoint(3.0, 0.0, 0.0, 1.0);
+  vtkNew<vtkDataSetMapper> mapper;
+  mapper->SetInputData(image);
+  mapper->SetLookupTable(colours);
+  mapper->SetScalarRange(0.0, 3.0);
+  mapper->SetScalarModeToUseCellData();
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetDiffuse(0.5);
+  vtkNew<vtkRenderer> renderer;
+  renderer->AddActor(actor);
+  vtkNew<vtkBrumeRendererScene> source;
+  source->SetRenderer(renderer);
+  source->Update();
+  auto* surface = vtkPolyData::SafeDownCast(Object(source->GetOutput(), "actor 0"));
+  vtkDataArray* reflectance =
+    surface ? surface->GetCellData()->GetArray(vtkBrumeNames::Reflectance) : nullptr;
+  bool right = reflectance && reflectance->GetNumberOfTuples() == 4;
+  for (vtkIdType k = 0; right && k < 4; ++k)
+  {
+    double bounds[6];
+    surface->GetCellBounds(k, bounds);
+    const int cell = static_cast<int>(bounds[0] + 0.5) + 2 * static_cast<int>(bounds[2] + 0.5);
+    double rgb[3];
+    colours->GetColor(cell, rgb);
+    for (int c = 0; c < 3; ++c)
+    {
+      // Mapped to 8 bits, as VTK draws them.
+      right = right && std::abs(reflectance->GetComponent(k, c) - 0.5 * rgb[c]) < 0.5 / 255 + 1e-6;
+    }
+  }
+  Check(right, "cell colours follow their cells through the surface filter, times Diffuse");
 }
 
 }
@@ -180,6 +231,11 @@ int TestRendererScene(int, char*[])
   Check(source->GetOutput()->GetMTime() > built &&
       Near(Component(Object(source->GetOutput(), "actor 0"), vtkBrumeNames::Reflectance, 1), 0.7),
     "a colour edit rebuilds the scene");
+
+  // An image coloured by cell scalars through a vtkDataSetMapper: its
+  // surface's cells (made by a surface filter, in its own order) have the
+  // colours of the cells they come from.
+  TestCellColours();
 
   // Through the pipeline: a lit, finite image.
   vtkNew<vtkBrumePipeline> pipeline;
