@@ -71,7 +71,7 @@ def scene(size):
     light.SetConeAngle(180)
     light.SetPosition(0, 4, 1)
     light.SetFocalPoint(0, 0, 0)
-    light.SetIntensity(1.0)
+    light.SetIntensity(0.6)
     renderer.AddLight(light)
 
     camera = renderer.GetActiveCamera()

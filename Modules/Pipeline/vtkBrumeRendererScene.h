@@ -31,9 +31,9 @@
  *   colour, a point-coloured one the mean of its points' colours (a
  *   coarse mesh coloured by point scalars is faceted: subdivide it). It
  *   colours the light each bounce carries on (colour bleeding) as well as
- *   what is shown. Such surfaces take their direct light from the
- *   particles, not computed per texel. Colouring by a field-data tuple,
- *   the mapped alpha and textures are not read.
+ *   what is shown; a planar one gets its direct light computed per texel
+ *   with the reflectance of the triangle there. Colouring by a field-data
+ *   tuple, the mapped alpha and textures are not read.
  * - **Volumes** become media classified by their vtkVolumeProperty
  *   (vtkBrumeVolumePropertyMedium, its Albedo given here): images
  *   directly, other datasets resampled. The volume's translation and

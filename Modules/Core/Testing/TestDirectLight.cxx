@@ -155,6 +155,65 @@ TEST(DirectLight, WallUnderAPointLightIsRhoIHOverPiR3WithAShadow)
   EXPECT_GT(shadowed, 600);
 }
 
+TEST(DirectLight, PerTriangleMaterialsReflectTheirOwnDirectLight)
+{
+  // A wall of two triangles of different reflectances (a surface coloured
+  // per cell), 1 m under a point light: each output texel reflects the
+  // direct term rho I h / (pi r^3) by the reflectance of the triangle at
+  // its centre. A mirror triangle leaves the direct light to the particles.
+  Scene scene;
+  scene.Surfaces = { Square("wall", 1.f, 0.f, true, Vec3(0.5f)) };
+  const Vec3 below(0.8f, 0.2f, 0.1f), above(0.1f, 0.3f, 0.9f); // y < x, y > x
+  scene.Surfaces[0].TriangleMaterials.assign(2, scene.Surfaces[0].Mat);
+  scene.Surfaces[0].TriangleMaterials[0].Reflectance = below;
+  scene.Surfaces[0].TriangleMaterials[1].Reflectance = above;
+  scene.Lights = { PointLight({ 0.f, 0.f, 1.f }, 2.f) };
+  ASSERT_EQ(scene.Validate(), "");
+  const HitStore store(Trace(scene, 20000, 1));
+  const RayCaster caster(scene);
+  DirectLight direct(scene, caster);
+  ObjectRadiance wall(scene.Surfaces[0], MakeChart(scene.Surfaces[0], nullptr), { 4, 4 }, 2);
+  ASSERT_TRUE(wall.SupportsDirect());
+  wall.EnableDirect(&direct, { 32, 32, 1 });
+  const auto index = IndexOf(store, 0);
+  ASSERT_EQ(
+    wall.Build(store.View(), index.data(), index.size(), { 0, 0, 5 }, 1e-3, SerialFor()), "");
+  wall.ComputeDirect(SerialFor());
+  ASSERT_TRUE(wall.HasDirect());
+  const auto& L = wall.GetOutputRadiance();
+  const auto& frame = wall.GetChart().Frame;
+  constexpr int N = 32;
+  int checked = 0;
+  for (int j = 0; j < N; ++j)
+    for (int i = 0; i < N; ++i)
+    {
+      const Vec3 p = frame.Origin + frame.U * ((i + 0.5f) / N) + frame.V * ((j + 0.5f) / N);
+      if (std::abs(p.y - p.x) < 0.05f)
+      {
+        continue; // on the diagonal both triangles share
+      }
+      const Vec3& rho = p.y < p.x ? below : above;
+      const double r = Length(p - Vec3(0.f, 0.f, 1.f));
+      const std::size_t t = static_cast<std::size_t>(j) * N + i;
+      for (int c = 0; c < 3; ++c)
+      {
+        const double expected = rho[c] / Pi * 2.0 / (r * r * r);
+        EXPECT_NEAR(L[3 * t + c], expected, 1e-5 * std::max(expected, 1.0))
+          << "texel " << i << "," << j;
+      }
+      ++checked;
+    }
+  EXPECT_GT(checked, 800);
+  Scene mirrored = scene;
+  mirrored.Surfaces[0].TriangleMaterials[1].Type = MaterialType::Mirror;
+  mirrored.Surfaces[0].TriangleMaterials[1].Reflectance = Vec3(0.f);
+  mirrored.Surfaces[0].TriangleMaterials[1].Specular = Vec3(0.9f);
+  ASSERT_EQ(mirrored.Validate(), "");
+  const ObjectRadiance mirror(
+    mirrored.Surfaces[0], MakeChart(mirrored.Surfaces[0], nullptr), { 4, 4 }, 2);
+  EXPECT_FALSE(mirror.SupportsDirect());
+}
+
 TEST(DirectLight, ThinMediumSourceIsTheAnalyticSingleScattering)
 {
   // A point light at the centre of a homogeneous anisotropic medium,

@@ -127,7 +127,8 @@ public:
 
   /**
    * Deterministic single scattering (brume/DirectLight.h), for media and
-   * for planar surfaces of one non-mirror material (SupportsDirect()).
+   * for planar surfaces without mirrors (SupportsDirect(); per-triangle
+   * materials reflect it at each output texel by the triangle there).
    * Call before Build(): the object then leaves out every particle's first
    * interaction after a point, spot or directional light (the hits must
    * carry Emitter and Depth), and once ComputeDirect() has run, its output
@@ -406,6 +407,7 @@ private:
   // direct light projected on the directional representation's voxels.
   Vec3 OutputPosition(std::size_t texel) const;
   void CombineDirect(const ParallelFor& parallelFor);
+  void LocateDirectTriangles();
   void AddDirectToDirectional(int order);
   // The kept hits' weighted flux toward `eye` into ValueSums, and with
   // `weights` their incident flux into WeightSums (the same for every eye).
@@ -553,6 +555,9 @@ private:
   const DirectLight* Direct = nullptr;
   std::array<int, 3> DirectDims{ 0, 0, 0 };
   std::vector<float> Arrivals; // per output texel and light: irradiance RGB, direction
+  // Surfaces of per-triangle materials: the triangle at each output
+  // texel's centre (-1 where none), whose material reflects its direct light.
+  std::vector<std::int32_t> DirectTriangles;
   std::vector<float> DirectRadiance;
   std::vector<float> DirectExtinction;
   std::vector<float> Reflected; // mirrors

@@ -102,9 +102,69 @@ bool ObjectRadiance::SupportsDirect() const
   {
     return true;
   }
-  return this->Chart.Type == SurfaceChart::Kind::Planar &&
-    this->SurfaceRef->TriangleMaterials.empty() &&
-    this->SurfaceRef->Mat.Type != MaterialType::Mirror && !this->SurfaceRef->Triangles.empty();
+  const Surface& surface = *this->SurfaceRef;
+  const auto mirror = [](const Material& m) { return m.Type == MaterialType::Mirror; };
+  return this->Chart.Type == SurfaceChart::Kind::Planar && !surface.Triangles.empty() &&
+    (surface.TriangleMaterials.empty()
+        ? !mirror(surface.Mat)
+        : std::none_of(surface.TriangleMaterials.begin(), surface.TriangleMaterials.end(), mirror));
+}
+
+void ObjectRadiance::LocateDirectTriangles()
+{
+  // Each output texel's centre in the plane's (s, t) coordinates, found in
+  // the triangles that cover it (the first one wins, serially: the same
+  // whatever the threads).
+  this->DirectTriangles.clear();
+  const Surface& surface = *this->SurfaceRef;
+  if (this->MediumRef || surface.TriangleMaterials.empty())
+  {
+    return;
+  }
+  const std::size_t nx = this->DirectDims[0], ny = this->DirectDims[1];
+  this->DirectTriangles.assign(nx * ny, -1);
+  const PlanarFrame& frame = this->Chart.Frame;
+  const float uu = Dot(frame.U, frame.U), vv = Dot(frame.V, frame.V);
+  for (std::size_t k = 0; k < surface.Triangles.size(); ++k)
+  {
+    float s[3], t[3];
+    for (int c = 0; c < 3; ++c)
+    {
+      const Vec3 q = surface.Vertices[surface.Triangles[k][c]] - frame.Origin;
+      s[c] = Dot(q, frame.U) / uu;
+      t[c] = Dot(q, frame.V) / vv;
+    }
+    const float det = (s[1] - s[0]) * (t[2] - t[0]) - (s[2] - s[0]) * (t[1] - t[0]);
+    if (det == 0.f)
+    {
+      continue;
+    }
+    // Texel centres (i + 1/2) / n within the triangle's bounds.
+    auto range = [](float lo, float hi, std::size_t n)
+    {
+      const long first = std::max(0L, static_cast<long>(std::ceil(lo * n - 0.5f)));
+      const long last =
+        std::min(static_cast<long>(n) - 1, static_cast<long>(std::floor(hi * n - 0.5f)));
+      return std::make_pair(first, last);
+    };
+    const auto [i0, i1] = range(std::min({ s[0], s[1], s[2] }), std::max({ s[0], s[1], s[2] }), nx);
+    const auto [j0, j1] = range(std::min({ t[0], t[1], t[2] }), std::max({ t[0], t[1], t[2] }), ny);
+    for (long j = j0; j <= j1; ++j)
+    {
+      for (long i = i0; i <= i1; ++i)
+      {
+        const float ps = (i + 0.5f) / nx - s[0], pt = (j + 0.5f) / ny - t[0];
+        const float b1 = (ps * (t[2] - t[0]) - (s[2] - s[0]) * pt) / det;
+        const float b2 = ((s[1] - s[0]) * pt - ps * (t[1] - t[0])) / det;
+        constexpr float tolerance = -1e-6f;
+        std::int32_t& triangle = this->DirectTriangles[j * nx + i];
+        if (triangle < 0 && b1 >= tolerance && b2 >= tolerance && b1 + b2 <= 1.f - tolerance)
+        {
+          triangle = static_cast<std::int32_t>(k);
+        }
+      }
+    }
+  }
 }
 
 void ObjectRadiance::EnableDirect(const DirectLight* light, const std::array<int, 3>& resolution)
@@ -258,6 +318,7 @@ void ObjectRadiance::ComputeDirect(const ParallelFor& parallelFor)
     });
   this->GatherShares(texels, floats, arrivals);
   this->Arrivals.swap(arrivals);
+  this->LocateDirectTriangles();
   if (this->MediumRef)
   {
     // sigma_t on the output grid (renderers without the native grid).
@@ -419,8 +480,11 @@ void ObjectRadiance::CombineDirect(const ParallelFor& parallelFor)
               continue;
             }
             const Vec3 direction(a[3], a[4], a[5]);
-            const Vec3 f =
-              EvaluateBrdf(this->SurfaceRef->Mat, this->SurfaceNormal, -direction, toEye);
+            const std::int32_t triangle =
+              this->DirectTriangles.empty() ? -1 : this->DirectTriangles[t];
+            const Material& m =
+              triangle < 0 ? this->SurfaceRef->Mat : this->SurfaceRef->MaterialOf(triangle);
+            const Vec3 f = EvaluateBrdf(m, this->SurfaceNormal, -direction, toEye);
             for (int c = 0; c < 3; ++c)
             {
               out[c] += f[c] * a[c];
