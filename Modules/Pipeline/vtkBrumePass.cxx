@@ -10,8 +10,10 @@
 #include "vtkBrumeSliceVolumeMapper.h"
 #include "vtkCamera.h"
 #include "vtkCommand.h"
+#include "vtkExecutive.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkPartitionedDataSetCollection.h"
 #include "vtkProp.h"
 #include "vtkPropCollection.h"
 #include "vtkRenderState.h"
@@ -49,8 +51,14 @@ struct vtkBrumePass::vtkInternals
   // Brume's volumes, which their slice mappers draw together (they are not
   // in the renderer, whose volumes the mappers would otherwise draw).
   vtkNew<vtkVolumeCollection> Volumes;
-  vtkMTimeType TracedScene = 0;     // the scene's MTime at the last trace
+  // The scene last traced, its content's signature, the scene's and the
+  // pass's MTimes then.
+  vtkSmartPointer<vtkPartitionedDataSetCollection> Traced;
+  vtkTypeUInt64 TracedSignature = 0;
+  vtkMTimeType TracedScene = 0;
+  vtkMTimeType TracedSettings = 0;
   bool Tried = false;               // traced (or tried to) at least once
+  bool Empty = false;               // nothing to light: VTK draws the renderer
   std::array<double, 3> ShownEye{}; // the eye at the last frame
   bool Failed = false;
 };
@@ -58,7 +66,7 @@ struct vtkBrumePass::vtkInternals
 vtkBrumePass::vtkBrumePass()
   : Internals(new vtkInternals)
 {
-  this->Internals->Pipeline->SetInputConnection(this->Internals->Scene->GetOutputPort());
+  this->Internals->Scene->AllowEmptyOn();
 }
 
 vtkBrumePass::~vtkBrumePass()
@@ -79,8 +87,9 @@ vtkBrumeRendererScene* vtkBrumePass::GetScene()
 bool vtkBrumePass::IsConverged()
 {
   const vtkInternals& in = *this->Internals;
-  return in.Holder && !in.Failed &&
-    in.Pipeline->GetTracer()->GetNumberOfParticles() >= this->NumberOfParticles;
+  return in.Tried && !in.Failed &&
+    (in.Empty ||
+      (in.Holder && in.Pipeline->GetTracer()->GetNumberOfParticles() >= this->NumberOfParticles));
 }
 
 // Traces the scene anew: the whole budget, or its first progressive step
@@ -89,7 +98,28 @@ bool vtkBrumePass::IsConverged()
 bool vtkBrumePass::Trace()
 {
   vtkInternals& in = *this->Internals;
+  // The pipeline reads a copy of the scene, given anew only here: building
+  // the scene again (to compare it) traces nothing.
+  if (!in.Scene->GetExecutive()->Update())
+  {
+    ++this->NumberOfTraces;
+    vtkErrorMacro("The renderer's scene could not be made (see the error above).");
+    in.Failed = true;
+    return false;
+  }
+  in.Traced = vtkSmartPointer<vtkPartitionedDataSetCollection>::New();
+  in.Traced->ShallowCopy(in.Scene->GetOutput());
+  in.TracedSignature = in.Scene->GetContentSignature();
+  in.Empty = in.Traced->GetNumberOfPartitionedDataSets() == 0;
+  if (in.Empty)
+  {
+    // Nothing to light (an empty view): VTK draws the renderer's props.
+    in.Failed = false;
+    in.Holder = nullptr;
+    return false;
+  }
   ++this->NumberOfTraces;
+  in.Pipeline->SetInputData(in.Traced);
   vtkTypeInt64 first = this->NumberOfParticles;
   while (this->Progressive && first > this->FirstStepParticles)
   {
@@ -168,19 +198,30 @@ bool vtkBrumePass::Prepare(vtkRenderer* renderer)
   vtkInternals& in = *this->Internals;
   in.Scene->SetRenderer(renderer);
   in.Pipeline->SetCamera(renderer->GetActiveCamera());
-  const vtkMTimeType scene = std::max(in.Scene->GetMTime(), this->GetMTime());
-  if (!in.Tried || scene > in.TracedScene)
+  const vtkMTimeType scene = in.Scene->GetMTime();
+  const bool settings = this->GetMTime() > in.TracedSettings;
+  if (!in.Tried || settings || scene > in.TracedScene)
   {
-    in.Tried = true;
     // Tried once per change: a failing scene is not traced again every frame.
+    in.Tried = true;
     in.TracedScene = scene;
-    const bool traced = this->Trace();
-    // What the trace itself touched (a mapper's default colour map, made
+    in.TracedSettings = this->GetMTime();
+    // A prop's MTime moves without a change that matters (ParaView's
+    // representations touch their mappers at their first renders): the
+    // scene is built again and traced only where its content differs.
+    const bool same = !settings && in.Traced && !in.Failed && in.Scene->GetExecutive()->Update() &&
+      in.Scene->GetContentSignature() == in.TracedSignature;
+    // What building the scene touched (a mapper's default colour map, made
     // on first use) is not an edit.
-    in.TracedScene = std::max({ in.TracedScene, in.Scene->GetMTime(), this->GetMTime() });
-    return traced;
+    in.TracedScene = std::max(in.TracedScene, in.Scene->GetMTime());
+    if (!same)
+    {
+      const bool traced = this->Trace();
+      in.TracedScene = std::max(in.TracedScene, in.Scene->GetMTime());
+      return traced;
+    }
   }
-  if (in.Failed)
+  if (in.Failed || in.Empty)
   {
     return false;
   }

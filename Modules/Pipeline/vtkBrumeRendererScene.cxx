@@ -12,9 +12,13 @@
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
+#include "vtkCleanPolyData.h"
+#include "vtkCompositeDataIterator.h"
+#include "vtkCompositeDataSet.h"
 #include "vtkDataArray.h"
 #include "vtkDataSetSurfaceFilter.h"
 #include "vtkExecutive.h"
+#include "vtkFeatureEdges.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkIdList.h"
@@ -29,10 +33,12 @@
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkPartitionedDataSet.h"
 #include "vtkPartitionedDataSetCollection.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkPolyDataNormals.h"
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
 #include "vtkScalarsToColors.h"
@@ -49,6 +55,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <set>
 #include <string>
 #include <vector>
@@ -65,12 +72,14 @@ struct vtkBrumeRendererScene::vtkInternals
   vtkTimeStamp PropsChanged;
   // The props the last RequestData made part of the scene.
   std::set<vtkProp*> Translated;
+  // Per light of the last scene: whether it follows the camera.
+  std::vector<bool> CameraLights;
 };
 
 namespace
 {
-// Brings a mapper's input up to date; its dataset, or null.
-vtkDataSet* MapperInput(vtkAbstractMapper* mapper, int port = 0)
+// Brings a mapper's input up to date; its data object, or null.
+vtkDataObject* MapperData(vtkAbstractMapper* mapper, int port = 0)
 {
   if (!mapper || mapper->GetNumberOfInputConnections(port) < 1)
   {
@@ -81,7 +90,37 @@ vtkDataSet* MapperInput(vtkAbstractMapper* mapper, int port = 0)
   {
     producer->Update();
   }
-  return vtkDataSet::SafeDownCast(mapper->GetInputDataObject(port, 0));
+  return mapper->GetInputDataObject(port, 0);
+}
+
+vtkDataSet* MapperInput(vtkAbstractMapper* mapper, int port = 0)
+{
+  return vtkDataSet::SafeDownCast(MapperData(mapper, port));
+}
+
+// The datasets a mapper draws: its input, or the leaves of a composite
+// input (ParaView's representations give their mappers composite data).
+std::vector<vtkDataSet*> MapperDatasets(vtkAbstractMapper* mapper)
+{
+  std::vector<vtkDataSet*> datasets;
+  vtkDataObject* data = MapperData(mapper);
+  if (auto* composite = vtkCompositeDataSet::SafeDownCast(data))
+  {
+    vtkSmartPointer<vtkCompositeDataIterator> leaves;
+    leaves.TakeReference(composite->NewIterator());
+    for (leaves->InitTraversal(); !leaves->IsDoneWithTraversal(); leaves->GoToNextItem())
+    {
+      if (auto* leaf = vtkDataSet::SafeDownCast(leaves->GetCurrentDataObject()))
+      {
+        datasets.push_back(leaf);
+      }
+    }
+  }
+  else if (auto* dataset = vtkDataSet::SafeDownCast(data))
+  {
+    datasets.push_back(dataset);
+  }
+  return datasets;
 }
 
 // The polygons of a prop's data in world coordinates, and where each of
@@ -154,6 +193,87 @@ WorldPolygons WorldSurface(vtkDataSet* data, vtkMatrix4x4* matrix)
   out->SetStrips(polygons->GetStrips());
   world.Surface = out;
   return world;
+}
+
+// Brume lights and shows a surface's front side (its polygons' winding);
+// VTK lights both. So a closed surface (once coincident points are merged)
+// is turned outward, and an open one toward the camera (the side seen when
+// the scene is built), each connected part's polygons made consistent
+// first. Cell data follow.
+vtkSmartPointer<vtkPolyData> FacingViewer(vtkPolyData* input, vtkCamera* camera)
+{
+  // Coincident points merged first: sources give each face of a closed
+  // surface its own points (vtkCubeSource), which would leave it open.
+  vtkNew<vtkCleanPolyData> merged;
+  merged->SetInputData(input);
+  merged->PointMergingOn();
+  merged->SetTolerance(0.0);
+  merged->ConvertLinesToPointsOff();
+  merged->ConvertPolysToLinesOff();
+  merged->ConvertStripsToPolysOff();
+  merged->Update();
+  vtkPolyData* surface = merged->GetOutput();
+  vtkNew<vtkFeatureEdges> edges;
+  edges->SetInputData(surface);
+  edges->BoundaryEdgesOn();
+  edges->NonManifoldEdgesOn();
+  edges->FeatureEdgesOff();
+  edges->ManifoldEdgesOff();
+  edges->Update();
+  const bool closed = edges->GetOutput()->GetNumberOfCells() == 0;
+  vtkNew<vtkPolyDataNormals> normals;
+  normals->SetInputData(surface);
+  // (Auto-orientation needs the point normals it computes; they are not kept.)
+  normals->ComputePointNormalsOn();
+  normals->ComputeCellNormalsOff();
+  normals->SplittingOff();
+  normals->ConsistencyOn();
+  normals->SetAutoOrientNormals(closed);
+  normals->Update();
+  auto out = vtkSmartPointer<vtkPolyData>::New();
+  out->ShallowCopy(normals->GetOutput());
+  out->GetPointData()->Initialize();
+  if (closed)
+  {
+    return out;
+  }
+  // The area-weighted normals against the directions to the eye.
+  double eye[3];
+  camera->GetPosition(eye);
+  double facing = 0.0;
+  vtkNew<vtkIdList> ids;
+  vtkPoints* points = out->GetPoints();
+  for (vtkIdType k = 0; k < out->GetNumberOfCells(); ++k)
+  {
+    out->GetCellPoints(k, ids);
+    double p0[3], p1[3], p2[3];
+    for (vtkIdType i = 2; i < ids->GetNumberOfIds(); ++i)
+    {
+      points->GetPoint(ids->GetId(0), p0);
+      points->GetPoint(ids->GetId(i - 1), p1);
+      points->GetPoint(ids->GetId(i), p2);
+      double a[3], b[3], n[3], toEye[3];
+      for (int c = 0; c < 3; ++c)
+      {
+        a[c] = p1[c] - p0[c];
+        b[c] = p2[c] - p0[c];
+        toEye[c] = eye[c] - p0[c];
+      }
+      vtkMath::Cross(a, b, n);
+      facing += vtkMath::Dot(n, toEye) / std::max(1e-30, vtkMath::Norm(toEye));
+    }
+  }
+  if (facing < 0.0)
+  {
+    vtkNew<vtkCellArray> polys;
+    polys->DeepCopy(out->GetPolys());
+    for (vtkIdType k = 0; k < polys->GetNumberOfCells(); ++k)
+    {
+      polys->ReverseCellAtId(k);
+    }
+    out->SetPolys(polys);
+  }
+  return out;
 }
 
 // Diffuse and specular reflectances scaled down together where their sum
@@ -371,12 +491,21 @@ vtkMTimeType vtkBrumeRendererScene::GetMTime()
       }
     }
   };
+  // The visible props: those in the scene with everything that places and
+  // colours them; the others (translucent, without polygons) with what
+  // could make them part of it, not their matrices (ParaView's centre axes
+  // follow the camera).
   std::vector<vtkProp*> props;
+  const std::set<vtkProp*>& translated = this->Internals->Translated;
   vtkActorCollection* actors = renderer->GetActors();
   actors->InitTraversal();
   while (vtkActor* actor = actors->GetNextActor())
   {
-    t = std::max(t, actor->GetMTime()); // its matrix, property and visibility
+    if (!actor->GetVisibility())
+    {
+      continue;
+    }
+    t = std::max(t, translated.count(actor) ? actor->GetMTime() : actor->GetProperty()->GetMTime());
     input(actor->GetMapper());
     props.push_back(actor);
   }
@@ -384,6 +513,10 @@ vtkMTimeType vtkBrumeRendererScene::GetMTime()
   volumes->InitTraversal();
   while (vtkVolume* volume = volumes->GetNextVolume())
   {
+    if (!volume->GetVisibility())
+    {
+      continue;
+    }
     t = std::max(t, volume->GetMTime()); // its property and transfer functions
     input(volume->GetMapper());
     props.push_back(volume);
@@ -429,21 +562,30 @@ int vtkBrumeRendererScene::RequestData(
     {
       continue; // Brume's surfaces are opaque
     }
-    vtkDataSet* data = MapperInput(actor->GetMapper());
-    const WorldPolygons world = data ? WorldSurface(data, actor->GetMatrix()) : WorldPolygons();
-    if (!world.Surface)
+    // One surface per dataset (per block of a composite input).
+    const std::vector<vtkDataSet*> datasets = MapperDatasets(actor->GetMapper());
+    int block = 0;
+    for (vtkDataSet* data : datasets)
     {
-      continue;
+      const WorldPolygons world = WorldSurface(data, actor->GetMatrix());
+      if (!world.Surface)
+      {
+        continue;
+      }
+      int cellFlag = 0;
+      if (vtkSmartPointer<vtkUnsignedCharArray> colours =
+            MappedColours(actor->GetMapper(), data, cellFlag))
+      {
+        WriteColours(world, colours, cellFlag, actor->GetProperty());
+      }
+      vtkSmartPointer<vtkPolyData> surface =
+        FacingViewer(world.Surface, renderer->GetActiveCamera());
+      WriteMaterial(actor->GetProperty(), surface->GetFieldData());
+      const std::string named = block == 0 ? name : name + " block " + std::to_string(block);
+      ++block;
+      vtkBrumeSceneConversion::AddObject(scene, surface, named);
+      translated.insert(actor);
     }
-    WriteMaterial(actor->GetProperty(), world.Surface->GetFieldData());
-    int cellFlag = 0;
-    if (vtkSmartPointer<vtkUnsignedCharArray> colours =
-          MappedColours(actor->GetMapper(), data, cellFlag))
-    {
-      WriteColours(world, colours, cellFlag, actor->GetProperty());
-    }
-    vtkBrumeSceneConversion::AddObject(scene, world.Surface, name);
-    translated.insert(actor);
   }
   index = 0;
   vtkVolumeCollection* volumes = renderer->GetVolumes();
@@ -471,6 +613,19 @@ int vtkBrumeRendererScene::RequestData(
     }
     vtkNew<vtkBrumeVolumePropertyMedium> medium;
     medium->SetInputData(data);
+    // The array the volume mapper draws, where it names one.
+    vtkAbstractVolumeMapper* volumeMapper = volume->GetMapper();
+    const char* array = volumeMapper ? volumeMapper->GetArrayName() : nullptr;
+    if (array && *array && volumeMapper->GetArrayAccessMode() == VTK_GET_ARRAY_BY_NAME &&
+      (volumeMapper->GetScalarMode() == VTK_SCALAR_MODE_USE_POINT_FIELD_DATA ||
+        volumeMapper->GetScalarMode() == VTK_SCALAR_MODE_USE_CELL_FIELD_DATA))
+    {
+      medium->SetInputArrayToProcess(0, 0, 0,
+        volumeMapper->GetScalarMode() == VTK_SCALAR_MODE_USE_POINT_FIELD_DATA
+          ? vtkDataObject::FIELD_ASSOCIATION_POINTS
+          : vtkDataObject::FIELD_ASSOCIATION_CELLS,
+        array);
+    }
     medium->SetVolumeProperty(volume->GetProperty());
     medium->SetAlbedo(this->Albedo);
     if (!medium->GetExecutive()->Update())
@@ -495,12 +650,20 @@ int vtkBrumeRendererScene::RequestData(
   }
   if (scene->GetNumberOfPartitionedDataSets() == 0)
   {
-    vtkErrorMacro("The renderer holds no opaque actor with polygons and no volume to light.");
-    return 0;
+    if (!this->AllowEmpty)
+    {
+      vtkErrorMacro("The renderer holds no opaque actor with polygons and no volume to light.");
+      return 0;
+    }
+    this->Internals->CameraLights.clear();
+    output->ShallowCopy(scene);
+    return 1;
   }
 
   // The lights, as vtkBrumeLightTracer reads vtkLights, in the scene.
   vtkNew<vtkLightCollection> lights;
+  std::vector<bool>& cameraLights = this->Internals->CameraLights;
+  cameraLights.clear();
   vtkLightCollection* given = renderer->GetLights();
   given->InitTraversal();
   while (vtkLight* light = given->GetNextItem())
@@ -508,10 +671,12 @@ int vtkBrumeRendererScene::RequestData(
     if (light->GetSwitch())
     {
       lights->AddItem(SceneLight(light, this->LightScale, !this->PhysicalLights));
+      cameraLights.push_back(!light->LightTypeIsSceneLight());
     }
   }
   if (lights->GetNumberOfItems() == 0)
   {
+    cameraLights.push_back(true);
     // What VTK gives a renderer without lights: a headlight.
     vtkNew<vtkLight> headlight;
     vtkCamera* camera = renderer->GetActiveCamera();
@@ -531,6 +696,152 @@ int vtkBrumeRendererScene::RequestData(
   return 1;
 }
 
+namespace
+{
+// FNV-1a, 64 bits.
+struct Hash
+{
+  vtkTypeUInt64 Value = 14695981039346656037ull;
+  void Bytes(const void* data, std::size_t size)
+  {
+    const auto* bytes = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < size; ++i)
+    {
+      this->Value = (this->Value ^ bytes[i]) * 1099511628211ull;
+    }
+  }
+  template <typename T>
+  void Add(const T& value)
+  {
+    this->Bytes(&value, sizeof(value));
+  }
+  void Text(const char* text)
+  {
+    const std::string s = text ? text : "";
+    this->Add(s.size());
+    this->Bytes(s.data(), s.size());
+  }
+  // An array's name, type, shape and values (by identity with `values` off).
+  void Array(vtkAbstractArray* array, bool values = true)
+  {
+    if (!array)
+    {
+      this->Add(0);
+      return;
+    }
+    this->Text(array->GetName());
+    this->Add(array->GetDataType());
+    this->Add(array->GetNumberOfComponents());
+    this->Add(array->GetNumberOfTuples());
+    if (!values)
+    {
+      this->Add(reinterpret_cast<std::uintptr_t>(array));
+      this->Add(array->GetMTime());
+    }
+    else if (auto* strings = vtkStringArray::SafeDownCast(array))
+    {
+      for (vtkIdType i = 0; i < strings->GetNumberOfValues(); ++i)
+      {
+        this->Text(strings->GetValue(i).c_str());
+      }
+    }
+    else if (auto* data = vtkDataArray::SafeDownCast(array))
+    {
+      this->Bytes(data->GetVoidPointer(0),
+        static_cast<std::size_t>(data->GetNumberOfValues()) * data->GetDataTypeSize());
+    }
+  }
+  void Arrays(vtkFieldData* fields, bool values = true)
+  {
+    this->Add(fields ? fields->GetNumberOfArrays() : -1);
+    for (int i = 0; fields && i < fields->GetNumberOfArrays(); ++i)
+    {
+      this->Array(fields->GetAbstractArray(i), values);
+    }
+  }
+  void Cells(vtkCellArray* cells)
+  {
+    this->Array(cells ? cells->GetOffsetsArray() : nullptr);
+    this->Array(cells ? cells->GetConnectivityArray() : nullptr);
+  }
+};
+}
+
+vtkTypeUInt64 vtkBrumeRendererScene::GetContentSignature()
+{
+  Hash hash;
+  vtkPartitionedDataSetCollection* scene = this->GetOutput();
+  if (!scene)
+  {
+    return hash.Value;
+  }
+  // The lights: camera lights' placement left out.
+  vtkFieldData* lights = scene->GetFieldData();
+  const std::vector<bool>& cameraLights = this->Internals->CameraLights;
+  for (int i = 0; i < lights->GetNumberOfArrays(); ++i)
+  {
+    vtkAbstractArray* array = lights->GetAbstractArray(i);
+    const std::string name = array && array->GetName() ? array->GetName() : "";
+    auto* values = vtkDataArray::SafeDownCast(array);
+    if (values && (name == vtkBrumeNames::LightPosition || name == vtkBrumeNames::LightDirection))
+    {
+      for (vtkIdType k = 0; k < values->GetNumberOfTuples(); ++k)
+      {
+        const bool placed = static_cast<std::size_t>(k) < cameraLights.size() && cameraLights[k];
+        for (int c = 0; c < values->GetNumberOfComponents() && !placed; ++c)
+        {
+          hash.Add(values->GetComponent(k, c));
+        }
+      }
+      continue;
+    }
+    hash.Array(array);
+  }
+  hash.Add(scene->GetNumberOfPartitionedDataSets());
+  for (unsigned int i = 0; i < scene->GetNumberOfPartitionedDataSets(); ++i)
+  {
+    hash.Text(
+      scene->HasMetaData(i) ? scene->GetMetaData(i)->Get(vtkCompositeDataSet::NAME()) : nullptr);
+    vtkPartitionedDataSet* partitions = scene->GetPartitionedDataSet(i);
+    for (unsigned int k = 0; partitions && k < partitions->GetNumberOfPartitions(); ++k)
+    {
+      vtkDataSet* data = partitions->GetPartition(k);
+      hash.Text(data ? data->GetClassName() : nullptr);
+      if (!data)
+      {
+        continue;
+      }
+      hash.Arrays(data->GetFieldData());
+      if (auto* surface = vtkPolyData::SafeDownCast(data))
+      {
+        hash.Array(surface->GetPoints() ? surface->GetPoints()->GetData() : nullptr);
+        hash.Cells(surface->GetPolys());
+        hash.Cells(surface->GetStrips());
+        hash.Arrays(surface->GetCellData());
+      }
+      else if (auto* image = vtkImageData::SafeDownCast(data))
+      {
+        int dims[3];
+        double origin[3], spacing[3];
+        image->GetDimensions(dims);
+        image->GetOrigin(origin);
+        image->GetSpacing(spacing);
+        hash.Add(dims);
+        hash.Add(origin);
+        hash.Add(spacing);
+        hash.Arrays(image->GetPointData(), false);
+        hash.Arrays(image->GetCellData(), false);
+      }
+      else
+      {
+        hash.Add(reinterpret_cast<std::uintptr_t>(data));
+        hash.Add(data->GetMTime());
+      }
+    }
+  }
+  return hash.Value;
+}
+
 bool vtkBrumeRendererScene::Translates(vtkProp* prop)
 {
   return this->Internals->Translated.count(prop) > 0;
@@ -541,6 +852,7 @@ void vtkBrumeRendererScene::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Renderer: " << this->Internals->Renderer.GetPointer() << "\n";
   os << indent << "PhysicalLights: " << this->PhysicalLights << "\n";
+  os << indent << "AllowEmpty: " << this->AllowEmpty << "\n";
   os << indent << "LightScale: " << this->LightScale << "\n";
   os << indent << "Albedo: " << this->Albedo[0] << " " << this->Albedo[1] << " " << this->Albedo[2]
      << "\n";

@@ -84,6 +84,17 @@ public:
   ///@}
 
   ///@{
+  /**
+   * A renderer with nothing to light (no opaque actor with polygons, no
+   * volume) gives an empty scene (on) or an error (off, the default).
+   * vtkBrumePass allows it: an empty view is drawn by VTK alone.
+   */
+  vtkSetMacro(AllowEmpty, bool);
+  vtkGetMacro(AllowEmpty, bool);
+  vtkBooleanMacro(AllowEmpty, bool);
+  ///@}
+
+  ///@{
   /// Lights in W/sr and W/m^2 rather than VTK's shading factors (default off).
   vtkSetMacro(PhysicalLights, bool);
   vtkGetMacro(PhysicalLights, bool);
@@ -109,6 +120,18 @@ public:
   /// did not are drawn by VTK as usual, see vtkBrumePass).
   bool Translates(vtkProp* prop);
 
+  /**
+   * A 64-bit hash of the last scene built: its objects' names, geometry,
+   * cell arrays and field data, and its lights (headlights and camera
+   * lights without their placement, which follows the camera); a medium's
+   * point arrays by identity (the array object and its MTime, not its
+   * values: volumes are large). Equal for a scene built again from
+   * unchanged props (ParaView touches mappers and colour maps it does not
+   * change), different, but for hash collisions, after any change that
+   * alters the scene.
+   */
+  vtkTypeUInt64 GetContentSignature();
+
 protected:
   vtkBrumeRendererScene();
   ~vtkBrumeRendererScene() override;
@@ -116,6 +139,7 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   bool PhysicalLights = false;
+  bool AllowEmpty = false;
   double LightScale = 1.0;
   double Albedo[3] = { 0.8, 0.8, 0.8 };
 

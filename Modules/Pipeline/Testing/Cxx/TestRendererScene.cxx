@@ -9,6 +9,10 @@
 //   headlight.
 // - Scalar colouring: cells coloured through the mapper's colour map have
 //   those colours, times Diffuse, as their reflectance.
+// - Brume shows a surface's front side: an open one is turned toward the
+//   camera, a closed one outward; each block of a composite input is a
+//   surface; an empty renderer gives an empty scene where allowed; a scene
+//   built again without a change keeps its content signature.
 // - Nothing is rebuilt when only the camera moves; a property edit is.
 // - The scene renders through vtkBrumePipeline to a lit, finite image.
 #include "VtkSceneTesting.h"
@@ -18,9 +22,11 @@
 #include "vtkBrumePipeline.h"
 #include "vtkBrumeRendererScene.h"
 #include "vtkCamera.h"
+#include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkCompositeDataSet.h"
+#include "vtkCompositePolyDataMapper2.h"
 #include "vtkCubeSource.h"
 #include "vtkDataArray.h"
 #include "vtkDataSetMapper.h"
@@ -28,10 +34,12 @@
 #include "vtkFieldData.h"
 #include "vtkFixedPointVolumeRayCastMapper.h"
 #include "vtkFloatArray.h"
+#include "vtkIdList.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkLight.h"
 #include "vtkMath.h"
+#include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
 #include "vtkPartitionedDataSet.h"
 #include "vtkPartitionedDataSetCollection.h"
@@ -43,6 +51,7 @@
 #include "vtkProperty.h"
 #include "vtkRTAnalyticSource.h"
 #include "vtkRenderer.h"
+#include "vtkReverseSense.h"
 #include "vtkStringArray.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
@@ -143,6 +152,118 @@ void TestCellColours()
   Check(right, "cell colours follow their cells through the surface filter, times Diffuse");
 }
 
+// The normal of a surface's first polygon, by its winding.
+double NormalY(vtkPolyData* surface)
+{
+  if (!surface || surface->GetNumberOfCells() == 0)
+  {
+    return 0.0;
+  }
+  vtkNew<vtkIdList> ids;
+  surface->GetCellPoints(0, ids);
+  double p[3][3];
+  for (int k = 0; k < 3; ++k)
+  {
+    surface->GetPoint(ids->GetId(k), p[k]);
+  }
+  double a[3], b[3], n[3];
+  for (int c = 0; c < 3; ++c)
+  {
+    a[c] = p[1][c] - p[0][c];
+    b[c] = p[2][c] - p[0][c];
+  }
+  vtkMath::Cross(a, b, n);
+  return n[1];
+}
+
+// Which side a surface shows, composite inputs, empty renderers, and the
+// content signature that tells a rebuilt scene from a changed one.
+void TestSidesBlocksAndSignature()
+{
+  vtkNew<vtkRenderer> renderer;
+  renderer->GetActiveCamera()->SetPosition(0, 5, 8);
+  renderer->GetActiveCamera()->SetFocalPoint(0, 0, 0);
+  vtkNew<vtkBrumeRendererScene> source;
+  source->SetRenderer(renderer);
+  source->AllowEmptyOn();
+  source->Update();
+  Check(source->GetOutput()->GetNumberOfPartitionedDataSets() == 0,
+    "an empty renderer gives an empty scene where allowed");
+
+  // A ground whose polygons face down, seen from above: turned up.
+  vtkNew<vtkPlaneSource> down;
+  down->SetOrigin(-3, -1, -3);
+  down->SetPoint1(3, -1, -3);
+  down->SetPoint2(-3, -1, 3);
+  AddActor(renderer, down, 0.5, 0.5, 0.5);
+  // Two blocks through a composite mapper: a closed box whose polygons
+  // face inward becomes outward.
+  vtkNew<vtkCubeSource> cube;
+  cube->Update();
+  vtkNew<vtkReverseSense> inward;
+  inward->SetInputConnection(cube->GetOutputPort());
+  inward->ReverseCellsOn();
+  inward->Update();
+  vtkNew<vtkMultiBlockDataSet> blocks;
+  blocks->SetNumberOfBlocks(2);
+  blocks->SetBlock(0, cube->GetOutput());
+  blocks->SetBlock(1, inward->GetOutput());
+  vtkNew<vtkCompositePolyDataMapper2> composite;
+  composite->SetInputDataObject(blocks);
+  vtkNew<vtkActor> boxes;
+  boxes->SetMapper(composite);
+  renderer->AddActor(boxes);
+  source->Update();
+  vtkPartitionedDataSetCollection* scene = source->GetOutput();
+  auto* ground = vtkPolyData::SafeDownCast(Object(scene, "actor 0"));
+  Check(NormalY(ground) > 0.0, "an open surface is turned toward the camera");
+  auto* outer = vtkPolyData::SafeDownCast(Object(scene, "actor 1"));
+  auto* inner = vtkPolyData::SafeDownCast(Object(scene, "actor 1 block 1"));
+  double outerBounds[6] = { 0 }, innerBounds[6] = { 0 };
+  if (outer && inner)
+  {
+    outer->GetBounds(outerBounds);
+    inner->GetBounds(innerBounds);
+  }
+  // The box's top face (y = 0.5) must face +y in both blocks.
+  auto topFacesUp = [](vtkPolyData* box)
+  {
+    vtkNew<vtkIdList> ids;
+    for (vtkIdType k = 0; box && k < box->GetNumberOfCells(); ++k)
+    {
+      box->GetCellPoints(k, ids);
+      bool top = true;
+      for (vtkIdType i = 0; i < ids->GetNumberOfIds(); ++i)
+      {
+        top = top && box->GetPoint(ids->GetId(i))[1] > 0.49;
+      }
+      if (top)
+      {
+        vtkNew<vtkPolyData> one;
+        one->SetPoints(box->GetPoints());
+        vtkNew<vtkCellArray> cells;
+        cells->InsertNextCell(ids);
+        one->SetPolys(cells);
+        return NormalY(one) > 0.0;
+      }
+    }
+    return false;
+  };
+  Check(outer && inner && topFacesUp(outer) && topFacesUp(inner),
+    "each block of a composite input is a surface, a closed one turned outward");
+
+  // Built again unchanged: the same signature; a colour edit: another.
+  const vtkTypeUInt64 first = source->GetContentSignature();
+  composite->Modified();
+  renderer->GetActiveCamera()->Azimuth(30); // the headlight follows; no matter
+  source->Update();
+  Check(source->GetContentSignature() == first,
+    "a scene built again without a change has the same signature");
+  boxes->GetProperty()->SetColor(0.9, 0.1, 0.1);
+  source->Update();
+  Check(source->GetContentSignature() != first, "a colour edit changes the signature");
+}
+
 }
 
 int TestRendererScene(int, char*[])
@@ -236,6 +357,8 @@ int TestRendererScene(int, char*[])
   // surface's cells (made by a surface filter, in its own order) have the
   // colours of the cells they come from.
   TestCellColours();
+
+  TestSidesBlocksAndSignature();
 
   // Through the pipeline: a lit, finite image.
   vtkNew<vtkBrumePipeline> pipeline;

@@ -1,0 +1,80 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkBrumePVRenderView
+ * @brief   ParaView's render view with Brume's global illumination
+ *
+ * The "Brume Render View" of the plugin: a render view (everything
+ * ParaView's render view does) whose scene is drawn by vtkBrumePass.
+ * Whatever is shown in it — surfaces in a solid colour or coloured by an
+ * array through its colour map, volumes with their colour map and opacity
+ * function, the lights of the Light Inspector and the light kit, the
+ * view's camera — is lit by Brume, with no Brume filter in the pipeline.
+ * Outlines, points, lines, text and widgets are drawn by ParaView over
+ * Brume's depth.
+ *
+ * The particles are traced again only when something shown changes; a
+ * camera move only updates the view-dependent textures. Progressive (off
+ * by default here: a screenshot then holds the whole budget): each render
+ * doubles the particles until IsConverged().
+ *
+ * In one process (the built-in session, pvbatch, or a pvserver of one
+ * rank); a server of several ranks would light each rank's part alone.
+ *
+ * @sa vtkBrumePass vtkBrumeRendererScene
+ */
+#ifndef vtkBrumePVRenderView_h
+#define vtkBrumePVRenderView_h
+
+#include "vtkBrumeParaViewRepresentationModule.h" // For export macro
+#include "vtkNew.h"                               // For Pass
+#include "vtkPVRenderView.h"
+
+class vtkBrumePass;
+
+class VTKBRUMEPARAVIEWREPRESENTATION_EXPORT vtkBrumePVRenderView : public vtkPVRenderView
+{
+public:
+  static vtkBrumePVRenderView* New();
+  vtkTypeMacro(vtkBrumePVRenderView, vtkPVRenderView);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// The view's settings, forwarded to its vtkBrumePass and pipeline.
+  void SetNumberOfParticles(vtkIdType particles);
+  vtkIdType GetNumberOfParticles();
+  void SetSeed(vtkIdType seed);
+  void SetExposure(double exposure);
+  void SetProgressive(int progressive);
+  void SetVolumeAlbedo(double r, double g, double b);
+  void SetPhysicalLights(int physical);
+  void SetLightIntensityScale(double scale);
+  ///@}
+
+#ifndef __VTK_WRAP__
+  /// The pass that draws the view (its pipeline, its scene).
+  vtkBrumePass* GetBrumePass();
+#endif
+
+  /// True when the textures hold the whole budget of what is shown.
+  bool IsConverged();
+
+  ///@{
+  /// The pass's counters (vtkBrumePass): traces, progressive steps, and
+  /// renders whose camera had moved.
+  int GetNumberOfTraces();
+  int GetNumberOfSteps();
+  int GetNumberOfViewUpdates();
+  ///@}
+
+protected:
+  vtkBrumePVRenderView();
+  ~vtkBrumePVRenderView() override;
+
+private:
+  vtkBrumePVRenderView(const vtkBrumePVRenderView&) = delete;
+  void operator=(const vtkBrumePVRenderView&) = delete;
+
+  vtkNew<vtkBrumePass> Pass;
+};
+
+#endif

@@ -1,0 +1,98 @@
+"""pvbatch: the "Brume Render View", a render view lit by Brume.
+
+A user's own pipeline, with no Brume filter: VTK's Wavelet shown as a
+Volume, a Contour of it and a ground plane coloured by its height through
+a colour map, in a Brume Render View. The first render traces once and
+gives a lit image (the ground's colours on it, the contour's shadow); a
+camera move traces nothing again and updates the view; a colour-map edit
+traces once more and changes the ground's colours; a settings change
+(Particles) traces again. Nothing is written to the error output.
+
+usage: pvbatch TestBrumeRenderView.py PLUGIN OUTPUT_DIR
+"""
+import os
+import sys
+
+from paraview.simple import *  # noqa: F401,F403
+from vtkmodules.vtkIOImage import vtkPNGReader
+from vtkmodules.util.numpy_support import vtk_to_numpy
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from brume_testing import black_view, check, finish  # noqa: E402
+
+plugin, output_dir = sys.argv[1:3]
+LoadPlugin(plugin, ns=globals())
+size = 160
+
+
+def counters(view):
+    view.SMProxy.UpdatePropertyInformation()
+    return [view.SMProxy.GetProperty(name).GetElement(0)
+            for name in ("BrumeNumberOfTraces", "BrumeNumberOfViewUpdates")]
+
+
+def screenshot(view, name):
+    path = os.path.join(output_dir, name)
+    SaveScreenshot(path, view, ImageResolution=[size, size])
+    reader = vtkPNGReader()
+    reader.SetFileName(path)
+    reader.Update()
+    image = reader.GetOutput()
+    return vtk_to_numpy(image.GetPointData().GetScalars()).reshape(size, size, -1)[:, :, :3]
+
+
+view = black_view(size, CreateView("BrumeRenderView"))
+check(view.GetXMLName() == "BrumeRenderView", "a Brume Render View is created")
+view.BrumeParticles = 200000
+
+wavelet = Wavelet()
+volume = Show(wavelet, view)
+volume.SetRepresentationType("Volume")
+ColorBy(volume, ("POINTS", "RTData"))
+contour = Contour(Input=wavelet, ContourBy=["POINTS", "RTData"], Isosurfaces=[230.0])
+Show(contour, view)
+plane = Plane(Origin=[-20, -12, -20], Point1=[20, -12, -20], Point2=[-20, -12, 20],
+              XResolution=40, YResolution=40)
+height = Elevation(Input=plane, LowPoint=[-20, 0, 0], HighPoint=[20, 0, 0])
+ground = Show(height, view)
+ColorBy(ground, ("POINTS", "Elevation"))
+lut = GetColorTransferFunction("Elevation")
+lut.ApplyPreset("Rainbow Uniform", True)
+
+view.CameraPosition = [0, 25, 60]
+view.CameraFocalPoint = [0, -4, 0]
+view.CameraViewUp = [0, 1, 0]
+view.CameraViewAngle = 40
+Render(view)
+first = screenshot(view, "TestBrumeRenderView.png")
+traces, updates = counters(view)
+print("traces %d, view updates %d, mean %.1f" % (traces, updates, first.mean()))
+check(traces == 1, "the first render traces once (got %d)" % traces)
+check(first.mean() > 10, "the image is lit (mean %.1f)" % first.mean())
+# The ground's colours: its left (low) end and right (high) end differ in hue.
+row = size // 4  # the ground's near half (rows from the bottom), its left and right ends
+left, right = first[row, size // 5].astype(int), first[row, size * 4 // 5].astype(int)
+check(abs(int(left[0]) - int(right[0])) + abs(int(left[2]) - int(right[2])) > 40,
+      "the ground shows its colour map (%s against %s)" % (left, right))
+
+camera = GetActiveCamera()
+camera.Azimuth(10)
+Render(view)
+traces, updates = counters(view)
+check(traces == 1 and updates >= 1,
+      "a camera move traces nothing again (traces %d, view updates %d)" % (traces, updates))
+
+lut.ApplyPreset("Cool to Warm", True)
+Render(view)
+edited = screenshot(view, "TestBrumeRenderView-edited.png")
+traces, _ = counters(view)
+check(traces == 2, "a colour-map edit traces once more (traces %d)" % traces)
+check(abs(edited.astype(float) - first.astype(float)).mean() > 1,
+      "the edited colour map changes the image")
+
+view.BrumeParticles = 100000
+Render(view)
+traces, _ = counters(view)
+check(traces == 3, "a new particle count traces again (traces %d)" % traces)
+Delete(view)  # before the interpreter's exit, as pvbatch expects
+finish()
