@@ -39,6 +39,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataNormals.h"
+#include "vtkPropCollection.h"
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
 #include "vtkScalarsToColors.h"
@@ -121,6 +122,43 @@ std::vector<vtkDataSet*> MapperDatasets(vtkAbstractMapper* mapper)
     datasets.push_back(dataset);
   }
   return datasets;
+}
+
+// The renderer's own actors and volumes: its view props that are vtkActors
+// (not vtkFollowers, which turn with the camera) or vtkVolumes. The parts
+// of other props (an interactive widget's handles and labels, an
+// assembly's parts) are left to VTK.
+std::vector<vtkActor*> OwnActors(vtkRenderer* renderer)
+{
+  std::vector<vtkActor*> actors;
+  vtkPropCollection* props = renderer->GetViewProps();
+  vtkCollectionSimpleIterator it;
+  props->InitTraversal(it);
+  while (vtkProp* prop = props->GetNextProp(it))
+  {
+    auto* actor = vtkActor::SafeDownCast(prop);
+    if (actor && !actor->IsA("vtkFollower"))
+    {
+      actors.push_back(actor);
+    }
+  }
+  return actors;
+}
+
+std::vector<vtkVolume*> OwnVolumes(vtkRenderer* renderer)
+{
+  std::vector<vtkVolume*> volumes;
+  vtkPropCollection* props = renderer->GetViewProps();
+  vtkCollectionSimpleIterator it;
+  props->InitTraversal(it);
+  while (vtkProp* prop = props->GetNextProp(it))
+  {
+    if (auto* volume = vtkVolume::SafeDownCast(prop))
+    {
+      volumes.push_back(volume);
+    }
+  }
+  return volumes;
 }
 
 // The polygons of a prop's data in world coordinates, and where each of
@@ -497,9 +535,7 @@ vtkMTimeType vtkBrumeRendererScene::GetMTime()
   // follow the camera).
   std::vector<vtkProp*> props;
   const std::set<vtkProp*>& translated = this->Internals->Translated;
-  vtkActorCollection* actors = renderer->GetActors();
-  actors->InitTraversal();
-  while (vtkActor* actor = actors->GetNextActor())
+  for (vtkActor* actor : OwnActors(renderer))
   {
     if (!actor->GetVisibility())
     {
@@ -509,9 +545,7 @@ vtkMTimeType vtkBrumeRendererScene::GetMTime()
     input(actor->GetMapper());
     props.push_back(actor);
   }
-  vtkVolumeCollection* volumes = renderer->GetVolumes();
-  volumes->InitTraversal();
-  while (vtkVolume* volume = volumes->GetNextVolume())
+  for (vtkVolume* volume : OwnVolumes(renderer))
   {
     if (!volume->GetVisibility())
     {
@@ -553,9 +587,7 @@ int vtkBrumeRendererScene::RequestData(
   std::set<vtkProp*>& translated = this->Internals->Translated;
   translated.clear();
   int index = 0;
-  vtkActorCollection* actors = renderer->GetActors();
-  actors->InitTraversal();
-  while (vtkActor* actor = actors->GetNextActor())
+  for (vtkActor* actor : OwnActors(renderer))
   {
     const std::string name = "actor " + std::to_string(index++);
     if (!actor->GetVisibility() || actor->GetProperty()->GetOpacity() < 1.0)
@@ -588,9 +620,7 @@ int vtkBrumeRendererScene::RequestData(
     }
   }
   index = 0;
-  vtkVolumeCollection* volumes = renderer->GetVolumes();
-  volumes->InitTraversal();
-  while (vtkVolume* volume = volumes->GetNextVolume())
+  for (vtkVolume* volume : OwnVolumes(renderer))
   {
     const std::string name = "volume " + std::to_string(index++);
     vtkDataSet* data = volume->GetVisibility() ? MapperInput(volume->GetMapper()) : nullptr;
