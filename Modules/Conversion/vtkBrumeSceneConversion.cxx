@@ -157,6 +157,32 @@ std::string ReadCellMaterials(vtkPolyData* pd, const brume::Material& base,
   return {};
 }
 
+// A point array BrumeReflectance (3 components): the diffuse reflectance
+// at each vertex, interpolated over the triangles (a surface coloured by
+// point scalars).
+std::string ReadVertexReflectance(vtkPolyData* pd, brume::Surface& s)
+{
+  vtkDataArray* rho = pd->GetPointData()->GetArray(vtkBrumeNames::Reflectance);
+  if (!rho)
+  {
+    return {};
+  }
+  if (rho->GetNumberOfComponents() != 3)
+  {
+    return std::string("has a point array '") + vtkBrumeNames::Reflectance + "' with " +
+      std::to_string(rho->GetNumberOfComponents()) + " components instead of 3";
+  }
+  s.VertexReflectance.resize(static_cast<std::size_t>(rho->GetNumberOfTuples()));
+  for (vtkIdType i = 0; i < rho->GetNumberOfTuples(); ++i)
+  {
+    double v[3];
+    rho->GetTuple(i, v);
+    s.VertexReflectance[i] = { static_cast<float>(v[0]), static_cast<float>(v[1]),
+      static_cast<float>(v[2]) };
+  }
+  return {};
+}
+
 std::string ConvertSurface(vtkPolyData* pd, brume::Surface& s)
 {
   vtkPoints* points = pd->GetPoints();
@@ -208,6 +234,10 @@ std::string ConvertSurface(vtkPolyData* pd, brume::Surface& s)
   if (error.empty())
   {
     error = ReadCellMaterials(pd, s.Mat, triangleCells, s.TriangleMaterials);
+  }
+  if (error.empty())
+  {
+    error = ReadVertexReflectance(pd, s);
   }
   return error;
 }

@@ -43,7 +43,7 @@
  *
  * Surfaces coloured by scalars (the mapper's ScalarVisibility, its lookup
  * table and scalar range, point or cell scalars) have those colours as
- * their reflectance, per triangle (vtkBrumeRendererScene). Textures of
+ * their reflectance, per vertex or per cell (vtkBrumeRendererScene). Textures of
  * actors are not read.
  *
  * @sa vtkBrumePipeline vtkBrumeRendererScene vtkBrumeDisplayPass

@@ -270,7 +270,7 @@ vtkSmartPointer<vtkPolyData> FacingViewer(vtkPolyData* input, vtkCamera* camera)
   normals->Update();
   auto out = vtkSmartPointer<vtkPolyData>::New();
   out->ShallowCopy(normals->GetOutput());
-  out->GetPointData()->Initialize();
+  out->GetPointData()->RemoveArray("Normals");
   if (closed)
   {
     return out;
@@ -332,9 +332,9 @@ void Conserve(double diffuse[3], double specular[3])
 }
 
 // The actor's vtkProperty as a Brume material, in the surface's field data.
-void WriteMaterial(vtkProperty* property, vtkFieldData* fd)
+// The property's diffuse and specular reflectances, conserving energy.
+void PropertyReflectances(vtkProperty* property, double diffuse[3], double specular[3])
 {
-  double diffuse[3], specular[3];
   property->GetDiffuseColor(diffuse);
   property->GetSpecularColor(specular);
   const double kd = property->GetDiffuse();
@@ -345,6 +345,13 @@ void WriteMaterial(vtkProperty* property, vtkFieldData* fd)
     specular[c] = std::max(0.0, ks * specular[c]);
   }
   Conserve(diffuse, specular);
+}
+
+void WriteMaterial(vtkProperty* property, vtkFieldData* fd)
+{
+  double diffuse[3], specular[3];
+  PropertyReflectances(property, diffuse, specular);
+  const double ks = property->GetSpecular() > 0.0 ? property->GetSpecular() : 0.0;
   vtkNew<vtkStringArray> material;
   material->SetName(vtkBrumeNames::Material);
   material->InsertNextValue(ks > 0.0 ? "phong" : "lambertian");
@@ -391,14 +398,40 @@ vtkSmartPointer<vtkUnsignedCharArray> MappedColours(
     table->MapScalars(scalars, mapper->GetColorMode(), mapper->GetArrayComponent()));
 }
 
-// Per cell of the surface, Diffuse x the mapped colour (a point-coloured
-// cell: the mean of its points' colours) as the cell array
-// BrumeReflectance, with BrumeSpecular beside it where the property has a
-// lobe, both scaled as WriteMaterial scales the property's.
+// Diffuse x the mapped colour as the surface's reflectance: point colours
+// as the point array BrumeReflectance (interpolated over the triangles);
+// cell colours as the cell array BrumeReflectance, with BrumeSpecular
+// beside it where the property has a lobe, both scaled as WriteMaterial
+// scales the property's.
 void WriteColours(
   const WorldPolygons& world, vtkUnsignedCharArray* colours, int cellFlag, vtkProperty* property)
 {
   vtkPolyData* surface = world.Surface;
+  if (cellFlag == 0)
+  {
+    // Point colours: per vertex, interpolated over the triangles as VTK
+    // interpolates them, under the property's specular lobe (below 1 with it).
+    double diffuse[3], specular[3];
+    PropertyReflectances(property, diffuse, specular);
+    const double kd = std::max(0.0, property->GetDiffuse());
+    vtkNew<vtkFloatArray> vertex;
+    vertex->SetName(vtkBrumeNames::Reflectance);
+    vertex->SetNumberOfComponents(3);
+    vertex->SetNumberOfTuples(surface->GetNumberOfPoints());
+    for (vtkIdType i = 0; i < surface->GetNumberOfPoints(); ++i)
+    {
+      float rho[3];
+      for (int c = 0; c < 3; ++c)
+      {
+        const double most = specular[c] > 0.0 ? 1.0 - specular[c] - 1e-6 : 1.0;
+        rho[c] = static_cast<float>(std::clamp(
+          kd * colours->GetComponent(world.InputPoints[i], c) / 255.0, 0.0, std::max(0.0, most)));
+      }
+      vertex->SetTypedTuple(i, rho);
+    }
+    surface->GetPointData()->AddArray(vertex);
+    return;
+  }
   const vtkIdType cells = surface->GetNumberOfCells();
   vtkNew<vtkFloatArray> reflectance;
   reflectance->SetName(vtkBrumeNames::Reflectance);
@@ -412,31 +445,12 @@ void WriteColours(
   property->GetSpecularColor(specularColour);
   const double kd = std::max(0.0, property->GetDiffuse());
   const double ks = property->GetSpecular() > 0.0 ? property->GetSpecular() : 0.0;
-  vtkNew<vtkIdList> points;
   for (vtkIdType k = 0; k < cells; ++k)
   {
-    double colour[3] = { 0, 0, 0 };
-    if (cellFlag == 1)
+    double colour[3];
+    for (int c = 0; c < 3; ++c)
     {
-      for (int c = 0; c < 3; ++c)
-      {
-        colour[c] = colours->GetComponent(world.InputCells[k], c);
-      }
-    }
-    else
-    {
-      surface->GetCellPoints(k, points);
-      for (vtkIdType i = 0; i < points->GetNumberOfIds(); ++i)
-      {
-        for (int c = 0; c < 3; ++c)
-        {
-          colour[c] += colours->GetComponent(world.InputPoints[points->GetId(i)], c);
-        }
-      }
-      for (int c = 0; c < 3; ++c)
-      {
-        colour[c] /= std::max<vtkIdType>(1, points->GetNumberOfIds());
-      }
+      colour[c] = colours->GetComponent(world.InputCells[k], c);
     }
     double diffuse[3], specular[3];
     for (int c = 0; c < 3; ++c)
@@ -847,6 +861,7 @@ vtkTypeUInt64 vtkBrumeRendererScene::GetContentSignature()
         hash.Array(surface->GetPoints() ? surface->GetPoints()->GetData() : nullptr);
         hash.Cells(surface->GetPolys());
         hash.Cells(surface->GetStrips());
+        hash.Arrays(surface->GetPointData());
         hash.Arrays(surface->GetCellData());
       }
       else if (auto* image = vtkImageData::SafeDownCast(data))

@@ -27,13 +27,19 @@
  * - **Scalar colouring**: where the mapper colours by scalars
  *   (ScalarVisibility, its ScalarMode, array, lookup table and scalar
  *   range, as VTK maps them), Diffuse x the mapped colour is the
- *   reflectance, per triangle: a cell-coloured polygon has its cell's
- *   colour, a point-coloured one the mean of its points' colours (a
- *   coarse mesh coloured by point scalars is faceted: subdivide it). It
- *   colours the light each bounce carries on (colour bleeding) as well as
- *   what is shown; a planar one gets its direct light computed per texel
- *   with the reflectance of the triangle there. Colouring by a field-data
- *   tuple, the mapped alpha and textures are not read.
+ *   reflectance: point colours as the point array BrumeReflectance
+ *   (interpolated over the triangles, as VTK interpolates colours), cell
+ *   colours as the cell array. It colours the light each bounce carries
+ *   on (colour bleeding) as well as what is shown; a planar surface gets
+ *   its direct light computed per texel with the reflectance there.
+ *   Colouring by a field-data tuple, the mapped alpha and textures are not
+ *   read.
+ * - **Which side shows**: Brume shows a surface's front side (its
+ *   polygons' winding), VTK both: a closed surface (coincident points
+ *   merged) is turned outward, an open one toward the camera as it stands
+ *   when the scene is built. Only the renderer's own view props that are
+ *   vtkActors (not vtkFollowers) or vtkVolumes are lit; the parts of other
+ *   props (widgets, assemblies) are drawn by VTK.
  * - **Volumes** become media classified by their vtkVolumeProperty
  *   (vtkBrumeVolumePropertyMedium, its Albedo given here): images
  *   directly, other datasets resampled. The volume's translation and

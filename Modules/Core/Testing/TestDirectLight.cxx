@@ -214,6 +214,55 @@ TEST(DirectLight, PerTriangleMaterialsReflectTheirOwnDirectLight)
   EXPECT_FALSE(mirror.SupportsDirect());
 }
 
+TEST(DirectLight, VertexReflectanceIsInterpolatedOverTheTriangles)
+{
+  // A wall whose vertices' reflectance goes from 0.1 (x = -1) to 0.9
+  // (x = 1), 1 m under a point light: each output texel reflects the
+  // direct term by the reflectance interpolated at its centre, linear in x.
+  Scene scene;
+  scene.Surfaces = { Square("wall", 1.f, 0.f, true, Vec3(0.5f)) };
+  Surface& wall = scene.Surfaces[0];
+  for (const Vec3& v : wall.Vertices)
+  {
+    wall.VertexReflectance.push_back(Vec3(v.x < 0.f ? 0.1f : 0.9f, 0.5f, 0.2f));
+  }
+  scene.Lights = { PointLight({ 0.f, 0.f, 1.f }, 2.f) };
+  ASSERT_EQ(scene.Validate(), "");
+  EXPECT_NEAR(wall.MaterialAt(0, Vec3(0.5f, -0.5f, 0.f)).Reflectance.x, 0.7f, 1e-6f);
+  const HitStore store(Trace(scene, 20000, 1));
+  const RayCaster caster(scene);
+  DirectLight direct(scene, caster);
+  ObjectRadiance radiance(wall, MakeChart(wall, nullptr), { 4, 4 }, 2);
+  ASSERT_TRUE(radiance.SupportsDirect());
+  radiance.EnableDirect(&direct, { 32, 32, 1 });
+  const auto index = IndexOf(store, 0);
+  ASSERT_EQ(
+    radiance.Build(store.View(), index.data(), index.size(), { 0, 0, 5 }, 1e-3, SerialFor()), "");
+  radiance.ComputeDirect(SerialFor());
+  const auto& L = radiance.GetOutputRadiance();
+  const auto& frame = radiance.GetChart().Frame;
+  constexpr int N = 32;
+  for (int j = 0; j < N; ++j)
+    for (int i = 0; i < N; ++i)
+    {
+      const Vec3 p = frame.Origin + frame.U * ((i + 0.5f) / N) + frame.V * ((j + 0.5f) / N);
+      const double rho = 0.1 + 0.8 * (p.x + 1.0) / 2.0;
+      const double r = Length(p - Vec3(0.f, 0.f, 1.f));
+      const double expected = rho / Pi * 2.0 / (r * r * r);
+      EXPECT_NEAR(L[3 * (static_cast<std::size_t>(j) * N + i)], expected, 1e-5 * expected)
+        << "texel " << i << "," << j;
+    }
+  // As many reflectances as vertices, each a valid reflectance.
+  Scene wrong = scene;
+  wrong.Surfaces[0].VertexReflectance.pop_back();
+  EXPECT_NE(wrong.Validate().find("3 vertex reflectances for 4 vertices"), std::string::npos);
+  wrong = scene;
+  wrong.Surfaces[0].VertexReflectance[1] = Vec3(1.5f, 0.f, 0.f);
+  EXPECT_NE(
+    wrong.Validate().find("vertex reflectance has a reflectance outside"), std::string::npos)
+    << wrong.Validate();
+}
+
 TEST(DirectLight, ThinMediumSourceIsTheAnalyticSingleScattering)
 {
   // A point light at the centre of a homogeneous anisotropic medium,

@@ -375,8 +375,12 @@ void LightTracer::Walk(std::uint64_t index, Random& rng, const Emitter& emitter,
     }
     else if (hitSurface)
     {
-      const Material& material = scene.Surfaces[surfaceHit.Surface].MaterialOf(surfaceHit.Triangle);
+      const Surface& surface = scene.Surfaces[surfaceHit.Surface];
       const Vec3 position = origin + direction * tSurface;
+      Material coloured; // where the surface's reflectance varies over it
+      const Material& material = surface.VertexReflectance.empty()
+        ? surface.MaterialOf(surfaceHit.Triangle)
+        : (coloured = surface.MaterialAt(surfaceHit.Triangle, position));
       store(position, static_cast<std::uint16_t>(surfaceHit.Surface), depth, surfaceHit.Triangle);
       // Reflection on the side the particle came from.
       Vec3 n = Normalize(surfaceHit.Ng);

@@ -240,8 +240,11 @@ Vec3 PathTracer::Radiance(Vec3 origin, Vec3 direction, Random& rng) const
     else if (hitSurface)
     {
       const Surface& surface = scene.Surfaces[hit.Surface];
-      const Material& m = surface.MaterialOf(hit.Triangle);
       const Vec3 p = origin + direction * tSurface;
+      Material coloured; // where the surface's reflectance varies over it
+      const Material& m = surface.VertexReflectance.empty()
+        ? surface.MaterialOf(hit.Triangle)
+        : (coloured = surface.MaterialAt(hit.Triangle, p));
       const auto& tri = surface.Triangles[hit.Triangle];
       const Vec3 front = Normalize(Cross(surface.Vertices[tri[1]] - surface.Vertices[tri[0]],
         surface.Vertices[tri[2]] - surface.Vertices[tri[0]]));

@@ -555,8 +555,9 @@ private:
   const DirectLight* Direct = nullptr;
   std::array<int, 3> DirectDims{ 0, 0, 0 };
   std::vector<float> Arrivals; // per output texel and light: irradiance RGB, direction
-  // Surfaces of per-triangle materials: the triangle at each output
-  // texel's centre (-1 where none), whose material reflects its direct light.
+  // Surfaces of per-triangle materials or per-vertex reflectance: the
+  // triangle at each output texel's centre (-1 where none), whose material
+  // (there) reflects its direct light.
   std::vector<std::int32_t> DirectTriangles;
   std::vector<float> DirectRadiance;
   std::vector<float> DirectExtinction;

@@ -290,7 +290,12 @@ inline void ObjectRadiance::AddTerms(const HitArrays& hits, std::uint32_t i, std
   }
   else
   {
-    const Material& m = this->SurfaceRef->MaterialOf(triangle);
+    const Surface& surface = *this->SurfaceRef;
+    Material coloured; // where the surface's reflectance varies over it
+    const Material& m = surface.VertexReflectance.empty()
+      ? surface.MaterialOf(triangle)
+      : (coloured = surface.MaterialAt(triangle,
+           Vec3(hits.Position[3 * i], hits.Position[3 * i + 1], hits.Position[3 * i + 2])));
     for (int c = 0; c < 3; ++c)
     {
       v[c] = m.Reflectance[c] * InvPi * static_cast<double>(f[c]);

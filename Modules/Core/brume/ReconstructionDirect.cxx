@@ -117,7 +117,7 @@ void ObjectRadiance::LocateDirectTriangles()
   // whatever the threads).
   this->DirectTriangles.clear();
   const Surface& surface = *this->SurfaceRef;
-  if (this->MediumRef || surface.TriangleMaterials.empty())
+  if (this->MediumRef || (surface.TriangleMaterials.empty() && surface.VertexReflectance.empty()))
   {
     return;
   }
@@ -482,8 +482,11 @@ void ObjectRadiance::CombineDirect(const ParallelFor& parallelFor)
             const Vec3 direction(a[3], a[4], a[5]);
             const std::int32_t triangle =
               this->DirectTriangles.empty() ? -1 : this->DirectTriangles[t];
-            const Material& m =
-              triangle < 0 ? this->SurfaceRef->Mat : this->SurfaceRef->MaterialOf(triangle);
+            Material coloured; // where the surface's reflectance varies over it
+            const Material& m = triangle < 0 ? this->SurfaceRef->Mat
+              : this->SurfaceRef->VertexReflectance.empty()
+              ? this->SurfaceRef->MaterialOf(triangle)
+              : (coloured = this->SurfaceRef->MaterialAt(triangle, axes[0].Offset[x] + rowOffset));
             const Vec3 f = EvaluateBrdf(m, this->SurfaceNormal, -direction, toEye);
             for (int c = 0; c < 3; ++c)
             {

@@ -39,7 +39,10 @@ inline void ObjectRadiance::WeighHit(const Vec3& eye, const float* position, con
   const Vec3 pos(position[0], position[1], position[2]);
   const Vec3 dir(direction[0], direction[1], direction[2]);
   // The BRDF from the incoming direction to the eye.
-  const Material& m = this->SurfaceRef->MaterialOf(triangle);
+  Material coloured; // where the surface's reflectance varies over it
+  const Material& m = this->SurfaceRef->VertexReflectance.empty()
+    ? this->SurfaceRef->MaterialOf(triangle)
+    : (coloured = this->SurfaceRef->MaterialAt(triangle, pos));
   // A cast lobe is left out: the diffuse part alone.
   const bool diffuseOnly =
     this->LobeCast && m.Type == MaterialType::Phong && MirrorReflection::Casts(m);

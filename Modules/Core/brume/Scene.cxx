@@ -85,6 +85,36 @@ bool Surface::ComputePlanarFrame(PlanarFrame& frame, float tolerance) const
   return true;
 }
 
+Material Surface::MaterialAt(std::size_t triangle, const Vec3& position) const
+{
+  Material m = this->MaterialOf(triangle);
+  if (this->VertexReflectance.empty())
+  {
+    return m;
+  }
+  // Barycentric weights of the position's projection on the triangle,
+  // clamped into it.
+  const auto& tri = this->Triangles[triangle];
+  const Vec3 a = this->Vertices[tri[0]];
+  const Vec3 e1 = this->Vertices[tri[1]] - a, e2 = this->Vertices[tri[2]] - a, p = position - a;
+  const float d00 = Dot(e1, e1), d01 = Dot(e1, e2), d11 = Dot(e2, e2);
+  const float d20 = Dot(p, e1), d21 = Dot(p, e2);
+  const float det = d00 * d11 - d01 * d01;
+  float v = det > 0.f ? (d11 * d20 - d01 * d21) / det : 0.f;
+  float w = det > 0.f ? (d00 * d21 - d01 * d20) / det : 0.f;
+  v = std::clamp(v, 0.f, 1.f);
+  w = std::clamp(w, 0.f, 1.f);
+  if (v + w > 1.f)
+  {
+    const float sum = v + w;
+    v /= sum;
+    w /= sum;
+  }
+  m.Reflectance = this->VertexReflectance[tri[0]] * (1.f - v - w) +
+    this->VertexReflectance[tri[1]] * v + this->VertexReflectance[tri[2]] * w;
+  return m;
+}
+
 bool Surface::IsEmitter() const
 {
   if (this->TriangleMaterials.empty())
@@ -153,6 +183,24 @@ std::string Scene::Validate() const
     {
       err << "surface '" << s.Name << "' is degenerate (zero area)";
       return err.str();
+    }
+    if (!s.VertexReflectance.empty() && s.VertexReflectance.size() != s.Vertices.size())
+    {
+      err << "surface '" << s.Name << "' has " << s.VertexReflectance.size()
+          << " vertex reflectances for " << s.Vertices.size() << " vertices";
+      return err.str();
+    }
+    for (const Vec3& rho : s.VertexReflectance)
+    {
+      // The same bound as a material's, with the surface's own specular.
+      Material m = s.Mat;
+      m.Reflectance = rho;
+      const std::string problem = m.Validate();
+      if (!problem.empty())
+      {
+        err << "surface '" << s.Name << "' vertex reflectance " << problem;
+        return err.str();
+      }
     }
     for (std::size_t t = 0; t < (s.TriangleMaterials.empty() ? 1 : s.TriangleMaterials.size()); ++t)
     {

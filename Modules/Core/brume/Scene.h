@@ -37,10 +37,18 @@ struct Surface
   /// Per-triangle materials; empty when every triangle uses Mat.
   std::vector<Material> TriangleMaterials;
 
+  /// Per-vertex diffuse reflectance (a surface coloured by point scalars),
+  /// interpolated linearly over each triangle in place of its material's
+  /// Reflectance; empty when the materials' own apply.
+  std::vector<Vec3> VertexReflectance;
+
   const Material& MaterialOf(std::size_t triangle) const
   {
     return this->TriangleMaterials.empty() ? this->Mat : this->TriangleMaterials[triangle];
   }
+  /// The material at `position` on `triangle`: MaterialOf(triangle), its
+  /// diffuse reflectance interpolated from VertexReflectance where given.
+  Material MaterialAt(std::size_t triangle, const Vec3& position) const;
   bool IsEmitter() const;
   /// True when some triangle's reflected radiance depends on the view.
   bool IsViewDependent() const;
