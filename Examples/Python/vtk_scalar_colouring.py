@@ -105,7 +105,7 @@ def main():
     brume_pass.SetNumberOfParticles(args.particles)  # Brume
     renderer.SetPass(brume_pass)  # Brume
     window.Render()
-    while not brume_pass.IsConverged():  # progressive: each frame doubles the particles
+    while not brume_pass.IsConverged():  # progressive: each frame, 4 times the particles
         window.Render()
     brume_image = grab(window)
     print("Brume traced", brume_pass.GetNumberOfTraces(), "time(s), in",

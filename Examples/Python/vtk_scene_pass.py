@@ -115,7 +115,7 @@ def main():
     renderer.SetPass(brume_pass)  # Brume
     brume_pass.SetNumberOfParticles(args.particles)
     window.Render()  # the first frame: a first progressive step
-    while not brume_pass.IsConverged():  # each frame doubles the particles
+    while not brume_pass.IsConverged():  # each frame: 4 times the particles
         window.Render()
     brume_image = grab(window)
     print("Brume traced", brume_pass.GetNumberOfTraces(), "time(s), in",

@@ -93,7 +93,8 @@ bool vtkBrumePass::IsConverged()
 }
 
 // Traces the scene anew: the whole budget, or its first progressive step
-// (the budget halved, rounding up, until it is at most FirstStepParticles),
+// (the budget divided by 4, rounding up, until it is at most
+// FirstStepParticles),
 // at the resolutions the budget calls for.
 bool vtkBrumePass::Trace()
 {
@@ -123,7 +124,7 @@ bool vtkBrumePass::Trace()
   vtkTypeInt64 first = this->NumberOfParticles;
   while (this->Progressive && first > this->FirstStepParticles)
   {
-    first = first / 2 + first % 2;
+    first = first / 4 + (first % 4 != 0 ? 1 : 0);
   }
   in.Pipeline->SetProgressive(this->Progressive);
   in.Pipeline->GetTracer()->SetNumberOfParticles(first);
@@ -162,14 +163,15 @@ bool vtkBrumePass::Trace()
   return true;
 }
 
-// A progressive step: as many particles again as the textures hold (what
-// is left of the budget at most), added to them.
+// A progressive step: three times as many particles as the textures hold
+// (what is left of the budget at most), added to them: the count grows
+// fourfold, a rescaling of the binned particles that is exact in binary.
 bool vtkBrumePass::Step()
 {
   vtkInternals& in = *this->Internals;
   const vtkTypeInt64 traced = in.Pipeline->GetTracer()->GetNumberOfParticles();
   ++this->NumberOfSteps;
-  if (!in.Pipeline->AddParticles(std::min(traced, this->NumberOfParticles - traced)))
+  if (!in.Pipeline->AddParticles(std::min(3 * traced, this->NumberOfParticles - traced)))
   {
     vtkErrorMacro("Brume's " << in.Pipeline->GetFailedPhase()
                              << " failed adding particles (see the error above).");

@@ -27,14 +27,15 @@
  *   count the textures built and updated.
  * - Progressive (on by default): after a change, the first frame shows
  *   a small step of the budget (NumberOfParticles; the first step at most
- *   FirstStepParticles), and each later Render() traces as many particles
- *   again as the textures hold (the count doubles) until the budget is
- *   reached: IsConverged() says when, and a vtkCommand::ProgressEvent
+ *   FirstStepParticles), and each later Render() traces three times as
+ *   many particles as the textures hold (the count grows fourfold) until
+ *   the budget is reached: IsConverged() says when, and a
+ *   vtkCommand::ProgressEvent
  *   (call data: a double, the fraction of the budget traced) follows each
  *   step. Each step's image is bitwise that of one run of its count at the
  *   same texture resolutions (chosen once per change for the budget,
  *   vtkBrumeRadianceReconstruction::SetPlannedParticles) when the budget
- *   is the first step's count times a power of two (10^6 is 15625 x 2^6),
+ *   is the first step's count times a power of four (10^6 is 15625 x 4^3),
  *   otherwise to float rounding at the last step. Keep rendering while
  *   !IsConverged() (a timer in an interactive program).
  * - The phases' other settings: GetPipeline() (seed, threshold,
@@ -89,9 +90,9 @@ public:
 
   ///@{
   /**
-   * The first step's particles at most (default 2^17 = 131072: about 0.1 s
+   * The first step's particles at most (default 2^17 = 131072: about 0.05 s
    * of tracing for the default scene on two cores). The first step is the
-   * budget halved until it is no more than this.
+   * budget divided by 4 until it is no more than this.
    */
   vtkSetClampMacro(FirstStepParticles, vtkTypeInt64, 1, VTK_TYPE_INT64_MAX);
   vtkGetMacro(FirstStepParticles, vtkTypeInt64);

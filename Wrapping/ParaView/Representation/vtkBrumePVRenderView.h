@@ -15,7 +15,7 @@
  * The particles are traced again only when something shown changes; a
  * camera move only updates the view-dependent textures. Progressive (off
  * by default here: a screenshot then holds the whole budget): each render
- * doubles the particles until IsConverged().
+ * multiplies the particles by 4 until IsConverged().
  *
  * In one process (the built-in session, pvbatch, or a pvserver of one
  * rank); a server of several ranks would light each rank's part alone.

@@ -6,8 +6,8 @@
 //   brume render does), up to the display's 8-bit rounding.
 // - A camera orbit traces nothing again and updates the view-dependent
 //   textures; a colour edit traces once more.
-// - Progressive frames: a quarter of the budget, then half, then all of
-//   it, each step's textures bitwise those of one run of its count.
+// - Progressive frames: a sixteenth of the budget, then a quarter, then
+//   all of it, each step's textures bitwise those of one run of its count.
 #include "VtkSceneTesting.h"
 #include "vtkActor.h"
 #include "vtkBrumeLightTracer.h"
@@ -117,7 +117,7 @@ bool SameTextures(vtkDataObject* a, vtkDataObject* b)
   return ib->IsDoneWithTraversal() && compared > 0;
 }
 
-// Progressive frames: a first step, then steps doubling the count to the
+// Progressive frames: a first step, then steps growing the count fourfold to the
 // budget, each step's textures bitwise those of one run of its count (at
 // the same resolutions); a ProgressEvent after each.
 void TestProgressive(vtkRenderer* renderer, vtkRenderWindow* window, vtkBrumePass* pass)
@@ -129,7 +129,7 @@ void TestProgressive(vtkRenderer* renderer, vtkRenderWindow* window, vtkBrumePas
   };
   resolutions(pass->GetPipeline());
   pass->ProgressiveOn();
-  pass->SetFirstStepParticles(Particles / 4);
+  pass->SetFirstStepParticles(Particles / 16);
   std::vector<double> progress;
   vtkNew<vtkCallbackCommand> observer;
   observer->SetClientData(&progress);
@@ -157,9 +157,9 @@ void TestProgressive(vtkRenderer* renderer, vtkRenderWindow* window, vtkBrumePas
   }
   Check(frames == 3 && pass->IsConverged() && pass->GetNumberOfTraces() == traces + 1 &&
       pass->GetNumberOfSteps() == 2,
-    "a change, then two steps: the budget's quarter, half and whole in three frames");
+    "a change, then two steps: the budget's sixteenth, quarter and whole in three frames");
   Check(same, "each step's textures are bitwise those of one run of its count");
-  Check(progress.size() == 3 && progress[0] == 0.25 && progress[1] == 0.5 && progress[2] == 1.0,
+  Check(progress.size() == 3 && progress[0] == 0.0625 && progress[1] == 0.25 && progress[2] == 1.0,
     "a ProgressEvent after each step, with the fraction traced");
   const int steps = pass->GetNumberOfSteps();
   window->Render();
