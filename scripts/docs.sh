@@ -88,6 +88,13 @@ if [ -n "$bench" ]; then
   fi
   /usr/bin/python3 -c 'import json, sys; d = json.load(open(sys.argv[1])); assert isinstance(d.get("figures"), list)' "$bench" ||
     { echo "docs.sh: $bench is not brume bench --json output" >&2; exit 1; }
+  # The commit the figures were measured at: the tree as it stands before
+  # the copy below changes it.
+  BENCH_COMMIT="$(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
+  if [ -n "$(git status --porcelain --untracked-files=no 2>/dev/null)" ]; then
+    BENCH_COMMIT="$BENCH_COMMIT with uncommitted changes"
+  fi
+  export BENCH_COMMIT
   cp "$bench" "$figures/bench.json"
   new_bench=1
 fi
@@ -237,7 +244,8 @@ def bench_block():
     path = os.path.join(FIGURES, "bench.json")
     meta_path = os.path.join(FIGURES, "bench.meta")
     if NEW_BENCH:
-        meta = {"date": datetime.date.today().isoformat(), "commit": head_commit(), "machine": this_machine(),
+        meta = {"date": datetime.date.today().isoformat(),
+                "commit": os.environ.get("BENCH_COMMIT") or head_commit(), "machine": this_machine(),
                 "window": os.environ.get("BRUME_RENDER_WINDOW", "auto") + (
                     " (DISPLAY set)" if os.environ.get("DISPLAY") else " (no DISPLAY)")}
         write_meta(meta_path, meta, "Where Documentation/figures/bench.json was measured (scripts/docs.sh)")
