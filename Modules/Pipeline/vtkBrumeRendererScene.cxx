@@ -7,6 +7,7 @@
 #include "vtkAlgorithm.h"
 #include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeFieldTuple.h"
+#include "vtkBrumeSceneActors.h"
 #include "vtkBrumeSceneConversion.h"
 #include "vtkBrumeVolumePropertyMedium.h"
 #include "vtkCamera.h"
@@ -124,6 +125,14 @@ std::vector<vtkDataSet*> MapperDatasets(vtkAbstractMapper* mapper)
   return datasets;
 }
 
+// Whether a prop shows radiance Brume computed (vtkBrumeSceneActors' props,
+// ParaView's "Brume Radiance" representation): drawn as it is, not lit.
+bool ShowsRadiance(vtkProp* prop)
+{
+  vtkInformation* keys = prop->GetPropertyKeys();
+  return keys && keys->Has(vtkBrumeSceneActors::RADIANCE_PROP());
+}
+
 // The renderer's own actors and volumes: its view props that are vtkActors
 // (not vtkFollowers, which turn with the camera) or vtkVolumes. The parts
 // of other props (an interactive widget's handles and labels, an
@@ -137,7 +146,7 @@ std::vector<vtkActor*> OwnActors(vtkRenderer* renderer)
   while (vtkProp* prop = props->GetNextProp(it))
   {
     auto* actor = vtkActor::SafeDownCast(prop);
-    if (actor && !actor->IsA("vtkFollower"))
+    if (actor && !actor->IsA("vtkFollower") && !ShowsRadiance(actor))
     {
       actors.push_back(actor);
     }
@@ -153,7 +162,8 @@ std::vector<vtkVolume*> OwnVolumes(vtkRenderer* renderer)
   props->InitTraversal(it);
   while (vtkProp* prop = props->GetNextProp(it))
   {
-    if (auto* volume = vtkVolume::SafeDownCast(prop))
+    auto* volume = vtkVolume::SafeDownCast(prop);
+    if (volume && !ShowsRadiance(volume))
     {
       volumes.push_back(volume);
     }

@@ -8,6 +8,8 @@
 #include "vtkCellData.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationIntegerKey.h"
 #include "vtkObjectFactory.h"
 #include "vtkPartitionedDataSet.h"
 #include "vtkPartitionedDataSetCollection.h"
@@ -160,6 +162,19 @@ vtkPartitionedDataSetCollection* vtkBrumeSceneActors::GetInputData()
   return this->Input;
 }
 
+vtkInformationKeyMacro(vtkBrumeSceneActors, RADIANCE_PROP, Integer);
+
+namespace
+{
+// Marks a prop as showing Brume's radiance (RADIANCE_PROP).
+void MarkRadiance(vtkProp* prop)
+{
+  vtkNew<vtkInformation> keys;
+  keys->Set(vtkBrumeSceneActors::RADIANCE_PROP(), 1);
+  prop->SetPropertyKeys(keys);
+}
+}
+
 vtkPropCollection* vtkBrumeSceneActors::GetProps()
 {
   return this->Props;
@@ -210,6 +225,7 @@ bool vtkBrumeSceneActors::AddToRenderer(vtkRenderer* renderer)
       // The texture holds the light leaving the front (winding) side: seen
       // from behind, a surface is cut away rather than shown wrongly lit.
       actor->GetProperty()->SetBackfaceCulling(this->BackfaceCulling);
+      MarkRadiance(actor);
       renderer->AddActor(actor);
       this->Props->AddItem(actor);
       this->Entries.push_back({ i, texture.Get(), mapper.Get(), nullptr, nullptr });
@@ -232,6 +248,7 @@ bool vtkBrumeSceneActors::AddToRenderer(vtkRenderer* renderer)
       volume->SetMapper(mapper);
       volume->GetProperty()->SetInterpolationType(
         this->Interpolate ? VTK_LINEAR_INTERPOLATION : VTK_NEAREST_INTERPOLATION);
+      MarkRadiance(volume);
       renderer->AddVolume(volume);
       this->Props->AddItem(volume);
       this->Entries.push_back({ i, nullptr, nullptr, mapper.Get(), volume.Get() });

@@ -32,6 +32,7 @@
 class vtkBrumeSliceVolumeMapper;
 
 class vtkDataObject;
+class vtkInformationIntegerKey;
 class vtkPartitionedDataSetCollection;
 class vtkPropCollection;
 class vtkRenderer;
@@ -61,6 +62,14 @@ public:
    * `BrumeObjectKind`): "surface", "medium", or "" when it is none.
    */
   static std::string GetObjectKind(vtkDataObject* texture);
+
+  /**
+   * Set in the property keys (vtkProp::GetPropertyKeys()) of every prop
+   * made here: the prop shows radiance Brume computed, and a renderer
+   * lit by Brume (vtkBrumePass, vtkBrumeRendererScene) draws it as it is
+   * instead of lighting it again.
+   */
+  static vtkInformationIntegerKey* RADIANCE_PROP();
 
   ///@{
   /**
