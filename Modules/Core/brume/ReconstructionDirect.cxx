@@ -116,8 +116,12 @@ void ObjectRadiance::LocateDirectTriangles()
   // the triangles that cover it (the first one wins, serially: the same
   // whatever the threads).
   this->DirectTriangles.clear();
+  if (this->MediumRef || !this->SurfaceRef)
+  {
+    return;
+  }
   const Surface& surface = *this->SurfaceRef;
-  if (this->MediumRef || (surface.TriangleMaterials.empty() && surface.VertexReflectance.empty()))
+  if (surface.TriangleMaterials.empty() && surface.VertexReflectance.empty())
   {
     return;
   }
