@@ -178,22 +178,8 @@ int TestBrumePass(int, char*[])
   window->SetMultiSamples(0);
   window->SetSize(Size, Size);
   window->AddRenderer(renderer);
-  auto ground = AddGround(renderer, 0.7, 0.7, 0.7);
-  vtkNew<vtkSphereSource> sphere;
-  sphere->SetCenter(1, -0.4, 0);
-  sphere->SetRadius(0.6);
-  auto ball = AddActor(renderer, sphere, 0.9, 0.3, 0.2);
-  ball->GetProperty()->SetSpecular(0.2);
-  ball->GetProperty()->SetSpecularPower(30);
-  const double where[3] = { -1, -0.2, 0 };
-  AddWavelet(renderer, 6, 90, 280, 0.6, 0.1, where);
-  const double lightPosition[3] = { 1, 4, 3 };
-  AddPointLight(renderer, lightPosition, 30);
+  auto ground = AddPassScene(renderer);
   vtkCamera* camera = renderer->GetActiveCamera();
-  camera->SetPosition(0, 2, 7);
-  camera->SetFocalPoint(0, -0.3, 0);
-  camera->SetViewAngle(40);
-  renderer->ResetCameraClippingRange();
 
   // The added line (and the budget, at once).
   vtkNew<vtkBrumePass> pass;

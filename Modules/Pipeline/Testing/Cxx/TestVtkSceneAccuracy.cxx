@@ -34,21 +34,8 @@ constexpr int Block = 8;
 int TestVtkSceneAccuracy(int argc, char* argv[])
 {
   vtkNew<vtkRenderer> renderer;
-  AddGround(renderer, 0.7, 0.7, 0.7);
-  vtkNew<vtkSphereSource> sphere;
-  sphere->SetCenter(1, -0.4, 0);
-  sphere->SetRadius(0.6);
-  auto ball = AddActor(renderer, sphere, 0.9, 0.3, 0.2);
-  ball->GetProperty()->SetSpecular(0.2);
-  ball->GetProperty()->SetSpecularPower(30);
-  const double where[3] = { -1, -0.2, 0 };
-  AddWavelet(renderer, 6, 90, 280, 0.6, 0.1, where);
-  const double lightPosition[3] = { 1, 4, 3 };
-  AddPointLight(renderer, lightPosition, 30);
+  AddPassScene(renderer);
   vtkCamera* camera = renderer->GetActiveCamera();
-  camera->SetPosition(0, 2, 7);
-  camera->SetFocalPoint(0, -0.3, 0);
-  camera->SetViewAngle(40);
 
   vtkNew<vtkBrumeRendererScene> scene;
   scene->SetRenderer(renderer);

@@ -5,6 +5,7 @@
 #define VtkSceneTesting_h
 
 #include "vtkActor.h"
+#include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkFixedPointVolumeRayCastMapper.h"
 #include "vtkLight.h"
@@ -16,6 +17,7 @@
 #include "vtkRTAnalyticSource.h"
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
+#include "vtkSphereSource.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 
@@ -80,6 +82,30 @@ inline void AddPointLight(vtkRenderer* renderer, const double position[3], doubl
   light->SetFocalPoint(0, 0, 0);
   light->SetIntensity(intensity);
   renderer->AddLight(light);
+}
+
+/// The scene of the render-pass issue: a grey ground, a glossy red sphere,
+/// the Wavelet as a volume and one positional light, seen from (0, 2, 7);
+/// the ground's actor.
+inline vtkSmartPointer<vtkActor> AddPassScene(vtkRenderer* renderer)
+{
+  auto ground = AddGround(renderer, 0.7, 0.7, 0.7);
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetCenter(1, -0.4, 0);
+  sphere->SetRadius(0.6);
+  auto ball = AddActor(renderer, sphere, 0.9, 0.3, 0.2);
+  ball->GetProperty()->SetSpecular(0.2);
+  ball->GetProperty()->SetSpecularPower(30);
+  const double where[3] = { -1, -0.2, 0 };
+  AddWavelet(renderer, 6, 90, 280, 0.6, 0.1, where);
+  const double lightPosition[3] = { 1, 4, 3 };
+  AddPointLight(renderer, lightPosition, 30);
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->SetPosition(0, 2, 7);
+  camera->SetFocalPoint(0, -0.3, 0);
+  camera->SetViewAngle(40);
+  renderer->ResetCameraClippingRange();
+  return ground;
 }
 
 #endif
