@@ -56,7 +56,10 @@
  *   camera lights are taken where they stand when the scene is built; they
  *   do not follow the camera afterwards. A renderer without a light gets
  *   what VTK would give it: a directional light along the active camera's
- *   view.
+ *   view. A point light outside the sphere that bounds the scene becomes a
+ *   spot of the same intensity whose cone just holds that sphere: the same
+ *   light wherever there is something to light, without tracing the
+ *   particles that would leave the scene at once.
  *
  * The output is rebuilt only when a prop, its mapper's input, a property,
  * a volume property or a scene light changed (camera moves rebuild

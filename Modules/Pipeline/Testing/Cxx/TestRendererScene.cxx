@@ -38,6 +38,7 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkLight.h"
+#include "vtkLightCollection.h"
 #include "vtkMath.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
@@ -264,6 +265,38 @@ void TestSidesBlocksAndSignature()
   Check(source->GetContentSignature() != first, "a colour edit changes the signature");
 }
 
+// A point light outside the scene's bounding sphere becomes a spot of the
+// same intensity aimed at its centre, its cone just holding the sphere.
+void TestAimedPointLight()
+{
+  vtkNew<vtkRenderer> renderer;
+  AddGround(renderer, 0.5, 0.5, 0.5); // [-3, 3] x {-1} x [-3, 3]
+  const double above[3] = { 0, 20, 0 };
+  AddPointLight(renderer, above, 1.0);
+  vtkNew<vtkBrumeRendererScene> source;
+  source->SetRenderer(renderer);
+  source->PhysicalLightsOn();
+  source->Update();
+  vtkFieldData* fd = source->GetOutput()->GetFieldData();
+  auto* types = vtkStringArray::SafeDownCast(fd->GetAbstractArray(vtkBrumeNames::LightType));
+  vtkDataArray* cone = fd->GetArray(vtkBrumeNames::LightConeAngle);
+  vtkDataArray* direction = fd->GetArray(vtkBrumeNames::LightDirection);
+  vtkDataArray* intensity = fd->GetArray(vtkBrumeNames::LightIntensity);
+  const double radius = 1.001 * std::sqrt(72.0) / 2.0;
+  const double expected = vtkMath::DegreesFromRadians(std::asin(radius / 21.0));
+  Check(types && types->GetNumberOfValues() == 1 && types->GetValue(0) == "spot" && cone &&
+      std::abs(cone->GetTuple1(0) - expected) < 1e-3 && direction &&
+      Near(direction->GetComponent(0, 1), -1.0) && intensity &&
+      Near(intensity->GetComponent(0, 0), 1.0),
+    "a point light above the scene is a spot of the same intensity holding it");
+  renderer->GetLights()->InitTraversal();
+  renderer->GetLights()->GetNextItem()->SetPosition(0, 0, 0); // inside the sphere
+  source->Update();
+  types = vtkStringArray::SafeDownCast(
+    source->GetOutput()->GetFieldData()->GetAbstractArray(vtkBrumeNames::LightType));
+  Check(types && types->GetValue(0) == "point", "a point light inside the scene stays one");
+}
+
 }
 
 int TestRendererScene(int, char*[])
@@ -359,6 +392,7 @@ int TestRendererScene(int, char*[])
   TestCellColours();
 
   TestSidesBlocksAndSignature();
+  TestAimedPointLight();
 
   // Through the pipeline: a lit, finite image.
   vtkNew<vtkBrumePipeline> pipeline;
