@@ -168,13 +168,29 @@ bool vtkBrumeRadianceTextures::CreateDirectLight(
     return this->Agree(false);
   }
   this->Direct.reset(new brume::DirectLight(this->Scene, *this->Caster));
+  std::size_t left = 0;
   for (std::size_t o = 0; o < this->Objects.size(); ++o)
   {
     if (this->Objects[o]->SupportsDirect())
     {
-      this->Objects[o]->EnableDirect(
-        this->Direct.get(), this->DirectResolution(o, settings.DirectLightResolution));
+      const std::array<int, 3> res = this->DirectResolution(o, settings.DirectLightResolution);
+      if (static_cast<double>(res[0]) * res[1] *
+        res[2]<MinDirectTexels&& static_cast<double>(this->Scene.Lights.size()) * MinDirectTexels>
+          MaxDirectArrivals)
+      {
+        ++left; // too many lights for a grid worth computing
+        continue;
+      }
+      this->Objects[o]->EnableDirect(this->Direct.get(), res);
     }
+  }
+  if (left > 0)
+  {
+    vtkWarningWithObjectMacro(this->Filter,
+      "" << this->Scene.Lights.size() << " lights: the direct light of " << left
+         << " object(s) is estimated from the particles, not computed (texels x lights would "
+            "exceed "
+         << static_cast<long long>(MaxDirectArrivals) << ").");
   }
   return this->Agree(true);
 }

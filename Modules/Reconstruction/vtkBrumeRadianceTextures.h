@@ -96,6 +96,13 @@ public:
   /// measured no better: god-rays.json at 128^3, 4.78 % block error against
   /// 4.74 % at 64^3, with 3.7 times the reconstruction's time.
   static constexpr double MaxDirectTexels = 262144.0;
+  /// Texels x lights of an object's direct light, at most (2^23: 192 MB of
+  /// arrivals, as many shadow rays): with many lights the grid is coarser,
+  /// and below MinDirectTexels the particles carry the object's direct
+  /// light instead (a scene of thousands of small lights then costs the
+  /// particles' memory, not texels x lights).
+  static constexpr double MaxDirectArrivals = 8388608.0;
+  static constexpr double MinDirectTexels = 1024.0;
 
   /// Errors and warnings go to `filter`; `controller` may be null.
   vtkBrumeRadianceTextures(vtkAlgorithm* filter, vtkMultiProcessController* controller);

@@ -223,9 +223,11 @@ bool vtkBrumeRadianceTextures::CreateObjects(const vtkBrumeReconstructionSetting
 std::array<int, 3> vtkBrumeRadianceTextures::DirectResolution(std::size_t o, int n) const
 {
   // n texels along the longest axis, at most the density's own resolution,
-  // at most MaxDirectTexels in all.
+  // at most MaxDirectTexels in all, and at most MaxDirectArrivals over the
+  // scene's lights.
   std::array<int, 3> res{ 1, 1, 1 };
-  const double limit = MaxDirectTexels;
+  const double lights = static_cast<double>(std::max<std::size_t>(1, this->Scene.Lights.size()));
+  const double limit = std::min(MaxDirectTexels, MaxDirectArrivals / lights);
   if (this->Scene.IsMedium(o))
   {
     const brume::Medium& medium = this->Scene.Media[o - this->Scene.Surfaces.size()];

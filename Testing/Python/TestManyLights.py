@@ -1,0 +1,61 @@
+"""Thousands of small lights (street lamps, instrument LEDs): a ground under
+5,000 and under 20,000 point lights renders, exit 0, within 1 GB of peak
+memory. The direct light's grid is coarsened so that texels x lights stay
+within 2^23; under 20,000 lights the grid would be too coarse to be worth
+computing, and the particles carry the direct light (a warning says so).
+The scenes are written by this test, not committed.
+
+usage: python3 TestManyLights.py BRUME OUTPUT_DIR
+"""
+import json
+import os
+import random
+import resource
+import subprocess
+import sys
+
+brume, output_dir = sys.argv[1:3]
+failures = []
+
+
+def check(ok, what):
+    print(("ok: " if ok else "FAILED: ") + what)
+    if not ok:
+        failures.append(what)
+
+
+def scene(lights):
+    rng = random.Random(lights)
+    return {
+        "brume_scene": 1,
+        "name": "%d lamps over a ground" % lights,
+        "camera": {"position": [0, 3, 8], "focal_point": [0, 0, 0], "view_up": [0, 1, 0],
+                   "view_angle": 40},
+        "surfaces": [{"name": "ground", "quad": [[-4, 0, -4], [-4, 0, 4], [4, 0, 4], [4, 0, -4]],
+                      "material": {"reflectance": [0.6, 0.6, 0.6]}}],
+        "lights": [{"type": "point",
+                    "position": [rng.uniform(-4, 4), 0.5, rng.uniform(-4, 4)],
+                    "intensity": [0.01, 0.01, 0.01]} for _ in range(lights)],
+    }
+
+
+for lights in (5000, 20000):
+    path = os.path.join(output_dir, "many-lights-%d.json" % lights)
+    png = os.path.join(output_dir, "many-lights-%d.png" % lights)
+    with open(path, "w") as f:
+        json.dump(scene(lights), f)
+    if os.path.exists(png):
+        os.remove(png)
+    before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+    run = subprocess.run([brume, "render", path, "--particles", "200000", "--size", "128x128",
+                          "-o", png], capture_output=True, text=True)
+    peak_kb = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+    print("%d lights: exit %d, peak memory %.0f MB (children's maximum so far: %d KB before)"
+          % (lights, run.returncode, peak_kb / 1024.0, before))
+    check(run.returncode == 0 and os.path.exists(png),
+          "%d lights render (stderr: %s)" % (lights, run.stderr.strip()[:300]))
+    check(peak_kb <= 1024 * 1024, "%d lights within 1 GB (%.0f MB)" % (lights, peak_kb / 1024.0))
+    if lights == 20000:
+        check("estimated from the particles" in run.stderr,
+              "under 20,000 lights the particles carry the direct light, and a warning says so")
+sys.exit(1 if failures else 0)
