@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "BrumeOutputWindow.h"
 
+#include "vtkBrumeQuotes.h"
+
 #include "vtkLogger.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -54,7 +56,8 @@ std::string BrumeOutputWindow::Message(const char* text)
   {
     c = c == '\n' ? ' ' : c;
   }
-  return s;
+  // Whatever module said it: at most about 80 characters of any input.
+  return vtkBrumeBoundQuotes(s);
 }
 
 void BrumeOutputWindow::DisplayErrorText(const char* text)

@@ -7,6 +7,7 @@
 #ifndef vtkBrumeSceneFileParserInternals_h
 #define vtkBrumeSceneFileParserInternals_h
 
+#include "vtkBrumeQuotes.h"
 #include "vtkBrumeSceneConversion.h"
 #include "vtkBrumeSceneFileParser.h"
 #include "vtkFieldData.h"
@@ -56,7 +57,7 @@ public:
   {
     if (this->Error.empty())
     {
-      this->Error = this->File + ": " + path + ": " + message;
+      this->Error = vtkBrumeBoundQuotes(this->File + ": " + path + ": " + message);
     }
     return false;
   }

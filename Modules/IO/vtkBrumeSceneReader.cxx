@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumeSceneReader.h"
 
+#include "vtkBrumeQuotes.h"
+
 #include "vtkBrumeSceneFileParser.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -60,14 +62,14 @@ int vtkBrumeSceneReader::RequestData(
   }
   catch (const std::exception& e)
   {
-    vtkErrorMacro(<< this->FileName << ": not valid JSON: " << e.what());
+    vtkErrorMacro(<< vtkBrumeBoundQuotes(this->FileName + ": not valid JSON: " + e.what()));
     return 0;
   }
   vtkNew<vtkPartitionedDataSetCollection> scene;
   vtkBrumeSceneFileParser parser(this->FileName);
   if (!parser.Parse(root, scene))
   {
-    vtkErrorMacro(<< parser.GetError());
+    vtkErrorMacro(<< vtkBrumeBoundQuotes(parser.GetError()));
     return 0;
   }
   output->ShallowCopy(scene);
