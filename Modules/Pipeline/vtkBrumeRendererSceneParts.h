@@ -1,0 +1,35 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// vtkBrumeRendererScene's parts (private to the module): what becomes of an
+// actor's data and of the renderer's point lights.
+#ifndef vtkBrumeRendererSceneParts_h
+#define vtkBrumeRendererSceneParts_h
+
+#include "vtkSmartPointer.h"
+
+#include "brume/Light.h"
+
+#include <vector>
+
+class vtkActor;
+class vtkCamera;
+class vtkDataSet;
+class vtkPartitionedDataSetCollection;
+class vtkPolyData;
+
+namespace vtkBrumeRendererSceneParts
+{
+/**
+ * The polygons of `data` (one dataset the actor's mapper draws) as a Brume
+ * surface: in world coordinates, with the actor's property as material and
+ * its mapper's colours as reflectance (point colours per vertex, cell
+ * colours per cell), turned to show its side to the camera (closed
+ * surfaces outward, open ones toward `camera`). Null without polygons.
+ */
+vtkSmartPointer<vtkPolyData> ActorSurface(vtkActor* actor, vtkDataSet* data, vtkCamera* camera);
+
+/// Point lights outside the sphere bounding `scene` become spots of the
+/// same intensity whose cone just holds it.
+void AimPointLights(vtkPartitionedDataSetCollection* scene, std::vector<brume::Light>& lights);
+}
+
+#endif
