@@ -205,7 +205,7 @@ BakedAlbedo BakeAlbedo(const brume::ObjectRadiance& radiance, const brume::Mediu
     }
     weight += texelWeight[t];
   }
-  const float forward = radiance.GetPeak(directional).Forward;
+  const float forward = radiance.GetLayout().Scattering.GetPeak(directional).Forward;
   for (int c = 0; c < 3; ++c)
   {
     baked.Factor[c] = 1.f - (weight > 0.0 ? static_cast<float>(sum[c] / weight) : 1.f) * forward;
@@ -240,9 +240,10 @@ void AddSourceRadiance(vtkImageData* texture, const brume::SparseTexture* bricks
   {
     // The projection, and as SourceRadiance its mean over directions (the
     // l = 0 term: c_00 Y_00).
-    const int order = radiance.GetDirectionalOrder();
+    const int order = radiance.GetDirectional().GetOrder();
     const int components = 3 * brume::ShCoefficients(order);
-    const std::vector<float>& coefficients = baked(radiance.GetDirectional(), components);
+    const std::vector<float>& coefficients =
+      baked(radiance.GetDirectional().GetCoefficients(), components);
     std::vector<float> mean(3 * (coefficients.size() / components));
     for (std::size_t t = 0; t < mean.size() / 3; ++t)
     {
@@ -255,13 +256,14 @@ void AddSourceRadiance(vtkImageData* texture, const brume::SparseTexture* bricks
     AddSourceArray(texture, bricks, vtkBrumeNames::SourceRadianceSH, coefficients, components);
     vtkNew<vtkDoubleArray> g;
     g->SetName(vtkBrumeNames::PhaseAsymmetry);
-    g->InsertNextValue(radiance.GetPeak(true).G); // the remainder's, past DirectionalResolvedG
+    g->InsertNextValue(radiance.GetLayout().Scattering.GetPeak(true).G); // the remainder's, past
+                                                                         // DirectionalResolvedG
     texture->GetFieldData()->AddArray(g);
   }
   else
   {
     AddSourceArray(
-      texture, bricks, vtkBrumeNames::SourceRadiance, baked(radiance.GetOutputRadiance(), 3), 3);
+      texture, bricks, vtkBrumeNames::SourceRadiance, baked(radiance.GetOutput().Radiance, 3), 3);
   }
 }
 
@@ -271,7 +273,7 @@ void AddTextureExtinction(
   vtkCellData* cd, const brume::ObjectRadiance& radiance, bool directional, vtkImageData* previous)
 {
   const std::vector<float>& sigmaT =
-    directional ? radiance.GetExtinction() : radiance.GetOutputExtinction();
+    directional ? radiance.GetTexture().Extinction : radiance.GetOutput().Extinction;
   auto* kept = previous
     ? vtkFloatArray::SafeDownCast(previous->GetCellData()->GetArray(vtkBrumeNames::Extinction))
     : nullptr;
@@ -291,14 +293,14 @@ void AddTextureExtinction(
 vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromSurface(
   const brume::ObjectRadiance& radiance, const brume::Surface& surface, vtkPolyData* sceneSurface)
 {
-  const auto& res = radiance.GetOutputResolution();
-  const brume::SurfaceChart& chart = radiance.GetChart();
+  const auto& res = radiance.GetOutput().Dims;
+  const brume::SurfaceChart& chart = radiance.GetLayout().Chart;
   vtkNew<vtkImageData> texture;
   texture->SetDimensions(res[0], res[1], 1);
   texture->SetSpacing(1.0 / res[0], 1.0 / res[1], 1.0);
   texture->SetOrigin(0.5 / res[0], 0.5 / res[1], 0.0);
   texture->GetPointData()->SetScalars(
-    NewRGB(vtkBrumeNames::Radiance, radiance.GetOutputRadiance()));
+    NewRGB(vtkBrumeNames::Radiance, radiance.GetOutput().Radiance));
   if (chart.Type == brume::SurfaceChart::Kind::Planar)
   {
     AddVec3(texture->GetFieldData(), vtkBrumeNames::TextureOrigin, chart.Frame.Origin);
@@ -336,9 +338,9 @@ vtkSmartPointer<vtkImageData> vtkBrumeRadianceConversion::NativeExtinction(
   // A classified density gives its scalars and the function that
   // classifies them (the mapper classifies after interpolation, as the
   // tracer does); another gives sigma_t per unit density.
-  const brume::OpacityTransferFunction* function = radiance.GetClassification();
+  const brume::OpacityTransferFunction* function = radiance.GetNative().GetClassification();
   const brume::BrickedGrid& density =
-    function ? radiance.GetNativeScalars() : radiance.GetNativeDensity();
+    function ? radiance.GetNative().GetScalars() : radiance.GetNative().GetDensity();
   if (density.Empty())
   {
     return nullptr;
@@ -515,8 +517,8 @@ brume::SparseTexture vtkBrumeRadianceConversion::SourceBricks(
   const brume::ObjectRadiance& radiance, const brume::Medium& medium, bool directional)
 {
   return brume::SparseTexture::WhereDensity(
-    directional ? radiance.GetResolution() : radiance.GetOutputResolution(), medium.Bounds,
-    radiance.GetNativeDensity());
+    directional ? radiance.GetLayout().Resolution : radiance.GetOutput().Dims, medium.Bounds,
+    radiance.GetNative().GetDensity());
 }
 
 vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
@@ -525,7 +527,7 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
 {
   // Directional radiance stays on the texture's grid; per-view radiance is
   // on the output grid (finer, with direct light).
-  const auto& res = directional ? radiance.GetResolution() : radiance.GetOutputResolution();
+  const auto& res = directional ? radiance.GetLayout().Resolution : radiance.GetOutput().Dims;
   const brume::Vec3 extent = medium.Bounds.Extent();
   vtkNew<vtkImageData> texture;
   texture->SetDimensions(res[0] + 1, res[1] + 1, res[2] + 1);
@@ -552,9 +554,9 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
   // A varying albedo is applied by the mapper where its extinction carries
   // the albedo's table. On a grid that has none (a coarsened one) it is
   // baked into the texture here (BakeAlbedo).
-  const bool albedoTable = radiance.HasVaryingAlbedo() && extinction &&
+  const bool albedoTable = radiance.GetLayout().Scattering.HasVaryingAlbedo() && extinction &&
     extinction->GetFieldData()->GetArray(vtkBrumeNames::AlbedoTransferFunction);
-  const bool bake = radiance.HasVaryingAlbedo() && !albedoTable;
+  const bool bake = radiance.GetLayout().Scattering.HasVaryingAlbedo() && !albedoTable;
   BakedAlbedo albedo;
   if (bake)
   {
@@ -567,7 +569,7 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
     // The mapper draws sigma_t a X and extinguishes sigma_t (1 - a Forward).
     vtkNew<vtkDoubleArray> forward;
     forward->SetName(vtkBrumeNames::ForwardFraction);
-    forward->InsertNextValue(radiance.GetPeak(directional).Forward);
+    forward->InsertNextValue(radiance.GetLayout().Scattering.GetPeak(directional).Forward);
     fd->AddArray(forward);
   }
   if (!sparse)
@@ -576,7 +578,8 @@ vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(
   }
   // A strongly forward medium's peak is drawn as transport: at the
   // extinction times this factor, with S per unit of it.
-  const brume::Vec3 factor = bake ? albedo.Factor : radiance.GetExtinctionFactor(directional);
+  const brume::Vec3 factor =
+    bake ? albedo.Factor : radiance.GetLayout().Scattering.GetExtinctionFactor(directional);
   if (factor.x != 1.f || factor.y != 1.f || factor.z != 1.f)
   {
     vtkNew<vtkDoubleArray> f;

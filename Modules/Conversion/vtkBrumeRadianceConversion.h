@@ -24,8 +24,8 @@
  *   its sigma_t-weighted mean over each voxel's region (smooth where the
  *   light is), and partition 1 is a second 3D vtkImageData over the
  *   density's own grid (its box holds the medium's) with the extinction at
- *   the density's own resolution (brume::ObjectRadiance::GetNativeDensity
- *   times the medium's sigma_t) in vtkBrumeSliceVolumeMapper's sparse form
+ *   the density's own resolution (brume::NativeMediumGrid times the
+ *   medium's sigma_t) in vtkBrumeSliceVolumeMapper's sparse form
  *   (field arrays `ExtinctionBrickSlots`, `ExtinctionBrickValues`,
  *   `ExtinctionBrickSamples`, `ExtinctionScale`; see
  *   vtkBrumeSliceVolumeMapper::SetExtinctionData): memory follows the

@@ -283,7 +283,7 @@ bool vtkBrumeRadianceReconstruction::Plan(const vtkBrumeReconstructionRequest& r
   // The kept hits' buffers of the textures replaced go to the new ones (a
   // rebuild after new hits writes where the last build's were); the rest of
   // the textures replaced is freed before the new ones are built.
-  std::vector<brume::ObjectRadiance::KeptHits> spare;
+  std::vector<brume::KeptHits> spare;
   if (textures)
   {
     spare = textures->ReleaseKeptMemory();

@@ -75,9 +75,9 @@ bool vtkBrumeRadianceTextures::Continues(const vtkBrumeHitConversion::RunInfo& r
   return run.Particles == this->Particles || this->EndParticle == this->Particles;
 }
 
-std::vector<brume::ObjectRadiance::KeptHits> vtkBrumeRadianceTextures::ReleaseKeptMemory()
+std::vector<brume::KeptHits> vtkBrumeRadianceTextures::ReleaseKeptMemory()
 {
-  std::vector<brume::ObjectRadiance::KeptHits> memory;
+  std::vector<brume::KeptHits> memory;
   for (auto& object : this->Objects)
   {
     memory.push_back(object->ReleaseKeptMemory());
@@ -87,7 +87,7 @@ std::vector<brume::ObjectRadiance::KeptHits> vtkBrumeRadianceTextures::ReleaseKe
 
 bool vtkBrumeRadianceTextures::Build(const vtkBrumeReconstructionRequest& request,
   const vtkBrumeReconstructionSettings& settings, vtkBrumeReconstructionWork& work,
-  std::vector<brume::ObjectRadiance::KeptHits> spare)
+  std::vector<brume::KeptHits> spare)
 {
   this->SceneCollection = request.Scene;
   // The scene's lights and those its tracer was given (the hits name them).
@@ -171,7 +171,7 @@ bool vtkBrumeRadianceTextures::CreateDirectLight(
   std::size_t left = 0;
   for (std::size_t o = 0; o < this->Objects.size(); ++o)
   {
-    if (this->Objects[o]->SupportsDirect())
+    if (brume::DirectTexture::Supports(this->Objects[o]->GetLayout()))
     {
       const std::array<int, 3> res = this->DirectResolution(o, settings.DirectLightResolution);
       if (static_cast<double>(res[0]) * res[1] *
@@ -227,15 +227,15 @@ void vtkBrumeRadianceTextures::ComputeDirect()
   for (std::size_t o = surfaces; o < this->Objects.size(); ++o)
   {
     const brume::ObjectRadiance& medium = *this->Objects[o];
-    if (!medium.GetNativeDensity().Empty())
+    if (!medium.GetNative().GetDensity().Empty())
     {
-      this->Direct->SetMediumGrid(o - surfaces, &medium.GetNativeDensity());
+      this->Direct->SetMediumGrid(o - surfaces, &medium.GetNative().GetDensity());
     }
   }
   const brume::ParallelFor parallelFor = vtkBrumeSMP::ParallelFor();
   for (auto& object : this->Objects)
   {
-    if (object->IsDirectEnabled())
+    if (object->GetDirect().IsEnabled())
     {
       object->ComputeDirect(parallelFor);
     }
@@ -274,7 +274,7 @@ void vtkBrumeRadianceTextures::ForEachObject(const brume::ObjectHits& groups,
   std::vector<std::size_t> independent;
   for (std::size_t o = 0; o < this->Objects.size(); ++o)
   {
-    if (!this->Objects[o]->KeepsHits())
+    if (!this->Objects[o]->GetBinning().KeepsHits())
     {
       independent.push_back(o);
     }
@@ -296,7 +296,7 @@ void vtkBrumeRadianceTextures::ForEachObject(const brume::ObjectHits& groups,
   const brume::ParallelFor parallelFor = vtkBrumeSMP::ParallelFor();
   for (std::size_t o = 0; o < this->Objects.size(); ++o)
   {
-    if (this->Objects[o]->KeepsHits())
+    if (this->Objects[o]->GetBinning().KeepsHits())
     {
       step(o, parallelFor);
     }
@@ -319,8 +319,8 @@ bool vtkBrumeRadianceTextures::BuildObjects(const vtkBrumeReconstructionRequest&
     this->ForEachObject(groups,
       [&](std::size_t o, const brume::ParallelFor& objectFor)
       {
-        this->Objects[o]->SetParticleFlux(request.ParticleFlux);
-        this->Objects[o]->SetRunShare(request.Run.EndParticle / request.Run.Particles);
+        this->Objects[o]->Options().ParticleFlux = request.ParticleFlux;
+        this->Objects[o]->Options().RunShare = request.Run.EndParticle / request.Run.Particles;
         errors[o] = this->Objects[o]->Build(request.Hits, groups.Index.data() + groups.Offset[o],
           groups.Offset[o + 1] - groups.Offset[o], request.Eye, request.ThresholdFlux, objectFor,
           request.Run.Completes());
@@ -363,8 +363,8 @@ bool vtkBrumeRadianceTextures::BuildDistributed(const vtkBrumeReconstructionRequ
   const brume::ParallelFor parallelFor = vtkBrumeSMP::ParallelFor();
   auto bin = [&](std::size_t o, const brume::ParallelFor& objectFor)
   {
-    this->Objects[o]->SetParticleFlux(request.ParticleFlux);
-    this->Objects[o]->SetRunShare(request.Run.EndParticle / request.Run.Particles);
+    this->Objects[o]->Options().ParticleFlux = request.ParticleFlux;
+    this->Objects[o]->Options().RunShare = request.Run.EndParticle / request.Run.Particles;
     errors[o] =
       this->Objects[o]->BuildHistograms(request.Hits, groups.Index.data() + groups.Offset[o],
         groups.Offset[o + 1] - groups.Offset[o], request.ThresholdFlux, objectFor, estimate);
@@ -420,15 +420,15 @@ bool vtkBrumeRadianceTextures::Add(
   std::vector<std::string> errors(this->Objects.size());
   auto add = [&](std::size_t o, const brume::ParallelFor& objectFor)
   {
-    this->Objects[o]->SetParticleFlux(request.ParticleFlux);
-    this->Objects[o]->SetRunShare(request.Run.EndParticle / request.Run.Particles);
+    this->Objects[o]->Options().ParticleFlux = request.ParticleFlux;
+    this->Objects[o]->Options().RunShare = request.Run.EndParticle / request.Run.Particles;
     // A fixed view estimates toward the eye it binned toward; FollowView()
     // then says whether the viewpoint has moved since.
     brume::ObjectRadiance& radiance = *this->Objects[o];
     brume::Vec3 eye = firstEstimate ? request.Eye : this->ObjectEye[o];
-    if (radiance.IsViewFixed())
+    if (radiance.GetBinning().IsViewFixed())
     {
-      eye = radiance.GetFixedEye();
+      eye = radiance.GetBinning().GetFixedEye();
     }
     errors[o] = radiance.Add(request.Hits, groups.Index.data() + groups.Offset[o],
       groups.Offset[o + 1] - groups.Offset[o], this->Particles / request.Run.Particles, eye,
@@ -455,7 +455,8 @@ bool vtkBrumeRadianceTextures::Add(
     for (std::size_t o = 0; o < this->Objects.size(); ++o)
     {
       const brume::ObjectRadiance& radiance = *this->Objects[o];
-      this->ObjectEye[o] = radiance.IsViewFixed() ? radiance.GetFixedEye() : request.Eye;
+      this->ObjectEye[o] =
+        radiance.GetBinning().IsViewFixed() ? radiance.GetBinning().GetFixedEye() : request.Eye;
     }
   }
   this->Accumulated = true;
@@ -472,12 +473,12 @@ bool vtkBrumeRadianceTextures::SetDirectional(
   for (std::size_t o = 0; o < this->Objects.size(); ++o)
   {
     brume::ObjectRadiance& radiance = *this->Objects[o];
-    if (!radiance.IsViewDependent())
+    if (!radiance.GetLayout().ViewDependent)
     {
       continue;
     }
     const bool directional = directionalMedia && this->Scene.IsMedium(o);
-    const bool project = directional && radiance.GetDirectionalOrder() != order;
+    const bool project = directional && radiance.GetDirectional().GetOrder() != order;
     if (directional == this->ObjectDirectional[o] && !project)
     {
       continue;
@@ -514,7 +515,7 @@ bool vtkBrumeRadianceTextures::FollowView(
   {
     brume::ObjectRadiance& radiance = *this->Objects[o];
     const brume::Vec3& last = this->ObjectEye[o];
-    if (!radiance.IsViewDependent() || this->ObjectDirectional[o] ||
+    if (!radiance.GetLayout().ViewDependent || this->ObjectDirectional[o] ||
       (last.x == eye.x && last.y == eye.y && last.z == eye.z))
     {
       if (moved[o])
@@ -523,7 +524,7 @@ bool vtkBrumeRadianceTextures::FollowView(
       }
       continue;
     }
-    if (radiance.IsViewFixed() && this->Accumulated)
+    if (radiance.GetBinning().IsViewFixed() && this->Accumulated)
     {
       vtkErrorWithObjectMacro(this->Filter,
         "The viewpoint changed, but '"
@@ -535,7 +536,7 @@ bool vtkBrumeRadianceTextures::FollowView(
     }
     // Textures that hold added particles have no single hits input to be
     // rebuilt from: they are always updated incrementally.
-    if ((incremental || this->Accumulated) && !radiance.IsViewFixed())
+    if ((incremental || this->Accumulated) && !radiance.GetBinning().IsViewFixed())
     {
       radiance.UpdateView(eye, parallelFor);
       ++work.ViewUpdates;
@@ -546,11 +547,11 @@ bool vtkBrumeRadianceTextures::FollowView(
       {
         brume::GroupHitsByObject(request.Hits, this->Scene.NumberOfObjects(), groups, parallelFor);
       }
-      if (radiance.IsViewFixed())
+      if (radiance.GetBinning().IsViewFixed())
       {
         radiance.FixView(eye);
       }
-      radiance.SetParticleFlux(request.ParticleFlux);
+      radiance.Options().ParticleFlux = request.ParticleFlux;
       radiance.Build(request.Hits, groups.Index.data() + groups.Offset[o],
         groups.Offset[o + 1] - groups.Offset[o], eye, request.ThresholdFlux, parallelFor);
       ++work.TextureBuilds;
@@ -579,7 +580,7 @@ int vtkBrumeRadianceTextures::NumberOfViewDependentOutputs() const
   int count = 0;
   for (std::size_t o = 0; o < this->Objects.size(); ++o)
   {
-    count += this->Objects[o]->IsViewDependent() && !this->ObjectDirectional[o] ? 1 : 0;
+    count += this->Objects[o]->GetLayout().ViewDependent && !this->ObjectDirectional[o] ? 1 : 0;
   }
   return count;
 }
@@ -627,7 +628,8 @@ void vtkBrumeRadianceTextures::Emit(vtkPartitionedDataSetCollection* output)
         {
           this->SourceBricks.resize(this->Objects.size());
           const bool directional = this->ObjectDirectional[o];
-          const auto& res = directional ? radiance.GetResolution() : radiance.GetOutputResolution();
+          const auto& res =
+            directional ? radiance.GetLayout().Resolution : radiance.GetOutput().Dims;
           if (this->SourceBricks[o].GetDims() != res)
           {
             this->SourceBricks[o] =

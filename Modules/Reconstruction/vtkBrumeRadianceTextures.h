@@ -136,11 +136,11 @@ public:
    */
   bool Build(const vtkBrumeReconstructionRequest& request,
     const vtkBrumeReconstructionSettings& settings, vtkBrumeReconstructionWork& work,
-    std::vector<brume::ObjectRadiance::KeptHits> spare = {});
+    std::vector<brume::KeptHits> spare = {});
 
   /// The kept hits' buffers of every object, emptied, for the textures
   /// that replace these (Build()'s `spare`).
-  std::vector<brume::ObjectRadiance::KeptHits> ReleaseKeptMemory();
+  std::vector<brume::KeptHits> ReleaseKeptMemory();
 
   /// The hits of a progressive step, added to every texture's histograms.
   bool Add(const vtkBrumeReconstructionRequest& request, vtkBrumeReconstructionWork& work);

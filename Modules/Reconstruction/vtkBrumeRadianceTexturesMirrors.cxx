@@ -26,8 +26,8 @@ bool vtkBrumeRadianceTextures::PlanReflections()
     {
       continue;
     }
-    const bool lobes = this->Scene.Lights.empty() || this->Objects[s]->IsDirectEnabled();
-    this->Objects[s]->SetLobeCast(lobes);
+    const bool lobes = this->Scene.Lights.empty() || this->Objects[s]->GetDirect().IsEnabled();
+    this->Objects[s]->Options().LobeCast = lobes;
     if (lobes || brume::MirrorReflection::HasMirror(surface))
     {
       this->Mirrors.push_back(s);
@@ -70,7 +70,7 @@ std::vector<bool> vtkBrumeRadianceTextures::ReflectMirrors(const brume::Vec3& ey
   std::vector<std::size_t> seen;
   for (std::size_t o = 0; o < this->Objects.size(); ++o)
   {
-    if (this->Objects[o]->IsViewDependent() &&
+    if (this->Objects[o]->GetLayout().ViewDependent &&
       std::find(this->Mirrors.begin(), this->Mirrors.end(), o) == this->Mirrors.end())
     {
       seen.push_back(o);
@@ -84,7 +84,7 @@ std::vector<bool> vtkBrumeRadianceTextures::ReflectMirrors(const brume::Vec3& ey
   {
     const int n = isMirror(s) ? this->Settings.MirrorResolution
                               : std::max(1, this->Settings.MirrorResolution / 2);
-    const brume::SurfaceChart& chart = this->Objects[s]->GetChart();
+    const brume::SurfaceChart& chart = this->Objects[s]->GetLayout().Chart;
     return FixedResolution(brume::Vec3(chart.Width, chart.Height, 0.f), n);
   };
   std::vector<std::vector<float>> views(this->Objects.size());
@@ -98,8 +98,8 @@ std::vector<bool> vtkBrumeRadianceTextures::ReflectMirrors(const brume::Vec3& ey
     {
       this->Objects[o]->UpdateView(from, parallelFor);
       moved[o] = true;
-      views[o] = this->Objects[o]->GetOutputRadiance();
-      reflection.SetTexture(o, { views[o].data(), this->Objects[o]->GetOutputResolution() });
+      views[o] = this->Objects[o]->GetOutput().Radiance;
+      reflection.SetTexture(o, { views[o].data(), this->Objects[o]->GetOutput().Dims });
     }
     return from;
   };
@@ -112,8 +112,7 @@ std::vector<bool> vtkBrumeRadianceTextures::ReflectMirrors(const brume::Vec3& ey
     for (const std::size_t c : this->Mirrors)
     {
       const brume::ObjectRadiance& own = *this->Objects[c];
-      reflection.SetTexture(
-        c, { own.GetUnreflectedRadiance().data(), own.GetUnreflectedResolution() });
+      reflection.SetTexture(c, { own.GetUnreflected().Radiance.data(), own.GetUnreflected().Dims });
     }
     brume::Vec3 mirrored = eye;
     brume::MirrorReflection::MirroredEye(this->Scene.Surfaces[m], eye, mirrored);
@@ -121,7 +120,7 @@ std::vector<bool> vtkBrumeRadianceTextures::ReflectMirrors(const brume::Vec3& ey
     {
       for (const std::size_t c : this->Mirrors)
       {
-        if (c == m || !this->Objects[c]->IsLobeCast() || isMirror(c))
+        if (c == m || !this->Objects[c]->Options().LobeCast || isMirror(c))
         {
           continue;
         }

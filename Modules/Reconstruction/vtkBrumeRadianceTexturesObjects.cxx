@@ -196,8 +196,8 @@ bool vtkBrumeRadianceTextures::CreateObjects(const vtkBrumeReconstructionSetting
     {
       return false;
     }
-    radiance->SetReduction(this->Reduction.get());
-    radiance->SetCentroidMatching(settings.CentroidMatching);
+    radiance->Distribution().SetReduction(this->Reduction.get());
+    radiance->Options().CentroidMatching = settings.CentroidMatching;
     this->Objects.push_back(std::move(radiance));
     this->Outputs.push_back(nullptr);
   }
@@ -208,13 +208,13 @@ bool vtkBrumeRadianceTextures::CreateObjects(const vtkBrumeReconstructionSetting
     std::vector<double> costs;
     for (const auto& object : this->Objects)
     {
-      costs.push_back(object->EstimateCost());
+      costs.push_back(object->GetLayout().EstimateCost());
     }
     const std::vector<int> owners =
       brume::AssignOwners(costs, this->Reduction->NumberOfProcesses());
     for (std::size_t o = 0; o < objects; ++o)
     {
-      this->Objects[o]->SetOwner(owners[o]);
+      this->Objects[o]->Distribution().SetOwner(owners[o]);
     }
   }
   return true;
@@ -243,7 +243,7 @@ std::array<int, 3> vtkBrumeRadianceTextures::DirectResolution(std::size_t o, int
   }
   else
   {
-    const brume::SurfaceChart& chart = this->Objects[o]->GetChart();
+    const brume::SurfaceChart& chart = this->Objects[o]->GetLayout().Chart;
     res = FixedResolution(brume::Vec3(chart.Width, chart.Height, 0.f), n);
   }
   const double texels = static_cast<double>(res[0]) * res[1] * res[2];

@@ -702,7 +702,7 @@ void TestColour()
 void TestCoarsenedColour()
 {
   // A field of 2,050 points along x: more native cells along an axis than
-  // the reconstruction keeps (MaxNativeAxis), so its grid is coarsened and
+  // the reconstruction keeps (NativeMediumGrid::MaxAxis), so its grid is coarsened and
   // has no scalars to classify; the conversion then applies the albedo to
   // the texture itself. A constant colour with Albedo 1 must draw the image
   // of that colour given as the Albedo there too (g = 0.85: with the

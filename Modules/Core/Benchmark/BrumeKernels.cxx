@@ -264,7 +264,7 @@ void BM_SurfaceTextureBuild(benchmark::State& state)
       state.SkipWithError(error.c_str());
       break;
     }
-    benchmark::DoNotOptimize(radiance.GetRadiance().data());
+    benchmark::DoNotOptimize(radiance.GetTexture().Radiance.data());
   }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(index.size()));
 }

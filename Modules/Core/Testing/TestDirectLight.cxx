@@ -94,17 +94,17 @@ TEST(DirectLight, WallUnderAPointLightIsRhoIHOverPiR3WithAShadow)
   const RayCaster caster(scene);
   DirectLight direct(scene, caster);
   ObjectRadiance wall(scene.Surfaces[0], MakeChart(scene.Surfaces[0], nullptr), { 4, 4 }, 2);
-  ASSERT_TRUE(wall.SupportsDirect());
+  ASSERT_TRUE(brume::DirectTexture::Supports(wall.GetLayout()));
   wall.EnableDirect(&direct, { 64, 64, 1 });
   const auto index = IndexOf(store, 0);
   ASSERT_FALSE(index.empty());
   ASSERT_EQ(
     wall.Build(store.View(), index.data(), index.size(), { 0, 0, 5 }, 1e-3, SerialFor()), "");
   wall.ComputeDirect(SerialFor());
-  ASSERT_TRUE(wall.HasDirect());
-  ASSERT_EQ(wall.GetOutputResolution(), (std::array<int, 3>{ 64, 64, 1 }));
-  const auto& L = wall.GetOutputRadiance();
-  const auto& frame = wall.GetChart().Frame;
+  ASSERT_TRUE(wall.GetDirect().HasArrivals());
+  ASSERT_EQ(wall.GetOutput().Dims, (std::array<int, 3>{ 64, 64, 1 }));
+  const auto& L = wall.GetOutput().Radiance;
+  const auto& frame = wall.GetLayout().Chart.Frame;
   // The analytic direct term, zero in the occluder's shadow.
   auto analytic = [&](float u, float v, int c)
   {
@@ -173,15 +173,15 @@ TEST(DirectLight, PerTriangleMaterialsReflectTheirOwnDirectLight)
   const RayCaster caster(scene);
   DirectLight direct(scene, caster);
   ObjectRadiance wall(scene.Surfaces[0], MakeChart(scene.Surfaces[0], nullptr), { 4, 4 }, 2);
-  ASSERT_TRUE(wall.SupportsDirect());
+  ASSERT_TRUE(brume::DirectTexture::Supports(wall.GetLayout()));
   wall.EnableDirect(&direct, { 32, 32, 1 });
   const auto index = IndexOf(store, 0);
   ASSERT_EQ(
     wall.Build(store.View(), index.data(), index.size(), { 0, 0, 5 }, 1e-3, SerialFor()), "");
   wall.ComputeDirect(SerialFor());
-  ASSERT_TRUE(wall.HasDirect());
-  const auto& L = wall.GetOutputRadiance();
-  const auto& frame = wall.GetChart().Frame;
+  ASSERT_TRUE(wall.GetDirect().HasArrivals());
+  const auto& L = wall.GetOutput().Radiance;
+  const auto& frame = wall.GetLayout().Chart.Frame;
   constexpr int N = 32;
   int checked = 0;
   for (int j = 0; j < N; ++j)
@@ -211,7 +211,7 @@ TEST(DirectLight, PerTriangleMaterialsReflectTheirOwnDirectLight)
   ASSERT_EQ(mirrored.Validate(), "");
   const ObjectRadiance mirror(
     mirrored.Surfaces[0], MakeChart(mirrored.Surfaces[0], nullptr), { 4, 4 }, 2);
-  EXPECT_FALSE(mirror.SupportsDirect());
+  EXPECT_FALSE(brume::DirectTexture::Supports(mirror.GetLayout()));
 }
 
 TEST(DirectLight, VertexReflectanceIsInterpolatedOverTheTriangles)
@@ -233,14 +233,14 @@ TEST(DirectLight, VertexReflectanceIsInterpolatedOverTheTriangles)
   const RayCaster caster(scene);
   DirectLight direct(scene, caster);
   ObjectRadiance radiance(wall, MakeChart(wall, nullptr), { 4, 4 }, 2);
-  ASSERT_TRUE(radiance.SupportsDirect());
+  ASSERT_TRUE(brume::DirectTexture::Supports(radiance.GetLayout()));
   radiance.EnableDirect(&direct, { 32, 32, 1 });
   const auto index = IndexOf(store, 0);
   ASSERT_EQ(
     radiance.Build(store.View(), index.data(), index.size(), { 0, 0, 5 }, 1e-3, SerialFor()), "");
   radiance.ComputeDirect(SerialFor());
-  const auto& L = radiance.GetOutputRadiance();
-  const auto& frame = radiance.GetChart().Frame;
+  const auto& L = radiance.GetOutput().Radiance;
+  const auto& frame = radiance.GetLayout().Chart.Frame;
   constexpr int N = 32;
   for (int j = 0; j < N; ++j)
     for (int i = 0; i < N; ++i)
@@ -288,7 +288,7 @@ TEST(DirectLight, ThinMediumSourceIsTheAnalyticSingleScattering)
   ASSERT_EQ(medium.Build(store.View(), index.data(), index.size(), eye, 1e-3, SerialFor()), "");
   medium.ComputeDirect(SerialFor());
   const HenyeyGreenstein phase(fog.G);
-  const auto& S = medium.GetOutputRadiance();
+  const auto& S = medium.GetOutput().Radiance;
   const Vec3 albedo = fog.Albedo(), sigmaT = fog.SigmaT();
   for (std::size_t t = 0; t < 16 * 16 * 16; ++t)
   {
@@ -312,7 +312,7 @@ TEST(DirectLight, ThinMediumSourceIsTheAnalyticSingleScattering)
   const double expected = albedo[0] *
     phase.Evaluate(Dot(d / static_cast<float>(r), Normalize(other - p))) *
     std::exp(-sigmaT[0] * r) / (r * r);
-  EXPECT_NEAR(medium.GetOutputRadiance()[0], expected, 1e-4 * expected);
+  EXPECT_NEAR(medium.GetOutput().Radiance[0], expected, 1e-4 * expected);
 }
 
 TEST(DirectLight, TransmittanceMarchesTheDensityGrid)
@@ -494,8 +494,8 @@ TEST(DirectLight, AgreesWithTheParticlesItReplaces)
       ASSERT_EQ(
         s->Build(batches[b].View(), index.data(), index.size(), eye, threshold, SerialFor()), "");
       s->ComputeDirect(SerialFor());
-      plain[b] = mean(p->GetRadiance());
-      split[b] = mean(s->GetOutputRadiance());
+      plain[b] = mean(p->GetTexture().Radiance);
+      split[b] = mean(s->GetOutput().Radiance);
     }
     double a = 0.0, b = 0.0, a2 = 0.0;
     for (int k = 0; k < Batches; ++k)
@@ -541,7 +541,7 @@ TEST(DirectLight, DirectionalMediaProjectTheDirectLight)
   medium.ComputeDirect(SerialFor());
   ASSERT_EQ(medium.BuildDirectional(3, SerialFor()), "");
   std::vector<float> evaluated;
-  medium.EvaluateDirectional(eye, evaluated);
+  medium.GetDirectional().Evaluate(eye, evaluated);
   // Per voxel, the mean over its 2^3 output voxels of S_1 toward the eye
   // from the voxel's centre; the order-3 projection of the HG lobe drops
   // the terms l >= 4, at most sum g^l (2l + 1) / (4 pi) per unit of E.
@@ -616,16 +616,16 @@ TEST(DirectLight, ViewUpdatesAndAddedParticlesEqualAFullBuild)
   }
   ASSERT_EQ(progressive.Build(a.View(), ia.data(), ia.size(), eye, threshold, SerialFor()), "");
   progressive.ComputeDirect(SerialFor());
-  const std::vector<float> before = progressive.GetOutputRadiance();
+  const std::vector<float> before = progressive.GetOutput().Radiance;
   // Particles added: the direct term stays, the textures gain the new paths.
   ASSERT_EQ(progressive.Add(c.View(), ic.data(), ic.size(), 0.5, eye, threshold, SerialFor()), "");
   ASSERT_EQ(full.Build(b.View(), ib.data(), ib.size(), eye, threshold, SerialFor()), "");
   full.ComputeDirect(SerialFor());
-  EXPECT_EQ(progressive.GetOutputRadiance(), full.GetOutputRadiance());
-  EXPECT_NE(progressive.GetOutputRadiance(), before);
+  EXPECT_EQ(progressive.GetOutput().Radiance, full.GetOutput().Radiance);
+  EXPECT_NE(progressive.GetOutput().Radiance, before);
   // A new eye: the update equals a build toward it.
   progressive.UpdateView(other, SerialFor());
   ASSERT_EQ(turned.Build(b.View(), ib.data(), ib.size(), other, threshold, SerialFor()), "");
   turned.ComputeDirect(SerialFor());
-  EXPECT_EQ(progressive.GetOutputRadiance(), turned.GetOutputRadiance());
+  EXPECT_EQ(progressive.GetOutput().Radiance, turned.GetOutput().Radiance);
 }

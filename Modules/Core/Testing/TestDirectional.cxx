@@ -136,11 +136,11 @@ TEST(Directional, MatchesThePerViewReconstruction)
   // 5x more particles (the reference). Exact (up to rounding) for g = 0;
   // the truncation error grows with |g|. Up to DirectionalResolvedG only:
   // beyond, the two set different parts of the phase function's peak apart
-  // (ObjectRadiance::GetPeak), so their voxels hold different quantities and
+  // (MediumScattering::GetPeak), so their voxels hold different quantities and
   // only their images compare (Brume.Evaluation.ForwardPeak, the sweep).
   std::printf("g     order  directional vs per view   vs reference: directional  per view\n");
   double previous = -1.0;
-  static_assert(ObjectRadiance::DirectionalResolvedG >= 0.6f, "g = 0.6 must not be split");
+  static_assert(MediumScattering::DirectionalResolvedG >= 0.6f, "g = 0.6 must not be split");
   for (const float g : { 0.f, 0.3f, 0.6f })
   {
     Scene scene = MakeDefaultScene();
@@ -182,11 +182,12 @@ TEST(Directional, MatchesThePerViewReconstruction)
         fog.UpdateView(e, SerialFor());
         reference.UpdateView(e, SerialFor());
         std::vector<float> directional;
-        fog.EvaluateDirectional(e, directional);
-        worst = std::max(worst, relative(directional, fog.GetRadiance()));
+        fog.GetDirectional().Evaluate(e, directional);
+        worst = std::max(worst, relative(directional, fog.GetTexture().Radiance));
         directionalError =
-          std::max(directionalError, relative(directional, reference.GetRadiance()));
-        perViewError = std::max(perViewError, relative(fog.GetRadiance(), reference.GetRadiance()));
+          std::max(directionalError, relative(directional, reference.GetTexture().Radiance));
+        perViewError = std::max(
+          perViewError, relative(fog.GetTexture().Radiance, reference.GetTexture().Radiance));
       }
       std::printf("%.1f   %d      %.4f                    %.4f       %.4f\n", g, order, worst,
         directionalError, perViewError);
@@ -229,7 +230,7 @@ TEST(Progressive, AddedParticlesEqualOneRunBitwise)
     ASSERT_EQ(p.Build(first.View(), g1.Index.data() + g1.Offset[o], range(g1), eye, 2 * threshold,
                 SerialFor()),
       "");
-    if (p.IsViewDependent())
+    if (p.GetLayout().ViewDependent)
     {
       sawViewDependent = true;
       ASSERT_EQ(p.BuildDirectional(2, SerialFor()), "");
@@ -244,19 +245,23 @@ TEST(Progressive, AddedParticlesEqualOneRunBitwise)
         s.Build(all.View(), ga.Index.data() + ga.Offset[o], range(ga), eye, threshold, SerialFor()),
         "");
     }
-    const std::vector<float> before = p.GetRadiance();
+    const std::vector<float> before = p.GetTexture().Radiance;
     ASSERT_EQ(p.Add(second.View(), g2.Index.data() + g2.Offset[o], range(g2), 0.5, eye, threshold,
                 SerialFor()),
       "");
-    EXPECT_EQ(p.GetWeightHistogram().GetValues(), s.GetWeightHistogram().GetValues()) << o;
-    EXPECT_EQ(p.GetValueHistogram().GetValues(), s.GetValueHistogram().GetValues()) << o;
-    EXPECT_EQ(p.GetRadiance(), s.GetRadiance()) << o;
-    EXPECT_EQ(p.GetDirectional(), s.GetDirectional()) << o;
-    const Histogram valueHistogram = s.GetValueHistogram();
+    EXPECT_EQ(p.GetBinning().GetWeightHistogram().GetValues(),
+      s.GetBinning().GetWeightHistogram().GetValues())
+      << o;
+    EXPECT_EQ(p.GetBinning().GetValueHistogram().GetValues(),
+      s.GetBinning().GetValueHistogram().GetValues())
+      << o;
+    EXPECT_EQ(p.GetTexture().Radiance, s.GetTexture().Radiance) << o;
+    EXPECT_EQ(p.GetDirectional().GetCoefficients(), s.GetDirectional().GetCoefficients()) << o;
+    const Histogram valueHistogram = s.GetBinning().GetValueHistogram();
     const auto& values = valueHistogram.GetValues();
     if (std::any_of(values.begin(), values.end(), [](double v) { return v != 0.0; }))
     {
-      EXPECT_NE(p.GetRadiance(), before) << o;
+      EXPECT_NE(p.GetTexture().Radiance, before) << o;
     }
   }
   EXPECT_TRUE(sawViewDependent);
@@ -297,10 +302,10 @@ TEST(Progressive, RejectsAddBeforeBuildAndBadScales)
   }
   ASSERT_FALSE(wall.empty());
   ASSERT_EQ(curved.Build(hits.View(), wall.data(), wall.size(), Vec3(0.f), 1.0, SerialFor()), "");
-  const std::vector<double> before = curved.GetValueHistogram().GetValues();
+  const std::vector<double> before = curved.GetBinning().GetValueHistogram().GetValues();
   ASSERT_TRUE(std::any_of(before.begin(), before.end(), [](double v) { return v != 0.0; }));
   EXPECT_NE(curved.Add(bad.View(), all.data(), all.size(), 0.5, Vec3(0.f), 1.0, SerialFor()), "");
-  EXPECT_EQ(curved.GetValueHistogram().GetValues(), before);
+  EXPECT_EQ(curved.GetBinning().GetValueHistogram().GetValues(), before);
 }
 
 namespace
@@ -457,11 +462,11 @@ TEST(Distributed, ReducedHistogramsEqualOneProcessBitwise)
     EXPECT_EQ(GroupHitsByObject(hits.View(), run3.scene.NumberOfObjects(), groups), "");
     for (std::size_t o = 0; o < objects.size(); ++o)
     {
-      objects[o]->SetReduction(reduction);
+      objects[o]->Distribution().SetReduction(reduction);
       EXPECT_EQ(objects[o]->Build(hits.View(), groups.Index.data() + groups.Offset[o],
                   groups.Offset[o + 1] - groups.Offset[o], run3.eye, run3.threshold, SerialFor()),
         "");
-      if (objects[o]->IsViewDependent())
+      if (objects[o]->GetLayout().ViewDependent)
       {
         objects[o]->UpdateView(run3.other, SerialFor());
         EXPECT_EQ(objects[o]->BuildDirectional(3, SerialFor()), "");
@@ -493,14 +498,16 @@ TEST(Distributed, ReducedHistogramsEqualOneProcessBitwise)
   {
     for (const auto& process : distributed)
     {
-      EXPECT_EQ(
-        process[o]->GetWeightHistogram().GetValues(), single[o]->GetWeightHistogram().GetValues())
+      EXPECT_EQ(process[o]->GetBinning().GetWeightHistogram().GetValues(),
+        single[o]->GetBinning().GetWeightHistogram().GetValues())
         << o;
-      EXPECT_EQ(
-        process[o]->GetValueHistogram().GetValues(), single[o]->GetValueHistogram().GetValues())
+      EXPECT_EQ(process[o]->GetBinning().GetValueHistogram().GetValues(),
+        single[o]->GetBinning().GetValueHistogram().GetValues())
         << o;
-      EXPECT_EQ(process[o]->GetRadiance(), single[o]->GetRadiance()) << o;
-      EXPECT_EQ(process[o]->GetDirectional(), single[o]->GetDirectional()) << o;
+      EXPECT_EQ(process[o]->GetTexture().Radiance, single[o]->GetTexture().Radiance) << o;
+      EXPECT_EQ(process[o]->GetDirectional().GetCoefficients(),
+        single[o]->GetDirectional().GetCoefficients())
+        << o;
     }
   }
   EXPECT_GT(reductions[0]->Bytes, 0u) << "nothing was reduced";
@@ -522,14 +529,14 @@ TEST(Distributed, OwnersEstimateAndEveryProcessGetsTheSameTexturesBitwise)
     std::vector<double> costs;
     for (const auto& object : objects)
     {
-      costs.push_back(object->EstimateCost());
+      costs.push_back(object->GetLayout().EstimateCost());
     }
     const std::vector<int> owner =
       AssignOwners(costs, reduction ? reduction->NumberOfProcesses() : 1);
     for (std::size_t o = 0; o < objects.size(); ++o)
     {
-      objects[o]->SetReduction(reduction);
-      objects[o]->SetOwner(owners ? owner[o] : -1);
+      objects[o]->Distribution().SetReduction(reduction);
+      objects[o]->Distribution().SetOwner(owners ? owner[o] : -1);
       EXPECT_EQ(objects[o]->BuildHistograms(hits.View(), groups.Index.data() + groups.Offset[o],
                   groups.Offset[o + 1] - groups.Offset[o], run3.threshold, SerialFor()),
         "");
@@ -545,7 +552,7 @@ TEST(Distributed, OwnersEstimateAndEveryProcessGetsTheSameTexturesBitwise)
     for (auto& object : objects)
     {
       object->ShareTexture(SerialFor());
-      if (object->IsViewDependent())
+      if (object->GetLayout().ViewDependent)
       {
         object->UpdateView(run3.other, SerialFor());
         EXPECT_EQ(object->BuildDirectional(3, SerialFor()), "");
@@ -592,22 +599,26 @@ TEST(Distributed, OwnersEstimateAndEveryProcessGetsTheSameTexturesBitwise)
     for (int r = 0; r < 3; ++r)
     {
       const ObjectRadiance& mine = *owned[r][o];
-      used.insert(mine.GetOwner());
-      EXPECT_EQ(mine.EstimatesHere(), mine.GetOwner() == r) << o;
-      EXPECT_EQ(mine.GetRadiance(), single[o]->GetRadiance()) << o << " on process " << r;
-      EXPECT_EQ(mine.GetDirectional(), single[o]->GetDirectional()) << o << " on process " << r;
-      EXPECT_EQ(mine.GetRadiance(), everywhere[r][o]->GetRadiance()) << o;
-      if (mine.EstimatesHere())
+      used.insert(mine.Distribution().GetOwner());
+      EXPECT_EQ(mine.Distribution().EstimatesHere(), mine.Distribution().GetOwner() == r) << o;
+      EXPECT_EQ(mine.GetTexture().Radiance, single[o]->GetTexture().Radiance)
+        << o << " on process " << r;
+      EXPECT_EQ(
+        mine.GetDirectional().GetCoefficients(), single[o]->GetDirectional().GetCoefficients())
+        << o << " on process " << r;
+      EXPECT_EQ(mine.GetTexture().Radiance, everywhere[r][o]->GetTexture().Radiance) << o;
+      if (mine.Distribution().EstimatesHere())
       {
-        EXPECT_EQ(
-          mine.GetWeightHistogram().GetValues(), single[o]->GetWeightHistogram().GetValues())
+        EXPECT_EQ(mine.GetBinning().GetWeightHistogram().GetValues(),
+          single[o]->GetBinning().GetWeightHistogram().GetValues())
           << o;
-        EXPECT_EQ(mine.GetValueHistogram().GetValues(), single[o]->GetValueHistogram().GetValues())
+        EXPECT_EQ(mine.GetBinning().GetValueHistogram().GetValues(),
+          single[o]->GetBinning().GetValueHistogram().GetValues())
           << o;
       }
       else
       {
-        EXPECT_TRUE(mine.GetWeightHistogram().GetValues().empty()) << o;
+        EXPECT_TRUE(mine.GetBinning().GetWeightHistogram().GetValues().empty()) << o;
       }
     }
   }
@@ -633,7 +644,7 @@ TEST(Distributed, OwnersShareTheCostOutEvenly)
   std::vector<double> costs;
   for (const auto& object : objects)
   {
-    costs.push_back(object->EstimateCost());
+    costs.push_back(object->GetLayout().EstimateCost());
   }
   const std::vector<int> owners = AssignOwners(costs, 2);
   double load[2] = { 0.0, 0.0 };
@@ -661,7 +672,7 @@ TEST(Distributed, ExactSumsAreTheDoubleSumsToRounding)
   const std::uint32_t* index = groups.Index.data() + groups.Offset[fog];
   const std::size_t count = groups.Offset[fog + 1] - groups.Offset[fog];
   const double particle = 15.0 * 0.25 * Pi / static_cast<double>(n); // the emitter's power / n
-  objects[fog]->SetParticleFlux(particle);
+  objects[fog]->Options().ParticleFlux = particle;
   ASSERT_EQ(
     objects[fog]->Build(all.View(), index, count, Vec3(0.f, 0.f, 3.f), 16 * particle, SerialFor()),
     "");
@@ -672,7 +683,7 @@ TEST(Distributed, ExactSumsAreTheDoubleSumsToRounding)
     expected += (static_cast<long double>(f[0]) + f[1] + f[2]) / 3.0L;
   }
   long double total = 0.0L;
-  const Histogram weights = objects[fog]->GetWeightHistogram();
+  const Histogram weights = objects[fog]->GetBinning().GetWeightHistogram();
   for (double v : weights.GetValues())
   {
     total += v;

@@ -149,13 +149,13 @@ TEST(Grouping, BinningGivesTheSameBitsOnAnyNumberOfThreads)
           radiance->Build(hits, groups.Index.data() + first, count, eye, 1e-4, parallelFor), "");
         built.push_back(std::move(radiance));
       }
-      EXPECT_EQ(
-        built[0]->GetWeightHistogram().GetValues(), built[1]->GetWeightHistogram().GetValues())
+      EXPECT_EQ(built[0]->GetBinning().GetWeightHistogram().GetValues(),
+        built[1]->GetBinning().GetWeightHistogram().GetValues())
         << "object " << o << (fine ? ", fine" : ", coarse");
-      EXPECT_EQ(
-        built[0]->GetValueHistogram().GetValues(), built[1]->GetValueHistogram().GetValues())
+      EXPECT_EQ(built[0]->GetBinning().GetValueHistogram().GetValues(),
+        built[1]->GetBinning().GetValueHistogram().GetValues())
         << "object " << o << (fine ? ", fine" : ", coarse");
-      EXPECT_EQ(built[0]->GetRadiance(), built[1]->GetRadiance())
+      EXPECT_EQ(built[0]->GetTexture().Radiance, built[1]->GetTexture().Radiance)
         << "object " << o << (fine ? ", fine" : ", coarse");
     }
   }

@@ -209,8 +209,8 @@ TEST(Reconstruction, DiffuseWallUnderAPointLightShowsRhoEOverPi)
   // A tiny threshold: every texel keeps its own square.
   ASSERT_EQ(
     wall.Build(store.View(), index.data(), index.size(), { 0, 0, 5 }, 1e-12, SerialFor()), "");
-  const auto& L = wall.GetRadiance();
-  const auto& frame = wall.GetChart().Frame;
+  const auto& L = wall.GetTexture().Radiance;
+  const auto& frame = wall.GetLayout().Chart.Frame;
   for (int j = 0; j < res; ++j)
     for (int i = 0; i < res; ++i)
     {
@@ -268,7 +268,7 @@ TEST(Reconstruction, ThinMediumSingleScatteringMatchesTheAnalyticSource)
   }
   const Vec3 eye(0.3f, 0.5f, 5.f);
   ASSERT_EQ(medium.Build(store.View(), index.data(), index.size(), eye, 1e-12, SerialFor()), "");
-  ASSERT_TRUE(medium.IsViewDependent());
+  ASSERT_TRUE(medium.GetLayout().ViewDependent);
   const HenyeyGreenstein phase(fog.G);
   // Compare sums of J over groups of voxels (shells, facing or not the eye).
   double got[6] = { 0 }, expected[6] = { 0 };
@@ -286,7 +286,8 @@ TEST(Reconstruction, ThinMediumSingleScatteringMatchesTheAnalyticSource)
         const int group =
           (rc < 0.9f ? 0 : (rc < 1.3f ? 2 : 4)) + (Dot(centre, eye - centre) > 0.f ? 1 : 0);
         const std::size_t v = (static_cast<std::size_t>(k) * res + j) * res + i;
-        got[group] += medium.GetRadiance()[3 * v] * medium.GetExtinction()[3 * v]; // J = S sigma_t
+        got[group] += medium.GetTexture().Radiance[3 * v] *
+          medium.GetTexture().Extinction[3 * v]; // J = S sigma_t
         double j0 = 0.0;
         for (int s = 0; s < 64; ++s)
         {
@@ -329,13 +330,13 @@ TEST(Reconstruction, IncrementalViewUpdateEqualsAFullBuild)
   ASSERT_EQ(incremental.Build(
               store.View(), index.data(), index.size(), { 0, 0, 5 }, threshold, SerialFor()),
     "");
-  const std::vector<float> before = incremental.GetRadiance();
+  const std::vector<float> before = incremental.GetTexture().Radiance;
   incremental.UpdateView({ 0.2f, 0.f, 5.f }, SerialFor());
   ASSERT_EQ(full.Build(
               store.View(), index.data(), index.size(), { 0.2f, 0.f, 5.f }, threshold, SerialFor()),
     "");
-  EXPECT_EQ(incremental.GetRadiance(), full.GetRadiance());
-  EXPECT_NE(incremental.GetRadiance(), before);
+  EXPECT_EQ(incremental.GetTexture().Radiance, full.GetTexture().Radiance);
+  EXPECT_NE(incremental.GetTexture().Radiance, before);
 }
 
 TEST(Reconstruction, AtlasOfACurvedSurfaceKeepsTheReflectedPower)
@@ -376,7 +377,7 @@ TEST(Reconstruction, AtlasOfACurvedSurfaceKeepsTheReflectedPower)
   // Integrate pi L over the surface: each triangle's texels, by their (u, v)
   // area inside the triangle times the world/texture area ratio.
   double integral = 0.0;
-  const auto& L = radiance.GetRadiance();
+  const auto& L = radiance.GetTexture().Radiance;
   for (std::size_t t = 0; t < octahedron.Triangles.size(); ++t)
   {
     const auto& uv = chart.TriangleUV[t];
@@ -448,16 +449,16 @@ TEST(Reconstruction, HeterogeneousMediumIsNormalizedByTheExtinctionIntegral)
   {
     for (int c = 0; c < 3; ++c)
     {
-      EXPECT_NEAR(radiance.GetRadiance()[3 * t + c], expected, 1e-5 * expected)
+      EXPECT_NEAR(radiance.GetTexture().Radiance[3 * t + c], expected, 1e-5 * expected)
         << "texel " << t << ", channel " << c;
     }
   }
   // The density at its own resolution: 4 x 1 x 1 cells.
-  EXPECT_EQ(radiance.GetNativeResolution(), (std::array<int, 3>{ 4, 1, 1 }));
-  ASSERT_FALSE(radiance.GetNativeDensity().Empty());
+  EXPECT_EQ(radiance.GetNative().GetResolution(), (std::array<int, 3>{ 4, 1, 1 }));
+  ASSERT_FALSE(radiance.GetNative().GetDensity().Empty());
   for (int cell = 0; cell < 4; ++cell)
   {
-    EXPECT_FLOAT_EQ(radiance.GetNativeDensity().At(cell, 0, 0), cell < 2 ? 1.f : 0.f);
+    EXPECT_FLOAT_EQ(radiance.GetNative().GetDensity().At(cell, 0, 0), cell < 2 ? 1.f : 0.f);
   }
   // A homogeneous medium has no second grid.
   Medium fog = smoke;
@@ -466,7 +467,7 @@ TEST(Reconstruction, HeterogeneousMediumIsNormalizedByTheExtinctionIntegral)
   ASSERT_EQ(homogeneous.Build(store.View(), index.data(), index.size(), Vec3(0.f, 0.f, 5.f),
               2.0 * total, SerialFor()),
     "");
-  EXPECT_TRUE(homogeneous.GetNativeDensity().Empty());
+  EXPECT_TRUE(homogeneous.GetNative().GetDensity().Empty());
 }
 
 TEST(Reconstruction, LargeHistogramsBinByRangesOfCellsToTheSameSums)
@@ -564,8 +565,8 @@ TEST(Reconstruction, LargeHistogramsBinByRangesOfCellsToTheSameSums)
       return (static_cast<std::size_t>(c[2]) * 64 + c[1]) * 64 + c[0];
     },
     [](int) { return static_cast<double>(Inv4Pi); }, w, v);
-  compare(medium.GetWeightHistogram(), w, "medium weights");
-  compare(medium.GetValueHistogram(), v, "medium values");
+  compare(medium.GetBinning().GetWeightHistogram(), w, "medium weights");
+  compare(medium.GetBinning().GetValueHistogram(), v, "medium values");
 
   // The wall (the box's face y = -1, seen from inside): 512 x 512 cells,
   // then 4 x 4 (the in-order path), hits from the front side only.
@@ -604,9 +605,10 @@ TEST(Reconstruction, LargeHistogramsBinByRangesOfCellsToTheSameSums)
           cellIndex(Dot(d, chart.Frame.U) / uu, n);
       },
       [&](int k) { return static_cast<double>(wall.Mat.Reflectance[k] * InvPi); }, w, v);
-    compare(
-      radiance.GetWeightHistogram(), w, res > 2 ? "large wall weights" : "small wall weights");
-    compare(radiance.GetValueHistogram(), v, res > 2 ? "large wall values" : "small wall values");
+    compare(radiance.GetBinning().GetWeightHistogram(), w,
+      res > 2 ? "large wall weights" : "small wall weights");
+    compare(radiance.GetBinning().GetValueHistogram(), v,
+      res > 2 ? "large wall values" : "small wall values");
   }
 }
 
@@ -652,7 +654,7 @@ TEST(Reconstruction, HitsOnAndBeyondTheCellBoundariesBinWhereFloorPutsThem)
     const std::uint32_t index[2] = { 0, 1 };
     ObjectRadiance medium(fog, { 2, 2, 2 }, 2);
     ASSERT_EQ(medium.Build(store.View(), index, 2, Vec3(0.f, 0.f, 5.f), 1e-12, SerialFor()), "");
-    const Histogram weights = medium.GetWeightHistogram();
+    const Histogram weights = medium.GetBinning().GetWeightHistogram();
     ASSERT_EQ(weights.GetValues().size(), 64u);
     const auto cell = static_cast<std::size_t>(c[3]);
     const std::size_t expected = (cell * 4 + cell) * 4 + cell;
@@ -894,19 +896,19 @@ TEST(Reconstruction, AFixedViewBinsToTheTexturesOfKeptHitsBitForBit)
   // Batches: the first half of the hits, then the second (hit order).
   for (std::size_t o = 0; o < kept.size(); ++o)
   {
-    ASSERT_TRUE(kept[o]->IsViewDependent()) << o;
+    ASSERT_TRUE(kept[o]->GetLayout().ViewDependent) << o;
     const std::uint32_t* index = groups.Index.data() + groups.Offset[o];
     const std::size_t count = groups.Offset[o + 1] - groups.Offset[o];
     ASSERT_GT(count, 1000u) << o;
     for (auto* set : { &kept, &fixed, &batched })
     {
-      (*set)[o]->SetParticleFlux(particleFlux);
+      (*set)[o]->Options().ParticleFlux = particleFlux;
     }
     fixed[o]->FixView(eye);
     batched[o]->FixView(eye);
-    EXPECT_TRUE(fixed[o]->IsViewFixed());
-    EXPECT_FALSE(fixed[o]->KeepsHits());
-    EXPECT_TRUE(kept[o]->KeepsHits());
+    EXPECT_TRUE(fixed[o]->GetBinning().IsViewFixed());
+    EXPECT_FALSE(fixed[o]->GetBinning().KeepsHits());
+    EXPECT_TRUE(kept[o]->GetBinning().KeepsHits());
     ASSERT_EQ(kept[o]->Build(hits, index, count, eye, threshold, SerialFor()), "");
     ASSERT_EQ(fixed[o]->Build(hits, index, count, eye, threshold, SerialFor()), "");
     const std::size_t half = count / 2;
@@ -914,13 +916,13 @@ TEST(Reconstruction, AFixedViewBinsToTheTexturesOfKeptHitsBitForBit)
     ASSERT_EQ(batched[o]->Add(hits, index + half, count - half, 1.0, eye, threshold,
                 brume::testing::ThreadedFor(2, 7)),
       "");
-    EXPECT_EQ(fixed[o]->GetRadiance(), kept[o]->GetRadiance()) << o;
-    EXPECT_EQ(batched[o]->GetRadiance(), kept[o]->GetRadiance()) << o;
-    EXPECT_EQ(fixed[o]->GetExtinction(), kept[o]->GetExtinction()) << o;
+    EXPECT_EQ(fixed[o]->GetTexture().Radiance, kept[o]->GetTexture().Radiance) << o;
+    EXPECT_EQ(batched[o]->GetTexture().Radiance, kept[o]->GetTexture().Radiance) << o;
+    EXPECT_EQ(fixed[o]->GetTexture().Extinction, kept[o]->GetTexture().Extinction) << o;
   }
   // The texture is the eye's: another eye's differs (the test can fail).
   ASSERT_EQ(kept.back()->UpdateView(Vec3(-0.9f, 0.1f, 0.2f), SerialFor()), "");
-  EXPECT_NE(kept.back()->GetRadiance(), fixed.back()->GetRadiance());
+  EXPECT_NE(kept.back()->GetTexture().Radiance, fixed.back()->GetTexture().Radiance);
 }
 
 TEST(Reconstruction, KeptHitsInBatchesKeepTheirTrianglesAndGrowthScales)
@@ -971,7 +973,7 @@ TEST(Reconstruction, KeptHitsInBatchesKeepTheirTrianglesAndGrowthScales)
     const std::size_t half = count / 2;
     for (auto* set : { &once, &batched, &fixed, &plain })
     {
-      (*set)[o]->SetParticleFlux(particleFlux);
+      (*set)[o]->Options().ParticleFlux = particleFlux;
     }
     fixed[o]->FixView(eye);
     ASSERT_EQ(once[o]->Build(aimed, index, count, eye, threshold, SerialFor()), "");
@@ -983,22 +985,24 @@ TEST(Reconstruction, KeptHitsInBatchesKeepTheirTrianglesAndGrowthScales)
                   brume::testing::ThreadedFor(2, 7)),
         "");
     }
-    EXPECT_EQ(batched[o]->GetRadiance(), once[o]->GetRadiance()) << o;
-    EXPECT_EQ(fixed[o]->GetRadiance(), once[o]->GetRadiance()) << o;
+    EXPECT_EQ(batched[o]->GetTexture().Radiance, once[o]->GetTexture().Radiance) << o;
+    EXPECT_EQ(fixed[o]->GetTexture().Radiance, once[o]->GetTexture().Radiance) << o;
     // The regions grow by the weights, which hold the scales (the test can
     // fail: without them, other weights).
-    EXPECT_EQ(
-      batched[o]->GetWeightHistogram().GetValues(), once[o]->GetWeightHistogram().GetValues())
+    EXPECT_EQ(batched[o]->GetBinning().GetWeightHistogram().GetValues(),
+      once[o]->GetBinning().GetWeightHistogram().GetValues())
       << o;
-    EXPECT_EQ(fixed[o]->GetWeightHistogram().GetValues(), once[o]->GetWeightHistogram().GetValues())
+    EXPECT_EQ(fixed[o]->GetBinning().GetWeightHistogram().GetValues(),
+      once[o]->GetBinning().GetWeightHistogram().GetValues())
       << o;
-    EXPECT_NE(plain[o]->GetWeightHistogram().GetValues(), once[o]->GetWeightHistogram().GetValues())
+    EXPECT_NE(plain[o]->GetBinning().GetWeightHistogram().GetValues(),
+      once[o]->GetBinning().GetWeightHistogram().GetValues())
       << o;
     // Turned, the batches' kept hits re-weigh as one build's.
     const Vec3 turned(-0.9f, 0.1f, 0.2f);
     ASSERT_EQ(once[o]->UpdateView(turned, SerialFor()), "");
     ASSERT_EQ(batched[o]->UpdateView(turned, brume::testing::ThreadedFor(3, 5)), "");
-    EXPECT_EQ(batched[o]->GetRadiance(), once[o]->GetRadiance()) << o;
+    EXPECT_EQ(batched[o]->GetTexture().Radiance, once[o]->GetTexture().Radiance) << o;
   }
 }
 
@@ -1018,12 +1022,12 @@ TEST(Reconstruction, AFixedViewRefusesAnotherEye)
   EXPECT_NE(medium.Build(hits, index, count, other, 1e-3, SerialFor()).find("fixed viewpoint"),
     std::string::npos);
   ASSERT_EQ(medium.Build(hits, index, count, eye, 1e-3, SerialFor()), "");
-  const std::vector<float> texture = medium.GetRadiance();
+  const std::vector<float> texture = medium.GetTexture().Radiance;
   EXPECT_EQ(medium.UpdateView(eye, SerialFor()), "");
   EXPECT_NE(medium.UpdateView(other, SerialFor()).find("keeps no hits"), std::string::npos);
   EXPECT_NE(medium.Add(hits, index, count, 0.5, other, 1e-3, SerialFor()), "");
   EXPECT_NE(medium.BuildDirectional(2, SerialFor()), "");
-  EXPECT_EQ(medium.GetRadiance(), texture) << "a refused call leaves the texture as it was";
+  EXPECT_EQ(medium.GetTexture().Radiance, texture) << "a refused call leaves the texture as it was";
   // A view-independent object is not fixed.
   ObjectRadiance wall(scene.Surfaces[0], MakeChart(scene.Surfaces[0], nullptr), { 4, 4 }, 2);
   Scene diffuse = scene;
@@ -1031,7 +1035,7 @@ TEST(Reconstruction, AFixedViewRefusesAnotherEye)
   ObjectRadiance lambertian(
     diffuse.Surfaces[0], MakeChart(diffuse.Surfaces[0], nullptr), { 4, 4 }, 2);
   lambertian.FixView(eye);
-  EXPECT_FALSE(lambertian.IsViewFixed());
+  EXPECT_FALSE(lambertian.GetBinning().IsViewFixed());
   wall.FixView(eye);
-  EXPECT_TRUE(wall.IsViewFixed());
+  EXPECT_TRUE(wall.GetBinning().IsViewFixed());
 }

@@ -106,7 +106,7 @@ TEST(Reflection, EmitterSeenInAPlanarMirrorThroughAnAbsorbingSlab)
     const int n = 16;
     reflection.Reflect(0, eye, { n, n }, rgb, SerialFor());
     ASSERT_EQ(rgb.size(), 3u * n * n);
-    const PlanarFrame& f = r.Objects[0]->GetChart().Frame;
+    const PlanarFrame& f = r.Objects[0]->GetLayout().Chart.Frame;
     for (int t = 0; t < n * n; ++t)
     {
       const Vec3 x = f.Origin + f.U * ((t % n + 0.5f) / n) + f.V * ((t / n + 0.5f) / n);
@@ -151,12 +151,12 @@ TEST(Reflection, SharpGlossyLobeUnderAUniformSkyIsRhoSCosTheta)
   EXPECT_TRUE(MirrorReflection::Casts(scene.Surfaces[0]));
   const RayCaster caster(scene);
   Reconstructed r(scene, eye);
-  r.Objects[0]->SetLobeCast(true);
+  r.Objects[0]->Options().LobeCast = true;
   const MirrorReflection reflection(scene, caster, r.Pointers);
   std::vector<float> rgb;
   const int n = 8;
   reflection.Reflect(0, eye, { n, n }, rgb, SerialFor());
-  const PlanarFrame& f = r.Objects[0]->GetChart().Frame;
+  const PlanarFrame& f = r.Objects[0]->GetLayout().Chart.Frame;
   double sumGot = 0.0, sumWant = 0.0;
   for (int t = 0; t < n * n; ++t)
   {
@@ -172,8 +172,8 @@ TEST(Reflection, SharpGlossyLobeUnderAUniformSkyIsRhoSCosTheta)
     sumWant += rho.x * Le.x * cosR;
   }
   EXPECT_NEAR(sumGot / sumWant, 1.0, 2e-3);
-  // Without SetLobeCast the texture is the particles' alone.
-  r.Objects[0]->SetLobeCast(false);
+  // Without ObjectOptions::LobeCast the texture is the particles' alone.
+  r.Objects[0]->Options().LobeCast = false;
   reflection.Reflect(0, eye, { n, n }, rgb, SerialFor());
   EXPECT_EQ(TexelOf(rgb, 0).x, 0.f);
 }
@@ -238,7 +238,7 @@ TEST(Reflection, CurvedMirrorAtlasTexelsAreReflectionsUpToTheSeams)
   const Vec3 eye(0.1f, 0.2f, 2.f);
   const RayCaster caster(scene);
   const Reconstructed r(scene, eye);
-  ASSERT_EQ(r.Objects[0]->GetChart().Type, SurfaceChart::Kind::Atlas);
+  ASSERT_EQ(r.Objects[0]->GetLayout().Chart.Type, SurfaceChart::Kind::Atlas);
   const MirrorReflection reflection(scene, caster, r.Pointers);
   std::vector<float> rgb;
   const int n = 64;

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Distributed runs: the sums of the histograms across processes and which
 // process estimates each object (part of the reconstruction,
-// brume/Reconstruction.h; implemented in ReconstructionDistributed.cxx).
+// brume/Reconstruction.h, through brume/ObjectDistribution.h).
 #ifndef brume_HistogramReduction_h
 #define brume_HistogramReduction_h
 
@@ -62,7 +62,7 @@ public:
 
 /**
  * Which process estimates each object in a distributed run: the objects
- * by `costs` (ObjectRadiance::EstimateCost()), largest first, each to the
+ * by `costs` (ObjectLayout::EstimateCost()), largest first, each to the
  * process with the least cost so far (the lowest rank among equals), so
  * that the processes' shares of the per-texel work are about equal. The
  * same costs give the same owners on every process.

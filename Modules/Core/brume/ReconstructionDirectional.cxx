@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Directional radiance of anisotropic media: the spherical-harmonics
-// projection of the light each voxel receives (see brume/Reconstruction.h).
+// projection of the light each voxel receives (brume/DirectionalRadiance.h).
 #include "brume/Reconstruction.h"
 
 #include "brume/SphericalHarmonics.h"
@@ -12,7 +12,7 @@ namespace brume
 
 std::string ObjectRadiance::BuildDirectional(int order, const ParallelFor& parallelFor)
 {
-  if (!this->MediumRef || !this->ViewDependent)
+  if (!this->Layout.MediumRef || !this->Layout.ViewDependent)
   {
     return "directional radiance is made for anisotropic media only";
   }
@@ -20,7 +20,7 @@ std::string ObjectRadiance::BuildDirectional(int order, const ParallelFor& paral
   {
     return "directional radiance needs a texture already built";
   }
-  if (this->ViewFixed)
+  if (this->Binning.IsViewFixed())
   {
     return "directional radiance needs the hits, which an object whose view is fixed does not keep";
   }
@@ -29,10 +29,11 @@ std::string ObjectRadiance::BuildDirectional(int order, const ParallelFor& paral
     return "the spherical-harmonics order must be in [0, " + std::to_string(MaxShOrder) + "]";
   }
   const int nk = ShCoefficients(order);
-  const std::size_t texels = this->Texels();
-  this->Directional.assign(texels * nk * 3, 0.f);
-  const bool here = this->EstimatesHere();
-  this->DirectionalOrder = order;
+  const std::size_t texels = this->Layout.Texels();
+  std::vector<float>& directional = this->Directional.Start(order, texels * nk * 3);
+  const bool here = this->Distributed.EstimatesHere();
+  const KeptHitStore& store = this->Binning.GetStore();
+  const KeptHits& kept = store.GetHits();
   // A few coefficients per pass bound the memory: each pass bins
   // Y_k(w_p) Phi_p into a histogram, sums every region from its table and
   // normalizes the sums as the per-view textures are.
@@ -40,17 +41,17 @@ std::string ObjectRadiance::BuildDirectional(int order, const ParallelFor& paral
   for (int k0 = 0; k0 < nk; k0 += PerPass)
   {
     const int kn = std::min(PerPass, nk - k0);
-    ExactHistogram sums = this->NewSums(3 * kn);
-    parallelFor(0, Ranges,
+    ExactHistogram sums = this->Binning.NewSums(this->Layout.Dims, 3 * kn);
+    parallelFor(0, KeptHitStore::Ranges,
       [&](std::size_t begin, std::size_t end)
       {
         float y[ShCoefficients(MaxShOrder)];
         double v[3 * PerPass];
         // The light in-scattered by the phase function's remainder.
-        const double remainder = 1.0 - this->Peaks[1].Forward;
-        for (std::size_t k = this->RangeStart[begin]; k < this->RangeStart[end]; ++k)
+        const double remainder = 1.0 - this->Layout.Scattering.GetPeak(true).Forward;
+        for (std::size_t k = store.RangeStart(begin); k < store.RangeStart(end); ++k)
         {
-          const KeptHit& h = this->Kept.Hits[k];
+          const KeptHit& h = kept.Hits[k];
           EvaluateSh(order, Vec3(h.Direction[0], h.Direction[1], h.Direction[2]), y);
           for (int j = 0; j < kn; ++j)
           {
@@ -78,57 +79,23 @@ std::string ObjectRadiance::BuildDirectional(int order, const ParallelFor& paral
           table.RegionSum(r.Lo, r.Hi, sum);
           for (int j = 0; j < kn; ++j)
           {
-            this->ToRadiance(t, r, sum + 3 * j, &this->Directional[(t * nk + k0 + j) * 3], true);
+            this->ToRadiance(t, r, sum + 3 * j, &directional[(t * nk + k0 + j) * 3], true);
           }
         }
       });
   }
-  if (here && this->MatchingCentroids && !this->Matching.Empty())
+  if (here && this->Settings.CentroidMatching && !this->Matching.Empty())
   {
     // As the per-view textures: each region's coefficients belong to its
     // centroid (the direct light, computed per voxel, is added after).
-    this->Matching.Apply(this->Directional, 3 * nk, parallelFor);
+    this->Matching.Apply(directional, 3 * nk, parallelFor);
   }
-  if (here && this->HasDirect())
+  if (here && this->Direct.HasArrivals())
   {
-    this->AddDirectToDirectional(order);
+    this->Direct.AddToDirectional(this->Layout, order, directional);
   }
-  if (this->Reduction && this->Owner >= 0 && this->Reduction->NumberOfProcesses() > 1)
-  {
-    this->Reduction->Broadcast(this->Directional, this->Owner);
-  }
+  this->Distributed.Broadcast(directional);
   return {};
-}
-
-void ObjectRadiance::EvaluateDirectional(const Vec3& eye, std::vector<float>& radiance) const
-{
-  const std::size_t texels = this->Texels();
-  radiance.assign(3 * texels, 0.f);
-  if (this->DirectionalOrder < 0 || !this->MediumRef)
-  {
-    return;
-  }
-  const int nk = ShCoefficients(this->DirectionalOrder);
-  const Box box = this->MediumRef->Bounds;
-  const Vec3 voxel = box.Extent() /
-    Vec3(static_cast<float>(this->Resolution[0]), static_cast<float>(this->Resolution[1]),
-      static_cast<float>(this->Resolution[2]));
-  const std::size_t nx = this->Resolution[0], nxy = nx * this->Resolution[1];
-  for (std::size_t t = 0; t < texels; ++t)
-  {
-    const Vec3 centre = box.lower +
-      (Vec3(static_cast<float>(t % nx), static_cast<float>((t % nxy) / nx),
-         static_cast<float>(t / nxy)) +
-        Vec3(0.5f)) *
-        voxel;
-    const Vec3 toEye = Normalize(eye - centre);
-    for (int c = 0; c < 3; ++c)
-    {
-      radiance[3 * t + c] = std::max(0.f,
-        EvaluateHgFromSh(
-          this->DirectionalOrder, this->Peaks[1].G, &this->Directional[t * nk * 3 + c], 3, toEye));
-    }
-  }
 }
 
 } // namespace brume

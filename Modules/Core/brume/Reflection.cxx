@@ -148,8 +148,8 @@ MirrorReflection::MirrorReflection(
     const ObjectRadiance& r = *objects[o];
     const bool casts = !scene.IsMedium(o) && Casts(scene.Surfaces[o]);
     this->Textures[o].Radiance =
-      casts ? r.GetUnreflectedRadiance().data() : r.GetOutputRadiance().data();
-    this->Textures[o].Dims = casts ? r.GetUnreflectedResolution() : r.GetOutputResolution();
+      casts ? r.GetUnreflected().Radiance.data() : r.GetOutput().Radiance.data();
+    this->Textures[o].Dims = casts ? r.GetUnreflected().Dims : r.GetOutput().Dims;
     this->UpdateStep(o);
   }
   const Vec3 extent = caster.GetBounds().Extent();
@@ -219,9 +219,9 @@ void MirrorReflection::UpdateStep(std::size_t o)
   {
     cell =
       std::min(cell, medium.Bounds.Extent()[a] / static_cast<float>(this->Textures[o].Dims[a]));
-    if (!r.GetNativeDensity().Empty())
+    if (!r.GetNative().GetDensity().Empty())
     {
-      cell = std::min(cell, r.GetNativeBox().Extent()[a] / r.GetNativeResolution()[a]);
+      cell = std::min(cell, r.GetNative().GetBox().Extent()[a] / r.GetNative().GetResolution()[a]);
     }
   }
   this->Steps[o - surfaces] = 0.5f * cell;
@@ -229,7 +229,7 @@ void MirrorReflection::UpdateStep(std::size_t o)
 
 Vec3 MirrorReflection::SurfaceTexture(std::size_t s, unsigned int triangle, const Vec3& p) const
 {
-  const SurfaceChart& chart = this->Objects[s]->GetChart();
+  const SurfaceChart& chart = this->Objects[s]->GetLayout().Chart;
   float u = 0.f, v = 0.f;
   if (chart.Type == SurfaceChart::Kind::Planar)
   {
@@ -312,9 +312,10 @@ void MirrorReflection::MarchMedia(
         const std::size_t o = segments[k].Object;
         const Medium& medium = this->SceneRef.Media[o - surfaces];
         const ObjectRadiance& r = *this->Objects[o];
-        const BrickedGrid& density = r.GetNativeDensity();
+        const BrickedGrid& density = r.GetNative().GetDensity();
         Vec3 factor;
-        const Vec3 source = r.SourceAt(r.HasVaryingAlbedo() ? medium.AlbedoAt(p) : Vec3(1.f),
+        const Vec3 source = r.GetLayout().Scattering.SourceAt(
+          r.GetLayout().Scattering.HasVaryingAlbedo() ? medium.AlbedoAt(p) : Vec3(1.f),
           Sample3D(this->Textures[o], medium.Bounds, p), false, factor);
         const Vec3 s =
           (density.Empty() ? medium.SigmaT() : medium.SigmaT() * density.Interpolate(p)) * factor;
@@ -401,7 +402,7 @@ void MirrorReflection::Reflect(std::size_t s, const Vec3& eye, const std::array<
   std::vector<float>& radiance, const ParallelFor& parallelFor) const
 {
   const Surface& surface = this->SceneRef.Surfaces[s];
-  const SurfaceChart& chart = this->Objects[s]->GetChart();
+  const SurfaceChart& chart = this->Objects[s]->GetLayout().Chart;
   const bool planar = chart.Type == SurfaceChart::Kind::Planar;
   const std::size_t nx = dims[0], ny = dims[1], texels = nx * ny;
   // Which triangle covers each texel centre, and where (serial: the first
@@ -525,7 +526,7 @@ void MirrorReflection::Reflect(std::size_t s, const Vec3& eye, const std::array<
             {
               L += m.Specular * this->Incoming(origin, r, 1);
             }
-            else if (this->Objects[s]->IsLobeCast())
+            else if (this->Objects[s]->Options().LobeCast)
             {
               L += m.Specular * this->Lobe(origin, n, r, m.Exponent, s, t);
             }

@@ -23,9 +23,9 @@
 //   rho_s (e + 2) / (2 pi) int max(0, r . w)^e L_i(x, w) cos(theta) dw,
 // by LobeSamples rays per texel drawn from the lobe (jittered strata,
 // keyed by the texel: deterministic), each weighted by
-// rho_s (e + 2) / (e + 1) cos(theta); their texture (ObjectRadiance::
-// SetLobeCast) then holds the diffuse part and the delta lights' direct
-// light only. Density estimation would need the few particles leaving
+// rho_s (e + 2) / (e + 1) cos(theta); their texture (brume::ObjectOptions::
+// LobeCast) then holds the diffuse part and the delta lights' direct light
+// only. Density estimation would need the few particles leaving
 // each texel within a degree of the eye.
 //
 // Every ray reflected by a planar mirror lies on a line from the eye
@@ -68,7 +68,7 @@ public:
   /**
    * `objects`: every object's reconstruction, in scene order (surfaces,
    * then media), built; none is owned. By default an object is looked up in
-   * its output texture (GetOutputRadiance()); a surface that Casts(), in
+   * its output texture (GetOutput()); a surface that Casts(), in
    * its own texture (GetRadiance(), or with direct light the output grid's
    * before any reflection), which holds what it emits and, for a glossy
    * one, its diffuse light; SetTexture() gives a glossy one seen in a

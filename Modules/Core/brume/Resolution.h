@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // How many texels an object's texture gets: from its size, its hits and
-// where they concentrate (part of the reconstruction, brume/Reconstruction.h;
-// implemented in ReconstructionResolution.cxx).
+// where they concentrate (part of the reconstruction, brume/Reconstruction.h).
 #ifndef brume_Resolution_h
 #define brume_Resolution_h
 

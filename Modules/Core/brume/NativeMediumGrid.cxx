@@ -6,7 +6,10 @@
 // region; sigma_t keeps the medium's own resolution for the renderer. Both
 // come from one grid of the density's means, so that what the texture is
 // divided by is what the renderer draws.
-#include "brume/Reconstruction.h"
+#include "brume/NativeMediumGrid.h"
+
+#include "brume/Density.h"
+#include "brume/Histogram.h"
 #include "brume/TransferFunction.h"
 
 #include <algorithm>
@@ -117,10 +120,10 @@ bool ZeroOver(const DensityField& density, const Box& bounds, Vec3 lower, Vec3 u
 }
 }
 
-void ObjectRadiance::SampleNativeDensity(const ParallelFor& parallelFor)
+void NativeMediumGrid::Sample(const Medium& medium, const ParallelFor& parallelFor)
 {
-  const DensityField& density = *this->MediumRef->Density;
-  const Box& bounds = this->MediumRef->Bounds;
+  const DensityField& density = *medium.Density;
+  const Box& bounds = medium.Bounds;
   const std::array<int, 3> native = density.NativeResolution();
   const Box nativeBox = density.NativeBox();
   // At coarsening `factor`: the cells, their box (coarsened cells cover
@@ -158,13 +161,13 @@ void ObjectRadiance::SampleNativeDensity(const ParallelFor& parallelFor)
     double bricks = 1.0;
     for (int a = 0; a < 3; ++a)
     {
-      if (dims[a] > MaxNativeAxis)
+      if (dims[a] > MaxAxis)
       {
         return false;
       }
       bricks *= BrickedGrid::BricksAlong(dims[a]);
     }
-    if (bricks > static_cast<double>(MaxNativeBricks))
+    if (bricks > static_cast<double>(MaxBricks))
     {
       return false;
     }
@@ -183,7 +186,7 @@ void ObjectRadiance::SampleNativeDensity(const ParallelFor& parallelFor)
           occupied += zeroOver(lower, upper) ? 0 : 1;
         }
     return static_cast<double>(occupied) * BrickedGrid::BrickSamples <=
-      static_cast<double>(MaxNativeSamples);
+      static_cast<double>(MaxSamples);
   };
   int factor = 1;
   while (!fits(factor))
@@ -197,7 +200,7 @@ void ObjectRadiance::SampleNativeDensity(const ParallelFor& parallelFor)
   // one of its points average 4^3 samples.
   const auto* classified = dynamic_cast<const ClassifiedDensity*>(&density);
   const int samples = factor > 1 ? 2 : 1;
-  this->NativeDensity = BrickedGrid::Sample(
+  this->Density = BrickedGrid::Sample(
     dims, box,
     [&](int i, int j, int k)
     {
@@ -209,7 +212,7 @@ void ObjectRadiance::SampleNativeDensity(const ParallelFor& parallelFor)
     },
     zeroOver, parallelFor);
   // A classified density's scalars at the same centres (not coarsened).
-  this->NativeScalars = BrickedGrid();
+  this->Scalars = BrickedGrid();
   this->Classification = nullptr;
   if (classified && factor == 1)
   {
@@ -226,7 +229,7 @@ void ObjectRadiance::SampleNativeDensity(const ParallelFor& parallelFor)
       }
     }
     const DensityField& scalars = classified->GetScalars();
-    this->NativeScalars = BrickedGrid::Sample(
+    this->Scalars = BrickedGrid::Sample(
       dims, box,
       [&](int i, int j, int k)
       {
@@ -245,24 +248,23 @@ void ObjectRadiance::SampleNativeDensity(const ParallelFor& parallelFor)
   }
 }
 
-void ObjectRadiance::BuildDensityTable()
+void NativeMediumGrid::BuildTables(const Box& box, const std::array<int, 3>& dims)
 {
   // The density's integral over each histogram cell, summed from the native
   // cells by their exact overlaps (separable along the axes).
   // Native cells beyond the medium's bounds count for the part inside.
-  const BrickedGrid& grid = this->NativeDensity;
+  const BrickedGrid& grid = this->Density;
   const auto& nd = grid.GetDims();
-  const Box box = this->MediumRef->Bounds;
   const Box& native = grid.GetBox();
   std::array<std::vector<std::vector<Overlap>>, 3> overlaps;
   for (int a = 0; a < 3; ++a)
   {
     overlaps[a] =
-      Overlaps(nd[a], native.lower[a], native.upper[a], this->Dims[a], box.lower[a], box.upper[a]);
+      Overlaps(nd[a], native.lower[a], native.upper[a], dims[a], box.lower[a], box.upper[a]);
   }
   const double nativeVolume =
     static_cast<double>(native.Volume()) / (static_cast<double>(nd[0]) * nd[1] * nd[2]);
-  Histogram integral(this->Dims, 1), moments(this->Dims, 3);
+  Histogram integral(dims, 1), moments(dims, 3);
   std::vector<double>& values = integral.GetValues();
   std::vector<double>& firsts = moments.GetValues();
   double total = 0.0;
@@ -294,7 +296,8 @@ void ObjectRadiance::BuildDensityTable()
   this->EmptyIntegral = 1e-9 * total;
 }
 
-void ObjectRadiance::FindCentroids(const ParallelFor& parallelFor)
+CentroidMatching NativeMediumGrid::Centroids(const std::vector<Region>& regions,
+  const std::array<int, 3>& resolution, int refinement, const ParallelFor& parallelFor) const
 {
   // A region's estimate is the sigma_t-weighted mean of the source
   // radiance over it: for a source that varies linearly, exactly its value
@@ -304,11 +307,11 @@ void ObjectRadiance::FindCentroids(const ParallelFor& parallelFor)
   // keep their estimates: their centroids are their texels' centres but
   // where a region meets the box's faces, whose light none of the measured
   // scenes showed off.
-  const std::size_t texels = this->Regions.size();
+  const std::size_t texels = regions.size();
   std::vector<float> centroids(3 * texels);
   for (std::size_t t = 0; t < texels; ++t)
   {
-    const Region& r = this->Regions[t];
+    const Region& r = regions[t];
     double centre[3];
     for (int a = 0; a < 3; ++a)
     {
@@ -328,10 +331,22 @@ void ObjectRadiance::FindCentroids(const ParallelFor& parallelFor)
     // centre at i).
     for (int a = 0; a < 3; ++a)
     {
-      centroids[3 * t + a] = static_cast<float>(centre[a] / this->Refinement - 0.5);
+      centroids[3 * t + a] = static_cast<float>(centre[a] / refinement - 0.5);
     }
   }
-  this->Matching = CentroidMatching(this->Resolution, centroids, parallelFor);
+  return CentroidMatching(resolution, centroids, parallelFor);
+}
+
+} // namespace brume
+
+namespace brume
+{
+
+double NativeMediumGrid::RegionIntegral(const Region& region) const
+{
+  double integral = 0.0;
+  this->DensityTable.RegionSum(region.Lo, region.Hi, &integral);
+  return integral;
 }
 
 } // namespace brume

@@ -2,7 +2,7 @@
 // How many texels an object's texture gets: from its hits, spread over its
 // extent (ChooseResolution), finer for a dense medium (MediumHitsPerTexel)
 // and where a medium's hits gather (HitConcentration).
-#include "brume/Reconstruction.h"
+#include "brume/Resolution.h"
 
 #include "brume/DirectLight.h"
 

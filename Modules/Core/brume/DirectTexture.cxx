@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Deterministic single scattering in a reconstruction (brume/DirectLight.h):
+// Deterministic single scattering in a reconstruction (brume/DirectTexture.h):
 // the particles' texture, which no longer holds the first interactions
 // after point, spot and directional lights, resampled on a finer grid, plus
 // the direct light those lights give at each of its texels.
+#include "brume/DirectTexture.h"
+
 #include "brume/DirectLight.h"
 #include "brume/Material.h"
-#include "brume/Reconstruction.h"
+#include "brume/Medium.h"
 #include "brume/Sampling.h"
 #include "brume/SparseTexture.h"
 #include "brume/SphericalHarmonics.h"
@@ -96,38 +98,38 @@ std::vector<std::uint8_t> LightEdges(const std::vector<float>& arrivals, std::si
 }
 }
 
-bool ObjectRadiance::SupportsDirect() const
+bool DirectTexture::Supports(const ObjectLayout& layout)
 {
-  if (this->MediumRef)
+  if (layout.MediumRef)
   {
     return true;
   }
-  const Surface& surface = *this->SurfaceRef;
+  const Surface& surface = *layout.SurfaceRef;
   const auto mirror = [](const Material& m) { return m.Type == MaterialType::Mirror; };
-  return this->Chart.Type == SurfaceChart::Kind::Planar && !surface.Triangles.empty() &&
+  return layout.Chart.Type == SurfaceChart::Kind::Planar && !surface.Triangles.empty() &&
     (surface.TriangleMaterials.empty()
         ? !mirror(surface.Mat)
         : std::none_of(surface.TriangleMaterials.begin(), surface.TriangleMaterials.end(), mirror));
 }
 
-void ObjectRadiance::LocateDirectTriangles()
+void DirectTexture::LocateTriangles(const ObjectLayout& layout)
 {
   // Each output texel's centre in the plane's (s, t) coordinates, found in
   // the triangles that cover it (the first one wins, serially: the same
   // whatever the threads).
-  this->DirectTriangles.clear();
-  if (this->MediumRef || !this->SurfaceRef)
+  this->Triangles.clear();
+  if (layout.MediumRef || !layout.SurfaceRef)
   {
     return;
   }
-  const Surface& surface = *this->SurfaceRef;
+  const Surface& surface = *layout.SurfaceRef;
   if (surface.TriangleMaterials.empty() && surface.VertexReflectance.empty())
   {
     return;
   }
-  const std::size_t nx = this->DirectDims[0], ny = this->DirectDims[1];
-  this->DirectTriangles.assign(nx * ny, -1);
-  const PlanarFrame& frame = this->Chart.Frame;
+  const std::size_t nx = this->Dims[0], ny = this->Dims[1];
+  this->Triangles.assign(nx * ny, -1);
+  const PlanarFrame& frame = layout.Chart.Frame;
   const float uu = Dot(frame.U, frame.U), vv = Dot(frame.V, frame.V);
   for (std::size_t k = 0; k < surface.Triangles.size(); ++k)
   {
@@ -161,7 +163,7 @@ void ObjectRadiance::LocateDirectTriangles()
         const float b1 = (ps * (t[2] - t[0]) - (s[2] - s[0]) * pt) / det;
         const float b2 = ((s[1] - s[0]) * pt - ps * (t[1] - t[0])) / det;
         constexpr float tolerance = -1e-6f;
-        std::int32_t& triangle = this->DirectTriangles[j * nx + i];
+        std::int32_t& triangle = this->Triangles[j * nx + i];
         if (triangle < 0 && b1 >= tolerance && b2 >= tolerance && b1 + b2 <= 1.f - tolerance)
         {
           triangle = static_cast<std::int32_t>(k);
@@ -171,69 +173,72 @@ void ObjectRadiance::LocateDirectTriangles()
   }
 }
 
-void ObjectRadiance::EnableDirect(const DirectLight* light, const std::array<int, 3>& resolution)
+void DirectTexture::Enable(
+  const ObjectLayout& layout, const DirectLight* light, const std::array<int, 3>& resolution)
 {
   this->Arrivals.clear();
-  this->DirectRadiance.clear();
-  this->DirectExtinction.clear();
-  if (!light || !this->SupportsDirect() || light->NumberOfLights() == 0)
+  this->Radiance.clear();
+  this->Extinction.clear();
+  if (!light || !Supports(layout) || light->NumberOfLights() == 0)
   {
-    this->Direct = nullptr;
+    this->Light = nullptr;
     return;
   }
-  this->Direct = light;
+  this->Light = light;
   for (int a = 0; a < 3; ++a)
   {
-    this->DirectDims[a] = std::max(1, resolution[a]);
+    this->Dims[a] = std::max(1, resolution[a]);
   }
-  if (!this->MediumRef)
+  if (!layout.MediumRef)
   {
-    this->DirectDims[2] = 1;
-    const auto& tri = this->SurfaceRef->Triangles.front();
-    const auto& v = this->SurfaceRef->Vertices;
+    this->Dims[2] = 1;
+    const auto& tri = layout.SurfaceRef->Triangles.front();
+    const auto& v = layout.SurfaceRef->Vertices;
     this->SurfaceNormal = Normalize(Cross(v[tri[1]] - v[tri[0]], v[tri[2]] - v[tri[0]]));
   }
 }
 
-Vec3 ObjectRadiance::OutputPosition(std::size_t t) const
+Vec3 DirectTexture::OutputPosition(const ObjectLayout& layout, std::size_t t) const
 {
-  const Vec3 q = TexelCentre(t, this->DirectDims);
-  if (this->MediumRef)
+  const Vec3 q = TexelCentre(t, this->Dims);
+  if (layout.MediumRef)
   {
-    return this->MediumRef->Bounds.lower + q * this->MediumRef->Bounds.Extent();
+    return layout.MediumRef->Bounds.lower + q * layout.MediumRef->Bounds.Extent();
   }
-  const PlanarFrame& f = this->Chart.Frame;
+  const PlanarFrame& f = layout.Chart.Frame;
   return f.Origin + f.U * q.x + f.V * q.y;
 }
 
-void ObjectRadiance::ComputeDirect(const ParallelFor& parallelFor)
+bool DirectTexture::Compute(const ObjectLayout& layout, const std::vector<float>& texture,
+  const NativeMediumGrid& native, const ObjectDistribution& distribution,
+  const ParallelFor& parallelFor)
 {
   this->Arrivals.clear();
-  if (!this->Direct || this->Radiance.empty())
+  if (!this->Light || texture.empty())
   {
-    return;
+    return false;
   }
-  const std::size_t lights = this->Direct->NumberOfLights();
-  const std::array<int, 3> dims = this->DirectDims;
+  const std::size_t lights = this->Light->NumberOfLights();
+  const std::array<int, 3> dims = this->Dims;
   const std::size_t texels = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2];
   std::vector<float> arrivals(texels * lights * ArrivalFloats, 0.f);
-  const Vec3 bias = this->MediumRef ? Vec3(0.f) : this->SurfaceNormal * this->Direct->GetEpsilon();
+  const Vec3 bias = layout.MediumRef ? Vec3(0.f) : this->SurfaceNormal * this->Light->GetEpsilon();
   // Light l's arrival at x (zero when none), surfaces' weighted by the cosine
   // (they store E cos(theta), shown on their front side only).
   auto arrive = [&](std::size_t l, const Vec3& x, Vec3& irradiance)
   {
     LightArrival a;
     irradiance = Vec3(0.f);
-    if (!this->MediumRef && Dot(this->Direct->DirectionAt(l, x), this->SurfaceNormal) >= 0.f)
+    if (!layout.MediumRef && Dot(this->Light->DirectionAt(l, x), this->SurfaceNormal) >= 0.f)
     {
       return; // light on the back side: no shadow ray
     }
-    if (!this->Direct->Arrive(l, x, bias, a))
+    if (!this->Light->Arrive(l, x, bias, a))
     {
       return;
     }
     const float weight =
-      this->MediumRef ? 1.f : std::max(0.f, -Dot(a.Direction, this->SurfaceNormal));
+      layout.MediumRef ? 1.f : std::max(0.f, -Dot(a.Direction, this->SurfaceNormal));
     irradiance = a.Irradiance * weight;
   };
   auto store = [&](std::size_t t, std::size_t l, const Vec3& irradiance, const Vec3& direction)
@@ -248,17 +253,17 @@ void ObjectRadiance::ComputeDirect(const ParallelFor& parallelFor)
   // Distributed runs: each process casts the shadow rays of its share of
   // the texels, and every process gathers all of them (a texel's rays
   // depend on the texel only).
-  const auto mine = this->Share(texels);
+  const auto mine = distribution.Share(texels);
   const std::size_t floats = lights * ArrivalFloats;
   // A medium with a density grid of its own: only the texels a renderer
   // reads (near the density, SparseTexture::CellsRead) get their light; the
   // others stay 0, as no image shows them. Their face neighbours' rays are
   // cast too, so that the edges below are found as with every texel.
-  const int used = this->MediumRef ? 3 : 2;
+  const int used = layout.MediumRef ? 3 : 2;
   std::vector<std::uint8_t> read, cast;
-  if (this->MediumRef && !this->NativeDensity.Empty())
+  if (layout.MediumRef && !native.Empty())
   {
-    read = SparseTexture::CellsRead(dims, this->MediumRef->Bounds, this->NativeDensity);
+    read = SparseTexture::CellsRead(dims, layout.MediumRef->Bounds, native.GetDensity());
     cast = WithFaceNeighbours(read, dims, used);
   }
   // 1. One shadow ray per texel centre.
@@ -271,24 +276,24 @@ void ObjectRadiance::ComputeDirect(const ParallelFor& parallelFor)
         {
           continue;
         }
-        const Vec3 x = this->OutputPosition(t);
+        const Vec3 x = this->OutputPosition(layout, t);
         for (std::size_t l = 0; l < lights; ++l)
         {
           Vec3 irradiance;
           arrive(l, x, irradiance);
-          store(t, l, irradiance, this->Direct->DirectionAt(l, x));
+          store(t, l, irradiance, this->Light->DirectionAt(l, x));
         }
       }
     });
-  this->GatherShares(texels, floats, arrivals);
+  distribution.GatherShares(texels, floats, arrivals);
   // 2. Texels on a shadow's or a beam's edge (lit while a face neighbour is
   // not, or the reverse) hold the mean over RefinedSamples^d stratified
   // points of the texel instead: the edge then lies where it is, not half
   // way between two texel centres, once the renderer interpolates.
   const std::vector<std::uint8_t> edge = LightEdges(arrivals, lights, read, dims, used);
-  const Vec3 texel = (this->MediumRef ? this->MediumRef->Bounds.Extent() : Vec3(1.f)) /
+  const Vec3 texel = (layout.MediumRef ? layout.MediumRef->Bounds.Extent() : Vec3(1.f)) /
     Vec3(static_cast<float>(dims[0]), static_cast<float>(dims[1]), static_cast<float>(dims[2]));
-  const PlanarFrame& frame = this->Chart.Frame;
+  const PlanarFrame& frame = layout.Chart.Frame;
   parallelFor(mine[0], mine[1],
     [&](std::size_t begin, std::size_t end)
     {
@@ -301,7 +306,7 @@ void ObjectRadiance::ComputeDirect(const ParallelFor& parallelFor)
           {
             continue;
           }
-          const Vec3 centre = this->OutputPosition(t);
+          const Vec3 centre = this->OutputPosition(layout, t);
           Vec3 sum(0.f);
           const int n = used == 3 ? S * S * S : S * S;
           for (int k = 0; k < n; ++k)
@@ -309,54 +314,51 @@ void ObjectRadiance::ComputeDirect(const ParallelFor& parallelFor)
             const Vec3 f((static_cast<float>(k % S) + 0.5f) / S - 0.5f,
               (static_cast<float>((k / S) % S) + 0.5f) / S - 0.5f,
               used == 3 ? (static_cast<float>(k / (S * S)) + 0.5f) / S - 0.5f : 0.f);
-            const Vec3 x = this->MediumRef
+            const Vec3 x = layout.MediumRef
               ? centre + f * texel
               : centre + frame.U * (f.x * texel.x) + frame.V * (f.y * texel.y);
             Vec3 irradiance;
             arrive(l, x, irradiance);
             sum += irradiance;
           }
-          store(t, l, sum / static_cast<float>(n), this->Direct->DirectionAt(l, centre));
+          store(t, l, sum / static_cast<float>(n), this->Light->DirectionAt(l, centre));
         }
       }
     });
-  this->GatherShares(texels, floats, arrivals);
+  distribution.GatherShares(texels, floats, arrivals);
   this->Arrivals.swap(arrivals);
-  this->LocateDirectTriangles();
-  if (this->MediumRef)
+  this->LocateTriangles(layout);
+  if (layout.MediumRef)
   {
     // sigma_t on the output grid (renderers without the native grid).
-    this->DirectExtinction.resize(3 * texels);
+    this->Extinction.resize(3 * texels);
     parallelFor(0, texels,
       [&](std::size_t begin, std::size_t end)
       {
         for (std::size_t t = begin; t < end; ++t)
         {
-          const Vec3 sigma = this->MediumRef->SigmaTAt(this->OutputPosition(t));
+          const Vec3 sigma = layout.MediumRef->SigmaTAt(this->OutputPosition(layout, t));
           for (int c = 0; c < 3; ++c)
           {
-            this->DirectExtinction[3 * t + c] = sigma[c];
+            this->Extinction[3 * t + c] = sigma[c];
           }
         }
       });
   }
-  this->CombineDirect(parallelFor);
-  if (this->DirectionalOrder >= 0)
-  {
-    this->BuildDirectional(this->DirectionalOrder, parallelFor);
-  }
+  return true;
 }
 
-void ObjectRadiance::CombineDirect(const ParallelFor& parallelFor)
+void DirectTexture::Combine(const ObjectLayout& layout, const std::vector<float>& texture,
+  const Vec3& eye, const ParallelFor& parallelFor)
 {
   // Once per view for view-dependent objects: per output texel, the
   // texture resampled (its interpolation weights and the texel's position
   // are separable, tabulated per axis) plus each light's direct term toward
   // the eye.
-  const std::size_t lights = this->Direct->NumberOfLights();
-  const std::array<int, 3>& dims = this->DirectDims;
+  const std::size_t lights = this->Light->NumberOfLights();
+  const std::array<int, 3>& dims = this->Dims;
   const std::size_t texels = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2];
-  this->DirectRadiance.resize(3 * texels);
+  this->Radiance.resize(3 * texels);
   struct Axis
   {
     std::vector<int> I0, I1;
@@ -364,10 +366,10 @@ void ObjectRadiance::CombineDirect(const ParallelFor& parallelFor)
     std::vector<Vec3> Offset; // the position's part along this axis
   };
   Axis axes[3];
-  const PlanarFrame& frame = this->Chart.Frame;
+  const PlanarFrame& frame = layout.Chart.Frame;
   for (int a = 0; a < 3; ++a)
   {
-    const int n = this->Resolution[a];
+    const int n = layout.Resolution[a];
     Axis& axis = axes[a];
     for (int i = 0; i < dims[a]; ++i)
     {
@@ -377,9 +379,9 @@ void ObjectRadiance::CombineDirect(const ParallelFor& parallelFor)
       axis.I1.push_back(weights.I1);
       axis.W.push_back(weights.W);
       Vec3 offset(0.f);
-      if (this->MediumRef)
+      if (layout.MediumRef)
       {
-        offset[a] = this->MediumRef->Bounds.lower[a] + q * this->MediumRef->Bounds.Extent()[a];
+        offset[a] = layout.MediumRef->Bounds.lower[a] + q * layout.MediumRef->Bounds.Extent()[a];
       }
       else if (a == 0)
       {
@@ -394,10 +396,11 @@ void ObjectRadiance::CombineDirect(const ParallelFor& parallelFor)
   }
   // As the particles' light: the phase function's remainder, per unit of
   // the reduced extinction.
-  const HenyeyGreenstein phase(this->MediumRef ? this->Peaks[0].G : 0.f);
-  const Vec3 scale =
-    this->MediumAlbedo * (1.f - this->Peaks[0].Forward) / this->ExtinctionFactors[0];
-  const std::size_t nx = this->Resolution[0], nxy = nx * this->Resolution[1];
+  const MediumScattering& scattering = layout.Scattering;
+  const HenyeyGreenstein phase(layout.MediumRef ? scattering.GetPeak(false).G : 0.f);
+  const Vec3 scale = scattering.GetAlbedo() * (1.f - scattering.GetPeak(false).Forward) /
+    scattering.GetExtinctionFactor(false);
+  const std::size_t nx = layout.Resolution[0], nxy = nx * layout.Resolution[1];
   const std::size_t rows = static_cast<std::size_t>(dims[1]) * dims[2];
   // The output texels' x positions apart, for the media's row loops.
   std::vector<float> offsetX[3];
@@ -411,7 +414,7 @@ void ObjectRadiance::CombineDirect(const ParallelFor& parallelFor)
   parallelFor(0, rows,
     [&](std::size_t begin, std::size_t end)
     {
-      std::vector<float> phaseOf(this->MediumRef ? dims[0] : 0);
+      std::vector<float> phaseOf(layout.MediumRef ? dims[0] : 0);
       for (std::size_t row = begin; row < end; ++row)
       {
         const std::size_t y = row % dims[1], z = row / dims[1];
@@ -424,7 +427,7 @@ void ObjectRadiance::CombineDirect(const ParallelFor& parallelFor)
         for (int x = 0; x < dims[0]; ++x)
         {
           const std::size_t t = row * dims[0] + x;
-          float* out = &this->DirectRadiance[3 * t];
+          float* out = &this->Radiance[3 * t];
           const std::size_t x0 = axes[0].I0[x], x1 = axes[0].I1[x];
           const float wx = axes[0].W[x];
           for (int c = 0; c < 3; ++c)
@@ -433,21 +436,21 @@ void ObjectRadiance::CombineDirect(const ParallelFor& parallelFor)
             for (int k = 0; k < 4; ++k)
             {
               value += wyz[k] *
-                ((1.f - wx) * this->Radiance[3 * (base[k] + x0) + c] +
-                  wx * this->Radiance[3 * (base[k] + x1) + c]);
+                ((1.f - wx) * texture[3 * (base[k] + x0) + c] +
+                  wx * texture[3 * (base[k] + x1) + c]);
             }
             out[c] = value;
           }
         }
-        if (this->MediumRef)
+        if (layout.MediumRef)
         {
           // S_1 = albedo p E T (the source radiance J_1 / sigma_t), light by
           // light along the row: the phase function first, in a loop the
-          // compiler vectorizes (ReconstructionDirect.cxx is built without
+          // compiler vectorizes (DirectTexture.cxx is built without
           // errno from square roots), then the sums.
-          const Vec3 eye = this->Eye - rowOffset;
+          const Vec3 toward = eye - rowOffset;
           const std::size_t first = row * dims[0];
-          float* out = &this->DirectRadiance[3 * first];
+          float* out = &this->Radiance[3 * first];
           for (std::size_t l = 0; l < lights; ++l)
           {
             const float* a = &this->Arrivals[(first * lights + l) * ArrivalFloats];
@@ -455,8 +458,8 @@ void ObjectRadiance::CombineDirect(const ParallelFor& parallelFor)
             for (int x = 0; x < dims[0]; ++x)
             {
               const float* ax = a + x * stride;
-              const float ex = eye.x - offsetX[0][x], ey = eye.y - offsetX[1][x],
-                          ez = eye.z - offsetX[2][x];
+              const float ex = toward.x - offsetX[0][x], ey = toward.y - offsetX[1][x],
+                          ez = toward.z - offsetX[2][x];
               const float dot = ax[3] * ex + ax[4] * ey + ax[5] * ez;
               phaseOf[x] = phase.Evaluate(dot / std::sqrt(ex * ex + ey * ey + ez * ez));
             }
@@ -474,8 +477,8 @@ void ObjectRadiance::CombineDirect(const ParallelFor& parallelFor)
         for (int x = 0; x < dims[0]; ++x)
         {
           const std::size_t t = row * dims[0] + x;
-          float* out = &this->DirectRadiance[3 * t];
-          const Vec3 toEye = Normalize(this->Eye - (axes[0].Offset[x] + rowOffset));
+          float* out = &this->Radiance[3 * t];
+          const Vec3 toEye = Normalize(eye - (axes[0].Offset[x] + rowOffset));
           for (std::size_t l = 0; l < lights; ++l)
           {
             const float* a = &this->Arrivals[(t * lights + l) * ArrivalFloats];
@@ -484,13 +487,12 @@ void ObjectRadiance::CombineDirect(const ParallelFor& parallelFor)
               continue;
             }
             const Vec3 direction(a[3], a[4], a[5]);
-            const std::int32_t triangle =
-              this->DirectTriangles.empty() ? -1 : this->DirectTriangles[t];
+            const std::int32_t triangle = this->Triangles.empty() ? -1 : this->Triangles[t];
             Material coloured; // where the surface's reflectance varies over it
-            const Material& m = triangle < 0 ? this->SurfaceRef->Mat
-              : this->SurfaceRef->VertexReflectance.empty()
-              ? this->SurfaceRef->MaterialOf(triangle)
-              : (coloured = this->SurfaceRef->MaterialAt(triangle, axes[0].Offset[x] + rowOffset));
+            const Material& m = triangle < 0 ? layout.SurfaceRef->Mat
+              : layout.SurfaceRef->VertexReflectance.empty()
+              ? layout.SurfaceRef->MaterialOf(triangle)
+              : (coloured = layout.SurfaceRef->MaterialAt(triangle, axes[0].Offset[x] + rowOffset));
             const Vec3 f = EvaluateBrdf(m, this->SurfaceNormal, -direction, toEye);
             for (int c = 0; c < 3; ++c)
             {
@@ -502,32 +504,34 @@ void ObjectRadiance::CombineDirect(const ParallelFor& parallelFor)
     });
 }
 
-void ObjectRadiance::AddDirectToDirectional(int order)
+void DirectTexture::AddToDirectional(
+  const ObjectLayout& layout, int order, std::vector<float>& directional) const
 {
   // Each output texel's S_1 lobe, albedo E T p(w_l, .), projected as the
   // particles' light is (coefficient Y_k(w_l) per unit of S) and averaged
   // over the output texels whose centres fall in each voxel.
-  const std::size_t lights = this->Direct->NumberOfLights();
+  const std::size_t lights = this->Light->NumberOfLights();
   const std::size_t texels = this->Arrivals.size() / (lights * ArrivalFloats);
   const int nk = ShCoefficients(order);
-  const std::size_t voxels = this->Texels();
+  const std::size_t voxels = layout.Texels();
   std::vector<double> sums(voxels * nk * 3, 0.0);
   std::vector<std::size_t> members(voxels, 0);
   auto voxelOf = [&](std::size_t t)
   {
-    const Vec3 q = TexelCentre(t, this->DirectDims);
+    const Vec3 q = TexelCentre(t, this->Dims);
     std::size_t v = 0;
     for (int a = 2; a >= 0; --a)
     {
-      const int i = std::clamp(static_cast<int>(q[a] * static_cast<float>(this->Resolution[a])), 0,
-        this->Resolution[a] - 1);
-      v = v * this->Resolution[a] + i;
+      const int i = std::clamp(static_cast<int>(q[a] * static_cast<float>(layout.Resolution[a])), 0,
+        layout.Resolution[a] - 1);
+      v = v * layout.Resolution[a] + i;
     }
     return v;
   };
   // The remainder of the phase function, per unit of the reduced extinction.
-  const Vec3 scale =
-    this->MediumAlbedo * (1.f - this->Peaks[1].Forward) / this->ExtinctionFactors[1];
+  const MediumScattering& scattering = layout.Scattering;
+  const Vec3 scale = scattering.GetAlbedo() * (1.f - scattering.GetPeak(true).Forward) /
+    scattering.GetExtinctionFactor(true);
   float y[ShCoefficients(MaxShOrder)];
   for (std::size_t t = 0; t < texels; ++t)
   {
@@ -558,7 +562,7 @@ void ObjectRadiance::AddDirectToDirectional(int order)
     }
     for (std::size_t j = 0; j < static_cast<std::size_t>(nk) * 3; ++j)
     {
-      this->Directional[v * nk * 3 + j] +=
+      directional[v * nk * 3 + j] +=
         static_cast<float>(sums[v * nk * 3 + j] / static_cast<double>(members[v]));
     }
   }

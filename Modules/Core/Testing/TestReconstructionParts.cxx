@@ -1,0 +1,374 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The reconstruction's collaborators on their own (brume/Reconstruction.h
+// lists them): what each promises, apart from the whole ObjectRadiance that
+// TestReconstruction.cxx checks.
+#include "TestScenes.h"
+
+#include "brume/Density.h"
+#include "brume/DirectTexture.h"
+#include "brume/HitBinning.h"
+#include "brume/KeptHits.h"
+#include "brume/NativeMediumGrid.h"
+#include "brume/ObjectDistribution.h"
+#include "brume/ObjectLayout.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <numeric>
+
+using namespace brume;
+
+namespace
+{
+using brume::testing::HitStore;
+
+Surface Square(const Material& m)
+{
+  Surface s;
+  s.Name = "square";
+  s.Vertices = { { -1, -1, 0 }, { 1, -1, 0 }, { 1, 1, 0 }, { -1, 1, 0 } };
+  s.Triangles = { { 0, 1, 2 }, { 0, 2, 3 } };
+  s.Mat = m;
+  return s;
+}
+
+// n hits at pseudo-random places in [0, 1]^3, travelling along +z, flux
+// 1 + i / n per channel.
+HitStore Scattered(int n)
+{
+  HitStore store;
+  std::uint32_t state = 12345;
+  auto next = [&]
+  {
+    state = state * 1664525u + 1013904223u;
+    return static_cast<float>(state >> 8) / 16777216.f;
+  };
+  for (int i = 0; i < n; ++i)
+  {
+    const float p[3] = { next(), next(), next() };
+    const float f = 1.f + static_cast<float>(i) / static_cast<float>(n);
+    store.Position.insert(store.Position.end(), p, p + 3);
+    store.Direction.insert(store.Direction.end(), { 0.f, 0.f, 1.f });
+    store.Flux.insert(store.Flux.end(), { f, f, f });
+    store.Object.push_back(0);
+    store.Triangle.push_back(0);
+  }
+  return store;
+}
+
+std::vector<std::uint32_t> Iota(std::size_t n)
+{
+  std::vector<std::uint32_t> index(n);
+  std::iota(index.begin(), index.end(), 0u);
+  return index;
+}
+
+// A reduction that only says which process this is (nothing is exchanged).
+class PlaceOnly : public HistogramReduction
+{
+public:
+  PlaceOnly(int rank, int processes)
+    : MyRank(rank)
+    , Processes(processes)
+  {
+  }
+  int NumberOfProcesses() const override { return this->Processes; }
+  int Rank() const override { return this->MyRank; }
+  std::int64_t Max(std::int64_t value) override { return value; }
+  void Sum(std::vector<std::int64_t>&) override {}
+  void SumOnto(std::vector<std::int64_t>&, int) override {}
+  void Broadcast(std::vector<float>&, int) override {}
+  void Gather(const std::vector<std::int32_t>&, const std::vector<std::size_t>&,
+    std::vector<std::int32_t>&) override
+  {
+  }
+
+private:
+  int MyRank, Processes;
+};
+}
+
+TEST(ReconstructionParts, KeptHitStoreGroupsByRangesOfCellsInHitOrder)
+{
+  const HitStore store = Scattered(1000);
+  const HitArrays hits = store.View();
+  const std::vector<std::uint32_t> index = Iota(1000);
+  const std::size_t cells = 4096;
+  std::vector<std::uint32_t> cellOf(1000);
+  for (std::size_t k = 0; k < cellOf.size(); ++k)
+  {
+    cellOf[k] = static_cast<std::uint32_t>((k * 2654435761u) % cells);
+  }
+  KeptHitStore kept(cells, false);
+  kept.Keep(hits, index.data(), cellOf.data(), 1000, 1.0, brume::testing::Scrambled);
+  const KeptHits& h = kept.GetHits();
+  ASSERT_EQ(h.Size(), 1000u);
+  EXPECT_TRUE(h.Triangle.empty());
+  EXPECT_TRUE(h.Growth.empty()); // no light was aimed
+  EXPECT_EQ(kept.RangeStart(0), 0u);
+  EXPECT_EQ(kept.RangeStart(KeptHitStore::Ranges), 1000u);
+  for (std::size_t r = 0; r < KeptHitStore::Ranges; ++r)
+  {
+    float lastFlux = 0.f; // the flux grows with the hit's index: hit order
+    for (std::size_t k = kept.RangeStart(r); k < kept.RangeStart(r + 1); ++k)
+    {
+      EXPECT_EQ(h.Hits[k].Cell * KeptHitStore::Ranges / cells, r);
+      EXPECT_GT(h.Hits[k].Flux[0], lastFlux);
+      lastFlux = h.Hits[k].Flux[0];
+    }
+  }
+}
+
+TEST(ReconstructionParts, KeptHitStoreMergesDeferredBatchesAsIfEachWereMergedInTurn)
+{
+  const HitStore store = Scattered(900);
+  const HitArrays hits = store.View();
+  const std::vector<std::uint32_t> index = Iota(900);
+  const std::size_t cells = 1000;
+  std::vector<std::uint32_t> cellOf(900);
+  for (std::size_t k = 0; k < cellOf.size(); ++k)
+  {
+    cellOf[k] = static_cast<std::uint32_t>((k * 7919u) % cells);
+  }
+  KeptHitStore inTurn(cells, true), deferred(cells, true);
+  deferred.SetDeferred(true);
+  for (std::size_t b = 0; b < 3; ++b)
+  {
+    inTurn.Keep(hits, index.data() + 300 * b, cellOf.data() + 300 * b, 300, 1.0, SerialFor());
+    deferred.Keep(hits, index.data() + 300 * b, cellOf.data() + 300 * b, 300, 1.0 / 3.0,
+      brume::testing::Scrambled);
+  }
+  EXPECT_TRUE(deferred.HasPending());
+  EXPECT_TRUE(deferred.GetHits().Empty());
+  deferred.MergePending(SerialFor());
+  EXPECT_FALSE(deferred.HasPending());
+  const KeptHits& a = inTurn.GetHits();
+  const KeptHits& b = deferred.GetHits();
+  ASSERT_EQ(a.Size(), b.Size());
+  ASSERT_EQ(a.Triangle.size(), a.Size()); // a surface's hits keep their triangles
+  for (std::size_t k = 0; k < a.Size(); ++k)
+  {
+    EXPECT_EQ(a.Hits[k].Cell, b.Hits[k].Cell);
+    EXPECT_EQ(a.Hits[k].Flux[0], b.Hits[k].Flux[0]);
+  }
+  for (std::size_t r = 0; r <= KeptHitStore::Ranges; ++r)
+  {
+    EXPECT_EQ(inTurn.RangeStart(r), deferred.RangeStart(r));
+  }
+  // Scaling the flux scales every hit, exactly by a power of two.
+  deferred.ScaleFlux(0.5f, SerialFor());
+  for (std::size_t k = 0; k < a.Size(); ++k)
+  {
+    EXPECT_EQ(b.Hits[k].Flux[1], 0.5f * a.Hits[k].Flux[1]);
+  }
+}
+
+TEST(ReconstructionParts, KeptHitStoreReusesReleasedBuffersOfAboutTheSameRun)
+{
+  const HitStore store = Scattered(5000);
+  const HitArrays hits = store.View();
+  const std::vector<std::uint32_t> index = Iota(5000);
+  const std::vector<std::uint32_t> cellOf(5000, 3);
+  KeptHitStore kept(64, false);
+  kept.Keep(hits, index.data(), cellOf.data(), 5000, 1.0, SerialFor());
+  KeptHits memory = kept.ReleaseMemory();
+  EXPECT_TRUE(kept.GetHits().Empty());
+  EXPECT_TRUE(memory.Empty());
+  const std::size_t capacity = memory.Hits.capacity();
+  ASSERT_GE(capacity, 5000u);
+  const KeptHit* buffer = memory.Hits.data();
+  // Room for more than twice a run's hits is freed, not taken.
+  KeptHitStore small(64, false);
+  small.ReuseMemory(std::move(memory), 100);
+  EXPECT_EQ(small.GetHits().Hits.capacity(), 0u);
+  // A run of about as many hits writes where the last one's were.
+  memory = kept.ReleaseMemory();
+  kept.Keep(hits, index.data(), cellOf.data(), 5000, 1.0, SerialFor());
+  memory = kept.ReleaseMemory();
+  ASSERT_EQ(memory.Hits.capacity(), capacity);
+  buffer = memory.Hits.data();
+  kept.ReuseMemory(std::move(memory), 4800);
+  kept.Keep(hits, index.data(), cellOf.data(), 4800, 1.0, SerialFor());
+  EXPECT_EQ(kept.GetHits().Hits.data(), buffer);
+}
+
+TEST(ReconstructionParts, HitBinningSumsEachHitsFluxInItsCell)
+{
+  // An isotropic medium over [0, 1]^3: value Phi / (4 pi), weight the mean
+  // of Phi over the channels, each in the hit's cell of a 4^3 histogram.
+  Medium fog;
+  fog.Name = "fog";
+  fog.Bounds = Box{ Vec3(0.f), Vec3(1.f) };
+  const ObjectLayout layout(fog, { 2, 2, 2 }, 2);
+  EXPECT_EQ(layout.Cells(), 64u);
+  EXPECT_EQ(layout.Texels(), 8u);
+  EXPECT_FALSE(layout.ViewDependent);
+  HitStore store;
+  const float at[2][3] = { { 0.1f, 0.1f, 0.1f }, { 0.9f, 0.6f, 0.3f } };
+  for (const auto& p : at)
+  {
+    store.Position.insert(store.Position.end(), p, p + 3);
+    store.Direction.insert(store.Direction.end(), { 1.f, 0.f, 0.f });
+    store.Flux.insert(store.Flux.end(), { 1.f, 2.f, 3.f });
+    store.Object.push_back(0);
+    store.Triangle.push_back(0);
+  }
+  const std::vector<std::uint32_t> index = Iota(2);
+  HitBinning binning(layout);
+  EXPECT_FALSE(binning.KeepsHits());
+  binning.Clear(false);
+  binning.Start(layout, ExactHistogram::QuantumExponent(3.0), false);
+  binning.Bin(layout, store.View(), index.data(), 2, nullptr, 1.0, SerialFor());
+  EXPECT_EQ(binning.Saturation(), "");
+  const Histogram weights = binning.GetWeightHistogram();
+  const Histogram values = binning.GetValueHistogram();
+  const std::size_t first = 0, second = (1 * 4 + 2) * 4 + 3; // cells (0,0,0), (3,2,1)
+  EXPECT_NEAR(weights.Get(first)[0], 2.0, 1e-9);
+  EXPECT_NEAR(weights.Get(second)[0], 2.0, 1e-9);
+  for (int c = 0; c < 3; ++c)
+  {
+    // Inv4Pi is a float: 1/(4 pi) to within 1e-7 relative.
+    const double expected = (c + 1) / (4.0 * Pi);
+    EXPECT_NEAR(values.Get(second)[c], expected, 1e-7 * expected);
+  }
+  double total = 0.0;
+  for (const double w : weights.GetValues())
+  {
+    total += w;
+  }
+  EXPECT_NEAR(total, 4.0, 1e-9); // nothing elsewhere
+  // A progressive step halves what was binned, exactly.
+  binning.Scale(0.5, binning.GetSumsExponent() - 1, SerialFor());
+  const Histogram halved = binning.GetWeightHistogram();
+  EXPECT_EQ(halved.Get(second)[0], 0.5 * weights.Get(second)[0]);
+}
+
+TEST(ReconstructionParts, HitBinningShowsASurfaceItsFrontSideOnly)
+{
+  const Surface square = Square(Material());
+  const ObjectLayout layout(square, MakeChart(square, nullptr), { 2, 2 }, 1);
+  HitStore store;
+  for (const float dz : { -1.f, 1.f }) // arriving on the front (+z) side, then the back
+  {
+    store.Position.insert(store.Position.end(), { 0.5f, 0.5f, 0.f });
+    store.Direction.insert(store.Direction.end(), { 0.f, 0.f, dz });
+    store.Flux.insert(store.Flux.end(), { 1.f, 1.f, 1.f });
+    store.Object.push_back(0);
+    store.Triangle.push_back(0);
+  }
+  const std::vector<std::uint32_t> index = Iota(2);
+  HitBinning binning(layout);
+  binning.Clear(false);
+  binning.Start(layout, ExactHistogram::QuantumExponent(1.0), false);
+  binning.Bin(layout, store.View(), index.data(), 2, nullptr, 1.0, SerialFor());
+  const Histogram weights = binning.GetWeightHistogram();
+  double total = 0.0;
+  for (const double w : weights.GetValues())
+  {
+    total += w;
+  }
+  EXPECT_NEAR(total, 1.0, 1e-9);
+}
+
+TEST(ReconstructionParts, MediumScatteringSetsTheForwardPeakApart)
+{
+  Medium mist;
+  mist.Name = "mist";
+  mist.Bounds = Box{ Vec3(0.f), Vec3(1.f) };
+  mist.SigmaS = Vec3(0.9f);
+  mist.SigmaA = Vec3(0.1f);
+  mist.G = 0.5f; // resolved: no split
+  const MediumScattering resolved(mist);
+  EXPECT_EQ(resolved.GetPeak(false).Forward, 0.f);
+  EXPECT_EQ(resolved.GetExtinctionFactor(false).x, 1.f);
+  mist.G = 0.9f; // past both resolved asymmetries
+  const MediumScattering peaked(mist);
+  for (const bool directional : { false, true })
+  {
+    const ForwardPeak& peak = peaked.GetPeak(directional);
+    EXPECT_GT(peak.Forward, 0.f);
+    EXPECT_LE(
+      peak.G, directional ? MediumScattering::DirectionalResolvedG : MediumScattering::ResolvedG);
+    EXPECT_FLOAT_EQ(peaked.GetExtinctionFactor(directional).y, 1.f - 0.9f * peak.Forward);
+  }
+  // An albedo folded into the texture: the texel is the source radiance.
+  Vec3 factor;
+  const Vec3 s = peaked.SourceAt(Vec3(0.3f), Vec3(2.f), false, factor);
+  EXPECT_EQ(s.x, 2.f);
+  EXPECT_EQ(factor.x, peaked.GetExtinctionFactor(false).x);
+}
+
+TEST(ReconstructionParts, ObjectDistributionSharesEveryItemOnce)
+{
+  ObjectDistribution alone;
+  EXPECT_TRUE(alone.EstimatesHere());
+  EXPECT_FALSE(alone.SharesTexture());
+  EXPECT_EQ(alone.Share(17), (std::array<std::size_t, 2>{ 0, 17 }));
+  const int processes = 3;
+  std::size_t next = 0;
+  for (int r = 0; r < processes; ++r)
+  {
+    PlaceOnly place(r, processes);
+    ObjectDistribution d;
+    d.SetReduction(&place);
+    EXPECT_TRUE(d.EstimatesHere()); // no owner: every process
+    d.SetOwner(1);
+    EXPECT_EQ(d.EstimatesHere(), r == 1);
+    EXPECT_TRUE(d.SharesTexture());
+    const auto share = d.Share(100);
+    EXPECT_EQ(share[0], next) << r;
+    next = share[1];
+  }
+  EXPECT_EQ(next, 100u);
+  EXPECT_EQ(AssignOwners({ 1.0, 5.0, 2.0, 2.0 }, 2), (std::vector<int>{ 1, 0, 1, 1 }));
+}
+
+TEST(ReconstructionParts, NativeMediumGridIntegratesTheDensityOverRegions)
+{
+  // Density 2 on x < 1/2 of the box [0, 2] x [0, 1] x [0, 1], 0 beyond.
+  Medium smoke;
+  smoke.Name = "smoke";
+  smoke.SetDensity(std::make_shared<GridDensity>(Box{ Vec3(0.f), Vec3(2.f, 1.f, 1.f) },
+    std::array<int, 3>{ 4, 1, 1 }, std::vector<float>{ 2.f, 0.f, 0.f, 0.f }, true));
+  NativeMediumGrid grid;
+  EXPECT_TRUE(grid.Empty());
+  grid.Sample(smoke, SerialFor());
+  ASSERT_FALSE(grid.Empty());
+  EXPECT_EQ(grid.GetResolution(), (std::array<int, 3>{ 4, 1, 1 }));
+  EXPECT_EQ(grid.GetClassification(), nullptr);
+  const std::array<int, 3> dims{ 8, 2, 2 };
+  grid.BuildTables(smoke.Bounds, dims);
+  ASSERT_TRUE(grid.HasTables());
+  Region all;
+  all.Hi = dims;
+  EXPECT_NEAR(grid.RegionIntegral(all), 2.0 * 0.5 * 1.0 * 1.0, 1e-6);
+  Region empty = all;
+  empty.Lo[0] = 4; // x >= 1
+  EXPECT_LE(grid.RegionIntegral(empty), grid.GetEmptyIntegral());
+  // A region over both halves belongs where its density is: its centroid
+  // lies in the dense part, not at the region's centre.
+  std::vector<Region> regions(1, all);
+  const CentroidMatching matching = grid.Centroids(regions, { 1, 1, 1 }, 8, SerialFor());
+  EXPECT_FALSE(matching.Empty());
+}
+
+TEST(ReconstructionParts, DirectTextureSupportsMediaAndPlanarSurfacesWithoutMirrors)
+{
+  Medium fog;
+  fog.Name = "fog";
+  fog.Bounds = Box{ Vec3(0.f), Vec3(1.f) };
+  EXPECT_TRUE(DirectTexture::Supports(ObjectLayout(fog, { 2, 2, 2 }, 1)));
+  const Surface wall = Square(Material());
+  EXPECT_TRUE(DirectTexture::Supports(ObjectLayout(wall, MakeChart(wall, nullptr), { 2, 2 }, 1)));
+  Material mirror;
+  mirror.Type = MaterialType::Mirror;
+  const Surface glass = Square(mirror);
+  EXPECT_FALSE(
+    DirectTexture::Supports(ObjectLayout(glass, MakeChart(glass, nullptr), { 2, 2 }, 1)));
+  DirectTexture direct;
+  direct.Enable(ObjectLayout(fog, { 2, 2, 2 }, 1), nullptr, { 4, 4, 4 });
+  EXPECT_FALSE(direct.IsEnabled()); // no light
+  EXPECT_FALSE(direct.HasArrivals());
+}
