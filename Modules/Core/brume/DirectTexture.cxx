@@ -96,6 +96,51 @@ std::vector<std::uint8_t> LightEdges(const std::vector<float>& arrivals, std::si
   }
   return edge;
 }
+
+// Along one axis of an output grid: each output texel's two texture
+// texels and the weight of the second (trilinear interpolation between
+// texel centres), and the part of its position along this axis.
+struct ResampledAxis
+{
+  std::vector<int> I0, I1;
+  std::vector<float> W;
+  std::vector<Vec3> Offset;
+};
+
+std::array<ResampledAxis, 3> ResampledAxes(
+  const ObjectLayout& layout, const std::array<int, 3>& dims)
+{
+  std::array<ResampledAxis, 3> axes;
+  const PlanarFrame& frame = layout.Chart.Frame;
+  for (int a = 0; a < 3; ++a)
+  {
+    const int n = layout.Resolution[a];
+    ResampledAxis& axis = axes[a];
+    for (int i = 0; i < dims[a]; ++i)
+    {
+      const float q = (static_cast<float>(i) + 0.5f) / static_cast<float>(dims[a]);
+      const CellCentreWeights weights(q, n);
+      axis.I0.push_back(weights.I0);
+      axis.I1.push_back(weights.I1);
+      axis.W.push_back(weights.W);
+      Vec3 offset(0.f);
+      if (layout.MediumRef)
+      {
+        offset[a] = layout.MediumRef->Bounds.lower[a] + q * layout.MediumRef->Bounds.Extent()[a];
+      }
+      else if (a == 0)
+      {
+        offset = frame.Origin + frame.U * q;
+      }
+      else if (a == 1)
+      {
+        offset = frame.V * q;
+      }
+      axis.Offset.push_back(offset);
+    }
+  }
+  return axes;
+}
 }
 
 bool DirectTexture::Supports(const ObjectLayout& layout)
@@ -359,41 +404,7 @@ void DirectTexture::Combine(const ObjectLayout& layout, const std::vector<float>
   const std::array<int, 3>& dims = this->Dims;
   const std::size_t texels = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2];
   this->Radiance.resize(3 * texels);
-  struct Axis
-  {
-    std::vector<int> I0, I1;
-    std::vector<float> W;
-    std::vector<Vec3> Offset; // the position's part along this axis
-  };
-  Axis axes[3];
-  const PlanarFrame& frame = layout.Chart.Frame;
-  for (int a = 0; a < 3; ++a)
-  {
-    const int n = layout.Resolution[a];
-    Axis& axis = axes[a];
-    for (int i = 0; i < dims[a]; ++i)
-    {
-      const float q = (static_cast<float>(i) + 0.5f) / static_cast<float>(dims[a]);
-      const CellCentreWeights weights(q, n);
-      axis.I0.push_back(weights.I0);
-      axis.I1.push_back(weights.I1);
-      axis.W.push_back(weights.W);
-      Vec3 offset(0.f);
-      if (layout.MediumRef)
-      {
-        offset[a] = layout.MediumRef->Bounds.lower[a] + q * layout.MediumRef->Bounds.Extent()[a];
-      }
-      else if (a == 0)
-      {
-        offset = frame.Origin + frame.U * q;
-      }
-      else if (a == 1)
-      {
-        offset = frame.V * q;
-      }
-      axis.Offset.push_back(offset);
-    }
-  }
+  const std::array<ResampledAxis, 3> axes = ResampledAxes(layout, dims);
   // As the particles' light: the phase function's remainder, per unit of
   // the reduced extinction.
   const MediumScattering& scattering = layout.Scattering;
