@@ -1,6 +1,7 @@
 # Runs COMMAND (a list), in WORKDIR if given: it must exit with 0 (no crash),
-# its output must contain every string of EXPECT (a list) and every file of
-# FILES (a list, relative to WORKDIR) must exist afterwards.
+# its output must contain every string of EXPECT (a list) and none of FORBID
+# (a list), and every file of FILES (a list, relative to WORKDIR) must exist
+# afterwards.
 if (WORKDIR)
   file(REMOVE_RECURSE "${WORKDIR}")
   file(MAKE_DIRECTORY "${WORKDIR}")
@@ -16,6 +17,12 @@ foreach (expected IN LISTS EXPECT)
   string(FIND "${out}${err}" "${expected}" found)
   if (found EQUAL -1)
     message(FATAL_ERROR "missing message '${expected}'\nstdout: ${out}\nstderr: ${err}")
+  endif ()
+endforeach ()
+foreach (forbidden IN LISTS FORBID)
+  string(FIND "${out}${err}" "${forbidden}" found)
+  if (NOT found EQUAL -1)
+    message(FATAL_ERROR "unexpected message '${forbidden}'\nstdout: ${out}\nstderr: ${err}")
   endif ()
 endforeach ()
 foreach (expected_file IN LISTS FILES)

@@ -241,7 +241,9 @@ vtkSmartPointer<vtkVolumeProperty> vtkBrumeVolumePropertyMedium::EffectiveProper
   {
     if (!this->ScalarOpacity)
     {
-      vtkErrorMacro("has no VolumeProperty (nor a ScalarOpacity function)");
+      vtkErrorMacro("has no opacity transfer function to make a medium of its scalars: set "
+                    "ScalarOpacity (in ParaView, Scalar Opacity Function: the array's opacity "
+                    "function, which the Color Map Editor edits) or a VolumeProperty");
       return nullptr;
     }
     property = vtkSmartPointer<vtkVolumeProperty>::New();
@@ -262,7 +264,7 @@ bool vtkBrumeVolumePropertyMedium::CheckInputArray(vtkDataArray* scalars)
   if (!scalars)
   {
     vtkErrorMacro("finds no array to process (point or cell scalars, or the one named by "
-                  "SetInputArrayToProcess) in its input");
+                  "SetInputArrayToProcess; in ParaView, Scalars) in its input");
     return false;
   }
   if (!scalars->GetName() || !*scalars->GetName())
@@ -349,15 +351,16 @@ int vtkBrumeVolumePropertyMedium::RequestData(
     vtkErrorMacro("needs a vtkDataSet input");
     return 0;
   }
-  // The property, or one made of the functions set one by one.
-  vtkSmartPointer<vtkVolumeProperty> property = this->EffectiveProperty();
-  if (!property)
-  {
-    return 0;
-  }
+  // The scalars first (without them no function helps), then the
+  // property, or one made of the functions set one by one.
   int association = 0;
   vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector, association);
   if (!this->CheckInputArray(scalars))
+  {
+    return 0;
+  }
+  vtkSmartPointer<vtkVolumeProperty> property = this->EffectiveProperty();
+  if (!property)
   {
     return 0;
   }

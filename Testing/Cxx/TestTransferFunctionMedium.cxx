@@ -760,7 +760,7 @@ void TestBadInput()
 {
   vtkNew<vtkBrumeVolumePropertyMedium> filter;
   filter->SetInputData(Field());
-  Check(ExpectFailure("no property", filter, "has no VolumeProperty"), "no property");
+  Check(ExpectFailure("no property", filter, "has no opacity transfer function"), "no property");
 
   vtkNew<vtkVolumeProperty> property;
   vtkNew<vtkPiecewiseFunction> opacity;

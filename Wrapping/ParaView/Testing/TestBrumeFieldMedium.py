@@ -27,6 +27,11 @@ lut.ColorSpace = "RGB"
 lut.RGBPoints = [90, 0.2, 0.4, 0.9, 280, 1.0, 0.8, 0.6]
 opacity = GetOpacityTransferFunction("RTData")
 opacity.Points = [90, 0.0, 0.5, 0.0, 170, 0.12, 0.5, 0.0, 280, 0.6, 0.5, 0.0]
+# Ranges set, as a display coloured by the array leaves them: the medium
+# takes the functions as they are (a function whose range was never set is
+# fitted to the array's, as ColorBy does; TestBrumeFieldMediumDefaults.py).
+lut.ScalarRangeInitialized = 1
+opacity.ScalarRangeInitialized = 1
 
 medium = BrumeMediumFromField(Input=wavelet)
 medium.Scalars = ["POINTS", "RTData"]
