@@ -16,6 +16,10 @@
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
+#include <algorithm>
+#include <cmath>
+#include <string>
+
 vtkStandardNewMacro(vtkBrumeDisplayPass);
 
 struct vtkBrumeDisplayPass::Internals
@@ -33,6 +37,21 @@ vtkBrumeDisplayPass::vtkBrumeDisplayPass()
 }
 
 vtkBrumeDisplayPass::~vtkBrumeDisplayPass() = default;
+
+namespace
+{
+// The radiance the display transform (exposure, clamp, sRGB curve) shows
+// as the display value `shown` (each channel in [0, 1]).
+void BackgroundRadiance(const double shown[3], double exposure, double radiance[3])
+{
+  for (int c = 0; c < 3; ++c)
+  {
+    const double v = std::min(1.0, std::max(0.0, shown[c]));
+    const double linear = v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+    radiance[c] = exposure > 0.0 ? linear / exposure : 0.0;
+  }
+}
+}
 
 void vtkBrumeDisplayPass::Render(const vtkRenderState* s)
 {
@@ -66,9 +85,21 @@ void vtkBrumeDisplayPass::Render(const vtkRenderState* s)
     impl.Framebuffer = vtkSmartPointer<vtkOpenGLFramebufferObject>::New();
     impl.Framebuffer->SetContext(window);
   }
+  // The background as radiance that the transform below shows as the
+  // renderer's own colours (sRGB values, as VTK's views show them): a
+  // view's background looks the same with Brume as without.
+  double background[3], background2[3], radiance[3], radiance2[3];
+  renderer->GetBackground(background);
+  renderer->GetBackground2(background2);
+  BackgroundRadiance(background, this->Exposure, radiance);
+  BackgroundRadiance(background2, this->Exposure, radiance2);
+  renderer->SetBackground(radiance);
+  renderer->SetBackground2(radiance2);
   state->PushFramebufferBindings();
   this->RenderDelegate(s, w, h, w, h, impl.Framebuffer, impl.Color);
   state->PopFramebufferBindings();
+  renderer->SetBackground(background);
+  renderer->SetBackground2(background2);
 
   // Then exposure, clamp and the sRGB curve, as vtkBrumeFloatImageCapture::ToneMap.
   if (!impl.Quad)

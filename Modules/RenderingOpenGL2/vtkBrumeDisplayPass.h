@@ -7,7 +7,9 @@
  * steps) into a 32-bit float framebuffer, then shows it with the transform
  * `brume render` applies to PNG files (vtkBrumeFloatImageCapture::ToneMap):
  * multiply by Exposure, clamp to [0, 1], apply the sRGB transfer curve. An
- * interactive window then looks like the images Brume writes.
+ * interactive window then looks like the images Brume writes. The
+ * renderer's background (and gradient) keeps the colours it was given: it
+ * is drawn as the radiance the transform shows as them.
  *
  * @code
  * vtkNew<vtkBrumeDisplayPass> display;

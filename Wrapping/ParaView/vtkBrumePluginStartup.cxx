@@ -7,10 +7,12 @@
 // vtkRenderWindow::New(), after the script's LoadPlugin().
 // Where the process has a server manager (the GUI, pvpython, pvbatch), the
 // "Brume Radiance" representations follow their views' cameras from the
-// client side (vtkBrumeCameraFollower).
+// client side (vtkBrumeCameraFollower), and a Brume Render View that
+// replaces a view takes what it showed (vtkBrumeRenderViewInitializationHelper).
 #include "vtkBrumePluginStartup.h"
 
 #include "vtkBrumeCameraFollower.h"
+#include "vtkBrumeRenderViewInitializationHelper.h"
 #include "vtkBrumeRenderWindowSelection.h"
 #include "vtkBrumeSMP.h"
 #include "vtkOutputWindow.h"
@@ -25,6 +27,9 @@ void BrumePluginStartup()
       ("Brume: " + std::string(vtkBrumeRenderWindowSelection::GetLastError()) + ".\n").c_str());
   }
   vtkBrumeCameraFollower::Install();
+  // A Brume Render View made by "Convert To" shows what the view it
+  // replaces showed.
+  vtkBrumeRenderViewInitializationHelper::Install();
   // Debian's ParaView leaves vtkSMPTools on its Sequential backend: every
   // phase would run on one core.
   vtkBrumeSMP::UseAllCoresUnlessChosen();

@@ -24,7 +24,8 @@ namespace
 // else the first one-component point array, else the same among cells.
 vtkPVArrayInformation* DefaultScalars(vtkPVDataInformation* info, int& association)
 {
-  for (const int a : { vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataObject::FIELD_ASSOCIATION_CELLS })
+  for (const int a :
+    { vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataObject::FIELD_ASSOCIATION_CELLS })
   {
     vtkPVDataSetAttributesInformation* attributes = info->GetAttributeInformation(a);
     if (!attributes)

@@ -1,0 +1,166 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkBrumeRenderViewInitializationHelper.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
+#include "vtkObjectFactory.h"
+#include "vtkProcessModule.h"
+#include "vtkSMParaViewPipelineControllerWithRendering.h"
+#include "vtkSMProperty.h"
+#include "vtkSMPropertyHelper.h"
+#include "vtkSMProxyManager.h"
+#include "vtkSMSession.h"
+#include "vtkSMSessionProxyManager.h"
+#include "vtkSMSourceProxy.h"
+#include "vtkSMViewProxy.h"
+#include "vtkSessionIterator.h"
+#include "vtkSmartPointer.h"
+
+#include <chrono>
+#include <cstring>
+#include <vector>
+
+vtkStandardNewMacro(vtkBrumeRenderViewInitializationHelper);
+
+namespace
+{
+using Clock = std::chrono::steady_clock;
+
+// What the last destroyed view showed: its visible representations (kept
+// alive until a new view copies them or they grow old) and its camera.
+struct Destroyed
+{
+  Clock::time_point When;
+  std::vector<vtkSmartPointer<vtkSMProxy>> Representations;
+  vtkSmartPointer<vtkSMProxy> View;
+};
+Destroyed Last;
+vtkSmartPointer<vtkCallbackCommand> UnregisterObserver;
+vtkSmartPointer<vtkCallbackCommand> ConnectionObserver;
+
+double Age(Clock::time_point when)
+{
+  return std::chrono::duration<double>(Clock::now() - when).count();
+}
+
+void Unregistered(vtkObject*, unsigned long, void*, void* data)
+{
+  const auto* info = static_cast<vtkSMProxyManager::RegisteredProxyInformation*>(data);
+  if (!info || info->Type != vtkSMProxyManager::RegisteredProxyInformation::PROXY || !info->Proxy ||
+    !info->GroupName)
+  {
+    return;
+  }
+  if (Age(Last.When) > vtkBrumeRenderViewInitializationHelper::Window)
+  {
+    Last = Destroyed();
+  }
+  // A view's representations are unregistered before the view itself.
+  if (std::strcmp(info->GroupName, "representations") == 0 &&
+    info->Proxy->GetProperty("Visibility") && info->Proxy->GetProperty("Input") &&
+    vtkSMPropertyHelper(info->Proxy, "Visibility").GetAsInt() != 0)
+  {
+    Last.Representations.emplace_back(info->Proxy);
+    Last.When = Clock::now();
+  }
+  else if (std::strcmp(info->GroupName, "views") == 0)
+  {
+    Last.View = info->Proxy;
+    Last.When = Clock::now();
+  }
+}
+
+void WatchSession(vtkSMSession* session)
+{
+  vtkSMSessionProxyManager* manager = session ? session->GetSessionProxyManager() : nullptr;
+  if (manager && !manager->HasObserver(vtkCommand::UnRegisterEvent, UnregisterObserver))
+  {
+    manager->AddObserver(vtkCommand::UnRegisterEvent, UnregisterObserver);
+  }
+}
+
+void Connected(vtkObject*, unsigned long, void*, void* data)
+{
+  vtkProcessModule* module = vtkProcessModule::GetProcessModule();
+  if (module && data)
+  {
+    WatchSession(vtkSMSession::SafeDownCast(module->GetSession(*static_cast<vtkIdType*>(data))));
+  }
+}
+
+// The camera of the destroyed view, where the new one has the same
+// properties.
+void CopyCamera(vtkSMProxy* from, vtkSMProxy* to)
+{
+  for (const char* name : { "CameraPosition", "CameraFocalPoint", "CameraViewUp", "CameraViewAngle",
+         "CameraParallelScale", "CameraParallelProjection", "CenterOfRotation", "RotationFactor" })
+  {
+    vtkSMProperty* source = from->GetProperty(name);
+    vtkSMProperty* target = to->GetProperty(name);
+    if (source && target)
+    {
+      target->Copy(source);
+    }
+  }
+}
+}
+
+void vtkBrumeRenderViewInitializationHelper::Install()
+{
+  vtkProcessModule* module = vtkProcessModule::GetProcessModule();
+  if (!module || !vtkSMProxyManager::IsInitialized() || UnregisterObserver)
+  {
+    return;
+  }
+  UnregisterObserver = vtkSmartPointer<vtkCallbackCommand>::New();
+  UnregisterObserver->SetCallback(Unregistered);
+  ConnectionObserver = vtkSmartPointer<vtkCallbackCommand>::New();
+  ConnectionObserver->SetCallback(Connected);
+  module->AddObserver(vtkCommand::ConnectionCreatedEvent, ConnectionObserver);
+  vtkSmartPointer<vtkSessionIterator> sessions;
+  sessions.TakeReference(module->NewSessionIterator());
+  for (sessions->InitTraversal(); !sessions->IsDoneWithTraversal(); sessions->GoToNextItem())
+  {
+    WatchSession(vtkSMSession::SafeDownCast(sessions->GetCurrentSession()));
+  }
+}
+
+void vtkBrumeRenderViewInitializationHelper::PostInitializeProxy(
+  vtkSMProxy* proxy, vtkPVXMLElement*, vtkMTimeType)
+{
+  Destroyed last;
+  std::swap(last, Last); // taken once, whatever happens
+  auto* view = vtkSMViewProxy::SafeDownCast(proxy);
+  if (!view || !last.View || Age(last.When) > Window)
+  {
+    return;
+  }
+  vtkSMSessionProxyManager* manager = proxy->GetSessionProxyManager();
+  vtkNew<vtkSMParaViewPipelineControllerWithRendering> controller;
+  for (const auto& old : last.Representations)
+  {
+    vtkSMPropertyHelper input(old, "Input");
+    auto* source = vtkSMSourceProxy::SafeDownCast(input.GetAsProxy());
+    // Sources deleted since are not shown again.
+    if (!source || old->GetSessionProxyManager() != manager ||
+      !manager->GetProxyName("sources", source))
+    {
+      continue;
+    }
+    vtkSMProxy* shown = controller->Show(source, static_cast<int>(input.GetOutputPort()), view);
+    if (shown && std::strcmp(shown->GetXMLName(), old->GetXMLName()) == 0)
+    {
+      // The representation's settings (its type, colouring, colour map
+      // and opacity function), its input excepted.
+      shown->Copy(old, "vtkSMInputProperty");
+      shown->UpdateVTKObjects();
+    }
+  }
+  CopyCamera(last.View, proxy);
+  proxy->UpdateVTKObjects();
+}
+
+void vtkBrumeRenderViewInitializationHelper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+}
