@@ -7,6 +7,7 @@
 #include "vtkBrumeRendererScene.h"
 #include "vtkObjectFactory.h"
 #include "vtkPVSynchronizedRenderer.h"
+#include "vtkRenderWindowInteractor.h"
 
 vtkStandardNewMacro(vtkBrumePVRenderView);
 
@@ -45,9 +46,24 @@ void vtkBrumePVRenderView::SetExposure(double exposure)
   this->Pass->GetPipeline()->SetExposure(exposure);
 }
 
-void vtkBrumePVRenderView::SetProgressive(int progressive)
+void vtkBrumePVRenderView::SetProgressive(int mode)
 {
-  this->Pass->SetProgressive(progressive != 0);
+  this->ProgressiveMode = mode;
+}
+
+bool vtkBrumePVRenderView::RendersProgressively()
+{
+  // The GUI's own window (Qt's interactor): there the view renders again
+  // by itself while it refines (vtkBrumeRenderViewInitializationHelper).
+  vtkRenderWindowInteractor* interactor = this->GetInteractor();
+  return this->ProgressiveMode == 1 ||
+    (this->ProgressiveMode == 2 && interactor && interactor->IsA("QVTKInteractor"));
+}
+
+void vtkBrumePVRenderView::Render(bool interactive, bool skipRendering)
+{
+  this->Pass->SetProgressive(this->RendersProgressively());
+  this->Superclass::Render(interactive, skipRendering);
 }
 
 void vtkBrumePVRenderView::SetVolumeAlbedo(double r, double g, double b)
@@ -93,6 +109,7 @@ int vtkBrumePVRenderView::GetNumberOfViewUpdates()
 void vtkBrumePVRenderView::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "ProgressiveMode: " << this->ProgressiveMode << "\n";
   os << indent << "Pass:\n";
   this->Pass->PrintSelf(os, indent.GetNextIndent());
 }

@@ -13,9 +13,10 @@
  * Brume's depth.
  *
  * The particles are traced again only when something shown changes; a
- * camera move only updates the view-dependent textures. Progressive (off
- * by default here: a screenshot then holds the whole budget): each render
- * multiplies the particles by 4 until IsConverged().
+ * camera move only updates the view-dependent textures. Progressive (by
+ * default in the GUI's window only, so that a script's screenshot holds
+ * the whole budget): each render multiplies the particles by 4 until
+ * IsConverged(), and the GUI renders again by itself until then.
  *
  * In one process (the built-in session, pvbatch, or a pvserver of one
  * rank); a server of several ranks would light each rank's part alone.
@@ -44,7 +45,8 @@ public:
   vtkIdType GetNumberOfParticles();
   void SetSeed(vtkIdType seed);
   void SetExposure(double exposure);
-  void SetProgressive(int progressive);
+  /// 0 off, 1 on, 2 (the default) on in the GUI's window, off elsewhere.
+  void SetProgressive(int mode);
   void SetVolumeAlbedo(double r, double g, double b);
   void SetPhysicalLights(int physical);
   void SetLightIntensityScale(double scale);
@@ -57,6 +59,8 @@ public:
 
   /// True when the textures hold the whole budget of what is shown.
   bool IsConverged();
+  /// Whether renders refine step by step (SetProgressive()).
+  bool RendersProgressively();
 
   ///@{
   /// The pass's counters (vtkBrumePass): traces, progressive steps, and
@@ -69,12 +73,14 @@ public:
 protected:
   vtkBrumePVRenderView();
   ~vtkBrumePVRenderView() override;
+  void Render(bool interactive, bool skipRendering) override;
 
 private:
   vtkBrumePVRenderView(const vtkBrumePVRenderView&) = delete;
   void operator=(const vtkBrumePVRenderView&) = delete;
 
   vtkNew<vtkBrumePass> Pass;
+  int ProgressiveMode = 2;
 };
 
 #endif

@@ -5,6 +5,7 @@
 #include "vtkCommand.h"
 #include "vtkObjectFactory.h"
 #include "vtkProcessModule.h"
+#include "vtkRenderWindowInteractor.h"
 #include "vtkSMParaViewPipelineControllerWithRendering.h"
 #include "vtkSMProperty.h"
 #include "vtkSMPropertyHelper.h"
@@ -15,9 +16,11 @@
 #include "vtkSMViewProxy.h"
 #include "vtkSessionIterator.h"
 #include "vtkSmartPointer.h"
+#include "vtkWeakPointer.h"
 
 #include <chrono>
 #include <cstring>
+#include <map>
 #include <vector>
 
 vtkStandardNewMacro(vtkBrumeRenderViewInitializationHelper);
@@ -88,6 +91,64 @@ void Connected(vtkObject*, unsigned long, void*, void* data)
   }
 }
 
+// Progressive views in the GUI: after a render that did not trace the
+// whole budget (BrumeIsConverged), one more render once the interactor's
+// event loop is idle, until it did. Keyed by view.
+struct Refinement
+{
+  vtkWeakPointer<vtkSMViewProxy> View;
+  vtkWeakPointer<vtkRenderWindowInteractor> Interactor;
+};
+std::map<vtkSMProxy*, Refinement> Refining;
+vtkSmartPointer<vtkCallbackCommand> RenderObserver;
+vtkSmartPointer<vtkCallbackCommand> TimerObserver;
+
+void Rendered(vtkObject* caller, unsigned long, void*, void*)
+{
+  auto* view = vtkSMViewProxy::SafeDownCast(caller);
+  vtkRenderWindowInteractor* interactor = view ? view->GetInteractor() : nullptr;
+  vtkSMProperty* converged = view ? view->GetProperty("BrumeIsConverged") : nullptr;
+  if (!interactor || !converged || Refining.count(view))
+  {
+    return;
+  }
+  view->UpdatePropertyInformation(converged);
+  if (vtkSMPropertyHelper(converged).GetAsInt() != 0)
+  {
+    return;
+  }
+  Refining[view] = { view, interactor };
+  if (!interactor->HasObserver(vtkCommand::TimerEvent, TimerObserver))
+  {
+    interactor->AddObserver(vtkCommand::TimerEvent, TimerObserver);
+  }
+  interactor->CreateOneShotTimer(1);
+}
+
+void TimerFired(vtkObject* caller, unsigned long, void*, void*)
+{
+  std::vector<vtkSMViewProxy*> due;
+  for (auto it = Refining.begin(); it != Refining.end();)
+  {
+    if (it->second.Interactor == caller || !it->second.View || !it->second.Interactor)
+    {
+      if (it->second.View && it->second.Interactor)
+      {
+        due.push_back(it->second.View);
+      }
+      it = Refining.erase(it);
+    }
+    else
+    {
+      ++it;
+    }
+  }
+  for (vtkSMViewProxy* view : due)
+  {
+    view->StillRender(); // the next step; Rendered() asks for another if needed
+  }
+}
+
 // The camera of the destroyed view, where the new one has the same
 // properties.
 void CopyCamera(vtkSMProxy* from, vtkSMProxy* to)
@@ -114,6 +175,10 @@ void vtkBrumeRenderViewInitializationHelper::Install()
   }
   UnregisterObserver = vtkSmartPointer<vtkCallbackCommand>::New();
   UnregisterObserver->SetCallback(Unregistered);
+  RenderObserver = vtkSmartPointer<vtkCallbackCommand>::New();
+  RenderObserver->SetCallback(Rendered);
+  TimerObserver = vtkSmartPointer<vtkCallbackCommand>::New();
+  TimerObserver->SetCallback(TimerFired);
   ConnectionObserver = vtkSmartPointer<vtkCallbackCommand>::New();
   ConnectionObserver->SetCallback(Connected);
   module->AddObserver(vtkCommand::ConnectionCreatedEvent, ConnectionObserver);
@@ -131,6 +196,10 @@ void vtkBrumeRenderViewInitializationHelper::PostInitializeProxy(
   Destroyed last;
   std::swap(last, Last); // taken once, whatever happens
   auto* view = vtkSMViewProxy::SafeDownCast(proxy);
+  if (view && RenderObserver && !view->HasObserver(vtkCommand::EndEvent, RenderObserver))
+  {
+    view->AddObserver(vtkCommand::EndEvent, RenderObserver);
+  }
   if (!view || !last.View || Age(last.When) > Window)
   {
     return;

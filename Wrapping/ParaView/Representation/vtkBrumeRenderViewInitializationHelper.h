@@ -12,6 +12,11 @@
  * Volume representation, the array it was coloured by and its colour map
  * and opacity function), and takes its camera.
  *
+ * It also makes a progressive view refine by itself in the GUI: after a
+ * render that did not trace the whole budget, the view renders again once
+ * the GUI's event loop is idle (a one-shot timer of its interactor), step
+ * after step, the camera free to move meanwhile.
+ *
  * Install() (at the plugin's load, on the client) watches the session
  * proxy managers for representations and views unregistered.
  *

@@ -2,7 +2,7 @@
 set. It takes the input's active scalars and their own colour map and
 opacity function (those GetColorTransferFunction / GetOpacityTransferFunction
 and the Color Map Editor give), a new function fitted to the array's range,
-a function a display already uses (or whose range is locked) left as it is,
+a function whose range is set (or locked) left as it is,
 and a unit distance of about a cell, as a Volume display's: one Apply makes
 a medium, with no error. With "missing", an input with no scalars gets one
 message that names the property to set.
@@ -52,19 +52,18 @@ check(opacity is not None and opacity.GetNumberOfTuples() == len(points) // 4
       and abs(opacity.GetTuple2(1)[0] - high) < 1e-9,
       "one Apply makes a medium of the array's opacity function")
 
-# An array a display already colours, with the user's own colour map: the
-# medium takes that map as it is, not refitted.
+# An array a display already colours, with the user's own colour map (its
+# range set, as colouring a display leaves it): the medium takes that map
+# as it is, not refitted.
 elevation = Elevation(Input=wavelet, LowPoint=[-10, -10, -10], HighPoint=[10, 10, 10])
-view = CreateView("RenderView")
-display = Show(elevation, view)
-ColorBy(display, ("POINTS", "Elevation"))
 edited = GetColorTransferFunction("Elevation")
 edited.RGBPoints = [0.2, 0.1, 0.2, 0.9, 0.7, 1.0, 0.8, 0.4]
+edited.ScalarRangeInitialized = 1
 GetOpacityTransferFunction("Elevation").Points = [0.2, 0.0, 0.5, 0.0, 0.7, 0.3, 0.5, 0.0]
 used = BrumeMediumFromField(Input=elevation, Scalars=["POINTS", "Elevation"])
 check(used.LookupTable == edited and list(used.LookupTable.RGBPoints)[0] == 0.2
       and list(used.ScalarOpacityFunction.Points)[4] == 0.7,
-      "a colour map a display uses keeps the user's points")
+      "a colour map whose range is set keeps the user's points")
 
 # A locked range is not refitted either.
 scaled = Calculator(Input=wavelet, ResultArrayName="Scaled", Function="RTData*2")
@@ -73,5 +72,4 @@ locked.AutomaticRescaleRangeMode = "Never"
 locked.RGBPoints = [0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0]
 lockedMedium = BrumeMediumFromField(Input=scaled, Scalars=["POINTS", "Scaled"])
 check(list(lockedMedium.LookupTable.RGBPoints)[4] == 1.0, "a locked range stays as it is")
-Delete(view)
 finish()
