@@ -2,13 +2,13 @@
 #include "vtkBrumeCameraFollower.h"
 
 #include "vtkBrumeDataModelNames.h"
+#include "vtkBrumeSessions.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkCommand.h"
 #include "vtkNew.h"
 #include "vtkPVArrayInformation.h"
 #include "vtkPVDataInformation.h"
-#include "vtkProcessModule.h"
 #include "vtkSMPropertyHelper.h"
 #include "vtkSMProxyIterator.h"
 #include "vtkSMProxyManager.h"
@@ -16,7 +16,6 @@
 #include "vtkSMSession.h"
 #include "vtkSMSessionProxyManager.h"
 #include "vtkSMSourceProxy.h"
-#include "vtkSessionIterator.h"
 #include "vtkSmartPointer.h"
 
 #include <cstring>
@@ -25,7 +24,6 @@ namespace
 {
 vtkSmartPointer<vtkCallbackCommand> ViewObserver;
 vtkSmartPointer<vtkCallbackCommand> RegistrationObserver;
-vtkSmartPointer<vtkCallbackCommand> ConnectionObserver;
 
 // Whether the reconstruction's textures are known not to depend on the
 // viewpoint (its data information carries BrumeViewDependentObjects = 0):
@@ -101,20 +99,11 @@ void WatchSession(vtkSMSession* session)
   }
 }
 
-void Connected(vtkObject*, unsigned long, void*, void* data)
-{
-  vtkProcessModule* module = vtkProcessModule::GetProcessModule();
-  if (module && data)
-  {
-    WatchSession(vtkSMSession::SafeDownCast(module->GetSession(*static_cast<vtkIdType*>(data))));
-  }
-}
 }
 
 void vtkBrumeCameraFollower::Install()
 {
-  vtkProcessModule* module = vtkProcessModule::GetProcessModule();
-  if (!module || !vtkSMProxyManager::IsInitialized() || ViewObserver)
+  if (ViewObserver || !vtkSMProxyManager::IsInitialized())
   {
     return;
   }
@@ -122,15 +111,7 @@ void vtkBrumeCameraFollower::Install()
   ViewObserver->SetCallback(BeforeRender);
   RegistrationObserver = vtkSmartPointer<vtkCallbackCommand>::New();
   RegistrationObserver->SetCallback(Registered);
-  ConnectionObserver = vtkSmartPointer<vtkCallbackCommand>::New();
-  ConnectionObserver->SetCallback(Connected);
-  module->AddObserver(vtkCommand::ConnectionCreatedEvent, ConnectionObserver);
-  vtkSmartPointer<vtkSessionIterator> sessions;
-  sessions.TakeReference(module->NewSessionIterator());
-  for (sessions->InitTraversal(); !sessions->IsDoneWithTraversal(); sessions->GoToNextItem())
-  {
-    WatchSession(vtkSMSession::SafeDownCast(sessions->GetCurrentSession()));
-  }
+  vtkBrumeWatchSessions(WatchSession);
 }
 
 int vtkBrumeCameraFollower::Follow(vtkSMProxy* proxy)

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumeRenderViewInitializationHelper.h"
 
+#include "vtkBrumeSessions.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkObjectFactory.h"
-#include "vtkProcessModule.h"
 #include "vtkRenderWindowInteractor.h"
 #include "vtkSMParaViewPipelineControllerWithRendering.h"
 #include "vtkSMProperty.h"
@@ -14,7 +14,6 @@
 #include "vtkSMSessionProxyManager.h"
 #include "vtkSMSourceProxy.h"
 #include "vtkSMViewProxy.h"
-#include "vtkSessionIterator.h"
 #include "vtkSmartPointer.h"
 #include "vtkWeakPointer.h"
 
@@ -39,7 +38,6 @@ struct Destroyed
 };
 Destroyed Last;
 vtkSmartPointer<vtkCallbackCommand> UnregisterObserver;
-vtkSmartPointer<vtkCallbackCommand> ConnectionObserver;
 
 double Age(Clock::time_point when)
 {
@@ -79,15 +77,6 @@ void WatchSession(vtkSMSession* session)
   if (manager && !manager->HasObserver(vtkCommand::UnRegisterEvent, UnregisterObserver))
   {
     manager->AddObserver(vtkCommand::UnRegisterEvent, UnregisterObserver);
-  }
-}
-
-void Connected(vtkObject*, unsigned long, void*, void* data)
-{
-  vtkProcessModule* module = vtkProcessModule::GetProcessModule();
-  if (module && data)
-  {
-    WatchSession(vtkSMSession::SafeDownCast(module->GetSession(*static_cast<vtkIdType*>(data))));
   }
 }
 
@@ -168,8 +157,7 @@ void CopyCamera(vtkSMProxy* from, vtkSMProxy* to)
 
 void vtkBrumeRenderViewInitializationHelper::Install()
 {
-  vtkProcessModule* module = vtkProcessModule::GetProcessModule();
-  if (!module || !vtkSMProxyManager::IsInitialized() || UnregisterObserver)
+  if (UnregisterObserver || !vtkSMProxyManager::IsInitialized())
   {
     return;
   }
@@ -179,15 +167,7 @@ void vtkBrumeRenderViewInitializationHelper::Install()
   RenderObserver->SetCallback(Rendered);
   TimerObserver = vtkSmartPointer<vtkCallbackCommand>::New();
   TimerObserver->SetCallback(TimerFired);
-  ConnectionObserver = vtkSmartPointer<vtkCallbackCommand>::New();
-  ConnectionObserver->SetCallback(Connected);
-  module->AddObserver(vtkCommand::ConnectionCreatedEvent, ConnectionObserver);
-  vtkSmartPointer<vtkSessionIterator> sessions;
-  sessions.TakeReference(module->NewSessionIterator());
-  for (sessions->InitTraversal(); !sessions->IsDoneWithTraversal(); sessions->GoToNextItem())
-  {
-    WatchSession(vtkSMSession::SafeDownCast(sessions->GetCurrentSession()));
-  }
+  vtkBrumeWatchSessions(WatchSession);
 }
 
 void vtkBrumeRenderViewInitializationHelper::PostInitializeProxy(
