@@ -8,6 +8,8 @@
 #   -DSETUP=script.py    run first (--script): the user's own pipeline
 #   -DTEST_DIRECTORY=dir emptied first; $PARAVIEW_TEST_ROOT in the events
 #   -DCHECK=command;args run after the GUI exits, and must exit 0
+#   -DFORBID=a;b         strings the GUI must not print (its errors and
+#                        warnings, as the Output Messages window shows them)
 if ("$ENV{DISPLAY}" STREQUAL "")
   message(STATUS "skipped: the ParaView GUI needs an X display")
   return ()
@@ -27,6 +29,12 @@ execute_process(COMMAND "${PARAVIEW}" ${arguments}
 if (NOT rc EQUAL 0)
   message(FATAL_ERROR "the GUI could not play ${EVENTS} (exit code ${rc})\nstdout: ${out}\nstderr: ${err}")
 endif ()
+foreach (forbidden IN LISTS FORBID)
+  string(FIND "${out}${err}" "${forbidden}" found)
+  if (NOT found EQUAL -1)
+    message(FATAL_ERROR "the GUI printed '${forbidden}'\nstdout: ${out}\nstderr: ${err}")
+  endif ()
+endforeach ()
 message(STATUS "the GUI played ${EVENTS}")
 if (CHECK)
   execute_process(COMMAND ${CHECK} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err
