@@ -3,7 +3,11 @@
 # UndefinedBehaviorSanitizer in build-fuzz/ and runs each for FUZZ_SECONDS
 # (default 300; FUZZ_TARGETS picks targets) from a seed corpus: the shipped scenes, the malformed scenes of
 # Testing/Data/BadScenes and its VDB files; for FuzzSceneFiles, the meshes and
-# volumes there and in Data/, each behind the byte that picks its format. Findings land in build-fuzz/findings.
+# volumes there and in Data/, each behind the byte that picks its format (the
+# malformed ones include files announcing absurd component counts). An input
+# slower than FUZZ_TIMEOUT seconds (default 10) or using more than FUZZ_RSS_MB
+# (default 2048, AddressSanitizer's shadow included) counts as a finding.
+# Findings land in build-fuzz/findings.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
@@ -44,7 +48,8 @@ for target in ${FUZZ_TARGETS:-FuzzSceneReader FuzzSceneFiles FuzzOpenVDBReader};
   [ "$target" = FuzzSceneFiles ] && corpus=file-corpus
   echo "== $target, $seconds s"
   (cd "$work" && "$root/build-fuzz/bin/$target" "$corpus" -max_total_time="$seconds" \
-    -max_len=65536 -rss_limit_mb=4096 -artifact_prefix="$root/build-fuzz/findings/$target-" \
+    -max_len=65536 -timeout="${FUZZ_TIMEOUT:-10}" -rss_limit_mb="${FUZZ_RSS_MB:-2048}" \
+    -artifact_prefix="$root/build-fuzz/findings/$target-" \
     -print_final_stats=1) 2>&1 | grep -E "^#[0-9]+.*DONE|stat::number_of_executed_units|ERROR|SUMMARY" || status=1
 done
 ls build-fuzz/findings

@@ -1,9 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumeSceneFileChecks.h"
 
-#include "vtkExecutive.h"
-#include "vtkXMLUnstructuredDataReader.h"
-
 #include <vtksys/SystemInformation.hxx>
 
 #include <algorithm>
@@ -619,56 +616,6 @@ bool StlLooksComplete(const std::filesystem::path& file, std::string& error)
   return true;
 }
 
-// A VTK XML file announces its points and cells in its Piece elements; VTK
-// allocates them before it reads a value (an absurd count aborts the
-// process). After the reader has parsed the header (UpdateInformation), the
-// counts must fit in memory and, unless the data are compressed, in the file:
-// every coordinate and every cell takes at least one byte in any encoding.
-bool XmlCountsFit(
-  vtkXMLUnstructuredDataReader* reader, const std::filesystem::path& file, std::string& error)
-{
-  if (!reader->GetExecutive()->UpdateInformation())
-  {
-    error = "cannot read geometry from '" + file.string() + "' (missing, corrupt or empty)";
-    return false;
-  }
-  reader->SetupUpdateExtent(0, 1, 0);
-  const double points = static_cast<double>(reader->GetNumberOfPoints());
-  const double cells = static_cast<double>(reader->GetNumberOfCells());
-  std::ifstream in(file, std::ios::binary);
-  in.seekg(0, std::ios::end);
-  const double size = static_cast<double>(in.tellg());
-  in.seekg(0);
-  char head[1024] = {};
-  in.read(head, sizeof(head));
-  const std::string start(head, static_cast<std::size_t>(in.gcount()));
-  const auto root = start.find("<VTKFile");
-  const bool compressed =
-    root != std::string::npos && start.find("compressor=", root) < start.find('>', root);
-  // In memory: float coordinates, and per cell an offset and one index.
-  const double bytes = 12.0 * points + 16.0 * cells;
-  const double memory = vtkBrumeSceneFileChecks::UsableMemory();
-  const std::string announced =
-    "'" + file.string() + "' announces " + Count(points) + " points and " + Count(cells) + " cells";
-  if (points < 0 || cells < 0)
-  {
-    error = announced + ": counts cannot be negative";
-    return false;
-  }
-  if (memory > 0.0 && bytes > memory)
-  {
-    error = announced + " (at least " + Count(bytes) +
-      " bytes): more than half of this machine's memory (" + Count(memory) + " bytes)";
-    return false;
-  }
-  if (!compressed && size < 3.0 * points + cells)
-  {
-    error = announced + " (at least " + Count(3.0 * points + cells) +
-      " bytes of data), the file holds " + Count(size) + " bytes";
-    return false;
-  }
-  return true;
-}
 }
 
 bool vtkBrumeSceneFileChecks::Ply(const std::filesystem::path& file, std::string& error)
@@ -684,12 +631,6 @@ bool vtkBrumeSceneFileChecks::Obj(const std::filesystem::path& file, std::string
 bool vtkBrumeSceneFileChecks::Stl(const std::filesystem::path& file, std::string& error)
 {
   return StlLooksComplete(file, error);
-}
-
-bool vtkBrumeSceneFileChecks::VtkXml(
-  vtkXMLUnstructuredDataReader* reader, const std::filesystem::path& file, std::string& error)
-{
-  return XmlCountsFit(reader, file, error);
 }
 
 double vtkBrumeSceneFileChecks::UsableMemory()

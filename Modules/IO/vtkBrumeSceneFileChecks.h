@@ -24,10 +24,18 @@ public:
   static bool Obj(const std::filesystem::path& file, std::string& error);
   /// Binary STL: 84 + 50 n bytes for the n triangles its header announces.
   static bool Stl(const std::filesystem::path& file, std::string& error);
-  /// VTP and VTU, through `reader`'s own header parse (it is given the file
-  /// name): the points and cells fit in memory and, uncompressed, in the file.
+  /// VTP and VTU: XmlArrays(), then through `reader`'s own header parse (it
+  /// is given the file name): the points and cells fit in memory and,
+  /// uncompressed, in the file.
   static bool VtkXml(
     vtkXMLUnstructuredDataReader* reader, const std::filesystem::path& file, std::string& error);
+  /// Any VTK XML file (VTI, VTP, VTU), from its XML alone, before a reader
+  /// sees it: every array announces 1 to MaxComponents components, and all
+  /// of them (components x the piece's points or cells x the type's size)
+  /// fit in memory. A file that is not VTK XML passes (its reader fails).
+  static bool XmlArrays(const std::filesystem::path& file, std::string& error);
+  /// The most components an array of a file a scene names may announce.
+  static constexpr double MaxComponents = 256.0;
   /// What a file's announced sizes may ask for: half of this machine's
   /// physical memory, in bytes (0 when it cannot be told).
   static double UsableMemory();

@@ -327,6 +327,15 @@ vtkSmartPointer<vtkImageData> vtkBrumeSceneFileParser::ParseDensity(
     {
       return nullptr;
     }
+    // The arrays the file announces, from its XML alone: VTK's reader sets
+    // up every component an array announces before anything is checked.
+    std::string announced;
+    if (std::filesystem::exists(relative(file)) &&
+      !vtkBrumeSceneFileChecks::XmlArrays(relative(file), announced))
+    {
+      p.Fail(at + ".density.vti", announced);
+      return nullptr;
+    }
     vtkNew<vtkXMLImageDataReader> reader;
     reader->SetFileName(relative(file).string().c_str());
     const bool display = vtkObject::GetGlobalWarningDisplay();

@@ -1,0 +1,244 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The checks of VTK XML files (vtkBrumeSceneFileChecks.h): what their
+// headers announce, read before VTK's readers allocate it.
+#include "vtkBrumeSceneFileChecks.h"
+
+#include "vtkExecutive.h"
+#include "vtkNew.h"
+#include "vtkXMLDataElement.h"
+#include "vtkXMLDataParser.h"
+#include "vtkXMLUnstructuredDataReader.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace
+{
+std::string Count(double n)
+{
+  std::ostringstream os;
+  os.precision(15);
+  os << n;
+  return os.str();
+}
+
+// A VTK XML file announces its points and cells in its Piece elements; VTK
+// allocates them before it reads a value (an absurd count aborts the
+// process). After the reader has parsed the header (UpdateInformation), the
+// counts must fit in memory and, unless the data are compressed, in the file:
+// every coordinate and every cell takes at least one byte in any encoding.
+bool XmlCountsFit(
+  vtkXMLUnstructuredDataReader* reader, const std::filesystem::path& file, std::string& error)
+{
+  if (!reader->GetExecutive()->UpdateInformation())
+  {
+    error = "cannot read geometry from '" + file.string() + "' (missing, corrupt or empty)";
+    return false;
+  }
+  reader->SetupUpdateExtent(0, 1, 0);
+  const double points = static_cast<double>(reader->GetNumberOfPoints());
+  const double cells = static_cast<double>(reader->GetNumberOfCells());
+  std::ifstream in(file, std::ios::binary);
+  in.seekg(0, std::ios::end);
+  const double size = static_cast<double>(in.tellg());
+  in.seekg(0);
+  char head[1024] = {};
+  in.read(head, sizeof(head));
+  const std::string start(head, static_cast<std::size_t>(in.gcount()));
+  const auto root = start.find("<VTKFile");
+  const bool compressed =
+    root != std::string::npos && start.find("compressor=", root) < start.find('>', root);
+  // In memory: float coordinates, and per cell an offset and one index.
+  const double bytes = 12.0 * points + 16.0 * cells;
+  const double memory = vtkBrumeSceneFileChecks::UsableMemory();
+  const std::string announced =
+    "'" + file.string() + "' announces " + Count(points) + " points and " + Count(cells) + " cells";
+  if (points < 0 || cells < 0)
+  {
+    error = announced + ": counts cannot be negative";
+    return false;
+  }
+  if (memory > 0.0 && bytes > memory)
+  {
+    error = announced + " (at least " + Count(bytes) +
+      " bytes): more than half of this machine's memory (" + Count(memory) + " bytes)";
+    return false;
+  }
+  if (!compressed && size < 3.0 * points + cells)
+  {
+    error = announced + " (at least " + Count(3.0 * points + cells) +
+      " bytes of data), the file holds " + Count(size) + " bytes";
+    return false;
+  }
+  return true;
+}
+
+// Bytes per value of a VTK XML DataArray type (0: unknown).
+double TypeSize(const char* type)
+{
+  if (!type)
+  {
+    return 0.0;
+  }
+  const std::string t = type;
+  if (t == "Int8" || t == "UInt8" || t == "Char" || t == "UnsignedChar" || t == "Bit" ||
+    t == "String")
+  {
+    return 1.0;
+  }
+  if (t == "Int16" || t == "UInt16")
+  {
+    return 2.0;
+  }
+  if (t == "Int32" || t == "UInt32" || t == "Float32")
+  {
+    return 4.0;
+  }
+  return 8.0; // Int64, UInt64, Float64, IdType
+}
+
+// A numeric attribute of an element, as a double (`otherwise` when absent
+// or not a number).
+double Number(vtkXMLDataElement* element, const char* name, double otherwise)
+{
+  const char* text = element->GetAttribute(name);
+  if (!text)
+  {
+    return otherwise;
+  }
+  char* end = nullptr;
+  const double value = std::strtod(text, &end);
+  return end != text ? value : otherwise;
+}
+
+// The points and cells of an image's extent attribute ("x0 x1 y0 y1 z0 z1"),
+// and its points per axis ("nx x ny x nz").
+bool ExtentCounts(
+  vtkXMLDataElement* element, const char* name, double& points, double& cells, std::string& dims)
+{
+  const char* text = element->GetAttribute(name);
+  if (!text)
+  {
+    return false;
+  }
+  std::istringstream in(text);
+  double e[6];
+  for (double& x : e)
+  {
+    if (!(in >> x))
+    {
+      return false;
+    }
+  }
+  points = cells = 1.0;
+  dims.clear();
+  for (int a = 0; a < 3; ++a)
+  {
+    const double n = std::max(0.0, e[2 * a + 1] - e[2 * a] + 1.0);
+    points *= n;
+    cells *= std::max(1.0, n - 1.0);
+    dims += (a ? " x " : "") + Count(n);
+  }
+  return true;
+}
+
+// Every DataArray of a VTK XML file's pieces, from the file's XML alone
+// (before a reader sets up its arrays: VTK's readers loop over every
+// component an array announces, and allocate components x values): at
+// most MaxComponents components each, and all of them (components x the
+// piece's points or cells x the type's size) within memory.
+bool XmlArraysFit(const std::filesystem::path& file, std::string& error)
+{
+  vtkNew<vtkXMLDataParser> parser;
+  parser->SetFileName(file.string().c_str());
+  parser->SetIgnoreCharacterData(1); // the structure only, not inline data
+  const bool display = vtkObject::GetGlobalWarningDisplay();
+  vtkObject::GlobalWarningDisplayOff(); // a file that is not XML is the reader's to report
+  const int parsed = parser->Parse();
+  vtkObject::SetGlobalWarningDisplay(display);
+  if (!parsed || !parser->GetRootElement())
+  {
+    return true; // not VTK XML: the reader says what is wrong
+  }
+  vtkXMLDataElement* dataset = parser->GetRootElement()->GetNestedElement(0);
+  if (!dataset)
+  {
+    return true;
+  }
+  double bytes = 0.0;
+  std::string dims; // an image's points per axis, as its pieces announce them
+  for (int p = 0; p < dataset->GetNumberOfNestedElements(); ++p)
+  {
+    vtkXMLDataElement* piece = dataset->GetNestedElement(p);
+    if (!piece || std::strcmp(piece->GetName(), "Piece") != 0)
+    {
+      continue;
+    }
+    double points = Number(piece, "NumberOfPoints", 0.0);
+    double cells = Number(piece, "NumberOfCells", 0.0) + Number(piece, "NumberOfPolys", 0.0) +
+      Number(piece, "NumberOfStrips", 0.0) + Number(piece, "NumberOfLines", 0.0) +
+      Number(piece, "NumberOfVerts", 0.0);
+    std::string pieceDims;
+    if (ExtentCounts(piece, "Extent", points, cells, pieceDims) && dims.empty())
+    {
+      dims = pieceDims + " points and ";
+    }
+    else if (dims.empty() && piece->GetAttribute("NumberOfPoints"))
+    {
+      dims = Count(points) + " points and " + Count(cells) + " cells and ";
+    }
+    for (int g = 0; g < piece->GetNumberOfNestedElements(); ++g)
+    {
+      vtkXMLDataElement* group = piece->GetNestedElement(g);
+      const char* kind = group ? group->GetName() : nullptr;
+      const bool perPoint =
+        kind && (!std::strcmp(kind, "PointData") || !std::strcmp(kind, "Points"));
+      const bool perCell = kind && !std::strcmp(kind, "CellData");
+      for (int a = 0; (perPoint || perCell) && a < group->GetNumberOfNestedElements(); ++a)
+      {
+        vtkXMLDataElement* array = group->GetNestedElement(a);
+        if (!array || std::strcmp(array->GetName(), "DataArray") != 0)
+        {
+          continue;
+        }
+        const double components = Number(array, "NumberOfComponents", 1.0);
+        const char* name = array->GetAttribute("Name");
+        const std::string which =
+          name ? "array '" + std::string(name).substr(0, 80) + "'" : "an array";
+        if (!(components >= 1.0) || components > vtkBrumeSceneFileChecks::MaxComponents)
+        {
+          error = "'" + file.string() + "' announces " + Count(components) + " components in " +
+            which + ": Brume reads arrays of 1 to " +
+            Count(vtkBrumeSceneFileChecks::MaxComponents) + " components";
+          return false;
+        }
+        bytes += components * (perPoint ? points : cells) * TypeSize(array->GetAttribute("type"));
+      }
+    }
+  }
+  const double memory = vtkBrumeSceneFileChecks::UsableMemory();
+  if (memory > 0.0 && bytes > memory)
+  {
+    error = "'" + file.string() + "' announces " + dims + "arrays of " + Count(bytes) +
+      " bytes (components x values x type): more than half of this machine's memory (" +
+      Count(memory) + " bytes)";
+    return false;
+  }
+  return true;
+}
+}
+
+bool vtkBrumeSceneFileChecks::VtkXml(
+  vtkXMLUnstructuredDataReader* reader, const std::filesystem::path& file, std::string& error)
+{
+  return XmlArraysFit(file, error) && XmlCountsFit(reader, file, error);
+}
+
+bool vtkBrumeSceneFileChecks::XmlArrays(const std::filesystem::path& file, std::string& error)
+{
+  return XmlArraysFit(file, error);
+}
