@@ -9,26 +9,14 @@
 #include "vtkBrumeSMP.h"
 #include "vtkVersion.h"
 
+#include <exception>
 #include <iostream>
+#include <new>
 
-int main(int argc, char* argv[])
+namespace
 {
-  const vtkBrumeProcesses::Session processes(&argc, &argv); // MPI, when mpirun started brume
-  BrumeCommandLine line;
-  const int rc = ParseCommandLine(argc, argv, line);
-  if (rc >= 0)
-  {
-    return rc;
-  }
-  vtkBrumeSMP::UseAllCores();
-  BrumeOutputWindow::Install();
-  // --window chooses the render window before anything renders; without it
-  // the first render chooses (BRUME_RENDER_WINDOW, else X or EGL).
-  if (!line.Window.empty() && !vtkBrumeRenderWindowSelection::Install(line.Window.c_str()))
-  {
-    std::cerr << "brume: " << vtkBrumeRenderWindowSelection::GetLastError() << ".\n";
-    return 1;
-  }
+int RunCommand(BrumeCommandLine& line)
+{
   using Command = BrumeCommandLine::Command;
   switch (line.Run)
   {
@@ -50,4 +38,41 @@ int main(int argc, char* argv[])
       break;
   }
   return 2;
+}
+}
+
+int main(int argc, char* argv[])
+{
+  const vtkBrumeProcesses::Session processes(&argc, &argv); // MPI, when mpirun started brume
+  BrumeCommandLine line;
+  const int rc = ParseCommandLine(argc, argv, line);
+  if (rc >= 0)
+  {
+    return rc;
+  }
+  vtkBrumeSMP::UseAllCores();
+  BrumeOutputWindow::Install();
+  // --window chooses the render window before anything renders; without it
+  // the first render chooses (BRUME_RENDER_WINDOW, else X or EGL).
+  if (!line.Window.empty() && !vtkBrumeRenderWindowSelection::Install(line.Window.c_str()))
+  {
+    std::cerr << "brume: " << vtkBrumeRenderWindowSelection::GetLastError() << ".\n";
+    return 1;
+  }
+  // Memory that cannot be had (an image or a run too large for this
+  // machine) ends the command with a message, not an abort.
+  try
+  {
+    return RunCommand(line);
+  }
+  catch (const std::bad_alloc&)
+  {
+    std::cerr << "brume: out of memory: this machine cannot hold what the command asks for "
+                 "(a smaller --size, or fewer --particles).\n";
+  }
+  catch (const std::exception& e)
+  {
+    std::cerr << "brume: " << e.what() << ".\n";
+  }
+  return 1;
 }

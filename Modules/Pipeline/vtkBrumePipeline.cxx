@@ -25,8 +25,11 @@
 #include "vtkRendererCollection.h"
 #include "vtkTrivialProducer.h"
 
+#include <vtksys/SystemInformation.hxx>
+
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 // The OpenGL slice volume mapper and float capture, whoever links us.
 VTK_MODULE_INIT(vtkBrumeRenderingOpenGL2);
@@ -401,6 +404,26 @@ vtkSmartPointer<vtkImageData> vtkBrumePipeline::RenderImage(int supersample)
   if (supersample < 1 || supersample > 16)
   {
     vtkErrorMacro("RenderImage's supersampling must be in [1, 16], not " << supersample << ".");
+    this->Fail("rendering");
+    return nullptr;
+  }
+  // The image's memory, checked before any is allocated: the window's
+  // framebuffers, the float texture the capture draws into, its readback
+  // and the 8-bit image, about 64 bytes a pixel (16384^2 measured 59 under
+  // Mesa); beyond that the OpenGL driver fails and VTK's readback crashes.
+  const double pixels = static_cast<double>(this->Size[0]) * this->Size[1];
+  const double needed = 64.0 * pixels;
+  vtksys::SystemInformation system;
+  system.RunMemoryCheck();
+  const double usable = 0.5 * static_cast<double>(system.GetTotalPhysicalMemory()) * 1048576.0;
+  if (usable > 0.0 && needed > usable)
+  {
+    vtkErrorMacro("An image of " << this->Size[0] << " x " << this->Size[1] << " needs about "
+                                 << std::lround(needed / 1e9)
+                                 << " GB here (framebuffers and the float image): more than half "
+                                    "of this machine's memory ("
+                                 << std::lround(usable / 1e9)
+                                 << " GB); choose a smaller Size (brume: --size).");
     this->Fail("rendering");
     return nullptr;
   }

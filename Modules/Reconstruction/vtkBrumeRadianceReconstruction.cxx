@@ -23,6 +23,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <new>
 
 vtkStandardNewMacro(vtkBrumeRadianceReconstruction);
 vtkCxxSetObjectMacro(vtkBrumeRadianceReconstruction, Camera, vtkCamera);
@@ -56,6 +57,25 @@ int vtkBrumeRadianceReconstruction::FillInputPortInformation(int port, vtkInform
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), port == 0 ? "vtkDataObject" : "vtkPolyData");
   return 1;
+}
+
+vtkTypeBool vtkBrumeRadianceReconstruction::ProcessRequest(
+  vtkInformation* request, vtkInformationVector** inputs, vtkInformationVector* outputs)
+{
+  try
+  {
+    return this->Superclass::ProcessRequest(request, inputs, outputs);
+  }
+  catch (const std::bad_alloc&)
+  {
+    if (this->Controller && this->Controller->GetNumberOfProcesses() > 1)
+    {
+      throw; // mpirun ends the run, where a failed request would leave the others waiting
+    }
+    vtkErrorMacro("ran out of memory reconstructing the textures: fewer particles, a larger "
+                  "RadiosityThreshold or smaller resolutions");
+    return 0;
+  }
 }
 
 int vtkBrumeRadianceReconstruction::RequestData(

@@ -345,6 +345,10 @@ protected:
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  // Memory that cannot be had fails the request with a message (in one
+  // process: across processes the others would wait in a collective).
+  vtkTypeBool ProcessRequest(
+    vtkInformation* request, vtkInformationVector** inputs, vtkInformationVector* outputs) override;
 
   double EyePosition[3]; // the default view's position (brume::PinholeCamera)
   double RadiosityThreshold = 128.0;

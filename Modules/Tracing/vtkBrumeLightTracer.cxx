@@ -22,6 +22,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <new>
 #include <vector>
 
 vtkStandardNewMacro(vtkBrumeLightTracer);
@@ -154,7 +155,19 @@ vtkTypeBool vtkBrumeLightTracer::ProcessRequest(
     output->PrepareForNewData();
     this->Returned->SetExpecting(false);
   }
-  return this->Superclass::ProcessRequest(request, inputVector, outputVector);
+  // Memory that cannot be had fails the request with a message, instead of
+  // aborting the caller's process (VTK's executives do not catch).
+  try
+  {
+    return this->Superclass::ProcessRequest(request, inputVector, outputVector);
+  }
+  catch (const std::bad_alloc&)
+  {
+    vtkErrorMacro("ran out of memory tracing " << this->NumberOfParticles
+                                               << " particles: trace fewer, or set a MemoryLimit "
+                                                  "(the pipeline then traces in batches)");
+    return 0;
+  }
 }
 
 // [first, end) of the run, and this piece's share of it; false (with an
