@@ -22,6 +22,40 @@ std::string Count(double n)
   return os.str();
 }
 
+// Reads one line (without its end of line) of at most `limit` characters:
+// a longer line sets `tooLong` and ends the read there, so that a file with
+// no line breaks costs `limit` bytes, not its size. False at the end of the
+// stream with nothing read.
+constexpr std::size_t MaxLine = std::size_t(1) << 20; // 1 MiB
+bool ReadLine(std::istream& in, std::string& line, bool& tooLong, std::size_t limit = MaxLine)
+{
+  line.clear();
+  tooLong = false;
+  std::streambuf* buffer = in.rdbuf();
+  for (bool any = false;; any = true)
+  {
+    const int c = buffer->sbumpc();
+    if (c == std::char_traits<char>::eof())
+    {
+      if (!any)
+      {
+        in.setstate(std::ios::eofbit | std::ios::failbit);
+      }
+      return any;
+    }
+    if (c == '\n')
+    {
+      return true;
+    }
+    if (line.size() >= limit)
+    {
+      tooLong = true;
+      return true;
+    }
+    line.push_back(static_cast<char>(c));
+  }
+}
+
 struct PlyProperty
 {
   bool List = false;
@@ -193,11 +227,17 @@ bool PlyBodyConsistent(std::istream& in, const std::filesystem::path& file,
       if (text)
       {
         // VTK reads an ASCII row as one line.
+        bool tooLong = false;
         do
         {
-          if (!std::getline(in, line))
+          if (!ReadLine(in, line, tooLong))
           {
             error = name + " is truncated: element '" + e.Name + "' has fewer rows than announced";
+            return false;
+          }
+          if (tooLong)
+          {
+            error = name + ": a row of element '" + e.Name + "' is longer than 1 MiB";
             return false;
           }
         } while (line.find_first_not_of(" \t\r") == std::string::npos);
@@ -220,6 +260,13 @@ bool PlyBodyConsistent(std::istream& in, const std::filesystem::path& file,
           return false;
         }
         const bool indices = e.Name == "face" && property.Name == "vertex_indices";
+        if (indices && count < 3)
+        {
+          // Also what ends a body of zeros announcing billions of faces at
+          // its first row, not after reading them all.
+          error = name + ": a face has " + Count(count) + " vertices, not at least 3" + where();
+          return false;
+        }
         for (double k = 0; k < count; ++k)
         {
           double value = 0;
@@ -319,8 +366,13 @@ bool ReadPlyHeader(
     return false;
   };
   std::vector<PlyElement>& elements = header.Elements;
-  while (std::getline(in, line))
+  bool tooLong = false;
+  while (ReadLine(in, line, tooLong, 4096))
   {
+    if (tooLong)
+    {
+      return malformed("longer than 4096 characters");
+    }
     if (!line.empty() && line.back() == '\r')
     {
       line.pop_back();
@@ -434,7 +486,8 @@ bool PlyLooksComplete(const std::filesystem::path& file, std::string& error)
     error = "cannot open '" + file.string() + "'";
     return false;
   }
-  if (!std::getline(in, line) || line.rfind("ply", 0) != 0)
+  bool tooLong = false;
+  if (!ReadLine(in, line, tooLong, 16) || line.rfind("ply", 0) != 0)
   {
     error = "'" + file.string() + "' is not a PLY file (no 'ply' magic)";
     return false;
@@ -521,9 +574,16 @@ bool ObjIndicesInRange(const std::filesystem::path& file, std::string& error)
     return *end == '\0' && i == std::floor(i) && i != 0 &&
       (i > 0 ? i <= defined[kind] : -i <= defined[kind]);
   };
-  while (std::getline(in, line))
+  bool tooLong = false;
+  while (ReadLine(in, line, tooLong))
   {
     ++number;
+    if (tooLong)
+    {
+      error =
+        "'" + file.string() + "' line " + Count(number) + ": longer than 1 MiB: not an OBJ file";
+      return false;
+    }
     std::istringstream words(line);
     std::string word;
     words >> word;
@@ -567,55 +627,6 @@ bool ObjIndicesInRange(const std::filesystem::path& file, std::string& error)
   return true;
 }
 
-// A binary STL announces its triangle count after an 80-byte header and
-// holds 50 bytes per triangle; VTK's reader trusts whatever is there (a
-// truncated file renders its first triangles). ASCII files (the word 'solid'
-// followed by text only) have no count to check.
-bool StlLooksComplete(const std::filesystem::path& file, std::string& error)
-{
-  std::ifstream in(file, std::ios::binary);
-  if (!in)
-  {
-    error = "cannot open '" + file.string() + "'";
-    return false;
-  }
-  in.seekg(0, std::ios::end);
-  const double size = static_cast<double>(in.tellg());
-  in.seekg(0);
-  char head[512] = {};
-  in.read(head, sizeof(head));
-  const std::streamsize got = in.gcount();
-  bool text = got >= 5 && std::string(head, 5) == "solid";
-  for (std::streamsize i = 0; text && i < got; ++i)
-  {
-    const auto c = static_cast<unsigned char>(head[i]);
-    text = c == '\n' || c == '\r' || c == '\t' || (c >= 32 && c < 127);
-  }
-  if (text)
-  {
-    return true;
-  }
-  if (size < 84)
-  {
-    error = "'" + file.string() +
-      "' is truncated: a binary STL file has an 84-byte header, the file holds " + Count(size) +
-      " bytes";
-    return false;
-  }
-  const auto* b = reinterpret_cast<const unsigned char*>(head + 80);
-  const double triangles =
-    static_cast<double>(static_cast<std::uint32_t>(b[0]) | static_cast<std::uint32_t>(b[1]) << 8 |
-      static_cast<std::uint32_t>(b[2]) << 16 | static_cast<std::uint32_t>(b[3]) << 24);
-  const double needed = 84.0 + 50.0 * triangles;
-  if (size < needed)
-  {
-    error = "'" + file.string() + "' is truncated: its header announces " + Count(triangles) +
-      " triangles (" + Count(needed) + " bytes), the file holds " + Count(size) + " bytes";
-    return false;
-  }
-  return true;
-}
-
 }
 
 bool vtkBrumeSceneFileChecks::Ply(const std::filesystem::path& file, std::string& error)
@@ -626,11 +637,6 @@ bool vtkBrumeSceneFileChecks::Ply(const std::filesystem::path& file, std::string
 bool vtkBrumeSceneFileChecks::Obj(const std::filesystem::path& file, std::string& error)
 {
   return ObjIndicesInRange(file, error);
-}
-
-bool vtkBrumeSceneFileChecks::Stl(const std::filesystem::path& file, std::string& error)
-{
-  return StlLooksComplete(file, error);
 }
 
 double vtkBrumeSceneFileChecks::UsableMemory()
