@@ -70,6 +70,19 @@ bool vtkBrumeSceneFileParser::Parse(const json& root, vtkPartitionedDataSetColle
   {
     return false;
   }
+  // The objects' and lights' ids are 16-bit: refused before a million
+  // lights are parsed (4 s and 1.5 GB), naming the array that overflows.
+  std::size_t counted = 0;
+  for (const char* key : { "surfaces", "media", "lights" })
+  {
+    counted += root.contains(key) && root[key].is_array() ? root[key].size() : 0;
+    if (counted > 65535)
+    {
+      return p.Fail(key,
+        "the scene has " + std::to_string(counted) +
+          " objects and lights so far: a scene holds at most 65,535 together");
+    }
+  }
   return p.Number(root["brume_scene"], "brume_scene", version, 1, 1) &&
     this->ParseArray(root, "surfaces", &vtkBrumeSceneFileParser::ParseSurface) &&
     this->ParseArray(root, "media", &vtkBrumeSceneFileParser::ParseMedium) &&

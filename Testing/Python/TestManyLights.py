@@ -3,7 +3,9 @@
 memory. The direct light's grid is coarsened so that texels x lights stay
 within 2^23; under 20,000 lights the grid would be too coarse to be worth
 computing, and the particles carry the direct light (a warning says so).
-The scenes are written by this test, not committed.
+Above 65,535 objects and lights together, the file is refused at parse
+time, naming the lights. The scenes are written by this test, not
+committed.
 
 usage: python3 TestManyLights.py BRUME OUTPUT_DIR
 """
@@ -58,4 +60,17 @@ for lights in (5000, 20000):
     if lights == 20000:
         check("estimated from the particles" in run.stderr,
               "under 20,000 lights the particles carry the direct light, and a warning says so")
+
+# Above the limit of 65,535 objects and lights together: refused while the
+# file is parsed, naming the array that overflows, before a light is made.
+path = os.path.join(output_dir, "many-lights-70000.json")
+png = os.path.join(output_dir, "many-lights-70000.png")
+with open(path, "w") as f:
+    json.dump(scene(70000), f)
+run = subprocess.run([brume, "render", path, "-o", png], capture_output=True, text=True)
+check(run.returncode == 1 and not os.path.exists(png)
+      and "many-lights-70000.json: lights: the scene has 70001 objects and lights so far: "
+          "a scene holds at most 65,535 together" in run.stderr,
+      "70,000 lights are refused at parse time, naming 'lights' (stderr: %s)"
+      % run.stderr.strip()[:300])
 sys.exit(1 if failures else 0)
