@@ -8,6 +8,7 @@
 #include "vtkAlgorithm.h"
 #include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeProcesses.h"
+#include "vtkBrumeQuotes.h"
 #include "vtkBrumeSMP.h"
 #include "vtkDataArray.h"
 #include "vtkDataObject.h"
@@ -65,13 +66,6 @@ std::unique_ptr<brume::ObjectRadiance> vtkBrumeRadianceTextures::CreateObject(st
   vtkDataArray* override = sceneObject->GetFieldData()->GetArray(vtkBrumeNames::TextureResolution);
   const int perObject =
     override && override->GetNumberOfTuples() > 0 ? static_cast<int>(override->GetTuple1(0)) : 0;
-  if (hitCount == 0)
-  {
-    vtkWarningWithObjectMacro(this->Filter,
-      "Object '" << source.Name
-                 << "' received no particle: its texture holds only its "
-                    "emission (more particles, or a light that reaches it).");
-  }
   // The object's own resolution, the filter's, or one chosen from its hits.
   bool tooLarge = false;
   auto resolution =
@@ -182,6 +176,40 @@ bool vtkBrumeRadianceTextures::CreateObjects(const vtkBrumeReconstructionSetting
   {
     vtkBrumeProcesses::Sum(this->Controller, counts);
     this->Reduction.reset(new vtkBrumeHistogramReduction(this->Controller));
+  }
+  // Objects no particle reached, named in one warning (a scene of
+  // thousands of small objects would print a line each).
+  std::vector<std::string> unlit;
+  for (std::size_t o = 0; o < objects; ++o)
+  {
+    if (counts[o] == 0)
+    {
+      unlit.push_back(this->Sources[o].Name);
+    }
+  }
+  if (unlit.size() == 1)
+  {
+    vtkWarningWithObjectMacro(this->Filter,
+      << vtkBrumeBoundQuotes("Object '" + unlit[0] +
+           "' received no particle: its texture holds only its emission (more particles, or a "
+           "light that reaches it)."));
+  }
+  else if (!unlit.empty())
+  {
+    std::string names;
+    for (std::size_t k = 0; k < std::min<std::size_t>(unlit.size(), 3); ++k)
+    {
+      names += (k ? ", '" : "'") + unlit[k] + "'";
+    }
+    if (unlit.size() > 3)
+    {
+      names += " and " + std::to_string(unlit.size() - 3) + " more";
+    }
+    vtkWarningWithObjectMacro(
+      this->Filter, << vtkBrumeBoundQuotes(std::to_string(unlit.size()) +
+                      " objects received no particle (" + names +
+                      "): their textures hold only their emission (more particles, or a light that "
+                      "reaches them)."));
   }
   for (std::size_t o = 0; o < objects; ++o)
   {
