@@ -168,12 +168,43 @@ bool vtkBrumeRadianceTextures::CreateDirectLight(
     return this->Agree(false);
   }
   this->Direct.reset(new brume::DirectLight(this->Scene, *this->Caster));
-  std::size_t left = 0;
+  // Each object's grid, then one factor for all where the scene's would
+  // exceed MaxSceneDirectArrivals.
+  const double lights = static_cast<double>(this->Scene.Lights.size());
+  std::vector<std::array<int, 3>> grids(this->Objects.size(), std::array<int, 3>{ 0, 0, 0 });
+  double arrivals = 0.0;
   for (std::size_t o = 0; o < this->Objects.size(); ++o)
   {
     if (brume::DirectTexture::Supports(this->Objects[o]->GetLayout()))
     {
-      const std::array<int, 3> res = this->DirectResolution(o, settings.DirectLightResolution);
+      grids[o] = this->DirectResolution(o, settings.DirectLightResolution);
+      arrivals += static_cast<double>(grids[o][0]) * grids[o][1] * grids[o][2] * lights;
+    }
+  }
+  if (arrivals > MaxSceneDirectArrivals)
+  {
+    const double factor = MaxSceneDirectArrivals / arrivals;
+    vtkWarningWithObjectMacro(this->Filter,
+      "The direct light's grids of every object are coarsened to "
+        << std::lround(100.0 * factor) << " % of their texels: the scene's would hold "
+        << static_cast<long long>(arrivals) << " texels x lights, more than "
+        << static_cast<long long>(MaxSceneDirectArrivals) << ".");
+    for (std::size_t o = 0; o < this->Objects.size(); ++o)
+    {
+      const int used = this->Scene.IsMedium(o) ? 3 : 2;
+      for (int a = 0; a < used && grids[o][0] > 0; ++a)
+      {
+        grids[o][a] =
+          std::max(1, static_cast<int>(std::floor(grids[o][a] * std::pow(factor, 1.0 / used))));
+      }
+    }
+  }
+  std::size_t left = 0;
+  for (std::size_t o = 0; o < this->Objects.size(); ++o)
+  {
+    if (grids[o][0] > 0)
+    {
+      const std::array<int, 3> res = grids[o];
       if (static_cast<double>(res[0]) * res[1] *
         res[2]<MinDirectTexels&& static_cast<double>(this->Scene.Lights.size()) * MinDirectTexels>
           MaxDirectArrivals)

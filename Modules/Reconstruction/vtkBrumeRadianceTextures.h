@@ -103,6 +103,13 @@ public:
   /// particles' memory, not texels x lights).
   static constexpr double MaxDirectArrivals = 8388608.0;
   static constexpr double MinDirectTexels = 1024.0;
+  /// Texels x lights of the whole scene's direct light, at most: as much as
+  /// one object's (2^23: about 330 MB with the output grids). Where the
+  /// objects' grids would hold more (hundreds of objects), every grid is
+  /// coarsened by one factor, so that memory and shadow rays do not grow
+  /// with the number of objects. Scenes under it keep their grids as they
+  /// are (the shipped scenes hold under a million).
+  static constexpr double MaxSceneDirectArrivals = 8388608.0;
 
   /// Errors and warnings go to `filter`; `controller` may be null.
   vtkBrumeRadianceTextures(vtkAlgorithm* filter, vtkMultiProcessController* controller);

@@ -3,8 +3,9 @@
 memory. The direct light's grid is coarsened so that texels x lights stay
 within 2^23; under 20,000 lights the grid would be too coarse to be worth
 computing, and the particles carry the direct light (a warning says so).
-Above 65,535 objects and lights together, the file is refused at parse
-time, naming the lights. The scenes are written by this test, not
+A thousand objects share one budget of direct-light texels. Above 65,535
+objects and lights together, the file is refused at parse time, naming the
+lights. The scenes are written by this test, not
 committed.
 
 usage: python3 TestManyLights.py BRUME OUTPUT_DIR
@@ -60,6 +61,34 @@ for lights in (5000, 20000):
     if lights == 20000:
         check("estimated from the particles" in run.stderr,
               "under 20,000 lights the particles carry the direct light, and a warning says so")
+
+# Many objects: 1,000 small tiles over the ground. Each planar object's
+# direct-light grid would hold 256^2 texels (65.5 million in all, 5 GB with
+# their arrivals); the scene's are coarsened by one factor to 2^23 texels x
+# lights, a warning says so, and the run stays within 1 GB.
+tiles = scene(1)
+rng = random.Random(7)
+for k in range(1000):
+    x, z = rng.uniform(-4, 4), rng.uniform(-4, 4)
+    tiles["surfaces"].append({"name": "tile %d" % k,
+                              "quad": [[x, 0.01, z], [x, 0.01, z + 0.05], [x + 0.05, 0.01, z + 0.05],
+                                       [x + 0.05, 0.01, z]],
+                              "material": {"reflectance": [0.8, 0.2, 0.2]}})
+path = os.path.join(output_dir, "many-objects.json")
+png = os.path.join(output_dir, "many-objects.png")
+with open(path, "w") as f:
+    json.dump(tiles, f)
+if os.path.exists(png):
+    os.remove(png)
+run = subprocess.run([brume, "render", path, "--particles", "200000", "--size", "128x128",
+                      "-o", png], capture_output=True, text=True)
+peak_kb = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+check(run.returncode == 0 and os.path.exists(png),
+      "1,001 objects render (stderr: %s)" % run.stderr.strip()[:300])
+check("grids of every object are coarsened" in run.stderr,
+      "the scene's direct-light grids are coarsened, and a warning says so")
+check(peak_kb <= 1024 * 1024, "1,001 objects within 1 GB (%.0f MB, the children's peak so far)"
+      % (peak_kb / 1024.0))
 
 # Above the limit of 65,535 objects and lights together: refused while the
 # file is parsed, naming the array that overflows, before a light is made.
