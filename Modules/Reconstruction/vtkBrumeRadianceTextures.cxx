@@ -20,6 +20,8 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <iomanip>
+#include <sstream>
 #include <string>
 
 vtkBrumeRadianceTextures::vtkBrumeRadianceTextures(
@@ -184,9 +186,11 @@ bool vtkBrumeRadianceTextures::CreateDirectLight(
   if (arrivals > MaxSceneDirectArrivals)
   {
     const double factor = MaxSceneDirectArrivals / arrivals;
+    std::ostringstream percent;
+    percent << std::setprecision(2) << 100.0 * factor;
     vtkWarningWithObjectMacro(this->Filter,
       "The direct light's grids of every object are coarsened to "
-        << std::lround(100.0 * factor) << " % of their texels: the scene's would hold "
+        << percent.str() << " % of their texels: the scene's would hold "
         << static_cast<long long>(arrivals) << " texels x lights, more than "
         << static_cast<long long>(MaxSceneDirectArrivals) << ".");
     for (std::size_t o = 0; o < this->Objects.size(); ++o)
