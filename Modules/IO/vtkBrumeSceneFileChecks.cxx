@@ -16,10 +16,7 @@ namespace
 {
 std::string Count(double n)
 {
-  std::ostringstream os;
-  os.precision(15);
-  os << n;
-  return os.str();
+  return vtkBrumeSceneFileChecks::Count(n);
 }
 
 // Reads one line (without its end of line) of at most `limit` characters:
@@ -644,4 +641,12 @@ double vtkBrumeSceneFileChecks::UsableMemory()
   vtksys::SystemInformation system;
   system.RunMemoryCheck();
   return 0.5 * static_cast<double>(system.GetTotalPhysicalMemory()) * 1048576.0;
+}
+
+std::string vtkBrumeSceneFileChecks::Count(double n)
+{
+  std::ostringstream os;
+  os.precision(15);
+  os << n;
+  return os.str();
 }

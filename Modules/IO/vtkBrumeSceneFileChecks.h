@@ -39,6 +39,8 @@ public:
   /// What a file's announced sizes may ask for: half of this machine's
   /// physical memory, in bytes (0 when it cannot be told).
   static double UsableMemory();
+  /// A count as the messages write it (every digit, no exponent below 10^15).
+  static std::string Count(double n);
 };
 
 #endif

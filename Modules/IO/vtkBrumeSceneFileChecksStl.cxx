@@ -11,10 +11,7 @@ namespace
 {
 std::string Count(double n)
 {
-  std::ostringstream os;
-  os.precision(15);
-  os << n;
-  return os.str();
+  return vtkBrumeSceneFileChecks::Count(n);
 }
 
 // A binary STL announces its triangle count after an 80-byte header and

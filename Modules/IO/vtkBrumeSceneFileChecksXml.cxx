@@ -20,10 +20,7 @@ namespace
 {
 std::string Count(double n)
 {
-  std::ostringstream os;
-  os.precision(15);
-  os << n;
-  return os.str();
+  return vtkBrumeSceneFileChecks::Count(n);
 }
 
 // A VTK XML file announces its points and cells in its Piece elements; VTK
