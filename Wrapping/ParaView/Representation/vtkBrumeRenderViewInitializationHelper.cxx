@@ -38,6 +38,7 @@ struct Destroyed
 };
 Destroyed Last;
 vtkSmartPointer<vtkCallbackCommand> UnregisterObserver;
+vtkSmartPointer<vtkCallbackCommand> RegisterObserver;
 
 double Age(Clock::time_point when)
 {
@@ -71,12 +72,21 @@ void Unregistered(vtkObject*, unsigned long, void*, void* data)
   }
 }
 
+// Any proxy registered: what the destroyed view showed is let go (its
+// representations were kept alive for the view that replaces it, which is
+// initialized before it is registered).
+void Registered(vtkObject*, unsigned long, void*, void*)
+{
+  Last = Destroyed();
+}
+
 void WatchSession(vtkSMSession* session)
 {
   vtkSMSessionProxyManager* manager = session ? session->GetSessionProxyManager() : nullptr;
   if (manager && !manager->HasObserver(vtkCommand::UnRegisterEvent, UnregisterObserver))
   {
     manager->AddObserver(vtkCommand::UnRegisterEvent, UnregisterObserver);
+    manager->AddObserver(vtkCommand::RegisterEvent, RegisterObserver);
   }
 }
 
@@ -163,6 +173,8 @@ void vtkBrumeRenderViewInitializationHelper::Install()
   }
   UnregisterObserver = vtkSmartPointer<vtkCallbackCommand>::New();
   UnregisterObserver->SetCallback(Unregistered);
+  RegisterObserver = vtkSmartPointer<vtkCallbackCommand>::New();
+  RegisterObserver->SetCallback(Registered);
   RenderObserver = vtkSmartPointer<vtkCallbackCommand>::New();
   RenderObserver->SetCallback(Rendered);
   TimerObserver = vtkSmartPointer<vtkCallbackCommand>::New();

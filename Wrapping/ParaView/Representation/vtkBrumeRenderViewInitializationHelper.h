@@ -7,7 +7,8 @@
  * view, then creates the new one empty: a user switching a render view to
  * Brume would have to show every source again and lose its colour maps.
  * When a Brume Render View is created right after a view was destroyed
- * (within Window seconds, in the same session), this helper shows in it
+ * (within Window seconds, with no proxy registered in between, in the same
+ * session), this helper shows in it
  * what that view showed, each with its representation's settings (the
  * Volume representation, the array it was coloured by and its colour map
  * and opacity function), and takes its camera.
