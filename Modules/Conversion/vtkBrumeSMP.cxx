@@ -3,6 +3,8 @@
 
 #include "vtkSMPTools.h"
 
+#include <vtksys/SystemInformation.hxx>
+
 #include <cstdlib>
 #include <cstring>
 
@@ -36,4 +38,11 @@ brume::ParallelFor vtkBrumeSMP::ParallelFor()
       [&](vtkIdType b, vtkIdType e)
       { body(static_cast<std::size_t>(b), static_cast<std::size_t>(e)); });
   };
+}
+
+double vtkBrumeSMP::UsableMemory()
+{
+  vtksys::SystemInformation system;
+  system.RunMemoryCheck();
+  return 0.5 * static_cast<double>(system.GetTotalPhysicalMemory()) * 1048576.0;
 }

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class   vtkBrumeSMP
- * @brief   the physics core's parallel loop on vtkSMPTools
+ * @brief   the physics core's parallel loop on vtkSMPTools; the machine's memory
  *
  * The core takes its thread primitive from its caller (brume/Parallel.h);
  * Brume's VTK modules give it vtkSMPTools, so that VTK's backend and thread
@@ -36,6 +36,13 @@ public:
    * whether it switched.
    */
   static bool UseAllCoresUnlessChosen();
+
+  /**
+   * What sizes a file or a request announces may ask of this machine: half
+   * of its physical memory, in bytes (0 when it cannot be told). Brume's
+   * checks compare announced sizes with it before anything is allocated.
+   */
+  static double UsableMemory();
 };
 
 #endif

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumeSceneFileChecks.h"
 
-#include <vtksys/SystemInformation.hxx>
+#include "vtkBrumeSMP.h"
 
 #include <algorithm>
 #include <cmath>
@@ -638,9 +638,7 @@ bool vtkBrumeSceneFileChecks::Obj(const std::filesystem::path& file, std::string
 
 double vtkBrumeSceneFileChecks::UsableMemory()
 {
-  vtksys::SystemInformation system;
-  system.RunMemoryCheck();
-  return 0.5 * static_cast<double>(system.GetTotalPhysicalMemory()) * 1048576.0;
+  return vtkBrumeSMP::UsableMemory();
 }
 
 std::string vtkBrumeSceneFileChecks::Count(double n)

@@ -330,8 +330,7 @@ vtkSmartPointer<vtkImageData> vtkBrumeSceneFileParser::ParseDensity(
     // The arrays the file announces, from its XML alone: VTK's reader sets
     // up every component an array announces before anything is checked.
     std::string announced;
-    if (std::filesystem::exists(relative(file)) &&
-      !vtkBrumeSceneFileChecks::XmlArrays(relative(file), announced))
+    if (!vtkBrumeSceneFileChecks::XmlArrays(relative(file), announced))
     {
       p.Fail(at + ".density.vti", announced);
       return nullptr;

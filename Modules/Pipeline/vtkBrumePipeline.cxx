@@ -8,6 +8,7 @@
 #include "vtkBrumeLightTracer.h"
 #include "vtkBrumeProcesses.h"
 #include "vtkBrumeRadianceReconstruction.h"
+#include "vtkBrumeSMP.h"
 #include "vtkBrumeSceneActors.h"
 #include "vtkBrumeSceneCamera.h"
 #include "vtkCamera.h"
@@ -24,8 +25,6 @@
 #include "vtkRenderer.h"
 #include "vtkRendererCollection.h"
 #include "vtkTrivialProducer.h"
-
-#include <vtksys/SystemInformation.hxx>
 
 #include <algorithm>
 #include <chrono>
@@ -413,9 +412,7 @@ vtkSmartPointer<vtkImageData> vtkBrumePipeline::RenderImage(int supersample)
   // Mesa); beyond that the OpenGL driver fails and VTK's readback crashes.
   const double pixels = static_cast<double>(this->Size[0]) * this->Size[1];
   const double needed = 64.0 * pixels;
-  vtksys::SystemInformation system;
-  system.RunMemoryCheck();
-  const double usable = 0.5 * static_cast<double>(system.GetTotalPhysicalMemory()) * 1048576.0;
+  const double usable = vtkBrumeSMP::UsableMemory();
   if (usable > 0.0 && needed > usable)
   {
     vtkErrorMacro("An image of " << this->Size[0] << " x " << this->Size[1] << " needs about "
