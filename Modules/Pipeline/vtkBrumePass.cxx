@@ -92,16 +92,22 @@ bool vtkBrumePass::IsConverged()
       (in.Holder && in.Pipeline->GetTracer()->GetNumberOfParticles() >= this->NumberOfParticles));
 }
 
+bool vtkBrumePass::IsRefining()
+{
+  const vtkInternals& in = *this->Internals;
+  return in.Tried && !in.Failed && !in.Empty && !this->IsConverged();
+}
+
 // Traces the scene anew: the whole budget, or its first progressive step
 // (the budget divided by 4, rounding up, until it is at most
 // FirstStepParticles),
 // at the resolutions the budget calls for.
-bool vtkBrumePass::Trace()
+bool vtkBrumePass::Trace(bool built)
 {
   vtkInternals& in = *this->Internals;
   // The pipeline reads a copy of the scene, given anew only here: building
   // the scene again (to compare it) traces nothing.
-  if (!in.Scene->GetExecutive()->Update())
+  if (!built)
   {
     ++this->NumberOfTraces;
     vtkErrorMacro("The renderer's scene could not be made (see the error above).");
@@ -211,14 +217,18 @@ bool vtkBrumePass::Prepare(vtkRenderer* renderer)
     // A prop's MTime moves without a change that matters (ParaView's
     // representations touch their mappers at their first renders): the
     // scene is built again and traced only where its content differs.
-    const bool same = !settings && in.Traced && !in.Failed && in.Scene->GetExecutive()->Update() &&
+    // Built once here: VTK's executive does not run a filter that failed
+    // again until something changes, so a second Update() would succeed
+    // on the last scene's output.
+    const bool built = in.Scene->GetExecutive()->Update() != 0;
+    const bool same = built && !settings && in.Traced && !in.Failed &&
       in.Scene->GetContentSignature() == in.TracedSignature;
     // What building the scene touched (a mapper's default colour map, made
     // on first use) is not an edit.
     in.TracedScene = std::max(in.TracedScene, in.Scene->GetMTime());
     if (!same)
     {
-      const bool traced = this->Trace();
+      const bool traced = this->Trace(built);
       in.TracedScene = std::max(in.TracedScene, in.Scene->GetMTime());
       return traced;
     }

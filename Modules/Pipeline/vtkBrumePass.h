@@ -100,6 +100,10 @@ public:
 
   /// True when the textures hold the whole budget of the current scene.
   bool IsConverged();
+  /// Whether more steps would add particles: the last trace succeeded and
+  /// the budget is not reached (false after a failure, unlike
+  /// !IsConverged(): a program that renders until converged stops there).
+  bool IsRefining();
 
   ///@{
   /**
@@ -131,7 +135,7 @@ private:
   void operator=(const vtkBrumePass&) = delete;
 
   bool Prepare(vtkRenderer* renderer);
-  bool Trace();
+  bool Trace(bool built); // `built`: whether the scene was made
   bool Step();
   void ReportProgress();
 

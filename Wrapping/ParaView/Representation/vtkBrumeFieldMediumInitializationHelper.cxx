@@ -3,6 +3,7 @@
 
 #include "vtkDataObject.h"
 #include "vtkDataSetAttributes.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPVArrayInformation.h"
 #include "vtkPVDataInformation.h"

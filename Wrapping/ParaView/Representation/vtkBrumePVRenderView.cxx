@@ -91,6 +91,11 @@ bool vtkBrumePVRenderView::IsConverged()
   return this->Pass->IsConverged();
 }
 
+bool vtkBrumePVRenderView::IsRefining()
+{
+  return this->RendersProgressively() && this->Pass->IsRefining();
+}
+
 int vtkBrumePVRenderView::GetNumberOfTraces()
 {
   return this->Pass->GetNumberOfTraces();

@@ -61,6 +61,9 @@ public:
   bool IsConverged();
   /// Whether renders refine step by step (SetProgressive()).
   bool RendersProgressively();
+  /// Whether the next render would add particles (progressive, the last
+  /// trace succeeded, the budget not reached): the GUI renders again then.
+  bool IsRefining();
 
   ///@{
   /// The pass's counters (vtkBrumePass): traces, progressive steps, and

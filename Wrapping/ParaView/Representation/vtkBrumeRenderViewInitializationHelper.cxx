@@ -4,7 +4,9 @@
 #include "vtkBrumeSessions.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkProcessModule.h"
 #include "vtkRenderWindowInteractor.h"
 #include "vtkSMParaViewPipelineControllerWithRendering.h"
 #include "vtkSMProperty.h"
@@ -90,8 +92,8 @@ void WatchSession(vtkSMSession* session)
   }
 }
 
-// Progressive views in the GUI: after a render that did not trace the
-// whole budget (BrumeIsConverged), one more render once the interactor's
+// Progressive views in the GUI: after a render that left particles to add
+// (BrumeIsRefining), one more render once the interactor's
 // event loop is idle, until it did. Keyed by view.
 struct Refinement
 {
@@ -106,13 +108,14 @@ void Rendered(vtkObject* caller, unsigned long, void*, void*)
 {
   auto* view = vtkSMViewProxy::SafeDownCast(caller);
   vtkRenderWindowInteractor* interactor = view ? view->GetInteractor() : nullptr;
-  vtkSMProperty* converged = view ? view->GetProperty("BrumeIsConverged") : nullptr;
-  if (!interactor || !converged || Refining.count(view))
+  vtkSMProperty* refining = view ? view->GetProperty("BrumeIsRefining") : nullptr;
+  if (!interactor || !refining || Refining.count(view))
   {
     return;
   }
-  view->UpdatePropertyInformation(converged);
-  if (vtkSMPropertyHelper(converged).GetAsInt() != 0)
+  // Not "not converged": a view whose trace failed would render forever.
+  view->UpdatePropertyInformation(refining);
+  if (vtkSMPropertyHelper(refining).GetAsInt() == 0)
   {
     return;
   }
@@ -148,6 +151,14 @@ void TimerFired(vtkObject* caller, unsigned long, void*, void*)
   }
 }
 
+// A session closed (the GUI disconnecting or quitting): nothing of it is
+// kept, so that no proxy outlives its session in a static.
+void SessionClosed(vtkObject*, unsigned long, void*, void*)
+{
+  Last = Destroyed();
+  Refining.clear();
+}
+
 // The camera of the destroyed view, where the new one has the same
 // properties.
 void CopyCamera(vtkSMProxy* from, vtkSMProxy* to)
@@ -175,6 +186,12 @@ void vtkBrumeRenderViewInitializationHelper::Install()
   UnregisterObserver->SetCallback(Unregistered);
   RegisterObserver = vtkSmartPointer<vtkCallbackCommand>::New();
   RegisterObserver->SetCallback(Registered);
+  vtkNew<vtkCallbackCommand> closed;
+  closed->SetCallback(SessionClosed);
+  if (vtkProcessModule* module = vtkProcessModule::GetProcessModule())
+  {
+    module->AddObserver(vtkCommand::ConnectionClosedEvent, closed);
+  }
   RenderObserver = vtkSmartPointer<vtkCallbackCommand>::New();
   RenderObserver->SetCallback(Rendered);
   TimerObserver = vtkSmartPointer<vtkCallbackCommand>::New();

@@ -3,6 +3,7 @@
 
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
+#include "vtkNew.h"
 #include "vtkProcessModule.h"
 #include "vtkSMProxyManager.h"
 #include "vtkSMSession.h"

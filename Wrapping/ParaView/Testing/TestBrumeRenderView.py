@@ -94,5 +94,25 @@ view.BrumeParticles = 100000
 Render(view)
 traces, _ = counters(view)
 check(traces == 3, "a new particle count traces again (traces %d)" % traces)
+
+
+def flag(name):
+    view.SMProxy.UpdatePropertyInformation()
+    return view.SMProxy.GetProperty(name).GetElement(0)
+
+
+# Progressive (as in the GUI, where the view renders again while it
+# refines): each render adds particles until the budget is traced, and then
+# nothing is left to refine.
+check(flag("BrumeIsRefining") == 0, "a script's view traces its whole budget at once")
+view.BrumeProgressive = 1
+view.BrumeParticles = 400000
+Render(view)
+steps = 1
+while flag("BrumeIsRefining") and steps < 10:
+    Render(view)
+    steps += 1
+check(steps > 1 and flag("BrumeIsConverged") == 1 and flag("BrumeIsRefining") == 0,
+      "a progressive view refines step by step until converged (%d renders)" % steps)
 Delete(view)  # before the interpreter's exit, as pvbatch expects
 finish()

@@ -39,7 +39,7 @@
 #include "vtkSphereSource.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkVolume.h"
-#include "vtkVolumeProperty.h"
+#include "vtkVolumeCollection.h"
 #include "vtkWindowToImageFilter.h"
 
 #include <cstdlib>
@@ -141,9 +141,11 @@ void TestProgressive(vtkRenderer* renderer, vtkRenderWindow* window, vtkBrumePas
   scene->SetRenderer(renderer);
   bool same = true;
   int frames = 0;
+  bool refining = true; // while steps remain
   for (; frames < 10 && (frames == 0 || !pass->IsConverged()); ++frames)
   {
     window->Render();
+    refining = refining && (pass->IsRefining() == !pass->IsConverged());
     const vtkTypeInt64 count = pass->GetPipeline()->GetTracer()->GetNumberOfParticles();
     vtkNew<vtkBrumePipeline> once;
     once->SetInputConnection(scene->GetOutputPort());
@@ -159,6 +161,7 @@ void TestProgressive(vtkRenderer* renderer, vtkRenderWindow* window, vtkBrumePas
       pass->GetNumberOfSteps() == 2,
     "a change, then two steps: the budget's sixteenth, quarter and whole in three frames");
   Check(same, "each step's textures are bitwise those of one run of its count");
+  Check(refining && !pass->IsRefining(), "IsRefining() while steps remain, not once converged");
   Check(progress.size() == 3 && progress[0] == 0.0625 && progress[1] == 0.25 && progress[2] == 1.0,
     "a ProgressEvent after each step, with the fraction traced");
   const int steps = pass->GetNumberOfSteps();
@@ -261,6 +264,24 @@ int TestBrumePass(int, char*[])
     "a colour edit traces once more (and is no view update)");
 
   TestProgressive(renderer, window, pass);
+
+  // A scene that cannot be traced (a rotated volume is refused): not
+  // converged, and nothing to refine either, so that a program rendering
+  // while IsRefining() (the ParaView GUI) stops.
+  vtkVolumeCollection* volumes = renderer->GetVolumes();
+  volumes->InitTraversal();
+  vtkVolume* volume = volumes->GetNextVolume();
+  Check(volume != nullptr, "the scene has a volume");
+  if (volume)
+  {
+    volume->RotateY(30);
+    std::cerr << "(errors expected below)\n";
+    window->Render();
+    Check(!pass->IsConverged() && !pass->IsRefining(),
+      "a failed trace is neither converged nor refining (converged " +
+        std::to_string(pass->IsConverged()) + ", refining " + std::to_string(pass->IsRefining()) +
+        ")");
+  }
   if (Failures == 0)
   {
     std::cout << "vtkBrumePass: the explicit pipeline's image, traces only on edits: ok\n";
