@@ -9,6 +9,7 @@
 #include "vtkBrumeSMP.h"
 #include "vtkVersion.h"
 
+#include <cstdlib>
 #include <exception>
 #include <iostream>
 #include <new>
@@ -60,7 +61,11 @@ int main(int argc, char* argv[])
     return 1;
   }
   // Memory that cannot be had (an image or a run too large for this
-  // machine) ends the command with a message, not an abort.
+  // machine) ends the command with a message, not an abort. Under mpirun
+  // the other processes may be waiting for this one in a collective: a
+  // clean exit would leave them waiting, an abort ends the run.
+  const bool distributed =
+    vtkBrumeProcesses::IsDistributed(vtkBrumeProcesses::GetGlobalController());
   try
   {
     return RunCommand(line);
@@ -73,6 +78,10 @@ int main(int argc, char* argv[])
   catch (const std::exception& e)
   {
     std::cerr << "brume: " << e.what() << ".\n";
+  }
+  if (distributed)
+  {
+    std::abort();
   }
   return 1;
 }
