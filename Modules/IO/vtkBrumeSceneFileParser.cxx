@@ -76,7 +76,7 @@ bool vtkBrumeSceneFileParser::Parse(const json& root, vtkPartitionedDataSetColle
   for (const char* key : { "surfaces", "media", "lights" })
   {
     counted += root.contains(key) && root[key].is_array() ? root[key].size() : 0;
-    if (counted > 65535)
+    if (counted > brume::Scene::MaxObjectsAndLights)
     {
       return p.Fail(key,
         "the scene has " + std::to_string(counted) +

@@ -142,9 +142,10 @@ std::string Scene::Validate() const
   {
     return "the scene is empty: it has no surfaces and no media";
   }
-  if (this->NumberOfObjects() + this->Lights.size() > 65535)
+  if (this->NumberOfObjects() + this->Lights.size() > MaxObjectsAndLights)
   {
-    return "the scene has more than 65535 objects and lights";
+    return "the scene has more than " + std::to_string(MaxObjectsAndLights) +
+      " objects and lights";
   }
   bool hasEmitter = false;
   for (const auto& s : this->Surfaces)

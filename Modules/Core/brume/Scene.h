@@ -66,6 +66,8 @@ struct Scene
 
   /// Object ids: surfaces first, then media.
   std::size_t NumberOfObjects() const { return this->Surfaces.size() + this->Media.size(); }
+  /// Objects and lights together, at most: hits carry 16-bit ids.
+  static constexpr std::size_t MaxObjectsAndLights = 65535;
   bool IsMedium(std::size_t objectId) const { return objectId >= this->Surfaces.size(); }
 
   /// Emitter id of light k in Lights (area lights use their surface's object id).
