@@ -11,6 +11,7 @@
 #include <CLI/CLI.hpp>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -81,7 +82,7 @@ struct Defaults
 {
   long long Particles, Seed, MaxDepth;
   int Width, Height;
-  double Exposure, Threshold, MediumAim, MemoryGiB;
+  double Exposure, Threshold, MediumAim, MemoryGiB, NativeGiB;
 };
 
 Defaults ReadDefaults()
@@ -92,7 +93,9 @@ Defaults ReadDefaults()
     static_cast<long long>(tracer->GetSeed()), tracer->GetMaximumDepth(), pipeline->GetSize()[0],
     pipeline->GetSize()[1], pipeline->GetExposure(),
     pipeline->GetReconstruction()->GetRadiosityThreshold(), tracer->GetMediumAimFraction(),
-    static_cast<double>(tracer->GetMemoryLimit()) / 1073741824.0 };
+    static_cast<double>(tracer->GetMemoryLimit()) / 1073741824.0,
+    static_cast<double>(pipeline->GetReconstruction()->GetEffectiveNativeMemoryLimit()) /
+      1073741824.0 };
 }
 
 // A default as the help writes it: 1000000, 0.2, 512x512.
@@ -246,6 +249,17 @@ void AddRender(CLI::App& app, RenderOptions& o, const Defaults& d)
       "GiB the hits of one trace may take (default " + Text(d.MemoryGiB) +
         "): a run\n"
         "whose hits would not fit is traced in batches that do")
+    ->transform(Number(0.001, 1e6, "a number in [0.001, 1e6]"))
+    ->type_name("GIB");
+  render
+    ->add_option_function<double>(
+      "--native-memory", [&o](const double& gib) { o.NativeMemory = gib; },
+      "GiB each heterogeneous medium's grids at its own\n"
+      "resolution may take (default a quarter of half this\n"
+      "machine's memory, here " +
+        Text(std::round(d.NativeGiB * 10.0) / 10.0) +
+        "): a medium past it is drawn\n"
+        "coarsened, and a warning says so")
     ->transform(Number(0.001, 1e6, "a number in [0.001, 1e6]"))
     ->type_name("GIB");
   render->add_flag("--reference", o.Reference,

@@ -111,6 +111,9 @@ bool ConfigurePipeline(vtkBrumePipeline* pipeline, const RenderOptions& options)
   IfGiven(options.SplitHeavy, [&](bool split) { tracer->SetSplitHeavyParticles(split); });
   IfGiven(options.MemoryLimit,
     [&](double gib) { tracer->SetMemoryLimit(static_cast<vtkTypeInt64>(gib * 1073741824.0)); });
+  IfGiven(options.NativeMemory,
+    [&](double gib)
+    { reconstruction->SetNativeMemoryLimit(static_cast<vtkTypeInt64>(gib * 1073741824.0)); });
   IfGiven(options.Threshold, [&](double t) { reconstruction->SetRadiosityThreshold(t); });
   IfGiven(options.DirectLight, [&](bool direct) { reconstruction->SetDirectLighting(direct); });
   IfGiven(

@@ -33,6 +33,7 @@ struct RenderOptions
   std::optional<bool> SplitHeavy;       // heavy particles split where they head into a medium
   std::optional<long long> Batch;       // particles per batch
   std::optional<double> MemoryLimit;    // GiB the hits of one trace may take
+  std::optional<double> NativeMemory;   // GiB each medium's own-resolution grids may take
   std::optional<int> MaxDepth;          // interactions after which a particle or a path stops
   // The command's own choices.
   int Supersample = 1;      // render K x K pixels per output pixel and average them

@@ -4,16 +4,23 @@
 // the medium has one.
 #include "vtkBrumeSceneConversionInternals.h"
 
+#include "vtkBrumeFieldCache.h"
+
+#include "vtkArrayDispatch.h"
 #include "vtkBrumeDataModelNames.h"
+#include "vtkBrumeSMP.h"
 #include "vtkCellData.h"
+#include "vtkDataArrayRange.h"
 #include "vtkImageData.h"
 #include "vtkMatrix3x3.h"
 #include "vtkPointData.h"
+#include "vtkSMPTools.h"
 
 #include "brume/TransferFunction.h"
 #include "brume/VdbDensity.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <optional>
 
@@ -120,7 +127,13 @@ void SetClassified(brume::Medium& m, std::shared_ptr<const brume::DensityField> 
   {
     m.AlbedoFactor = std::make_shared<brume::ClassifiedAlbedo>(scalars, std::move(*colors));
   }
-  m.SetDensity(std::make_shared<brume::ClassifiedDensity>(std::move(scalars), std::move(*opacity)));
+  m.SetDensity(
+    vtkBrumeSceneConversionInternals::FieldCache::Instance().Classified(scalars, *opacity,
+      [&]()
+      {
+        return std::make_shared<const brume::ClassifiedDensity>(
+          scalars, *opacity, vtkBrumeSMP::ParallelFor());
+      }));
 }
 
 // The medium's coefficients (BrumeSigmaA, BrumeSigmaS, BrumeG), scaled by
@@ -224,26 +237,57 @@ std::string ReadInterpolation(vtkFieldData* fd, brume::GridDensity::Interpolatio
 
 // Component `c` of the density array's tuples: scalars a transfer function
 // classifies (`classified`: any finite value), else densities (finite and
-// not negative). Empty when valid.
+// not negative), read in the array's own type on every thread. Empty when
+// valid.
+struct ReadComponent
+{
+  template <typename Array>
+  void operator()(Array* array, int c, bool classified, std::vector<float>& values,
+    std::atomic<bool>& bad, bool threads = true) const
+  {
+    const auto tuples = vtk::DataArrayTupleRange(array);
+    auto read = [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        const double v = static_cast<double>(tuples[i][c]);
+        if (!std::isfinite(v) || (!classified && !(v >= 0.0)))
+        {
+          bad = true;
+          return;
+        }
+        values[static_cast<std::size_t>(i)] = static_cast<float>(v);
+      }
+    };
+    if (threads)
+    {
+      vtkSMPTools::For(0, tuples.size(), read);
+    }
+    else
+    {
+      read(0, tuples.size());
+    }
+  }
+};
+
 std::string ReadDensityValues(
   vtkDataArray* density, int c, bool classified, std::vector<float>& values)
 {
   values.assign(static_cast<std::size_t>(density->GetNumberOfTuples()), 0.f);
-  for (vtkIdType i = 0; i < density->GetNumberOfTuples(); ++i)
+  std::atomic<bool> bad{ false };
+  ReadComponent read;
+  if (!vtkArrayDispatch::Dispatch::Execute(density, read, c, classified, values, bad))
   {
-    const double v = density->GetComponent(i, c);
-    if (!std::isfinite(v))
-    {
-      return classified ? "has non-finite scalars" : "has negative or non-finite densities";
-    }
-    if (!classified && !(v >= 0.0))
-    {
-      return "has negative or non-finite densities";
-    }
-    values[i] = static_cast<float>(v);
+    // Through vtkDataArray's API, whose tuple buffer is not for threads.
+    read(density, c, classified, values, bad, false);
+  }
+  if (bad)
+  {
+    return classified ? "has non-finite scalars" : "has negative or non-finite densities";
   }
   return {};
 }
+
 }
 
 std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
@@ -336,15 +380,25 @@ std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
       d = std::max(1, d - 1);
     }
   }
-  std::vector<float> values;
-  error = ReadDensityValues(density, static_cast<int>(component), opacity.has_value(), values);
-  if (!error.empty())
+  const FieldCache::GridKey key{ density, density->GetMTime(), static_cast<int>(component),
+    opacity.has_value(), n, m.Bounds, cells, interpolation };
+  std::shared_ptr<const brume::GridDensity> grid = FieldCache::Instance().Grid(key,
+    [&]() -> std::shared_ptr<const brume::GridDensity>
+    {
+      std::vector<float> values;
+      error = ReadDensityValues(density, key.Component, key.Classified, values);
+      if (!error.empty())
+      {
+        return nullptr;
+      }
+      return std::make_shared<const brume::GridDensity>(
+        m.Bounds, n, std::move(values), cells, interpolation, vtkBrumeSMP::ParallelFor());
+    });
+  if (!grid)
   {
     return error;
   }
-  SetClassified(m,
-    std::make_shared<brume::GridDensity>(m.Bounds, n, std::move(values), cells, interpolation),
-    opacity, colors);
+  SetClassified(m, std::move(grid), opacity, colors);
   return {};
 }
 }

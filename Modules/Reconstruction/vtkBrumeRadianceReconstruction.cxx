@@ -5,6 +5,7 @@
 #include "vtkBrumeHitConversion.h"
 #include "vtkBrumeProcesses.h"
 #include "vtkBrumeRadianceTextures.h"
+#include "vtkBrumeSMP.h"
 #include "vtkBrumeSceneConversion.h"
 #include "vtkCamera.h"
 #include "vtkDoubleArray.h"
@@ -249,6 +250,13 @@ bool vtkBrumeRadianceReconstruction::Validate(
   return true;
 }
 
+vtkTypeInt64 vtkBrumeRadianceReconstruction::GetEffectiveNativeMemoryLimit() const
+{
+  return this->NativeMemoryLimit > 0
+    ? this->NativeMemoryLimit
+    : static_cast<vtkTypeInt64>(0.25 * vtkBrumeSMP::UsableMemory());
+}
+
 bool vtkBrumeRadianceReconstruction::Plan(const vtkBrumeReconstructionRequest& request)
 {
   // Rebuild everything when the inputs or the settings changed; add the
@@ -258,7 +266,8 @@ bool vtkBrumeRadianceReconstruction::Plan(const vtkBrumeReconstructionRequest& r
     this->MediumResolution, this->HistogramRefinement,
     this->DirectLighting ? this->DirectLightResolution : 0, this->MirrorResolution,
     this->CentroidMatching, this->SparseMedia, this->FixedView,
-    this->FixedView && this->DirectionalRadiance, static_cast<double>(this->PlannedParticles) };
+    this->FixedView && this->DirectionalRadiance, static_cast<double>(this->PlannedParticles),
+    this->GetEffectiveNativeMemoryLimit() };
   vtkBrumeRadianceTextures* textures = this->Textures.get();
   const auto& run = request.Run;
   const bool sameSettings = textures && textures->SameSceneAndSettings(request, settings);
@@ -340,6 +349,7 @@ void vtkBrumeRadianceReconstruction::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "HistogramRefinement: " << this->HistogramRefinement << "\n";
   os << indent << "CentroidMatching: " << this->CentroidMatching << "\n";
   os << indent << "SparseMedia: " << this->SparseMedia << "\n";
+  os << indent << "NativeMemoryLimit: " << this->NativeMemoryLimit << "\n";
   os << indent << "IncrementalUpdate: " << this->IncrementalUpdate << "\n";
   os << indent << "NumberOfTextureBuilds: " << this->NumberOfTextureBuilds << "\n";
   os << indent << "NumberOfViewUpdates: " << this->NumberOfViewUpdates << "\n";

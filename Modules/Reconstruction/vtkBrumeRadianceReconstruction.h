@@ -339,6 +339,24 @@ public:
   vtkBooleanMacro(SparseMedia, bool);
   ///@}
 
+  ///@{
+  /**
+   * Heterogeneous media: the bytes each medium's density at its own
+   * resolution may take (its bricks of samples and their tables, twice for
+   * a field classified by a transfer function: its extinction and its
+   * scalars; brume::NativeMediumGrid). 0, the default: a quarter of the
+   * memory this machine can use (vtkBrumeSMP::UsableMemory(), half its
+   * physical memory), so that a 512^3 field keeps its own resolution on a
+   * machine of 16 GB. A medium whose grids do not fit is coarsened by the
+   * smallest integer factor that fits, and a warning says so once per
+   * build. The slice mapper uploads the same samples.
+   */
+  vtkSetClampMacro(NativeMemoryLimit, vtkTypeInt64, 0, VTK_TYPE_INT64_MAX);
+  vtkGetMacro(NativeMemoryLimit, vtkTypeInt64);
+  /// NativeMemoryLimit, or its automatic value where 0.
+  vtkTypeInt64 GetEffectiveNativeMemoryLimit() const;
+  ///@}
+
 protected:
   vtkBrumeRadianceReconstruction();
   ~vtkBrumeRadianceReconstruction() override;
@@ -359,6 +377,7 @@ protected:
   int HistogramRefinement = 2;
   bool CentroidMatching = true;
   bool SparseMedia = true;
+  vtkTypeInt64 NativeMemoryLimit = 0;
   vtkCamera* Camera = nullptr;
   vtkMultiProcessController* Controller = nullptr;
   vtkTypeInt64 LastReductionBytes = 0;

@@ -61,6 +61,7 @@ struct vtkBrumeReconstructionSettings
   bool FixedView = false;        // view-dependent objects binned toward one eye
   bool DirectionalMedia = false; // with FixedView: anisotropic media keep their hits
   double PlannedParticles = 0.0; // resolutions chosen for this many particles, if more
+  vtkTypeInt64 NativeMemory = 0; // bytes each medium's own-resolution grids may take
 
   bool operator==(const vtkBrumeReconstructionSettings& o) const
   {
@@ -72,7 +73,7 @@ struct vtkBrumeReconstructionSettings
       this->MirrorResolution == o.MirrorResolution &&
       this->CentroidMatching == o.CentroidMatching && this->SparseMedia == o.SparseMedia &&
       this->FixedView == o.FixedView && this->DirectionalMedia == o.DirectionalMedia &&
-      this->PlannedParticles == o.PlannedParticles;
+      this->PlannedParticles == o.PlannedParticles && this->NativeMemory == o.NativeMemory;
   }
 };
 
@@ -199,6 +200,9 @@ private:
   bool Agree(bool ok);
   // Reports each object's error ("what 'name': error.") and agrees with the
   // other processes: true when no process had one.
+  // Samples every medium's grid at its own resolution on every thread,
+  // and says where one is coarsened.
+  void SampleMedia();
   bool AgreeOnObjects(const std::vector<std::string>& errors, const char* what);
   bool Distributed() const;
   // Deterministic single scattering: the light, the objects' output grids,

@@ -226,6 +226,7 @@ bool vtkBrumeRadianceTextures::CreateObjects(const vtkBrumeReconstructionSetting
     }
     radiance->Distribution().SetReduction(this->Reduction.get());
     radiance->Options().CentroidMatching = settings.CentroidMatching;
+    radiance->Options().NativeMemory = static_cast<std::size_t>(settings.NativeMemory);
     this->Objects.push_back(std::move(radiance));
     this->Outputs.push_back(nullptr);
   }

@@ -11,12 +11,14 @@
 #include "brume/NativeMediumGrid.h"
 #include "brume/ObjectDistribution.h"
 #include "brume/ObjectLayout.h"
+#include "brume/TransferFunction.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <memory>
 #include <numeric>
+#include <thread>
 
 using namespace brume;
 
@@ -334,9 +336,10 @@ TEST(ReconstructionParts, NativeMediumGridIntegratesTheDensityOverRegions)
     std::array<int, 3>{ 4, 1, 1 }, std::vector<float>{ 2.f, 0.f, 0.f, 0.f }, true));
   NativeMediumGrid grid;
   EXPECT_TRUE(grid.Empty());
-  grid.Sample(smoke, SerialFor());
+  grid.Sample(smoke, NativeMediumGrid::DefaultMemory, { 8, 2, 2 }, SerialFor());
   ASSERT_FALSE(grid.Empty());
   EXPECT_EQ(grid.GetResolution(), (std::array<int, 3>{ 4, 1, 1 }));
+  EXPECT_EQ(grid.GetCoarsening(), 1);
   EXPECT_EQ(grid.GetClassification(), nullptr);
   const std::array<int, 3> dims{ 8, 2, 2 };
   grid.BuildTables(smoke.Bounds, dims);
@@ -352,6 +355,159 @@ TEST(ReconstructionParts, NativeMediumGridIntegratesTheDensityOverRegions)
   std::vector<Region> regions(1, all);
   const CentroidMatching matching = grid.Centroids(regions, { 1, 1, 1 }, 8, SerialFor());
   EXPECT_FALSE(matching.Empty());
+}
+
+namespace
+{
+// A classified wavelet-like field of n^3 point values over [-1, 1]^3 whose
+// opacity function bends at 0.5 (and is 0 below 0.2): many cells' scalars
+// span the bend.
+Medium ClassifiedWaves(int n)
+{
+  std::vector<float> values(static_cast<std::size_t>(n) * n * n);
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+      {
+        const double x = 6.0 * i / (n - 1), y = 5.0 * j / (n - 1), z = 7.0 * k / (n - 1);
+        values[(static_cast<std::size_t>(k) * n + j) * n + i] =
+          static_cast<float>(0.5 + 0.5 * std::sin(x) * std::cos(y) * std::sin(z + 0.3));
+      }
+  Medium waves;
+  waves.Name = "waves";
+  auto scalars = std::make_shared<GridDensity>(
+    Box{ Vec3(-1.f), Vec3(1.f) }, std::array<int, 3>{ n, n, n }, std::move(values), false);
+  waves.SetDensity(std::make_shared<ClassifiedDensity>(
+    scalars, OpacityTransferFunction({ { 0.2f, 0.f }, { 0.5f, 0.1f }, { 1.f, 0.9f } }, 0.1f)));
+  return waves;
+}
+
+// Every cell of two grids' density and scalars, compared bitwise.
+bool SameGrids(const NativeMediumGrid& a, const NativeMediumGrid& b)
+{
+  const auto& dims = a.GetResolution();
+  if (dims != b.GetResolution() || a.GetScalars().Empty() != b.GetScalars().Empty())
+  {
+    return false;
+  }
+  for (int k = 0; k < dims[2]; ++k)
+    for (int j = 0; j < dims[1]; ++j)
+      for (int i = 0; i < dims[0]; ++i)
+      {
+        if (a.GetDensity().At(i, j, k) != b.GetDensity().At(i, j, k) ||
+          (!a.GetScalars().Empty() && a.GetScalars().At(i, j, k) != b.GetScalars().At(i, j, k)))
+        {
+          return false;
+        }
+      }
+  return true;
+}
+
+// A ParallelFor on `threads` threads, each a contiguous share.
+ParallelFor ThreadsFor(int threads)
+{
+  return [threads](std::size_t begin, std::size_t end,
+           const std::function<void(std::size_t, std::size_t)>& body)
+  {
+    std::vector<std::thread> pool;
+    const std::size_t n = end - begin;
+    for (int t = 0; t < threads; ++t)
+    {
+      const std::size_t b = begin + n * t / threads, e = begin + n * (t + 1) / threads;
+      if (b < e)
+      {
+        pool.emplace_back([&body, b, e]() { body(b, e); });
+      }
+    }
+    for (auto& thread : pool)
+    {
+      thread.join();
+    }
+  };
+}
+}
+
+TEST(ReconstructionParts, NativeMediumGridKeepsItsOwnResolutionWhereTheMemoryHoldsIt)
+{
+  // 48^3 points: 48^3 cells of 7^3 bricks' samples, twice (the density
+  // and the scalars): 2 x 343 bricks x 2 KB is about 1.4 MB.
+  const Medium waves = ClassifiedWaves(48);
+  NativeMediumGrid native;
+  native.Sample(waves, std::size_t(4) << 20, { 32, 32, 32 }, SerialFor());
+  EXPECT_EQ(native.GetCoarsening(), 1);
+  EXPECT_EQ(native.GetResolution(), (std::array<int, 3>{ 48, 48, 48 }));
+  EXPECT_EQ(native.GetFieldResolution(), (std::array<int, 3>{ 48, 48, 48 }));
+  EXPECT_FALSE(native.GetScalars().Empty());
+  EXPECT_NE(native.GetClassification(), nullptr);
+  // The grids' own bytes are within the memory they were given.
+  EXPECT_LE(native.GetDensity().GetMemorySize() + native.GetScalars().GetMemorySize(),
+    std::size_t(4) << 20);
+
+  // Half a megabyte does not hold them: coarsened by the smallest factor
+  // that fits, the density alone (a mean of scalars is not what the
+  // function classifies).
+  NativeMediumGrid coarse;
+  coarse.Sample(waves, std::size_t(1) << 19, { 32, 32, 32 }, SerialFor());
+  EXPECT_EQ(coarse.GetCoarsening(), 2);
+  EXPECT_EQ(coarse.GetResolution(), (std::array<int, 3>{ 24, 24, 24 }));
+  EXPECT_EQ(coarse.GetFieldResolution(), (std::array<int, 3>{ 48, 48, 48 }));
+  EXPECT_TRUE(coarse.GetScalars().Empty());
+  EXPECT_LE(coarse.GetDensity().GetMemorySize(), std::size_t(1) << 19);
+
+  // Whatever the threads, the same grids bitwise.
+  NativeMediumGrid threaded;
+  threaded.Sample(waves, std::size_t(4) << 20, { 32, 32, 32 }, ThreadsFor(3));
+  EXPECT_TRUE(SameGrids(native, threaded));
+}
+
+TEST(ReconstructionParts, NativeMediumGridIntegratesBendingCellsAsFinelyAsTheHistogramNeeds)
+{
+  const Medium waves = ClassifiedWaves(40);
+  const auto& classified = static_cast<const ClassifiedDensity&>(*waves.Density);
+  // Histogram cells 5 native cells wide: one sample per cell, the function
+  // at the cell's scalar, even where it bends within the cell.
+  NativeMediumGrid fine;
+  fine.Sample(waves, std::size_t(64) << 20, { 8, 8, 8 }, SerialFor());
+  // Histogram cells as wide as the native ones (or none given): cells
+  // whose scalars span the bend take the mean of 4^3 samples.
+  NativeMediumGrid coarse;
+  coarse.Sample(waves, std::size_t(64) << 20, { 40, 40, 40 }, SerialFor());
+  NativeMediumGrid unknown;
+  unknown.Sample(waves, std::size_t(64) << 20, { 0, 0, 0 }, SerialFor());
+  EXPECT_TRUE(SameGrids(coarse, unknown));
+  const Box& box = fine.GetBox();
+  const Vec3 cell = box.Extent() / Vec3(40.f);
+  int bending = 0, averaged = 0;
+  for (int k = 0; k < 40; ++k)
+    for (int j = 0; j < 40; ++j)
+      for (int i = 0; i < 40; ++i)
+      {
+        const float scalar = fine.GetScalars().At(i, j, k);
+        const float atScalar = classified.GetOpacity().Extinction(scalar);
+        // The fine grid is the function at every cell's scalar.
+        ASSERT_EQ(fine.GetDensity().At(i, j, k), atScalar) << i << " " << j << " " << k;
+        const Vec3 lower = box.lower +
+          Vec3(static_cast<float>(i), static_cast<float>(j), static_cast<float>(k)) * cell;
+        if (classified.BendsWithin(Box{ lower, lower + cell }))
+        {
+          ++bending;
+          averaged += coarse.GetDensity().At(i, j, k) != atScalar ? 1 : 0;
+        }
+        else
+        {
+          ASSERT_EQ(coarse.GetDensity().At(i, j, k), atScalar);
+        }
+      }
+  // The field bends in many cells, and the coarse histogram's are means.
+  EXPECT_GT(bending, 1000);
+  EXPECT_GT(averaged, bending / 2);
+  // The two integrals over the whole box agree to the bends' share.
+  fine.BuildTables(waves.Bounds, { 8, 8, 8 });
+  coarse.BuildTables(waves.Bounds, { 8, 8, 8 });
+  Region all;
+  all.Hi = { 8, 8, 8 };
+  EXPECT_NEAR(
+    fine.RegionIntegral(all), coarse.RegionIntegral(all), 0.01 * coarse.RegionIntegral(all));
 }
 
 TEST(ReconstructionParts, DirectTextureSupportsMediaAndPlanarSurfacesWithoutMirrors)

@@ -37,6 +37,41 @@ double DensityField::MeanOccupiedDensity() const
                                     : this->Majorants.GlobalMax();
 }
 
+void DensityField::CountOccupied(
+  std::size_t count, const std::function<float(std::size_t)>& value, const ParallelFor& parallelFor)
+{
+  constexpr std::size_t Chunk = std::size_t(1) << 16;
+  const std::size_t chunks = (count + Chunk - 1) / Chunk;
+  std::vector<double> occupied(chunks, 0.0), sums(chunks, 0.0);
+  parallelFor(0, chunks,
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t c = begin; c < end; ++c)
+      {
+        double n = 0.0, sum = 0.0;
+        for (std::size_t i = c * Chunk; i < std::min(count, (c + 1) * Chunk); ++i)
+        {
+          const float v = value(i);
+          if (v > 0.f)
+          {
+            n += 1.0;
+            sum += v;
+          }
+        }
+        occupied[c] = n;
+        sums[c] = sum;
+      }
+    });
+  this->GridValues = static_cast<double>(count);
+  this->OccupiedValues = 0.0;
+  this->OccupiedSum = 0.0;
+  for (std::size_t c = 0; c < chunks; ++c)
+  {
+    this->OccupiedValues += occupied[c];
+    this->OccupiedSum += sums[c];
+  }
+}
+
 std::array<int, 3> DensityField::NativeResolution() const
 {
   constexpr int Cells = 8; // cells per majorant block
@@ -72,22 +107,15 @@ Box GridDensity::NativeBox() const
 }
 
 GridDensity::GridDensity(const Box& bounds, std::array<int, 3> dims, std::vector<float> values,
-  bool cellValues, Interpolation interpolation)
+  bool cellValues, Interpolation interpolation, const ParallelFor& parallelFor)
   : Dims(dims)
   , Values(std::move(values))
   , CellValues(cellValues)
   , Interpolated(interpolation)
 {
   this->Bounds = bounds;
-  this->GridValues = static_cast<double>(this->Values.size());
-  for (const float v : this->Values)
-  {
-    if (v > 0.f)
-    {
-      this->OccupiedValues += 1.0;
-      this->OccupiedSum += v;
-    }
-  }
+  this->CountOccupied(
+    this->Values.size(), [this](std::size_t i) { return this->Values[i]; }, parallelFor);
   // Cells of the grid (point data: one fewer than the points).
   std::array<int, 3> cells{};
   for (int a = 0; a < 3; ++a)
@@ -107,45 +135,53 @@ GridDensity::GridDensity(const Box& bounds, std::array<int, 3> dims, std::vector
     mg.Bounds.upper[a] = static_cast<float>(bounds.lower[a] + cell * BlockSize * mg.Dims[a]);
   }
   // A density's majorant is its largest value in the block (0 where none is positive).
-  std::vector<float> lo, hi;
-  this->BlockRanges(lo, hi);
+  this->FindBlockRanges(parallelFor);
+  const std::vector<float>& hi = this->BlockHigh;
   mg.Max.resize(hi.size());
   std::transform(hi.begin(), hi.end(), mg.Max.begin(), [](float v) { return v > 0.f ? v : 0.f; });
 }
 
-void GridDensity::BlockRanges(std::vector<float>& lo, std::vector<float>& hi) const
+void GridDensity::FindBlockRanges(const ParallelFor& parallelFor)
 {
   const MajorantGrid& mg = this->Majorants;
   const std::size_t blocks = static_cast<std::size_t>(mg.Dims[0]) * mg.Dims[1] * mg.Dims[2];
+  std::vector<float>& lo = this->BlockLow;
+  std::vector<float>& hi = this->BlockHigh;
   lo.assign(blocks, std::numeric_limits<float>::infinity());
   hi.assign(blocks, -std::numeric_limits<float>::infinity());
   // A block's cells read the values of indices [first, last] along each
   // axis: its own cells, and for point values the points one beyond.
   const int reach = this->CellValues ? 0 : 1;
-  std::size_t b = 0;
-  for (int bk = 0; bk < mg.Dims[2]; ++bk)
-    for (int bj = 0; bj < mg.Dims[1]; ++bj)
-      for (int bi = 0; bi < mg.Dims[0]; ++bi, ++b)
+  parallelFor(0, static_cast<std::size_t>(mg.Dims[2]),
+    [&](std::size_t kBegin, std::size_t kEnd)
+    {
+      for (int bk = static_cast<int>(kBegin); bk < static_cast<int>(kEnd); ++bk)
       {
-        const int block[3] = { bi, bj, bk };
-        int first[3], last[3];
-        for (int a = 0; a < 3; ++a)
-        {
-          first[a] = block[a] * BlockSize;
-          last[a] = std::min(this->Dims[a] - 1, first[a] + BlockSize - 1 + reach);
-        }
-        float l = lo[b], h = hi[b];
-        for (int k = first[2]; k <= last[2]; ++k)
-          for (int j = first[1]; j <= last[1]; ++j)
-            for (int i = first[0]; i <= last[0]; ++i)
+        std::size_t b = static_cast<std::size_t>(bk) * mg.Dims[1] * mg.Dims[0];
+        for (int bj = 0; bj < mg.Dims[1]; ++bj)
+          for (int bi = 0; bi < mg.Dims[0]; ++bi, ++b)
+          {
+            const int block[3] = { bi, bj, bk };
+            int first[3], last[3];
+            for (int a = 0; a < 3; ++a)
             {
-              const float v = this->Value(i, j, k);
-              l = std::min(l, v);
-              h = std::max(h, v);
+              first[a] = block[a] * BlockSize;
+              last[a] = std::min(this->Dims[a] - 1, first[a] + BlockSize - 1 + reach);
             }
-        lo[b] = l;
-        hi[b] = h;
+            float l = lo[b], h = hi[b];
+            for (int k = first[2]; k <= last[2]; ++k)
+              for (int j = first[1]; j <= last[1]; ++j)
+                for (int i = first[0]; i <= last[0]; ++i)
+                {
+                  const float v = this->Value(i, j, k);
+                  l = std::min(l, v);
+                  h = std::max(h, v);
+                }
+            lo[b] = l;
+            hi[b] = h;
+          }
       }
+    });
 }
 
 float GridDensity::Evaluate(const Vec3& p) const

@@ -4,9 +4,11 @@
 #ifndef brume_Density_h
 #define brume_Density_h
 
+#include "brume/Parallel.h"
 #include "brume/Vec3.h"
 
 #include <array>
+#include <functional>
 #include <vector>
 
 namespace brume
@@ -47,6 +49,18 @@ public:
    */
   virtual std::array<int, 3> NativeResolution() const;
   virtual Box NativeBox() const { return this->Bounds; }
+  /**
+   * The field at the centre of its native cell (i, j, k), which lies at
+   * world point `centre` (clamped to the bounds): Evaluate(centre), or the
+   * sample itself where the field holds it (a grid's value).
+   */
+  virtual float NativeValue(int i, int j, int k, const Vec3& centre) const
+  {
+    (void)i;
+    (void)j;
+    (void)k;
+    return this->Evaluate(centre);
+  }
   const MajorantGrid& GetMajorants() const { return this->Majorants; }
   /// Number of non-empty majorant blocks (for reporting sparsity).
   std::size_t NumberOfOccupiedBlocks() const;
@@ -72,6 +86,15 @@ public:
   }
 
 protected:
+  /**
+   * Counts into GridValues, OccupiedValues and OccupiedSum the `count`
+   * values value(i) that are above 0, on `parallelFor`: in fixed chunks
+   * summed in order, so the sums are the same whatever the threads (and
+   * those of a plain loop up to one chunk).
+   */
+  void CountOccupied(std::size_t count, const std::function<float(std::size_t)>& value,
+    const ParallelFor& parallelFor);
+
   Box Bounds;
   MajorantGrid Majorants;
   // Set by grids: their values (or voxels) in all, those above 0, and the
@@ -103,18 +126,30 @@ public:
    * constant per cell either way.
    */
   GridDensity(const Box& bounds, std::array<int, 3> dims, std::vector<float> values,
-    bool cellValues, Interpolation interpolation = Interpolation::Linear);
+    bool cellValues, Interpolation interpolation = Interpolation::Linear,
+    const ParallelFor& parallelFor = SerialFor());
   float Evaluate(const Vec3& p) const override;
   std::array<int, 3> NativeResolution() const override;
   Box NativeBox() const override;
+  /// The value itself: point values are the native cells' centres, cell
+  /// values the cells.
+  float NativeValue(int i, int j, int k, const Vec3& centre) const override
+  {
+    (void)centre;
+    return this->Value(i, j, k);
+  }
 
   /**
    * Per majorant block (in GetMajorants()'s order), the smallest and largest
    * of the values its cells interpolate: its cells' own values, or the
    * points on its cells' corners. The value anywhere in a block lies in
-   * that range.
+   * that range. Found once, by the constructor.
    */
-  void BlockRanges(std::vector<float>& lo, std::vector<float>& hi) const;
+  void BlockRanges(std::vector<float>& lo, std::vector<float>& hi) const
+  {
+    lo = this->BlockLow;
+    hi = this->BlockHigh;
+  }
   bool ValueRanges(std::vector<float>& lo, std::vector<float>& hi) const override
   {
     this->BlockRanges(lo, hi);
@@ -129,10 +164,13 @@ private:
   {
     return this->Values[(static_cast<std::size_t>(k) * this->Dims[1] + j) * this->Dims[0] + i];
   }
+  void FindBlockRanges(const ParallelFor& parallelFor);
+
   std::array<int, 3> Dims;
   std::vector<float> Values;
   bool CellValues;
   Interpolation Interpolated;
+  std::vector<float> BlockLow, BlockHigh;
 };
 
 } // namespace brume

@@ -120,12 +120,14 @@ bool ZeroOver(const DensityField& density, const Box& bounds, Vec3 lower, Vec3 u
 }
 }
 
-void NativeMediumGrid::Sample(const Medium& medium, const ParallelFor& parallelFor)
+void NativeMediumGrid::Sample(const Medium& medium, std::size_t memory,
+  const std::array<int, 3>& histogram, const ParallelFor& parallelFor)
 {
   const DensityField& density = *medium.Density;
   const Box& bounds = medium.Bounds;
   const std::array<int, 3> native = density.NativeResolution();
   const Box nativeBox = density.NativeBox();
+  const auto* classified = dynamic_cast<const ClassifiedDensity*>(&density);
   // At coarsening `factor`: the cells, their box (coarsened cells cover
   // whole native cells: the box grows on the far side to a multiple of the
   // factor) and which cells' samples are 0 by the majorants.
@@ -152,9 +154,11 @@ void NativeMediumGrid::Sample(const Medium& medium, const ParallelFor& parallelF
       static_cast<float>(upper[2] + 1));
     return ZeroOver(density, bounds, box.lower + lo * cell, box.lower + hi * cell);
   };
-  // The smallest integer coarsening, the same on every axis, whose box and
-  // occupied bricks fit the budgets (bricks of one value other than 0 count
-  // as stored here: only sampling tells them apart).
+  // The smallest integer coarsening, the same on every axis, whose grids
+  // fit the memory: the occupied bricks' samples and every brick's table
+  // entry, twice for a classified density kept with its scalars (bricks of
+  // one value other than 0 count as stored here: only sampling tells them
+  // apart).
   auto fits = [&](int factor)
   {
     layout(factor);
@@ -167,26 +171,37 @@ void NativeMediumGrid::Sample(const Medium& medium, const ParallelFor& parallelF
       }
       bricks *= BrickedGrid::BricksAlong(dims[a]);
     }
-    if (bricks > static_cast<double>(MaxBricks))
+    const double grids = classified && factor == 1 ? 2.0 : 1.0;
+    constexpr double tableBytes = sizeof(std::int32_t) + sizeof(float);
+    constexpr double brickBytes = BrickedGrid::BrickSamples * sizeof(float);
+    if (grids * bricks * tableBytes > static_cast<double>(memory))
     {
       return false;
     }
-    std::size_t occupied = 0;
     const int bx = BrickedGrid::BricksAlong(dims[0]), by = BrickedGrid::BricksAlong(dims[1]),
               bz = BrickedGrid::BricksAlong(dims[2]);
-    for (int k = 0; k < bz; ++k)
-      for (int j = 0; j < by; ++j)
-        for (int i = 0; i < bx; ++i)
-        {
-          const std::array<int, 3> lower{ i * BrickedGrid::Stride, j * BrickedGrid::Stride,
-            k * BrickedGrid::Stride };
-          const std::array<int, 3> upper{ std::min(lower[0] + BrickedGrid::Size, dims[0]) - 1,
-            std::min(lower[1] + BrickedGrid::Size, dims[1]) - 1,
-            std::min(lower[2] + BrickedGrid::Size, dims[2]) - 1 };
-          occupied += zeroOver(lower, upper) ? 0 : 1;
-        }
-    return static_cast<double>(occupied) * BrickedGrid::BrickSamples <=
-      static_cast<double>(MaxSamples);
+    std::vector<std::size_t> occupied(static_cast<std::size_t>(bz), 0);
+    parallelFor(0, static_cast<std::size_t>(bz),
+      [&](std::size_t begin, std::size_t end)
+      {
+        for (std::size_t k = begin; k < end; ++k)
+          for (int j = 0; j < by; ++j)
+            for (int i = 0; i < bx; ++i)
+            {
+              const std::array<int, 3> lower{ i * BrickedGrid::Stride, j * BrickedGrid::Stride,
+                static_cast<int>(k) * BrickedGrid::Stride };
+              const std::array<int, 3> upper{ std::min(lower[0] + BrickedGrid::Size, dims[0]) - 1,
+                std::min(lower[1] + BrickedGrid::Size, dims[1]) - 1,
+                std::min(lower[2] + BrickedGrid::Size, dims[2]) - 1 };
+              occupied[k] += zeroOver(lower, upper) ? 0 : 1;
+            }
+      });
+    double stored = 0.0;
+    for (const std::size_t n : occupied)
+    {
+      stored += static_cast<double>(n);
+    }
+    return grids * (stored * brickBytes + bricks * tableBytes) <= static_cast<double>(memory);
   };
   int factor = 1;
   while (!fits(factor))
@@ -194,31 +209,28 @@ void NativeMediumGrid::Sample(const Medium& medium, const ParallelFor& parallelF
     ++factor;
   }
   layout(factor);
-  // One sample at the centre of a native cell; a coarsened cell averages
-  // 2^3. A classified density is classified after interpolation, so its
-  // function may step or bend anywhere in a cell: cells whose scalars span
-  // one of its points average 4^3 samples.
-  const auto* classified = dynamic_cast<const ClassifiedDensity*>(&density);
-  const int samples = factor > 1 ? 2 : 1;
-  this->Density = BrickedGrid::Sample(
-    dims, box,
-    [&](int i, int j, int k)
-    {
-      const Vec3 corner(static_cast<float>(i), static_cast<float>(j), static_cast<float>(k));
-      const Vec3 lower = box.lower + corner * cell;
-      const bool bends =
-        classified && factor == 1 && classified->BendsWithin(Box{ lower, lower + cell });
-      return static_cast<float>(MeanDensity(density, bounds, lower, cell, bends ? 4 : samples));
-    },
-    zeroOver, parallelFor);
-  // A classified density's scalars at the same centres (not coarsened).
+  this->Coarsening = factor;
+  this->FieldResolution = native;
+  // A classified density's scalars at the cells' centres (not coarsened;
+  // the field's own values):
+  // bricks the majorants leave out hold a scalar the function takes to 0
+  // (a node of opacity 0; with none, no brick is left out).
   this->Scalars = BrickedGrid();
   this->Classification = nullptr;
+  auto centre = [&](int i, int j, int k)
+  {
+    // The centre of cell (i, j, k), on the bounds' faces beyond them.
+    const Vec3 corner(static_cast<float>(i), static_cast<float>(j), static_cast<float>(k));
+    Vec3 p = box.lower + corner * cell + cell * 0.5f;
+    for (int a = 0; a < 3; ++a)
+    {
+      p[a] = std::clamp(p[a], bounds.lower[a], bounds.upper[a]);
+    }
+    return p;
+  };
   if (classified && factor == 1)
   {
     const OpacityTransferFunction& function = classified->GetOpacity();
-    // Bricks the majorants leave out hold a scalar the function takes to 0
-    // (a node of opacity 0; with none, no brick is left out).
     float nothing = function.GetNodes().front().Scalar;
     for (const auto& node : function.GetNodes())
     {
@@ -230,22 +242,54 @@ void NativeMediumGrid::Sample(const Medium& medium, const ParallelFor& parallelF
     }
     const DensityField& scalars = classified->GetScalars();
     this->Scalars = BrickedGrid::Sample(
-      dims, box,
-      [&](int i, int j, int k)
-      {
-        // The centre MeanDensity samples, on the bounds' faces beyond them.
-        const Vec3 centre(
-          static_cast<float>(i) + 0.5f, static_cast<float>(j) + 0.5f, static_cast<float>(k) + 0.5f);
-        Vec3 p = box.lower + cell * centre;
-        for (int a = 0; a < 3; ++a)
-        {
-          p[a] = std::clamp(p[a], bounds.lower[a], bounds.upper[a]);
-        }
-        return scalars.Evaluate(p);
-      },
+      dims, box, [&](int i, int j, int k) { return scalars.NativeValue(i, j, k, centre(i, j, k)); },
       zeroOver, parallelFor, nothing);
     this->Classification = &function;
   }
+  // One sample at the centre of a native cell (the field's own value
+  // there: DensityField::NativeValue); a coarsened cell averages 2^3.
+  // A classified density is classified after interpolation, so its
+  // function may step or bend anywhere in a cell: cells whose scalars span
+  // one of its points average bend^3 samples, enough for BendSamples
+  // along each axis of a histogram cell. Elsewhere a classified cell is
+  // the function at its scalar.
+  int bend = BendSamples;
+  if (histogram[0] > 0)
+  {
+    // The most any axis needs.
+    bend = 1;
+    for (int a = 0; a < 3; ++a)
+    {
+      const double histogramCell = static_cast<double>(bounds.Extent()[a]) / histogram[a];
+      const double perAxis = BendSamples * static_cast<double>(cell[a]) / histogramCell;
+      bend = std::max(bend, std::min(BendSamples, static_cast<int>(std::lround(perAxis))));
+    }
+  }
+  const int samples = factor > 1 ? 2 : 1;
+  const OpacityTransferFunction* function = this->Classification;
+  this->Density = BrickedGrid::Sample(
+    dims, box,
+    [&](int i, int j, int k)
+    {
+      if (function)
+      {
+        const Vec3 corner(static_cast<float>(i), static_cast<float>(j), static_cast<float>(k));
+        const Vec3 lower = box.lower + corner * cell;
+        if (bend > 1 && classified->BendsWithin(Box{ lower, lower + cell }))
+        {
+          return static_cast<float>(MeanDensity(density, bounds, lower, cell, bend));
+        }
+        return function->Extinction(this->Scalars.At(i, j, k));
+      }
+      if (samples == 1)
+      {
+        return density.NativeValue(i, j, k, centre(i, j, k));
+      }
+      const Vec3 corner(static_cast<float>(i), static_cast<float>(j), static_cast<float>(k));
+      const Vec3 lower = box.lower + corner * cell;
+      return static_cast<float>(MeanDensity(density, bounds, lower, cell, samples));
+    },
+    zeroOver, parallelFor);
 }
 
 void NativeMediumGrid::BuildTables(const Box& box, const std::array<int, 3>& dims)

@@ -30,11 +30,10 @@ class OpacityTransferFunction;
  * trilinear sampler, a point-valued image), not a smoothed copy. Stored in
  * bricks (brume::BrickedGrid): bricks where the density's majorant is 0 are
  * not evaluated and, with bricks of one value, not stored, so memory
- * follows the medium's occupied bricks, not its box. Grids whose occupied
- * bricks would store more than MaxSamples samples, or whose box holds more
- * than MaxBricks bricks or MaxAxis cells along an axis, are coarsened by
- * one integer factor on every axis (the smallest that fits; a coarsened
- * cell averages 2^3 samples).
+ * follows the medium's occupied bricks, not its box. A grid is coarsened
+ * by one integer factor on every axis (the smallest that fits; a coarsened
+ * cell averages 2^3 samples) only where its grids would take more memory
+ * than Sample() is given, or its box more than MaxAxis cells along an axis.
  *
  * From this grid come the tables a texture is normalized by: the integral
  * of the density over each histogram cell and its first moments
@@ -44,12 +43,38 @@ class OpacityTransferFunction;
 class NativeMediumGrid
 {
 public:
-  static constexpr std::size_t MaxSamples = std::size_t(1) << 23; // 32 MB
-  static constexpr std::size_t MaxBricks = std::size_t(1) << 21;  // 16 MB of table
+  /// The memory a grid may take where none is given: what the grids were
+  /// held to before their budget came from the machine.
+  static constexpr std::size_t DefaultMemory = std::size_t(32) << 20;
   static constexpr int MaxAxis = 2048;
+  /// The samples per axis a classified density's cell takes where its
+  /// function bends inside the cell, where the cell is as large as a
+  /// histogram cell (see Sample()).
+  static constexpr int BendSamples = 4;
 
-  /// Samples the density of `medium` (which has one).
-  void Sample(const Medium& medium, const ParallelFor& parallelFor);
+  /**
+   * Samples the density of `medium` (which has one) at its own resolution
+   * where its grids fit `memory` bytes: the stored bricks and the brick
+   * tables of the density and, for a classified density, of its scalars.
+   * Otherwise coarsened by the smallest integer factor that fits
+   * (GetCoarsening()).
+   *
+   * `histogram` gives the histogram cells the tables will be built over
+   * (BuildTables()), or zeros. A classified density's cell whose scalars
+   * span one of its function's points is the mean of s^3 samples, s the
+   * fewest that put BendSamples along each axis of a histogram cell
+   * (BendSamples for cells as large as a histogram cell or larger, 1 for
+   * cells a quarter of one or smaller; BendSamples without `histogram`):
+   * the integrals the tables hold are then as fine everywhere, and a
+   * 512^3 field under a 128^3 histogram is classified once per cell. Other
+   * cells take the field at their centre.
+   */
+  void Sample(const Medium& medium, std::size_t memory, const std::array<int, 3>& histogram,
+    const ParallelFor& parallelFor);
+  /// The integer factor the field's own grid was coarsened by (1: none).
+  int GetCoarsening() const { return this->Coarsening; }
+  /// The field's own resolution (DensityField::NativeResolution()).
+  const std::array<int, 3>& GetFieldResolution() const { return this->FieldResolution; }
   bool Empty() const { return this->Density.Empty(); }
   const BrickedGrid& GetDensity() const { return this->Density; }
   /**
@@ -88,6 +113,8 @@ private:
   SummedAreaTable DensityTable;   // integral of the density per histogram cell
   SummedAreaTable DensityMoments; // and its first moments (histogram-cell coordinates)
   double EmptyIntegral = 0.0;
+  int Coarsening = 1;
+  std::array<int, 3> FieldResolution{ 0, 0, 0 };
 };
 
 } // namespace brume

@@ -202,53 +202,64 @@ void ObjectRadiance::Reduce(ExactHistogram& a, ExactHistogram* b)
   this->Distributed.Reduce(a, b);
 }
 
+void ObjectRadiance::SampleMedium(const ParallelFor& parallelFor)
+{
+  const Medium* medium = this->Layout.MediumRef;
+  if (!medium || !this->Extinction.empty())
+  {
+    return;
+  }
+  const std::size_t texels = this->Layout.Texels();
+  const std::array<int, 3>& resolution = this->Layout.Resolution;
+  // What every process's output needs of the medium itself: sigma_t per
+  // voxel, and the density at its own resolution.
+  const Box box = medium->Bounds;
+  this->Extinction.resize(3 * texels);
+  const Vec3 voxelSize = box.Extent() /
+    Vec3(static_cast<float>(resolution[0]), static_cast<float>(resolution[1]),
+      static_cast<float>(resolution[2]));
+  const std::size_t nx = resolution[0], nxy = nx * resolution[1];
+  parallelFor(0, texels,
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t t = begin; t < end; ++t)
+      {
+        // sigma_t times the density's mean over 2^3 points of the voxel.
+        Vec3 sigmaT = medium->SigmaT();
+        if (medium->Density)
+        {
+          const Vec3 corner(static_cast<float>(t % nx), static_cast<float>((t % nxy) / nx),
+            static_cast<float>(t / nxy));
+          float mean = 0.f;
+          for (int k = 0; k < 8; ++k)
+          {
+            const Vec3 offset(
+              0.25f + 0.5f * (k & 1), 0.25f + 0.5f * ((k >> 1) & 1), 0.25f + 0.5f * (k >> 2));
+            mean += medium->Density->Evaluate(box.lower + (corner + offset) * voxelSize) / 8.f;
+          }
+          sigmaT = sigmaT * mean;
+        }
+        for (int c = 0; c < 3; ++c)
+        {
+          this->Extinction[3 * t + c] = sigmaT[c];
+        }
+      }
+    });
+  if (medium->Density && this->Native.Empty())
+  {
+    this->Native.Sample(*medium, this->Settings.NativeMemory, this->Layout.Dims, parallelFor);
+  }
+}
+
 std::string ObjectRadiance::EstimateTexture(const ParallelFor& parallelFor)
 {
   const bool first = !this->Estimated;
   const std::size_t texels = this->Layout.Texels();
   const std::array<int, 3>& resolution = this->Layout.Resolution;
   const Medium* medium = this->Layout.MediumRef;
-  if (first && medium)
+  if (first)
   {
-    // What every process's output needs of the medium itself: sigma_t per
-    // voxel, and the density at its own resolution.
-    const Box box = medium->Bounds;
-    this->Extinction.resize(3 * texels);
-    const Vec3 voxelSize = box.Extent() /
-      Vec3(static_cast<float>(resolution[0]), static_cast<float>(resolution[1]),
-        static_cast<float>(resolution[2]));
-    const std::size_t nx = resolution[0], nxy = nx * resolution[1];
-    parallelFor(0, texels,
-      [&](std::size_t begin, std::size_t end)
-      {
-        for (std::size_t t = begin; t < end; ++t)
-        {
-          // sigma_t times the density's mean over 2^3 points of the voxel.
-          Vec3 sigmaT = medium->SigmaT();
-          if (medium->Density)
-          {
-            const Vec3 corner(static_cast<float>(t % nx), static_cast<float>((t % nxy) / nx),
-              static_cast<float>(t / nxy));
-            float mean = 0.f;
-            for (int k = 0; k < 8; ++k)
-            {
-              const Vec3 offset(
-                0.25f + 0.5f * (k & 1), 0.25f + 0.5f * ((k >> 1) & 1), 0.25f + 0.5f * (k >> 2));
-              mean += medium->Density->Evaluate(box.lower + (corner + offset) * voxelSize) / 8.f;
-            }
-            sigmaT = sigmaT * mean;
-          }
-          for (int c = 0; c < 3; ++c)
-          {
-            this->Extinction[3 * t + c] = sigmaT[c];
-          }
-        }
-      });
-    if (medium->Density && this->Native.Empty())
-    {
-      // Independent of the particles and the view: made once per object.
-      this->Native.Sample(*medium, parallelFor);
-    }
+    this->SampleMedium(parallelFor);
   }
   this->Estimated = true;
   if (!this->Distributed.EstimatesHere())

@@ -109,6 +109,12 @@ struct ObjectOptions
    * each growth would copy the hits held so far into fresh pages.
    */
   double RunShare = 1.0;
+  /**
+   * Media: the bytes the density's grid at its own resolution may take
+   * (NativeMediumGrid::Sample()); past them it is coarsened.
+   * vtkBrumeRadianceReconstruction derives it from the machine's memory.
+   */
+  std::size_t NativeMemory = NativeMediumGrid::DefaultMemory;
 };
 
 /// A texture as a renderer reads it: RGB per texel, x fastest (surfaces
@@ -242,6 +248,15 @@ public:
    * homogeneous media and surfaces.
    */
   const NativeMediumGrid& GetNative() const { return this->Native; }
+  /**
+   * Media: what the output needs of the medium itself, independent of the
+   * particles and the view: sigma_t per texel and the density at its own
+   * resolution (GetNative()), with ObjectOptions::NativeMemory. Made once,
+   * by the first estimate where not before; a scene's objects are built
+   * concurrently, one thread each, so the driver samples its media first,
+   * one after the other on every thread. No effect on surfaces.
+   */
+  void SampleMedium(const ParallelFor& parallelFor);
 
   /// The texture the particles give: GetLayout().Resolution texels.
   TextureView GetTexture() const

@@ -90,8 +90,8 @@ float OpacityTransferFunction::MaxExtinction(float lo, float hi) const
   return this->ExtinctionOfOpacity(alpha);
 }
 
-ClassifiedDensity::ClassifiedDensity(
-  std::shared_ptr<const DensityField> scalars, OpacityTransferFunction opacity)
+ClassifiedDensity::ClassifiedDensity(std::shared_ptr<const DensityField> scalars,
+  OpacityTransferFunction opacity, const ParallelFor& parallelFor)
   : Scalars(std::move(scalars))
   , Opacity(std::move(opacity))
 {
@@ -100,16 +100,10 @@ ClassifiedDensity::ClassifiedDensity(
   // positive (other fields: the non-empty majorant blocks').
   if (const auto* grid = dynamic_cast<const GridDensity*>(this->Scalars.get()))
   {
-    this->GridValues = static_cast<double>(grid->GetValues().size());
-    for (const float s : grid->GetValues())
-    {
-      const float sigma = this->Opacity.Extinction(s);
-      if (sigma > 0.f)
-      {
-        this->OccupiedValues += 1.0;
-        this->OccupiedSum += sigma;
-      }
-    }
+    const std::vector<float>& values = grid->GetValues();
+    this->CountOccupied(
+      values.size(), [&](std::size_t i) { return this->Opacity.Extinction(values[i]); },
+      parallelFor);
   }
   this->Majorants = this->Scalars->GetMajorants();
   std::vector<float>& lo = this->RangeLow;
@@ -233,8 +227,8 @@ std::string ColorTransferFunction::Validate(const std::vector<Node>& nodes)
   for (std::size_t i = 0; i < nodes.size(); ++i)
   {
     std::ostringstream at;
-    at << "colour point " << i << " (scalar " << nodes[i].Scalar << ", colour "
-       << nodes[i].Color.x << " " << nodes[i].Color.y << " " << nodes[i].Color.z << ")";
+    at << "colour point " << i << " (scalar " << nodes[i].Scalar << ", colour " << nodes[i].Color.x
+       << " " << nodes[i].Color.y << " " << nodes[i].Color.z << ")";
     if (!std::isfinite(nodes[i].Scalar))
     {
       return at.str() + " has a non-finite scalar";

@@ -85,13 +85,18 @@ class ClassifiedDensity : public DensityField
 {
 public:
   /// `scalars` should know its ValueRanges (a GridDensity, a VdbDensity loaded as scalars).
-  ClassifiedDensity(std::shared_ptr<const DensityField> scalars, OpacityTransferFunction opacity);
+  ClassifiedDensity(std::shared_ptr<const DensityField> scalars, OpacityTransferFunction opacity,
+    const ParallelFor& parallelFor = SerialFor());
   float Evaluate(const Vec3& p) const override
   {
     return this->Opacity.Extinction(this->Scalars->Evaluate(p));
   }
   std::array<int, 3> NativeResolution() const override { return this->Scalars->NativeResolution(); }
   Box NativeBox() const override { return this->Scalars->NativeBox(); }
+  float NativeValue(int i, int j, int k, const Vec3& centre) const override
+  {
+    return this->Opacity.Extinction(this->Scalars->NativeValue(i, j, k, centre));
+  }
 
   /**
    * Whether one of the function's points lies strictly inside the range of

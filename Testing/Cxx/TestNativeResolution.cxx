@@ -1,0 +1,258 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// A scientific volume keeps its own resolution: a classified field is
+// reconstructed and drawn at its own grid where NativeMemoryLimit holds it,
+// coarsened with one warning where it does not; the same arrays are
+// converted once for the tracer, the reconstruction and the renderer, an
+// edit of the transfer function keeps the converted scalars, and what was
+// kept goes with the array.
+#include "vtkBrumeDataModelNames.h"
+#include "vtkBrumeLightTracer.h"
+#include "vtkBrumeRadianceReconstruction.h"
+#include "vtkBrumeSceneConversion.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCellArray.h"
+#include "vtkCommand.h"
+#include "vtkDoubleArray.h"
+#include "vtkExecutive.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPartitionedDataSet.h"
+#include "vtkPartitionedDataSetCollection.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+#include "vtkStringArray.h"
+
+#include "brume/Scene.h"
+#include "brume/TransferFunction.h"
+
+#include <array>
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <string>
+
+namespace
+{
+int failures = 0;
+void Check(bool ok, const std::string& what)
+{
+  if (!ok)
+  {
+    std::cerr << "FAILED: " << what << "\n";
+    ++failures;
+  }
+}
+
+// A wavy scalar on n^3 points over [-0.5, 0.5]^3, classified by an opacity
+// function that bends inside its range: a medium of its own resolution.
+vtkSmartPointer<vtkImageData> Field(int n)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(n, n, n);
+  image->SetOrigin(-0.5, -0.5, -0.5);
+  image->SetSpacing(1.0 / (n - 1), 1.0 / (n - 1), 1.0 / (n - 1));
+  vtkNew<vtkFloatArray> s;
+  s->SetName("wave");
+  s->SetNumberOfValues(image->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < image->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    image->GetPoint(i, p);
+    s->SetValue(i,
+      static_cast<float>(50.0 + 50.0 * std::sin(9.0 * p[0]) * std::cos(7.0 * p[1] + 2.0 * p[2])));
+  }
+  image->GetPointData()->SetScalars(s);
+  vtkFieldData* fd = image->GetFieldData();
+  const double sigmaA[3] = { 0.1, 0.1, 0.1 }, sigmaS[3] = { 0.9, 0.9, 0.9 };
+  vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::SigmaA, sigmaA, 3);
+  vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::SigmaS, sigmaS, 3);
+  vtkNew<vtkDoubleArray> opacity;
+  opacity->SetName(vtkBrumeNames::ScalarOpacity);
+  opacity->SetNumberOfComponents(2);
+  opacity->InsertNextTuple2(20, 0);
+  opacity->InsertNextTuple2(60, 0.2);
+  opacity->InsertNextTuple2(100, 0.8);
+  fd->AddArray(opacity);
+  const double unit = 0.1;
+  vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::ScalarOpacityUnitDistance, &unit, 1);
+  return image;
+}
+
+vtkSmartPointer<vtkPartitionedDataSetCollection> Scene(vtkImageData* medium)
+{
+  auto ground = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  points->InsertNextPoint(-2, -0.6, -2);
+  points->InsertNextPoint(-2, -0.6, 2);
+  points->InsertNextPoint(2, -0.6, 2);
+  points->InsertNextPoint(2, -0.6, -2);
+  ground->SetPoints(points);
+  vtkNew<vtkCellArray> polys;
+  const vtkIdType quad[4] = { 0, 1, 2, 3 };
+  polys->InsertNextCell(4, quad);
+  ground->SetPolys(polys);
+  auto scene = vtkSmartPointer<vtkPartitionedDataSetCollection>::New();
+  vtkBrumeSceneConversion::AddObject(scene, ground, "ground");
+  vtkBrumeSceneConversion::AddObject(scene, medium, "wave");
+  vtkNew<vtkStringArray> types;
+  types->SetName(vtkBrumeNames::LightType);
+  types->InsertNextValue("point");
+  vtkFieldData* fd = scene->GetFieldData();
+  fd->AddArray(types);
+  const double position[3] = { 0.8, 1.5, 0.9 }, direction[3] = { 0, -1, 0 },
+               intensity[3] = { 4, 4, 4 }, cone = 180;
+  vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::LightPosition, position, 3);
+  vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::LightDirection, direction, 3);
+  vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::LightIntensity, intensity, 3);
+  vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::LightConeAngle, &cone, 1);
+  return scene;
+}
+
+// The warnings an object reports.
+struct WarningCatcher
+{
+  std::string All;
+  static void Callback(vtkObject*, unsigned long, void* clientData, void* callData)
+  {
+    static_cast<WarningCatcher*>(clientData)->All += static_cast<const char*>(callData);
+  }
+};
+
+// The cells of the medium's own-resolution grid in the reconstruction's
+// output (partition 1), after a run with `limit` bytes for it; the
+// warnings in `warnings`.
+std::array<int, 3> NativeCells(vtkImageData* field, vtkTypeInt64 limit, std::string& warnings)
+{
+  vtkSmartPointer<vtkPartitionedDataSetCollection> scene = Scene(field);
+  vtkNew<vtkBrumeLightTracer> tracer;
+  tracer->SetInputData(scene);
+  tracer->SetNumberOfParticles(20000);
+  tracer->SetSeed(3);
+  vtkNew<vtkBrumeRadianceReconstruction> reconstruction;
+  reconstruction->SetInputDataObject(0, scene);
+  reconstruction->SetInputConnection(1, tracer->GetOutputPort());
+  reconstruction->SetEyePosition(0, 0.4, 3);
+  reconstruction->SetNativeMemoryLimit(limit);
+  WarningCatcher catcher;
+  vtkNew<vtkCallbackCommand> command;
+  command->SetCallback(WarningCatcher::Callback);
+  command->SetClientData(&catcher);
+  reconstruction->AddObserver(vtkCommand::WarningEvent, command);
+  std::array<int, 3> cells{ 0, 0, 0 };
+  if (!reconstruction->GetExecutive()->Update())
+  {
+    return cells;
+  }
+  warnings = catcher.All;
+  auto* native = vtkImageData::SafeDownCast(
+    reconstruction->GetOutput()->GetPartitionedDataSet(1)->GetPartition(1));
+  if (native)
+  {
+    int dims[3];
+    native->GetDimensions(dims);
+    cells = { dims[0] - 1, dims[1] - 1, dims[2] - 1 };
+  }
+  return cells;
+}
+
+void TestOwnResolution()
+{
+  // 48^3 points: each grid (the extinction's and the scalars') stores
+  // 7^3 bricks of 2 KB, about 0.7 MB.
+  vtkSmartPointer<vtkImageData> field = Field(48);
+  std::string warnings;
+  const std::array<int, 3> own = NativeCells(field, vtkTypeInt64(16) << 20, warnings);
+  Check(own == (std::array<int, 3>{ 48, 48, 48 }),
+    "a 48^3 field under 16 MB is drawn at 48^3, not at " + std::to_string(own[0]));
+  Check(warnings.find("coarsened") == std::string::npos, "no warning at its own resolution");
+  // The default limit comes from the machine: a quarter of half its memory.
+  vtkNew<vtkBrumeRadianceReconstruction> defaults;
+  Check(defaults->GetNativeMemoryLimit() == 0 &&
+      defaults->GetEffectiveNativeMemoryLimit() >= (vtkTypeInt64(64) << 20),
+    "the default limit is the machine's, at least 64 MB");
+
+  const std::array<int, 3> coarse = NativeCells(field, vtkTypeInt64(1) << 19, warnings);
+  Check(coarse == (std::array<int, 3>{ 24, 24, 24 }),
+    "under half a megabyte it is coarsened by 2, to 24^3, not " + std::to_string(coarse[0]));
+  Check(warnings.find("Medium 'wave' is drawn at 24 x 24 x 24, its own 48 x 48 x 48 coarsened "
+                      "by 2") != std::string::npos,
+    "one warning says so, naming the medium: '" + warnings + "'");
+}
+
+// The density of the scene's one medium.
+std::shared_ptr<const brume::DensityField> Density(vtkImageData* field)
+{
+  brume::Scene scene;
+  const std::string error = vtkBrumeSceneConversion::ToScene(Scene(field), scene);
+  Check(error.empty(), "the scene converts: " + error);
+  return error.empty() ? scene.Media.at(0).Density : nullptr;
+}
+
+const brume::DensityField* ScalarsOf(const std::shared_ptr<const brume::DensityField>& density)
+{
+  const auto* classified = dynamic_cast<const brume::ClassifiedDensity*>(density.get());
+  return classified ? &classified->GetScalars() : nullptr;
+}
+
+void TestConvertedOnce()
+{
+  vtkSmartPointer<vtkImageData> field = Field(20);
+  const auto first = Density(field);
+  const auto again = Density(field);
+  Check(first && first == again, "the same arrays give the same converted density");
+
+  // An edit of the opacity function classifies the same scalars again.
+  vtkDataArray* opacity = field->GetFieldData()->GetArray(vtkBrumeNames::ScalarOpacity);
+  opacity->SetComponent(1, 1, 0.3);
+  opacity->Modified();
+  const auto edited = Density(field);
+  Check(edited && edited != first, "an edited function gives another density");
+  Check(ScalarsOf(edited) && ScalarsOf(edited) == ScalarsOf(first),
+    "... of the same converted scalars");
+  Check(std::abs(edited->Evaluate(brume::Vec3(0.1f, 0.2f, -0.1f)) -
+          static_cast<const brume::ClassifiedDensity&>(*edited).GetOpacity().Extinction(
+            ScalarsOf(edited)->Evaluate(brume::Vec3(0.1f, 0.2f, -0.1f)))) < 1e-6f,
+    "... classified by the new function");
+
+  // New values in the array: converted again.
+  vtkDataArray* wave = field->GetPointData()->GetArray("wave");
+  wave->SetTuple1(0, 75.0);
+  wave->Modified();
+  const auto modified = Density(field);
+  Check(
+    modified && ScalarsOf(modified) != ScalarsOf(first), "modified scalars are converted again");
+
+  // The array gone, a density still in use stays.
+  const std::weak_ptr<const brume::DensityField> last = modified;
+  field = nullptr;
+  Check(!last.expired(), "a density in use stays while it is used");
+}
+
+void TestReleasedWithTheArray()
+{
+  std::weak_ptr<const brume::DensityField> kept;
+  {
+    vtkSmartPointer<vtkImageData> field = Field(12);
+    kept = Density(field);
+    Check(!kept.expired(), "the cache keeps the density while its array lives");
+  }
+  Check(kept.expired(), "deleting the array lets its converted density go");
+}
+}
+
+int TestNativeResolution(int, char*[])
+{
+  TestOwnResolution();
+  TestConvertedOnce();
+  TestReleasedWithTheArray();
+  if (failures)
+  {
+    std::cerr << failures << " check(s) failed\n";
+    return 1;
+  }
+  return 0;
+}
