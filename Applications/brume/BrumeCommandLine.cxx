@@ -260,7 +260,7 @@ void AddRender(CLI::App& app, RenderOptions& o, const Defaults& d)
         Text(std::round(d.NativeGiB * 10.0) / 10.0) +
         "): a medium past it is drawn\n"
         "coarsened, and a warning says so")
-    ->transform(Number(0.001, 1e6, "a number in [0.001, 1e6]"))
+    ->transform(Number(0.0001, 1e6, "a number in [0.0001, 1e6]"))
     ->type_name("GIB");
   render->add_flag("--reference", o.Reference,
     "render with the unbiased path tracer instead (no\n"

@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <iostream>
 
 using namespace brume;
 
@@ -91,6 +92,43 @@ TEST(TransferFunction, OpacityPerUnitDistanceIsVtksCompositing)
   // Opaque is finite: one unit distance lets 10^-6 through (float's 1 - 10^-6).
   const OpacityTransferFunction opaque({ { 0.f, 1.f } }, 1.f);
   EXPECT_NEAR(std::exp(-opaque.Extinction(0.f)), 1e-6, 2e-8);
+}
+
+TEST(TransferFunction, TheTableIsWithinItsToleranceOfTheExactExtinction)
+{
+  // Bends, a step, an opacity near 1 and a range of 10^4: sampled densely,
+  // the table is within TableTolerance of the exact extinction (relative),
+  // below the largest over any range about it, and most of its cells are
+  // read from the table.
+  const std::vector<std::vector<OpacityTransferFunction::Node>> functions{
+    { { 0.f, 0.f }, { 1.f, 0.5f } },
+    { { 0.f, 0.f }, { 0.5f, 0.f }, { 0.5f, 0.4f }, { 0.8f, 0.6f }, { 1.f, 0.2f } },
+    { { -3.f, 0.f }, { 2.f, 0.999f }, { 2.5f, 0.9999f }, { 4.f, 0.1f } },
+    { { 40.f, 0.f }, { 150.f, 0.f }, { 200.f, 0.5f }, { 10000.f, 1.f } },
+  };
+  const double tolerance = OpacityTransferFunction::TableTolerance;
+  for (const auto& nodes : functions)
+  {
+    const OpacityTransferFunction f(nodes, 0.05f);
+    EXPECT_LE(f.GetTableError(), tolerance * 1.01);
+    EXPECT_LT(f.NumberOfExactCells(), OpacityTransferFunction::TableCells / 10);
+    const float lo = nodes.front().Scalar, hi = nodes.back().Scalar;
+    double worst = 0.0;
+    for (int i = -1000; i <= 201000; ++i)
+    {
+      const float s = lo + (hi - lo) * static_cast<float>(i) / 200000.f;
+      const double exact = f.ExactExtinction(s);
+      const float got = f.Extinction(s);
+      ASSERT_LE(std::abs(got - exact), tolerance * exact + 1e-30) << s;
+      const float width = (hi - lo) * static_cast<float>(i % 7) / 1000.f;
+      ASSERT_LE(got, f.MaxExtinction(s, s)) << s;
+      ASSERT_LE(got, f.MaxExtinction(s - width, s)) << s;
+      ASSERT_LE(got, f.MaxExtinction(s, s + 2.f * width)) << s;
+      worst = std::max(worst, exact > 0.0 ? std::abs(got - exact) / exact : 0.0);
+    }
+    std::cout << "largest relative difference " << worst << ", table's bound " << f.GetTableError()
+              << ", " << f.NumberOfExactCells() << " exact cells\n";
+  }
 }
 
 TEST(TransferFunction, StepsAndMaximaOverRanges)

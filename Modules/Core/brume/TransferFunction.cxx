@@ -44,6 +44,85 @@ OpacityTransferFunction::OpacityTransferFunction(std::vector<Node> nodes, float 
   : Nodes(std::move(nodes))
   , UnitDistance(unitDistance)
 {
+  this->MakeTable();
+}
+
+void OpacityTransferFunction::MakeTable()
+{
+  const double lo = this->Nodes.front().Scalar, hi = this->Nodes.back().Scalar;
+  const double step = (hi - lo) / TableCells;
+  if (!(step > 0.0) || !std::isfinite(step))
+  {
+    return; // one scalar: every value exact
+  }
+  this->TableLow = static_cast<float>(lo);
+  this->TableScale = static_cast<float>(TableCells / (hi - lo));
+  // The cells' ends where Extinction() puts them (x = (s - low) * scale).
+  std::vector<double> ends(TableCells + 1);
+  for (int c = 0; c <= TableCells; ++c)
+  {
+    ends[static_cast<std::size_t>(c)] =
+      static_cast<double>(this->TableLow) + c / static_cast<double>(this->TableScale);
+  }
+  this->Table.resize(TableCells + 1);
+  for (int c = 0; c <= TableCells; ++c)
+  {
+    this->Table[static_cast<std::size_t>(c)] =
+      this->ExactExtinction(static_cast<float>(ends[static_cast<std::size_t>(c)]));
+  }
+  const double unit = this->UnitDistance;
+  auto sigma = [unit](double alpha) { return -std::log1p(-alpha) / unit; };
+  std::size_t node = 0;
+  for (int c = 0; c < TableCells; ++c)
+  {
+    const double a = ends[static_cast<std::size_t>(c)], b = ends[static_cast<std::size_t>(c) + 1];
+    // A point in [a, b] (the function may bend or step there), or an
+    // opacity past MaxOpacity: exact.
+    while (node < this->Nodes.size() && this->Nodes[node].Scalar < a)
+    {
+      ++node;
+    }
+    const float alphaA = this->Opacity(static_cast<float>(a));
+    const float alphaB = this->Opacity(static_cast<float>(b));
+    if ((node < this->Nodes.size() && this->Nodes[node].Scalar <= b) ||
+      std::max(alphaA, alphaB) >= MaxOpacity)
+    {
+      continue;
+    }
+    // alpha is linear over the cell and sigma convex in alpha: the chord
+    // between the table's values is farthest above sigma where sigma's
+    // slope in alpha equals the chord's, 1 / (unit (1 - alpha*)) = dS / dA.
+    const double fa = this->Table[static_cast<std::size_t>(c)];
+    const double fb = this->Table[static_cast<std::size_t>(c) + 1];
+    const double dA = static_cast<double>(alphaB) - alphaA, dS = fb - fa;
+    double error = 0.0, at = std::max(fa, fb);
+    if (dA != 0.0 && dS != 0.0)
+    {
+      const double star = std::clamp(
+        1.0 - dA / (unit * dS), std::min<double>(alphaA, alphaB), std::max<double>(alphaA, alphaB));
+      at = sigma(star);
+      error = fa + (star - alphaA) * dS / dA - at;
+    }
+    // The table's values themselves are sigma rounded to float.
+    const double rounding = 4.0 * std::numeric_limits<float>::epsilon() * std::max(fa, fb);
+    if (error <= TableTolerance * at + rounding)
+    {
+      this->TableExact[static_cast<std::size_t>(c)] = 0;
+      this->TableError = std::max(this->TableError, at > 0.0 ? error / at : 0.0);
+    }
+  }
+  // Maxima of the table's values over runs of 2^l ends, for MaxExtinction().
+  this->TableMax.assign(1, this->Table);
+  for (int width = 2; width <= TableCells + 1; width *= 2)
+  {
+    const std::vector<float>& below = this->TableMax.back();
+    std::vector<float> row(static_cast<std::size_t>(TableCells + 2 - width));
+    for (std::size_t i = 0; i < row.size(); ++i)
+    {
+      row[i] = std::max(below[i], below[i + static_cast<std::size_t>(width / 2)]);
+    }
+    this->TableMax.push_back(std::move(row));
+  }
 }
 
 float OpacityTransferFunction::Opacity(float s) const
@@ -70,7 +149,7 @@ float OpacityTransferFunction::ExtinctionOfOpacity(float alpha) const
   return -std::log1p(-std::min(alpha, MaxOpacity)) / this->UnitDistance;
 }
 
-float OpacityTransferFunction::Extinction(float s) const
+float OpacityTransferFunction::ExactExtinction(float s) const
 {
   return this->ExtinctionOfOpacity(this->Opacity(s));
 }
@@ -87,7 +166,40 @@ float OpacityTransferFunction::MaxExtinction(float lo, float hi) const
       alpha = std::max(alpha, n.Opacity);
     }
   }
-  return this->ExtinctionOfOpacity(alpha);
+  float largest = this->ExtinctionOfOpacity(alpha);
+  // The table's values over [lo, hi]: linear within a cell, so at most
+  // those at lo, at hi and at the cells' ends between.
+  if (!this->Table.empty() && hi >= lo)
+  {
+    largest = std::max({ largest, this->Extinction(lo), this->Extinction(hi) });
+    const float x0 = (lo - this->TableLow) * this->TableScale;
+    const float x1 = (hi - this->TableLow) * this->TableScale;
+    const float cells = static_cast<float>(TableCells);
+    if (x1 >= 1.f && x0 < cells)
+    {
+      // Ends c0 + 1 ... c1 of the cells lo and hi fall in.
+      const int first = x0 < 0.f ? 0 : static_cast<int>(x0) + 1;
+      const int last = x1 >= cells ? TableCells : static_cast<int>(x1);
+      if (first <= last)
+      {
+        largest = std::max(largest, this->TableRangeMax(first, last));
+      }
+    }
+  }
+  return largest;
+}
+
+float OpacityTransferFunction::TableRangeMax(int first, int last) const
+{
+  // The sparse table: level l holds the maxima of 2^l ends from each end.
+  int level = 0;
+  while ((2 << level) <= last - first + 1)
+  {
+    ++level;
+  }
+  const std::vector<float>& row = this->TableMax[static_cast<std::size_t>(level)];
+  return std::max(
+    row[static_cast<std::size_t>(first)], row[static_cast<std::size_t>(last - (1 << level) + 1)]);
 }
 
 ClassifiedDensity::ClassifiedDensity(std::shared_ptr<const DensityField> scalars,

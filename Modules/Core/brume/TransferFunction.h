@@ -11,6 +11,7 @@
 #include "brume/Density.h"
 #include "brume/Medium.h"
 
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
@@ -32,6 +33,18 @@ namespace brume
  *
  * which this class returns. alpha = 1 would be infinite: opacity is held
  * below MaxOpacity (a unit distance then lets 10^-6 through).
+ *
+ * Extinction() costs a table lookup: TableCells cells evenly over the
+ * points' scalar range, linear between sigma_t at their ends. Within a
+ * cell where alpha is linear (no point of the function in the cell, its
+ * ends included) sigma_t is a convex function of the scalar, so the chord
+ * lies above it, and its largest distance is found in closed form when the
+ * table is made: cells where it exceeds TableTolerance of sigma_t there,
+ * and cells holding a point, are evaluated exactly (ExactExtinction()).
+ * Every value is thus within TableTolerance (relative) of the exact one
+ * (above it but for the float rounding of the exact one, which near alpha
+ * = 1 reaches 10^-5), and MaxExtinction() bounds both: a block's majorant
+ * is the largest of either over its scalars, as tight as before.
  */
 class OpacityTransferFunction
 {
@@ -55,19 +68,60 @@ public:
 
   /// alpha(s), linear between nodes; a scalar at two nodes takes the later one.
   float Opacity(float s) const;
-  /// sigma_t(s) = -ln(1 - alpha(s)) / unit, in inverse units of length.
-  float Extinction(float s) const;
-  /// The largest extinction over the scalars in [lo, hi].
+  /// Cells of the extinction's table, and the relative error it may make.
+  static constexpr int TableCells = 4096;
+  static constexpr double TableTolerance = 1e-4;
+
+  /// sigma_t(s) = -ln(1 - alpha(s)) / unit, in inverse units of length,
+  /// from the table: at most TableTolerance above ExactExtinction(s).
+  float Extinction(float s) const
+  {
+    const float x = (s - this->TableLow) * this->TableScale;
+    if (x >= 0.f && x < static_cast<float>(TableCells))
+    {
+      const int c = static_cast<int>(x);
+      if (!this->TableExact[static_cast<std::size_t>(c)])
+      {
+        const float a = this->Table[static_cast<std::size_t>(c)];
+        const float b = this->Table[static_cast<std::size_t>(c) + 1];
+        // Between a and b, rounding included (MaxExtinction() bounds them).
+        return std::min(a + (b - a) * (x - static_cast<float>(c)), std::max(a, b));
+      }
+    }
+    return this->ExactExtinction(s);
+  }
+  /// sigma_t(s) evaluated from the function's points.
+  float ExactExtinction(float s) const;
+  /// The largest extinction Extinction() or ExactExtinction() gives over
+  /// the scalars in [lo, hi].
   float MaxExtinction(float lo, float hi) const;
+  /// The largest relative error of the table's cells, as made (at most TableTolerance).
+  double GetTableError() const { return this->TableError; }
+  /// The table's cells evaluated from the points instead.
+  int NumberOfExactCells() const
+  {
+    return static_cast<int>(std::count(this->TableExact.begin(), this->TableExact.end(), 1));
+  }
 
   const std::vector<Node>& GetNodes() const { return this->Nodes; }
   float GetUnitDistance() const { return this->UnitDistance; }
 
 private:
   float ExtinctionOfOpacity(float alpha) const;
+  void MakeTable();
+  float TableRangeMax(int first, int last) const;
 
   std::vector<Node> Nodes;
   float UnitDistance;
+  // The table: TableCells + 1 values over [TableLow, TableLow +
+  // TableCells / TableScale]; cells marked exact are evaluated from the
+  // points (all of them without a range).
+  float TableLow = 0.f;
+  float TableScale = 0.f;
+  std::vector<float> Table;
+  std::vector<char> TableExact = std::vector<char>(TableCells, 1);
+  std::vector<std::vector<float>> TableMax; // maxima of 2^l consecutive values
+  double TableError = 0.0;
 };
 
 /**
