@@ -20,6 +20,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 namespace
 {
@@ -333,7 +334,10 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
       << texels[1] << " x " << texels[2] << ", beyond this GPU's " << maxSize << ".");
     return false;
   }
-  std::vector<float> packed(static_cast<std::size_t>(texels[0]) * texels[1] * texels[2], 0.f);
+  const std::size_t atlasTexels = static_cast<std::size_t>(texels[0]) * texels[1] * texels[2];
+  // Every texel is written below: the stored slots' samples, zeros in the
+  // atlas's unused slots.
+  std::unique_ptr<float[]> packed(new float[atlasTexels]);
   double largest = 0.0; // the largest value, stored or constant, before the scale
   auto invalid = [](double v) { return !(v >= 0.0) || !std::isfinite(v); };
   // Scalars a transfer function classifies may be negative; its table bounds sigma_t.
@@ -341,27 +345,64 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   impl.Classified = transfer != nullptr;
   impl.Albedo = false;
   auto invalidSample = [&](double v) { return impl.Classified ? !std::isfinite(v) : invalid(v); };
-  for (vtkIdType slot = 0; slot < slotCount; ++slot)
+  // Slot by slot on every thread (512^3 fields store 10^8 samples): each
+  // slot's largest value, and the first slot holding an invalid sample.
+  const vtkIdType atlasSlots = static_cast<vtkIdType>(atlas[0]) * atlas[1] * atlas[2];
+  std::vector<double> slotLargest(static_cast<std::size_t>(slotCount), 0.0);
+  std::atomic<vtkIdType> firstBad{ slotCount };
+  vtkFloatArray* floats = vtkFloatArray::FastDownCast(samples);
+  auto pack = [&](vtkIdType begin, vtkIdType end)
   {
-    const int sx = static_cast<int>(slot % atlas[0]),
-              sy = static_cast<int>((slot / atlas[0]) % atlas[1]),
-              sz = static_cast<int>(slot / (static_cast<vtkIdType>(atlas[0]) * atlas[1]));
-    for (int k = 0; k < B; ++k)
-      for (int j = 0; j < B; ++j)
-        for (int i = 0; i < B; ++i)
-        {
-          const double v = samples->GetTuple1(slot * BrickCells + (k * B + j) * B + i);
-          if (invalidSample(v))
+    for (vtkIdType slot = begin; slot < end; ++slot)
+    {
+      const int sx = static_cast<int>(slot % atlas[0]),
+                sy = static_cast<int>((slot / atlas[0]) % atlas[1]),
+                sz = static_cast<int>(slot / (static_cast<vtkIdType>(atlas[0]) * atlas[1]));
+      double most = 0.0;
+      bool bad = false;
+      for (int k = 0; k < B; ++k)
+        for (int j = 0; j < B; ++j)
+          for (int i = 0; i < B; ++i)
           {
-            vtkErrorMacro("Cannot draw this medium: its extinction must be finite and "
-                          "non-negative, its scalars finite (brick slot "
-              << slot << " of the extinction grid).");
-            return false;
+            const vtkIdType at = slot * BrickCells + (k * B + j) * B + i;
+            double v = 0.0;
+            if (slot < slotCount)
+            {
+              v = floats ? static_cast<double>(floats->GetValue(at)) : samples->GetTuple1(at);
+              bad = bad || invalidSample(v);
+              most = std::max(most, v);
+            }
+            packed[(static_cast<std::size_t>(sz * B + k) * texels[1] + (sy * B + j)) * texels[0] +
+              (sx * B + i)] = static_cast<float>(v);
           }
-          packed[(static_cast<std::size_t>(sz * B + k) * texels[1] + (sy * B + j)) * texels[0] +
-            (sx * B + i)] = static_cast<float>(v);
-          largest = std::max(largest, v);
-        }
+      if (slot < slotCount)
+      {
+        slotLargest[static_cast<std::size_t>(slot)] = most;
+      }
+      vtkIdType known = firstBad.load();
+      while (bad && slot < known && !firstBad.compare_exchange_weak(known, slot))
+      {
+      }
+    }
+  };
+  if (floats)
+  {
+    vtkSMPTools::For(0, atlasSlots, pack);
+  }
+  else
+  {
+    pack(0, atlasSlots); // vtkDataArray's GetTuple1 is not for threads
+  }
+  if (firstBad.load() < slotCount)
+  {
+    vtkErrorMacro("Cannot draw this medium: its extinction must be finite and "
+                  "non-negative, its scalars finite (brick slot "
+      << firstBad.load() << " of the extinction grid).");
+    return false;
+  }
+  for (const double most : slotLargest)
+  {
+    largest = std::max(largest, most);
   }
   const vtkIdType bricks = slots->GetNumberOfTuples();
   const int brickDims[3] = { ExtinctionBricksAlong(dims[0]), ExtinctionBricksAlong(dims[1]),
@@ -412,7 +453,7 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   }
   impl.MaxExtinction =
     largest * std::max({ impl.BrickScale[0], impl.BrickScale[1], impl.BrickScale[2] });
-  return Upload3D(impl.Extinction, renWin, texels, 1, filter, packed.data()) &&
+  return Upload3D(impl.Extinction, renWin, texels, 1, filter, packed.get()) &&
     Upload3D(impl.BrickTable, renWin, brickDims, 4, vtkTextureObject::Nearest, table.data());
 }
 
@@ -445,8 +486,8 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadTransferFunction(
     largest = std::max(largest, static_cast<double>(texel[0]));
     for (int c = 1; c < channels; ++c)
     {
-      texel[c] = static_cast<float>(albedo->GetComponent(at, c - 1) * (1.0 - f) +
-        albedo->GetComponent(at + 1, c - 1) * f);
+      texel[c] = static_cast<float>(
+        albedo->GetComponent(at, c - 1) * (1.0 - f) + albedo->GetComponent(at + 1, c - 1) * f);
     }
   }
   impl.TransferRange[0] = static_cast<float>(range->GetComponent(0, 0));
