@@ -16,6 +16,8 @@
 //   120, denser towards the centre.
 // A transfer function that is 0 below about 130 shows the shells and
 // sheets; one with opacity from 60 shows the fog between them too.
+#include "BrumeValueNoise.h"
+
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
@@ -32,37 +34,7 @@
 
 namespace
 {
-// A lattice value in [0, 1) from the integer point (i, j, k).
-double Lattice(int i, int j, int k)
-{
-  std::uint64_t h =
-    static_cast<std::uint64_t>(static_cast<std::uint32_t>(i)) * 0x9E3779B97F4A7C15ULL;
-  h ^= static_cast<std::uint64_t>(static_cast<std::uint32_t>(j)) * 0xC2B2AE3D27D4EB4FULL;
-  h ^= static_cast<std::uint64_t>(static_cast<std::uint32_t>(k)) * 0x165667B19E3779F9ULL;
-  h ^= h >> 31;
-  h *= 0xBF58476D1CE4E5B9ULL;
-  h ^= h >> 29;
-  return static_cast<double>(h >> 11) * 0x1p-53;
-}
-
-double Smooth(double t)
-{
-  return t * t * (3.0 - 2.0 * t);
-}
-
-// Value noise in [0, 1) with lattice spacing 1.
-double Noise(double x, double y, double z)
-{
-  const int i = static_cast<int>(std::floor(x)), j = static_cast<int>(std::floor(y)),
-            k = static_cast<int>(std::floor(z));
-  const double u = Smooth(x - i), v = Smooth(y - j), w = Smooth(z - k);
-  auto lerp = [](double a, double b, double t) { return a + (b - a) * t; };
-  return lerp(lerp(lerp(Lattice(i, j, k), Lattice(i + 1, j, k), u),
-                lerp(Lattice(i, j + 1, k), Lattice(i + 1, j + 1, k), u), v),
-    lerp(lerp(Lattice(i, j, k + 1), Lattice(i + 1, j, k + 1), u),
-      lerp(Lattice(i, j + 1, k + 1), Lattice(i + 1, j + 1, k + 1), u), v),
-    w);
-}
+using BrumeValueNoise::Noise;
 
 // The field at point (x, y, z) of [-1, 1]^3, whose voxels are `voxel` wide.
 float Value(double x, double y, double z, double voxel, const int sheet[3], const int index[3])

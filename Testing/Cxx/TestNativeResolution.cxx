@@ -5,6 +5,7 @@
 // converted once for the tracer, the reconstruction and the renderer, an
 // edit of the transfer function keeps the converted scalars, and what was
 // kept goes with the array.
+#include "BrumeLitGroundScene.h"
 #include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeLightTracer.h"
 #include "vtkBrumeRadianceReconstruction.h"
@@ -84,32 +85,7 @@ vtkSmartPointer<vtkImageData> Field(int n)
 
 vtkSmartPointer<vtkPartitionedDataSetCollection> Scene(vtkImageData* medium)
 {
-  auto ground = vtkSmartPointer<vtkPolyData>::New();
-  vtkNew<vtkPoints> points;
-  points->InsertNextPoint(-2, -0.6, -2);
-  points->InsertNextPoint(-2, -0.6, 2);
-  points->InsertNextPoint(2, -0.6, 2);
-  points->InsertNextPoint(2, -0.6, -2);
-  ground->SetPoints(points);
-  vtkNew<vtkCellArray> polys;
-  const vtkIdType quad[4] = { 0, 1, 2, 3 };
-  polys->InsertNextCell(4, quad);
-  ground->SetPolys(polys);
-  auto scene = vtkSmartPointer<vtkPartitionedDataSetCollection>::New();
-  vtkBrumeSceneConversion::AddObject(scene, ground, "ground");
-  vtkBrumeSceneConversion::AddObject(scene, medium, "wave");
-  vtkNew<vtkStringArray> types;
-  types->SetName(vtkBrumeNames::LightType);
-  types->InsertNextValue("point");
-  vtkFieldData* fd = scene->GetFieldData();
-  fd->AddArray(types);
-  const double position[3] = { 0.8, 1.5, 0.9 }, direction[3] = { 0, -1, 0 },
-               intensity[3] = { 4, 4, 4 }, cone = 180;
-  vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::LightPosition, position, 3);
-  vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::LightDirection, direction, 3);
-  vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::LightIntensity, intensity, 3);
-  vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::LightConeAngle, &cone, 1);
-  return scene;
+  return BrumeLitGroundScene(medium, "wave");
 }
 
 // The warnings an object reports.

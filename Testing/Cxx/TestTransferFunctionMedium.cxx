@@ -8,6 +8,7 @@
 // albedo given as one colour; bad functions, arrays and components fail
 // with a clear error.
 #include "BrumeExpectFailure.h"
+#include "BrumeLitGroundScene.h"
 #include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeFloatImageCapture.h"
 #include "vtkBrumeLightTracer.h"
@@ -88,46 +89,11 @@ vtkSmartPointer<vtkImageData> Field()
   return image;
 }
 
-vtkSmartPointer<vtkPolyData> Ground()
-{
-  auto ground = vtkSmartPointer<vtkPolyData>::New();
-  vtkNew<vtkPoints> points;
-  points->InsertNextPoint(-2, -0.6, -2);
-  points->InsertNextPoint(-2, -0.6, 2);
-  points->InsertNextPoint(2, -0.6, 2);
-  points->InsertNextPoint(2, -0.6, -2);
-  ground->SetPoints(points);
-  vtkNew<vtkCellArray> polys;
-  const vtkIdType quad[4] = { 0, 1, 2, 3 };
-  polys->InsertNextCell(4, quad);
-  ground->SetPolys(polys);
-  return ground;
-}
-
 // The ground and the medium, lit by a point light in the scene's field
 // data (or by none, for a tracer given a vtkLight).
 vtkSmartPointer<vtkPartitionedDataSetCollection> Scene(vtkImageData* medium, bool lit = true)
 {
-  auto scene = vtkSmartPointer<vtkPartitionedDataSetCollection>::New();
-  vtkBrumeSceneConversion::AddObject(scene, Ground(), "ground");
-  vtkBrumeSceneConversion::AddObject(scene, medium, "field");
-  if (!lit)
-  {
-    return scene;
-  }
-  const char* type = "point";
-  vtkNew<vtkStringArray> types;
-  types->SetName(vtkBrumeNames::LightType);
-  types->InsertNextValue(type);
-  scene->GetFieldData()->AddArray(types);
-  const double position[3] = { 0.8, 1.5, 0.9 }, direction[3] = { 0, -1, 0 },
-               intensity[3] = { 4, 4, 4 }, cone = 180;
-  vtkFieldData* fd = scene->GetFieldData();
-  vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::LightPosition, position, 3);
-  vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::LightDirection, direction, 3);
-  vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::LightIntensity, intensity, 3);
-  vtkBrumeSceneConversion::AppendTuple(fd, vtkBrumeNames::LightConeAngle, &cone, 1);
-  return scene;
+  return BrumeLitGroundScene(medium, "field", lit);
 }
 
 vtkSmartPointer<vtkImageData> Render(
@@ -825,14 +791,16 @@ void TestBadInput()
     "a zero unit distance");
   Check(
     edit(
-      [](vtkFieldData* fd) {
+      [](vtkFieldData* fd)
+      {
         vtkStringArray::SafeDownCast(fd->GetAbstractArray(vtkBrumeNames::Interpolation))
           ->SetValue(0, "cubic");
       }).find("BrumeInterpolation 'cubic'") != std::string::npos,
     "an unknown interpolation");
   Check(
     edit(
-      [](vtkFieldData* fd) {
+      [](vtkFieldData* fd)
+      {
         vtkStringArray::SafeDownCast(fd->GetAbstractArray(vtkBrumeNames::DensityArray))
           ->SetValue(0, "absent");
       }).find("no density array 'absent'") != std::string::npos,
