@@ -99,6 +99,84 @@ BrickedGrid BrickedGrid::Sample(const std::array<int, 3>& dims, const Box& box,
   return grid;
 }
 
+BrickedGrid BrickedGrid::Map(
+  const std::function<float(float)>& f, const ParallelFor& parallelFor) const
+{
+  BrickedGrid grid;
+  grid.Dims = this->Dims;
+  grid.BrickDims = this->BrickDims;
+  grid.Bounds = this->Bounds;
+  const std::size_t bricks = this->Slots.size();
+  grid.Slots.assign(bricks, -1);
+  grid.Constants.assign(bricks, 0.f);
+  const std::size_t stored = this->NumberOfStoredBricks();
+  std::vector<float> mapped(stored * BrickSamples);
+  std::vector<char> constant(stored, 0);
+  parallelFor(0, stored,
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t s = begin; s < end; ++s)
+      {
+        const float* in = this->Samples.data() + s * BrickSamples;
+        float* out = mapped.data() + s * BrickSamples;
+        for (int i = 0; i < BrickSamples; ++i)
+        {
+          out[i] = f(in[i]);
+        }
+        constant[s] = std::all_of(out, out + BrickSamples, [&](float v) { return v == out[0]; });
+      }
+    });
+  // The slots that still vary, in the same (brick) order.
+  std::vector<std::int32_t> slot(stored, -1);
+  std::int32_t kept = 0;
+  for (std::size_t s = 0; s < stored; ++s)
+  {
+    slot[s] = constant[s] ? -1 : kept++;
+  }
+  if (static_cast<std::size_t>(kept) == stored)
+  {
+    grid.Samples = std::move(mapped);
+  }
+  else
+  {
+    grid.Samples.resize(static_cast<std::size_t>(kept) * BrickSamples);
+    parallelFor(0, stored,
+      [&](std::size_t begin, std::size_t end)
+      {
+        for (std::size_t s = begin; s < end; ++s)
+        {
+          if (slot[s] >= 0)
+          {
+            std::copy(mapped.data() + s * BrickSamples, mapped.data() + (s + 1) * BrickSamples,
+              grid.Samples.data() + static_cast<std::size_t>(slot[s]) * BrickSamples);
+          }
+        }
+      });
+  }
+  parallelFor(0, bricks,
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t b = begin; b < end; ++b)
+      {
+        const std::int32_t was = this->Slots[b];
+        if (was < 0)
+        {
+          grid.Constants[b] = f(this->Constants[b]);
+        }
+        else if (slot[static_cast<std::size_t>(was)] < 0)
+        {
+          // Constant once mapped: every sample maps to the first's value.
+          grid.Constants[b] = f(this->Samples[static_cast<std::size_t>(was) * BrickSamples]);
+        }
+        else
+        {
+          grid.Slots[b] = slot[static_cast<std::size_t>(was)];
+        }
+      }
+    });
+  return grid;
+}
+
 std::size_t BrickedGrid::GetMemorySize() const
 {
   return this->Slots.size() * sizeof(std::int32_t) + this->Constants.size() * sizeof(float) +
@@ -175,11 +253,17 @@ void BrickedGrid::ForEachNonZeroCell(const std::function<void(int, int, int, flo
           lower[a] = Stride * b[a];
           upper[a] = b[a] == this->BrickDims[a] - 1 ? this->Dims[a] : lower[a] + Stride;
         }
+        // The brick's own samples (At()'s values, read in place).
+        const std::int32_t slot = this->Slots[brick];
+        const float* samples =
+          slot < 0 ? nullptr : this->Samples.data() + static_cast<std::size_t>(slot) * BrickSamples;
         for (int k = lower[2]; k < upper[2]; ++k)
           for (int j = lower[1]; j < upper[1]; ++j)
             for (int i = lower[0]; i < upper[0]; ++i)
             {
-              f(i, j, k, this->At(i, j, k));
+              f(i, j, k,
+                samples ? samples[((k - lower[2]) * Size + (j - lower[1])) * Size + (i - lower[0])]
+                        : this->Constants[brick]);
             }
       }
     }

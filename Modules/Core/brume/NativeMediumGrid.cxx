@@ -267,6 +267,13 @@ void NativeMediumGrid::Sample(const Medium& medium, std::size_t memory,
   }
   const int samples = factor > 1 ? 2 : 1;
   const OpacityTransferFunction* function = this->Classification;
+  if (function && bend == 1)
+  {
+    // Every cell is the function at its scalar: the scalars' bricks mapped.
+    this->Density =
+      this->Scalars.Map([function](float s) { return function->Extinction(s); }, parallelFor);
+    return;
+  }
   this->Density = BrickedGrid::Sample(
     dims, box,
     [&](int i, int j, int k)
