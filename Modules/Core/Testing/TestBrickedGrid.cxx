@@ -187,30 +187,3 @@ TEST(BrickedGrid, SameWhateverTheThreadsAndTheBox)
   EXPECT_EQ(serial.GetSlots(), wide.GetSlots());
   EXPECT_EQ(serial.GetConstants(), wide.GetConstants());
 }
-
-TEST(BrickedGrid, MapIsTheGridOfTheMappedSamples)
-{
-  // A ramp in x over 30^3 cells (bricks skipped beyond x = 20, holding
-  // -1), mapped by a function that is 0 below 8 and bends at 15: the
-  // same bricks, bytes and constants as sampling the mapped values
-  // directly, the bricks the function flattens kept as constants, and
-  // the same whatever the threads.
-  const std::array<int, 3> dims{ 30, 30, 30 };
-  const Box box{ Vec3(0.f), Vec3(30.f) };
-  auto ramp = [](int i, int j, int k)
-  { return static_cast<float>(i) + 0.01f * static_cast<float>(j * k % 7); };
-  auto beyond = [](const std::array<int, 3>& lo, const std::array<int, 3>&) { return lo[0] > 20; };
-  auto f = [](float s) { return s < 8.f ? 0.f : (s < 15.f ? s - 8.f : 2.f * s - 23.f); };
-  const BrickedGrid scalars = BrickedGrid::Sample(dims, box, ramp, beyond, SerialFor(), -1.f);
-  const BrickedGrid direct = BrickedGrid::Sample(
-    dims, box, [&](int i, int j, int k) { return f(ramp(i, j, k)); }, beyond, SerialFor(), f(-1.f));
-  for (const ParallelFor& parallelFor : { SerialFor(), ParallelFor(Scrambled) })
-  {
-    const BrickedGrid mapped = scalars.Map(f, parallelFor);
-    EXPECT_EQ(mapped.GetDims(), direct.GetDims());
-    EXPECT_EQ(mapped.GetSlots(), direct.GetSlots());
-    EXPECT_EQ(mapped.GetConstants(), direct.GetConstants());
-    EXPECT_EQ(mapped.GetSamples(), direct.GetSamples());
-    EXPECT_LT(mapped.NumberOfStoredBricks(), scalars.NumberOfStoredBricks());
-  }
-}

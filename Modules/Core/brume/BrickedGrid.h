@@ -77,14 +77,6 @@ public:
   float Interpolate(const Vec3& p) const;
 
   /**
-   * The grid of `f` of every sample (thread safe), in the same bricks:
-   * what Sample() gives with value(i, j, k) = f(At(i, j, k)) and the same
-   * skipped bricks taking f(skipped), bit for bit, without evaluating a
-   * sample twice. Bricks that f makes constant keep only their value.
-   */
-  BrickedGrid Map(const std::function<float(float)>& f, const ParallelFor& parallelFor) const;
-
-  /**
    * Calls `f(i, j, k, value)` once for every cell whose brick is not a
    * constant 0, brick by brick (each brick's own cells: Stride per axis,
    * the last brick the rest), in brick order.

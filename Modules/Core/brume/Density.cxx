@@ -72,6 +72,89 @@ void DensityField::CountOccupied(
   }
 }
 
+double DensityField::NativeMean(
+  int i, int j, int k, const Box& cell, const Box& bounds, int s) const
+{
+  (void)i;
+  (void)j;
+  (void)k;
+  double sum = 0.0;
+  const Vec3 size = cell.Extent();
+  for (int z = 0; z < s; ++z)
+    for (int y = 0; y < s; ++y)
+      for (int x = 0; x < s; ++x)
+      {
+        const Vec3 f((static_cast<float>(x) + 0.5f) / static_cast<float>(s),
+          (static_cast<float>(y) + 0.5f) / static_cast<float>(s),
+          (static_cast<float>(z) + 0.5f) / static_cast<float>(s));
+        Vec3 p = cell.lower + size * f;
+        for (int a = 0; a < 3; ++a)
+        {
+          p[a] = std::clamp(p[a], bounds.lower[a], bounds.upper[a]);
+        }
+        sum += this->Evaluate(p);
+      }
+  return sum / (static_cast<double>(s) * s * s);
+}
+
+bool GridDensity::NativeSamples(int i, int j, int k, int s, float* out) const
+{
+  if (this->CellValues || this->Interpolated != Interpolation::Linear || s < 1 ||
+    s > MaxNativeSamples)
+  {
+    return false;
+  }
+  // Along each axis, sample m sits (m + 1/2) / s - 1/2 point spacings from
+  // its point: between two points (clamped at the grid's ends, where the
+  // bounds clamp it), with its weight on the second.
+  const int index[3] = { i, j, k };
+  int first[3][MaxNativeSamples], second[3][MaxNativeSamples];
+  float weight[3][MaxNativeSamples];
+  for (int a = 0; a < 3; ++a)
+  {
+    const int n = this->Dims[a];
+    for (int m = 0; m < s; ++m)
+    {
+      const float u = (static_cast<float>(m) + 0.5f) / static_cast<float>(s) - 0.5f;
+      const float x = std::clamp(static_cast<float>(index[a]) + u, 0.f, static_cast<float>(n - 1));
+      const int i0 = n == 1 ? 0 : std::min(n - 2, static_cast<int>(x));
+      first[a][m] = i0;
+      second[a][m] = std::min(i0 + 1, n - 1);
+      weight[a][m] = n == 1 ? 0.f : x - static_cast<float>(i0);
+    }
+  }
+  auto lerp = [](float a, float b, float t) { return a + (b - a) * t; };
+  for (int z = 0; z < s; ++z)
+    for (int y = 0; y < s; ++y)
+      for (int x = 0; x < s; ++x)
+      {
+        const int x0 = first[0][x], y0 = first[1][y], z0 = first[2][z];
+        const int x1 = second[0][x], y1 = second[1][y], z1 = second[2][z];
+        const float fx = weight[0][x], fy = weight[1][y], fz = weight[2][z];
+        const float c00 = lerp(this->Value(x0, y0, z0), this->Value(x1, y0, z0), fx);
+        const float c10 = lerp(this->Value(x0, y1, z0), this->Value(x1, y1, z0), fx);
+        const float c01 = lerp(this->Value(x0, y0, z1), this->Value(x1, y0, z1), fx);
+        const float c11 = lerp(this->Value(x0, y1, z1), this->Value(x1, y1, z1), fx);
+        *out++ = lerp(lerp(c00, c10, fy), lerp(c01, c11, fy), fz);
+      }
+  return true;
+}
+
+double GridDensity::NativeMean(int i, int j, int k, const Box& cell, const Box& bounds, int s) const
+{
+  float samples[MaxNativeSamples * MaxNativeSamples * MaxNativeSamples];
+  if (!this->NativeSamples(i, j, k, s, samples))
+  {
+    return DensityField::NativeMean(i, j, k, cell, bounds, s);
+  }
+  double sum = 0.0;
+  for (int n = 0; n < s * s * s; ++n)
+  {
+    sum += samples[n];
+  }
+  return sum / (static_cast<double>(s) * s * s);
+}
+
 std::array<int, 3> DensityField::NativeResolution() const
 {
   constexpr int Cells = 8; // cells per majorant block

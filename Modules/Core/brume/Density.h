@@ -61,6 +61,14 @@ public:
     (void)k;
     return this->Evaluate(centre);
   }
+  /**
+   * The mean of the field over its native cell (i, j, k), whose box is
+   * `cell`, from s^3 samples at the centres of a regular subdivision
+   * (clamped to `bounds`, the medium's). Grids of point values, interpolated
+   * linearly, give it from the 27 values around the cell's point, not by
+   * 64 evaluations (ClassifiedDensity classifies those).
+   */
+  virtual double NativeMean(int i, int j, int k, const Box& cell, const Box& bounds, int s) const;
   const MajorantGrid& GetMajorants() const { return this->Majorants; }
   /// Number of non-empty majorant blocks (for reporting sparsity).
   std::size_t NumberOfOccupiedBlocks() const;
@@ -131,6 +139,16 @@ public:
   float Evaluate(const Vec3& p) const override;
   std::array<int, 3> NativeResolution() const override;
   Box NativeBox() const override;
+  /// The most samples per axis VisitNativeSamples() takes.
+  static constexpr int MaxNativeSamples = 8;
+  /**
+   * Point values, interpolated linearly: the s^3 samples (s at most
+   * MaxNativeSamples) of native cell (i, j, k) around point (i, j, k),
+   * each interpolated from its corner points, written to `out` (x
+   * fastest), where NativeMean() puts them; false for other grids.
+   */
+  bool NativeSamples(int i, int j, int k, int s, float* out) const;
+  double NativeMean(int i, int j, int k, const Box& cell, const Box& bounds, int s) const override;
   /// The value itself: point values are the native cells' centres, cell
   /// values the cells.
   float NativeValue(int i, int j, int k, const Vec3& centre) const override

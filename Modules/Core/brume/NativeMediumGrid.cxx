@@ -120,8 +120,8 @@ bool ZeroOver(const DensityField& density, const Box& bounds, Vec3 lower, Vec3 u
 }
 }
 
-void NativeMediumGrid::Sample(const Medium& medium, std::size_t memory,
-  const std::array<int, 3>& histogram, const ParallelFor& parallelFor)
+void NativeMediumGrid::Sample(
+  const Medium& medium, std::size_t memory, const ParallelFor& parallelFor)
 {
   const DensityField& density = *medium.Density;
   const Box& bounds = medium.Bounds;
@@ -250,30 +250,10 @@ void NativeMediumGrid::Sample(const Medium& medium, std::size_t memory,
   // there: DensityField::NativeValue); a coarsened cell averages 2^3.
   // A classified density is classified after interpolation, so its
   // function may step or bend anywhere in a cell: cells whose scalars span
-  // one of its points average bend^3 samples, enough for BendSamples
-  // along each axis of a histogram cell. Elsewhere a classified cell is
-  // the function at its scalar.
-  int bend = BendSamples;
-  if (histogram[0] > 0)
-  {
-    // The most any axis needs.
-    bend = 1;
-    for (int a = 0; a < 3; ++a)
-    {
-      const double histogramCell = static_cast<double>(bounds.Extent()[a]) / histogram[a];
-      const double perAxis = BendSamples * static_cast<double>(cell[a]) / histogramCell;
-      bend = std::max(bend, std::min(BendSamples, static_cast<int>(std::lround(perAxis))));
-    }
-  }
+  // one of its points average BendSamples^3 samples. Elsewhere a
+  // classified cell is the function at its scalar.
   const int samples = factor > 1 ? 2 : 1;
   const OpacityTransferFunction* function = this->Classification;
-  if (function && bend == 1)
-  {
-    // Every cell is the function at its scalar: the scalars' bricks mapped.
-    this->Density =
-      this->Scalars.Map([function](float s) { return function->Extinction(s); }, parallelFor);
-    return;
-  }
   this->Density = BrickedGrid::Sample(
     dims, box,
     [&](int i, int j, int k)
@@ -282,9 +262,10 @@ void NativeMediumGrid::Sample(const Medium& medium, std::size_t memory,
       {
         const Vec3 corner(static_cast<float>(i), static_cast<float>(j), static_cast<float>(k));
         const Vec3 lower = box.lower + corner * cell;
-        if (bend > 1 && classified->BendsWithin(Box{ lower, lower + cell }))
+        if (classified->BendsWithin(Box{ lower, lower + cell }))
         {
-          return static_cast<float>(MeanDensity(density, bounds, lower, cell, bend));
+          return static_cast<float>(
+            density.NativeMean(i, j, k, Box{ lower, lower + cell }, bounds, BendSamples));
         }
         return function->Extinction(this->Scalars.At(i, j, k));
       }

@@ -247,7 +247,7 @@ void ObjectRadiance::SampleMedium(const ParallelFor& parallelFor)
     });
   if (medium->Density && this->Native.Empty())
   {
-    this->Native.Sample(*medium, this->Settings.NativeMemory, this->Layout.Dims, parallelFor);
+    this->Native.Sample(*medium, this->Settings.NativeMemory, parallelFor);
   }
 }
 

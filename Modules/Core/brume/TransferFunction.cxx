@@ -237,6 +237,24 @@ ClassifiedDensity::ClassifiedDensity(std::shared_ptr<const DensityField> scalars
   }
 }
 
+double ClassifiedDensity::NativeMean(
+  int i, int j, int k, const Box& cell, const Box& bounds, int s) const
+{
+  const auto* grid = dynamic_cast<const GridDensity*>(this->Scalars.get());
+  constexpr int Most = GridDensity::MaxNativeSamples;
+  float samples[Most * Most * Most];
+  if (!grid || !grid->NativeSamples(i, j, k, s, samples))
+  {
+    return DensityField::NativeMean(i, j, k, cell, bounds, s);
+  }
+  double sum = 0.0;
+  for (int n = 0; n < s * s * s; ++n)
+  {
+    sum += this->Opacity.Extinction(samples[n]);
+  }
+  return sum / (static_cast<double>(s) * s * s);
+}
+
 bool ClassifiedDensity::BendsWithin(const Box& region) const
 {
   const auto* grid = dynamic_cast<const GridDensity*>(this->Scalars.get());

@@ -151,6 +151,9 @@ public:
   {
     return this->Opacity.Extinction(this->Scalars->NativeValue(i, j, k, centre));
   }
+  /// The mean of the function over the scalars' native samples (a grid's
+  /// interpolated from its points, classified after).
+  double NativeMean(int i, int j, int k, const Box& cell, const Box& bounds, int s) const override;
 
   /**
    * Whether one of the function's points lies strictly inside the range of
