@@ -454,6 +454,12 @@ TEST(ReconstructionParts, NativeMediumGridKeepsItsOwnResolutionWhereTheMemoryHol
   EXPECT_TRUE(coarse.GetScalars().Empty());
   EXPECT_LE(coarse.GetDensity().GetMemorySize(), std::size_t(1) << 19);
 
+  // No memory at all: one cell, not an endless search.
+  NativeMediumGrid single;
+  single.Sample(waves, 1, SerialFor());
+  EXPECT_EQ(single.GetResolution(), (std::array<int, 3>{ 1, 1, 1 }));
+  EXPECT_EQ(single.GetCoarsening(), 48);
+
   // Whatever the threads, the same grids bitwise.
   NativeMediumGrid threaded;
   threaded.Sample(waves, std::size_t(4) << 20, ThreadsFor(3));

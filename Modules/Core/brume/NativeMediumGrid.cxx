@@ -206,6 +206,10 @@ void NativeMediumGrid::Sample(
   int factor = 1;
   while (!fits(factor))
   {
+    if (dims[0] == 1 && dims[1] == 1 && dims[2] == 1)
+    {
+      break; // one cell: the coarsest grid there is, whatever the memory
+    }
     ++factor;
   }
   layout(factor);
