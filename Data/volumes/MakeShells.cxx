@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Writes Data/scenes/shells.json's volume: a scalar field with structure at
 // every scale, for scientific-volume work at 512^3 and beyond, as a VTK
-// image (.vti, float point data "scalar", values in [0, 255]) over
+// image (.vti, float point data "scalar", values in [0, 255], LZ4) over
 // [-1, 1]^3:
 //
 //   MakeShells OUTPUT.vti [N]     (N^3 points, default 512)
@@ -121,9 +121,11 @@ int main(int argc, char* argv[])
   vtkNew<vtkXMLImageDataWriter> writer;
   writer->SetFileName(argv[1]);
   writer->SetInputData(image);
+  // Appended, LZ4-compressed, base64-encoded: raw appended data is fast to
+  // read, but VTK 9.2's reader cannot parse it with the expat of Debian 12's
+  // security updates ("not well-formed (invalid token)").
   writer->SetDataModeToAppended();
-  writer->EncodeAppendedDataOff();
-  writer->SetCompressorTypeToNone();
+  writer->SetCompressorTypeToLZ4();
   if (writer->Write() != 1)
   {
     std::fprintf(stderr, "MakeShells: cannot write '%s'\n", argv[1]);
