@@ -121,10 +121,10 @@ int main(int argc, char* argv[])
   vtkNew<vtkXMLImageDataWriter> writer;
   writer->SetFileName(argv[1]);
   writer->SetInputData(image);
-  // Appended, LZ4-compressed, base64-encoded: raw appended data is fast to
-  // read, but VTK 9.2's reader cannot parse it with the expat of Debian 12's
-  // security updates ("not well-formed (invalid token)").
-  writer->SetDataModeToAppended();
+  // Inline, LZ4-compressed: VTK 9.2 misreads appended data (raw or
+  // encoded) under the expat of Debian 12's updates ("not well-formed
+  // (invalid token)"), as vtkBrumeSceneWriter notes.
+  writer->SetDataModeToBinary();
   writer->SetCompressorTypeToLZ4();
   if (writer->Write() != 1)
   {
