@@ -287,3 +287,31 @@ std::array<int, 3> vtkBrumeRadianceTextures::DirectResolution(std::size_t o, int
   }
   return res;
 }
+
+void vtkBrumeRadianceTextures::SampleMedia()
+{
+  // Objects are built concurrently, one thread each (ForEachObject): a
+  // medium's grid at its own resolution, independent of the particles, is
+  // sampled before, on every thread, one medium after the other.
+  const brume::ParallelFor parallelFor = vtkBrumeSMP::ParallelFor();
+  for (std::size_t o = 0; o < this->Objects.size(); ++o)
+  {
+    brume::ObjectRadiance& object = *this->Objects[o];
+    object.SampleMedium(parallelFor);
+    const brume::NativeMediumGrid& native = object.GetNative();
+    if (native.GetCoarsening() > 1)
+    {
+      const auto& field = native.GetFieldResolution();
+      const auto& kept = native.GetResolution();
+      vtkWarningWithObjectMacro(
+        this->Filter, << vtkBrumeBoundQuotes("Medium '" + this->Sources[o].Name + "' is drawn at " +
+                        std::to_string(kept[0]) + " x " + std::to_string(kept[1]) + " x " +
+                        std::to_string(kept[2]) + ", its own " + std::to_string(field[0]) + " x " +
+                        std::to_string(field[1]) + " x " + std::to_string(field[2]) +
+                        " coarsened by " + std::to_string(native.GetCoarsening()) +
+                        ": its grids at its own resolution would take more than the " +
+                        std::to_string(object.Options().NativeMemory >> 20) +
+                        " MB NativeMemoryLimit (brume: --native-memory)."));
+    }
+  }
+}
