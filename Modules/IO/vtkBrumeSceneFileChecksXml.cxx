@@ -143,31 +143,17 @@ bool ExtentCounts(
   return true;
 }
 
-// Every DataArray of a VTK XML file's pieces, from the file's XML alone
-// (before a reader sets up its arrays: VTK's readers loop over every
-// component an array announces, and allocate components x values): at
-// most MaxComponents components each, and all of them (components x the
-// piece's points or cells x the type's size) within memory.
-bool XmlArraysFit(const std::filesystem::path& file, std::string& error)
+// The arrays of one data set element's pieces: false, with `error`, when
+// an array announces more than MaxComponents components; else their bytes
+// (components x values x type size) added to `bytes`, and the first piece's
+// size in `dims`. An image's arrays are allocated for its whole extent,
+// whatever its pieces say.
+bool DataSetArrays(vtkXMLDataElement* dataset, const std::filesystem::path& file, double& bytes,
+  std::string& dims, std::string& error)
 {
-  vtkNew<vtkXMLDataParser> parser;
-  parser->SetFileName(file.string().c_str());
-  parser->SetIgnoreCharacterData(1); // the structure only, not inline data
-  const bool display = vtkObject::GetGlobalWarningDisplay();
-  vtkObject::GlobalWarningDisplayOff(); // a file that is not XML is the reader's to report
-  const int parsed = parser->Parse();
-  vtkObject::SetGlobalWarningDisplay(display);
-  if (!parsed || !parser->GetRootElement())
-  {
-    return true; // not VTK XML: the reader says what is wrong
-  }
-  vtkXMLDataElement* dataset = parser->GetRootElement()->GetNestedElement(0);
-  if (!dataset)
-  {
-    return true;
-  }
-  double bytes = 0.0;
-  std::string dims; // an image's points per axis, as its pieces announce them
+  double wholePoints = 0.0, wholeCells = 0.0;
+  std::string wholeDims;
+  const bool whole = ExtentCounts(dataset, "WholeExtent", wholePoints, wholeCells, wholeDims);
   for (int p = 0; p < dataset->GetNumberOfNestedElements(); ++p)
   {
     vtkXMLDataElement* piece = dataset->GetNestedElement(p);
@@ -180,7 +166,14 @@ bool XmlArraysFit(const std::filesystem::path& file, std::string& error)
       Number(piece, "NumberOfStrips", 0.0) + Number(piece, "NumberOfLines", 0.0) +
       Number(piece, "NumberOfVerts", 0.0);
     std::string pieceDims;
-    if (ExtentCounts(piece, "Extent", points, cells, pieceDims) && dims.empty())
+    const bool extent = ExtentCounts(piece, "Extent", points, cells, pieceDims);
+    if (whole && !(points >= wholePoints))
+    {
+      points = wholePoints;
+      cells = wholeCells;
+      pieceDims = wholeDims;
+    }
+    if ((extent || whole) && dims.empty())
     {
       dims = pieceDims + " points and ";
     }
@@ -215,6 +208,39 @@ bool XmlArraysFit(const std::filesystem::path& file, std::string& error)
         }
         bytes += components * (perPoint ? points : cells) * TypeSize(array->GetAttribute("type"));
       }
+    }
+  }
+  return true;
+}
+
+// Every DataArray of a VTK XML file's pieces, from the file's XML alone
+// (before a reader sets up its arrays: VTK's readers loop over every
+// component an array announces, and allocate components x values): at
+// most MaxComponents components each, and all of them within memory.
+// Every element under the root is checked: VTK's readers take the first
+// whose name is their data set's, wherever it is among the root's children.
+bool XmlArraysFit(const std::filesystem::path& file, std::string& error)
+{
+  vtkNew<vtkXMLDataParser> parser;
+  parser->SetFileName(file.string().c_str());
+  parser->SetIgnoreCharacterData(1); // the structure only, not inline data
+  const bool display = vtkObject::GetGlobalWarningDisplay();
+  vtkObject::GlobalWarningDisplayOff(); // a file that is not XML is the reader's to report
+  const int parsed = parser->Parse();
+  vtkObject::SetGlobalWarningDisplay(display);
+  if (!parsed || !parser->GetRootElement())
+  {
+    return true; // not VTK XML: the reader says what is wrong
+  }
+  vtkXMLDataElement* root = parser->GetRootElement();
+  double bytes = 0.0;
+  std::string dims; // the first piece's size, as it announces it
+  for (int d = 0; d < root->GetNumberOfNestedElements(); ++d)
+  {
+    vtkXMLDataElement* dataset = root->GetNestedElement(d);
+    if (dataset && !DataSetArrays(dataset, file, bytes, dims, error))
+    {
+      return false;
     }
   }
   const double memory = vtkBrumeSceneFileChecks::UsableMemory();

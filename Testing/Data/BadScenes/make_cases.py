@@ -23,7 +23,11 @@
 # the two
 # density volumes (a NaN and a negative voxel) and points.vtp (no cells).
 # Four cases were added by hand: mesh-truncated-binary-ply, mesh-absurd-count-ply,
-# density-vdb-huge-lengths and density-vdb-version-zero.
+# density-vdb-huge-lengths and density-vdb-version-zero; and two more, with
+# their .vti files: density-vti-nested-datasets (a fuzzer's find: the image
+# VTK reads is the root's second child, behind a nested VTKFile, and its
+# component count is "10485ii") and density-vti-whole-extent (a piece of 2 x 2
+# points in a whole extent of 4096 x 4096 x 1024, which VTK allocates).
 import json, copy, os, sys
 out = sys.argv[1]
 base = {
