@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "BrumeVdbWriter.h"
 
+#include <openvdb/io/Stream.h>
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Interpolation.h>
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <stdexcept>
 
 namespace brume
@@ -13,7 +15,8 @@ namespace brume
 namespace vdbwriter
 {
 
-std::vector<std::uint64_t> Write(const std::string& path, const std::vector<Grid>& grids)
+std::vector<std::uint64_t> Write(
+  const std::string& path, const std::vector<Grid>& grids, bool stream)
 {
   try
   {
@@ -57,6 +60,16 @@ std::vector<std::uint64_t> Write(const std::string& path, const std::vector<Grid
       }
       active.push_back(grid->activeVoxelCount());
       out.push_back(grid);
+    }
+    if (stream)
+    {
+      std::ofstream os(path, std::ios::binary);
+      openvdb::io::Stream(os).write(out);
+      if (!os)
+      {
+        throw std::runtime_error(path + ": cannot write the stream");
+      }
+      return active;
     }
     openvdb::io::File file(path);
     file.write(out);

@@ -43,9 +43,12 @@ struct Grid
   bool Prune = false;
 };
 
-/// Writes `grids` into the OpenVDB file `path`; returns each grid's active
-/// voxel count. Throws std::runtime_error (OpenVDB's message) on failure.
-std::vector<std::uint64_t> Write(const std::string& path, const std::vector<Grid>& grids);
+/// Writes `grids` into the OpenVDB file `path` (as openvdb::io::File does,
+/// or, with `stream`, as openvdb::io::Stream does: without the grids'
+/// offsets); returns each grid's active voxel count. Throws
+/// std::runtime_error (OpenVDB's message) on failure.
+std::vector<std::uint64_t> Write(
+  const std::string& path, const std::vector<Grid>& grids, bool stream = false);
 
 /// Balls of `radius` voxels (unit voxels, index space) centred on the x
 /// axis at `centres`: density peak (1 - r^2 / radius^2) inside, inactive

@@ -533,16 +533,18 @@ std::string CheckVdbFile(const std::string& fileName)
     {
       return corrupt + "grid descriptor " + std::to_string(g) + " runs past the end of the file";
     }
+    // Every descriptor holds three offsets (OpenVDB's GridDescriptor::read
+    // reads them whether or not the file says it has offsets).
+    if (!scan.Read(gridPos) || !scan.Read(blockPos) || !scan.Read(endPos))
+    {
+      return corrupt + "grid descriptor " + std::to_string(g) + " runs past the end of the file";
+    }
     if (!hasOffsets)
     {
       // A stream without offsets: the first grid follows its descriptor, and
       // where the next one starts is known only after reading the first.
       gridPos = static_cast<std::int64_t>(in.tellg());
       blockPos = endPos = size;
-    }
-    else if (!scan.Read(gridPos) || !scan.Read(blockPos) || !scan.Read(endPos))
-    {
-      return corrupt + "grid descriptor " + std::to_string(g) + " runs past the end of the file";
     }
     if (!(0 <= gridPos && gridPos <= blockPos && blockPos <= endPos && endPos <= size))
     {
