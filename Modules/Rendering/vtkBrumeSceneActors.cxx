@@ -4,6 +4,7 @@
 #include "vtkActor.h"
 #include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeSliceVolumeMapper.h"
+#include "vtkBrumeSurfaceAtlas.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkFieldData.h"
@@ -27,6 +28,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <unordered_map>
 
 vtkStandardNewMacro(vtkBrumeSceneActors);
 
@@ -127,10 +129,20 @@ std::string KindOf(vtkDataObject* data)
 struct vtkBrumeSceneActors::Entry
 {
   unsigned int Index;
-  vtkSmartPointer<vtkTexture> Texture;               // surfaces
-  vtkSmartPointer<vtkPolyDataMapper> Surface;        // surfaces
+  vtkSmartPointer<vtkTexture> Texture;               // surfaces with an actor of their own
+  vtkSmartPointer<vtkPolyDataMapper> Surface;        // surfaces with an actor of their own
   vtkSmartPointer<vtkBrumeSliceVolumeMapper> Slices; // media
   vtkSmartPointer<vtkVolume> Volume;                 // media
+  int Atlas = -1;                                    // surfaces in an atlas: which,
+  std::size_t Member = 0;                            // and their place in it
+};
+
+// An atlas of surfaces and its actor.
+struct vtkBrumeSceneActors::Atlas
+{
+  vtkBrumeSceneActorsInternals::SurfaceAtlas Data;
+  vtkSmartPointer<vtkTexture> Texture;
+  vtkSmartPointer<vtkPolyDataMapper> Mapper;
 };
 
 std::string vtkBrumeSceneActors::GetObjectKind(vtkDataObject* texture)
@@ -180,55 +192,96 @@ vtkPropCollection* vtkBrumeSceneActors::GetProps()
   return this->Props;
 }
 
+vtkActor* vtkBrumeSceneActors::AddSurfaceActor(
+  vtkRenderer* renderer, vtkImageData* image, vtkPolyData* surface, vtkTexture* texture,
+  vtkPolyDataMapper* mapper)
+{
+  texture->SetInputData(image);
+  texture->SetInterpolate(this->Interpolate);
+  texture->RepeatOff();
+  texture->EdgeClampOn();
+  // Float radiance goes to the texture unchanged (no lookup table).
+  texture->SetColorModeToDirectScalars();
+  mapper->SetInputData(surface);
+  mapper->ScalarVisibilityOff();
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  actor->SetTexture(texture);
+  // Unlit: the fragment is the texture's radiance.
+  actor->GetProperty()->LightingOff();
+  actor->GetProperty()->SetColor(this->Exposure, this->Exposure, this->Exposure);
+  actor->GetProperty()->SetAmbient(1.0);
+  actor->GetProperty()->SetDiffuse(0.0);
+  actor->GetProperty()->SetSpecular(0.0);
+  // The texture holds the light leaving the front (winding) side: seen
+  // from behind, a surface is cut away rather than shown wrongly lit.
+  actor->GetProperty()->SetBackfaceCulling(this->BackfaceCulling);
+  MarkRadiance(actor);
+  renderer->AddActor(actor);
+  this->Props->AddItem(actor);
+  return actor;
+}
+
 bool vtkBrumeSceneActors::AddToRenderer(vtkRenderer* renderer)
 {
   this->Props->RemoveAllItems();
   this->Entries.clear();
+  this->Atlases.clear();
+  this->Renderer = renderer;
   if (!this->Input || !renderer)
   {
     vtkErrorMacro("AddToRenderer needs an input collection and a renderer.");
     return false;
   }
-  for (unsigned int i = 0; i < this->Input->GetNumberOfPartitionedDataSets(); ++i)
+  // Surfaces share atlases when the scene has many that can.
+  const unsigned int objects = this->Input->GetNumberOfPartitionedDataSets();
+  auto surfaceData = [this](unsigned int i, vtkImageData*& image, vtkPolyData*& surface)
   {
     vtkPartitionedDataSet* pds = this->Input->GetPartitionedDataSet(i);
-    vtkDataObject* first = pds && pds->GetNumberOfPartitions() > 0 ? pds->GetPartition(0) : nullptr;
-    const std::string kind = KindOf(first);
+    vtkDataObject* first =
+      pds && pds->GetNumberOfPartitions() > 0 ? pds->GetPartition(0) : nullptr;
+    image = vtkImageData::SafeDownCast(first);
+    surface = KindOf(first) == "surface" && pds->GetNumberOfPartitions() >= 2
+      ? vtkPolyData::SafeDownCast(pds->GetPartition(1))
+      : nullptr;
+    return KindOf(first);
+  };
+  int shareable = 0;
+  for (unsigned int i = 0; i < objects; ++i)
+  {
+    vtkImageData* image;
+    vtkPolyData* surface;
+    surfaceData(i, image, surface);
+    shareable += vtkBrumeSceneActorsInternals::SurfaceAtlas::Accepts(image, surface) ? 1 : 0;
+  }
+  const bool atlases = shareable > 0 && shareable >= this->SurfaceAtlasMinimum;
+  std::vector<vtkBrumeSceneActorsInternals::AtlasMember> members;
+  for (unsigned int i = 0; i < objects; ++i)
+  {
+    vtkPartitionedDataSet* pds = this->Input->GetPartitionedDataSet(i);
+    vtkImageData* image;
+    vtkPolyData* surface;
+    const std::string kind = surfaceData(i, image, surface);
     if (kind == "surface" && pds->GetNumberOfPartitions() >= 2)
     {
-      auto* image = vtkImageData::SafeDownCast(first);
-      auto* surface = vtkPolyData::SafeDownCast(pds->GetPartition(1));
       if (!image || !surface)
       {
         vtkErrorMacro("Object " << i << " is not a reconstructed surface texture.");
         return false;
       }
-      vtkNew<vtkTexture> texture;
-      texture->SetInputData(image);
-      texture->SetInterpolate(this->Interpolate);
-      texture->RepeatOff();
-      texture->EdgeClampOn();
-      // Float radiance goes to the texture unchanged (no lookup table).
-      texture->SetColorModeToDirectScalars();
-      vtkNew<vtkPolyDataMapper> mapper;
-      mapper->SetInputData(surface);
-      mapper->ScalarVisibilityOff();
-      vtkNew<vtkActor> actor;
-      actor->SetMapper(mapper);
-      actor->SetTexture(texture);
-      // Unlit: the fragment is the texture's radiance.
-      actor->GetProperty()->LightingOff();
-      actor->GetProperty()->SetColor(this->Exposure, this->Exposure, this->Exposure);
-      actor->GetProperty()->SetAmbient(1.0);
-      actor->GetProperty()->SetDiffuse(0.0);
-      actor->GetProperty()->SetSpecular(0.0);
-      // The texture holds the light leaving the front (winding) side: seen
-      // from behind, a surface is cut away rather than shown wrongly lit.
-      actor->GetProperty()->SetBackfaceCulling(this->BackfaceCulling);
-      MarkRadiance(actor);
-      renderer->AddActor(actor);
-      this->Props->AddItem(actor);
-      this->Entries.push_back({ i, texture.Get(), mapper.Get(), nullptr, nullptr });
+      Entry entry{ i, nullptr, nullptr, nullptr, nullptr };
+      if (atlases && vtkBrumeSceneActorsInternals::SurfaceAtlas::Accepts(image, surface))
+      {
+        members.push_back({ i, image, surface });
+        entry.Atlas = -2; // placed below
+      }
+      else
+      {
+        entry.Texture = vtkSmartPointer<vtkTexture>::New();
+        entry.Surface = vtkSmartPointer<vtkPolyDataMapper>::New();
+        this->AddSurfaceActor(renderer, image, surface, entry.Texture, entry.Surface);
+      }
+      this->Entries.push_back(entry);
     }
     else if (kind == "medium")
     {
@@ -236,7 +289,6 @@ bool vtkBrumeSceneActors::AddToRenderer(vtkRenderer* renderer)
       {
         continue;
       }
-      auto* image = vtkImageData::SafeDownCast(first);
       vtkNew<vtkBrumeSliceVolumeMapper> mapper;
       mapper->SetInputData(image);
       mapper->SetExtinctionData(NativeExtinction(pds));
@@ -259,7 +311,38 @@ bool vtkBrumeSceneActors::AddToRenderer(vtkRenderer* renderer)
       return false;
     }
   }
+  // Each atlas is one actor; the entries learn where their surface went.
+  std::unordered_map<unsigned int, std::size_t> entryOf;
+  for (std::size_t e = 0; e < this->Entries.size(); ++e)
+  {
+    entryOf[this->Entries[e].Index] = e;
+  }
+  for (auto& data : vtkBrumeSceneActorsInternals::SurfaceAtlas::Pack(std::move(members)))
+  {
+    Atlas atlas{ std::move(data), vtkSmartPointer<vtkTexture>::New(),
+      vtkSmartPointer<vtkPolyDataMapper>::New() };
+    this->AddSurfaceActor(renderer, atlas.Data.GetImage(), atlas.Data.GetGeometry(),
+      atlas.Texture, atlas.Mapper);
+    for (std::size_t k = 0; k < atlas.Data.GetMembers().size(); ++k)
+    {
+      Entry& entry = this->Entries[entryOf[atlas.Data.GetMembers()[k].Index]];
+      entry.Atlas = static_cast<int>(this->Atlases.size());
+      entry.Member = k;
+    }
+    this->Atlases.push_back(std::move(atlas));
+  }
   return true;
+}
+
+int vtkBrumeSceneActors::GetNumberOfSurfaceAtlases()
+{
+  return static_cast<int>(this->Atlases.size());
+}
+
+vtkImageData* vtkBrumeSceneActors::GetSurfaceAtlas(int k)
+{
+  return k >= 0 && k < static_cast<int>(this->Atlases.size()) ? this->Atlases[k].Data.GetImage()
+                                                               : nullptr;
 }
 
 bool vtkBrumeSceneActors::UpdateInputs(vtkPartitionedDataSetCollection* textures)
@@ -276,7 +359,7 @@ bool vtkBrumeSceneActors::UpdateInputs(vtkPartitionedDataSetCollection* textures
       ? textures->GetPartitionedDataSet(e.Index)
       : nullptr;
     vtkDataObject* first = pds && pds->GetNumberOfPartitions() > 0 ? pds->GetPartition(0) : nullptr;
-    const bool surface = e.Texture && KindOf(first) == "surface" &&
+    const bool surface = (e.Texture || e.Atlas >= 0) && KindOf(first) == "surface" &&
       pds->GetNumberOfPartitions() >= 2 && vtkImageData::SafeDownCast(first) &&
       vtkPolyData::SafeDownCast(pds->GetPartition(1));
     const bool medium = e.Slices && KindOf(first) == "medium" && vtkImageData::SafeDownCast(first);
@@ -299,12 +382,33 @@ bool vtkBrumeSceneActors::UpdateInputs(vtkPartitionedDataSetCollection* textures
     }
     return false;
   };
+  // Surfaces in an atlas: new texels are copied into their slots; a new
+  // size or surface builds the props again.
+  bool rebuild = false;
+  std::vector<std::pair<const Entry*, vtkImageData*>> texels;
   for (const Entry& e : this->Entries)
   {
     vtkPartitionedDataSet* pds = textures->GetPartitionedDataSet(e.Index);
     auto* image = vtkImageData::SafeDownCast(pds->GetPartition(0));
-    if (e.Texture)
+    if (e.Atlas >= 0)
     {
+      const auto& member = this->Atlases[e.Atlas].Data.GetMembers()[e.Member];
+      auto* surface = vtkPolyData::SafeDownCast(pds->GetPartition(1));
+      const bool newTexels = take(member.Image, image);
+      if (take(member.Surface, surface) ||
+        (newTexels &&
+          (!std::equal(image->GetDimensions(), image->GetDimensions() + 3,
+             member.Image->GetDimensions()) ||
+            !vtkBrumeSceneActorsInternals::SurfaceAtlas::Accepts(image, surface))))
+      {
+        rebuild = true;
+      }
+      else if (newTexels)
+      {
+        texels.emplace_back(&e, image);
+      }
+    }
+    else if (e.Texture)    {
       if (take(e.Texture->GetInput(), image))
       {
         e.Texture->SetInputData(image);
@@ -326,6 +430,28 @@ bool vtkBrumeSceneActors::UpdateInputs(vtkPartitionedDataSetCollection* textures
       {
         e.Slices->SetExtinctionData(extinction);
       }
+    }
+  }
+  if (rebuild)
+  {
+    if (!this->Renderer)
+    {
+      vtkErrorMacro("The renderer the props were added to is gone.");
+      return false;
+    }
+    vtkRenderer* renderer = this->Renderer;
+    this->RemoveFromRenderer(renderer);
+    this->Input = textures;
+    if (!this->AddToRenderer(renderer))
+    {
+      return false;
+    }
+  }
+  else
+  {
+    for (const auto& [e, image] : texels)
+    {
+      this->Atlases[e->Atlas].Data.SetTexels(e->Member, image);
     }
   }
   this->NumberOfChangedDataSets = changed;
@@ -417,6 +543,10 @@ void vtkBrumeSceneActors::SetInterpolate(bool interpolate)
     return;
   }
   this->Interpolate = interpolate;
+  for (const Atlas& atlas : this->Atlases)
+  {
+    atlas.Texture->SetInterpolate(interpolate);
+  }
   for (const Entry& e : this->Entries)
   {
     if (e.Texture)
@@ -488,6 +618,7 @@ void vtkBrumeSceneActors::RemoveFromRenderer(vtkRenderer* renderer)
   }
   this->Props->RemoveAllItems();
   this->Entries.clear();
+  this->Atlases.clear();
 }
 
 void vtkBrumeSceneActors::PrintSelf(ostream& os, vtkIndent indent)
@@ -500,5 +631,7 @@ void vtkBrumeSceneActors::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ImageSampleDistance: " << this->ImageSampleDistance << "\n";
   os << indent << "Interpolate: " << this->Interpolate << "\n";
   os << indent << "Exposure: " << this->Exposure << "\n";
+  os << indent << "SurfaceAtlasMinimum: " << this->SurfaceAtlasMinimum << "\n";
+  os << indent << "Surface atlases: " << this->Atlases.size() << "\n";
   os << indent << "Input: " << this->Input.Get() << "\n";
 }

@@ -24,6 +24,7 @@
 #include "vtkBrumeRenderingModule.h" // For export macro
 #include "vtkObject.h"
 #include "vtkSmartPointer.h" // For members
+#include "vtkWeakPointer.h"  // For the renderer
 
 #include <functional> // For ApplyToMedia
 #include <string>     // For GetObjectKind
@@ -31,7 +32,12 @@
 
 class vtkBrumeSliceVolumeMapper;
 
+class vtkActor;
 class vtkDataObject;
+class vtkImageData;
+class vtkPolyData;
+class vtkPolyDataMapper;
+class vtkTexture;
 class vtkInformationIntegerKey;
 class vtkPartitionedDataSetCollection;
 class vtkPropCollection;
@@ -93,6 +99,28 @@ public:
   /// The props made by the last AddToRenderer().
   vtkPropCollection* GetProps();
 
+  ///@{
+  /**
+   * Surfaces share texture atlases when the input holds at least this many
+   * that can (default 64; 0 or 1: always; VTK_INT_MAX: never), taking
+   * effect at the next AddToRenderer(). An atlas packs many surfaces'
+   * radiance textures into one image (a slot each, its edge texels
+   * repeated around it so that filtering reads what the texture alone
+   * gives) and their triangles into one actor: a scene of thousands of
+   * small objects is drawn with a few actors instead of thousands. Scenes
+   * of fewer surfaces keep an actor each. A surface whose texture is over
+   * 4,094 texels a side, or that holds lines, vertices or strips, keeps its own.
+   */
+  vtkSetMacro(SurfaceAtlasMinimum, int);
+  vtkGetMacro(SurfaceAtlasMinimum, int);
+  ///@}
+
+  ///@{
+  /// The atlases the last AddToRenderer() made, and the image of the k-th (null if none).
+  int GetNumberOfSurfaceAtlases();
+  vtkImageData* GetSurfaceAtlas(int k);
+  ///@}
+
   /**
    * Points the props made by AddToRenderer() at `textures`, a newer output
    * of the same reconstruction (same objects, in the same order), and makes
@@ -100,6 +128,9 @@ public:
    * a view change, those of the view-dependent objects. A new object that
    * holds the same geometry and bytes as the one a prop shows (the same
    * textures sent again by a ParaView server) leaves the prop as it is.
+   * Surfaces in an atlas get their new texels copied into their slots; a
+   * new texture size or surface builds every prop again in the renderer
+   * they were added to.
    * Returns false, with an error, when the objects do not match the props.
    */
   bool UpdateInputs(vtkPartitionedDataSetCollection* textures);
@@ -181,10 +212,18 @@ protected:
   double Exposure = 1.0;
   bool MediaWriteDepth = false;
   double ImageSampleDistance = 1.0;
+  int SurfaceAtlasMinimum = 64;
 
 private:
   struct Entry;
   std::vector<Entry> Entries;
+  struct Atlas;
+  std::vector<Atlas> Atlases;
+  vtkWeakPointer<vtkRenderer> Renderer;
+  // Makes a surface's unlit textured actor from the given texture and
+  // mapper, and adds it to the renderer and the props.
+  vtkActor* AddSurfaceActor(vtkRenderer* renderer, vtkImageData* image, vtkPolyData* surface,
+    vtkTexture* texture, vtkPolyDataMapper* mapper);
   // Calls `apply` on the mapper of every medium made, then Modified().
   void ApplyToMedia(const std::function<void(vtkBrumeSliceVolumeMapper*)>& apply);
 
