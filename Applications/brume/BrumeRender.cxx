@@ -199,7 +199,11 @@ int RunReference(const RenderOptions& options)
 // the memory of every radiance texture.
 void PrintTextureMemory(vtkPartitionedDataSetCollection* textures)
 {
-  double total = 0.0;
+  // A row per texture, the first MaxRows of them: a scene of thousands of
+  // objects gets one line for the rest.
+  constexpr int MaxRows = 32;
+  int rows = 0, more = 0;
+  double total = 0.0, moreMegabytes = 0.0;
   std::printf("texture memory (MB, VTK's count of the arrays' bytes)\n");
   for (unsigned int i = 0; i < textures->GetNumberOfPartitionedDataSets(); ++i)
   {
@@ -219,6 +223,12 @@ void PrintTextureMemory(vtkPartitionedDataSetCollection* textures)
       const bool volume = dims[2] > 1;
       const double megabytes = static_cast<double>(image->GetActualMemorySize()) / 1024.0;
       total += megabytes;
+      if (++rows > MaxRows)
+      {
+        ++more;
+        moreMegabytes += megabytes;
+        continue;
+      }
       std::printf("  %-28s %-18s %5d x %5d x %5d %9.2f", name ? name : "(unnamed)",
         k == 0 ? (volume ? "source radiance" : "radiance") : "extinction (own)",
         volume ? dims[0] - 1 : dims[0], volume ? dims[1] - 1 : dims[1], volume ? dims[2] - 1 : 1,
@@ -238,6 +248,11 @@ void PrintTextureMemory(vtkPartitionedDataSetCollection* textures)
       }
       std::printf("\n");
     }
+  }
+  if (more > 0)
+  {
+    const std::string others = std::to_string(more) + " more textures";
+    std::printf("  %-28s %-18s %23s %9.2f\n", others.c_str(), "", "", moreMegabytes);
   }
   std::printf("  %-28s %-18s %23s %9.2f\n", "all textures", "", "", total);
 }

@@ -267,14 +267,39 @@ void vtkBrumeRadianceTextures::ComputeDirect()
       this->Direct->SetMediumGrid(o - surfaces, &medium.GetNative().GetDensity());
     }
   }
+  // Objects of few texels x lights are computed side by side, each on one
+  // thread (a scene of 65,000 tiles spent its time handing each tile's few
+  // texels to every thread); larger ones in turn, on every thread. An
+  // object's light does not depend on how its texels are shared out. A
+  // distributed run gathers each object's shares in turn, on every process.
   const brume::ParallelFor parallelFor = vtkBrumeSMP::ParallelFor();
+  const std::size_t lights = this->Scene.Lights.size();
+  std::vector<brume::ObjectRadiance*> small;
   for (auto& object : this->Objects)
   {
-    if (object->GetDirect().IsEnabled())
+    if (!object->GetDirect().IsEnabled())
+    {
+      continue;
+    }
+    const auto& dims = object->GetDirect().GetDims();
+    const std::size_t arrivals = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2] * lights;
+    if (!this->Distributed() && arrivals < SmallDirectArrivals)
+    {
+      small.push_back(object.get());
+    }
+    else
     {
       object->ComputeDirect(parallelFor);
     }
   }
+  vtkSMPTools::For(0, static_cast<vtkIdType>(small.size()),
+    [&small](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType k = begin; k < end; ++k)
+      {
+        small[k]->ComputeDirect(brume::SerialFor());
+      }
+    });
 }
 
 bool vtkBrumeRadianceTextures::CheckHits(

@@ -111,6 +111,9 @@ public:
   /// with the number of objects. Scenes under it keep their grids as they
   /// are (the shipped scenes hold under a million).
   static constexpr double MaxSceneDirectArrivals = 8388608.0;
+  /// Texels x lights under which an object's direct light is computed on
+  /// one thread, beside other such objects, rather than on every thread.
+  static constexpr std::size_t SmallDirectArrivals = 4096;
 
   /// Errors and warnings go to `filter`; `controller` may be null.
   vtkBrumeRadianceTextures(vtkAlgorithm* filter, vtkMultiProcessController* controller);

@@ -119,10 +119,9 @@ bool vtkBrumeRadianceTextures::CreateObjects(const vtkBrumeReconstructionSetting
   // Resolutions follow the hits of the whole run, on every process; from
   // the first batch of a run traced in batches, its hits scaled to the run
   // (or to the planned count, where more: a progressive run's last step).
-  // After the counts of every object come the hits of the media and of the
-  // planar surfaces counted over their pilot grids (where the hits are,
-  // brume::HitConcentration; a surface's without those the direct light
-  // replaces).
+  // Then the hits of the media and of the planar surfaces counted over
+  // their pilot grids (where the hits are, brume::HitConcentration; a
+  // surface's without those the direct light replaces).
   const double scale =
     std::max(run.Particles, settings.PlannedParticles) / (run.EndParticle - run.FirstParticle);
   const std::size_t objects = this->Scene.NumberOfObjects();
@@ -145,21 +144,33 @@ bool vtkBrumeRadianceTextures::CreateObjects(const vtkBrumeReconstructionSetting
     }
     counts[o] = static_cast<vtkTypeInt64>(std::llround(scale * hitsOfObject));
   }
-  std::vector<std::size_t> pilotStart(objects + 1, objects);
+  if (this->Distributed())
+  {
+    vtkBrumeProcesses::Sum(this->Controller, counts);
+  }
   // Surfaces only where the direct light of delta lights is computed: their
   // scattered light gathers around its patches. Lit by emissive surfaces
   // alone (the default scene), walls are lit evenly and skip the pass.
+  // Objects no particle reached skip it too (a scene of 65,000 tiles
+  // would count 2 GB of empty grids); the counts above are every
+  // process's, so every process sizes the same grids.
   const std::size_t deltaLights = settings.DirectLightResolution > 0 && hits.Emitter && hits.Depth
     ? this->Scene.Lights.size()
     : 0;
   const brume::ParallelFor parallelFor = vtkBrumeSMP::ParallelFor();
+  std::vector<vtkTypeInt64> pilots;
+  std::vector<std::size_t> pilotStart(objects + 1, 0);
   for (std::size_t o = 0; o < objects; ++o)
   {
     const std::uint32_t* index = groups.Index.data() + groups.Offset[o];
     const std::size_t count = groups.Offset[o + 1] - groups.Offset[o];
     std::vector<std::int64_t> pilot;
     brume::PlanarFrame frame;
-    if (o >= surfaces)
+    if (counts[o] == 0)
+    {
+      // No hit on any process: no grid (its concentration is 1).
+    }
+    else if (o >= surfaces)
     {
       brume::CountHitsOverPilotGrid(
         hits, index, count, this->Scene.Media[o - surfaces].Bounds, pilot, parallelFor);
@@ -169,12 +180,12 @@ bool vtkBrumeRadianceTextures::CreateObjects(const vtkBrumeReconstructionSetting
       brume::CountHitsOverPilotGrid(
         hits, index, count, frame, this->Scene.LightEmitterId(0), deltaLights, pilot, parallelFor);
     }
-    counts.insert(counts.end(), pilot.begin(), pilot.end());
+    pilots.insert(pilots.end(), pilot.begin(), pilot.end());
     pilotStart[o + 1] = pilotStart[o] + pilot.size();
   }
-  if (this->Distributed() && !counts.empty())
+  if (this->Distributed())
   {
-    vtkBrumeProcesses::Sum(this->Controller, counts);
+    vtkBrumeProcesses::Sum(this->Controller, pilots);
     this->Reduction.reset(new vtkBrumeHistogramReduction(this->Controller));
   }
   // Objects no particle reached, named in one warning (a scene of
@@ -215,8 +226,8 @@ bool vtkBrumeRadianceTextures::CreateObjects(const vtkBrumeReconstructionSetting
   {
     const double concentration = pilotStart[o + 1] > pilotStart[o]
       ? brume::HitConcentration(
-          std::vector<std::int64_t>(counts.begin() + static_cast<std::ptrdiff_t>(pilotStart[o]),
-            counts.begin() + static_cast<std::ptrdiff_t>(pilotStart[o + 1])))
+          std::vector<std::int64_t>(pilots.begin() + static_cast<std::ptrdiff_t>(pilotStart[o]),
+            pilots.begin() + static_cast<std::ptrdiff_t>(pilotStart[o + 1])))
       : 1.0;
     auto radiance =
       this->CreateObject(o, static_cast<std::size_t>(counts[o]), concentration, settings);
