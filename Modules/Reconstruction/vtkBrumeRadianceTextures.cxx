@@ -185,23 +185,14 @@ bool vtkBrumeRadianceTextures::CreateDirectLight(
   }
   if (arrivals > MaxSceneDirectArrivals)
   {
-    const double factor = MaxSceneDirectArrivals / arrivals;
+    const double kept = this->FitDirectGrids(grids, lights);
     std::ostringstream percent;
-    percent << std::setprecision(2) << 100.0 * factor;
+    percent << std::setprecision(2) << 100.0 * kept / arrivals;
     vtkWarningWithObjectMacro(this->Filter,
-      "The direct light's grids of every object are coarsened to "
+      "The direct light's grids are coarsened to one texel size for the whole scene, "
         << percent.str() << " % of their texels: the scene's would hold "
         << static_cast<long long>(arrivals) << " texels x lights, more than "
         << static_cast<long long>(MaxSceneDirectArrivals) << ".");
-    for (std::size_t o = 0; o < this->Objects.size(); ++o)
-    {
-      const int used = this->Scene.IsMedium(o) ? 3 : 2;
-      for (int a = 0; a < used && grids[o][0] > 0; ++a)
-      {
-        grids[o][a] =
-          std::max(1, static_cast<int>(std::floor(grids[o][a] * std::pow(factor, 1.0 / used))));
-      }
-    }
   }
   std::size_t left = 0;
   for (std::size_t o = 0; o < this->Objects.size(); ++o)
@@ -228,6 +219,62 @@ bool vtkBrumeRadianceTextures::CreateDirectLight(
          << static_cast<long long>(MaxDirectArrivals) << ").");
   }
   return this->Agree(true);
+}
+
+double vtkBrumeRadianceTextures::FitDirectGrids(
+  std::vector<std::array<int, 3>>& grids, double lights) const
+{
+  // Each object's extent, over which its own grid spans.
+  std::vector<brume::Vec3> extents(grids.size());
+  float largest = 0.f;
+  for (std::size_t o = 0; o < grids.size(); ++o)
+  {
+    if (grids[o][0] > 0)
+    {
+      const brume::SurfaceChart& chart = this->Objects[o]->GetLayout().Chart;
+      extents[o] = this->Scene.IsMedium(o)
+        ? this->Scene.Media[o - this->Scene.Surfaces.size()].Bounds.Extent()
+        : brume::Vec3(chart.Width, chart.Height, 0.f);
+      largest = std::max(largest, MaxComponent(extents[o]));
+    }
+  }
+  // A texel of `size` on every object, and no finer than its own grid: a
+  // large ground keeps its texels, a small tile needs few.
+  auto fitted = [&](double size, std::vector<std::array<int, 3>>* out)
+  {
+    double total = 0.0;
+    for (std::size_t o = 0; o < grids.size(); ++o)
+    {
+      if (grids[o][0] <= 0)
+      {
+        continue;
+      }
+      std::array<int, 3> res = grids[o];
+      for (int a = 0; a < 3; ++a)
+      {
+        if (extents[o][a] > 0.f)
+        {
+          res[a] = std::clamp(static_cast<int>(std::ceil(extents[o][a] / size)), 1, grids[o][a]);
+        }
+      }
+      total += static_cast<double>(res[0]) * res[1] * res[2] * lights;
+      if (out)
+      {
+        (*out)[o] = res;
+      }
+    }
+    return total;
+  };
+  // The finest texel size within the budget (the count falls as the size
+  // grows; one texel per object is the coarsest): bisection in log size.
+  double coarse = std::max(1e-30, static_cast<double>(largest));
+  double fine = coarse * 1e-6;
+  for (int step = 0; step < 60; ++step)
+  {
+    const double size = std::sqrt(coarse * fine);
+    (fitted(size, nullptr) > MaxSceneDirectArrivals ? fine : coarse) = size;
+  }
+  return fitted(coarse, &grids);
 }
 
 void vtkBrumeRadianceTextures::FixViews(

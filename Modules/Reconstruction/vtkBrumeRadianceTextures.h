@@ -106,10 +106,11 @@ public:
   static constexpr double MinDirectTexels = 1024.0;
   /// Texels x lights of the whole scene's direct light, at most: as much as
   /// one object's (2^23: about 330 MB with the output grids). Where the
-  /// objects' grids would hold more (hundreds of objects), every grid is
-  /// coarsened by one factor, so that memory and shadow rays do not grow
-  /// with the number of objects. Scenes under it keep their grids as they
-  /// are (the shipped scenes hold under a million).
+  /// objects' grids would hold more (hundreds of objects), the grids take
+  /// one texel size, the finest that fits (a large ground keeps its
+  /// texels, a small tile gets few), so that memory and shadow rays do not
+  /// grow with the number of objects. Scenes under it keep their grids as
+  /// they are (the shipped scenes hold under a million).
   static constexpr double MaxSceneDirectArrivals = 8388608.0;
   /// Texels x lights under which an object's direct light is computed on
   /// one thread, beside other such objects, rather than on every thread.
@@ -213,6 +214,11 @@ private:
   bool CreateDirectLight(
     const vtkBrumeReconstructionSettings& settings, const brume::HitArrays& hits);
   std::array<int, 3> DirectResolution(std::size_t o, int resolution) const;
+  // Coarsens the objects' direct-light grids (zero where none) to the
+  // finest texel size common to the scene (no finer than each grid) that
+  // keeps texels x `lights` within MaxSceneDirectArrivals; their texels x
+  // lights after.
+  double FitDirectGrids(std::vector<std::array<int, 3>>& grids, double lights) const;
   // Resolution along the longer axis `n` of `extent`, the others in proportion.
   static std::array<int, 3> FixedResolution(const brume::Vec3& extent, int n);
   void ComputeDirect();
