@@ -7,15 +7,22 @@
 # malformed ones include files announcing absurd component counts). An input
 # slower than FUZZ_TIMEOUT seconds (default 10) or using more than FUZZ_RSS_MB
 # (default 2048, AddressSanitizer's shadow included) counts as a finding.
-# Findings land in build-fuzz/findings.
+# With FUZZ_RUNS, each target instead runs that many inputs from seed 1 (the
+# same inputs on every machine: CI runs FuzzSceneFiles so). Findings land in
+# build-fuzz/findings; any finding makes the script fail.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
 seconds=${FUZZ_SECONDS:-300}
-if ! command -v clang++ > /dev/null; then
+# clang and its runtimes (libFuzzer and the sanitizers are in
+# libclang-rt-14-dev, which clang only recommends).
+if ! command -v clang++ > /dev/null ||
+  [ ! -e "$(clang++ -print-file-name=libclang_rt.fuzzer-x86_64.a)" ]; then
   sudo_cmd=()
   [ "$(id -u)" -ne 0 ] && sudo_cmd=(sudo)
-  "${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends clang
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo_cmd[@]}" apt-get update -q
+  "${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends clang libclang-rt-14-dev
 fi
 flags="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja \
@@ -46,8 +53,14 @@ for target in ${FUZZ_TARGETS:-FuzzSceneReader FuzzSceneFiles FuzzOpenVDBReader};
   corpus=scene-corpus
   [ "$target" = FuzzOpenVDBReader ] && corpus=vdb-corpus
   [ "$target" = FuzzSceneFiles ] && corpus=file-corpus
-  echo "== $target, $seconds s"
-  (cd "$work" && "$root/build-fuzz/bin/$target" "$corpus" -max_total_time="$seconds" \
+  if [ -n "${FUZZ_RUNS:-}" ]; then
+    budget=(-runs="$FUZZ_RUNS" -seed=1)
+    echo "== $target, $FUZZ_RUNS runs"
+  else
+    budget=(-max_total_time="$seconds")
+    echo "== $target, $seconds s"
+  fi
+  (cd "$work" && "$root/build-fuzz/bin/$target" "$corpus" "${budget[@]}" \
     -max_len=65536 -timeout="${FUZZ_TIMEOUT:-10}" -rss_limit_mb="${FUZZ_RSS_MB:-2048}" \
     -artifact_prefix="$root/build-fuzz/findings/$target-" \
     -print_final_stats=1) 2>&1 | grep -E "^#[0-9]+.*DONE|stat::number_of_executed_units|ERROR|SUMMARY" || status=1
