@@ -104,6 +104,28 @@ TEST(VdbDensity, StreamsWithoutOffsetsLoadAndTheirFaultsAreFound)
   }
 }
 
+TEST(VdbDensity, AVoxelSizeBeyondSinglePrecisionIsRefusedNamingTheFile)
+{
+  vdbwriter::Grid grid;
+  grid.VoxelSize = 1e300;
+  grid.Lower = { 0, 0, 0 };
+  grid.Upper = { 7, 7, 7 };
+  grid.Value = [](int, int, int) { return 1.f; };
+  const std::string path = "brume-test-1e300.vdb";
+  vdbwriter::Write(path, { grid });
+  std::string error;
+  EXPECT_EQ(VdbDensity::Load(path, "", error), nullptr);
+  EXPECT_NE(error.find("OpenVDB grid 'density' of '" + path +
+              "': its active voxels span a box that single precision cannot hold (voxel size "
+              "1e+300"),
+    std::string::npos)
+    << error;
+  grid.VoxelSize = 1e30; // 8e30 across: a float holds it
+  vdbwriter::Write(path, { grid });
+  EXPECT_TRUE(VdbDensity::Load(path, "", error)) << error;
+  std::filesystem::remove(path);
+}
+
 TEST(VdbDensity, SamplesAreOpenVdbsTrilinearSamplesBitwise)
 {
   // Varied values in leaves on both sides of the origin, an active tile

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <limits>
 #include <mutex>
+#include <sstream>
 #include <vector>
 
 namespace brume
@@ -299,6 +300,8 @@ std::shared_ptr<VdbDensity> VdbDensity::LoadGrid(
     return nullptr;
   }
   const openvdb::math::Transform& transform = grid->transform();
+  const std::string what = "OpenVDB grid '" + ShortMessage(grid->getName().c_str()) + "' of '" +
+    fileName + "'";
   auto density = std::shared_ptr<VdbDensity>(new VdbDensity);
   Internals& impl = *density->Impl;
   impl.Origin = transform.indexToWorld(openvdb::Vec3d(0.0));
@@ -307,20 +310,20 @@ std::shared_ptr<VdbDensity> VdbDensity::LoadGrid(
   {
     if (!(impl.VoxelSize[a] > 0.0))
     {
-      error = "OpenVDB grid '" + grid->getName() + "' has a non-positive voxel size";
+      error = what + " has a non-positive voxel size";
       return nullptr;
     }
   }
   const openvdb::CoordBBox bbox = grid->evalActiveVoxelBoundingBox();
   if (bbox.empty() || grid->activeVoxelCount() == 0)
   {
-    error = "OpenVDB grid '" + grid->getName() + "' has no active voxels";
+    error = what + " has no active voxels";
     return nullptr;
   }
   const float background = grid->background();
   if (!std::isfinite(background) || (!scalars && !(background >= 0.f)))
   {
-    error = "OpenVDB grid '" + grid->getName() + "' has a negative or non-finite background";
+    error = what + " has a negative or non-finite background";
     return nullptr;
   }
   impl.Active = static_cast<std::size_t>(grid->activeVoxelCount());
@@ -334,6 +337,16 @@ std::shared_ptr<VdbDensity> VdbDensity::LoadGrid(
       static_cast<float>(impl.Origin[a] + (lo[a] - 1.0) * impl.VoxelSize[a]);
     density->Bounds.upper[a] =
       static_cast<float>(impl.Origin[a] + (hi[a] + 1.0) * impl.VoxelSize[a]);
+    if (!std::isfinite(density->Bounds.lower[a]) || !std::isfinite(density->Bounds.upper[a]) ||
+      !(density->Bounds.upper[a] > density->Bounds.lower[a]))
+    {
+      std::ostringstream size;
+      size << impl.VoxelSize[a];
+      error = what + ": its active voxels span a box that single precision cannot hold (voxel size " +
+        size.str() + ", index box " + std::to_string(lo[a]) + " to " + std::to_string(hi[a]) +
+        " along axis " + std::to_string(a) + ")";
+      return nullptr;
+    }
   }
   if (!Internals::BuildMajorants(*density, *grid, bbox, background, scalars, error))
   {
