@@ -588,6 +588,13 @@ int ParseCommandLine(
         "BRUME_RENDER_WINDOW, else X with a DISPLAY, else EGL)")
       ->transform(OneOf({ "auto", "x", "egl", "osmesa" }))
       ->type_name("KIND");
+    app.get_subcommand(name)
+      ->add_option_function<long long>(
+        "--threads", [&line](const long long& n) { line.Threads = static_cast<int>(n); },
+        "threads of every phase (default: VTK_SMP_MAX_THREADS, else\n"
+        "every core); the images do not depend on it")
+      ->transform(Integer(1, 4096, "an integer in [1, 4096]"))
+      ->type_name("N");
   }
 
   // Help and version as the first argument, and a command's help wherever

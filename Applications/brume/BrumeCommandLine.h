@@ -25,6 +25,7 @@ struct BrumeCommandLine
   };
   Command Run = Command::None;
   std::string Window; // --window: the render window's kind, "" for BRUME_RENDER_WINDOW
+  int Threads = 0;    // --threads: 0 for VTK_SMP_MAX_THREADS, else every core
   RenderOptions Render;
   ViewOptions View;
   SlabOptions Slab;

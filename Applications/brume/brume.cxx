@@ -51,7 +51,7 @@ int main(int argc, char* argv[])
   {
     return rc;
   }
-  vtkBrumeSMP::UseAllCores();
+  vtkBrumeSMP::UseAllCores(line.Threads);
   BrumeOutputWindow::Install();
   // --window chooses the render window before anything renders; without it
   // the first render chooses (BRUME_RENDER_WINDOW, else X or EGL).

@@ -8,14 +8,14 @@
 #include <cstdlib>
 #include <cstring>
 
-void vtkBrumeSMP::UseAllCores()
+void vtkBrumeSMP::UseAllCores(int threads)
 {
   if (!std::getenv("VTK_SMP_BACKEND_IN_USE"))
   {
     vtkSMPTools::SetBackend("STDThread");
   }
   const char* max = std::getenv("VTK_SMP_MAX_THREADS");
-  vtkSMPTools::Initialize(max ? std::atoi(max) : 0);
+  vtkSMPTools::Initialize(threads > 0 ? threads : max ? std::atoi(max) : 0);
 }
 
 bool vtkBrumeSMP::UseAllCoresUnlessChosen()

@@ -23,10 +23,10 @@ public:
   /**
    * ParaView's VTK defaults vtkSMPTools to its Sequential backend: Brume's
    * programs and tests use the STDThread one on every core, unless the user
-   * chose a backend with VTK_SMP_BACKEND_IN_USE (and a count with
-   * VTK_SMP_MAX_THREADS).
+   * chose a backend with VTK_SMP_BACKEND_IN_USE; on `threads` threads when
+   * above 0 (brume's --threads), else VTK_SMP_MAX_THREADS's, else every core.
    */
-  static void UseAllCores();
+  static void UseAllCores(int threads = 0);
 
   /**
    * For libraries (the Python package, the ParaView plugin), which share
