@@ -71,7 +71,8 @@ bool vtkBrumeSceneFileParser::Parse(const json& root, vtkPartitionedDataSetColle
     return false;
   }
   // The objects' and lights' ids are 16-bit: refused before a million
-  // lights are parsed (4 s and 1.5 GB), naming the array that overflows.
+  // lights are parsed, naming the array that overflows (vtkBrumeSceneReader
+  // counts them as it reads a file, before this document is built).
   std::size_t counted = 0;
   for (const char* key : { "surfaces", "media", "lights" })
   {

@@ -78,7 +78,7 @@ for mesh in ("zeros.obj", "zeros.ply", "zeros.stl"):
                                "intensity": [1, 1, 1]}]}, f)
     cases.append(("2 GiB " + mesh, scene))
 
-# A million lights: refused once the file is parsed, naming 'lights'.
+# A million lights: refused as the file is read, at the 65,536th, naming 'lights'.
 scene = os.path.join(work, "million-lights.json")
 with open(scene, "w") as f:
     f.write('{"brume_scene": 1, "surfaces": [{"name": "floor", "quad": [[-1, 0, -1], [-1, 0, 1], '

@@ -96,15 +96,28 @@ check(run.stdout.count("\n  tile ") <= 31 and "more textures" in run.stdout,
 check(peak_kb <= 1024 * 1024, "1,001 objects within 1 GB (%.0f MB, the children's peak so far)"
       % (peak_kb / 1024.0))
 
+# At the limit: a floor and 65,534 lights render (the particles carry the
+# direct light).
+path = os.path.join(output_dir, "many-lights-65534.json")
+png = os.path.join(output_dir, "many-lights-65534.png")
+with open(path, "w") as f:
+    json.dump(scene(65534), f)
+run = subprocess.run([brume, "render", path, "--particles", "2000", "--size", "16x16", "-o", png],
+                     capture_output=True, text=True)
+check(run.returncode == 0 and os.path.exists(png),
+      "65,535 objects and lights, the most a scene holds, render (stderr: %s)"
+      % run.stderr.strip()[:300])
+
 # Above the limit of 65,535 objects and lights together: refused while the
-# file is parsed, naming the array that overflows, before a light is made.
+# file is read, at the 65,536th, naming the array that overflows, before
+# its document is built or a light is made.
 path = os.path.join(output_dir, "many-lights-70000.json")
 png = os.path.join(output_dir, "many-lights-70000.png")
 with open(path, "w") as f:
     json.dump(scene(70000), f)
 run = subprocess.run([brume, "render", path, "-o", png], capture_output=True, text=True)
 check(run.returncode == 1 and not os.path.exists(png)
-      and "many-lights-70000.json: lights: the scene has 70001 objects and lights so far: "
+      and "many-lights-70000.json: lights: the scene has 65536 objects and lights so far: "
           "a scene holds at most 65,535 together" in run.stderr,
       "70,000 lights are refused at parse time, naming 'lights' (stderr: %s)"
       % run.stderr.strip()[:300])
