@@ -15,6 +15,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <system_error>
 
 namespace
 {
@@ -249,6 +250,21 @@ bool XmlArraysFit(const std::filesystem::path& file, std::string& error)
     error = "'" + file.string() + "' announces " + dims + "arrays of " + Count(bytes) +
       " bytes (components x values x type): more than half of this machine's memory (" +
       Count(memory) + " bytes)";
+    return false;
+  }
+  // What the file can hold: a value takes at least 2 characters in ASCII
+  // (8 bytes at most in memory), and no compressor VTK writes (LZ4, zlib,
+  // LZMA) shrinks data 10,000 times. A 64 KB file announcing 10 GB of
+  // arrays within memory was allocated before its data were found missing.
+  std::error_code failed;
+  const double size = static_cast<double>(std::filesystem::file_size(file, failed));
+  const bool compressed = root->GetAttribute("compressor") != nullptr;
+  const double expansion = compressed ? 10000.0 : 8.0;
+  if (!failed && bytes > size * expansion)
+  {
+    error = "'" + file.string() + "' announces " + dims + "arrays of " + Count(bytes) +
+      " bytes (components x values x type), more than its " + Count(size) + " bytes can hold " +
+      (compressed ? "compressed (10,000 times at most)" : "(8 times at most)");
     return false;
   }
   return true;

@@ -27,7 +27,9 @@
 # their .vti files: density-vti-nested-datasets (a fuzzer's find: the image
 # VTK reads is the root's second child, behind a nested VTKFile, and its
 # component count is "10485ii") and density-vti-whole-extent (a piece of 2 x 2
-# points in a whole extent of 4096 x 4096 x 1024, which VTK allocates).
+# points in a whole extent of 4096 x 4096 x 1024, which VTK allocates); and
+# density-vti-short-data and -short-compressed (512^3 and 256^3 float values
+# announced by files of a few hundred bytes, plain and zlib-compressed).
 import json, copy, os, sys
 out = sys.argv[1]
 base = {
