@@ -238,6 +238,21 @@ bool PlyBodyConsistent(std::istream& in, const std::filesystem::path& file,
             return false;
           }
         } while (line.find_first_not_of(" \t\r") == std::string::npos);
+        // VTK's parser reads a row as a C string and indexes its words
+        // unchecked: a NUL (or another control character) ends the row
+        // early there, where words here would run on (a fuzzer's find, a
+        // segmentation fault in VTK's strtod).
+        if (std::any_of(line.begin(), line.end(),
+              [](char c)
+              {
+                return static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\r' &&
+                  c != '\v' && c != '\f';
+              }))
+        {
+          error = name + ": a control character in row " + Count(row) + " of element '" +
+            e.Name + "'";
+          return false;
+        }
         // VTK's parser indexes the line's words unchecked: each row's line
         // must hold every value of the row.
         words.clear();

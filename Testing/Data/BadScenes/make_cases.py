@@ -29,7 +29,10 @@
 # component count is "10485ii") and density-vti-whole-extent (a piece of 2 x 2
 # points in a whole extent of 4096 x 4096 x 1024, which VTK allocates); and
 # density-vti-short-data and -short-compressed (512^3 and 256^3 float values
-# announced by files of a few hundred bytes, plain and zlib-compressed).
+# announced by files of a few hundred bytes, plain and zlib-compressed), and
+# mesh-nul-in-row-ply with nul-in-row.ply (a fuzzer's find: NUL bytes inside
+# an ASCII row, which VTK's parser reads as the row's end, then indexes
+# words past it).
 import json, copy, os, sys
 out = sys.argv[1]
 base = {
