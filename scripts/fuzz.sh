@@ -7,9 +7,11 @@
 # malformed ones include files announcing absurd component counts). An input
 # slower than FUZZ_TIMEOUT seconds (default 10) or using more than FUZZ_RSS_MB
 # (default 2048, AddressSanitizer's shadow included) counts as a finding.
-# With FUZZ_RUNS, each target instead runs that many inputs from seed 1 (the
-# same inputs on every machine: CI runs FuzzSceneFiles so). Findings land in
-# build-fuzz/findings; any finding makes the script fail.
+# With FUZZ_RUNS, each target instead runs that many mutated inputs from
+# seed 1 after its corpus; FUZZ_RUNS=0 runs the seed corpus alone, once
+# each, which is the same on every machine (CI runs FuzzSceneFiles so:
+# mutations from the same seed differed between two fresh machines).
+# Findings land in build-fuzz/findings; any finding makes the script fail.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
@@ -35,7 +37,8 @@ CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja \
 cmake --build build-fuzz --parallel "${BUILD_JOBS:-2}" --target FuzzSceneReader FuzzSceneFiles FuzzOpenVDBReader
 
 work=build-fuzz/run
-rm -rf build-fuzz/findings
+# The corpora start from the seeds on every run (libFuzzer adds to them).
+rm -rf build-fuzz/findings "$work"
 mkdir -p "$work/scene-corpus" "$work/vdb-corpus" "$work/file-corpus" build-fuzz/findings
 cp Testing/Data/BadScenes/* "$work/"
 cp Data/scenes/* "$work/"
