@@ -411,6 +411,12 @@ bool ReadPlyHeader(
     {
       rest.push_back(w);
     }
+    if (word.empty())
+    {
+      // VTK's parser finds no word on such a line and compares the first
+      // it did not set (a fuzzer's find: a segmentation fault).
+      return malformed("an empty line");
+    }
     if (word == "format")
     {
       if (rest.size() != 2 ||
@@ -459,7 +465,7 @@ bool ReadPlyHeader(
         return malformed(why);
       }
     }
-    else if (word != "comment" && word != "obj_info" && word != "end_header" && !word.empty())
+    else if (word != "comment" && word != "obj_info" && word != "end_header")
     {
       return malformed("not a PLY header keyword");
     }

@@ -32,7 +32,9 @@
 # announced by files of a few hundred bytes, plain and zlib-compressed), and
 # mesh-nul-in-row-ply with nul-in-row.ply (a fuzzer's find: NUL bytes inside
 # an ASCII row, which VTK's parser reads as the row's end, then indexes
-# words past it).
+# words past it) and mesh-empty-header-line-ply with empty-header-line.ply
+# (another: a header line of a tab alone, on which VTK's parser compares a
+# word it never set; brume crashed).
 import json, copy, os, sys
 out = sys.argv[1]
 base = {
