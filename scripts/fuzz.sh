@@ -9,7 +9,7 @@
 # (default 2048, AddressSanitizer's shadow included) counts as a finding.
 # With FUZZ_RUNS, each target instead runs that many mutated inputs from
 # seed 1 after its corpus; FUZZ_RUNS=0 runs the seed corpus alone, once
-# each, which is the same on every machine (CI runs FuzzSceneFiles so:
+# each, which is the same on every machine (CI runs the targets so:
 # mutations from the same seed differed between two fresh machines).
 # Findings land in build-fuzz/findings; any finding makes the script fail.
 set -euo pipefail
