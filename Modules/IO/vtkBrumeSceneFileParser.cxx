@@ -70,20 +70,10 @@ bool vtkBrumeSceneFileParser::Parse(const json& root, vtkPartitionedDataSetColle
   {
     return false;
   }
-  // The objects' and lights' ids are 16-bit: refused before a million
-  // lights are parsed, naming the array that overflows (vtkBrumeSceneReader
-  // counts them as it reads a file, before this document is built).
-  std::size_t counted = 0;
-  for (const char* key : { "surfaces", "media", "lights" })
-  {
-    counted += root.contains(key) && root[key].is_array() ? root[key].size() : 0;
-    if (counted > brume::Scene::MaxObjectsAndLights)
-    {
-      return p.Fail(key,
-        "the scene has " + std::to_string(counted) +
-          " objects and lights so far: a scene holds at most 65,535 together");
-    }
-  }
+  // The objects' and lights' ids are 16-bit: vtkBrumeSceneReader counts
+  // them as it reads the file, before this document is built, and refuses
+  // more than brume::Scene::MaxObjectsAndLights (brume::Scene::Validate
+  // holds the same limit for scenes built otherwise).
   return p.Number(root["brume_scene"], "brume_scene", version, 1, 1) &&
     this->ParseArray(root, "surfaces", &vtkBrumeSceneFileParser::ParseSurface) &&
     this->ParseArray(root, "media", &vtkBrumeSceneFileParser::ParseMedium) &&
