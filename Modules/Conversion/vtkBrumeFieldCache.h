@@ -27,8 +27,10 @@ namespace vtkBrumeSceneConversionInternals
  * (while the array's modification time and the grid's placement are the
  * same) and the grid classified by the last opacity function asked for, and
  * lets them go when the array is deleted (its DeleteEvent) or modified.
- * The memory of one float per value is held as long as the array lives.
- * Thread safe.
+ * A grid of a float array of one component reads the array's own memory
+ * (the densities handed out hold a reference to the array, the cache does
+ * not); another array's grid holds one float per value as long as the
+ * array lives. Thread safe.
  */
 class FieldCache
 {

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumeRadianceConversion.h"
 #include "vtkBrumeSMP.h"
+#include "vtkBrumeSharedArray.h"
 
 #include "vtkBrumeDataModelNames.h"
 #include "vtkCellArray.h"
@@ -367,11 +368,9 @@ vtkSmartPointer<vtkImageData> vtkBrumeRadianceConversion::NativeExtinction(
   values->SetNumberOfValues(static_cast<vtkIdType>(density.GetConstants().size()));
   std::copy(density.GetConstants().begin(), density.GetConstants().end(), values->GetPointer(0));
   fd->AddArray(values);
-  vtkNew<vtkFloatArray> samples;
-  samples->SetName(vtkBrumeNames::ExtinctionBrickSamples);
-  samples->SetNumberOfValues(static_cast<vtkIdType>(density.GetSamples().size()));
-  std::copy(density.GetSamples().begin(), density.GetSamples().end(), samples->GetPointer(0));
-  fd->AddArray(samples);
+  // The grid's own samples (10^8 of them for a 512^3 field), shared, not copied.
+  fd->AddArray(
+    vtkBrumeSharedArray::Share(density.GetSamples(), vtkBrumeNames::ExtinctionBrickSamples));
   vtkNew<vtkDoubleArray> scale;
   scale->SetName(vtkBrumeNames::ExtinctionScale);
   scale->SetNumberOfComponents(3);

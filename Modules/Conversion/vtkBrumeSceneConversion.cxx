@@ -3,6 +3,7 @@
 
 #include "vtkAlgorithm.h"
 #include "vtkBrumeDataModelNames.h"
+#include "vtkBrumeFieldCache.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkCompositeDataSet.h"
@@ -577,4 +578,9 @@ std::string vtkBrumeSceneConversion::ToScene(vtkDataObject* input, brume::Scene&
     return lightError;
   }
   return scene.Validate();
+}
+
+std::size_t vtkBrumeSceneConversion::GetNumberOfCachedArrays()
+{
+  return vtkBrumeSceneConversionInternals::FieldCache::Instance().NumberOfKeptArrays();
 }

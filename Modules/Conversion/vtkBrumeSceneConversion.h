@@ -50,7 +50,7 @@
 #define vtkBrumeSceneConversion_h
 
 #include "vtkBrumeConversionModule.h" // For export macro
-#include "vtkSmartPointer.h"         // For return values
+#include "vtkSmartPointer.h"          // For return values
 
 #include "brume/Scene.h" // For brume::Scene
 
@@ -135,6 +135,15 @@ public:
    * was given (a directional light's beam is made again to cover the scene).
    */
   static void AppendFieldLights(const std::vector<brume::Light>& lights, vtkFieldData* fieldData);
+
+  /**
+   * The arrays whose converted fields ToScene() keeps (until the array is
+   * deleted or modified), so that the tracer, the reconstruction and the
+   * renderer convert a field once. A float array of one component is not
+   * copied: its field reads the array's memory, and each medium made from
+   * it holds a reference to the array.
+   */
+  static std::size_t GetNumberOfCachedArrays();
 };
 
 #endif

@@ -5,6 +5,7 @@
 #include "vtkBrumeSceneConversionInternals.h"
 
 #include "vtkBrumeFieldCache.h"
+#include "vtkBrumeSharedArray.h"
 
 #include "vtkArrayDispatch.h"
 #include "vtkBrumeDataModelNames.h"
@@ -15,6 +16,7 @@
 #include "vtkMatrix3x3.h"
 #include "vtkPointData.h"
 #include "vtkSMPTools.h"
+#include "vtkSmartPointer.h"
 
 #include "brume/TransferFunction.h"
 #include "brume/VdbDensity.h"
@@ -22,7 +24,9 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <memory>
 #include <optional>
+#include <utility>
 
 namespace vtkBrumeSceneConversionInternals
 {
@@ -112,28 +116,48 @@ std::string ReadTransferFunctions(vtkFieldData* fd,
   return error.empty() ? ReadColorFunction(fd, colors) : error;
 }
 
-// The medium's density: `scalars` classified when it has an opacity
-// function, and its albedo coloured when it has a colour function too.
-void SetClassified(brume::Medium& m, std::shared_ptr<const brume::DensityField> scalars,
-  std::optional<brume::OpacityTransferFunction>& opacity,
+// `field` as the medium holds it: with a reference to the array its grid
+// was read from (if any), whose memory a grid of a float array reads. The
+// cache holds the grid alone, and lets it go when the array is deleted.
+template <typename Field>
+std::shared_ptr<Field> Holding(std::shared_ptr<Field> field, vtkDataArray* array)
+{
+  if (!array)
+  {
+    return field;
+  }
+  auto both = std::make_shared<std::pair<std::shared_ptr<Field>, vtkSmartPointer<vtkDataArray>>>(
+    std::move(field), array);
+  return std::shared_ptr<Field>(both, both->first.get());
+}
+
+// The medium's density: `scalars` (read from `array`, if any) classified
+// when it has an opacity function, and its albedo coloured when it has a
+// colour function too.
+void SetClassified(brume::Medium& m, const std::shared_ptr<const brume::DensityField>& scalars,
+  vtkDataArray* array, std::optional<brume::OpacityTransferFunction>& opacity,
   std::optional<brume::ColorTransferFunction>& colors)
 {
   if (!opacity)
   {
-    m.SetDensity(std::move(scalars));
+    m.SetDensity(Holding(scalars, array));
     return;
   }
   if (colors)
   {
-    m.AlbedoFactor = std::make_shared<brume::ClassifiedAlbedo>(scalars, std::move(*colors));
+    m.AlbedoFactor =
+      Holding(std::shared_ptr<const brume::AlbedoField>(
+                std::make_shared<brume::ClassifiedAlbedo>(scalars, std::move(*colors))),
+        array);
   }
   m.SetDensity(
-    vtkBrumeSceneConversionInternals::FieldCache::Instance().Classified(scalars, *opacity,
-      [&]()
-      {
-        return std::make_shared<const brume::ClassifiedDensity>(
-          scalars, *opacity, vtkBrumeSMP::ParallelFor());
-      }));
+    Holding(vtkBrumeSceneConversionInternals::FieldCache::Instance().Classified(scalars, *opacity,
+              [&]()
+              {
+                return std::make_shared<const brume::ClassifiedDensity>(
+                  scalars, *opacity, vtkBrumeSMP::ParallelFor());
+              }),
+      array));
 }
 
 // The medium's coefficients (BrumeSigmaA, BrumeSigmaS, BrumeG), scaled by
@@ -185,7 +209,7 @@ std::string LoadVdbDensity(vtkFieldData* fd, const std::string& vdbFile, brume::
   {
     return error;
   }
-  SetClassified(m, std::move(density), opacity, colors);
+  SetClassified(m, density, nullptr, opacity, colors);
   return {};
 }
 
@@ -237,13 +261,13 @@ std::string ReadInterpolation(vtkFieldData* fd, brume::GridDensity::Interpolatio
 
 // Component `c` of the density array's tuples: scalars a transfer function
 // classifies (`classified`: any finite value), else densities (finite and
-// not negative), read in the array's own type on every thread. Empty when
-// valid.
+// not negative), read in the array's own type on every thread into
+// `values`, or only checked where `values` is null. Empty when valid.
 struct ReadComponent
 {
   template <typename Array>
-  void operator()(Array* array, int c, bool classified, std::vector<float>& values,
-    std::atomic<bool>& bad, bool threads = true) const
+  void operator()(Array* array, int c, bool classified, float* values, std::atomic<bool>& bad,
+    bool threads = true) const
   {
     const auto tuples = vtk::DataArrayTupleRange(array);
     auto read = [&](vtkIdType begin, vtkIdType end)
@@ -256,7 +280,10 @@ struct ReadComponent
           bad = true;
           return;
         }
-        values[static_cast<std::size_t>(i)] = static_cast<float>(v);
+        if (values)
+        {
+          values[static_cast<std::size_t>(i)] = static_cast<float>(v);
+        }
       }
     };
     if (threads)
@@ -270,19 +297,30 @@ struct ReadComponent
   }
 };
 
+// The values of component `c`: a float array of one component is read in
+// place (its memory shared, as long as the grid lives), other arrays are
+// converted to floats.
 std::string ReadDensityValues(
-  vtkDataArray* density, int c, bool classified, std::vector<float>& values)
+  vtkDataArray* density, int c, bool classified, brume::FloatBuffer& values)
 {
-  values.assign(static_cast<std::size_t>(density->GetNumberOfTuples()), 0.f);
+  const auto count = static_cast<std::size_t>(density->GetNumberOfTuples());
+  values = vtkBrumeSharedArray::Borrow(density, count);
+  const bool shared = !values.Empty() || count == 0;
+  if (!shared)
+  {
+    values = brume::FloatBuffer::Allocate(count);
+  }
+  float* out = shared ? nullptr : values.Data();
   std::atomic<bool> bad{ false };
   ReadComponent read;
-  if (!vtkArrayDispatch::Dispatch::Execute(density, read, c, classified, values, bad))
+  if (!vtkArrayDispatch::Dispatch::Execute(density, read, c, classified, out, bad))
   {
     // Through vtkDataArray's API, whose tuple buffer is not for threads.
-    read(density, c, classified, values, bad, false);
+    read(density, c, classified, out, bad, false);
   }
   if (bad)
   {
+    values = brume::FloatBuffer();
     return classified ? "has non-finite scalars" : "has negative or non-finite densities";
   }
   return {};
@@ -385,7 +423,7 @@ std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
   std::shared_ptr<const brume::GridDensity> grid = FieldCache::Instance().Grid(key,
     [&]() -> std::shared_ptr<const brume::GridDensity>
     {
-      std::vector<float> values;
+      brume::FloatBuffer values;
       error = ReadDensityValues(density, key.Component, key.Classified, values);
       if (!error.empty())
       {
@@ -398,7 +436,7 @@ std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
   {
     return error;
   }
-  SetClassified(m, std::move(grid), opacity, colors);
+  SetClassified(m, grid, density, opacity, colors);
   return {};
 }
 }

@@ -33,6 +33,8 @@ namespace
 // A texture of that size and kind already there is filled in place
 // (glTexSubImage3D): a view update re-uploads the source radiance every
 // frame, and new storage costs a software rasterizer fresh pages each time.
+// Null `values` make the storage (or keep it) and leave the texels to the
+// caller.
 bool Upload3D(vtkTextureObject* texture, vtkOpenGLRenderWindow* window, const int dims[3],
   int components, int filter, const float* values)
 {
@@ -45,9 +47,12 @@ bool Upload3D(vtkTextureObject* texture, vtkOpenGLRenderWindow* window, const in
     texture->SetMinificationFilter(filter);
     texture->SetMagnificationFilter(filter);
     texture->Activate(); // binds it and sends the filters
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, 0, dims[0], dims[1], dims[2],
-      components == 1 ? GL_RED : GL_RGBA, GL_FLOAT, values);
+    if (values)          // else the caller sends the texels
+    {
+      glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+      glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, 0, dims[0], dims[1], dims[2],
+        components == 1 ? GL_RED : GL_RGBA, GL_FLOAT, values);
+    }
     texture->Deactivate();
     return true;
   }
@@ -334,10 +339,6 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
       << texels[1] << " x " << texels[2] << ", beyond this GPU's " << maxSize << ".");
     return false;
   }
-  const std::size_t atlasTexels = static_cast<std::size_t>(texels[0]) * texels[1] * texels[2];
-  // Every texel is written below: the stored slots' samples, zeros in the
-  // atlas's unused slots.
-  std::unique_ptr<float[]> packed(new float[atlasTexels]);
   double largest = 0.0; // the largest value, stored or constant, before the scale
   auto invalid = [](double v) { return !(v >= 0.0) || !std::isfinite(v); };
   // Scalars a transfer function classifies may be negative; its table bounds sigma_t.
@@ -347,38 +348,24 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   auto invalidSample = [&](double v) { return impl.Classified ? !std::isfinite(v) : invalid(v); };
   // Slot by slot on every thread (512^3 fields store 10^8 samples): each
   // slot's largest value, and the first slot holding an invalid sample.
-  const vtkIdType atlasSlots = static_cast<vtkIdType>(atlas[0]) * atlas[1] * atlas[2];
   std::vector<double> slotLargest(static_cast<std::size_t>(slotCount), 0.0);
   std::atomic<vtkIdType> firstBad{ slotCount };
   vtkFloatArray* floats = vtkFloatArray::FastDownCast(samples);
-  auto pack = [&](vtkIdType begin, vtkIdType end)
+  auto sample = [&](vtkIdType at)
+  { return floats ? static_cast<double>(floats->GetValue(at)) : samples->GetTuple1(at); };
+  auto check = [&](vtkIdType begin, vtkIdType end)
   {
     for (vtkIdType slot = begin; slot < end; ++slot)
     {
-      const int sx = static_cast<int>(slot % atlas[0]),
-                sy = static_cast<int>((slot / atlas[0]) % atlas[1]),
-                sz = static_cast<int>(slot / (static_cast<vtkIdType>(atlas[0]) * atlas[1]));
       double most = 0.0;
       bool bad = false;
-      for (int k = 0; k < B; ++k)
-        for (int j = 0; j < B; ++j)
-          for (int i = 0; i < B; ++i)
-          {
-            const vtkIdType at = slot * BrickCells + (k * B + j) * B + i;
-            double v = 0.0;
-            if (slot < slotCount)
-            {
-              v = floats ? static_cast<double>(floats->GetValue(at)) : samples->GetTuple1(at);
-              bad = bad || invalidSample(v);
-              most = std::max(most, v);
-            }
-            packed[(static_cast<std::size_t>(sz * B + k) * texels[1] + (sy * B + j)) * texels[0] +
-              (sx * B + i)] = static_cast<float>(v);
-          }
-      if (slot < slotCount)
+      for (vtkIdType at = slot * BrickCells; at < (slot + 1) * BrickCells; ++at)
       {
-        slotLargest[static_cast<std::size_t>(slot)] = most;
+        const double v = sample(at);
+        bad = bad || invalidSample(v);
+        most = std::max(most, v);
       }
+      slotLargest[static_cast<std::size_t>(slot)] = most;
       vtkIdType known = firstBad.load();
       while (bad && slot < known && !firstBad.compare_exchange_weak(known, slot))
       {
@@ -387,11 +374,11 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   };
   if (floats)
   {
-    vtkSMPTools::For(0, atlasSlots, pack);
+    vtkSMPTools::For(0, slotCount, check);
   }
   else
   {
-    pack(0, atlasSlots); // vtkDataArray's GetTuple1 is not for threads
+    check(0, slotCount); // vtkDataArray's GetTuple1 is not for threads
   }
   if (firstBad.load() < slotCount)
   {
@@ -453,8 +440,55 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   }
   impl.MaxExtinction =
     largest * std::max({ impl.BrickScale[0], impl.BrickScale[1], impl.BrickScale[2] });
-  return Upload3D(impl.Extinction, renWin, texels, 1, filter, packed.get()) &&
-    Upload3D(impl.BrickTable, renWin, brickDims, 4, vtkTextureObject::Nearest, table.data());
+  if (!Upload3D(impl.Extinction, renWin, texels, 1, filter, nullptr))
+  {
+    return false;
+  }
+  // The atlas is sent one layer of slots at a time, from a buffer of one
+  // layer (a few MB), not packed whole first: a 512^3 field's atlas is
+  // 0.5 GB, which the driver holds already.
+  const vtkIdType layerSlots = static_cast<vtkIdType>(atlas[0]) * atlas[1];
+  std::vector<float> layer(static_cast<std::size_t>(texels[0]) * texels[1] * B);
+  auto pack = [&](vtkIdType first, vtkIdType begin, vtkIdType end)
+  {
+    for (vtkIdType s = begin; s < end; ++s)
+    {
+      const vtkIdType slot = first + s;
+      const int sx = static_cast<int>(s % atlas[0]), sy = static_cast<int>(s / atlas[0]);
+      for (int k = 0; k < B; ++k)
+        for (int j = 0; j < B; ++j)
+        {
+          float* row = layer.data() +
+            (static_cast<std::size_t>(k) * texels[1] + (sy * B + j)) * texels[0] + sx * B;
+          for (int i = 0; i < B; ++i)
+          {
+            // Zeros in the atlas's unused slots.
+            row[i] = slot < slotCount
+              ? static_cast<float>(sample(slot * BrickCells + (k * B + j) * B + i))
+              : 0.f;
+          }
+        }
+    }
+  };
+  impl.Extinction->Activate();
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  for (int sz = 0; sz < atlas[2]; ++sz)
+  {
+    const vtkIdType first = sz * layerSlots;
+    if (floats)
+    {
+      vtkSMPTools::For(
+        0, layerSlots, [&](vtkIdType begin, vtkIdType end) { pack(first, begin, end); });
+    }
+    else
+    {
+      pack(first, 0, layerSlots);
+    }
+    glTexSubImage3D(
+      GL_TEXTURE_3D, 0, 0, 0, sz * B, texels[0], texels[1], B, GL_RED, GL_FLOAT, layer.data());
+  }
+  impl.Extinction->Deactivate();
+  return Upload3D(impl.BrickTable, renWin, brickDims, 4, vtkTextureObject::Nearest, table.data());
 }
 
 bool vtkBrumeOpenGLSliceVolumeMapper::UploadTransferFunction(

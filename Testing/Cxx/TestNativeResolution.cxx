@@ -26,15 +26,18 @@
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
+#include "vtkWeakPointer.h"
 
 #include "brume/Scene.h"
 #include "brume/TransferFunction.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <iostream>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -98,10 +101,11 @@ struct WarningCatcher
   }
 };
 
-// The cells of the medium's own-resolution grid in the reconstruction's
-// output (partition 1), after a run with `limit` bytes for it; the
-// warnings in `warnings`.
-std::array<int, 3> NativeCells(vtkImageData* field, vtkTypeInt64 limit, std::string& warnings)
+// The medium's own-resolution grid in the reconstruction's output
+// (partition 1), after a run with `limit` bytes for it; the warnings in
+// `warnings`. The filters are gone when it returns.
+vtkSmartPointer<vtkImageData> NativeImage(
+  vtkImageData* field, vtkTypeInt64 limit, std::string& warnings)
 {
   vtkSmartPointer<vtkPartitionedDataSetCollection> scene = Scene(field);
   vtkNew<vtkBrumeLightTracer> tracer;
@@ -118,14 +122,20 @@ std::array<int, 3> NativeCells(vtkImageData* field, vtkTypeInt64 limit, std::str
   command->SetCallback(WarningCatcher::Callback);
   command->SetClientData(&catcher);
   reconstruction->AddObserver(vtkCommand::WarningEvent, command);
-  std::array<int, 3> cells{ 0, 0, 0 };
   if (!reconstruction->GetExecutive()->Update())
   {
-    return cells;
+    return nullptr;
   }
   warnings = catcher.All;
-  auto* native = vtkImageData::SafeDownCast(
+  return vtkImageData::SafeDownCast(
     reconstruction->GetOutput()->GetPartitionedDataSet(1)->GetPartition(1));
+}
+
+// The cells of that grid.
+std::array<int, 3> NativeCells(vtkImageData* field, vtkTypeInt64 limit, std::string& warnings)
+{
+  std::array<int, 3> cells{ 0, 0, 0 };
+  vtkSmartPointer<vtkImageData> native = NativeImage(field, limit, warnings);
   if (native)
   {
     int dims[3];
@@ -133,6 +143,38 @@ std::array<int, 3> NativeCells(vtkImageData* field, vtkTypeInt64 limit, std::str
     cells = { dims[0] - 1, dims[1] - 1, dims[2] - 1 };
   }
   return cells;
+}
+
+// The output's extinction samples are the grid's own memory, not a copy:
+// kept by the user after the filters, the scene and the field are gone,
+// they are still there, whole.
+void TestOutputOutlivesTheFilters()
+{
+  vtkSmartPointer<vtkImageData> native;
+  std::vector<float> before;
+  {
+    vtkSmartPointer<vtkImageData> field = Field(24);
+    std::string warnings;
+    native = NativeImage(field, vtkTypeInt64(16) << 20, warnings);
+    Check(native != nullptr, "the reconstruction runs");
+    if (!native)
+    {
+      return;
+    }
+    auto* samples = vtkFloatArray::SafeDownCast(
+      native->GetFieldData()->GetArray(vtkBrumeNames::ExtinctionBrickSamples));
+    Check(samples && samples->GetNumberOfValues() > 0, "the grid stores bricks");
+    if (!samples)
+    {
+      return;
+    }
+    before.assign(samples->GetPointer(0), samples->GetPointer(0) + samples->GetNumberOfValues());
+  }
+  auto* samples = vtkFloatArray::SafeDownCast(
+    native->GetFieldData()->GetArray(vtkBrumeNames::ExtinctionBrickSamples));
+  Check(samples && static_cast<std::size_t>(samples->GetNumberOfValues()) == before.size() &&
+      std::equal(before.begin(), before.end(), samples->GetPointer(0)),
+    "the output keeps its extinction samples after the filters are gone");
 }
 
 void TestOwnResolution()
@@ -210,13 +252,32 @@ void TestConvertedOnce()
 
 void TestReleasedWithTheArray()
 {
-  std::weak_ptr<const brume::DensityField> kept;
+  // A float array is read in place: the medium holds the array, the cache
+  // holds the converted field while the array lives, and nothing else.
+  const std::size_t before = vtkBrumeSceneConversion::GetNumberOfCachedArrays();
+  vtkWeakPointer<vtkDataArray> array;
+  std::shared_ptr<const brume::DensityField> density;
+  float expected = 0.f;
+  const brume::Vec3 p(0.1f, 0.2f, -0.1f);
   {
     vtkSmartPointer<vtkImageData> field = Field(12);
-    kept = Density(field);
-    Check(!kept.expired(), "the cache keeps the density while its array lives");
+    array = field->GetPointData()->GetArray("wave");
+    density = Density(field);
+    Check(density != nullptr, "the field converts");
+    if (!density)
+    {
+      return;
+    }
+    expected = density->Evaluate(p);
+    Check(vtkBrumeSceneConversion::GetNumberOfCachedArrays() == before + 1,
+      "the cache keeps the converted field while its array lives");
   }
-  Check(kept.expired(), "deleting the array lets its converted density go");
+  Check(array != nullptr, "a density in use keeps the array whose memory it reads");
+  Check(density->Evaluate(p) == expected, "... and reads the same values after the image is gone");
+  density = nullptr;
+  Check(array == nullptr, "the array goes with the last density made from it");
+  Check(vtkBrumeSceneConversion::GetNumberOfCachedArrays() == before,
+    "deleting the array lets its converted field go");
 }
 }
 
@@ -225,6 +286,7 @@ int TestNativeResolution(int, char*[])
   TestOwnResolution();
   TestConvertedOnce();
   TestReleasedWithTheArray();
+  TestOutputOutlivesTheFilters();
   if (failures)
   {
     std::cerr << failures << " check(s) failed\n";

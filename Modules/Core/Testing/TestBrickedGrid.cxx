@@ -124,8 +124,8 @@ TEST(BrickedGrid, StoresOnlyTheBricksWhereValuesVary)
   EXPECT_EQ(grid.NumberOfStoredBricks(), varying);
   EXPECT_GE(varying, 81u + 8u); // the slab's face, at least 2^3 around the ball
   EXPECT_LT(varying, 729u / 5);
-  EXPECT_EQ(grid.GetSamples().size(), grid.NumberOfStoredBricks() * 512u);
-  EXPECT_EQ(grid.GetMemorySize(), 729u * 8u + grid.GetSamples().size() * 4u);
+  EXPECT_EQ(grid.GetSamples().Size(), grid.NumberOfStoredBricks() * 512u);
+  EXPECT_EQ(grid.GetMemorySize(), 729u * 8u + grid.GetSamples().Size() * 4u);
   EXPECT_EQ(static_cast<std::size_t>(evaluated.load()), candidates * 512u);
   EXPECT_LT(candidates, 729u / 2);
   for (int k = 0; k < n[2]; k += 3)

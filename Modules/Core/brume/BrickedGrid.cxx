@@ -54,14 +54,14 @@ BrickedGrid BrickedGrid::Sample(const std::array<int, 3>& dims, const Box& box,
     }
   }
   // Sample them all, then keep those that vary, compacted in brick order.
-  std::vector<float> samples(sampled.size() * BrickSamples);
+  FloatBuffer samples = FloatBuffer::Allocate(sampled.size() * BrickSamples);
   parallelFor(0, sampled.size(),
     [&](std::size_t begin, std::size_t end)
     {
       for (std::size_t s = begin; s < end; ++s)
       {
         const std::array<int, 3> lower = brickOrigin(sampled[s]);
-        float* out = samples.data() + s * BrickSamples;
+        float* out = samples.Data() + s * BrickSamples;
         for (int k = 0; k < Size; ++k)
         {
           const int z = std::min(lower[2] + k, dims[2] - 1);
@@ -79,7 +79,7 @@ BrickedGrid BrickedGrid::Sample(const std::array<int, 3>& dims, const Box& box,
   std::int32_t slots = 0;
   for (std::size_t s = 0; s < sampled.size(); ++s)
   {
-    const float* in = samples.data() + s * BrickSamples;
+    const float* in = samples.Data() + s * BrickSamples;
     const std::size_t b = sampled[s];
     if (std::all_of(in, in + BrickSamples, [&](float v) { return v == in[0]; }))
     {
@@ -89,12 +89,11 @@ BrickedGrid BrickedGrid::Sample(const std::array<int, 3>& dims, const Box& box,
     if (static_cast<std::size_t>(slots) != s)
     {
       std::copy(
-        in, in + BrickSamples, samples.data() + static_cast<std::size_t>(slots) * BrickSamples);
+        in, in + BrickSamples, samples.Data() + static_cast<std::size_t>(slots) * BrickSamples);
     }
     grid.Slots[b] = slots++;
   }
-  samples.resize(static_cast<std::size_t>(slots) * BrickSamples);
-  samples.shrink_to_fit();
+  samples.Truncate(static_cast<std::size_t>(slots) * BrickSamples);
   grid.Samples = std::move(samples);
   return grid;
 }
@@ -102,7 +101,7 @@ BrickedGrid BrickedGrid::Sample(const std::array<int, 3>& dims, const Box& box,
 std::size_t BrickedGrid::GetMemorySize() const
 {
   return this->Slots.size() * sizeof(std::int32_t) + this->Constants.size() * sizeof(float) +
-    this->Samples.size() * sizeof(float);
+    this->Samples.Size() * sizeof(float);
 }
 
 float BrickedGrid::At(int i, int j, int k) const
@@ -143,7 +142,7 @@ float BrickedGrid::Interpolate(const Vec3& p) const
   {
     return this->Constants[brick];
   }
-  const float* s = this->Samples.data() + static_cast<std::size_t>(slot) * BrickSamples +
+  const float* s = this->Samples.Data() + static_cast<std::size_t>(slot) * BrickSamples +
     (i0[2] * Size + i0[1]) * Size + i0[0];
   auto row = [&](int dj, int dk)
   {
@@ -178,7 +177,7 @@ void BrickedGrid::ForEachNonZeroCell(const std::function<void(int, int, int, flo
         // The brick's own samples (At()'s values, read in place).
         const std::int32_t slot = this->Slots[brick];
         const float* samples =
-          slot < 0 ? nullptr : this->Samples.data() + static_cast<std::size_t>(slot) * BrickSamples;
+          slot < 0 ? nullptr : this->Samples.Data() + static_cast<std::size_t>(slot) * BrickSamples;
         for (int k = lower[2]; k < upper[2]; ++k)
           for (int j = lower[1]; j < upper[1]; ++j)
             for (int i = lower[0]; i < upper[0]; ++i)

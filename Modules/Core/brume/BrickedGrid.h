@@ -4,6 +4,7 @@
 #ifndef brume_BrickedGrid_h
 #define brume_BrickedGrid_h
 
+#include "brume/FloatBuffer.h"
 #include "brume/Parallel.h"
 #include "brume/Vec3.h"
 
@@ -60,14 +61,15 @@ public:
   const std::array<int, 3>& GetBrickDims() const { return this->BrickDims; }
   std::size_t NumberOfBricks() const { return this->Slots.size(); }
   /// Bricks that store their samples.
-  std::size_t NumberOfStoredBricks() const { return this->Samples.size() / BrickSamples; }
+  std::size_t NumberOfStoredBricks() const { return this->Samples.Size() / BrickSamples; }
 
   /// Per brick (x fastest): its slot in GetSamples(), or -1 when constant.
   const std::vector<std::int32_t>& GetSlots() const { return this->Slots; }
   /// Per brick: the value of a constant brick (0 for a stored one).
   const std::vector<float>& GetConstants() const { return this->Constants; }
-  /// Size^3 samples per stored brick, x fastest within a brick.
-  const std::vector<float>& GetSamples() const { return this->Samples; }
+  /// Size^3 samples per stored brick, x fastest within a brick (a buffer
+  /// that a VTK array may share: vtkBrumeRadianceConversion::NativeExtinction).
+  const FloatBuffer& GetSamples() const { return this->Samples; }
   /// The bytes of the three arrays above.
   std::size_t GetMemorySize() const;
 
@@ -94,7 +96,7 @@ private:
   Box Bounds;
   std::vector<std::int32_t> Slots;
   std::vector<float> Constants;
-  std::vector<float> Samples;
+  FloatBuffer Samples;
 };
 
 } // namespace brume

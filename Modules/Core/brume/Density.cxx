@@ -189,7 +189,23 @@ Box GridDensity::NativeBox() const
   return box;
 }
 
+namespace
+{
+FloatBuffer Buffer(const std::vector<float>& values)
+{
+  FloatBuffer buffer = FloatBuffer::Allocate(values.size());
+  std::copy(values.begin(), values.end(), buffer.Data());
+  return buffer;
+}
+}
+
 GridDensity::GridDensity(const Box& bounds, std::array<int, 3> dims, std::vector<float> values,
+  bool cellValues, Interpolation interpolation, const ParallelFor& parallelFor)
+  : GridDensity(bounds, dims, Buffer(values), cellValues, interpolation, parallelFor)
+{
+}
+
+GridDensity::GridDensity(const Box& bounds, std::array<int, 3> dims, FloatBuffer values,
   bool cellValues, Interpolation interpolation, const ParallelFor& parallelFor)
   : Dims(dims)
   , Values(std::move(values))
@@ -198,7 +214,7 @@ GridDensity::GridDensity(const Box& bounds, std::array<int, 3> dims, std::vector
 {
   this->Bounds = bounds;
   this->CountOccupied(
-    this->Values.size(), [this](std::size_t i) { return this->Values[i]; }, parallelFor);
+    this->Values.Size(), [this](std::size_t i) { return this->Values[i]; }, parallelFor);
   // Cells of the grid (point data: one fewer than the points).
   std::array<int, 3> cells{};
   for (int a = 0; a < 3; ++a)

@@ -4,6 +4,7 @@
 #ifndef brume_Density_h
 #define brume_Density_h
 
+#include "brume/FloatBuffer.h"
 #include "brume/Parallel.h"
 #include "brume/Vec3.h"
 
@@ -136,6 +137,11 @@ public:
   GridDensity(const Box& bounds, std::array<int, 3> dims, std::vector<float> values,
     bool cellValues, Interpolation interpolation = Interpolation::Linear,
     const ParallelFor& parallelFor = SerialFor());
+  /// The values in a buffer that may be someone else's memory (a VTK
+  /// array's, shared: vtkBrumeSceneConversion reads a float array in place).
+  GridDensity(const Box& bounds, std::array<int, 3> dims, FloatBuffer values, bool cellValues,
+    Interpolation interpolation = Interpolation::Linear,
+    const ParallelFor& parallelFor = SerialFor());
   float Evaluate(const Vec3& p) const override;
   std::array<int, 3> NativeResolution() const override;
   Box NativeBox() const override;
@@ -174,7 +180,7 @@ public:
     return true;
   }
   const std::array<int, 3>& GetDimensions() const { return this->Dims; }
-  const std::vector<float>& GetValues() const { return this->Values; }
+  const FloatBuffer& GetValues() const { return this->Values; }
   bool HasCellValues() const { return this->CellValues; }
 
 private:
@@ -185,7 +191,7 @@ private:
   void FindBlockRanges(const ParallelFor& parallelFor);
 
   std::array<int, 3> Dims;
-  std::vector<float> Values;
+  FloatBuffer Values;
   bool CellValues;
   Interpolation Interpolated;
   std::vector<float> BlockLow, BlockHigh;

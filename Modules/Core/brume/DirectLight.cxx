@@ -59,12 +59,13 @@ void DirectLight::SetMediumGrid(std::size_t m, const BrickedGrid* density)
     if (density)
     {
       float largest = 0.f;
-      for (const std::vector<float>* values : { &density->GetSamples(), &density->GetConstants() })
+      for (float v : density->GetSamples())
       {
-        for (float v : *values)
-        {
-          largest = std::max(largest, v);
-        }
+        largest = std::max(largest, v);
+      }
+      for (float v : density->GetConstants())
+      {
+        largest = std::max(largest, v);
       }
       const float cell = SmallestCell(density->GetBox().Extent(), density->GetDims());
       const float sigmaT = largest * MaxComponent(this->SceneRef.Media[m].SigmaT());

@@ -59,7 +59,7 @@ std::vector<std::uint8_t> SparseTexture::CellsRead(
   };
   constexpr int Stride = BrickedGrid::Stride, Size = BrickedGrid::Size;
   const auto& bricks = density.GetBrickDims();
-  const std::vector<float>& samples = density.GetSamples();
+  const FloatBuffer& samples = density.GetSamples();
   std::size_t brick = 0;
   for (int bk = 0; bk < bricks[2]; ++bk)
     for (int bj = 0; bj < bricks[1]; ++bj)
@@ -83,7 +83,8 @@ std::vector<std::uint8_t> SparseTexture::CellsRead(
           mark(lower, upper); // one value, not 0, everywhere
           continue;
         }
-        const float* values = &samples[static_cast<std::size_t>(slot) * BrickedGrid::BrickSamples];
+        const float* values =
+          samples.Data() + static_cast<std::size_t>(slot) * BrickedGrid::BrickSamples;
         for (int k = lower[2]; k <= upper[2]; ++k)
           for (int j = lower[1]; j <= upper[1]; ++j)
             for (int i = lower[0]; i <= upper[0]; ++i)

@@ -212,9 +212,9 @@ ClassifiedDensity::ClassifiedDensity(std::shared_ptr<const DensityField> scalars
   // positive (other fields: the non-empty majorant blocks').
   if (const auto* grid = dynamic_cast<const GridDensity*>(this->Scalars.get()))
   {
-    const std::vector<float>& values = grid->GetValues();
+    const FloatBuffer& values = grid->GetValues();
     this->CountOccupied(
-      values.size(), [&](std::size_t i) { return this->Opacity.Extinction(values[i]); },
+      values.Size(), [&](std::size_t i) { return this->Opacity.Extinction(values[i]); },
       parallelFor);
   }
   this->Majorants = this->Scalars->GetMajorants();
@@ -287,7 +287,7 @@ bool ClassifiedDensity::BendsWithin(const Box& region) const
     first[a] = std::clamp(first[a], 0, n - 1);
     last[a] = std::clamp(last[a], first[a], n - 1);
   }
-  const std::vector<float>& values = g.GetValues();
+  const FloatBuffer& values = g.GetValues();
   float lo = values[(static_cast<std::size_t>(first[2]) * dims[1] + first[1]) * dims[0] + first[0]];
   float hi = lo;
   for (int k = first[2]; k <= last[2]; ++k)

@@ -1,0 +1,65 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Large arrays of floats held by shared ownership, so that a grid's samples
+// and the VTK array that shows them are one memory, not two.
+#ifndef brume_FloatBuffer_h
+#define brume_FloatBuffer_h
+
+#include <cstddef>
+#include <memory>
+
+namespace brume
+{
+
+/**
+ * A fixed number of floats whose memory one or more owners share: a
+ * brume::BrickedGrid's samples and the vtkFloatArray of the reconstruction's
+ * output that wraps them (vtkBrumeSharedArray), a brume::GridDensity's values
+ * and the vtkDataArray they were read into. The floats are written while the
+ * buffer is made, then only read.
+ *
+ * Allocate() leaves the floats unset: a 512^3 grid's 0.5 GB is touched once,
+ * by whoever fills it, not zeroed first. Buffers of 2 MB and more are mapped
+ * on their own and advised into huge pages where the system offers them
+ * (Linux's transparent huge pages): a first touch then costs one fault per
+ * 2 MB instead of one per 4 kB, which on a virtual machine is most of the
+ * cost of filling a large grid.
+ */
+class FloatBuffer
+{
+public:
+  FloatBuffer() = default;
+  /// `n` floats, not initialized.
+  static FloatBuffer Allocate(std::size_t n);
+  /// `n` floats at `data`, kept alive by `owner` (an array of someone else's).
+  static FloatBuffer Wrap(const float* data, std::size_t n, std::shared_ptr<const void> owner);
+
+  float* Data() { return this->Memory.get(); }
+  const float* Data() const { return this->Memory.get(); }
+  std::size_t Size() const { return this->Count; }
+  bool Empty() const { return this->Count == 0; }
+  float operator[](std::size_t i) const { return this->Memory.get()[i]; }
+  const float* begin() const { return this->Memory.get(); }
+  const float* end() const { return this->Memory.get() + this->Count; }
+
+  /**
+   * Keeps the first `n` floats (n <= Size()): the memory past them goes
+   * back to the system where the buffer was mapped on its own (whole
+   * pages), else the floats are copied into a buffer of their own size.
+   */
+  void Truncate(std::size_t n);
+
+  /// The memory, for an owner that shares it (it stays valid while any holds it).
+  const std::shared_ptr<float>& Share() const { return this->Memory; }
+
+  /// Equal sizes and equal floats.
+  friend bool operator==(const FloatBuffer& a, const FloatBuffer& b);
+  friend bool operator!=(const FloatBuffer& a, const FloatBuffer& b) { return !(a == b); }
+
+private:
+  std::shared_ptr<float> Memory;
+  std::size_t Count = 0;
+};
+
+} // namespace brume
+
+#endif
