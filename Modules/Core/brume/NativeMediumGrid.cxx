@@ -266,7 +266,7 @@ void NativeMediumGrid::Sample(
       {
         const Vec3 corner(static_cast<float>(i), static_cast<float>(j), static_cast<float>(k));
         const Vec3 lower = box.lower + corner * cell;
-        if (classified->BendsWithin(Box{ lower, lower + cell }))
+        if (classified->BendsWithinNativeCell(i, j, k, Box{ lower, lower + cell }))
         {
           return static_cast<float>(
             density.NativeMean(i, j, k, Box{ lower, lower + cell }, bounds, BendSamples));

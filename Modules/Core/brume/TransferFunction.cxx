@@ -208,6 +208,14 @@ ClassifiedDensity::ClassifiedDensity(std::shared_ptr<const DensityField> scalars
   , Opacity(std::move(opacity))
 {
   this->Bounds = this->Scalars->GetBounds();
+  this->Grid = dynamic_cast<const GridDensity*>(this->Scalars.get());
+  for (const auto& node : this->Opacity.GetNodes())
+  {
+    if (this->Points.empty() || node.Scalar != this->Points.back())
+    {
+      this->Points.push_back(node.Scalar); // validated: not decreasing
+    }
+  }
   // A grid's values: the fraction and mean of those the function makes
   // positive (other fields: the non-empty majorant blocks').
   if (const auto* grid = dynamic_cast<const GridDensity*>(this->Scalars.get()))
@@ -240,7 +248,7 @@ ClassifiedDensity::ClassifiedDensity(std::shared_ptr<const DensityField> scalars
 double ClassifiedDensity::NativeMean(
   int i, int j, int k, const Box& cell, const Box& bounds, int s) const
 {
-  const auto* grid = dynamic_cast<const GridDensity*>(this->Scalars.get());
+  const GridDensity* grid = this->Grid;
   constexpr int Most = GridDensity::MaxNativeSamples;
   float samples[Most * Most * Most];
   if (!grid || !grid->NativeSamples(i, j, k, s, samples))
@@ -255,9 +263,42 @@ double ClassifiedDensity::NativeMean(
   return sum / (static_cast<double>(s) * s * s);
 }
 
+bool ClassifiedDensity::BendsWithinNativeCell(int i, int j, int k, const Box& cell) const
+{
+  if (!this->Grid || this->Grid->HasCellValues())
+  {
+    return this->BendsWithin(cell);
+  }
+  // Point values: the cell around point (i, j, k) reaches half a spacing
+  // towards each neighbour, so its values are those the 27 points around
+  // it interpolate (clamped at the grid's ends), as BendsWithin() finds.
+  const std::array<int, 3>& dims = this->Grid->GetDimensions();
+  const int at[3] = { i, j, k };
+  int first[3], last[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    first[a] = std::clamp(at[a] - 1, 0, dims[a] - 1);
+    last[a] = std::clamp(at[a] + 1, first[a], dims[a] - 1);
+  }
+  const float* values = this->Grid->GetValues().Data();
+  float lo = values[(static_cast<std::size_t>(first[2]) * dims[1] + first[1]) * dims[0] + first[0]];
+  float hi = lo;
+  for (int z = first[2]; z <= last[2]; ++z)
+    for (int y = first[1]; y <= last[1]; ++y)
+    {
+      const float* row = values + (static_cast<std::size_t>(z) * dims[1] + y) * dims[0];
+      for (int x = first[0]; x <= last[0]; ++x)
+      {
+        lo = std::min(lo, row[x]);
+        hi = std::max(hi, row[x]);
+      }
+    }
+  return this->PointBetween(lo, hi);
+}
+
 bool ClassifiedDensity::BendsWithin(const Box& region) const
 {
-  const auto* grid = dynamic_cast<const GridDensity*>(this->Scalars.get());
+  const GridDensity* grid = this->Grid;
   if (!grid)
   {
     return this->BendsWithinBlocks(region);
@@ -298,14 +339,7 @@ bool ClassifiedDensity::BendsWithin(const Box& region) const
         lo = std::min(lo, v);
         hi = std::max(hi, v);
       }
-  for (const auto& node : this->Opacity.GetNodes())
-  {
-    if (node.Scalar > lo && node.Scalar < hi)
-    {
-      return true;
-    }
-  }
-  return false;
+  return this->PointBetween(lo, hi);
 }
 
 bool ClassifiedDensity::BendsWithinBlocks(const Box& region) const
@@ -338,14 +372,7 @@ bool ClassifiedDensity::BendsWithinBlocks(const Box& region) const
         l = std::min(l, lo[b]);
         h = std::max(h, hi[b]);
       }
-  for (const auto& node : this->Opacity.GetNodes())
-  {
-    if (node.Scalar > l && node.Scalar < h)
-    {
-      return true;
-    }
-  }
-  return false;
+  return this->PointBetween(l, h);
 }
 
 std::string ColorTransferFunction::Validate(const std::vector<Node>& nodes)

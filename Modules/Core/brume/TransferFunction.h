@@ -162,14 +162,28 @@ public:
    * does not give its mean.
    */
   bool BendsWithin(const Box& region) const;
+  /**
+   * BendsWithin(cell) for the native cell (i, j, k) whose box is `cell`:
+   * over a grid of point values, from the 27 points around point (i, j, k)
+   * directly (10^8 cells of a 512^3 field ask it).
+   */
+  bool BendsWithinNativeCell(int i, int j, int k, const Box& cell) const;
 
   const DensityField& GetScalars() const { return *this->Scalars; }
   const OpacityTransferFunction& GetOpacity() const { return this->Opacity; }
 
 private:
   bool BendsWithinBlocks(const Box& region) const;
+  /// Whether one of the function's points lies strictly between lo and hi.
+  bool PointBetween(float lo, float hi) const
+  {
+    const auto next = std::upper_bound(this->Points.begin(), this->Points.end(), lo);
+    return next != this->Points.end() && *next < hi;
+  }
 
   std::shared_ptr<const DensityField> Scalars;
+  const GridDensity* Grid = nullptr; // Scalars, when a grid
+  std::vector<float> Points;         // the function's points' scalars, ascending, once each
   // Per majorant block, the field's value range (empty when it cannot say).
   std::vector<float> RangeLow, RangeHigh;
   OpacityTransferFunction Opacity;
