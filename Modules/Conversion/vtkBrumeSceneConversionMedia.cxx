@@ -297,20 +297,21 @@ struct ReadComponent
   }
 };
 
-// The values of component `c`: a float array of one component is read in
-// place (its memory shared, as long as the grid lives), other arrays are
-// converted to floats.
+// The values of component `c`: an array of one component of floats, 8- or
+// 16-bit integers is read in place, in its own type (the media made from
+// it hold the array); other arrays are converted to floats.
 std::string ReadDensityValues(
-  vtkDataArray* density, int c, bool classified, brume::FloatBuffer& values)
+  vtkDataArray* density, int c, bool classified, brume::TypedValues& values)
 {
   const auto count = static_cast<std::size_t>(density->GetNumberOfTuples());
   values = vtkBrumeSharedArray::Borrow(density, count);
   const bool shared = !values.Empty() || count == 0;
+  brume::FloatBuffer converted;
   if (!shared)
   {
-    values = brume::FloatBuffer::Allocate(count);
+    converted = brume::FloatBuffer::Allocate(count);
   }
-  float* out = shared ? nullptr : values.Data();
+  float* out = shared ? nullptr : converted.Data();
   std::atomic<bool> bad{ false };
   ReadComponent read;
   if (!vtkArrayDispatch::Dispatch::Execute(density, read, c, classified, out, bad))
@@ -320,8 +321,12 @@ std::string ReadDensityValues(
   }
   if (bad)
   {
-    values = brume::FloatBuffer();
+    values = brume::TypedValues();
     return classified ? "has non-finite scalars" : "has negative or non-finite densities";
+  }
+  if (!shared)
+  {
+    values = brume::TypedValues(std::move(converted));
   }
   return {};
 }
@@ -423,7 +428,7 @@ std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
   std::shared_ptr<const brume::GridDensity> grid = FieldCache::Instance().Grid(key,
     [&]() -> std::shared_ptr<const brume::GridDensity>
     {
-      brume::FloatBuffer values;
+      brume::TypedValues values;
       error = ReadDensityValues(density, key.Component, key.Classified, values);
       if (!error.empty())
       {

@@ -2,6 +2,9 @@
 #include "vtkBrumeSharedArray.h"
 
 #include "vtkFloatArray.h"
+#include "vtkShortArray.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkUnsignedShortArray.h"
 
 #include <memory>
 #include <mutex>
@@ -59,14 +62,29 @@ vtkSmartPointer<vtkFloatArray> Share(const brume::FloatBuffer& buffer, const cha
   return array;
 }
 
-brume::FloatBuffer Borrow(vtkDataArray* array, std::size_t count)
+brume::TypedValues Borrow(vtkDataArray* array, std::size_t count)
 {
-  auto* floats = vtkFloatArray::FastDownCast(array);
-  if (!floats || floats->GetNumberOfComponents() != 1 ||
-    static_cast<std::size_t>(floats->GetNumberOfTuples()) < count)
+  if (!array || array->GetNumberOfComponents() != 1 ||
+    static_cast<std::size_t>(array->GetNumberOfTuples()) < count)
   {
     return {};
   }
-  return brume::FloatBuffer::Wrap(floats->GetPointer(0), count, nullptr);
+  if (auto* floats = vtkFloatArray::FastDownCast(array))
+  {
+    return brume::TypedValues(brume::FloatBuffer::Wrap(floats->GetPointer(0), count, nullptr));
+  }
+  if (auto* bytes = vtkUnsignedCharArray::FastDownCast(array))
+  {
+    return brume::TypedValues::Wrap(bytes->GetPointer(0), count, nullptr);
+  }
+  if (auto* shorts = vtkUnsignedShortArray::FastDownCast(array))
+  {
+    return brume::TypedValues::Wrap(shorts->GetPointer(0), count, nullptr);
+  }
+  if (auto* signedShorts = vtkShortArray::FastDownCast(array))
+  {
+    return brume::TypedValues::Wrap(signedShorts->GetPointer(0), count, nullptr);
+  }
+  return {};
 }
 }

@@ -5,7 +5,7 @@
 
 #include "vtkSmartPointer.h"
 
-#include "brume/FloatBuffer.h"
+#include "brume/FloatBuffer.h" // brume::FloatBuffer, brume::TypedValues
 
 class vtkDataArray;
 class vtkFloatArray;
@@ -23,12 +23,14 @@ namespace vtkBrumeSharedArray
 vtkSmartPointer<vtkFloatArray> Share(const brume::FloatBuffer& buffer, const char* name);
 
 /**
- * The values of `array` (`count` tuples) as a buffer over the array's own
- * memory, where it is a vtkFloatArray of one component; otherwise an empty
- * buffer (the caller converts the values itself). The buffer does not hold
- * the array: whoever reads it keeps a reference to the array meanwhile.
+ * The values of `array` (`count` tuples) in place, in their own type,
+ * where it is an array of one component of floats, unsigned 8-bit,
+ * unsigned or signed 16-bit integers (vtkFloatArray, vtkUnsignedCharArray,
+ * vtkUnsignedShortArray, vtkShortArray); otherwise empty values (the
+ * caller converts the values itself). They do not hold the array: whoever
+ * reads them keeps a reference to the array meanwhile.
  */
-brume::FloatBuffer Borrow(vtkDataArray* array, std::size_t count);
+brume::TypedValues Borrow(vtkDataArray* array, std::size_t count);
 }
 
 #endif

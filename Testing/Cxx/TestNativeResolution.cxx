@@ -24,8 +24,10 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkShortArray.h"
 #include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkWeakPointer.h"
 
 #include "brume/Scene.h"
@@ -52,22 +54,27 @@ void Check(bool ok, const std::string& what)
 }
 
 // A wavy scalar on n^3 points over [-0.5, 0.5]^3, classified by an opacity
-// function that bends inside its range: a medium of its own resolution.
-vtkSmartPointer<vtkImageData> Field(int n)
+// function that bends inside its range: a medium of its own resolution. In
+// floats, or rounded into `values` (an 8-bit array, say) when given.
+vtkSmartPointer<vtkImageData> Field(int n, vtkDataArray* values = nullptr)
 {
   auto image = vtkSmartPointer<vtkImageData>::New();
   image->SetDimensions(n, n, n);
   image->SetOrigin(-0.5, -0.5, -0.5);
   image->SetSpacing(1.0 / (n - 1), 1.0 / (n - 1), 1.0 / (n - 1));
-  vtkNew<vtkFloatArray> s;
+  vtkSmartPointer<vtkDataArray> s = values;
+  if (!s)
+  {
+    s = vtkSmartPointer<vtkFloatArray>::New();
+  }
   s->SetName("wave");
-  s->SetNumberOfValues(image->GetNumberOfPoints());
+  s->SetNumberOfTuples(image->GetNumberOfPoints());
   for (vtkIdType i = 0; i < image->GetNumberOfPoints(); ++i)
   {
     double p[3];
     image->GetPoint(i, p);
-    s->SetValue(i,
-      static_cast<float>(50.0 + 50.0 * std::sin(9.0 * p[0]) * std::cos(7.0 * p[1] + 2.0 * p[2])));
+    const double v = 50.0 + 50.0 * std::sin(9.0 * p[0]) * std::cos(7.0 * p[1] + 2.0 * p[2]);
+    s->SetTuple1(i, values ? std::round(v) : static_cast<float>(v));
   }
   image->GetPointData()->SetScalars(s);
   vtkFieldData* fd = image->GetFieldData();
@@ -279,6 +286,35 @@ void TestReleasedWithTheArray()
   Check(vtkBrumeSceneConversion::GetNumberOfCachedArrays() == before,
     "deleting the array lets its converted field go");
 }
+
+// 8- and 16-bit arrays are read in place, in their own type, and make the
+// medium their values make as floats.
+void TestTypedScalars()
+{
+  vtkNew<vtkFloatArray> rounded;
+  vtkSmartPointer<vtkImageData> floats = Field(16, rounded);
+  const auto expected = Density(floats);
+  vtkNew<vtkUnsignedCharArray> bytes;
+  vtkNew<vtkShortArray> shorts;
+  for (vtkDataArray* array :
+    { static_cast<vtkDataArray*>(bytes), static_cast<vtkDataArray*>(shorts) })
+  {
+    vtkSmartPointer<vtkImageData> field = Field(16, array);
+    const auto density = Density(field);
+    const auto* grid = dynamic_cast<const brume::GridDensity*>(ScalarsOf(density));
+    Check(grid && grid->GetValues().Address() == array->GetVoidPointer(0) &&
+        grid->GetValues().GetMemorySize() ==
+          static_cast<std::size_t>(array->GetNumberOfValues() * array->GetDataTypeSize()),
+      std::string("a ") + array->GetClassName() + " is read in place, in its own type");
+    bool same = density && expected;
+    for (int t = 0; same && t < 200; ++t)
+    {
+      const brume::Vec3 p(-0.45f + 0.0045f * t, 0.3f - 0.003f * t, 0.1f);
+      same = density->Evaluate(p) == expected->Evaluate(p);
+    }
+    Check(same, std::string("... and its medium is the float array's: ") + array->GetClassName());
+  }
+}
 }
 
 int TestNativeResolution(int, char*[])
@@ -287,6 +323,7 @@ int TestNativeResolution(int, char*[])
   TestConvertedOnce();
   TestReleasedWithTheArray();
   TestOutputOutlivesTheFilters();
+  TestTypedScalars();
   if (failures)
   {
     std::cerr << failures << " check(s) failed\n";

@@ -191,11 +191,11 @@ Box GridDensity::NativeBox() const
 
 namespace
 {
-FloatBuffer Buffer(const std::vector<float>& values)
+TypedValues Buffer(const std::vector<float>& values)
 {
   FloatBuffer buffer = FloatBuffer::Allocate(values.size());
   std::copy(values.begin(), values.end(), buffer.Data());
-  return buffer;
+  return TypedValues(std::move(buffer));
 }
 }
 
@@ -205,7 +205,7 @@ GridDensity::GridDensity(const Box& bounds, std::array<int, 3> dims, std::vector
 {
 }
 
-GridDensity::GridDensity(const Box& bounds, std::array<int, 3> dims, FloatBuffer values,
+GridDensity::GridDensity(const Box& bounds, std::array<int, 3> dims, TypedValues values,
   bool cellValues, Interpolation interpolation, const ParallelFor& parallelFor)
   : Dims(dims)
   , Values(std::move(values))

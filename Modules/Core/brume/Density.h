@@ -137,9 +137,10 @@ public:
   GridDensity(const Box& bounds, std::array<int, 3> dims, std::vector<float> values,
     bool cellValues, Interpolation interpolation = Interpolation::Linear,
     const ParallelFor& parallelFor = SerialFor());
-  /// The values in a buffer that may be someone else's memory (a VTK
-  /// array's, shared: vtkBrumeSceneConversion reads a float array in place).
-  GridDensity(const Box& bounds, std::array<int, 3> dims, FloatBuffer values, bool cellValues,
+  /// The values in their own type, in memory that may be someone else's (a
+  /// VTK array's: vtkBrumeSceneConversion reads float, 8- and 16-bit arrays
+  /// in place).
+  GridDensity(const Box& bounds, std::array<int, 3> dims, TypedValues values, bool cellValues,
     Interpolation interpolation = Interpolation::Linear,
     const ParallelFor& parallelFor = SerialFor());
   float Evaluate(const Vec3& p) const override;
@@ -180,7 +181,7 @@ public:
     return true;
   }
   const std::array<int, 3>& GetDimensions() const { return this->Dims; }
-  const FloatBuffer& GetValues() const { return this->Values; }
+  const TypedValues& GetValues() const { return this->Values; }
   bool HasCellValues() const { return this->CellValues; }
 
 private:
@@ -191,7 +192,7 @@ private:
   void FindBlockRanges(const ParallelFor& parallelFor);
 
   std::array<int, 3> Dims;
-  FloatBuffer Values;
+  TypedValues Values;
   bool CellValues;
   Interpolation Interpolated;
   std::vector<float> BlockLow, BlockHigh;

@@ -104,4 +104,65 @@ bool operator==(const FloatBuffer& a, const FloatBuffer& b)
   return a.Count == b.Count && std::equal(a.begin(), a.end(), b.begin());
 }
 
+TypedValues::TypedValues(FloatBuffer floats)
+  : Count(floats.Size())
+  , FloatValues(std::move(floats))
+{
+  this->Floats = this->FloatValues.Data();
+}
+
+TypedValues TypedValues::Wrap(
+  const std::uint8_t* data, std::size_t n, std::shared_ptr<const void> owner)
+{
+  TypedValues values;
+  values.Kind = Type::UInt8;
+  values.Count = n;
+  values.Bytes8 = data;
+  values.Owner = std::move(owner);
+  return values;
+}
+
+TypedValues TypedValues::Wrap(
+  const std::uint16_t* data, std::size_t n, std::shared_ptr<const void> owner)
+{
+  TypedValues values;
+  values.Kind = Type::UInt16;
+  values.Count = n;
+  values.Unsigned16 = data;
+  values.Owner = std::move(owner);
+  return values;
+}
+
+TypedValues TypedValues::Wrap(
+  const std::int16_t* data, std::size_t n, std::shared_ptr<const void> owner)
+{
+  TypedValues values;
+  values.Kind = Type::Int16;
+  values.Count = n;
+  values.Signed16 = data;
+  values.Owner = std::move(owner);
+  return values;
+}
+
+std::size_t TypedValues::GetMemorySize() const
+{
+  return this->Count * (this->Kind == Type::UInt8 ? 1 : (this->Kind == Type::Float32 ? 4 : 2));
+}
+
+const void* TypedValues::Address() const
+{
+  switch (this->Kind)
+  {
+    case Type::UInt8:
+      return this->Bytes8;
+    case Type::UInt16:
+      return this->Unsigned16;
+    case Type::Int16:
+      return this->Signed16;
+    case Type::Float32:
+      break;
+  }
+  return this->Floats;
+}
+
 } // namespace brume

@@ -5,6 +5,7 @@
 #define brume_FloatBuffer_h
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 
 namespace brume
@@ -58,6 +59,70 @@ public:
 private:
   std::shared_ptr<float> Memory;
   std::size_t Count = 0;
+};
+
+/**
+ * A grid's values in the type its array holds them: 32-bit floats, or 8-
+ * and 16-bit integers read as the numbers they are, so that a scan's
+ * 512^3 bytes take 128 MB, not the 512 MB of their floats. Integers are
+ * only read in place (Wrap(), an array someone else holds); floats may be
+ * a buffer of the grid's own.
+ */
+class TypedValues
+{
+public:
+  enum class Type
+  {
+    Float32,
+    UInt8,
+    UInt16,
+    Int16
+  };
+
+  TypedValues() = default;
+  /// Floats of the grid's own (or wrapped: FloatBuffer::Wrap()).
+  explicit TypedValues(FloatBuffer floats);
+  /// `n` values at `data`, kept alive by `owner` (null: the caller keeps them alive).
+  static TypedValues Wrap(
+    const std::uint8_t* data, std::size_t n, std::shared_ptr<const void> owner);
+  static TypedValues Wrap(
+    const std::uint16_t* data, std::size_t n, std::shared_ptr<const void> owner);
+  static TypedValues Wrap(
+    const std::int16_t* data, std::size_t n, std::shared_ptr<const void> owner);
+
+  /// Value i as a float (exact for every type held).
+  float operator[](std::size_t i) const
+  {
+    switch (this->Kind)
+    {
+      case Type::UInt8:
+        return static_cast<float>(this->Bytes8[i]);
+      case Type::UInt16:
+        return static_cast<float>(this->Unsigned16[i]);
+      case Type::Int16:
+        return static_cast<float>(this->Signed16[i]);
+      case Type::Float32:
+        break;
+    }
+    return this->Floats[i];
+  }
+  std::size_t Size() const { return this->Count; }
+  bool Empty() const { return this->Count == 0; }
+  Type GetType() const { return this->Kind; }
+  /// The bytes the values take.
+  std::size_t GetMemorySize() const;
+  /// Where the values are (a test's check that an array was read in place).
+  const void* Address() const;
+
+private:
+  Type Kind = Type::Float32;
+  std::size_t Count = 0;
+  FloatBuffer FloatValues;
+  std::shared_ptr<const void> Owner; // of integers wrapped
+  const float* Floats = nullptr;
+  const std::uint8_t* Bytes8 = nullptr;
+  const std::uint16_t* Unsigned16 = nullptr;
+  const std::int16_t* Signed16 = nullptr;
 };
 
 } // namespace brume

@@ -220,7 +220,7 @@ ClassifiedDensity::ClassifiedDensity(std::shared_ptr<const DensityField> scalars
   // positive (other fields: the non-empty majorant blocks').
   if (const auto* grid = dynamic_cast<const GridDensity*>(this->Scalars.get()))
   {
-    const FloatBuffer& values = grid->GetValues();
+    const TypedValues& values = grid->GetValues();
     this->CountOccupied(
       values.Size(), [&](std::size_t i) { return this->Opacity.Extinction(values[i]); },
       parallelFor);
@@ -280,17 +280,18 @@ bool ClassifiedDensity::BendsWithinNativeCell(int i, int j, int k, const Box& ce
     first[a] = std::clamp(at[a] - 1, 0, dims[a] - 1);
     last[a] = std::clamp(at[a] + 1, first[a], dims[a] - 1);
   }
-  const float* values = this->Grid->GetValues().Data();
+  const TypedValues& values = this->Grid->GetValues();
   float lo = values[(static_cast<std::size_t>(first[2]) * dims[1] + first[1]) * dims[0] + first[0]];
   float hi = lo;
   for (int z = first[2]; z <= last[2]; ++z)
     for (int y = first[1]; y <= last[1]; ++y)
     {
-      const float* row = values + (static_cast<std::size_t>(z) * dims[1] + y) * dims[0];
+      const std::size_t row = (static_cast<std::size_t>(z) * dims[1] + y) * dims[0];
       for (int x = first[0]; x <= last[0]; ++x)
       {
-        lo = std::min(lo, row[x]);
-        hi = std::max(hi, row[x]);
+        const float v = values[row + static_cast<std::size_t>(x)];
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
       }
     }
   return this->PointBetween(lo, hi);
@@ -328,7 +329,7 @@ bool ClassifiedDensity::BendsWithin(const Box& region) const
     first[a] = std::clamp(first[a], 0, n - 1);
     last[a] = std::clamp(last[a], first[a], n - 1);
   }
-  const FloatBuffer& values = g.GetValues();
+  const TypedValues& values = g.GetValues();
   float lo = values[(static_cast<std::size_t>(first[2]) * dims[1] + first[1]) * dims[0] + first[0]];
   float hi = lo;
   for (int k = first[2]; k <= last[2]; ++k)

@@ -1,0 +1,148 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Grid memory held once: shared float buffers, and a grid's values in the
+// type its array holds them.
+#include "brume/Density.h"
+#include "brume/FloatBuffer.h"
+#include "brume/Random.h"
+#include "brume/TransferFunction.h"
+#include "brume/Vec3.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <memory>
+#include <numeric>
+#include <vector>
+
+using namespace brume;
+
+TEST(FloatBuffer, LargeBuffersAreSharedAndCutInPlace)
+{
+  // 4 MB: mapped on its own. Cutting keeps the first floats where they were.
+  const std::size_t n = std::size_t(1) << 20;
+  FloatBuffer buffer = FloatBuffer::Allocate(n);
+  ASSERT_EQ(buffer.Size(), n);
+  std::iota(buffer.Data(), buffer.Data() + n, 0.f);
+  const float* before = buffer.Data();
+  buffer.Truncate(n / 3);
+  EXPECT_EQ(buffer.Data(), before);
+  ASSERT_EQ(buffer.Size(), n / 3);
+  EXPECT_EQ(buffer[n / 3 - 1], static_cast<float>(n / 3 - 1));
+
+  // A share outlives the buffer it came from.
+  std::shared_ptr<float> share = buffer.Share();
+  buffer = FloatBuffer();
+  EXPECT_EQ(share.get()[12345], 12345.f);
+}
+
+TEST(FloatBuffer, SmallBuffersAreCopiedWhenCut)
+{
+  FloatBuffer small = FloatBuffer::Allocate(100);
+  std::iota(small.Data(), small.Data() + 100, 1.f);
+  small.Truncate(10);
+  ASSERT_EQ(small.Size(), 10u);
+  EXPECT_EQ(small[9], 10.f);
+  FloatBuffer other = FloatBuffer::Allocate(10);
+  std::iota(other.Data(), other.Data() + 10, 1.f);
+  EXPECT_EQ(small, other);
+  other.Data()[3] = 0.f;
+  EXPECT_NE(small, other);
+}
+
+TEST(FloatBuffer, WrappedMemoryIsReadInPlace)
+{
+  auto owner = std::make_shared<std::vector<float>>(std::vector<float>{ 1.f, 2.f, 3.f });
+  const FloatBuffer wrapped = FloatBuffer::Wrap(owner->data(), owner->size(), owner);
+  std::weak_ptr<std::vector<float>> watch = owner;
+  owner.reset();
+  EXPECT_FALSE(watch.expired()); // the buffer holds its owner
+  EXPECT_EQ(wrapped[2], 3.f);
+}
+
+namespace
+{
+// A 9 x 7 x 5 point grid over the unit cube whose values are integers in
+// 0..255, as 8-bit integers (read in place) and as floats.
+struct TwoGrids
+{
+  std::vector<std::uint8_t> Bytes;
+  std::shared_ptr<const GridDensity> Typed;
+  std::shared_ptr<const GridDensity> Floats;
+};
+TwoGrids Grids(bool cellValues)
+{
+  TwoGrids g;
+  const std::array<int, 3> dims{ 9, 7, 5 };
+  const std::size_t n = 9 * 7 * 5;
+  Random rng(7, 0);
+  g.Bytes.resize(n);
+  std::vector<float> floats(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    g.Bytes[i] = static_cast<std::uint8_t>(rng.NextFloat() * 256.f);
+    floats[i] = static_cast<float>(g.Bytes[i]);
+  }
+  const Box box{ Vec3(0.f), Vec3(1.f) };
+  g.Typed = std::make_shared<const GridDensity>(
+    box, dims, TypedValues::Wrap(g.Bytes.data(), n, nullptr), cellValues);
+  g.Floats = std::make_shared<const GridDensity>(box, dims, floats, cellValues);
+  return g;
+}
+}
+
+TEST(TypedValues, EachTypeReadsItsNumbers)
+{
+  const std::uint8_t bytes[] = { 0, 7, 255 };
+  const std::uint16_t shorts[] = { 0, 300, 65535 };
+  const std::int16_t signedShorts[] = { -32768, -1, 32767 };
+  const TypedValues b = TypedValues::Wrap(bytes, 3, nullptr);
+  const TypedValues u = TypedValues::Wrap(shorts, 3, nullptr);
+  const TypedValues s = TypedValues::Wrap(signedShorts, 3, nullptr);
+  EXPECT_EQ(b.GetType(), TypedValues::Type::UInt8);
+  EXPECT_EQ(b[2], 255.f);
+  EXPECT_EQ(u[1], 300.f);
+  EXPECT_EQ(u[2], 65535.f);
+  EXPECT_EQ(s[0], -32768.f);
+  EXPECT_EQ(s[2], 32767.f);
+  // A scan's bytes take one byte a value, 16-bit values two, floats four.
+  EXPECT_EQ(b.GetMemorySize(), 3u);
+  EXPECT_EQ(u.GetMemorySize(), 6u);
+  EXPECT_EQ(TypedValues(FloatBuffer::Allocate(3)).GetMemorySize(), 12u);
+  EXPECT_EQ(b.Address(), static_cast<const void*>(bytes));
+}
+
+TEST(TypedValues, AnEightBitGridIsTheGridOfItsFloats)
+{
+  for (const bool cells : { false, true })
+  {
+    const TwoGrids g = Grids(cells);
+    EXPECT_EQ(g.Typed->GetValues().GetMemorySize(), g.Bytes.size());
+    Random rng(11, 0);
+    for (int t = 0; t < 2000; ++t)
+    {
+      const Vec3 p(rng.NextFloat(), rng.NextFloat(), rng.NextFloat());
+      ASSERT_EQ(g.Typed->Evaluate(p), g.Floats->Evaluate(p)) << cells;
+    }
+    EXPECT_EQ(g.Typed->GetMajorants().Max, g.Floats->GetMajorants().Max);
+    EXPECT_EQ(g.Typed->OccupiedFraction(), g.Floats->OccupiedFraction());
+    EXPECT_EQ(g.Typed->MeanOccupiedDensity(), g.Floats->MeanOccupiedDensity());
+    if (!cells)
+    {
+      const Box cell{ Vec3(0.25f), Vec3(0.375f) };
+      EXPECT_EQ(g.Typed->NativeMean(3, 2, 1, cell, g.Typed->GetBounds(), 4),
+        g.Floats->NativeMean(3, 2, 1, cell, g.Floats->GetBounds(), 4));
+    }
+    // Classified alike: the same extinction, the same bend checks.
+    const OpacityTransferFunction opacity(
+      { { 60.f, 0.f }, { 128.f, 0.5f }, { 250.f, 0.9f } }, 0.1f);
+    const ClassifiedDensity typed(g.Typed, opacity), floats(g.Floats, opacity);
+    for (int t = 0; t < 500; ++t)
+    {
+      const Vec3 p(rng.NextFloat(), rng.NextFloat(), rng.NextFloat());
+      ASSERT_EQ(typed.Evaluate(p), floats.Evaluate(p));
+      const Box around{ p - Vec3(0.05f), p + Vec3(0.05f) };
+      ASSERT_EQ(typed.BendsWithin(around), floats.BendsWithin(around));
+    }
+    EXPECT_EQ(typed.GetMajorants().Max, floats.GetMajorants().Max);
+  }
+}
