@@ -41,6 +41,14 @@ public:
   void Render(vtkRenderer* ren, vtkVolume* vol) override;
   void ReleaseGraphicsResources(vtkWindow* window) override;
 
+  /**
+   * The bytes per texel of the atlas of a bricked extinction grid last
+   * sent to the GPU: 2 for a grid of integers spanning at most 65,535 (a
+   * scan's own 8- or 16-bit values, classified by a transfer function), 4
+   * otherwise; 0 before any.
+   */
+  int GetExtinctionAtlasTexelBytes() const;
+
   /// Renderer keys: the frame count and the frame whose volumes were drawn.
   static vtkInformationIntegerKey* FRAME();
   static vtkInformationIntegerKey* DRAWN_FRAME();
@@ -69,6 +77,8 @@ private:
     vtkImageData* grid, const int dims[3], vtkOpenGLRenderWindow* renWin, int filter);
   bool UploadBricks(
     vtkImageData* grid, const int dims[3], vtkOpenGLRenderWindow* renWin, int filter);
+  // The atlas's storage, `bytes` (2 or 4) per texel, its texels left to the caller.
+  bool CreateAtlas(vtkOpenGLRenderWindow* renWin, const int texels[3], int bytes, int filter);
   bool UploadTransferFunction(vtkFieldData* fd, vtkOpenGLRenderWindow* renWin, double& largest);
   bool UploadDirectional(vtkImageData* input, vtkOpenGLRenderWindow* renWin, const int dims[3],
     int filter, const std::vector<float>& extinction);

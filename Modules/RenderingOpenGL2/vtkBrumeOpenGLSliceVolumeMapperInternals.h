@@ -48,6 +48,10 @@ struct vtkBrumeOpenGLSliceVolumeMapper::Internals
   float GridCells[3] = { 1.f, 1.f, 1.f };
   float BrickCount[3] = { 1.f, 1.f, 1.f };
   float AtlasSize[3] = { 1.f, 1.f, 1.f };
+  // The grid's value of an atlas texel t (a 16-bit normalized texture holds
+  // the grid's integers less their least): AtlasValue[0] t + AtlasValue[1].
+  float AtlasValue[2] = { 1.f, 0.f };
+  int AtlasBytes = 0; // per texel
   float BrickScale[3] = { 1.f, 1.f, 1.f };
   // Bricks of scalars a transfer function classifies: its extinction in one
   // row (linear filtering), over TransferRange, TransferSamples wide.

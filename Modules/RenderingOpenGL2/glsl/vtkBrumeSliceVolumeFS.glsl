@@ -37,6 +37,9 @@ uniform sampler3D brickTable;
 uniform vec3 gridCells;
 uniform vec3 brickCount;
 uniform vec3 atlasSize;
+// The grid's value of an atlas texel t: atlasValue.x t + atlasValue.y (a
+// 16-bit normalized atlas holds integers less their least).
+uniform vec2 atlasValue;
 uniform vec3 brickScale;             // sigma_t per unit of the grid's values
 #endif
 #if BRUME_EXTINCTION == 1 && BRUME_CLASSIFIED
@@ -88,7 +91,8 @@ vec3 extinctionAt(vec3 t, out vec3 albedo)
   else
   {
     vec3 local = min(u - 7.0 * brick, vec3(7.0));
-    classified = classify(texture(extinctionTexture, (entry.xyz + local + 0.5) / atlasSize).r);
+    float t = texture(extinctionTexture, (entry.xyz + local + 0.5) / atlasSize).r;
+    classified = classify(atlasValue.x * t + atlasValue.y);
   }
 #if BRUME_ALBEDO
   albedo = classified.gba;

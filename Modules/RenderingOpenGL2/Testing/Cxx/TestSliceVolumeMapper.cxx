@@ -6,6 +6,7 @@
 #include "vtkActor.h"
 #include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeFloatImageCapture.h"
+#include "vtkBrumeOpenGLSliceVolumeMapper.h"
 #include "vtkBrumeSliceVolumeMapper.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
@@ -290,16 +291,18 @@ bool NativeExtinction()
   return ok;
 }
 
-bool SparseExtinction()
+bool SparseExtinction(double unit, int texelBytes)
 {
   // sigma_t on a grid of 30 x 20 x 4 cells over the unit cube, given densely
   // and in the sparse form written here from its documentation (bricks of
   // 8^3 cells 7 apart, a slot per varying brick, one value otherwise): a
   // smooth field over x < 0.2, a constant 2 beyond, 0 in the top rows.
-  // Both forms must draw the same image.
+  // Both forms must draw the same image. With a `unit`, the grid holds
+  // whole numbers of it (a scan's integers), which the atlas keeps in
+  // `texelBytes` per texel, exactly.
   const double box[6] = { -0.5, 0.5, -0.5, 0.5, -0.5, 0.5 };
   const int n[3] = { 30, 20, 4 };
-  auto density = [&](int i, int j, int k)
+  auto smooth = [&](int i, int j, int k)
   {
     if (j >= 14)
     {
@@ -311,7 +314,10 @@ bool SparseExtinction()
     }
     return 1.0 + 0.8 * std::sin(0.5 * i) * std::cos(0.4 * j) + 0.1 * k;
   };
-  const RGB scale{ 1.5, 0.5, 3.0 };
+  auto density = [&](int i, int j, int k)
+  { return unit > 0.0 ? std::round(smooth(i, j, k) / unit) : smooth(i, j, k); };
+  const double per = unit > 0.0 ? unit : 1.0;
+  const RGB scale{ 1.5 * per, 0.5 * per, 3.0 * per };
   auto grid = [&]()
   {
     auto g = vtkSmartPointer<vtkImageData>::New();
@@ -392,6 +398,14 @@ bool SparseExtinction()
       vtkBrumeSliceVolumeMapper::SafeDownCast(volume->GetMapper())
         ->SetExtinctionData(form == 0 ? dense : sparse);
       frames[form] = Render({ volume }, false);
+      auto* opengl = vtkBrumeOpenGLSliceVolumeMapper::SafeDownCast(volume->GetMapper());
+      if (form == 1 && (!opengl || opengl->GetExtinctionAtlasTexelBytes() != texelBytes))
+      {
+        std::cerr << "sparse extinction in units of " << unit << ": an atlas of "
+                  << (opengl ? opengl->GetExtinctionAtlasTexelBytes() : -1)
+                  << " bytes a texel, not " << texelBytes << "\n";
+        ok = false;
+      }
     }
     // Both forms interpolate the same cells with the same weights, up to
     // float rounding of the coordinates (an atlas is a larger texture):
@@ -405,7 +419,8 @@ bool SparseExtinction()
           worst = std::max(worst, std::abs(a - b) / (std::abs(a) + 1e-3));
           sum += a;
         }
-    std::cout << "sparse extinction, " << (nearest ? "nearest" : "linear")
+    std::cout << "sparse extinction in units of " << unit << ", "
+              << (nearest ? "nearest" : "linear")
               << ": largest relative difference to the dense grid " << worst << "\n";
     if (!(worst < 1e-4) || !(sum > 0.0))
     {
@@ -616,7 +631,10 @@ int TestSliceVolumeMapper(int, char*[])
   ok = BadInput() && ok;
   ok = Directional() && ok;
   ok = NativeExtinction() && ok;
-  ok = SparseExtinction() && ok;
+  ok = SparseExtinction(0.0, 4) && ok;
+  ok = SparseExtinction(0.01, 2) && ok;  // whole numbers up to 280 (8-bit data): 16 bits
+  ok = SparseExtinction(0.001, 2) && ok; // up to 2,800
+  ok = SparseExtinction(1e-5, 4) && ok;  // up to 280,000: floats
   ok = ClassifiedExtinction() && ok;
   ok = ThickSkin() && ok;
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
