@@ -15,6 +15,9 @@ BrickedGrid BrickedGrid::Sample(const std::array<int, 3>& dims, const Box& box,
   BrickedGrid grid;
   grid.Dims = dims;
   grid.Bounds = box;
+  grid.CellsPerLength =
+    Vec3(static_cast<float>(dims[0]), static_cast<float>(dims[1]), static_cast<float>(dims[2])) /
+    box.Extent();
   for (int a = 0; a < 3; ++a)
   {
     grid.BrickDims[a] = BricksAlong(dims[a]);
@@ -121,16 +124,18 @@ float BrickedGrid::At(int i, int j, int k) const
 
 float BrickedGrid::Interpolate(const Vec3& p) const
 {
-  // u: the position in samples (cell centres at integers), clamped.
-  const Vec3 q = (p - this->Bounds.lower) / this->Bounds.Extent();
+  // u: the position in samples (cell centres at integers), clamped. No
+  // division: 10^8 calls march a 512^3 grid's shadow rays.
+  const Vec3 q = (p - this->Bounds.lower) * this->CellsPerLength;
+  constexpr float PerStride = 1.f / static_cast<float>(Stride);
   int b[3], i0[3];
   float w[3];
   for (int a = 0; a < 3; ++a)
   {
     const float n = static_cast<float>(this->Dims[a]);
-    float u = q[a] * n - 0.5f;
+    float u = q[a] - 0.5f;
     u = u < 0.f ? 0.f : (u > n - 1.f ? n - 1.f : u);
-    b[a] = std::min(static_cast<int>(u / static_cast<float>(Stride)), this->BrickDims[a] - 1);
+    b[a] = std::min(static_cast<int>(u * PerStride), this->BrickDims[a] - 1);
     b[a] = std::max(b[a], 0);
     const float local = u - static_cast<float>(Stride * b[a]);
     i0[a] = std::min(std::max(static_cast<int>(local), 0), Size - 2);

@@ -94,6 +94,7 @@ private:
   std::array<int, 3> Dims{ 0, 0, 0 };
   std::array<int, 3> BrickDims{ 0, 0, 0 };
   Box Bounds;
+  Vec3 CellsPerLength{ 0.f }; // Dims / Bounds.Extent()
   std::vector<std::int32_t> Slots;
   std::vector<float> Constants;
   FloatBuffer Samples;

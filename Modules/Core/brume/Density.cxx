@@ -123,6 +123,36 @@ bool GridDensity::NativeSamples(int i, int j, int k, int s, float* out) const
       weight[a][m] = n == 1 ? 0.f : x - static_cast<float>(i0);
     }
   }
+  // The samples lie within half a spacing of point (i, j, k): the points
+  // they read are at most the 3^3 around it, read once.
+  int lo[3], count[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    lo[a] = first[a][0];
+    count[a] = second[a][s - 1] - lo[a] + 1;
+    if (count[a] > 3)
+    {
+      return false; // not reached: samples of one cell span 3 points at most
+    }
+  }
+  float near[27];
+  this->Values.Visit(
+    [&](const auto* values)
+    {
+      float* to = near;
+      for (int z = 0; z < count[2]; ++z)
+        for (int y = 0; y < count[1]; ++y)
+        {
+          const auto* row = values +
+            (static_cast<std::size_t>(lo[2] + z) * this->Dims[1] + lo[1] + y) * this->Dims[0];
+          for (int x = 0; x < count[0]; ++x)
+          {
+            *to++ = static_cast<float>(row[lo[0] + x]);
+          }
+        }
+    });
+  auto at = [&](int x, int y, int z)
+  { return near[((z - lo[2]) * count[1] + (y - lo[1])) * count[0] + (x - lo[0])]; };
   auto lerp = [](float a, float b, float t) { return a + (b - a) * t; };
   for (int z = 0; z < s; ++z)
     for (int y = 0; y < s; ++y)
@@ -131,10 +161,10 @@ bool GridDensity::NativeSamples(int i, int j, int k, int s, float* out) const
         const int x0 = first[0][x], y0 = first[1][y], z0 = first[2][z];
         const int x1 = second[0][x], y1 = second[1][y], z1 = second[2][z];
         const float fx = weight[0][x], fy = weight[1][y], fz = weight[2][z];
-        const float c00 = lerp(this->Value(x0, y0, z0), this->Value(x1, y0, z0), fx);
-        const float c10 = lerp(this->Value(x0, y1, z0), this->Value(x1, y1, z0), fx);
-        const float c01 = lerp(this->Value(x0, y0, z1), this->Value(x1, y0, z1), fx);
-        const float c11 = lerp(this->Value(x0, y1, z1), this->Value(x1, y1, z1), fx);
+        const float c00 = lerp(at(x0, y0, z0), at(x1, y0, z0), fx);
+        const float c10 = lerp(at(x0, y1, z0), at(x1, y1, z0), fx);
+        const float c01 = lerp(at(x0, y0, z1), at(x1, y0, z1), fx);
+        const float c11 = lerp(at(x0, y1, z1), at(x1, y1, z1), fx);
         *out++ = lerp(lerp(c00, c10, fy), lerp(c01, c11, fy), fz);
       }
   return true;

@@ -106,6 +106,24 @@ public:
     }
     return this->Floats[i];
   }
+  /// f(values), `values` a pointer to the values in their own type: loops
+  /// over many values choose the type once, not per value.
+  template <typename F>
+  decltype(auto) Visit(F&& f) const
+  {
+    switch (this->Kind)
+    {
+      case Type::UInt8:
+        return f(this->Bytes8);
+      case Type::UInt16:
+        return f(this->Unsigned16);
+      case Type::Int16:
+        return f(this->Signed16);
+      case Type::Float32:
+        break;
+    }
+    return f(this->Floats);
+  }
   std::size_t Size() const { return this->Count; }
   bool Empty() const { return this->Count == 0; }
   Type GetType() const { return this->Kind; }

@@ -280,21 +280,25 @@ bool ClassifiedDensity::BendsWithinNativeCell(int i, int j, int k, const Box& ce
     first[a] = std::clamp(at[a] - 1, 0, dims[a] - 1);
     last[a] = std::clamp(at[a] + 1, first[a], dims[a] - 1);
   }
-  const TypedValues& values = this->Grid->GetValues();
-  float lo = values[(static_cast<std::size_t>(first[2]) * dims[1] + first[1]) * dims[0] + first[0]];
-  float hi = lo;
-  for (int z = first[2]; z <= last[2]; ++z)
-    for (int y = first[1]; y <= last[1]; ++y)
+  return this->Grid->GetValues().Visit(
+    [&](const auto* values)
     {
-      const std::size_t row = (static_cast<std::size_t>(z) * dims[1] + y) * dims[0];
-      for (int x = first[0]; x <= last[0]; ++x)
-      {
-        const float v = values[row + static_cast<std::size_t>(x)];
-        lo = std::min(lo, v);
-        hi = std::max(hi, v);
-      }
-    }
-  return this->PointBetween(lo, hi);
+      float lo = static_cast<float>(
+        values[(static_cast<std::size_t>(first[2]) * dims[1] + first[1]) * dims[0] + first[0]]);
+      float hi = lo;
+      for (int z = first[2]; z <= last[2]; ++z)
+        for (int y = first[1]; y <= last[1]; ++y)
+        {
+          const auto* row = values + (static_cast<std::size_t>(z) * dims[1] + y) * dims[0];
+          for (int x = first[0]; x <= last[0]; ++x)
+          {
+            const float v = static_cast<float>(row[x]);
+            lo = std::min(lo, v);
+            hi = std::max(hi, v);
+          }
+        }
+      return this->PointBetween(lo, hi);
+    });
 }
 
 bool ClassifiedDensity::BendsWithin(const Box& region) const
