@@ -496,6 +496,11 @@ TEST(ReconstructionParts, NativeMediumGridAveragesTheCellsWhereTheFunctionBends)
           ++bending;
           const float mean = native.GetDensity().At(i, j, k);
           averaged += mean != atScalar ? 1 : 0;
+          // Brick by brick, the same float as the cell's own NativeMean().
+          ASSERT_EQ(mean,
+            static_cast<float>(classified.NativeMean(
+              i, j, k, Box{ lower, lower + cell }, waves.Bounds, NativeMediumGrid::BendSamples)))
+            << i << " " << j << " " << k;
           // The 27 points' interpolation is the samples' evaluation.
           const double evaluated = classified.DensityField::NativeMean(
             i, j, k, Box{ lower, lower + cell }, waves.Bounds, 4);

@@ -12,6 +12,31 @@ BrickedGrid BrickedGrid::Sample(const std::array<int, 3>& dims, const Box& box,
   const std::function<bool(const std::array<int, 3>&, const std::array<int, 3>&)>& zeroOver,
   const ParallelFor& parallelFor, float skipped)
 {
+  return SampleBricks(
+    dims, box,
+    [&](const std::array<int, 3>& lower, float* out)
+    {
+      for (int k = 0; k < Size; ++k)
+      {
+        const int z = std::min(lower[2] + k, dims[2] - 1);
+        for (int j = 0; j < Size; ++j)
+        {
+          const int y = std::min(lower[1] + j, dims[1] - 1);
+          for (int i = 0; i < Size; ++i)
+          {
+            *out++ = value(std::min(lower[0] + i, dims[0] - 1), y, z);
+          }
+        }
+      }
+    },
+    zeroOver, parallelFor, skipped);
+}
+
+BrickedGrid BrickedGrid::SampleBricks(const std::array<int, 3>& dims, const Box& box,
+  const std::function<void(const std::array<int, 3>&, float*)>& brick,
+  const std::function<bool(const std::array<int, 3>&, const std::array<int, 3>&)>& zeroOver,
+  const ParallelFor& parallelFor, float skipped)
+{
   BrickedGrid grid;
   grid.Dims = dims;
   grid.Bounds = box;
@@ -63,20 +88,7 @@ BrickedGrid BrickedGrid::Sample(const std::array<int, 3>& dims, const Box& box,
     {
       for (std::size_t s = begin; s < end; ++s)
       {
-        const std::array<int, 3> lower = brickOrigin(sampled[s]);
-        float* out = samples.Data() + s * BrickSamples;
-        for (int k = 0; k < Size; ++k)
-        {
-          const int z = std::min(lower[2] + k, dims[2] - 1);
-          for (int j = 0; j < Size; ++j)
-          {
-            const int y = std::min(lower[1] + j, dims[1] - 1);
-            for (int i = 0; i < Size; ++i)
-            {
-              *out++ = value(std::min(lower[0] + i, dims[0] - 1), y, z);
-            }
-          }
-        }
+        brick(brickOrigin(sampled[s]), samples.Data() + s * BrickSamples);
       }
     });
   std::int32_t slots = 0;

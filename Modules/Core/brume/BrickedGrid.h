@@ -55,6 +55,17 @@ public:
     const std::function<bool(const std::array<int, 3>&, const std::array<int, 3>&)>& zeroOver,
     const ParallelFor& parallelFor, float skipped = 0.f);
 
+  /**
+   * Sample() a brick at a time: `brick(lower, out)` writes the BrickSamples
+   * samples of the cells lower .. lower + Size - 1 (x fastest; cells past
+   * the grid's last take the last's sample), for values that are cheaper
+   * found together (thread safe).
+   */
+  static BrickedGrid SampleBricks(const std::array<int, 3>& dims, const Box& box,
+    const std::function<void(const std::array<int, 3>&, float*)>& brick,
+    const std::function<bool(const std::array<int, 3>&, const std::array<int, 3>&)>& zeroOver,
+    const ParallelFor& parallelFor, float skipped = 0.f);
+
   bool Empty() const { return this->Slots.empty(); }
   const std::array<int, 3>& GetDims() const { return this->Dims; }
   const Box& GetBox() const { return this->Bounds; }

@@ -104,36 +104,14 @@ bool GridDensity::NativeSamples(int i, int j, int k, int s, float* out) const
   {
     return false;
   }
-  // Along each axis, sample m sits (m + 1/2) / s - 1/2 point spacings from
-  // its point: between two points (clamped at the grid's ends, where the
-  // bounds clamp it), with its weight on the second.
-  const int index[3] = { i, j, k };
-  int first[3][MaxNativeSamples], second[3][MaxNativeSamples];
-  float weight[3][MaxNativeSamples];
-  for (int a = 0; a < 3; ++a)
-  {
-    const int n = this->Dims[a];
-    for (int m = 0; m < s; ++m)
-    {
-      const float u = (static_cast<float>(m) + 0.5f) / static_cast<float>(s) - 0.5f;
-      const float x = std::clamp(static_cast<float>(index[a]) + u, 0.f, static_cast<float>(n - 1));
-      const int i0 = n == 1 ? 0 : std::min(n - 2, static_cast<int>(x));
-      first[a][m] = i0;
-      second[a][m] = std::min(i0 + 1, n - 1);
-      weight[a][m] = n == 1 ? 0.f : x - static_cast<float>(i0);
-    }
-  }
   // The samples lie within half a spacing of point (i, j, k): the points
   // they read are at most the 3^3 around it, read once.
+  const int index[3] = { i, j, k };
   int lo[3], count[3];
   for (int a = 0; a < 3; ++a)
   {
-    lo[a] = first[a][0];
-    count[a] = second[a][s - 1] - lo[a] + 1;
-    if (count[a] > 3)
-    {
-      return false; // not reached: samples of one cell span 3 points at most
-    }
+    lo[a] = std::max(0, index[a] - 1);
+    count[a] = std::min(this->Dims[a] - 1, index[a] + 1) - lo[a] + 1;
   }
   float near[27];
   this->Values.Visit(
@@ -151,22 +129,11 @@ bool GridDensity::NativeSamples(int i, int j, int k, int s, float* out) const
           }
         }
     });
-  auto at = [&](int x, int y, int z)
-  { return near[((z - lo[2]) * count[1] + (y - lo[1])) * count[0] + (x - lo[0])]; };
-  auto lerp = [](float a, float b, float t) { return a + (b - a) * t; };
-  for (int z = 0; z < s; ++z)
-    for (int y = 0; y < s; ++y)
-      for (int x = 0; x < s; ++x)
-      {
-        const int x0 = first[0][x], y0 = first[1][y], z0 = first[2][z];
-        const int x1 = second[0][x], y1 = second[1][y], z1 = second[2][z];
-        const float fx = weight[0][x], fy = weight[1][y], fz = weight[2][z];
-        const float c00 = lerp(at(x0, y0, z0), at(x1, y0, z0), fx);
-        const float c10 = lerp(at(x0, y1, z0), at(x1, y1, z0), fx);
-        const float c01 = lerp(at(x0, y0, z1), at(x1, y0, z1), fx);
-        const float c11 = lerp(at(x0, y1, z1), at(x1, y1, z1), fx);
-        *out++ = lerp(lerp(c00, c10, fy), lerp(c01, c11, fy), fz);
-      }
+  InterpolateNativeSamples(
+    index, this->Dims, s,
+    [&](int x, int y, int z)
+    { return near[((z - lo[2]) * count[1] + (y - lo[1])) * count[0] + (x - lo[0])]; },
+    out);
   return true;
 }
 

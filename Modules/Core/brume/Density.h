@@ -8,6 +8,7 @@
 #include "brume/Parallel.h"
 #include "brume/Vec3.h"
 
+#include <algorithm>
 #include <array>
 #include <functional>
 #include <vector>
@@ -146,7 +147,7 @@ public:
   float Evaluate(const Vec3& p) const override;
   std::array<int, 3> NativeResolution() const override;
   Box NativeBox() const override;
-  /// The most samples per axis VisitNativeSamples() takes.
+  /// The most samples per axis NativeSamples() takes.
   static constexpr int MaxNativeSamples = 8;
   /**
    * Point values, interpolated linearly: the s^3 samples (s at most
@@ -155,6 +156,49 @@ public:
    * fastest), where NativeMean() puts them; false for other grids.
    */
   bool NativeSamples(int i, int j, int k, int s, float* out) const;
+  /**
+   * The arithmetic of NativeSamples() for point `index` of a grid of
+   * `dims` points whose values `at(x, y, z)` gives (it is asked for points
+   * within one of `index` only): for a caller that holds the points already.
+   */
+  template <typename At>
+  static void InterpolateNativeSamples(
+    const int index[3], const std::array<int, 3>& dims, int s, const At& at, float* out)
+  {
+    // Along each axis, sample m sits (m + 1/2) / s - 1/2 point spacings from
+    // its point: between two points (clamped at the grid's ends, where the
+    // bounds clamp it), with its weight on the second.
+    int first[3][MaxNativeSamples], second[3][MaxNativeSamples];
+    float weight[3][MaxNativeSamples];
+    for (int a = 0; a < 3; ++a)
+    {
+      const int n = dims[a];
+      for (int m = 0; m < s; ++m)
+      {
+        const float u = (static_cast<float>(m) + 0.5f) / static_cast<float>(s) - 0.5f;
+        const float x =
+          std::clamp(static_cast<float>(index[a]) + u, 0.f, static_cast<float>(n - 1));
+        const int i0 = n == 1 ? 0 : std::min(n - 2, static_cast<int>(x));
+        first[a][m] = i0;
+        second[a][m] = std::min(i0 + 1, n - 1);
+        weight[a][m] = n == 1 ? 0.f : x - static_cast<float>(i0);
+      }
+    }
+    auto lerp = [](float a, float b, float t) { return a + (b - a) * t; };
+    for (int z = 0; z < s; ++z)
+      for (int y = 0; y < s; ++y)
+        for (int x = 0; x < s; ++x)
+        {
+          const int x0 = first[0][x], y0 = first[1][y], z0 = first[2][z];
+          const int x1 = second[0][x], y1 = second[1][y], z1 = second[2][z];
+          const float fx = weight[0][x], fy = weight[1][y], fz = weight[2][z];
+          const float c00 = lerp(at(x0, y0, z0), at(x1, y0, z0), fx);
+          const float c10 = lerp(at(x0, y1, z0), at(x1, y1, z0), fx);
+          const float c01 = lerp(at(x0, y0, z1), at(x1, y0, z1), fx);
+          const float c11 = lerp(at(x0, y1, z1), at(x1, y1, z1), fx);
+          *out++ = lerp(lerp(c00, c10, fy), lerp(c01, c11, fy), fz);
+        }
+  }
   double NativeMean(int i, int j, int k, const Box& cell, const Box& bounds, int s) const override;
   /// The value itself: point values are the native cells' centres, cell
   /// values the cells.
@@ -183,6 +227,7 @@ public:
   const std::array<int, 3>& GetDimensions() const { return this->Dims; }
   const TypedValues& GetValues() const { return this->Values; }
   bool HasCellValues() const { return this->CellValues; }
+  Interpolation GetInterpolation() const { return this->Interpolated; }
 
 private:
   float Value(int i, int j, int k) const

@@ -258,28 +258,49 @@ void NativeMediumGrid::Sample(
   // classified cell is the function at its scalar.
   const int samples = factor > 1 ? 2 : 1;
   const OpacityTransferFunction* function = this->Classification;
-  this->Density = BrickedGrid::Sample(
-    dims, box,
-    [&](int i, int j, int k)
+  auto value = [&](int i, int j, int k)
+  {
+    if (function)
     {
-      if (function)
-      {
-        const Vec3 corner(static_cast<float>(i), static_cast<float>(j), static_cast<float>(k));
-        const Vec3 lower = box.lower + corner * cell;
-        if (classified->BendsWithinNativeCell(i, j, k, Box{ lower, lower + cell }))
-        {
-          return static_cast<float>(
-            density.NativeMean(i, j, k, Box{ lower, lower + cell }, bounds, BendSamples));
-        }
-        return function->Extinction(this->Scalars.At(i, j, k));
-      }
-      if (samples == 1)
-      {
-        return density.NativeValue(i, j, k, centre(i, j, k));
-      }
       const Vec3 corner(static_cast<float>(i), static_cast<float>(j), static_cast<float>(k));
       const Vec3 lower = box.lower + corner * cell;
-      return static_cast<float>(MeanDensity(density, bounds, lower, cell, samples));
+      if (classified->BendsWithinNativeCell(i, j, k, Box{ lower, lower + cell }))
+      {
+        return static_cast<float>(
+          density.NativeMean(i, j, k, Box{ lower, lower + cell }, bounds, BendSamples));
+      }
+      return function->Extinction(this->Scalars.At(i, j, k));
+    }
+    if (samples == 1)
+    {
+      return density.NativeValue(i, j, k, centre(i, j, k));
+    }
+    const Vec3 corner(static_cast<float>(i), static_cast<float>(j), static_cast<float>(k));
+    const Vec3 lower = box.lower + corner * cell;
+    return static_cast<float>(MeanDensity(density, bounds, lower, cell, samples));
+  };
+  if (!function)
+  {
+    this->Density = BrickedGrid::Sample(dims, box, value, zeroOver, parallelFor);
+    return;
+  }
+  // A classified grid of point values: a brick's cells together, from its
+  // points read once (ClassifiedDensity::NativeBrick), the same values.
+  this->Density = BrickedGrid::SampleBricks(
+    dims, box,
+    [&](const std::array<int, 3>& lower, float* out)
+    {
+      if (classified->NativeBrick(lower, BrickedGrid::Size, BendSamples, out))
+      {
+        return;
+      }
+      for (int k = 0; k < BrickedGrid::Size; ++k)
+        for (int j = 0; j < BrickedGrid::Size; ++j)
+          for (int i = 0; i < BrickedGrid::Size; ++i)
+          {
+            *out++ = value(std::min(lower[0] + i, dims[0] - 1), std::min(lower[1] + j, dims[1] - 1),
+              std::min(lower[2] + k, dims[2] - 1));
+          }
     },
     zeroOver, parallelFor);
 }

@@ -301,6 +301,122 @@ bool ClassifiedDensity::BendsWithinNativeCell(int i, int j, int k, const Box& ce
     });
 }
 
+bool ClassifiedDensity::NativeBrick(
+  const std::array<int, 3>& lower, int size, int s, float* out) const
+{
+  constexpr int MostCells = 8, MostPoints = MostCells + 2;
+  const GridDensity* grid = this->Grid;
+  if (!grid || grid->HasCellValues() ||
+    grid->GetInterpolation() != GridDensity::Interpolation::Linear || size < 1 ||
+    size > MostCells || s < 1 || s > GridDensity::MaxNativeSamples)
+  {
+    return false;
+  }
+  const std::array<int, 3>& dims = grid->GetDimensions();
+  // The cells along each axis, and the points they read: one beyond on
+  // either side, clamped at the grid's ends.
+  int cell[3][MostCells], lo[3], count[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    for (int c = 0; c < size; ++c)
+    {
+      cell[a][c] = std::min(lower[a] + c, dims[a] - 1);
+    }
+    lo[a] = std::max(0, cell[a][0] - 1);
+    count[a] = std::min(dims[a] - 1, cell[a][size - 1] + 1) - lo[a] + 1;
+  }
+  float points[MostPoints * MostPoints * MostPoints];
+  grid->GetValues().Visit(
+    [&](const auto* values)
+    {
+      float* to = points;
+      for (int z = 0; z < count[2]; ++z)
+        for (int y = 0; y < count[1]; ++y)
+        {
+          const auto* row =
+            values + (static_cast<std::size_t>(lo[2] + z) * dims[1] + lo[1] + y) * dims[0];
+          for (int x = 0; x < count[0]; ++x)
+          {
+            *to++ = static_cast<float>(row[lo[0] + x]);
+          }
+        }
+    });
+  auto at = [&](int x, int y, int z)
+  { return points[((z - lo[2]) * count[1] + (y - lo[1])) * count[0] + (x - lo[0])]; };
+  // Each cell's range over its 27 points (BendsWithinNativeCell()), one axis at a time.
+  auto window = [&](int a, int c, int& from, int& to)
+  {
+    from = std::max(cell[a][c] - 1, 0);
+    to = std::min(cell[a][c] + 1, dims[a] - 1);
+  };
+  float lowX[MostPoints * MostPoints * MostCells], highX[MostPoints * MostPoints * MostCells];
+  for (int z = 0; z < count[2]; ++z)
+    for (int y = 0; y < count[1]; ++y)
+      for (int i = 0; i < size; ++i)
+      {
+        int from, to;
+        window(0, i, from, to);
+        float l = at(from, lo[1] + y, lo[2] + z), h = l;
+        for (int x = from + 1; x <= to; ++x)
+        {
+          const float v = at(x, lo[1] + y, lo[2] + z);
+          l = std::min(l, v);
+          h = std::max(h, v);
+        }
+        const int n = (z * count[1] + y) * size + i;
+        lowX[n] = l;
+        highX[n] = h;
+      }
+  float lowXY[MostPoints * MostCells * MostCells], highXY[MostPoints * MostCells * MostCells];
+  for (int z = 0; z < count[2]; ++z)
+    for (int j = 0; j < size; ++j)
+      for (int i = 0; i < size; ++i)
+      {
+        int from, to;
+        window(1, j, from, to);
+        float l = lowX[(z * count[1] + from - lo[1]) * size + i];
+        float h = highX[(z * count[1] + from - lo[1]) * size + i];
+        for (int y = from + 1; y <= to; ++y)
+        {
+          l = std::min(l, lowX[(z * count[1] + y - lo[1]) * size + i]);
+          h = std::max(h, highX[(z * count[1] + y - lo[1]) * size + i]);
+        }
+        lowXY[(z * size + j) * size + i] = l;
+        highXY[(z * size + j) * size + i] = h;
+      }
+  float samples[GridDensity::MaxNativeSamples * GridDensity::MaxNativeSamples *
+    GridDensity::MaxNativeSamples];
+  for (int k = 0; k < size; ++k)
+    for (int j = 0; j < size; ++j)
+      for (int i = 0; i < size; ++i)
+      {
+        int from, to;
+        window(2, k, from, to);
+        float l = lowXY[((from - lo[2]) * size + j) * size + i];
+        float h = highXY[((from - lo[2]) * size + j) * size + i];
+        for (int z = from + 1; z <= to; ++z)
+        {
+          l = std::min(l, lowXY[((z - lo[2]) * size + j) * size + i]);
+          h = std::max(h, highXY[((z - lo[2]) * size + j) * size + i]);
+        }
+        if (!this->PointBetween(l, h))
+        {
+          *out++ = this->Opacity.Extinction(at(cell[0][i], cell[1][j], cell[2][k]));
+          continue;
+        }
+        // NativeMean(): the function's mean over the cell's s^3 samples.
+        const int index[3] = { cell[0][i], cell[1][j], cell[2][k] };
+        GridDensity::InterpolateNativeSamples(index, dims, s, at, samples);
+        double sum = 0.0;
+        for (int n = 0; n < s * s * s; ++n)
+        {
+          sum += this->Opacity.Extinction(samples[n]);
+        }
+        *out++ = static_cast<float>(sum / (static_cast<double>(s) * s * s));
+      }
+  return true;
+}
+
 bool ClassifiedDensity::BendsWithin(const Box& region) const
 {
   const GridDensity* grid = this->Grid;

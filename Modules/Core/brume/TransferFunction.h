@@ -168,6 +168,16 @@ public:
    * directly (10^8 cells of a 512^3 field ask it).
    */
   bool BendsWithinNativeCell(int i, int j, int k, const Box& cell) const;
+  /**
+   * The samples brume::NativeMediumGrid takes of the size^3 native cells
+   * from `lower` (x fastest; cells past the grid's last take the last's):
+   * NativeMean() of s^3 samples where BendsWithinNativeCell(), else the
+   * function at the cell's point; the same floats as cell by cell, from
+   * the brick's points read once. False, with nothing written, where the
+   * scalars are not a grid of point values interpolated linearly, or size
+   * exceeds 8.
+   */
+  bool NativeBrick(const std::array<int, 3>& lower, int size, int s, float* out) const;
 
   const DensityField& GetScalars() const { return *this->Scalars; }
   const OpacityTransferFunction& GetOpacity() const { return this->Opacity; }
