@@ -111,39 +111,6 @@ TypedValues::TypedValues(FloatBuffer floats)
   this->Floats = this->FloatValues.Data();
 }
 
-TypedValues TypedValues::Wrap(
-  const std::uint8_t* data, std::size_t n, std::shared_ptr<const void> owner)
-{
-  TypedValues values;
-  values.Kind = Type::UInt8;
-  values.Count = n;
-  values.Bytes8 = data;
-  values.Owner = std::move(owner);
-  return values;
-}
-
-TypedValues TypedValues::Wrap(
-  const std::uint16_t* data, std::size_t n, std::shared_ptr<const void> owner)
-{
-  TypedValues values;
-  values.Kind = Type::UInt16;
-  values.Count = n;
-  values.Unsigned16 = data;
-  values.Owner = std::move(owner);
-  return values;
-}
-
-TypedValues TypedValues::Wrap(
-  const std::int16_t* data, std::size_t n, std::shared_ptr<const void> owner)
-{
-  TypedValues values;
-  values.Kind = Type::Int16;
-  values.Count = n;
-  values.Signed16 = data;
-  values.Owner = std::move(owner);
-  return values;
-}
-
 std::size_t TypedValues::GetMemorySize() const
 {
   return this->Count * (this->Kind == Type::UInt8 ? 1 : (this->Kind == Type::Float32 ? 4 : 2));

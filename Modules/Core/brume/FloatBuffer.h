@@ -7,6 +7,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <type_traits>
+#include <utility>
 
 namespace brume
 {
@@ -82,13 +84,32 @@ public:
   TypedValues() = default;
   /// Floats of the grid's own (or wrapped: FloatBuffer::Wrap()).
   explicit TypedValues(FloatBuffer floats);
-  /// `n` values at `data`, kept alive by `owner` (null: the caller keeps them alive).
-  static TypedValues Wrap(
-    const std::uint8_t* data, std::size_t n, std::shared_ptr<const void> owner);
-  static TypedValues Wrap(
-    const std::uint16_t* data, std::size_t n, std::shared_ptr<const void> owner);
-  static TypedValues Wrap(
-    const std::int16_t* data, std::size_t n, std::shared_ptr<const void> owner);
+  /// `n` values at `data` (8- or 16-bit integers), kept alive by `owner`
+  /// (null: the caller keeps them alive).
+  template <typename T>
+  static TypedValues Wrap(const T* data, std::size_t n, std::shared_ptr<const void> owner)
+  {
+    TypedValues values;
+    values.Count = n;
+    values.Owner = std::move(owner);
+    if constexpr (std::is_same_v<T, std::uint8_t>)
+    {
+      values.Kind = Type::UInt8;
+      values.Bytes8 = data;
+    }
+    else if constexpr (std::is_same_v<T, std::uint16_t>)
+    {
+      values.Kind = Type::UInt16;
+      values.Unsigned16 = data;
+    }
+    else
+    {
+      static_assert(std::is_same_v<T, std::int16_t>, "8- or 16-bit integers");
+      values.Kind = Type::Int16;
+      values.Signed16 = data;
+    }
+    return values;
+  }
 
   /// Value i as a float (exact for every type held).
   float operator[](std::size_t i) const
