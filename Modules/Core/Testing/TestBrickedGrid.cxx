@@ -187,3 +187,44 @@ TEST(BrickedGrid, SameWhateverTheThreadsAndTheBox)
   EXPECT_EQ(serial.GetSlots(), wide.GetSlots());
   EXPECT_EQ(serial.GetConstants(), wide.GetConstants());
 }
+
+TEST(BrickedGrid, ConstantRunsAreWhatInterpolationGives)
+{
+  // The slab and the ball of StoresOnlyTheBricksWhereValuesVary, over a
+  // box of another size: a ray's samples that ConstantSamples() counts in
+  // a brick of one value interpolate to that value, every one of them.
+  const std::array<int, 3> n{ 64, 64, 64 };
+  const Box box{ Vec3(-1.f, 0.f, 2.f), Vec3(1.f, 3.f, 2.5f) };
+  auto value = [](int i, int j, int k)
+  {
+    const float dx = static_cast<float>(i) - 48.f, dy = static_cast<float>(j) - 32.f,
+                dz = static_cast<float>(k) - 32.f;
+    return i < 16 ? 1.f : (dx * dx + dy * dy + dz * dz < 25.f ? 2.f : 0.f);
+  };
+  const BrickedGrid grid = BrickedGrid::Sample(n, box, value, Never, SerialFor());
+  Random random(3, 0);
+  long counted = 0, longest = 0;
+  for (int ray = 0; ray < 2000; ++ray)
+  {
+    // From anywhere in the box (and a little beyond), steps of 0.1 to 3 cells.
+    Vec3 p, d;
+    for (int a = 0; a < 3; ++a)
+    {
+      p[a] = box.lower[a] + box.Extent()[a] * (1.2f * random.NextFloat() - 0.1f);
+      d[a] = 2.f * random.NextFloat() - 1.f;
+    }
+    const Vec3 step = d * (box.Extent().x / 64.f) * (0.1f + 2.9f * random.NextFloat());
+    float constant = -1.f;
+    const int run = grid.ConstantSamples(p, step, 500, constant);
+    ASSERT_LE(run, 500);
+    for (int k = 0; k < run; ++k)
+    {
+      const Vec3 q = p + step * static_cast<float>(k);
+      ASSERT_EQ(grid.Interpolate(q), constant) << ray << " sample " << k << " of " << run;
+    }
+    counted += run;
+    longest = std::max<long>(longest, run);
+  }
+  EXPECT_GT(counted, 10000); // most of the box is bricks of one value (14,752 counted)
+  EXPECT_GT(longest, 20);
+}

@@ -171,6 +171,51 @@ float BrickedGrid::Interpolate(const Vec3& p) const
   return c0 * (1.f - w[2]) + c1 * w[2];
 }
 
+int BrickedGrid::ConstantSamples(const Vec3& p, const Vec3& step, int most, float& value) const
+{
+  // p's brick, as Interpolate() finds it.
+  const Vec3 q = (p - this->Bounds.lower) * this->CellsPerLength;
+  const Vec3 dq = step * this->CellsPerLength;
+  constexpr float PerStride = 1.f / static_cast<float>(Stride);
+  constexpr double Margin = 1e-3; // cells
+  int b[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    const float n = static_cast<float>(this->Dims[a]);
+    float u = q[a] - 0.5f;
+    u = u < 0.f ? 0.f : (u > n - 1.f ? n - 1.f : u);
+    b[a] = std::max(std::min(static_cast<int>(u * PerStride), this->BrickDims[a] - 1), 0);
+  }
+  const std::size_t brick = this->BrickIndex(b[0], b[1], b[2]);
+  if (this->Slots[brick] >= 0)
+  {
+    return 0;
+  }
+  value = this->Constants[brick];
+  // Along each axis, the brick takes the positions (before clamping) from
+  // Stride b to Stride (b + 1), beyond them at the first and last bricks.
+  double run = most;
+  for (int a = 0; a < 3; ++a)
+  {
+    const double u = static_cast<double>(q[a]) - 0.5, du = dq[a];
+    const bool first = b[a] == 0, last = b[a] == this->BrickDims[a] - 1;
+    const double lo = Stride * b[a] + Margin, hi = Stride * (b[a] + 1) - Margin;
+    if ((!first && u < lo) || (!last && u > hi))
+    {
+      return 0;
+    }
+    if (du > 0.0 && !last)
+    {
+      run = std::min(run, std::floor((hi - u) / du) + 1.0);
+    }
+    else if (du < 0.0 && !first)
+    {
+      run = std::min(run, std::floor((u - lo) / -du) + 1.0);
+    }
+  }
+  return static_cast<int>(std::max(run, 0.0));
+}
+
 void BrickedGrid::ForEachNonZeroCell(const std::function<void(int, int, int, float)>& f) const
 {
   for (int bk = 0; bk < this->BrickDims[2]; ++bk)

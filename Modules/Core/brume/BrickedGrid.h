@@ -88,6 +88,15 @@ public:
   float At(int i, int j, int k) const;
   /// Trilinear between the cells' centres at world point `p`, clamped at the faces.
   float Interpolate(const Vec3& p) const;
+  /**
+   * How many of the points p, p + step, p + 2 step, ... (at most `most`)
+   * lie in p's brick when that brick holds one value (written to `value`):
+   * Interpolate() gives `value` at each of them, so a ray marching the grid
+   * adds it without looking it up. Points within 10^-3 cell of the brick's
+   * faces end the run (their brick is left to Interpolate()); 0 where p's
+   * brick stores its samples, or p lies that close to a face.
+   */
+  int ConstantSamples(const Vec3& p, const Vec3& step, int most, float& value) const;
 
   /**
    * Calls `f(i, j, k, value)` once for every cell whose brick is not a

@@ -101,10 +101,29 @@ Vec3 DirectLight::Transmittance(const Vec3& x, const Vec3& d, float length) cons
       const double opaque =
         MinComponent(sigmaT) > 0.f ? OpaqueDepth / MinComponent(sigmaT) / h : 0.0;
       integral = 0.0;
+      int constantLeft = 0; // samples still in a brick of one value
+      float constant = 0.f;
       for (int i = 0; i < n; ++i)
       {
-        const Vec3 p = x + d * (t0 + (static_cast<float>(i) + 0.5f) * h);
-        integral += grid ? grid->Interpolate(p) : medium.Density->Evaluate(p);
+        if (constantLeft > 0)
+        {
+          --constantLeft;
+          integral += constant; // what Interpolate() gives there
+        }
+        else
+        {
+          const Vec3 p = x + d * (t0 + (static_cast<float>(i) + 0.5f) * h);
+          const int run = grid ? grid->ConstantSamples(p, d * h, n - i, constant) : 0;
+          if (run > 0)
+          {
+            constantLeft = run - 1;
+            integral += constant;
+          }
+          else
+          {
+            integral += grid ? grid->Interpolate(p) : medium.Density->Evaluate(p);
+          }
+        }
         if (opaque > 0.0 && integral > opaque)
         {
           break; // opaque in every channel
