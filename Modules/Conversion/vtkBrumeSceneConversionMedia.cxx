@@ -415,6 +415,13 @@ std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
   }
   int dims[3];
   image->GetDimensions(dims);
+  if (dims[0] < 1 || dims[1] < 1 || dims[2] < 1)
+  {
+    std::ostringstream os;
+    os << "has an empty or inverted extent (" << dims[0] << " x " << dims[1] << " x " << dims[2]
+       << " points)";
+    return os.str();
+  }
   std::array<int, 3> n{ dims[0], dims[1], dims[2] };
   if (cells)
   {
@@ -422,6 +429,17 @@ std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
     {
       d = std::max(1, d - 1);
     }
+  }
+  // The grid reads one value per point (or cell): an array of another
+  // length (a vtkImageData put together by hand) is refused, not read past.
+  const double expected = static_cast<double>(n[0]) * n[1] * n[2];
+  if (static_cast<double>(density->GetNumberOfTuples()) != expected)
+  {
+    std::ostringstream os;
+    os << "has " << density->GetNumberOfTuples() << " tuples in its density array '"
+       << (density->GetName() ? density->GetName() : "") << "', not the " << expected << " of its "
+       << n[0] << " x " << n[1] << " x " << n[2] << (cells ? " cells" : " points");
+    return os.str();
   }
   const FieldCache::GridKey key{ density, density->GetMTime(), static_cast<int>(component),
     opacity.has_value(), n, m.Bounds, cells, interpolation };

@@ -287,6 +287,19 @@ void TestReleasedWithTheArray()
     "deleting the array lets its converted field go");
 }
 
+// A field whose array holds fewer values than its points (put together by
+// hand) is refused with a message, not read past its end.
+void TestMismatchedArray()
+{
+  vtkSmartPointer<vtkImageData> field = Field(8);
+  field->GetPointData()->GetScalars()->SetNumberOfTuples(100);
+  brume::Scene scene;
+  const std::string error = vtkBrumeSceneConversion::ToScene(Scene(field), scene);
+  Check(error.find("has 100 tuples in its density array 'wave', not the 512 of its 8 x 8 x 8 "
+                   "points") != std::string::npos,
+    "a short array is refused: '" + error + "'");
+}
+
 // 8- and 16-bit arrays are read in place, in their own type, and make the
 // medium their values make as floats.
 void TestTypedScalars()
@@ -324,6 +337,7 @@ int TestNativeResolution(int, char*[])
   TestReleasedWithTheArray();
   TestOutputOutlivesTheFilters();
   TestTypedScalars();
+  TestMismatchedArray();
   if (failures)
   {
     std::cerr << failures << " check(s) failed\n";

@@ -34,7 +34,10 @@
 # an ASCII row, which VTK's parser reads as the row's end, then indexes
 # words past it) and mesh-empty-header-line-ply with empty-header-line.ply
 # (another: a header line of a tab alone, on which VTK's parser compares a
-# word it never set; brume crashed).
+# word it never set; brume crashed); and density-vti-inverted-extent with
+# inverted-extent.vti (a fuzzer's find: the image VTK reads has the whole
+# extent "0 1023 0 1023 8 0", whose -7340032 points became a count of 2^64
+# less that much).
 import json, copy, os, sys
 out = sys.argv[1]
 base = {
