@@ -9,12 +9,29 @@
 #include <unistd.h>
 #endif
 
+// Under AddressSanitizer every buffer comes from operator new, at its exact
+// size, so that the sanitizer sees each read past a grid's end.
+#if defined(__SANITIZE_ADDRESS__)
+#define BRUME_MAPPED_BUFFERS 0
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define BRUME_MAPPED_BUFFERS 0
+#endif
+#endif
+#if !defined(BRUME_MAPPED_BUFFERS)
+#if defined(__linux__)
+#define BRUME_MAPPED_BUFFERS 1
+#else
+#define BRUME_MAPPED_BUFFERS 0
+#endif
+#endif
+
 namespace brume
 {
 
 namespace
 {
-#if defined(__linux__)
+#if BRUME_MAPPED_BUFFERS
 // Buffers from this size on are mapped on their own, in huge pages where offered.
 constexpr std::size_t MappedBytes = std::size_t(2) << 20;
 
@@ -40,7 +57,7 @@ FloatBuffer FloatBuffer::Allocate(std::size_t n)
   {
     throw std::bad_alloc();
   }
-#if defined(__linux__)
+#if BRUME_MAPPED_BUFFERS
   const std::size_t bytes = n * sizeof(float);
   if (bytes >= MappedBytes)
   {
@@ -76,7 +93,7 @@ void FloatBuffer::Truncate(std::size_t n)
   {
     return;
   }
-#if defined(__linux__)
+#if BRUME_MAPPED_BUFFERS
   if (Unmap* unmap = std::get_deleter<Unmap>(this->Memory))
   {
     const std::size_t page = static_cast<std::size_t>(sysconf(_SC_PAGESIZE));
