@@ -223,21 +223,24 @@ bool PlyBodyConsistent(std::istream& in, const std::filesystem::path& file,
     {
       if (text)
       {
-        // VTK reads an ASCII row as one line.
+        // VTK reads an ASCII row as one line, a blank one too (and then
+        // aborts on an assertion at the file's end: a fuzzer's find).
         bool tooLong = false;
-        do
+        if (!ReadLine(in, line, tooLong))
         {
-          if (!ReadLine(in, line, tooLong))
-          {
-            error = name + " is truncated: element '" + e.Name + "' has fewer rows than announced";
-            return false;
-          }
-          if (tooLong)
-          {
-            error = name + ": a row of element '" + e.Name + "' is longer than 1 MiB";
-            return false;
-          }
-        } while (line.find_first_not_of(" \t\r") == std::string::npos);
+          error = name + " is truncated: element '" + e.Name + "' has fewer rows than announced";
+          return false;
+        }
+        if (tooLong)
+        {
+          error = name + ": a row of element '" + e.Name + "' is longer than 1 MiB";
+          return false;
+        }
+        if (line.find_first_not_of(" \t\r\v\f") == std::string::npos)
+        {
+          error = name + ": row " + Count(row) + " of element '" + e.Name + "' is an empty line";
+          return false;
+        }
         // VTK's parser reads a row as a C string and indexes its words
         // unchecked: a NUL (or another control character) ends the row
         // early there, where words here would run on (a fuzzer's find, a
@@ -249,8 +252,8 @@ bool PlyBodyConsistent(std::istream& in, const std::filesystem::path& file,
                   c != '\v' && c != '\f';
               }))
         {
-          error = name + ": a control character in row " + Count(row) + " of element '" +
-            e.Name + "'";
+          error =
+            name + ": a control character in row " + Count(row) + " of element '" + e.Name + "'";
           return false;
         }
         // VTK's parser indexes the line's words unchecked: each row's line

@@ -37,7 +37,8 @@
 # word it never set; brume crashed); and density-vti-inverted-extent with
 # inverted-extent.vti (a fuzzer's find: the image VTK reads has the whole
 # extent "0 1023 0 1023 8 0", whose -7340032 points became a count of 2^64
-# less that much).
+# less that much); and mesh-blank-row-ply with blank-row.ply (another: a
+# blank line among an ASCII body's rows, on which VTK's reader aborts).
 import json, copy, os, sys
 out = sys.argv[1]
 base = {
