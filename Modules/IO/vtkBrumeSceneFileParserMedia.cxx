@@ -267,11 +267,23 @@ std::string CheckAnnouncedExtent(vtkInformation* information, const std::string&
   information->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
   double points = 1.0;
   std::ostringstream dims;
+  bool empty = false;
   for (int a = 0; a < 3; ++a)
   {
     const double n = static_cast<double>(extent[2 * a + 1]) - extent[2 * a] + 1.0;
     points *= std::max(n, 0.0);
+    empty = empty || n < 1.0;
     dims << (a ? " x " : "") << static_cast<long long>(n);
+  }
+  if (empty)
+  {
+    // An inverted extent (a fuzzer's "0 1023 0 1023 8 0") gives VTK an
+    // image of negative dimensions.
+    std::ostringstream os;
+    os << "'" << file << "' announces the whole extent " << extent[0] << " " << extent[1] << " "
+       << extent[2] << " " << extent[3] << " " << extent[4] << " " << extent[5] << ", "
+       << dims.str() << " points: none";
+    return os.str();
   }
   const double memory = 2.0 * vtkBrumeSceneFileChecks::UsableMemory();
   const double bytes = points * static_cast<double>(sizeof(float));

@@ -298,6 +298,12 @@ void TestMismatchedArray()
   Check(error.find("has 100 tuples in its density array 'wave', not the 512 of its 8 x 8 x 8 "
                    "points") != std::string::npos,
     "a short array is refused: '" + error + "'");
+  // An inverted extent: dimensions below 1.
+  field = Field(8);
+  field->SetExtent(0, 7, 0, 7, 5, 0);
+  const std::string inverted = vtkBrumeSceneConversion::ToScene(Scene(field), scene);
+  Check(inverted.find("has an empty or inverted extent (8 x 8 x -4 points)") != std::string::npos,
+    "an inverted extent is refused: '" + inverted + "'");
 }
 
 // 8- and 16-bit arrays are read in place, in their own type, and make the
