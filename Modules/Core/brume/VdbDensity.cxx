@@ -523,6 +523,15 @@ std::string CheckVdbFile(const std::string& fileName)
     return corrupt + "file format version " + std::to_string(version) +
       " is not one OpenVDB 10 reads";
   }
+  if (version < 216)
+  {
+    // Before grid instancing a grid's transform follows its topology, whose
+    // size only reading it tells: what the transform announces cannot be
+    // checked first (a fuzzer's find: a version-211 grid announcing a 3 GB
+    // transform name, which OpenVDB allocated).
+    return "'" + fileName + "' has the OpenVDB file format version " + std::to_string(version) +
+      ", older than 216, the oldest Brume reads: save the grid again with a recent OpenVDB";
+  }
   char isCompressed = 0;
   if (!scan.Read(major) || !scan.Read(minor) || (version >= 212 && !scan.Read(hasOffsets)) ||
     (version >= 220 && version < 222 && !scan.Read(isCompressed)) ||
@@ -571,7 +580,8 @@ std::string CheckVdbFile(const std::string& fileName)
     {
       return corrupt + "the metadata of grid " + std::to_string(g) + " runs past its data";
     }
-    if (version >= 219 && (!grid.String(&map) || map.size() > 64))
+    // OpenVDB's Transform::read reads the map's type name whatever the version.
+    if (!grid.String(&map) || map.size() > 64)
     {
       return corrupt + "grid " + std::to_string(g) + " has no valid transform";
     }

@@ -38,7 +38,9 @@
 # inverted-extent.vti (a fuzzer's find: the image VTK reads has the whole
 # extent "0 1023 0 1023 8 0", whose -7340032 points became a count of 2^64
 # less that much); and mesh-blank-row-ply with blank-row.ply (another: a
-# blank line among an ASCII body's rows, on which VTK's reader aborts).
+# blank line among an ASCII body's rows, on which VTK's reader aborts); and
+# density-vdb-old-version with old-version.vdb (a third: a version-211 grid,
+# whose transform follows its topology, announcing a 3 GB transform name).
 import json, copy, os, sys
 out = sys.argv[1]
 base = {
