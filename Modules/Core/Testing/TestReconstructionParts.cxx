@@ -291,8 +291,17 @@ TEST(ReconstructionParts, MediumScatteringSetsTheForwardPeakApart)
   {
     const ForwardPeak& peak = peaked.GetPeak(directional);
     EXPECT_GT(peak.Forward, 0.f);
-    EXPECT_LE(
-      peak.G, directional ? MediumScattering::DirectionalResolvedG : MediumScattering::ResolvedG);
+    // Per view, HG(g) truncated at what HG(ResolvedG) reaches; as
+    // spherical harmonics, a Henyey-Greenstein remainder they project.
+    if (directional)
+    {
+      EXPECT_EQ(peak.G, MediumScattering::DirectionalResolvedG);
+    }
+    else
+    {
+      EXPECT_EQ(peak.G, 0.9f);
+      EXPECT_EQ(peak.Cap, HenyeyGreenstein(MediumScattering::ResolvedG).Evaluate(1.f));
+    }
     EXPECT_FLOAT_EQ(peaked.GetExtinctionFactor(directional).y, 1.f - 0.9f * peak.Forward);
   }
   // An albedo folded into the texture: the texel is the source radiance.

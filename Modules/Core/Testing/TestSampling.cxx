@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <vector>
@@ -163,6 +164,8 @@ TEST(Sampling, ForwardPeakKeepsTheMeanCosine)
     EXPECT_GT(peak.Forward, 0.f) << "g = " << g;
     EXPECT_LT(peak.Forward, 1.f) << "g = " << g;
     EXPECT_NEAR(peak.Forward + (1.f - peak.Forward) * peak.G, g, 1e-6f) << "g = " << g;
+    EXPECT_FLOAT_EQ(
+      peak.Remainder(-0.3f), (1.f - peak.Forward) * HenyeyGreenstein(0.7f).Evaluate(-0.3f));
   }
   // Up to it, and backward, nothing is set apart.
   for (float g : { -0.99f, -0.5f, 0.f, 0.5f, 0.7f })
@@ -170,6 +173,49 @@ TEST(Sampling, ForwardPeakKeepsTheMeanCosine)
     const ForwardPeak peak = SplitForwardPeak(g, 0.7f);
     EXPECT_EQ(peak.Forward, 0.f) << "g = " << g;
     EXPECT_EQ(peak.G, g) << "g = " << g;
+  }
+}
+
+TEST(Sampling, TruncatedForwardPeakIsHenyeyGreensteinBelowItsCap)
+{
+  // Beyond the cap, only what rises above it is set apart: the remainder is
+  // HG(g) itself wherever HG(g) is below the cap (backward above all), and
+  // the remainder and the peak together hold all the light.
+  const float cap = HenyeyGreenstein(0.7f).Evaluate(1.f);
+  for (float g : { 0.75f, 0.8f, 0.9f, 0.99f, 0.999f })
+  {
+    const ForwardPeak peak = TruncateForwardPeak(g, cap);
+    const HenyeyGreenstein hg(g);
+    EXPECT_GT(peak.Forward, 0.f) << "g = " << g;
+    EXPECT_LT(peak.Forward, 1.f) << "g = " << g;
+    double total = 0.0, largest = 0.0;
+    const int steps = 200000;
+    for (int i = 0; i < steps; ++i)
+    {
+      // The midpoint rule in cos(theta), finer toward the peak (cos = 1 - t^4).
+      const double t0 = static_cast<double>(i) / steps, t1 = static_cast<double>(i + 1) / steps;
+      const double c0 = 1.0 - 2.0 * std::pow(t0, 4.0), c1 = 1.0 - 2.0 * std::pow(t1, 4.0);
+      const float mu = static_cast<float>(0.5 * (c0 + c1));
+      const double r = peak.Remainder(mu);
+      total += 2.0 * M_PI * r * (c0 - c1);
+      largest = std::max(largest, r);
+      if (hg.Evaluate(mu) < 0.99f * cap)
+      {
+        ASSERT_FLOAT_EQ(peak.Remainder(mu), hg.Evaluate(mu)) << "g = " << g << ", cos " << mu;
+      }
+    }
+    EXPECT_NEAR(total + peak.Forward, 1.0, 1e-4) << "g = " << g;
+    EXPECT_LE(largest, cap * (1.0 + 1e-6)) << "g = " << g;
+  }
+  // Where HG(g) never reaches the cap, and backward, nothing is set apart.
+  for (float g : { -0.99f, -0.5f, 0.f, 0.5f, 0.7f })
+  {
+    const ForwardPeak peak = TruncateForwardPeak(g, cap);
+    EXPECT_EQ(peak.Forward, 0.f) << "g = " << g;
+    for (float mu : { -1.f, 0.f, 0.5f, 1.f })
+    {
+      EXPECT_EQ(peak.Remainder(mu), HenyeyGreenstein(g).Evaluate(mu)) << "g = " << g;
+    }
   }
 }
 

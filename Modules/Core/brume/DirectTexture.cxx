@@ -408,9 +408,8 @@ void DirectTexture::Combine(const ObjectLayout& layout, const std::vector<float>
   // As the particles' light: the phase function's remainder, per unit of
   // the reduced extinction.
   const MediumScattering& scattering = layout.Scattering;
-  const HenyeyGreenstein phase(layout.MediumRef ? scattering.GetPeak(false).G : 0.f);
-  const Vec3 scale = scattering.GetAlbedo() * (1.f - scattering.GetPeak(false).Forward) /
-    scattering.GetExtinctionFactor(false);
+  const ForwardPeak& peak = scattering.GetPeak(false);
+  const Vec3 scale = scattering.GetAlbedo() / scattering.GetExtinctionFactor(false);
   const std::size_t nx = layout.Resolution[0], nxy = nx * layout.Resolution[1];
   const std::size_t rows = static_cast<std::size_t>(dims[1]) * dims[2];
   // The output texels' x positions apart, for the media's row loops.
@@ -472,7 +471,7 @@ void DirectTexture::Combine(const ObjectLayout& layout, const std::vector<float>
               const float ex = toward.x - offsetX[0][x], ey = toward.y - offsetX[1][x],
                           ez = toward.z - offsetX[2][x];
               const float dot = ax[3] * ex + ax[4] * ey + ax[5] * ez;
-              phaseOf[x] = phase.Evaluate(dot / std::sqrt(ex * ex + ey * ey + ez * ez));
+              phaseOf[x] = peak.Remainder(dot / std::sqrt(ex * ex + ey * ey + ez * ez));
             }
             for (int x = 0; x < dims[0]; ++x)
             {

@@ -253,12 +253,10 @@ inline void HitBinning::WeighHit(const ObjectLayout& layout, const Vec3& eye, co
     // the direction of travel to the eye: WeighKept() evaluates the same
     // expression in vectorized blocks.
     const ForwardPeak& peak = layout.Scattering.GetPeak(false);
-    const HenyeyGreenstein phase(peak.G);
-    const float remainder = static_cast<float>(1.0 - peak.Forward);
     const float dx = eye.x - position[0], dy = eye.y - position[1], dz = eye.z - position[2];
     const float cosine = (direction[0] * dx + direction[1] * dy + direction[2] * dz) /
       std::sqrt(dx * dx + dy * dy + dz * dz);
-    const float p = remainder * phase.Evaluate(cosine);
+    const float p = peak.Remainder(cosine);
     for (int c = 0; c < 3; ++c)
     {
       value[c] = static_cast<double>(p) * flux[c];
@@ -441,8 +439,6 @@ void HitBinning::WeighKept(
   const Medium* medium = layout.MediumRef;
   // Media: the remainder of the phase function once its peak is set apart.
   const ForwardPeak& peak = layout.Scattering.GetPeak(false);
-  const HenyeyGreenstein phase(medium ? peak.G : 0.f);
-  const float remainder = static_cast<float>(1.0 - peak.Forward);
   if (medium)
   {
     // Phase function from the direction of travel to the eye, in blocks
@@ -471,7 +467,7 @@ void HitBinning::WeighKept(
           {
             const float cosine = (ux[i] * dx[i] + uy[i] * dy[i] + uz[i] * dz[i]) /
               std::sqrt(dx[i] * dx[i] + dy[i] * dy[i] + dz[i] * dz[i]);
-            p[i] = remainder * phase.Evaluate(cosine);
+            p[i] = peak.Remainder(cosine);
           }
           for (std::size_t i = 0; i < n; ++i)
           {

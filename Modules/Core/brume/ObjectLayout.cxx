@@ -9,7 +9,8 @@ namespace brume
 MediumScattering::MediumScattering(const Medium& medium)
   : AlbedoVaries(medium.HasVaryingAlbedo())
   , Albedo(AlbedoVaries ? Vec3(1.f) : medium.Albedo())
-  , Peaks{ SplitForwardPeak(medium.G, ResolvedG), SplitForwardPeak(medium.G, DirectionalResolvedG) }
+  , Peaks{ TruncateForwardPeak(medium.G, HenyeyGreenstein(ResolvedG).Evaluate(1.f)),
+    SplitForwardPeak(medium.G, DirectionalResolvedG) }
   , ExtinctionFactors{ Vec3(1.f) - Albedo * Peaks[0].Forward,
     Vec3(1.f) - Albedo * Peaks[1].Forward }
 {

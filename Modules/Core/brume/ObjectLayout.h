@@ -21,19 +21,22 @@ namespace brume
 {
 
 /**
- * Strongly forward-scattering media: the phase function's peak beyond an
- * asymmetry the representation resolves is set apart (SplitForwardPeak in
- * brume/Sampling.h): ResolvedG for the per-view textures (directional
- * false), DirectionalResolvedG for the directional representation (true),
- * whose three bands lose more of a peaked phase function than the delta
- * approximation does. The texture then holds the light in-scattered by the
- * remainder, HG(GetPeak(directional).G), which rests on many particles
- * where HG(g) rests on the few travelling almost straight at the eye, and
- * the peak is drawn as transport: a renderer multiplies the medium's
- * sigma_t by GetExtinctionFactor(directional) (1 - Forward albedo per
- * channel), and the source radiance is per unit of that reduced extinction.
- * Without a split (g at most the resolved asymmetry, surfaces) the factor
- * is 1.
+ * Strongly forward-scattering media: the part of the phase function's peak
+ * a representation cannot resolve is set apart (brume/Sampling.h). Per-view
+ * textures (directional false) keep HG(g) itself wherever it is below what
+ * HG(ResolvedG) reaches forward, HG(ResolvedG)(1), and set apart only what
+ * rises above that (TruncateForwardPeak): light scattered backward and
+ * sideways is in-scattered exactly. The directional representation (true)
+ * keeps a Henyey-Greenstein remainder HG(DirectionalResolvedG)
+ * (SplitForwardPeak), whose Legendre series its three bands project, at
+ * the cost of that remainder's own backward lobe. The texture then holds
+ * the light in-scattered by the remainder, GetPeak(directional).Remainder(),
+ * which rests on many particles where HG(g) rests on the few travelling
+ * almost straight at the eye, and the peak is drawn as transport: a
+ * renderer multiplies the medium's sigma_t by
+ * GetExtinctionFactor(directional) (1 - Forward albedo per channel), and
+ * the source radiance is per unit of that reduced extinction. Without a
+ * split (HG(g) resolved, surfaces) the factor is 1.
  *
  * A medium whose albedo varies (Medium::AlbedoFactor) cannot fold it into
  * its texture: the albedo may step inside a texel where the light does not.

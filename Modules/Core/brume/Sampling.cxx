@@ -58,7 +58,29 @@ ForwardPeak SplitForwardPeak(float g, float resolvedG)
   {
     peak.G = resolvedG;
     peak.Forward = (g - resolvedG) / (1.f - resolvedG);
+    peak.Scale = 1.f - peak.Forward;
   }
+  return peak;
+}
+
+ForwardPeak TruncateForwardPeak(float g, float cap)
+{
+  ForwardPeak peak;
+  peak.G = g;
+  if (!(g > 0.f && cap > 0.f) || HenyeyGreenstein(g).Evaluate(1.f) <= cap)
+  {
+    return peak;
+  }
+  // HG(g) equals the cap at cosTheta = c, where 1 + g^2 - 2 g c = d; above
+  // it HG(g) holds (1 - g^2) / (2 g) (1 / (1 - g) - 1 / sqrt(d)), of which
+  // the cap keeps 2 pi cap (1 - c).
+  constexpr double pi = 3.14159265358979323846;
+  const double gd = g, capd = cap;
+  const double d = std::cbrt(std::pow((1.0 - gd * gd) / (4.0 * pi * capd), 2.0));
+  const double c = (1.0 + gd * gd - d) / (2.0 * gd);
+  const double above = (1.0 - gd * gd) / (2.0 * gd) * (1.0 / (1.0 - gd) - 1.0 / std::sqrt(d));
+  peak.Forward = static_cast<float>(std::max(0.0, above - 2.0 * pi * capd * (1.0 - c)));
+  peak.Cap = cap;
   return peak;
 }
 

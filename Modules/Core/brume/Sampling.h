@@ -5,7 +5,9 @@
 
 #include "brume/Vec3.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace brume
 {
@@ -53,26 +55,55 @@ public:
 
 /**
  * A strongly forward phase function with its peak set apart:
- *   HG(g) ~ Forward delta(forward) + (1 - Forward) HG(G),
- * equal in the first moment: g = Forward + (1 - Forward) G (the delta-M idea
- * of Wiscombe 1977, with the remainder kept Henyey-Greenstein). Light
- * scattered into the delta keeps its direction, so along a viewing ray the
- * peak is transport at the reduced extinction sigma_t - Forward sigma_s, and
- * only the remainder, smooth enough to estimate from few particles, is
- * in-scattered. The error is the peak's angular width (about 1 - g radians)
- * where the radiance behind changes faster than that.
+ *   HG(g) ~ Forward delta(forward) + R(cosTheta),
+ * R(cosTheta) = min(Scale HG(G)(cosTheta), Cap) the remainder, of integral
+ * 1 - Forward over the sphere. Light scattered into the delta keeps its
+ * direction, so along a viewing ray the peak is transport at the reduced
+ * extinction sigma_t - Forward sigma_s, and only the remainder, smooth
+ * enough to estimate from few particles, is in-scattered. Two splits:
+ *
+ * - SplitForwardPeak (Wiscombe's delta-M idea, with the remainder kept
+ *   Henyey-Greenstein): R = (1 - Forward) HG(G), equal to HG(g) in the
+ *   first moment, g = Forward + (1 - Forward) G. Its remainder has a
+ *   Legendre series (what spherical harmonics need), but it is not HG(g)
+ *   away from the peak: at g = 0.8 split at 0.7 it scatters 12 % more
+ *   backward than HG(g) does, and 18 % less at 30 degrees.
+ * - TruncateForwardPeak: R = min(HG(g), Cap), HG(g) itself wherever it is
+ *   below Cap, so light scattered by more than the peak's half-width is
+ *   in-scattered exactly; only what rises above Cap inside that cone is
+ *   set apart.
+ *
+ * The error of either is where the radiance behind changes across the
+ * peak (about 1 - g radians; the truncated cone's half-width for a cap).
  */
 struct ForwardPeak
 {
   float Forward = 0.f;
   float G = 0.f;
+  float Scale = 1.f;
+  float Cap = std::numeric_limits<float>::infinity();
+
+  /// R(cosTheta): the remainder per steradian. Inline: binning evaluates
+  /// it per kept hit, in loops the compiler vectorizes.
+  float Remainder(float cosTheta) const
+  {
+    return std::min(this->Scale * HenyeyGreenstein(this->G).Evaluate(cosTheta), this->Cap);
+  }
 };
 
 /**
- * The split of HG(g) that leaves a remainder of asymmetry at most
- * `resolvedG`; no split (Forward 0, G = g) when g <= resolvedG.
+ * The split of HG(g) that leaves a remainder (1 - Forward) HG(G) of
+ * asymmetry G = `resolvedG`; no split (Forward 0, G = g) when
+ * g <= resolvedG.
  */
 ForwardPeak SplitForwardPeak(float g, float resolvedG);
+
+/**
+ * The split of HG(g) that keeps HG(g) where it is at most `cap` per
+ * steradian and sets apart what rises above it (G = g, Cap = `cap`); no
+ * split when HG(g) never exceeds `cap`.
+ */
+ForwardPeak TruncateForwardPeak(float g, float cap);
 
 } // namespace brume
 

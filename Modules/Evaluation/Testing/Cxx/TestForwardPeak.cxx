@@ -4,7 +4,8 @@
 // from the mist was scattered by a few tenths of a degree, which per-view
 // textures can only estimate from the few particles travelling straight at
 // the eye, unless the phase function's peak is set apart and drawn as
-// transport (brume::SplitForwardPeak). Over blocks of 4 x 4 pixels covering
+// transport (brume::TruncateForwardPeak per view, brume::SplitForwardPeak
+// as spherical harmonics). Over blocks of 4 x 4 pixels covering
 // the mist, the pipeline's image, with per-view textures and with
 // directional (spherical-harmonics) media, and the reference path tracer's
 // agree within four standard errors of the reference plus 3 % for the

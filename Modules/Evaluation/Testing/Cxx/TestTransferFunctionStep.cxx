@@ -16,10 +16,17 @@
 // function steps instead, from red to blue at the same scalar: the albedo
 // varies, applied per fragment by the slice mapper. The red and the blue
 // channels' profiles must each agree with the reference's, and the
-// colour's step lie within one pixel of the reference's. (g = 0.5: with a
-// peak set apart, g > 0.7, the pipeline draws this back-lit view 2 to 11 %
-// too bright, colour or not.)
-//   TestTransferFunctionStep [colour] [OUTPUT_DIR]
+// colour's step lie within one pixel of the reference's.
+//
+// The light travels away from the eye: what the eye sees was scattered
+// backward, by 150 to 160 degrees. With `g=G` the medium's asymmetry is G
+// (default 0.2, 0.5 with a colour): past 0.7 the phase function's forward
+// peak is set apart (brume::TruncateForwardPeak) and the remainder must
+// still scatter backward what HG(G) does. In every case the image's mean
+// must lie within 2 % of the reference's, plus four of its standard
+// errors; `spp=N` gives the reference N samples per pixel (default 128),
+// as many as its standard error needs: it grows with g.
+//   TestTransferFunctionStep [colour] [g=G] [spp=N] [OUTPUT_DIR]
 #include "EvaluationTestScenes.h"
 
 #include "vtkBrumeDataModelNames.h"
@@ -48,13 +55,14 @@ constexpr int Size = 64;
 constexpr int FirstRow = 20, LastRow = 43;
 constexpr double Step = 0.2; // the scalar (and x) of the step
 
-vtkSmartPointer<vtkPartitionedDataSetCollection> StepScene(bool colour)
+vtkSmartPointer<vtkPartitionedDataSetCollection> StepScene(bool colour, double g)
 {
   auto scene = vtkSmartPointer<vtkPartitionedDataSetCollection>::New();
   const double sigmaA[3] = { 0.2, 0.2, 0.2 }, sigmaS[3] = { 0.8, 0.8, 0.8 };
   const double white[3] = { 0.0, 0.0, 0.0 }, ones[3] = { 1.0, 1.0, 1.0 };
-  AddDensityGrid(scene, "field", 33, [](double x, double, double) { return x; },
-    colour ? white : sigmaA, colour ? ones : sigmaS, colour ? 0.5 : 0.2);
+  AddDensityGrid(
+    scene, "field", 33, [](double x, double, double) { return x; }, colour ? white : sigmaA,
+    colour ? ones : sigmaS, g);
   // Opacity 0.15 per half metre below the step, 0.6 above (VTK keeps one
   // point per scalar: the step rises over 10^-4); or 0.3 everywhere, and
   // the albedo red below the step and blue above.
@@ -116,14 +124,43 @@ int TestTransferFunctionStep(int argc, char* argv[])
     std::cerr << "no render window (no X display and no EGL): skipped\n";
     return 125;
   }
-  const bool colour = argc > 1 && std::string(argv[1]) == "colour";
-  const char* outputDir = argc > (colour ? 2 : 1) ? argv[colour ? 2 : 1] : nullptr;
-  const std::string name = colour ? "transfer-function-colour" : "transfer-function-step";
-  const auto scene = StepScene(colour);
+  bool colour = false, ownG = false;
+  double g = 0.2;
+  int spp = 128;
+  const char* outputDir = nullptr;
+  for (int a = 1; a < argc; ++a)
+  {
+    const std::string arg = argv[a];
+    if (arg == "colour")
+    {
+      colour = true;
+    }
+    else if (arg.rfind("g=", 0) == 0)
+    {
+      g = std::stod(arg.substr(2));
+      ownG = true;
+    }
+    else if (arg.rfind("spp=", 0) == 0)
+    {
+      spp = std::stoi(arg.substr(4));
+    }
+    else
+    {
+      outputDir = argv[a];
+    }
+  }
+  if (colour && !ownG)
+  {
+    g = 0.5;
+  }
+  const std::string name =
+    std::string(colour ? "transfer-function-colour" : "transfer-function-step") +
+    (ownG ? "-g" + std::to_string(g).substr(0, 4) : "");
+  const auto scene = StepScene(colour, g);
   vtkNew<vtkBrumeReferencePathTracer> reference;
   reference->SetInputData(scene);
   reference->SetSize(Size, Size);
-  reference->SetSamplesPerPixel(128);
+  reference->SetSamplesPerPixel(spp);
   reference->SetSeed(11);
   vtkNew<vtkBrumeTimedPipeline> pipeline;
   pipeline->SetInputData(scene);
@@ -164,6 +201,24 @@ int TestTransferFunctionStep(int argc, char* argv[])
     {
       std::cerr << "FAILED: the step lies " << gotStep << " pixels across, the reference's at "
                 << wantStep << "\n";
+      ok = false;
+    }
+    // The mean brightness over the whole image: pixels are independent.
+    std::vector<double> wantAll, errorAll, gotAll;
+    RowProfile(reference->GetOutput(), Size, 0, Size - 1, wantAll, &errorAll, channel);
+    RowProfile(pipeline->GetOutput(), Size, 0, Size - 1, gotAll, nullptr, channel);
+    double wantMean = 0.0, gotMean = 0.0, variance = 0.0;
+    for (std::size_t x = 0; x < wantAll.size(); ++x)
+    {
+      wantMean += wantAll[x] / Size;
+      gotMean += gotAll[x] / Size;
+      variance += errorAll[x] * errorAll[x] / (Size * Size);
+    }
+    const double ratio = gotMean / wantMean, allowed = 0.02 + 4.0 * std::sqrt(variance) / wantMean;
+    std::printf("g = %g: mean pipeline / reference %.4f (allowed 1 +- %.4f)\n", g, ratio, allowed);
+    if (!(std::abs(ratio - 1.0) <= allowed))
+    {
+      std::cerr << "FAILED: the mean brightness is " << ratio << " of the reference's\n";
       ok = false;
     }
   }
