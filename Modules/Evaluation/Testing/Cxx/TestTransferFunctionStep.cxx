@@ -25,8 +25,10 @@
 // still scatter backward what HG(G) does. In every case the image's mean
 // must lie within 2 % of the reference's, plus four of its standard
 // errors; `spp=N` gives the reference N samples per pixel (default 128),
-// as many as its standard error needs: it grows with g.
-//   TestTransferFunctionStep [colour] [g=G] [spp=N] [OUTPUT_DIR]
+// as many as its standard error needs: it grows with g. With `sh` the
+// media are spherical harmonics (DirectionalRadiance), which keep the
+// delta-M split and its backward excess (documented, not tested).
+//   TestTransferFunctionStep [colour] [sh] [g=G] [spp=N] [OUTPUT_DIR]
 #include "EvaluationTestScenes.h"
 
 #include "vtkBrumeDataModelNames.h"
@@ -124,7 +126,7 @@ int TestTransferFunctionStep(int argc, char* argv[])
     std::cerr << "no render window (no X display and no EGL): skipped\n";
     return 125;
   }
-  bool colour = false, ownG = false;
+  bool colour = false, ownG = false, sh = false;
   double g = 0.2;
   int spp = 128;
   const char* outputDir = nullptr;
@@ -134,6 +136,10 @@ int TestTransferFunctionStep(int argc, char* argv[])
     if (arg == "colour")
     {
       colour = true;
+    }
+    else if (arg == "sh")
+    {
+      sh = true;
     }
     else if (arg.rfind("g=", 0) == 0)
     {
@@ -167,6 +173,7 @@ int TestTransferFunctionStep(int argc, char* argv[])
   pipeline->SetSize(Size, Size);
   pipeline->SetNumberOfParticles(2000000);
   pipeline->MeasureNewViewOff();
+  pipeline->SetDirectionalRadiance(sh);
   if (reference->GetExecutive()->Update() != 1 || pipeline->GetExecutive()->Update() != 1)
   {
     std::cerr << "FAILED: the images were not made\n";
