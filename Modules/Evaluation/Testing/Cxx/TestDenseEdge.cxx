@@ -17,7 +17,10 @@
 //   than 4 standard errors of the total (what the matching corrects is
 //   there to be seen at this budget);
 // - with it, the excess must be less than half, by more than 4 standard
-//   errors, and the block error lower.
+//   errors, and the block error lower;
+// - with it, every block of the ball (at least a tenth as bright as the
+//   brightest, the limb's included) within 5 % of the reference's beyond
+//   4 of its standard errors.
 #include "EvaluationTestScenes.h"
 
 #include "vtkBrumeReferencePathTracer.h"
@@ -26,6 +29,7 @@
 #include "vtkExecutive.h"
 #include "vtkImageData.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -54,11 +58,24 @@ struct Comparison
 {
   double Excess;     // the totals' ratio - 1
   double BlockError; // mean |block difference| / mean block
+  // The block farthest from the reference's, in units of its own mean,
+  // beyond 4 of its standard errors, among the blocks at least a tenth as
+  // bright as the brightest (the ball's, its limb included).
+  double WorstBlock = 0.0;
+  int WorstX = -1, WorstY = -1;
 };
 
 Comparison Compare(vtkImageData* image, vtkImageData* reference, double* standardError)
 {
-  double got = 0.0, want = 0.0, differences = 0.0, variance = 0.0;
+  double got = 0.0, want = 0.0, differences = 0.0, variance = 0.0, brightest = 0.0;
+  for (int by = 0; by < Size; by += Block)
+  {
+    for (int bx = 0; bx < Size; bx += Block)
+    {
+      brightest = std::max(brightest, BlockMean(reference, bx, by, Block, nullptr));
+    }
+  }
+  Comparison c;
   for (int by = 0; by < Size; by += Block)
   {
     for (int bx = 0; bx < Size; bx += Block)
@@ -70,13 +87,22 @@ Comparison Compare(vtkImageData* image, vtkImageData* reference, double* standar
       want += w;
       differences += std::abs(g - w);
       variance += error * error;
+      const double beyond = (std::abs(g - w) - 4.0 * error) / w;
+      if (w >= 0.1 * brightest && beyond > c.WorstBlock)
+      {
+        c.WorstBlock = beyond;
+        c.WorstX = bx / Block;
+        c.WorstY = by / Block;
+      }
     }
   }
   if (standardError)
   {
     *standardError = std::sqrt(variance) / want;
   }
-  return { got / want - 1.0, differences / want };
+  c.Excess = got / want - 1.0;
+  c.BlockError = differences / want;
+  return c;
 }
 
 // One case: the reference, the pipeline with and without matching, the
@@ -114,9 +140,11 @@ bool Case(double g, bool directional, const char* name, int argc, char* argv[])
   const Comparison with = Compare(matched, reference->GetOutput(), &se);
   const Comparison without = Compare(pipeline->GetOutput(), reference->GetOutput(), nullptr);
   std::printf("%s: the reference's total to %.3f %%; without matching %+.2f %% (block error "
-              "%.2f %%), with it %+.2f %% (%.2f %%)\n",
+              "%.2f %%), with it %+.2f %% (%.2f %%); the farthest block beyond 4 standard errors: "
+              "%.2f %% (block %d, %d) without, %.2f %% (block %d, %d) with\n",
     name, 100.0 * se, 100.0 * without.Excess, 100.0 * without.BlockError, 100.0 * with.Excess,
-    100.0 * with.BlockError);
+    100.0 * with.BlockError, 100.0 * without.WorstBlock, without.WorstX, without.WorstY,
+    100.0 * with.WorstBlock, with.WorstX, with.WorstY);
   bool ok = true;
   if (without.Excess < 4.0 * se)
   {
@@ -135,6 +163,13 @@ bool Case(double g, bool directional, const char* name, int argc, char* argv[])
   if (with.BlockError >= without.BlockError)
   {
     std::cerr << "FAILED: " << name << ": the block error is not lower with matching\n";
+    ok = false;
+  }
+  if (with.WorstBlock > 0.05)
+  {
+    std::cerr << "FAILED: " << name << ": block (" << with.WorstX << ", " << with.WorstY
+              << ") lies " << 100.0 * with.WorstBlock
+              << " % of its mean beyond 4 standard errors of the reference's\n";
     ok = false;
   }
   return ok;
