@@ -135,7 +135,7 @@ bool ReportSweepObjects(vtkBrumeStabilitySweep* sweep, vtkDataObject* scene)
             << "'\n";
   if (!*medium)
   {
-    std::printf("The scene has no medium: the g, optical thickness and albedo cases are "
+    std::printf("The scene has no medium: the g, optical thickness, albedo and sheet cases are "
                 "skipped.\n\n");
   }
   if (!*surface)

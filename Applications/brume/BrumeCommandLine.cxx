@@ -493,7 +493,8 @@ void AddChart(CLI::App& app, ChartOptions& o, const Defaults& d)
     ->type_name("DIR");
   chart->add_flag("--sweep", o.Sweep,
     "the stability sweep instead: g, optical thickness,\n"
-    "albedo, particle count (up to the --particles maximum),\n"
+    "albedo, a thin sheet (1, 2, 4 voxels), particle count\n"
+    "(up to the --particles maximum),\n"
     "glossy (exponents 50 and 1000) and mirror floor, one at\n"
     "a time; per case the\n"
     "pipeline's error and the path tracer's at the same time\n"
@@ -515,7 +516,8 @@ void AddChart(CLI::App& app, ChartOptions& o, const Defaults& d)
   chart
     ->add_option("--parameter", o.Parameter,
       "the sweep runs only this parameter's cases: g, optical\n"
-      "thickness, albedo, particles, or the surface's name")
+      "thickness, albedo, sheet voxels, particles, or the\n"
+      "surface's name")
     ->transform(NotEmpty("a parameter's name"))
     ->type_name("NAME");
 }

@@ -91,9 +91,54 @@ struct Case
   vtkTypeInt64 Particles;
 };
 
+// The medium made a sheet through its box's centre, tilted 45 degrees
+// about y (seen obliquely from a camera on z), `voxels` cells of a 64^3
+// grid over the box thick, of optical depth 1 across (albedo 0.9): a
+// structure thinner than the textures' texels, whatever its thickness.
+void MakeSheet(Scene* scene, int medium, double voxels)
+{
+  auto* image = vtkImageData::SafeDownCast(ObjectData(scene, medium));
+  if (!image)
+  {
+    return;
+  }
+  double b[6];
+  image->GetBounds(b);
+  constexpr int N = 64;
+  const double h[3] = { (b[1] - b[0]) / (N - 1), (b[3] - b[2]) / (N - 1), (b[5] - b[4]) / (N - 1) };
+  const double cell = std::cbrt(h[0] * h[1] * h[2]), thickness = voxels * cell;
+  const double centre[3] = { 0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]) };
+  image->SetOrigin(b[0], b[2], b[4]);
+  image->SetSpacing(h[0], h[1], h[2]);
+  image->SetDimensions(N, N, N);
+  vtkNew<vtkDoubleArray> density;
+  density->SetName("density");
+  density->SetNumberOfTuples(static_cast<vtkIdType>(N) * N * N);
+  for (int k = 0; k < N; ++k)
+  {
+    for (int j = 0; j < N; ++j)
+    {
+      for (int i = 0; i < N; ++i)
+      {
+        // Distance to the sheet's mid-plane (normal (1, 0, 1) / sqrt(2)),
+        // the profile box-filtered over one cell.
+        const double d =
+          std::abs((b[0] + i * h[0] - centre[0]) + (b[4] + k * h[2] - centre[2])) / std::sqrt(2.0);
+        density->SetValue((static_cast<vtkIdType>(k) * N + j) * N + i,
+          std::clamp((0.5 * thickness - d) / cell + 0.5, 0.0, 1.0));
+      }
+    }
+  }
+  image->GetPointData()->SetScalars(density);
+  SetField(
+    scene, medium, vtkBrumeNames::SigmaS, { 0.9 / thickness, 0.9 / thickness, 0.9 / thickness });
+  SetField(
+    scene, medium, vtkBrumeNames::SigmaA, { 0.1 / thickness, 0.1 / thickness, 0.1 / thickness });
+}
+
 void AddMediumCases(std::vector<Case>& cases, int medium, const std::string& name, vtkTypeInt64 n)
 {
-  for (double g : { -0.99, -0.5, 0.0, 0.5, 0.9, 0.99 })
+  for (double g : { -0.99, -0.5, 0.0, 0.5, 0.75, 0.8, 0.9, 0.95, 0.99 })
   {
     cases.push_back({ "g", std::to_string(g), name,
       [=](Scene* s) { SetField(s, medium, vtkBrumeNames::G, { g }); }, n });
@@ -108,7 +153,7 @@ void AddMediumCases(std::vector<Case>& cases, int medium, const std::string& nam
       },
       n });
   }
-  for (double a : { 0.0, 0.5, 0.9, 0.99, 1.0 })
+  for (double a : { 0.0, 0.5, 0.9, 0.99, 0.999, 1.0 })
   {
     cases.push_back({ "albedo", std::to_string(a), name,
       [=](Scene* s)
@@ -117,6 +162,11 @@ void AddMediumCases(std::vector<Case>& cases, int medium, const std::string& nam
         SetField(s, medium, vtkBrumeNames::SigmaA, { 1.1 * (1 - a), 1.1 * (1 - a), 1.1 * (1 - a) });
       },
       n });
+  }
+  for (double voxels : { 1.0, 2.0, 4.0 })
+  {
+    cases.push_back({ "sheet voxels", std::to_string(voxels), name,
+      [=](Scene* s) { MakeSheet(s, medium, voxels); }, n });
   }
 }
 
@@ -516,7 +566,8 @@ int vtkBrumeStabilitySweep::RequestData(
     if (cases.empty())
     {
       vtkErrorMacro("No case of the sweep varies '"
-        << wanted << "' (g, optical thickness, albedo, particles, or the surface's name).");
+        << wanted
+        << "' (g, optical thickness, albedo, sheet voxels, particles, or the surface's name).");
       return 0;
     }
   }

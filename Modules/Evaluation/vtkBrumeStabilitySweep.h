@@ -10,11 +10,16 @@
  * reference of that case (vtkBrumeReferenceCache, ReferenceSamples samples
  * per pixel, seed Seed + 1000003). The cases, in this order:
  *
- * - `g` = -0.99, -0.5, 0, 0.5, 0.9, 0.99 (the medium's BrumeG);
+ * - `g` = -0.99, -0.5, 0, 0.5, 0.75, 0.8, 0.9, 0.95, 0.99 (the medium's
+ *   BrumeG; past 0.7 the phase function's forward peak is set apart);
  * - `optical thickness` = 1.1 k for k = 0.001, 0.1, 1, 10, 100, 1000
  *   (BrumeSigmaS = k, BrumeSigmaA = 0.1 k per channel);
- * - `albedo` = a for a = 0, 0.5, 0.9, 0.99, 1 (BrumeSigmaS = 1.1 a,
+ * - `albedo` = a for a = 0, 0.5, 0.9, 0.99, 0.999, 1 (BrumeSigmaS = 1.1 a,
  *   BrumeSigmaA = 1.1 (1 - a));
+ * - `sheet voxels` = 1, 2, 4: the medium made a sheet through its box's
+ *   centre, tilted 45 degrees about y, that many cells of a 64^3 grid
+ *   over the box thick, of optical depth 1 across and albedo 0.9 (a
+ *   structure far thinner than the textures' texels);
  * - `particles` = max(100, MinParticles), then x10 up to MaxParticles (the
  *   scene as it is);
  * - the surface's name = `glossy` (Phong: BrumeReflectance 0.2,
@@ -48,7 +53,7 @@
  * Rows are appended as they are measured, each followed by a progress
  * event. With Parameter set, only that parameter's cases run (the
  * `parameter` column's value: `g`, `optical thickness`, `albedo`,
- * `particles`, or the surface's name).
+ * `sheet voxels`, `particles`, or the surface's name).
  *
  * Converged references are cached under CacheKey (default: SceneName),
  * followed by `-sweep-`, the medium's name for the medium cases, the

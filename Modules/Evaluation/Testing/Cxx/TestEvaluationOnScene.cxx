@@ -113,8 +113,9 @@ void TestSweep(const std::string& directory, bool medium)
   const std::string surface = sweep->GetChosenSurfaceName();
   Expect(surface == "stage" || surface == "backdrop", "a surface in view: " + surface);
   Expect(std::string(sweep->GetChosenMediumName()) == (medium ? "mist" : ""), "the medium");
-  // 17 medium cases (or none), 1 particles case, 3 surface cases.
-  const vtkIdType rows = medium ? 21 : 4;
+  // 24 medium cases (9 g, 6 optical thickness, 6 albedo, 3 sheets; or
+  // none), 1 particles case, 3 surface cases.
+  const vtkIdType rows = medium ? 28 : 4;
   Expect(table->GetNumberOfRows() == rows, "rows: " + std::to_string(table->GetNumberOfRows()));
   auto* parameter = vtkStringArray::SafeDownCast(table->GetColumnByName("parameter"));
   Expect(parameter && parameter->GetValue(rows - 1) == surface, "the surface cases name it");
@@ -147,8 +148,8 @@ void TestSweep(const std::string& directory, bool medium)
     table = sweep->GetOutput();
     parameter = vtkStringArray::SafeDownCast(table->GetColumnByName("parameter"));
     auto* column = vtkDoubleArray::SafeDownCast(table->GetColumnByName("reference_noise"));
-    Expect(table->GetNumberOfRows() == 6 && parameter && parameter->GetValue(5) == "g" && column,
-      "g's six cases alone: " + std::to_string(table->GetNumberOfRows()));
+    Expect(table->GetNumberOfRows() == 9 && parameter && parameter->GetValue(8) == "g" && column,
+      "g's nine cases alone: " + std::to_string(table->GetNumberOfRows()));
     noise.emplace_back();
     for (vtkIdType r = 0; column && r < column->GetNumberOfTuples(); ++r)
     {
