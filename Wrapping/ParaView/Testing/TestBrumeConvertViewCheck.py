@@ -19,20 +19,14 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkIOImage import vtkPNGReader
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from brume_testing import check, finish  # noqa: E402
+from brume_testing import check, finish, saved_proxies, saved_values  # noqa: E402
 
 plugin, directory = sys.argv[1:3]
 state = os.path.join(directory, "converted.pvsm")
 check(os.path.exists(state), "the GUI saved its state")
-proxies = ET.parse(state).getroot().find("ServerManagerState").findall("Proxy")
+proxies = saved_proxies(state)
 by_id = {p.get("id"): p for p in proxies}
-
-
-def values(proxy, name):
-    for prop in proxy.findall("Property"):
-        if prop.get("name") == name:
-            return [e.get("value") for e in prop if e.tag in ("Element", "Proxy")]
-    return []
+values = saved_values
 
 
 views = [p for p in proxies if p.get("group") == "views"]

@@ -11,26 +11,18 @@ usage: pvbatch TestBrumeGodRaysMenusCheck.py PLUGIN STATE_DIR SCENE_FILE
 import json
 import os
 import sys
-import xml.etree.ElementTree as ET
 
 from paraview.simple import *  # noqa: F401,F403
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from brume_testing import check, check_media_drawn, finish, shown_at_scene_camera  # noqa: E402
+from brume_testing import (check, check_media_drawn, finish, saved_proxies,  # noqa: E402
+                           saved_values, shown_at_scene_camera)
 
 plugin, directory, scene_file = sys.argv[1:4]
 state = os.path.join(directory, "god-rays.pvsm")
 check(os.path.exists(state), "the GUI saved its state")
-root = ET.parse(state).getroot().find("ServerManagerState")
-proxies = root.findall("Proxy")
-by_id = {p.get("id"): p for p in proxies}
-
-
-def values(proxy, name):
-    for prop in proxy.findall("Property"):
-        if prop.get("name") == name:
-            return [e.get("value") for e in prop if e.tag in ("Element", "Proxy")]
-    return []
+proxies = saved_proxies(state)
+values = saved_values
 
 
 def of_type(kind):

@@ -1,7 +1,8 @@
 """What the plugin's test scripts share: named checks and the exit status
 they give, a black render view looking at the default scene as `brume
 render` does, vtkBrumeSceneActors' image of textures as a VTK user would
-draw them, and vtkImageDifference's error between two PNG files."""
+draw them, vtkImageDifference's error between two PNG files, and what a
+saved state (.pvsm) holds."""
 import os
 import sys
 
@@ -27,6 +28,21 @@ def finish():
     print("%d check(s) failed" % len(failures) if failures else "all checks passed")
     if failures:
         sys.exit(1)
+
+
+def saved_proxies(state):
+    """The proxies (XML elements) of a state file the GUI saved."""
+    import xml.etree.ElementTree as ET
+    return ET.parse(state).getroot().find("ServerManagerState").findall("Proxy")
+
+
+def saved_values(proxy, name):
+    """A saved proxy's property `name`: its elements' values, or the ids of
+    the proxies it names (inputs, lookup tables)."""
+    for prop in proxy.findall("Property"):
+        if prop.get("name") == name:
+            return [e.get("value") for e in prop if e.tag in ("Element", "Proxy")]
+    return []
 
 
 def default_camera(view):
