@@ -76,7 +76,7 @@ ForwardPeak TruncateForwardPeak(float g, float cap)
   // the cap keeps 2 pi cap (1 - c).
   constexpr double pi = 3.14159265358979323846;
   const double gd = g, capd = cap;
-  const double d = std::cbrt(std::pow((1.0 - gd * gd) / (4.0 * pi * capd), 2.0));
+  const double d = std::pow((1.0 - gd * gd) / (4.0 * pi * capd), 2.0 / 3.0);
   const double c = (1.0 + gd * gd - d) / (2.0 * gd);
   const double above = (1.0 - gd * gd) / (2.0 * gd) * (1.0 / (1.0 - gd) - 1.0 / std::sqrt(d));
   peak.Forward = static_cast<float>(std::max(0.0, above - 2.0 * pi * capd * (1.0 - c)));
