@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <cstdio>
 
 using namespace brume;
 
@@ -129,4 +131,78 @@ TEST(DensityEstimation, ThreeDimensionalRegions)
   EXPECT_EQ(r.Growth, 1);
   EXPECT_EQ(r.Cells, 64);
   EXPECT_DOUBLE_EQ(perCell, 1.0);
+}
+
+TEST(DensityEstimation, RegionsGrownOnTheOtherHalfAreUnbiased)
+{
+  // Uniform hits, a texel holding about the threshold's number of them (the
+  // resolution brume::ChooseResolution picks): a region grown on the hits it
+  // averages stops where they happen to be dense and reads them too bright
+  // (about 1/k for k hits); one grown on an independent half of the hits
+  // and averaging the other half does not. Each trial is an independent
+  // set of hits, so the trials' spread gives the standard error of their
+  // mean. Each half is a Poisson process of its own (its count too), as the
+  // hits of independent particles on an object are.
+  const int texels = 16, refinement = 2, cells = texels * refinement;
+  const double threshold = 16.0;
+  const double hits = threshold * texels * texels; // expected, both halves
+  const double expected = hits / (cells * cells);
+  AdaptiveRegionSettings own;
+  own.Refinement = { refinement, refinement, 1 };
+  own.Threshold = threshold;
+  own.WeightChannel = 2; // both halves
+  AdaptiveRegionSettings split = own;
+  split.Threshold = 0.5 * threshold;
+  split.WeightChannel = 0; // half 0, then half 1
+  const int trials = 1000;
+  double sumOwn = 0.0, sumOwn2 = 0.0, sumSplit = 0.0, sumSplit2 = 0.0;
+  for (int trial = 0; trial < trials; ++trial)
+  {
+    // Channels: half 0, half 1, both.
+    Histogram h({ cells, cells, 1 }, 3);
+    Random rng(77, static_cast<std::uint64_t>(trial));
+    for (int half = 0; half < 2; ++half)
+    {
+      // Arrivals of a unit-rate process up to hits / 2.
+      for (double time = -std::log(1.0 - rng.NextDouble()); time < 0.5 * hits;
+           time -= std::log(1.0 - rng.NextDouble()))
+      {
+        const auto c = h.CellOf(rng.NextDouble(), rng.NextDouble(), 0.0);
+        double one[3] = { 0.0, 0.0, 1.0 };
+        one[half] = 1.0;
+        h.Add(h.Index(c[0], c[1], 0), one);
+      }
+    }
+    const SummedAreaTable sat(h);
+    double meanOwn = 0.0, meanSplit = 0.0;
+    for (int j = 0; j < texels; ++j)
+    {
+      for (int i = 0; i < texels; ++i)
+      {
+        const Region r = GrowRegion(sat, h.GetDimensions(), { i, j, 0 }, own);
+        double sum[3];
+        sat.RegionSum(r.Lo, r.Hi, sum);
+        meanOwn += sum[2] / static_cast<double>(r.Cells());
+        const std::array<Region, 2> pair = GrowRegionPair(sat, h.GetDimensions(), { i, j, 0 }, split);
+        for (int half = 0; half < 2; ++half)
+        {
+          sat.RegionSum(pair[half].Lo, pair[half].Hi, sum);
+          meanSplit += sum[1 - half] / static_cast<double>(pair[half].Cells());
+        }
+      }
+    }
+    meanOwn /= texels * texels * expected;
+    meanSplit /= texels * texels * expected;
+    sumOwn += meanOwn;
+    sumOwn2 += meanOwn * meanOwn;
+    sumSplit += meanSplit;
+    sumSplit2 += meanSplit * meanSplit;
+  }
+  const double own1 = sumOwn / trials, split1 = sumSplit / trials;
+  const double ownError = std::sqrt((sumOwn2 / trials - own1 * own1) / (trials - 1));
+  const double splitError = std::sqrt((sumSplit2 / trials - split1 * split1) / (trials - 1));
+  std::printf("mean over expected: own regions %.4f +- %.4f, split %.4f +- %.4f\n", own1,
+    ownError, split1, splitError);
+  EXPECT_GT(own1 - 1.0, 5.0 * ownError); // the bias the split removes
+  EXPECT_NEAR(split1, 1.0, 4.0 * splitError);
 }

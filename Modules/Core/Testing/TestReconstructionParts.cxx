@@ -11,11 +11,13 @@
 #include "brume/NativeMediumGrid.h"
 #include "brume/ObjectDistribution.h"
 #include "brume/ObjectLayout.h"
+#include "brume/Random.h"
 #include "brume/TransferFunction.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <numeric>
 #include <thread>
@@ -361,7 +363,7 @@ TEST(ReconstructionParts, NativeMediumGridIntegratesTheDensityOverRegions)
   EXPECT_LE(grid.RegionIntegral(empty), grid.GetEmptyIntegral());
   // A region over both halves belongs where its density is: its centroid
   // lies in the dense part, not at the region's centre.
-  std::vector<Region> regions(1, all);
+  std::vector<std::array<Region, 2>> regions(1, { all, all });
   const CentroidMatching matching = grid.Centroids(regions, { 1, 1, 1 }, 8, SerialFor());
   EXPECT_FALSE(matching.Empty());
 }
@@ -541,4 +543,61 @@ TEST(ReconstructionParts, DirectTextureSupportsMediaAndPlanarSurfacesWithoutMirr
   direct.Enable(ObjectLayout(fog, { 2, 2, 2 }, 1), nullptr, { 4, 4, 4 });
   EXPECT_FALSE(direct.IsEnabled()); // no light
   EXPECT_FALSE(direct.HasArrivals());
+}
+
+TEST(ReconstructionParts, AWallOfUniformHitsShowsItsIrradianceUnbiased)
+{
+  // Hits spread uniformly over a Lambertian square, each texel holding
+  // about the threshold's number of them: the texture's mean is rho E / pi
+  // within the standard error of independent trials (each its own hits, a
+  // Poisson count). Regions grown on the hits they average would read it
+  // 5-7 % too bright here (DensityEstimation.RegionsGrownOnTheOtherHalfAreUnbiased).
+  Surface wall;
+  wall.Name = "wall";
+  wall.Vertices = { { -1, -1, 0 }, { 1, -1, 0 }, { 1, 1, 0 }, { -1, 1, 0 } };
+  wall.Triangles = { { 0, 1, 2 }, { 0, 2, 3 } };
+  wall.Mat.Reflectance = Vec3(0.5f);
+  const int res = 16;
+  const double hitsPerTexel = 16.0, flux = 1e-3;
+  const double expected = 0.5 / Pi * (hitsPerTexel * res * res * flux) / 4.0;
+  const int trials = 1000;
+  double sum = 0.0, sum2 = 0.0;
+  for (int trial = 0; trial < trials; ++trial)
+  {
+    Random rng(91, static_cast<std::uint64_t>(trial));
+    HitStore store;
+    for (double time = -std::log(1.0 - rng.NextDouble()); time < hitsPerTexel * res * res;
+         time -= std::log(1.0 - rng.NextDouble()))
+    {
+      const float p[3] = { static_cast<float>(2.0 * rng.NextDouble() - 1.0),
+        static_cast<float>(2.0 * rng.NextDouble() - 1.0), 0.f };
+      store.Position.insert(store.Position.end(), p, p + 3);
+      store.Direction.insert(store.Direction.end(), { 0.f, 0.f, -1.f });
+      store.Flux.insert(store.Flux.end(), 3, static_cast<float>(flux));
+      store.Object.push_back(0);
+      store.Triangle.push_back(p[1] > p[0] ? 1 : 0);
+      store.Emitter.push_back(0);
+      store.Depth.push_back(1);
+    }
+    std::vector<std::uint32_t> index(store.Object.size());
+    std::iota(index.begin(), index.end(), 0u);
+    ObjectRadiance radiance(wall, MakeChart(wall, nullptr), { res, res }, 2);
+    radiance.Options().ParticleFlux = flux;
+    ASSERT_EQ(radiance.Build(store.View(), index.data(), index.size(), { 0, 0, 5 },
+                hitsPerTexel * flux, SerialFor()),
+      "");
+    const TextureView texture = radiance.GetTexture();
+    ASSERT_EQ(texture.Radiance.size(), static_cast<std::size_t>(3 * res * res));
+    double mean = 0.0;
+    for (int t = 0; t < res * res; ++t)
+    {
+      mean += texture.Radiance[3 * t] / (res * res * expected);
+    }
+    sum += mean;
+    sum2 += mean * mean;
+  }
+  const double mean = sum / trials;
+  const double error = std::sqrt((sum2 / trials - mean * mean) / (trials - 1));
+  std::printf("texture mean over rho E / pi: %.4f +- %.4f\n", mean, error);
+  EXPECT_NEAR(mean, 1.0, 4.0 * error);
 }

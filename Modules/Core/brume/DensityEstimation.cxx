@@ -6,11 +6,15 @@
 namespace brume
 {
 
-Region GrowRegion(const SummedAreaTable& weights, const std::array<int, 3>& histogramDims,
-  const std::array<int, 3>& texel, const AdaptiveRegionSettings& settings)
+namespace
 {
-  constexpr int MaxChannels = 16;
-  double sum[MaxChannels];
+// The regions of `texel` that channels [first, first + N) of `weights` grow
+// (GrowRegion()), in one pass: they grow alike until each stops.
+template <int N>
+void GrowRegions(const SummedAreaTable& weights, const std::array<int, 3>& histogramDims,
+  const std::array<int, 3>& texel, const AdaptiveRegionSettings& settings, int first,
+  Region* regions)
+{
   Region r;
   for (int a = 0; a < 3; ++a)
   {
@@ -20,18 +24,31 @@ Region GrowRegion(const SummedAreaTable& weights, const std::array<int, 3>& hist
   // Only axes with more than one cell grow (a 2D histogram stays 2D).
   const bool grows[3] = { histogramDims[0] > 1, histogramDims[1] > 1, histogramDims[2] > 1 };
   const int maxGrowth = *std::max_element(histogramDims.begin(), histogramDims.end());
+  bool done[N];
+  std::fill_n(done, N, false);
+  int left = N;
   for (int growth = 0;; ++growth)
   {
-    weights.RegionSum(r.Lo, r.Hi, sum);
+    double weight[N];
+    weights.RegionSum(r.Lo, r.Hi, weight, first, N);
     bool covers = true;
     for (int a = 0; a < 3; ++a)
     {
       covers = covers && r.Lo[a] == 0 && r.Hi[a] == histogramDims[a];
     }
-    if (sum[settings.WeightChannel] >= settings.Threshold || covers || growth >= maxGrowth)
+    for (int k = 0; k < N; ++k)
     {
-      r.Growth = growth;
-      return r;
+      if (!done[k] && (weight[k] >= settings.Threshold || covers || growth >= maxGrowth))
+      {
+        regions[k] = r;
+        regions[k].Growth = growth;
+        done[k] = true;
+        --left;
+      }
+    }
+    if (left == 0)
+    {
+      return;
     }
     // Centred growth where there is room on both sides; clipped growth on
     // every axis only where there is none.
@@ -51,6 +68,24 @@ Region GrowRegion(const SummedAreaTable& weights, const std::array<int, 3>& hist
       }
     }
   }
+}
+}
+
+Region GrowRegion(const SummedAreaTable& weights, const std::array<int, 3>& histogramDims,
+  const std::array<int, 3>& texel, const AdaptiveRegionSettings& settings)
+{
+  Region r;
+  GrowRegions<1>(weights, histogramDims, texel, settings, settings.WeightChannel, &r);
+  return r;
+}
+
+std::array<Region, 2> GrowRegionPair(const SummedAreaTable& weights,
+  const std::array<int, 3>& histogramDims, const std::array<int, 3>& texel,
+  const AdaptiveRegionSettings& settings)
+{
+  std::array<Region, 2> r;
+  GrowRegions<2>(weights, histogramDims, texel, settings, settings.WeightChannel, r.data());
+  return r;
 }
 
 RegionEstimate EstimateTexel(const SummedAreaTable& sat, const std::array<int, 3>& histogramDims,

@@ -67,6 +67,15 @@ Region GrowRegion(const SummedAreaTable& weights, const std::array<int, 3>& hist
   const std::array<int, 3>& texel, const AdaptiveRegionSettings& settings);
 
 /**
+ * GrowRegion() for channels `settings.WeightChannel` and the next one at
+ * once (the two halves of brume::HitBinning's sums): the regions grow alike
+ * until each has reached the threshold, reading the table once a step.
+ */
+std::array<Region, 2> GrowRegionPair(const SummedAreaTable& weights,
+  const std::array<int, 3>& histogramDims, const std::array<int, 3>& texel,
+  const AdaptiveRegionSettings& settings);
+
+/**
  * Estimates texel `texel` from `sat` (built on a histogram of dimensions
  * `histogramDims`). Writes, for every channel, the region's sum divided by
  * its number of cells into `perCell`.

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "brume/ExactHistogram.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace brume
@@ -126,6 +127,29 @@ void ExactHistogram::ToHistogram(Histogram& out) const
   for (std::size_t i = 0; i < this->Low.size(); ++i)
   {
     values[i] = this->GetValue(i);
+  }
+}
+
+void ExactHistogram::ToHistogram(Histogram& out, int groups) const
+{
+  const int channels = this->Channels / std::max(groups, 1);
+  if (out.GetDimensions() != this->Dims || out.GetNumberOfChannels() != channels)
+  {
+    out = Histogram(this->Dims, channels);
+  }
+  std::vector<double>& values = out.GetValues();
+  const std::size_t cells = channels > 0 ? this->Low.size() / this->Channels : 0;
+  for (std::size_t cell = 0; cell < cells; ++cell)
+  {
+    for (int c = 0; c < channels; ++c)
+    {
+      Int128 sum = 0;
+      for (int g = 0; g < groups; ++g)
+      {
+        sum += this->GetSum(cell * this->Channels + g * channels + c);
+      }
+      values[cell * channels + c] = std::ldexp(static_cast<double>(sum), this->Exponent);
+    }
   }
 }
 

@@ -78,26 +78,14 @@ public:
   template <int N>
   void AddNonNegative(std::size_t cell, const double (&values)[N])
   {
-    std::uint64_t* low = this->Low.data() + cell * N;
-    const double inverse = this->InverseQuantum;
-    for (int c = 0; c < N; ++c)
-    {
-      const double x = values[c] * inverse;
-      if (!(x >= 0.0 && x < TermBound))
-      {
-        this->AddOne(cell * N + c, values[c]);
-        continue;
-      }
-      // Below 2^62: the signed conversion (one instruction) gives the same k.
-      const auto k = static_cast<std::uint64_t>(static_cast<std::int64_t>(x + 0.5));
-      const std::uint64_t sum = low[c] + k;
-      low[c] = sum;
-      if (sum < k) // carried
-      {
-        this->MoveHigh(cell * N + c, 1);
-        low = this->Low.data() + cell * N;
-      }
-    }
+    this->AddNonNegativeAt(cell * N, values);
+  }
+  /// AddNonNegative() into N of the channels, from channel `first` on (a
+  /// half's channels of HitBinning's sums; the others unchanged).
+  template <int N>
+  void AddNonNegative(std::size_t cell, int first, const double (&values)[N])
+  {
+    this->AddNonNegativeAt(cell * static_cast<std::size_t>(this->Channels) + first, values);
   }
 
   /// Asks for the cache line of `cell`'s sums ahead of adding to them.
@@ -118,6 +106,12 @@ public:
 
   /// The sums as doubles (each sum rounded once), into `out` (resized).
   void ToHistogram(Histogram& out) const;
+  /**
+   * The sums of `groups` equal groups of channels (channel c of the result:
+   * the exact sum of channels c, c + C / groups, ...; each rounded once), as
+   * doubles into `out` (resized): the two halves' sums of HitBinning as one.
+   */
+  void ToHistogram(Histogram& out, int groups) const;
   /// Value i (cell * channels + channel): its sum times the quantum.
   double GetValue(std::size_t i) const
   {
@@ -161,6 +155,31 @@ private:
     return this->Clamp(x); // beyond the bound, or NaN
   }
   std::int64_t Clamp(double x);
+  // Adds values[c] to sum `at + c`.
+  template <int N>
+  void AddNonNegativeAt(std::size_t at, const double (&values)[N])
+  {
+    std::uint64_t* low = this->Low.data() + at;
+    const double inverse = this->InverseQuantum;
+    for (int c = 0; c < N; ++c)
+    {
+      const double x = values[c] * inverse;
+      if (!(x >= 0.0 && x < TermBound))
+      {
+        this->AddOne(at + c, values[c]);
+        continue;
+      }
+      // Below 2^62: the signed conversion (one instruction) gives the same k.
+      const auto k = static_cast<std::uint64_t>(static_cast<std::int64_t>(x + 0.5));
+      const std::uint64_t sum = low[c] + k;
+      low[c] = sum;
+      if (sum < k) // carried
+      {
+        this->MoveHigh(at + c, 1);
+        low = this->Low.data() + at;
+      }
+    }
+  }
   // One term into value i, of any sign.
   void AddOne(std::size_t i, double v)
   {

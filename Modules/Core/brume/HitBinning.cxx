@@ -135,8 +135,8 @@ void HitBinning::Start(const ObjectLayout& layout, int sumsExponent, bool lobeCa
   this->LobeCast = lobeCast;
   // View-independent objects (and fixed views) keep exact sums (for
   // Add()); the others keep hits.
-  this->Weights = this->KeepsHits() ? ExactHistogram() : this->NewSums(layout.Dims, 1);
-  this->Values = this->KeepsHits() ? ExactHistogram() : this->NewSums(layout.Dims, 3);
+  this->Weights = this->KeepsHits() ? ExactHistogram() : this->NewSums(layout.Dims, 2);
+  this->Values = this->KeepsHits() ? ExactHistogram() : this->NewSums(layout.Dims, 6);
   this->Clamped = false;
 }
 
@@ -165,14 +165,14 @@ void HitBinning::ClearSums()
 Histogram HitBinning::GetWeightHistogram() const
 {
   Histogram h;
-  this->Weights.ToHistogram(h);
+  this->Weights.ToHistogram(h, 2);
   return h;
 }
 
 Histogram HitBinning::GetValueHistogram() const
 {
   Histogram h;
-  this->Values.ToHistogram(h);
+  this->Values.ToHistogram(h, 2);
   return h;
 }
 
@@ -293,6 +293,8 @@ inline void HitBinning::AddTerms(
 {
   const float* f = hits.Flux + 3 * i;
   const std::uint32_t triangle = hits.Triangle ? hits.Triangle[i] : 0;
+  // Each term in its half's channels.
+  const int half = HitHalf(hits.Position + 3 * i);
   double v[3];
   if (this->ViewFixed)
   {
@@ -300,14 +302,14 @@ inline void HitBinning::AddTerms(
     // (WeighKept()), their growth scale in float as kept.
     const double w[1] = { (static_cast<double>(f[0]) + f[1] + f[2]) / 3.0 *
       static_cast<float>(hits.GrowthScale(i)) };
-    this->Weights.AddNonNegative(cell, w);
+    this->Weights.AddNonNegative(cell, half, w);
     this->WeighHit(layout, this->FixedEye, hits.Position + 3 * i, hits.Direction + 3 * i, f,
       triangle, this->FixedNormals, v);
-    this->Values.AddNonNegative(cell, v);
+    this->Values.AddNonNegative(cell, 3 * half, v);
     return;
   }
   const double w[1] = { (static_cast<double>(f[0]) + f[1] + f[2]) / 3.0 * hits.GrowthScale(i) };
-  this->Weights.AddNonNegative(cell, w);
+  this->Weights.AddNonNegative(cell, half, w);
   if (layout.MediumRef)
   {
     for (int c = 0; c < 3; ++c)
@@ -328,7 +330,7 @@ inline void HitBinning::AddTerms(
       v[c] = m.Reflectance[c] * InvPi * static_cast<double>(f[c]);
     }
   }
-  this->Values.AddNonNegative(cell, v);
+  this->Values.AddNonNegative(cell, 3 * half, v);
 }
 
 template <typename Locator>
@@ -419,22 +421,23 @@ void HitBinning::KeepHits(const ObjectLayout& layout, const HitArrays& hits,
 void HitBinning::WeighKept(
   const ObjectLayout& layout, const Vec3& eye, bool weights, const ParallelFor& parallelFor)
 {
-  this->Values = this->NewSums(layout.Dims, 3);
+  this->Values = this->NewSums(layout.Dims, 6);
   ExactHistogram& value = this->Values;
   if (weights)
   {
-    this->Weights = this->NewSums(layout.Dims, 1);
+    this->Weights = this->NewSums(layout.Dims, 2);
   }
   ExactHistogram& weight = this->Weights;
   const KeptHits& kept = this->Store.GetHits();
   constexpr std::size_t Ranges = KeptHitStore::Ranges;
   // The kept hits' incident flux, with their weighted flux in the same pass
   // over them (exact sums: the order of the terms does not matter).
-  auto addWeight = [&](const KeptHit& h, std::size_t k)
+  // Each term in its half's channels (HitHalf()).
+  auto addWeight = [&](const KeptHit& h, std::size_t k, int half)
   {
     const double w[1] = { (static_cast<double>(h.Flux[0]) + h.Flux[1] + h.Flux[2]) / 3.0 *
       kept.GrowthOf(k) };
-    weight.AddNonNegative(h.Cell, w);
+    weight.AddNonNegative(h.Cell, half, w);
   };
   const Medium* medium = layout.MediumRef;
   // Media: the remainder of the phase function once its peak is set apart.
@@ -472,12 +475,13 @@ void HitBinning::WeighKept(
           for (std::size_t i = 0; i < n; ++i)
           {
             const KeptHit& h = kept.Hits[first + i];
+            const int half = HitHalf(h.Position);
             const double v[3] = { static_cast<double>(p[i]) * h.Flux[0],
               static_cast<double>(p[i]) * h.Flux[1], static_cast<double>(p[i]) * h.Flux[2] };
-            value.AddNonNegative(h.Cell, v);
+            value.AddNonNegative(h.Cell, 3 * half, v);
             if (weights)
             {
-              addWeight(h, first + i);
+              addWeight(h, first + i, half);
             }
           }
         }
@@ -493,13 +497,14 @@ void HitBinning::WeighKept(
         for (std::size_t k = this->Store.RangeStart(begin); k < this->Store.RangeStart(end); ++k)
         {
           const KeptHit& h = kept.Hits[k];
+          const int half = HitHalf(h.Position);
           double v[3];
           this->WeighHit(
             layout, eye, h.Position, h.Direction, h.Flux, kept.TriangleOf(k), normals, v);
-          value.AddNonNegative(h.Cell, v);
+          value.AddNonNegative(h.Cell, 3 * half, v);
           if (weights)
           {
-            addWeight(h, k);
+            addWeight(h, k, half);
           }
         }
       });

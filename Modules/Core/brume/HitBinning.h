@@ -17,6 +17,7 @@
 #include "brume/Parallel.h"
 
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,29 @@ namespace brume
 {
 
 class DirectLight;
+
+/**
+ * The half (0 or 1) a hit at `position` belongs to: a hash of its
+ * coordinates' bits, which carry no information about where regions stop
+ * growing. Each half's histogram grows regions for the other half's
+ * estimate (ObjectRadiance), so that where a region stops does not depend
+ * on the hits it averages: a region that stops where its own hits happen to
+ * be dense would read them as brighter than they are, by about 1/k for k
+ * hits a region (1-2 % at the default thresholds), whatever the number of
+ * particles. Deterministic, independent of the order of hits and threads.
+ */
+inline int HitHalf(const float* position)
+{
+  std::uint32_t b[3];
+  std::memcpy(b, position, sizeof(b));
+  std::uint32_t h = b[0] * 0x9E3779B1u ^ b[1] * 0x85EBCA77u ^ b[2] * 0xC2B2AE3Du;
+  h ^= h >> 15;
+  h *= 0x2C1B3C6Du;
+  h ^= h >> 12;
+  h *= 0x297A2D39u;
+  h ^= h >> 15;
+  return static_cast<int>(h >> 31);
+}
 
 class HitBinning
 {
@@ -68,11 +92,13 @@ public:
   void WeighKept(
     const ObjectLayout& layout, const Vec3& eye, bool weights, const ParallelFor& parallelFor);
 
-  /// The exact sums: incident flux (1 channel), weighted flux (RGB).
+  /// The exact sums, each hit in its half's (HitHalf()): incident flux (1
+  /// channel a half: 2), weighted flux (RGB a half: 6, half 0's first).
   ExactHistogram& WeightSums() { return this->Weights; }
   ExactHistogram& ValueSums() { return this->Values; }
   /// Both sums emptied (a process whose sums were reduced onto another).
   void ClearSums();
+  /// The sums of both halves: incident flux (1 channel), weighted flux (RGB).
   Histogram GetWeightHistogram() const;
   Histogram GetValueHistogram() const;
   /// A new exact histogram of this build's quantum.

@@ -353,7 +353,7 @@ void NativeMediumGrid::BuildTables(const Box& box, const std::array<int, 3>& dim
   this->EmptyIntegral = 1e-9 * total;
 }
 
-CentroidMatching NativeMediumGrid::Centroids(const std::vector<Region>& regions,
+CentroidMatching NativeMediumGrid::Centroids(const std::vector<std::array<Region, 2>>& regions,
   const std::array<int, 3>& resolution, int refinement, const ParallelFor& parallelFor) const
 {
   // A region's estimate is the sigma_t-weighted mean of the source
@@ -368,27 +368,36 @@ CentroidMatching NativeMediumGrid::Centroids(const std::vector<Region>& regions,
   std::vector<float> centroids(3 * texels);
   for (std::size_t t = 0; t < texels; ++t)
   {
-    const Region& r = regions[t];
-    double centre[3];
-    for (int a = 0; a < 3; ++a)
+    // The estimate is the mean of the two halves' regions' (Estimate()):
+    // its centroid, the mean of theirs.
+    double mean[3] = { 0.0, 0.0, 0.0 };
+    for (const Region& r : regions[t])
     {
-      centre[a] = 0.5 * (r.Lo[a] + r.Hi[a]);
-    }
-    double integral = 0.0, first[3];
-    this->DensityTable.RegionSum(r.Lo, r.Hi, &integral);
-    this->DensityMoments.RegionSum(r.Lo, r.Hi, first);
-    if (integral > this->EmptyIntegral)
-    {
+      double centre[3];
       for (int a = 0; a < 3; ++a)
       {
-        centre[a] = first[a] / integral;
+        centre[a] = 0.5 * (r.Lo[a] + r.Hi[a]);
+      }
+      double integral = 0.0, first[3];
+      this->DensityTable.RegionSum(r.Lo, r.Hi, &integral);
+      this->DensityMoments.RegionSum(r.Lo, r.Hi, first);
+      if (integral > this->EmptyIntegral)
+      {
+        for (int a = 0; a < 3; ++a)
+        {
+          centre[a] = first[a] / integral;
+        }
+      }
+      for (int a = 0; a < 3; ++a)
+      {
+        mean[a] += 0.5 * centre[a];
       }
     }
     // From histogram cells to the texels' centres' coordinates (texel i's
     // centre at i).
     for (int a = 0; a < 3; ++a)
     {
-      centroids[3 * t + a] = static_cast<float>(centre[a] / refinement - 0.5);
+      centroids[3 * t + a] = static_cast<float>(mean[a] / refinement - 0.5);
     }
   }
   return CentroidMatching(resolution, centroids, parallelFor);

@@ -97,9 +97,10 @@ public:
   double RegionIntegral(const Region& region) const;
   /// Regions whose integral is at most this hold no medium.
   double GetEmptyIntegral() const { return this->EmptyIntegral; }
-  /// Where each texel's estimate belongs (its region's sigma_t-weighted
-  /// centroid), for the texture whose interpolation meets it there.
-  CentroidMatching Centroids(const std::vector<Region>& regions,
+  /// Where each texel's estimate belongs (the mean of its two regions'
+  /// sigma_t-weighted centroids: the estimate is the mean of theirs), for
+  /// the texture whose interpolation meets it there.
+  CentroidMatching Centroids(const std::vector<std::array<Region, 2>>& regions,
     const std::array<int, 3>& resolution, int refinement, const ParallelFor& parallelFor) const;
 
 private:

@@ -272,10 +272,13 @@ std::string ObjectRadiance::EstimateTexture(const ParallelFor& parallelFor)
   this->ValueTable = SummedAreaTable(this->Binning.ValueSums());
   // Regions (view independent), then once: the area or density table.
   this->Regions.resize(texels);
+  // Each half's region grows to half the threshold, so that the two
+  // regions hold about the threshold's hits together, as one region grown
+  // over all hits would.
   AdaptiveRegionSettings settings;
   const int refinement = this->Layout.Refinement;
   settings.Refinement = { refinement, refinement, medium ? refinement : 1 };
-  settings.Threshold = this->ThresholdFlux;
+  settings.Threshold = 0.5 * this->ThresholdFlux;
   const std::size_t nx = resolution[0], nxy = nx * resolution[1];
   parallelFor(0, texels,
     [&](std::size_t begin, std::size_t end)
@@ -284,7 +287,7 @@ std::string ObjectRadiance::EstimateTexture(const ParallelFor& parallelFor)
       {
         const std::array<int, 3> texel{ static_cast<int>(t % nx), static_cast<int>((t % nxy) / nx),
           static_cast<int>(t / nxy) };
-        this->Regions[t] = GrowRegion(this->WeightTable, this->Layout.Dims, texel, settings);
+        this->Regions[t] = GrowRegionPair(this->WeightTable, this->Layout.Dims, texel, settings);
       }
     });
   if (medium && medium->Density && !this->Native.HasTables())
@@ -392,23 +395,38 @@ void ObjectRadiance::Estimate(const ParallelFor& parallelFor)
     {
       for (std::size_t t = begin; t < end; ++t)
       {
-        const Region& r = this->Regions[t];
-        double sum[3];
-        this->ValueTable.RegionSum(r.Lo, r.Hi, sum);
-        float* out = &this->Radiance[3 * t];
-        if (this->Layout.MediumRef)
+        // Each half's region averages the other half's hits; each half
+        // holds half the flux in expectation, so the two estimates add up.
+        double estimate[3] = { 0.0, 0.0, 0.0 };
+        for (int h = 0; h < 2; ++h)
         {
-          this->ToRadiance(t, r, sum, out, false);
-        }
-        else
-        {
-          // L_o = sum f_r Phi / A + L_e.
-          double area = 0.0;
-          this->AreaTable.RegionSum(r.Lo, r.Hi, &area);
-          for (int c = 0; c < 3; ++c)
+          const Region& r = this->Regions[t][h];
+          double other[3];
+          this->ValueTable.RegionSum(r.Lo, r.Hi, other, 3 * (1 - h), 3);
+          if (this->Layout.MediumRef)
           {
-            out[c] = static_cast<float>((area > 0.0 ? sum[c] / area : 0.0) + emission[c]);
+            float half[3];
+            this->ToRadiance(t, r, other, half, false);
+            for (int c = 0; c < 3; ++c)
+            {
+              estimate[c] += half[c];
+            }
           }
+          else
+          {
+            // L_o = sum f_r Phi / A + L_e.
+            double area = 0.0;
+            this->AreaTable.RegionSum(r.Lo, r.Hi, &area);
+            for (int c = 0; c < 3; ++c)
+            {
+              estimate[c] += area > 0.0 ? other[c] / area : 0.0;
+            }
+          }
+        }
+        float* out = &this->Radiance[3 * t];
+        for (int c = 0; c < 3; ++c)
+        {
+          out[c] = static_cast<float>(estimate[c] + emission[c]);
         }
       }
     });

@@ -323,14 +323,16 @@ private:
   DirectTexture Direct;
   DirectionalRadiance Directional;
 
-  SummedAreaTable WeightTable;  // incident flux (mean over channels): drives the growth
-  SummedAreaTable ValueTable;   // weighted flux, RGB
+  SummedAreaTable WeightTable;  // incident flux (mean over channels) a half: drives the growth
+  SummedAreaTable ValueTable;   // weighted flux, RGB a half
   SummedAreaTable AreaTable;    // surfaces: world area per cell
   CentroidMatching Matching;    // media: the regions' centroids
   std::vector<float> Reflected; // mirrors
   std::array<int, 3> ReflectedDims{ 0, 0, 0 };
   Vec3 Eye;
-  std::vector<Region> Regions; // per texel, view independent
+  // Per texel, view independent: the region each half's hits grow
+  // (HitHalf()), over which the other half's are averaged.
+  std::vector<std::array<Region, 2>> Regions;
   double ThresholdFlux = 0.0;
 
   std::vector<float> Radiance;

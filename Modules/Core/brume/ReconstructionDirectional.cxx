@@ -41,23 +41,26 @@ std::string ObjectRadiance::BuildDirectional(int order, const ParallelFor& paral
   for (int k0 = 0; k0 < nk; k0 += PerPass)
   {
     const int kn = std::min(PerPass, nk - k0);
-    ExactHistogram sums = this->Binning.NewSums(this->Layout.Dims, 3 * kn);
+    // Each hit in its half's channels (HitHalf()), as the per-view sums.
+    ExactHistogram sums = this->Binning.NewSums(this->Layout.Dims, 6 * kn);
     parallelFor(0, KeptHitStore::Ranges,
       [&](std::size_t begin, std::size_t end)
       {
         float y[ShCoefficients(MaxShOrder)];
-        double v[3 * PerPass];
+        double v[6 * PerPass];
         // The light in-scattered by the phase function's remainder.
         const double remainder = 1.0 - this->Layout.Scattering.GetPeak(true).Forward;
         for (std::size_t k = store.RangeStart(begin); k < store.RangeStart(end); ++k)
         {
           const KeptHit& h = kept.Hits[k];
           EvaluateSh(order, Vec3(h.Direction[0], h.Direction[1], h.Direction[2]), y);
+          const int half = HitHalf(h.Position);
           for (int j = 0; j < kn; ++j)
           {
             for (int c = 0; c < 3; ++c)
             {
-              v[3 * j + c] = remainder * y[k0 + j] * h.Flux[c];
+              v[3 * kn * half + 3 * j + c] = remainder * y[k0 + j] * h.Flux[c];
+              v[3 * kn * (1 - half) + 3 * j + c] = 0.0;
             }
           }
           sums.Add(h.Cell, v);
@@ -75,11 +78,24 @@ std::string ObjectRadiance::BuildDirectional(int order, const ParallelFor& paral
         double sum[3 * PerPass];
         for (std::size_t t = begin; t < end; ++t)
         {
-          const Region& r = this->Regions[t];
-          table.RegionSum(r.Lo, r.Hi, sum);
           for (int j = 0; j < kn; ++j)
           {
-            this->ToRadiance(t, r, sum + 3 * j, &directional[(t * nk + k0 + j) * 3], true);
+            std::fill_n(&directional[(t * nk + k0 + j) * 3], 3, 0.f);
+          }
+          // Each half's region averages the other half's hits (Estimate()).
+          for (int h = 0; h < 2; ++h)
+          {
+            const Region& r = this->Regions[t][h];
+            table.RegionSum(r.Lo, r.Hi, sum, 3 * kn * (1 - h), 3 * kn);
+            for (int j = 0; j < kn; ++j)
+            {
+              float half[3];
+              this->ToRadiance(t, r, sum + 3 * j, half, true);
+              for (int c = 0; c < 3; ++c)
+              {
+                directional[(t * nk + k0 + j) * 3 + c] += half[c];
+              }
+            }
           }
         }
       });

@@ -78,6 +78,12 @@ void SummedAreaTable::Build(const Value& value)
 void SummedAreaTable::RegionSum(
   const std::array<int, 3>& lo, const std::array<int, 3>& hi, double* sum) const
 {
+  this->RegionSum(lo, hi, sum, 0, this->Channels);
+}
+
+void SummedAreaTable::RegionSum(const std::array<int, 3>& lo, const std::array<int, 3>& hi,
+  double* sum, int first, int count) const
+{
   const double* a = &this->Table[this->Index(hi[0], hi[1], hi[2])];
   const double* b = &this->Table[this->Index(lo[0], hi[1], hi[2])];
   const double* c = &this->Table[this->Index(hi[0], lo[1], hi[2])];
@@ -86,9 +92,10 @@ void SummedAreaTable::RegionSum(
   const double* f = &this->Table[this->Index(lo[0], hi[1], lo[2])];
   const double* g = &this->Table[this->Index(hi[0], lo[1], lo[2])];
   const double* h = &this->Table[this->Index(lo[0], lo[1], lo[2])];
-  for (int ch = 0; ch < this->Channels; ++ch)
+  for (int k = 0; k < count; ++k)
   {
-    sum[ch] = a[ch] - b[ch] - c[ch] - d[ch] + e[ch] + f[ch] + g[ch] - h[ch];
+    const int ch = first + k;
+    sum[k] = a[ch] - b[ch] - c[ch] - d[ch] + e[ch] + f[ch] + g[ch] - h[ch];
   }
 }
 

@@ -29,6 +29,9 @@ public:
 
   /// Sum over the cells [lo, hi) (half-open on every axis) of every channel.
   void RegionSum(const std::array<int, 3>& lo, const std::array<int, 3>& hi, double* sum) const;
+  /// The same for `count` channels from channel `first` on, into sum[0, count).
+  void RegionSum(const std::array<int, 3>& lo, const std::array<int, 3>& hi, double* sum,
+    int first, int count) const;
 
 private:
   // The prefix sums of the cells' values, value(cell, channel).
