@@ -62,12 +62,14 @@ public:
   std::size_t GetNumberOfValues() const { return this->Low.size(); }
 
   /// Adds one term per channel to `cell` (not thread safe for one cell).
-  void Add(std::size_t cell, const double* values)
+  void Add(std::size_t cell, const double* values) { this->Add(cell, 0, values, this->Channels); }
+  /// Adds `count` terms to channels [first, first + count) of `cell`.
+  void Add(std::size_t cell, int first, const double* values, int count)
   {
-    const std::size_t first = cell * static_cast<std::size_t>(this->Channels);
-    for (int c = 0; c < this->Channels; ++c)
+    const std::size_t at = cell * static_cast<std::size_t>(this->Channels) + first;
+    for (int c = 0; c < count; ++c)
     {
-      this->AddOne(first + c, values[c]);
+      this->AddOne(at + c, values[c]);
     }
   }
   /**

@@ -47,7 +47,7 @@ std::string ObjectRadiance::BuildDirectional(int order, const ParallelFor& paral
       [&](std::size_t begin, std::size_t end)
       {
         float y[ShCoefficients(MaxShOrder)];
-        double v[6 * PerPass];
+        double v[3 * PerPass];
         // The light in-scattered by the phase function's remainder.
         const double remainder = 1.0 - this->Layout.Scattering.GetPeak(true).Forward;
         for (std::size_t k = store.RangeStart(begin); k < store.RangeStart(end); ++k)
@@ -59,11 +59,10 @@ std::string ObjectRadiance::BuildDirectional(int order, const ParallelFor& paral
           {
             for (int c = 0; c < 3; ++c)
             {
-              v[3 * kn * half + 3 * j + c] = remainder * y[k0 + j] * h.Flux[c];
-              v[3 * kn * (1 - half) + 3 * j + c] = 0.0;
+              v[3 * j + c] = remainder * y[k0 + j] * h.Flux[c];
             }
           }
-          sums.Add(h.Cell, v);
+          sums.Add(h.Cell, 3 * kn * half, v, 3 * kn);
         }
       });
     this->Reduce(sums);
