@@ -111,7 +111,7 @@ void vtkBrumeDisplayPass::Render(const vtkRenderState* s)
       "  vec3 x = clamp(exposure * texture2D(radiance, texCoord).rgb, 0.0, 1.0);\n"
       "  vec3 low = 12.92 * x;\n"
       "  vec3 high = 1.055 * pow(x, vec3(1.0 / 2.4)) - 0.055;\n"
-      "  gl_FragData[0] = vec4(mix(high, low, vec3(lessThanEqual(x, vec3(0.0031308)))), 1.0);\n");
+      "  gl_FragData[0] = vec4(mix(high, low, vec3(lessThanEqual(x, vec3(0.0031308)))), texture2D(radiance, texCoord).a);\n");
     impl.Quad.reset(new vtkOpenGLQuadHelper(
       window, vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(), fs.c_str(), ""));
   }

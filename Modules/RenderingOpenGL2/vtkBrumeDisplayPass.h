@@ -9,7 +9,11 @@
  * multiply by Exposure, clamp to [0, 1], apply the sRGB transfer curve. An
  * interactive window then looks like the images Brume writes. The
  * renderer's background (and gradient) keeps the colours it was given: it
- * is drawn as the radiance the transform shows as them.
+ * is drawn as the radiance the transform shows as them. The alpha channel
+ * is the delegate's (the background's alpha where nothing is drawn, the
+ * opacity of what is): a ParaView server that draws on a transparent black
+ * for its client to composite over the client's background, or a
+ * screenshot with a transparent background, gets what the scene covers.
  *
  * @code
  * vtkNew<vtkBrumeDisplayPass> display;

@@ -5,11 +5,48 @@
 #include "vtkBrumePass.h"
 #include "vtkBrumePipeline.h"
 #include "vtkBrumeRendererScene.h"
+#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
+#include "vtkPVSession.h"
 #include "vtkPVSynchronizedRenderer.h"
+#include "vtkProcessModule.h"
 #include "vtkRenderWindowInteractor.h"
 
 vtkStandardNewMacro(vtkBrumePVRenderView);
+
+namespace
+{
+// Message tags between the client and the server's root (ParaView's own
+// view messages use 41232-41235).
+constexpr int ProgressiveTag = 41281;
+constexpr int StateTag = 41282;
+
+enum class Side
+{
+  Alone,  // built-in session, pvbatch: nothing to exchange
+  Client, // a client connected to a server
+  Server  // a server's process (its root talks to the client)
+};
+
+Side SideOf(vtkPVSession* session)
+{
+  vtkProcessModule* module = vtkProcessModule::GetProcessModule();
+  if (!module || !session)
+  {
+    return Side::Alone;
+  }
+  switch (module->GetProcessType())
+  {
+    case vtkProcessModule::PROCESS_CLIENT:
+      return session->GetController(vtkPVSession::RENDER_SERVER_ROOT) ? Side::Client : Side::Alone;
+    case vtkProcessModule::PROCESS_SERVER:
+    case vtkProcessModule::PROCESS_RENDER_SERVER:
+      return Side::Server;
+    default:
+      return Side::Alone;
+  }
+}
+}
 
 vtkBrumePVRenderView::vtkBrumePVRenderView()
 {
@@ -62,8 +99,65 @@ bool vtkBrumePVRenderView::RendersProgressively()
 
 void vtkBrumePVRenderView::Render(bool interactive, bool skipRendering)
 {
-  this->Pass->SetProgressive(this->RendersProgressively());
+  // Rendered on the server for a client: both call Render() in step (a
+  // selection's renders run on the server alone and exchange nothing).
+  const bool distributed = interactive ? this->GetUseDistributedRenderingForLODRender()
+                                       : this->GetUseDistributedRenderingForRender();
+  const Side side = distributed && !this->GetMakingSelection() ? SideOf(this->GetSession())
+                                                                : Side::Alone;
+  bool progressive = this->RendersProgressively();
+  if (side != Side::Alone)
+  {
+    progressive = this->ShareProgressive(progressive);
+  }
+  this->Pass->SetProgressive(progressive);
   this->Superclass::Render(interactive, skipRendering);
+  this->LastRenderOnServer = side == Side::Client;
+  if (side != Side::Alone)
+  {
+    this->ShareServerState();
+  }
+}
+
+bool vtkBrumePVRenderView::ShareProgressive(bool progressive)
+{
+  int flag = progressive ? 1 : 0;
+  vtkPVSession* session = this->GetSession();
+  if (vtkMultiProcessController* server = session->GetController(vtkPVSession::RENDER_SERVER_ROOT))
+  {
+    server->Send(&flag, 1, 1, ProgressiveTag);
+    return progressive;
+  }
+  if (vtkMultiProcessController* client = session->GetController(vtkPVSession::CLIENT))
+  {
+    client->Receive(&flag, 1, 1, ProgressiveTag);
+  }
+  vtkMultiProcessController* ranks = vtkMultiProcessController::GetGlobalController();
+  if (ranks && ranks->GetNumberOfProcesses() > 1)
+  {
+    ranks->Broadcast(&flag, 1, 0);
+  }
+  return flag != 0;
+}
+
+void vtkBrumePVRenderView::ShareServerState()
+{
+  vtkPVSession* session = this->GetSession();
+  int state[5] = { 0, 0, 0, 1, 0 };
+  if (vtkMultiProcessController* server = session->GetController(vtkPVSession::RENDER_SERVER_ROOT))
+  {
+    server->Receive(state, 5, 1, StateTag);
+    this->ServerState = { state[0], state[1], state[2], state[3], state[4] };
+  }
+  else if (vtkMultiProcessController* client = session->GetController(vtkPVSession::CLIENT))
+  {
+    state[0] = this->Pass->GetNumberOfTraces();
+    state[1] = this->Pass->GetNumberOfSteps();
+    state[2] = this->Pass->GetNumberOfViewUpdates();
+    state[3] = this->Pass->IsConverged() ? 1 : 0;
+    state[4] = this->Pass->GetProgressive() && this->Pass->IsRefining() ? 1 : 0;
+    client->Send(state, 5, 1, StateTag);
+  }
 }
 
 void vtkBrumePVRenderView::SetVolumeAlbedo(double r, double g, double b)
@@ -88,33 +182,39 @@ vtkBrumePass* vtkBrumePVRenderView::GetBrumePass()
 
 bool vtkBrumePVRenderView::IsConverged()
 {
-  return this->Pass->IsConverged();
+  return this->LastRenderOnServer ? this->ServerState.Converged != 0 : this->Pass->IsConverged();
 }
 
 bool vtkBrumePVRenderView::IsRefining()
 {
+  if (this->LastRenderOnServer)
+  {
+    return this->ServerState.Refining != 0;
+  }
   return this->RendersProgressively() && this->Pass->IsRefining();
 }
 
 int vtkBrumePVRenderView::GetNumberOfTraces()
 {
-  return this->Pass->GetNumberOfTraces();
+  return this->LastRenderOnServer ? this->ServerState.Traces : this->Pass->GetNumberOfTraces();
 }
 
 int vtkBrumePVRenderView::GetNumberOfSteps()
 {
-  return this->Pass->GetNumberOfSteps();
+  return this->LastRenderOnServer ? this->ServerState.Steps : this->Pass->GetNumberOfSteps();
 }
 
 int vtkBrumePVRenderView::GetNumberOfViewUpdates()
 {
-  return this->Pass->GetNumberOfViewUpdates();
+  return this->LastRenderOnServer ? this->ServerState.ViewUpdates
+                                  : this->Pass->GetNumberOfViewUpdates();
 }
 
 void vtkBrumePVRenderView::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "ProgressiveMode: " << this->ProgressiveMode << "\n";
+  os << indent << "LastRenderOnServer: " << this->LastRenderOnServer << "\n";
   os << indent << "Pass:\n";
   this->Pass->PrintSelf(os, indent.GetNextIndent());
 }

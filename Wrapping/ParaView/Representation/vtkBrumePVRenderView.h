@@ -18,6 +18,15 @@
  * the whole budget): each render multiplies the particles by 4 until
  * IsConverged(), and the GUI renders again by itself until then.
  *
+ * Client–server: where ParaView renders on the server (remote rendering,
+ * which a volume asks for), the server's view traces and draws; the
+ * client tells it, before each such render, whether to refine (the GUI's
+ * window is the client's), and the server's root tells the client, after
+ * it, what it traced, so that the counters, IsConverged() and
+ * IsRefining() the client reports (and the GUI's renders that refine)
+ * are the server's. Where ParaView renders on the client, the client's
+ * view does both.
+ *
  * In one process (the built-in session, pvbatch, or a pvserver of one
  * rank); a server of several ranks would light each rank's part alone.
  *
@@ -73,6 +82,10 @@ public:
   int GetNumberOfViewUpdates();
   ///@}
 
+  /// Whether the server drew the last render (client–server with remote
+  /// rendering): the counters and states above are then the server's.
+  bool GetLastRenderOnServer() { return this->LastRenderOnServer; }
+
 protected:
   vtkBrumePVRenderView();
   ~vtkBrumePVRenderView() override;
@@ -82,8 +95,25 @@ private:
   vtkBrumePVRenderView(const vtkBrumePVRenderView&) = delete;
   void operator=(const vtkBrumePVRenderView&) = delete;
 
+  /// Before a render drawn on a server for a client: whether it refines,
+  /// as the client decided (on the client: its own decision, sent).
+  bool ShareProgressive(bool progressive);
+  /// After it: the server's root sends what it traced; the client keeps it.
+  void ShareServerState();
+
   vtkNew<vtkBrumePass> Pass;
   int ProgressiveMode = 2;
+  /// The server's pass, as its root last reported it (client side).
+  struct PassState
+  {
+    int Traces = 0;
+    int Steps = 0;
+    int ViewUpdates = 0;
+    int Converged = 1;
+    int Refining = 0;
+  };
+  PassState ServerState;
+  bool LastRenderOnServer = false;
 };
 
 #endif

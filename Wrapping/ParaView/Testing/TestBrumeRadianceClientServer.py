@@ -16,10 +16,7 @@ usage: pvpython TestBrumeRadianceClientServer.py PVSERVER PLUGIN OUTPUT_DIR PORT
 (PORT 0: a free one)
 """
 import os
-import socket
-import subprocess
 import sys
-import threading
 
 from paraview.simple import *  # noqa: F401,F403
 from vtkmodules.util.misc import calldata_type
@@ -27,7 +24,7 @@ from vtkmodules.util.vtkConstants import VTK_INT
 from vtkmodules.vtkCommonCore import vtkCommand
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from brume_testing import black_view, image_error  # noqa: E402
+from brume_testing import PVServer, black_view, image_error  # noqa: E402
 
 pvserver, plugin, output_dir, port = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4])
 launcher = sys.argv[5:]
@@ -76,48 +73,18 @@ def render(png):
     Delete(view)
 
 
-if port == 0:  # a free port of this machine
-    with socket.socket() as probe:
-        probe.bind(("127.0.0.1", 0))
-        port = probe.getsockname()[1]
-command = [pvserver, "--server-port=%d" % port]
-environment = dict(os.environ)
-if launcher:
-    # The server's processes print through the launcher: line-buffered, so
-    # that its "Accepting connection" arrives. This client is an MPI process
-    # of its own (a singleton): the launcher must not see its variables.
-    command = launcher + ["stdbuf", "-oL"] + command
-    environment = {k: v for k, v in environment.items()
-                   if k.startswith("OMPI_ALLOW") or not k.startswith(("OMPI_", "PMIX_", "OPAL_"))}
-    # The client renders (the textures are small): the server's processes
-    # need no window but the one ParaView makes to probe their rendering,
-    # which the plugin makes through EGL without a display. (Xvfb refused
-    # one of several processes' windows now and then.)
-    environment.pop("DISPLAY", None)
-server_output = []
-server = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                          env=environment)
+server = PVServer(pvserver, port, launcher)
 try:
-    for line in server.stdout:
-        if "Accepting connection" in line:
-            break
-    else:
-        raise RuntimeError("pvserver did not start")
-    # The rest of the server's output is read as it comes (a full pipe would
-    # stop the server) and shown if the test fails.
-    threading.Thread(target=lambda: server_output.extend(server.stdout), daemon=True).start()
     # The server stays connected to the end: it exits when this client does.
-    # 127.0.0.1: a minimal root may not resolve "localhost".
-    if not Connect("127.0.0.1", port) or not servermanager.ActiveConnection.IsRemote():
-        raise RuntimeError("no connection to pvserver on port %d" % port)
+    if not Connect("127.0.0.1", server.port) or not servermanager.ActiveConnection.IsRemote():
+        raise RuntimeError("no connection to pvserver on port %d" % server.port)
     remote = os.path.join(output_dir, name + "-remote.png")
     render(remote)
     Connect()  # a built-in session, now the active one
     local = os.path.join(output_dir, name + "-builtin.png")
     render(local)
 except BaseException:
-    server.kill()  # no server left behind by a failure
-    print("the server's output:\n" + "".join(server_output[-300:]))
+    server.kill()
     raise
 
 error = image_error(remote, local)

@@ -4,7 +4,10 @@ render` does, vtkBrumeSceneActors' image of textures as a VTK user would
 draw them, vtkImageDifference's error between two PNG files, and what a
 saved state (.pvsm) holds."""
 import os
+import socket
+import subprocess
 import sys
+import threading
 
 from paraview.simple import CreateView, Render, SaveScreenshot, Show
 from vtkmodules.vtkImagingCore import vtkImageDifference
@@ -178,3 +181,49 @@ def check_media_drawn(view, display, shown, size, output_dir, name, what):
     SaveScreenshot(bare, view, ImageResolution=[size, size])
     error = image_error(shown, bare)
     check(error > 10, "%s is drawn (error %g without the media)" % (what, error))
+
+
+class PVServer:
+    """A pvserver on this machine (loopback), started for a test, with its
+    output kept (a full pipe would stop it) for the failure's message.
+    With a launcher (for example `mpirun --oversubscribe -np 2`) it runs in
+    parallel, its processes without a display (ParaView's probe of their
+    rendering goes through the plugin's EGL; Xvfb refused one of several
+    processes' windows now and then). PORT 0: a free one."""
+
+    def __init__(self, pvserver, port=0, launcher=()):
+        if port == 0:
+            with socket.socket() as probe:
+                probe.bind(("127.0.0.1", 0))
+                port = probe.getsockname()[1]
+        self.port = port
+        command = [pvserver, "--server-port=%d" % port]
+        environment = dict(os.environ)
+        if launcher:
+            # Line-buffered through the launcher, so that "Accepting
+            # connection" arrives. The client is an MPI process of its own
+            # (a singleton): the launcher must not see its variables.
+            command = list(launcher) + ["stdbuf", "-oL"] + command
+            environment = {k: v for k, v in environment.items()
+                           if k.startswith("OMPI_ALLOW")
+                           or not k.startswith(("OMPI_", "PMIX_", "OPAL_"))}
+            environment.pop("DISPLAY", None)
+        self.output = []
+        self.process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                        text=True, env=environment)
+        for line in self.process.stdout:
+            if "Accepting connection" in line:
+                break
+        else:
+            raise RuntimeError("pvserver did not start")
+        threading.Thread(target=lambda: self.output.extend(self.process.stdout),
+                         daemon=True).start()
+
+    def url(self):
+        # 127.0.0.1: a minimal root may not resolve "localhost".
+        return "cs://127.0.0.1:%d" % self.port
+
+    def kill(self):
+        """No server left behind by a failure; its last output is shown."""
+        self.process.kill()
+        print("the server's output:\n" + "".join(self.output[-300:]))
