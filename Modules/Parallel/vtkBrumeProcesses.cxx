@@ -75,7 +75,12 @@ bool vtkBrumeProcesses::Agree(vtkMultiProcessController* controller, bool ok)
 
 bool vtkBrumeProcesses::AllSucceeded(bool ok, const char* step)
 {
-  vtkMultiProcessController* controller = GetGlobalController();
+  return AllSucceeded(GetGlobalController(), ok, step);
+}
+
+bool vtkBrumeProcesses::AllSucceeded(
+  vtkMultiProcessController* controller, bool ok, const char* step)
+{
   const bool all = Agree(controller, ok);
   if (!all && IsDistributed(controller))
   {

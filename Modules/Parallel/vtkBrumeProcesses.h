@@ -69,6 +69,8 @@ public:
    * failed, the others that they stop because of it) before any returns.
    */
   static bool AllSucceeded(bool ok, const char* step);
+  /// The same over `controller`'s processes (null: this one alone).
+  static bool AllSucceeded(vtkMultiProcessController* controller, bool ok, const char* step);
 
   ///@{
   /// Collective sums and maxima (in place) over the processes.

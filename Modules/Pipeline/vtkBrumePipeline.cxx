@@ -60,6 +60,13 @@ vtkBrumePipeline::vtkBrumePipeline()
 {
   vtkBrumeSceneCamera::SetToDefault(this->Camera);
   this->CameraDefaultTime = this->Camera->GetMTime();
+  this->SetController(vtkBrumeProcesses::GetGlobalController());
+}
+
+void vtkBrumePipeline::SetController(vtkMultiProcessController* controller)
+{
+  this->Controller = controller;
+  this->Reconstruction->SetController(controller);
 }
 
 vtkBrumePipeline::~vtkBrumePipeline() = default;
@@ -228,7 +235,7 @@ vtkTypeInt64 vtkBrumePipeline::GetPlannedBatchSize()
     return std::min(this->BatchSize, particles);
   }
   const double limit = static_cast<double>(this->Tracer->GetMemoryLimit());
-  if (vtkBrumeProcesses::IsDistributed(vtkBrumeProcesses::GetGlobalController()) ||
+  if (vtkBrumeProcesses::IsDistributed(this->Controller) ||
     vtkBrumeLightTracer::ExpectedHitBytes(particles) <= limit)
   {
     return particles;
@@ -251,10 +258,10 @@ bool vtkBrumePipeline::Update()
 {
   this->TracingSeconds = this->ReconstructionSeconds = this->ReductionSeconds = 0.0;
   this->NumberOfHits = this->NumberOfRays = this->ReductionBytes = 0;
-  vtkMultiProcessController* controller = vtkBrumeProcesses::GetGlobalController();
+  vtkMultiProcessController* controller = this->Controller;
   const int rank = vtkBrumeProcesses::GetRank(controller);
   const int processes = vtkBrumeProcesses::GetSize(controller);
-  if (!vtkBrumeProcesses::AllSucceeded(this->UpdateScene(), "loading the scene"))
+  if (!vtkBrumeProcesses::AllSucceeded(controller, this->UpdateScene(), "loading the scene"))
   {
     return this->Fail("the scene");
   }
@@ -283,7 +290,7 @@ bool vtkBrumePipeline::Update()
     this->Tracer->SetEndParticle(std::min(first + batch, particles));
     auto start = std::chrono::steady_clock::now();
     const bool traced = this->Tracer->UpdatePiece(rank, processes, 0) != 0;
-    if (!vtkBrumeProcesses::AllSucceeded(traced, "particle tracing"))
+    if (!vtkBrumeProcesses::AllSucceeded(controller, traced, "particle tracing"))
     {
       return this->Fail("particle tracing");
     }
@@ -293,7 +300,7 @@ bool vtkBrumePipeline::Update()
     this->NumberOfRays += this->Tracer->GetLastRayCount();
     start = std::chrono::steady_clock::now();
     const bool reconstructed = this->Reconstruction->UpdatePiece(rank, processes, 0) != 0;
-    if (!vtkBrumeProcesses::AllSucceeded(reconstructed, "reconstruction"))
+    if (!vtkBrumeProcesses::AllSucceeded(controller, reconstructed, "reconstruction"))
     {
       return this->Fail("reconstruction");
     }

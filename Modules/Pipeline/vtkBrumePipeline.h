@@ -44,6 +44,7 @@ class vtkAlgorithmOutput;
 class vtkBrumeFloatImageCapture;
 class vtkBrumeLightTracer;
 class vtkBrumeRadianceReconstruction;
+class vtkMultiProcessController;
 class vtkBrumeSceneActors;
 class vtkCamera;
 class vtkDataObject;
@@ -94,6 +95,15 @@ public:
   vtkBrumeRadianceReconstruction* GetReconstruction();
   vtkBrumeSceneActors* GetActors();
   ///@}
+
+  /**
+   * The processes that share the particles and sum the histograms (VTK's
+   * global controller by default: under mpirun every process holds the
+   * same scene). Null: this process alone, with its own scene (a
+   * ParaView Brume Render View, whose processes each hold a part of the
+   * data). Also the reconstruction's controller.
+   */
+  void SetController(vtkMultiProcessController* controller);
 
   ///@{
   /**
@@ -246,6 +256,7 @@ private:
   vtkNew<vtkTrivialProducer> SceneData;
   vtkNew<vtkBrumeLightTracer> Tracer;
   vtkNew<vtkBrumeRadianceReconstruction> Reconstruction;
+  vtkSmartPointer<vtkMultiProcessController> Controller;
   vtkNew<vtkBrumeSceneActors> Actors;
   vtkSmartPointer<vtkCamera> Camera;
   bool CameraChosen = false;          // SetCamera(), ApplySceneSettings() or a first Update()

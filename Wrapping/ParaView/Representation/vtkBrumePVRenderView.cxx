@@ -51,6 +51,9 @@ Side SideOf(vtkPVSession* session)
 vtkBrumePVRenderView::vtkBrumePVRenderView()
 {
   this->Pass->ProgressiveOff();
+  // Under mpirun each process holds its own part of what is shown: it
+  // traces that alone (a shared trace needs the same scene everywhere).
+  this->Pass->GetPipeline()->SetController(nullptr);
   // The scene pass: ParaView's camera pass, then Brume's (its own display
   // transform: exposure, clamp, sRGB). FXAA would smear Brume's image.
   this->SynchronizedRenderers->SetRenderPass(this->Pass);
@@ -105,6 +108,20 @@ void vtkBrumePVRenderView::Render(bool interactive, bool skipRendering)
                                        : this->GetUseDistributedRenderingForRender();
   const Side side = distributed && !this->GetMakingSelection() ? SideOf(this->GetSession())
                                                                 : Side::Alone;
+  vtkMultiProcessController* ranks = vtkMultiProcessController::GetGlobalController();
+  const int count = ranks ? ranks->GetNumberOfProcesses() : 1;
+  if (count > 1 && !this->WarnedOfRanks && ranks->GetLocalProcessId() == 0)
+  {
+    // Said once, by the first rank: the image is drawn, but not as lit as
+    // one process would light it.
+    this->WarnedOfRanks = true;
+    vtkWarningMacro("The Brume Render View does not support " << count
+                                                                << " processes: each lights its "
+                                                                   "own part of the data alone, "
+                                                                   "and the composited image "
+                                                                   "may be empty. Run the server "
+                                                                   "or pvbatch as one process.");
+  }
   bool progressive = this->RendersProgressively();
   if (side != Side::Alone)
   {

@@ -28,7 +28,10 @@
  * view does both.
  *
  * In one process (the built-in session, pvbatch, or a pvserver of one
- * rank); a server of several ranks would light each rank's part alone.
+ * rank). Several processes (mpirun pvserver or pvbatch) are not supported:
+ * each traces its own part of the data alone (it does not abort), ParaView
+ * composites their images by a depth Brume's display does not write, and
+ * the first render says so once in a warning.
  *
  * @sa vtkBrumePass vtkBrumeRendererScene
  */
@@ -114,6 +117,7 @@ private:
   };
   PassState ServerState;
   bool LastRenderOnServer = false;
+  bool WarnedOfRanks = false;
 };
 
 #endif
