@@ -4,6 +4,7 @@
 #include "vtkBrumeDisplayPass.h"
 #include "vtkBrumeLightTracer.h"
 #include "vtkBrumePipeline.h"
+#include "vtkBrumeProcesses.h"
 #include "vtkBrumeRadianceReconstruction.h"
 #include "vtkBrumeRendererScene.h"
 #include "vtkBrumeSceneActors.h"
@@ -11,6 +12,7 @@
 #include "vtkCamera.h"
 #include "vtkCommand.h"
 #include "vtkExecutive.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPartitionedDataSetCollection.h"
@@ -127,15 +129,15 @@ bool vtkBrumePass::Trace(bool built)
   }
   ++this->NumberOfTraces;
   in.Pipeline->SetInputData(in.Traced);
+  const bool progressive = this->Progressive && !this->Gathers();
   vtkTypeInt64 first = this->NumberOfParticles;
-  while (this->Progressive && first > this->FirstStepParticles)
+  while (progressive && first > this->FirstStepParticles)
   {
     first = first / 4 + (first % 4 != 0 ? 1 : 0);
   }
-  in.Pipeline->SetProgressive(this->Progressive);
+  in.Pipeline->SetProgressive(progressive);
   in.Pipeline->GetTracer()->SetNumberOfParticles(first);
-  in.Pipeline->GetReconstruction()->SetPlannedParticles(
-    this->Progressive ? this->NumberOfParticles : 0);
+  in.Pipeline->GetReconstruction()->SetPlannedParticles(progressive ? this->NumberOfParticles : 0);
   if (!in.Pipeline->Update())
   {
     vtkErrorMacro("Brume's " << in.Pipeline->GetFailedPhase()
@@ -208,8 +210,18 @@ bool vtkBrumePass::Prepare(vtkRenderer* renderer)
   in.Pipeline->SetCamera(renderer->GetActiveCamera());
   const vtkMTimeType scene = in.Scene->GetMTime();
   const bool settings = this->GetMTime() > in.TracedSettings;
-  if (!in.Tried || settings || scene > in.TracedScene)
+  // With a distributed scene, the processes decide together: each looks
+  // at its part when any one's changed, and all trace when any part did.
+  vtkMultiProcessController* controller = in.Pipeline->GetController();
+  const bool gathers = this->Gathers();
+  const bool look = !in.Tried || settings || scene > in.TracedScene;
+  in.Scene->SetController(gathers ? controller : nullptr);
+  if (gathers ? !vtkBrumeProcesses::Agree(controller, !look) : look)
   {
+    if (gathers)
+    {
+      in.Scene->Modified(); // built on every process: the gathering is collective
+    }
     // Tried once per change: a failing scene is not traced again every frame.
     in.Tried = true;
     in.TracedScene = scene;
@@ -220,9 +232,14 @@ bool vtkBrumePass::Prepare(vtkRenderer* renderer)
     // Built once here: VTK's executive does not run a filter that failed
     // again until something changes, so a second Update() would succeed
     // on the last scene's output.
-    const bool built = in.Scene->GetExecutive()->Update() != 0;
-    const bool same = built && !settings && in.Traced && !in.Failed &&
+    bool built = in.Scene->GetExecutive()->Update() != 0;
+    bool same = built && !settings && in.Traced && !in.Failed &&
       in.Scene->GetContentSignature() == in.TracedSignature;
+    if (gathers)
+    {
+      built = vtkBrumeProcesses::Agree(controller, built);
+      same = vtkBrumeProcesses::Agree(controller, same);
+    }
     // What building the scene touched (a mapper's default colour map, made
     // on first use) is not an edit.
     in.TracedScene = std::max(in.TracedScene, in.Scene->GetMTime());
@@ -262,6 +279,9 @@ void vtkBrumePass::Render(const vtkRenderState* s)
   in.ShownEye = Eye(in.Pipeline->GetCamera());
   // Brume's props, then the renderer's that the scene does not hold.
   std::vector<vtkProp*> props;
+  // A distributed scene: every process draws the whole of it (the same
+  // image on each: a parallel compositing keeps of each process's image the
+  // region of its own piece).
   if (lit)
   {
     vtkPropCollection* brume = in.Pipeline->GetActors()->GetProps();
@@ -287,6 +307,12 @@ void vtkBrumePass::Render(const vtkRenderState* s)
   this->NumberOfRenderedProps = in.Display->GetNumberOfRenderedProps();
 }
 
+bool vtkBrumePass::Gathers()
+{
+  return this->DistributedScene &&
+    vtkBrumeProcesses::IsDistributed(this->Internals->Pipeline->GetController());
+}
+
 void vtkBrumePass::ReleaseGraphicsResources(vtkWindow* w)
 {
   this->Internals->Display->ReleaseGraphicsResources(w);
@@ -303,6 +329,7 @@ void vtkBrumePass::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "NumberOfParticles: " << this->NumberOfParticles << "\n";
   os << indent << "Progressive: " << this->Progressive << "\n";
+  os << indent << "DistributedScene: " << this->DistributedScene << "\n";
   os << indent << "FirstStepParticles: " << this->FirstStepParticles << "\n";
   os << indent << "NumberOfTraces: " << this->NumberOfTraces << "\n";
   os << indent << "NumberOfSteps: " << this->NumberOfSteps << "\n";

@@ -98,6 +98,26 @@ public:
   vtkGetMacro(FirstStepParticles, vtkTypeInt64);
   ///@}
 
+  ///@{
+  /**
+   * Whether each process holds only a part of the renderer's scene
+   * (default off: under mpirun every process holds all of it), as in
+   * ParaView's parallel views. On, with the pipeline's controller holding
+   * several processes (vtkBrumePipeline::SetController), every process
+   * gathers the others' parts and traces its share of the particles of the
+   * whole scene; every process draws all that Brume lights (the same
+   * image: a parallel compositing keeps of each process's image the region
+   * of its own piece), and the props Brume does not light, for a
+   * compositing by depth to put together (vtkBrumeDisplayPass writes the
+   * depth). Each change then traces its
+   * whole budget at once (no progressive steps). Collective: every process
+   * renders in step.
+   */
+  vtkSetMacro(DistributedScene, bool);
+  vtkGetMacro(DistributedScene, bool);
+  vtkBooleanMacro(DistributedScene, bool);
+  ///@}
+
   /// True when the textures hold the whole budget of the current scene.
   bool IsConverged();
   /// Whether more steps would add particles: the last trace succeeded and
@@ -125,6 +145,7 @@ protected:
 
   vtkTypeInt64 NumberOfParticles = 1000000;
   bool Progressive = true;
+  bool DistributedScene = false;
   vtkTypeInt64 FirstStepParticles = 131072;
   int NumberOfTraces = 0;
   int NumberOfSteps = 0;
@@ -136,6 +157,8 @@ private:
 
   bool Prepare(vtkRenderer* renderer);
   bool Trace(bool built); // `built`: whether the scene was made
+  /// DistributedScene, over several processes.
+  bool Gathers();
   bool Step();
   void ReportProgress();
 

@@ -63,6 +63,11 @@ vtkBrumePipeline::vtkBrumePipeline()
   this->SetController(vtkBrumeProcesses::GetGlobalController());
 }
 
+vtkMultiProcessController* vtkBrumePipeline::GetController()
+{
+  return this->Controller;
+}
+
 void vtkBrumePipeline::SetController(vtkMultiProcessController* controller)
 {
   this->Controller = controller;
@@ -324,6 +329,11 @@ bool vtkBrumePipeline::AddParticles(vtkTypeInt64 count)
   const vtkTypeInt64 first = this->Tracer->GetFirstParticle();
   const vtkTypeInt64 end = this->Tracer->GetEndParticle();
   const vtkTypeInt64 total = this->Tracer->GetNumberOfParticles();
+  if (vtkBrumeProcesses::IsDistributed(this->Controller))
+  {
+    vtkErrorMacro("AddParticles runs in one process only.");
+    return this->Fail("particle tracing");
+  }
   if (count < 1 || count > VTK_TYPE_INT64_MAX - total)
   {
     vtkErrorMacro("Cannot add " << count << " particles to " << total << ".");
@@ -357,7 +367,12 @@ bool vtkBrumePipeline::UpdateView()
 {
   this->FailedPhase = "";
   const auto start = std::chrono::steady_clock::now();
-  if (!this->Reconstruction->GetExecutive()->Update())
+  // The request Update() made: another (the whole for one process) would
+  // trace every particle again on each process, and the reconstruction
+  // would sum those traces over the processes. Collective when distributed.
+  const int rank = vtkBrumeProcesses::GetRank(this->Controller);
+  const int processes = vtkBrumeProcesses::GetSize(this->Controller);
+  if (!this->Reconstruction->UpdatePiece(rank, processes, 0))
   {
     return this->Fail("reconstruction");
   }

@@ -104,6 +104,7 @@ public:
    * data). Also the reconstruction's controller.
    */
   void SetController(vtkMultiProcessController* controller);
+  vtkMultiProcessController* GetController();
 
   ///@{
   /**

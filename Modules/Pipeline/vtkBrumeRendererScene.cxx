@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumeRendererScene.h"
+#include "vtkBrumeProcesses.h"
 #include "vtkBrumeRendererSceneParts.h"
+#include "vtkMultiProcessController.h"
 
 #include "vtkAbstractVolumeMapper.h"
 #include "vtkActor.h"
@@ -64,6 +66,7 @@
 #include <vector>
 
 vtkStandardNewMacro(vtkBrumeRendererScene);
+vtkCxxSetObjectMacro(vtkBrumeRendererScene, Controller, vtkMultiProcessController);
 
 struct vtkBrumeRendererScene::vtkInternals
 {
@@ -190,6 +193,7 @@ vtkBrumeRendererScene::vtkBrumeRendererScene()
 
 vtkBrumeRendererScene::~vtkBrumeRendererScene()
 {
+  this->SetController(nullptr);
   delete this->Internals;
 }
 
@@ -285,6 +289,8 @@ int vtkBrumeRendererScene::RequestData(
     return 0;
   }
   vtkNew<vtkPartitionedDataSetCollection> scene;
+  // Distributed: surfaces are turned once gathered (see Gathered).
+  const bool distributed = this->Controller && this->Controller->GetNumberOfProcesses() > 1;
   std::set<vtkProp*>& translated = this->Internals->Translated;
   translated.clear();
   int index = 0;
@@ -301,7 +307,7 @@ int vtkBrumeRendererScene::RequestData(
     for (vtkDataSet* data : datasets)
     {
       vtkSmartPointer<vtkPolyData> surface =
-        vtkBrumeRendererSceneParts::ActorSurface(actor, data, renderer->GetActiveCamera());
+        vtkBrumeRendererSceneParts::ActorSurface(actor, data, distributed ? nullptr : renderer->GetActiveCamera());
       if (!surface)
       {
         continue;
@@ -313,6 +319,7 @@ int vtkBrumeRendererScene::RequestData(
     }
   }
   index = 0;
+  bool failed = false; // a volume that cannot be lit (said), with the others still tried
   for (vtkVolume* volume : OwnProps<vtkVolume>(renderer))
   {
     const std::string name = "volume " + std::to_string(index++);
@@ -322,17 +329,21 @@ int vtkBrumeRendererScene::RequestData(
       continue;
     }
     vtkMatrix4x4* m = volume->GetMatrix();
+    bool aligned = true;
     for (int r = 0; r < 3; ++r)
     {
       for (int c = 0; c < 3; ++c)
       {
-        if ((r != c && m->GetElement(r, c) != 0.0) || (r == c && !(m->GetElement(r, c) > 0.0)))
-        {
-          vtkErrorMacro("" << name << " is rotated, mirrored or sheared: only a translation and "
-                           << "an axis-aligned scale of a volume can be lit.");
-          return 0;
-        }
+        aligned = aligned &&
+          !((r != c && m->GetElement(r, c) != 0.0) || (r == c && !(m->GetElement(r, c) > 0.0)));
       }
+    }
+    if (!aligned)
+    {
+      vtkErrorMacro("" << name << " is rotated, mirrored or sheared: only a translation and "
+                       << "an axis-aligned scale of a volume can be lit.");
+      failed = true;
+      continue;
     }
     vtkNew<vtkBrumeVolumePropertyMedium> medium;
     medium->SetInputData(data);
@@ -354,7 +365,8 @@ int vtkBrumeRendererScene::RequestData(
     if (!medium->GetExecutive()->Update())
     {
       vtkErrorMacro("" << name << " could not be made a medium (see the error above).");
-      return 0;
+      failed = true;
+      continue;
     }
     vtkNew<vtkImageData> placed;
     placed->ShallowCopy(medium->GetOutput());
@@ -370,6 +382,26 @@ int vtkBrumeRendererScene::RequestData(
     placed->SetSpacing(spacing);
     vtkBrumeSceneConversion::AddObject(scene, placed, name);
     translated.insert(volume);
+  }
+  // A distributed scene: every process's share, gathered, when every
+  // process could make its own.
+  if (distributed)
+  {
+    if (!vtkBrumeProcesses::Agree(this->Controller, !failed))
+    {
+      if (!failed)
+      {
+        vtkErrorMacro("Another process's part of the scene could not be made.");
+      }
+      return 0;
+    }
+    vtkSmartPointer<vtkPartitionedDataSetCollection> whole =
+      vtkBrumeRendererSceneParts::Gathered(this->Controller, scene, renderer->GetActiveCamera());
+    scene->ShallowCopy(whole);
+  }
+  else if (failed)
+  {
+    return 0;
   }
   if (scene->GetNumberOfPartitionedDataSets() == 0)
   {
@@ -554,8 +586,11 @@ vtkTypeUInt64 vtkBrumeRendererScene::GetContentSignature()
         hash.Add(dims);
         hash.Add(origin);
         hash.Add(spacing);
-        hash.Arrays(image->GetPointData(), false);
-        hash.Arrays(image->GetCellData(), false);
+        // By values where the scene is gathered: its media's arrays are
+        // new objects at each gathering.
+        const bool gathered = this->Controller && this->Controller->GetNumberOfProcesses() > 1;
+        hash.Arrays(image->GetPointData(), gathered);
+        hash.Arrays(image->GetCellData(), gathered);
       }
       else
       {
@@ -579,6 +614,7 @@ void vtkBrumeRendererScene::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PhysicalLights: " << this->PhysicalLights << "\n";
   os << indent << "AllowEmpty: " << this->AllowEmpty << "\n";
   os << indent << "LightScale: " << this->LightScale << "\n";
+  os << indent << "Controller: " << this->Controller << "\n";
   os << indent << "Albedo: " << this->Albedo[0] << " " << this->Albedo[1] << " " << this->Albedo[2]
      << "\n";
 }

@@ -74,6 +74,7 @@
 #include "vtkBrumePipelineModule.h" // For export macro
 #include "vtkPartitionedDataSetCollectionAlgorithm.h"
 
+class vtkMultiProcessController;
 class vtkProp;
 class vtkRenderer;
 
@@ -122,6 +123,20 @@ public:
   vtkGetVector3Macro(Albedo, double);
   ///@}
 
+  ///@{
+  /**
+   * The processes among which the scene is distributed (default null: the
+   * renderer holds all of it). With several, each renderer holds a part
+   * (ParaView's parallel views): the update is collective, and every
+   * process's output is the whole scene (vtkBrumeRendererSceneParts'
+   * Gathered: one prop's pieces one surface, turned as a whole), with the
+   * point lights aimed at all of it. Translates() still names this
+   * process's own props.
+   */
+  void SetController(vtkMultiProcessController* controller);
+  vtkGetObjectMacro(Controller, vtkMultiProcessController);
+  ///@}
+
   /// Including the renderer's props, their data and the scene's lights.
   vtkMTimeType GetMTime() override;
 
@@ -134,7 +149,8 @@ public:
    * cell arrays and field data, and its lights (headlights and camera
    * lights without their placement, which follows the camera); a medium's
    * point arrays by identity (the array object and its MTime, not its
-   * values: volumes are large). Equal for a scene built again from
+   * values: volumes are large; by values in a gathered scene, whose arrays
+   * are new at each gathering). Equal for a scene built again from
    * unchanged props (ParaView touches mappers and colour maps it does not
    * change), different, but for hash collisions, after any change that
    * alters the scene.
@@ -151,6 +167,7 @@ protected:
   bool AllowEmpty = false;
   double LightScale = 1.0;
   double Albedo[3] = { 0.8, 0.8, 0.8 };
+  vtkMultiProcessController* Controller = nullptr;
 
 private:
   vtkBrumeRendererScene(const vtkBrumeRendererScene&) = delete;

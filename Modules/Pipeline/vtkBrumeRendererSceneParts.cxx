@@ -7,8 +7,13 @@
 #include "vtkActor.h"
 #include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeFieldTuple.h"
+#include "vtkAppendPolyData.h"
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
+#include "vtkCompositeDataSet.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkMultiProcessController.h"
 #include "vtkCellData.h"
 #include "vtkCleanPolyData.h"
 #include "vtkDataArray.h"
@@ -34,7 +39,10 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
+#include <string>
 
 namespace
 {
@@ -363,7 +371,8 @@ vtkSmartPointer<vtkPolyData> ActorSurface(vtkActor* actor, vtkDataSet* data, vtk
   {
     WriteColours(world, colours, cellFlag, actor->GetProperty());
   }
-  vtkSmartPointer<vtkPolyData> surface = FacingViewer(world.Surface, camera);
+  vtkSmartPointer<vtkPolyData> surface =
+    camera ? FacingViewer(world.Surface, camera) : world.Surface;
   WriteMaterial(actor->GetProperty(), surface->GetFieldData());
   return surface;
 }
@@ -420,4 +429,289 @@ void AimPointLights(vtkPartitionedDataSetCollection* scene, std::vector<brume::L
   }
 }
 
+}
+
+namespace
+{
+// One volume's pieces (images on one lattice, each a box of its points) as
+// one image: their union's box, each point's values from a piece holding
+// it (pieces share their boundary's points, with equal values). Null when
+// the pieces do not fit one lattice or hold different point arrays, or
+// cell arrays: they are then kept as media of their own.
+vtkSmartPointer<vtkImageData> MergedImage(const std::vector<vtkSmartPointer<vtkDataSet>>& pieces)
+{
+  std::vector<vtkImageData*> images;
+  for (const auto& piece : pieces)
+  {
+    auto* image = vtkImageData::SafeDownCast(piece);
+    if (!image || image->GetCellData()->GetNumberOfArrays() > 0 ||
+      image->GetNumberOfPoints() == 0)
+    {
+      return nullptr;
+    }
+    images.push_back(image);
+  }
+  double spacing[3], first[3];
+  images[0]->GetSpacing(spacing);
+  images[0]->GetPoint(0, first);
+  std::vector<std::array<long long, 3>> starts;
+  long long low[3] = { 0, 0, 0 }, high[3] = { 0, 0, 0 };
+  for (std::size_t p = 0; p < images.size(); ++p)
+  {
+    double s[3], point[3];
+    int dims[3];
+    images[p]->GetSpacing(s);
+    images[p]->GetPoint(0, point);
+    images[p]->GetDimensions(dims);
+    std::array<long long, 3> start{};
+    for (int a = 0; a < 3; ++a)
+    {
+      const double steps = (point[a] - first[a]) / spacing[a];
+      start[a] = std::llround(steps);
+      if (!(spacing[a] > 0.0) || std::abs(s[a] - spacing[a]) > 1e-9 * spacing[a] ||
+        std::abs(steps - static_cast<double>(start[a])) > 1e-6)
+      {
+        return nullptr;
+      }
+      low[a] = p == 0 ? start[a] : std::min(low[a], start[a]);
+      high[a] = p == 0 ? start[a] + dims[a] - 1 : std::max(high[a], start[a] + dims[a] - 1);
+    }
+    starts.push_back(start);
+  }
+  const vtkIdType n[3] = { static_cast<vtkIdType>(high[0] - low[0] + 1),
+    static_cast<vtkIdType>(high[1] - low[1] + 1), static_cast<vtkIdType>(high[2] - low[2] + 1) };
+  auto merged = vtkSmartPointer<vtkImageData>::New();
+  merged->SetSpacing(spacing);
+  merged->SetOrigin(first[0] + static_cast<double>(low[0]) * spacing[0],
+    first[1] + static_cast<double>(low[1]) * spacing[1],
+    first[2] + static_cast<double>(low[2]) * spacing[2]);
+  merged->SetDimensions(static_cast<int>(n[0]), static_cast<int>(n[1]), static_cast<int>(n[2]));
+  vtkPointData* into = merged->GetPointData();
+  vtkPointData* model = images[0]->GetPointData();
+  for (int k = 0; k < model->GetNumberOfArrays(); ++k)
+  {
+    vtkAbstractArray* source = model->GetAbstractArray(k);
+    for (vtkImageData* image : images)
+    {
+      vtkAbstractArray* other = source->GetName()
+        ? image->GetPointData()->GetAbstractArray(source->GetName())
+        : nullptr;
+      if (!other || other->GetDataType() != source->GetDataType() ||
+        other->GetNumberOfComponents() != source->GetNumberOfComponents())
+      {
+        return nullptr;
+      }
+    }
+    vtkSmartPointer<vtkAbstractArray> values;
+    values.TakeReference(source->NewInstance());
+    values->SetName(source->GetName());
+    values->SetNumberOfComponents(source->GetNumberOfComponents());
+    values->SetNumberOfTuples(n[0] * n[1] * n[2]);
+    if (auto* numbers = vtkDataArray::SafeDownCast(values))
+    {
+      numbers->Fill(0.0); // a point no piece holds: no medium there
+    }
+    for (std::size_t p = 0; p < images.size(); ++p)
+    {
+      vtkAbstractArray* from = images[p]->GetPointData()->GetAbstractArray(source->GetName());
+      int dims[3];
+      images[p]->GetDimensions(dims);
+      vtkIdType t = 0;
+      for (int z = 0; z < dims[2]; ++z)
+      {
+        for (int y = 0; y < dims[1]; ++y)
+        {
+          const vtkIdType row = ((starts[p][2] - low[2] + z) * n[1] + (starts[p][1] - low[1] + y)) * n[0] +
+            (starts[p][0] - low[0]);
+          for (int x = 0; x < dims[0]; ++x, ++t)
+          {
+            values->SetTuple(row + x, t, from);
+          }
+        }
+      }
+    }
+    into->AddArray(values);
+  }
+  if (vtkDataArray* scalars = model->GetScalars())
+  {
+    into->SetActiveScalars(scalars->GetName());
+  }
+  merged->GetFieldData()->ShallowCopy(images[0]->GetFieldData());
+  return merged;
+}
+}
+
+namespace vtkBrumeRendererSceneParts
+{
+vtkSmartPointer<vtkPartitionedDataSetCollection> Gathered(
+  vtkMultiProcessController* controller, vtkPartitionedDataSetCollection* part, vtkCamera* camera)
+{
+  // What travels: each object's datasets, an image's field data beside it
+  // in an empty polygonal carrier (VTK 9.2's legacy reader, which the
+  // transfer goes through, warns on an image's field data).
+  vtkNew<vtkPartitionedDataSetCollection> send;
+  for (unsigned int i = 0; i < part->GetNumberOfPartitionedDataSets(); ++i)
+  {
+    vtkNew<vtkPartitionedDataSet> object;
+    vtkPartitionedDataSet* partitions = part->GetPartitionedDataSet(i);
+    for (unsigned int k = 0; partitions && k < partitions->GetNumberOfPartitions(); ++k)
+    {
+      vtkDataSet* data = partitions->GetPartition(k);
+      if (auto* image = vtkImageData::SafeDownCast(data))
+      {
+        vtkNew<vtkImageData> bare;
+        bare->ShallowCopy(image);
+        bare->GetFieldData()->Initialize();
+        vtkNew<vtkPolyData> carrier;
+        carrier->GetFieldData()->ShallowCopy(image->GetFieldData());
+        object->SetPartition(2 * k, bare);
+        object->SetPartition(2 * k + 1, carrier);
+      }
+      else
+      {
+        object->SetPartition(2 * k, data);
+      }
+    }
+    send->SetPartitionedDataSet(i, object);
+    if (part->HasMetaData(i))
+    {
+      send->GetMetaData(i)->Copy(part->GetMetaData(i));
+    }
+  }
+  std::vector<vtkSmartPointer<vtkDataObject>> parts;
+  controller->AllGather(send, parts);
+
+  // Each object's datasets, by name, in the processes' order.
+  struct Object
+  {
+    std::string Name;
+    std::vector<vtkSmartPointer<vtkDataSet>> Data;
+    vtkSmartPointer<vtkInformation> Meta;
+    bool Surface = false;
+  };
+  std::vector<Object> objects;
+  std::map<std::string, std::size_t> named; // name -> index in objects
+  for (std::size_t r = 0; r < parts.size(); ++r)
+  {
+    auto* received = vtkPartitionedDataSetCollection::SafeDownCast(parts[r]);
+    for (unsigned int i = 0; received && i < received->GetNumberOfPartitionedDataSets(); ++i)
+    {
+      vtkPartitionedDataSet* sent = received->GetPartitionedDataSet(i);
+      Object object;
+      object.Meta = vtkSmartPointer<vtkInformation>::New();
+      if (received->HasMetaData(i))
+      {
+        object.Meta->Copy(received->GetMetaData(i));
+      }
+      object.Name = object.Meta->Has(vtkCompositeDataSet::NAME())
+        ? object.Meta->Get(vtkCompositeDataSet::NAME())
+        : "object " + std::to_string(objects.size());
+      bool surface = true;
+      for (unsigned int k = 0; sent && 2 * k < sent->GetNumberOfPartitions(); ++k)
+      {
+        vtkDataSet* data = sent->GetPartition(2 * k);
+        if (auto* image = vtkImageData::SafeDownCast(data))
+        {
+          // A plain image (the transfer gives vtkStructuredPoints).
+          auto plain = vtkSmartPointer<vtkImageData>::New();
+          plain->ShallowCopy(image);
+          if (vtkDataSet* carrier =
+                2 * k + 1 < sent->GetNumberOfPartitions() ? sent->GetPartition(2 * k + 1) : nullptr)
+          {
+            plain->GetFieldData()->ShallowCopy(carrier->GetFieldData());
+          }
+          object.Data.emplace_back(plain);
+          surface = false;
+        }
+        else if (data)
+        {
+          object.Data.emplace_back(data);
+          surface = surface && vtkPolyData::SafeDownCast(data) != nullptr;
+        }
+      }
+      // A prop's pieces: one object (a surface of polygons, or a volume of
+      // one image per process).
+      const bool volume = !surface && object.Data.size() == 1;
+      auto found = surface || volume ? named.find(object.Name) : named.end();
+      if (found != named.end() && objects[found->second].Surface == surface)
+      {
+        Object& whole = objects[found->second];
+        whole.Data.insert(whole.Data.end(), object.Data.begin(), object.Data.end());
+        continue;
+      }
+      object.Surface = surface;
+      if (found == named.end())
+      {
+        named[object.Name] = objects.size();
+      }
+      objects.push_back(std::move(object));
+    }
+  }
+
+  auto whole = vtkSmartPointer<vtkPartitionedDataSetCollection>::New();
+  whole->GetFieldData()->ShallowCopy(part->GetFieldData());
+  for (Object& object : objects)
+  {
+    vtkNew<vtkPartitionedDataSet> partitions;
+    if (!object.Data.empty() && vtkPolyData::SafeDownCast(object.Data[0]))
+    {
+      // One prop's pieces: one surface, turned as a whole (the pieces come
+      // unturned: turned alone, each would be open, and its winding would
+      // depend on the camera).
+      vtkNew<vtkAppendPolyData> append;
+      for (const auto& data : object.Data)
+      {
+        append->AddInputData(vtkPolyData::SafeDownCast(data));
+      }
+      append->Update();
+      // The pieces' shared edges: their points computed on each process,
+      // equal but for rounding (an edge interpolated from either end), so
+      // merged within a millionth of the surface's size. Unmerged, a closed
+      // surface would stay open, and part of it turned inward.
+      vtkNew<vtkCleanPolyData> seams;
+      seams->SetInputConnection(append->GetOutputPort());
+      seams->PointMergingOn();
+      seams->ToleranceIsAbsoluteOn();
+      seams->SetAbsoluteTolerance(1e-6 * append->GetOutput()->GetLength());
+      seams->ConvertLinesToPointsOff();
+      seams->ConvertPolysToLinesOff();
+      seams->ConvertStripsToPolysOff();
+      seams->Update();
+      vtkSmartPointer<vtkPolyData> turned = FacingViewer(seams->GetOutput(), camera);
+      turned->GetFieldData()->ShallowCopy(object.Data[0]->GetFieldData());
+      partitions->SetPartition(0, turned);
+    }
+    else if (vtkSmartPointer<vtkImageData> merged =
+               object.Data.size() > 1 ? MergedImage(object.Data) : nullptr)
+    {
+      partitions->SetPartition(0, merged); // one volume's pieces: one medium
+    }
+    else if (object.Data.size() > 1 && !object.Surface)
+    {
+      // Pieces that do not make one image: a medium each.
+      for (std::size_t p = 0; p < object.Data.size(); ++p)
+      {
+        vtkNew<vtkPartitionedDataSet> piece;
+        piece->SetPartition(0, object.Data[p]);
+        const unsigned int index = whole->GetNumberOfPartitionedDataSets();
+        whole->SetPartitionedDataSet(index, piece);
+        whole->GetMetaData(index)->Copy(object.Meta);
+        whole->GetMetaData(index)->Set(vtkCompositeDataSet::NAME(),
+          (object.Name + (p > 0 ? " (piece " + std::to_string(p) + ")" : "")).c_str());
+      }
+      continue;
+    }
+    else
+    {
+      for (unsigned int k = 0; k < object.Data.size(); ++k)
+      {
+        partitions->SetPartition(k, object.Data[k]);
+      }
+    }
+    const unsigned int index = whole->GetNumberOfPartitionedDataSets();
+    whole->SetPartitionedDataSet(index, partitions);
+    whole->GetMetaData(index)->Copy(object.Meta);
+  }
+  return whole;
+}
 }

@@ -26,6 +26,7 @@ struct vtkBrumeDisplayPass::Internals
 {
   vtkSmartPointer<vtkOpenGLFramebufferObject> Framebuffer;
   vtkSmartPointer<vtkTextureObject> Color;
+  vtkSmartPointer<vtkTextureObject> Depth;
   std::unique_ptr<vtkOpenGLQuadHelper> Quad;
 };
 
@@ -80,10 +81,29 @@ void vtkBrumeDisplayPass::Render(const vtkRenderState* s)
     impl.Color->Allocate2D(w, h, 4, VTK_FLOAT);
   }
   impl.Color->Resize(w, h);
+  // The delegate's depth, as a texture the transform below writes on to
+  // the window: ParaView composites parallel processes' images by depth,
+  // and counts a pixel at the far plane as empty, so what is drawn there
+  // (a medium over the sky, whose slices write no depth) is written just
+  // before it.
+  if (!impl.Depth)
+  {
+    impl.Depth = vtkSmartPointer<vtkTextureObject>::New();
+    impl.Depth->SetContext(window);
+    impl.Depth->SetMinificationFilter(vtkTextureObject::Nearest);
+    impl.Depth->SetMagnificationFilter(vtkTextureObject::Nearest);
+    impl.Depth->AllocateDepth(w, h, vtkTextureObject::Float32);
+  }
+  impl.Depth->Resize(w, h);
   if (!impl.Framebuffer)
   {
     impl.Framebuffer = vtkSmartPointer<vtkOpenGLFramebufferObject>::New();
     impl.Framebuffer->SetContext(window);
+    // Attached once; the delegate's render keeps an attached depth.
+    state->PushFramebufferBindings();
+    impl.Framebuffer->Bind();
+    impl.Framebuffer->AddDepthAttachment(impl.Depth);
+    state->PopFramebufferBindings();
   }
   // The background as radiance that the transform below shows as the
   // renderer's own colours (sRGB values, as VTK's views show them): a
@@ -106,12 +126,15 @@ void vtkBrumeDisplayPass::Render(const vtkRenderState* s)
   {
     std::string fs = vtkOpenGLRenderUtilities::GetFullScreenQuadFragmentShaderTemplate();
     vtkShaderProgram::Substitute(
-      fs, "//VTK::FSQ::Decl", "uniform sampler2D radiance;\nuniform float exposure;\n");
+      fs, "//VTK::FSQ::Decl",
+      "uniform sampler2D radiance;\nuniform sampler2D depth;\nuniform float exposure;\n");
     vtkShaderProgram::Substitute(fs, "//VTK::FSQ::Impl",
       "  vec3 x = clamp(exposure * texture2D(radiance, texCoord).rgb, 0.0, 1.0);\n"
       "  vec3 low = 12.92 * x;\n"
       "  vec3 high = 1.055 * pow(x, vec3(1.0 / 2.4)) - 0.055;\n"
-      "  gl_FragData[0] = vec4(mix(high, low, vec3(lessThanEqual(x, vec3(0.0031308)))), texture2D(radiance, texCoord).a);\n");
+      "  gl_FragData[0] = vec4(mix(high, low, vec3(lessThanEqual(x, vec3(0.0031308)))), texture2D(radiance, texCoord).a);\n"
+      "  float d = texture2D(depth, texCoord).r;\n"
+      "  gl_FragDepth = texture2D(radiance, texCoord).a > 0.0 && d >= 1.0 ? 0.99999988 : d;\n");
     impl.Quad.reset(new vtkOpenGLQuadHelper(
       window, vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(), fs.c_str(), ""));
   }
@@ -125,13 +148,21 @@ void vtkBrumeDisplayPass::Render(const vtkRenderState* s)
     return;
   }
   impl.Color->Activate();
+  impl.Depth->Activate();
   impl.Quad->Program->SetUniformi("radiance", impl.Color->GetTextureUnit());
+  impl.Quad->Program->SetUniformi("depth", impl.Depth->GetTextureUnit());
   impl.Quad->Program->SetUniformf("exposure", static_cast<float>(this->Exposure));
   state->vtkglDisable(GL_BLEND);
-  state->vtkglDisable(GL_DEPTH_TEST);
+  // Depth written as it is, whatever the window held.
+  vtkOpenGLState::ScopedglDepthFunc depthFuncSaver(state);
+  vtkOpenGLState::ScopedglDepthMask depthMaskSaver(state);
+  state->vtkglEnable(GL_DEPTH_TEST);
+  state->vtkglDepthFunc(GL_ALWAYS);
+  state->vtkglDepthMask(GL_TRUE);
   state->vtkglViewport(x, y, w, h);
   state->vtkglScissor(x, y, w, h);
   impl.Quad->Render();
+  impl.Depth->Deactivate();
   impl.Color->Deactivate();
 }
 
@@ -149,6 +180,11 @@ void vtkBrumeDisplayPass::ReleaseGraphicsResources(vtkWindow* w)
     this->Impl->Color->ReleaseGraphicsResources(w);
   }
   this->Impl->Color = nullptr;
+  if (this->Impl->Depth)
+  {
+    this->Impl->Depth->ReleaseGraphicsResources(w);
+  }
+  this->Impl->Depth = nullptr;
 }
 
 void vtkBrumeDisplayPass::PrintSelf(ostream& os, vtkIndent indent)

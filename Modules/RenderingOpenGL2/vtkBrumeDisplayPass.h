@@ -14,6 +14,10 @@
  * opacity of what is): a ParaView server that draws on a transparent black
  * for its client to composite over the client's background, or a
  * screenshot with a transparent background, gets what the scene covers.
+ * The depth is the delegate's too, written to the window (ParaView's
+ * parallel compositing reads it), but where something is drawn at the far
+ * plane (a medium over the empty sky): there just before it, as a parallel
+ * compositing by depth counts the far plane as empty.
  *
  * @code
  * vtkNew<vtkBrumeDisplayPass> display;

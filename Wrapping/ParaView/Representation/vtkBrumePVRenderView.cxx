@@ -51,9 +51,9 @@ Side SideOf(vtkPVSession* session)
 vtkBrumePVRenderView::vtkBrumePVRenderView()
 {
   this->Pass->ProgressiveOff();
-  // Under mpirun each process holds its own part of what is shown: it
-  // traces that alone (a shared trace needs the same scene everywhere).
-  this->Pass->GetPipeline()->SetController(nullptr);
+  // Under mpirun each process holds its own part of what is shown: the
+  // parts are gathered, and the processes share the particles.
+  this->Pass->DistributedSceneOn();
   // The scene pass: ParaView's camera pass, then Brume's (its own display
   // transform: exposure, clamp, sRGB). FXAA would smear Brume's image.
   this->SynchronizedRenderers->SetRenderPass(this->Pass);
@@ -70,6 +70,24 @@ void vtkBrumePVRenderView::SetNumberOfParticles(vtkIdType particles)
 vtkIdType vtkBrumePVRenderView::GetNumberOfParticles()
 {
   return static_cast<vtkIdType>(this->Pass->GetNumberOfParticles());
+}
+
+void vtkBrumePVRenderView::Update()
+{
+  this->Superclass::Update();
+  vtkMultiProcessController* ranks = vtkMultiProcessController::GetGlobalController();
+  if (this->Pass->GetDistributedScene() && ranks && ranks->GetNumberOfProcesses() > 1)
+  {
+    // Ordered compositing (asked for by a volume or a translucent surface)
+    // would blend the media every process draws once per process:
+    // composited by depth instead (their images are the same).
+    this->NeedsOrderedCompositing = false;
+  }
+}
+
+void vtkBrumePVRenderView::SetUseFXAA(bool)
+{
+  this->Superclass::SetUseFXAA(false);
 }
 
 void vtkBrumePVRenderView::SetSeed(vtkIdType seed)
@@ -108,20 +126,6 @@ void vtkBrumePVRenderView::Render(bool interactive, bool skipRendering)
                                        : this->GetUseDistributedRenderingForRender();
   const Side side = distributed && !this->GetMakingSelection() ? SideOf(this->GetSession())
                                                                 : Side::Alone;
-  vtkMultiProcessController* ranks = vtkMultiProcessController::GetGlobalController();
-  const int count = ranks ? ranks->GetNumberOfProcesses() : 1;
-  if (count > 1 && !this->WarnedOfRanks && ranks->GetLocalProcessId() == 0)
-  {
-    // Said once, by the first rank: the image is drawn, but not as lit as
-    // one process would light it.
-    this->WarnedOfRanks = true;
-    vtkWarningMacro("The Brume Render View does not support " << count
-                                                                << " processes: each lights its "
-                                                                   "own part of the data alone, "
-                                                                   "and the composited image "
-                                                                   "may be empty. Run the server "
-                                                                   "or pvbatch as one process.");
-  }
   bool progressive = this->RendersProgressively();
   if (side != Side::Alone)
   {

@@ -27,11 +27,12 @@
  * are the server's. Where ParaView renders on the client, the client's
  * view does both.
  *
- * In one process (the built-in session, pvbatch, or a pvserver of one
- * rank). Several processes (mpirun pvserver or pvbatch) are not supported:
- * each traces its own part of the data alone (it does not abort), ParaView
- * composites their images by a depth Brume's display does not write, and
- * the first render says so once in a warning.
+ * Over several processes (mpirun pvserver or pvbatch), each holding a
+ * piece of the data: the pass gathers the pieces (vtkBrumePass::
+ * SetDistributedScene), the processes share the particles, and each draws
+ * all that Brume lights; the view composites the processes' images by
+ * depth, not in ParaView's order of the pieces (which would blend the same
+ * media once per process), and does not refine progressively.
  *
  * @sa vtkBrumePass vtkBrumeRendererScene
  */
@@ -64,6 +65,10 @@ public:
   void SetLightIntensityScale(double scale);
   ///@}
 
+  /// FXAA stays off: it would smear Brume's image (and under mpirun
+  /// ParaView applies it after compositing).
+  void SetUseFXAA(bool) override;
+
 #ifndef __VTK_WRAP__
   /// The pass that draws the view (its pipeline, its scene).
   vtkBrumePass* GetBrumePass();
@@ -93,6 +98,9 @@ protected:
   vtkBrumePVRenderView();
   ~vtkBrumePVRenderView() override;
   void Render(bool interactive, bool skipRendering) override;
+  /// Over several processes: no ordered compositing (every process draws
+  /// all that Brume lights; see Update()).
+  void Update() override;
 
 private:
   vtkBrumePVRenderView(const vtkBrumePVRenderView&) = delete;
@@ -117,7 +125,6 @@ private:
   };
   PassState ServerState;
   bool LastRenderOnServer = false;
-  bool WarnedOfRanks = false;
 };
 
 #endif

@@ -18,7 +18,13 @@ A Wavelet shown as a Volume and a Contour of it, on a black background:
   as the built-in session does (the server draws on a transparent black
   that the client composites over its background).
 
-usage: pvpython TestBrumeRenderViewClientServer.py PVSERVER PLUGIN OUTPUT_DIR
+With a launcher (`mpirun --oversubscribe -np 2`), the server runs in
+parallel, each process holding a piece of the Wavelet: the processes
+gather the pieces and share the particles, with no progressive step (a
+distributed scene traces its whole budget at once), and the image is
+still the built-in session's.
+
+usage: pvpython TestBrumeRenderViewClientServer.py PVSERVER PLUGIN OUTPUT_DIR [LAUNCHER...]
 """
 import os
 import sys
@@ -31,6 +37,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from brume_testing import PVServer, black_view, check, finish, image_error  # noqa: E402
 
 pvserver, plugin, output_dir = sys.argv[1:4]
+launcher = sys.argv[4:]
 size = 160
 if not os.environ.get("DISPLAY") or os.environ.get("BRUME_RENDER_WINDOW") in ("egl", "osmesa"):
     # Without X, Debian's ParaView 5.11 finds its OpenGL probe failing on the
@@ -78,11 +85,16 @@ def render(where):
             break
     print("%s, On: %s" % (where, renders))
     steps = [r["NumberOfSteps"] for r in renders]
-    check(len(renders) == 3 and steps == [0, 1, 2] and renders[-1]["IsConverged"] == 1
-          and all(r["NumberOfTraces"] == 2 for r in renders)
-          and [r["IsRefining"] for r in renders] == [1, 1, 0],
-          "%s: a progressive view traces once and refines in two steps to its budget (%s)"
-          % (where, renders))
+    if where == "parallel server":
+        check(renders == [{"NumberOfTraces": 2, "NumberOfSteps": 0, "IsRefining": 0,
+                           "IsConverged": 1}],
+              "%s: a distributed scene traces its whole budget at once (%s)" % (where, renders))
+    else:
+        check(len(renders) == 3 and steps == [0, 1, 2] and renders[-1]["IsConverged"] == 1
+              and all(r["NumberOfTraces"] == 2 for r in renders)
+              and [r["IsRefining"] for r in renders] == [1, 1, 0],
+              "%s: a progressive view traces once and refines in two steps to its budget (%s)"
+              % (where, renders))
     pngs = []
     for background in ("black", "palette"):
         view.UseColorPaletteForBackground = int(background == "palette")
@@ -102,12 +114,12 @@ def pixels(png):
     return vtk_to_numpy(image.GetPointData().GetScalars()).reshape(size, size, -1)[:, :, :3]
 
 
-server = PVServer(pvserver)
+server = PVServer(pvserver, launcher=launcher, display=True)
 try:
     check(Connect("127.0.0.1", server.port) is not None
           and servermanager.ActiveConnection.IsRemote(), "connected to the pvserver")
     GetSettingsProxy("RenderViewSettings").RemoteRenderThreshold = 0
-    remote = render("client-server")
+    remote = render("parallel server" if launcher else "client-server")
     Connect()  # a built-in session, now the active one
     local = render("built-in")
 except BaseException:

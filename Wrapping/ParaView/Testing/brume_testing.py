@@ -189,9 +189,10 @@ class PVServer:
     With a launcher (for example `mpirun --oversubscribe -np 2`) it runs in
     parallel, its processes without a display (ParaView's probe of their
     rendering goes through the plugin's EGL; Xvfb refused one of several
-    processes' windows now and then). PORT 0: a free one."""
+    processes' windows now and then), unless `display` keeps it (a server
+    that renders for its client needs X). PORT 0: a free one."""
 
-    def __init__(self, pvserver, port=0, launcher=()):
+    def __init__(self, pvserver, port=0, launcher=(), display=False):
         if port == 0:
             with socket.socket() as probe:
                 probe.bind(("127.0.0.1", 0))
@@ -207,7 +208,8 @@ class PVServer:
             environment = {k: v for k, v in environment.items()
                            if k.startswith("OMPI_ALLOW")
                            or not k.startswith(("OMPI_", "PMIX_", "OPAL_"))}
-            environment.pop("DISPLAY", None)
+            if not display:
+                environment.pop("DISPLAY", None)
         self.output = []
         self.process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                                         text=True, env=environment)
