@@ -30,11 +30,9 @@ import os
 import sys
 
 from paraview.simple import *  # noqa: F401,F403
-from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkIOImage import vtkPNGReader
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from brume_testing import PVServer, black_view, check, finish, image_error  # noqa: E402
+from brume_testing import PVServer, black_view, check, finish, image_error, png_pixels  # noqa: E402,E501
 
 pvserver, plugin, output_dir = sys.argv[1:4]
 launcher = sys.argv[4:]
@@ -106,14 +104,6 @@ def render(where):
     return pngs
 
 
-def pixels(png):
-    reader = vtkPNGReader()
-    reader.SetFileName(png)
-    reader.Update()
-    image = reader.GetOutput()
-    return vtk_to_numpy(image.GetPointData().GetScalars()).reshape(size, size, -1)[:, :, :3]
-
-
 server = PVServer(pvserver, launcher=launcher, display=True)
 try:
     check(Connect("127.0.0.1", server.port) is not None
@@ -127,14 +117,14 @@ except BaseException:
     raise
 
 error = image_error(remote[0], local[0], threshold=16)
-means = [pixels(png).mean() for png in (remote[0], local[0])]
+means = [png_pixels(png).mean() for png in (remote[0], local[0])]
 print("the server's image against the built-in session's: error %g at 16 levels (limit 1), "
       "mean %.2f against %.2f" % (error, means[0], means[1]))
 check(means[1] > 10, "the built-in image is lit (mean %.1f)" % means[1])
 check(error <= 1 and abs(means[0] - means[1]) <= 0.5,
       "the server draws the built-in session's image (error %g, mean %.2f against %.2f)"
       % (error, means[0], means[1]))
-corners = [pixels(png)[2, 2].tolist() for png in (remote[1], local[1])]
+corners = [png_pixels(png)[2, 2].tolist() for png in (remote[1], local[1])]
 check(corners[0] == corners[1] and sum(corners[1]) > 100,
       "the server's image shows the view's grey background (%s against %s)" % tuple(corners))
 finish()

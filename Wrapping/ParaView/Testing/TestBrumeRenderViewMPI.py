@@ -34,12 +34,10 @@ import os
 import sys
 
 from paraview.simple import *  # noqa: F401,F403
-from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkIOImage import vtkPNGReader
 from vtkmodules.vtkParallelCore import vtkMultiProcessController
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from brume_testing import black_view, check, finish  # noqa: E402
+from brume_testing import black_view, check, finish, png_pixels  # noqa: E402
 
 plugin, output_dir = sys.argv[1:3]
 if not os.environ.get("DISPLAY"):
@@ -67,17 +65,6 @@ light.Position = [1.5, 4, 2]
 light.FocalPoint = [0, -1, 0]
 light.Intensity = 1.0
 view.UseLight = 0  # the light kit off: the light above casts the shadow
-view.CameraPosition = [0, 3, 8]
-view.CameraFocalPoint = [0, -0.5, 0]
-view.CameraViewUp = [0, 1, 0]
-
-
-def pixels(png):
-    reader = vtkPNGReader()
-    reader.SetFileName(png)
-    reader.Update()
-    image = reader.GetOutput()
-    return vtk_to_numpy(image.GetPointData().GetScalars()).reshape(size, size, -1)[:, :, :3]
 
 
 def shot(name):
@@ -85,8 +72,8 @@ def shot(name):
     SaveScreenshot(png, view, ImageResolution=[size, size])
     if processes == 1:
         return
-    one = pixels(os.path.join(output_dir, "TestBrumeRenderViewMPI-%s-1.png" % name))
-    two = pixels(png)
+    one = png_pixels(os.path.join(output_dir, "TestBrumeRenderViewMPI-%s-1.png" % name))
+    two = png_pixels(png)
     # 8 x 8 blocks' means, of the blocks lit in one process's image.
     blocks = [image.astype(float).mean(axis=2).reshape(size // 8, 8, size // 8, 8).mean(axis=(1, 3))
               for image in (one, two)]

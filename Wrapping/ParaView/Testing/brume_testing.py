@@ -10,6 +10,7 @@ import sys
 import threading
 
 from paraview.simple import CreateView, Render, SaveScreenshot, Show
+from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkImagingCore import vtkImageDifference
 from vtkmodules.vtkIOImage import vtkPNGReader, vtkPNGWriter
 from vtkmodules.vtkRenderingCore import vtkRenderer, vtkRenderWindow, vtkWindowToImageFilter
@@ -90,6 +91,16 @@ def image_error(test_png, reference_png, threshold=0):
     difference.AveragingOff()
     difference.Update()
     return difference.GetThresholdedError()
+
+
+def png_pixels(png):
+    """A PNG's RGB values, rows from the bottom, as a (height, width, 3) array."""
+    reader = vtkPNGReader()
+    reader.SetFileName(png)
+    reader.Update()
+    image = reader.GetOutput()
+    width, height, _ = image.GetDimensions()
+    return vtk_to_numpy(image.GetPointData().GetScalars()).reshape(height, width, -1)[:, :, :3]
 
 
 def actors_image(view, size, textures, camera, png, interpolate=True, extra=None, exposure=1.0):
