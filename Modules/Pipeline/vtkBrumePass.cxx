@@ -109,6 +109,18 @@ bool vtkBrumePass::Trace(bool built)
   vtkInternals& in = *this->Internals;
   // The pipeline reads a copy of the scene, given anew only here: building
   // the scene again (to compare it) traces nothing.
+  // Camera lights where the camera stands now: the scene was maybe built
+  // at an earlier camera (ParaView touches mappers at its first renders,
+  // and a settings change traces the last scene built).
+  if (built && in.Scene->HasCameraLights())
+  {
+    in.Scene->Modified();
+    built = in.Scene->GetExecutive()->Update() != 0;
+    if (this->Gathers())
+    {
+      built = vtkBrumeProcesses::Agree(in.Pipeline->GetController(), built);
+    }
+  }
   if (!built)
   {
     ++this->NumberOfTraces;

@@ -419,6 +419,9 @@ int vtkBrumeRendererScene::RequestData(
   vtkNew<vtkLightCollection> lights;
   std::vector<bool>& cameraLights = this->Internals->CameraLights;
   cameraLights.clear();
+  // Headlights and camera lights where the camera stands now (the renderer
+  // places them at its next render; until then, where the last one stood).
+  renderer->UpdateLightsGeometryToFollowCamera();
   vtkLightCollection* given = renderer->GetLights();
   given->InitTraversal();
   while (vtkLight* light = given->GetNextItem())
@@ -444,10 +447,23 @@ int vtkBrumeRendererScene::RequestData(
   if (!error.empty())
   {
     vtkErrorMacro("The renderer's lights: " << error << ".");
+  }
+  if (distributed ? !vtkBrumeProcesses::Agree(this->Controller, error.empty()) : !error.empty())
+  {
     return 0;
   }
   vtkBrumeRendererSceneParts::AimPointLights(scene, converted.Lights);
   vtkBrumeSceneConversion::AppendFieldLights(converted.Lights, scene->GetFieldData());
+  if (distributed)
+  {
+    // Process 0's lights on every process: camera lights (ParaView's light
+    // kit) stand where each renderer last placed them, which may differ
+    // between processes, and the processes trace their shares of one scene.
+    vtkNew<vtkPolyData> carrier;
+    carrier->GetFieldData()->ShallowCopy(scene->GetFieldData());
+    this->Controller->Broadcast(carrier, 0);
+    scene->GetFieldData()->ShallowCopy(carrier->GetFieldData());
+  }
   output->ShallowCopy(scene);
   return 1;
 }
@@ -600,6 +616,12 @@ vtkTypeUInt64 vtkBrumeRendererScene::GetContentSignature()
     }
   }
   return hash.Value;
+}
+
+bool vtkBrumeRendererScene::HasCameraLights()
+{
+  const std::vector<bool>& lights = this->Internals->CameraLights;
+  return std::find(lights.begin(), lights.end(), true) != lights.end();
 }
 
 bool vtkBrumeRendererScene::Translates(vtkProp* prop)

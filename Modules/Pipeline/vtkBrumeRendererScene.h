@@ -144,6 +144,11 @@ public:
   /// did not are drawn by VTK as usual, see vtkBrumePass).
   bool Translates(vtkProp* prop);
 
+  /// Whether the last scene built holds headlights or camera lights (placed
+  /// where the camera stood when it was built: vtkBrumePass builds it again
+  /// before it traces, so that they stand where the camera does then).
+  bool HasCameraLights();
+
   /**
    * A 64-bit hash of the last scene built: its objects' names, geometry,
    * cell arrays and field data, and its lights (headlights and camera
