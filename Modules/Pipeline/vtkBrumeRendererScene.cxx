@@ -306,8 +306,8 @@ int vtkBrumeRendererScene::RequestData(
     int block = 0;
     for (vtkDataSet* data : datasets)
     {
-      vtkSmartPointer<vtkPolyData> surface =
-        vtkBrumeRendererSceneParts::ActorSurface(actor, data, distributed ? nullptr : renderer->GetActiveCamera());
+      vtkSmartPointer<vtkPolyData> surface = vtkBrumeRendererSceneParts::ActorSurface(
+        actor, data, distributed ? nullptr : renderer->GetActiveCamera());
       if (!surface)
       {
         continue;

@@ -5,27 +5,27 @@
 #include "vtkBrumeRendererSceneParts.h"
 
 #include "vtkActor.h"
+#include "vtkAppendPolyData.h"
 #include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeFieldTuple.h"
-#include "vtkAppendPolyData.h"
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
-#include "vtkCompositeDataSet.h"
-#include "vtkImageData.h"
-#include "vtkInformation.h"
-#include "vtkMultiProcessController.h"
 #include "vtkCellData.h"
 #include "vtkCleanPolyData.h"
+#include "vtkCompositeDataSet.h"
 #include "vtkDataArray.h"
 #include "vtkDataSetSurfaceFilter.h"
 #include "vtkFeatureEdges.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkIdList.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
 #include "vtkLookupTable.h"
 #include "vtkMapper.h"
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkPartitionedDataSet.h"
 #include "vtkPartitionedDataSetCollection.h"
@@ -444,8 +444,7 @@ vtkSmartPointer<vtkImageData> MergedImage(const std::vector<vtkSmartPointer<vtkD
   for (const auto& piece : pieces)
   {
     auto* image = vtkImageData::SafeDownCast(piece);
-    if (!image || image->GetCellData()->GetNumberOfArrays() > 0 ||
-      image->GetNumberOfPoints() == 0)
+    if (!image || image->GetCellData()->GetNumberOfArrays() > 0 || image->GetNumberOfPoints() == 0)
     {
       return nullptr;
     }
@@ -493,9 +492,8 @@ vtkSmartPointer<vtkImageData> MergedImage(const std::vector<vtkSmartPointer<vtkD
     vtkAbstractArray* source = model->GetAbstractArray(k);
     for (vtkImageData* image : images)
     {
-      vtkAbstractArray* other = source->GetName()
-        ? image->GetPointData()->GetAbstractArray(source->GetName())
-        : nullptr;
+      vtkAbstractArray* other =
+        source->GetName() ? image->GetPointData()->GetAbstractArray(source->GetName()) : nullptr;
       if (!other || other->GetDataType() != source->GetDataType() ||
         other->GetNumberOfComponents() != source->GetNumberOfComponents())
       {
@@ -521,7 +519,8 @@ vtkSmartPointer<vtkImageData> MergedImage(const std::vector<vtkSmartPointer<vtkD
       {
         for (int y = 0; y < dims[1]; ++y)
         {
-          const vtkIdType row = ((starts[p][2] - low[2] + z) * n[1] + (starts[p][1] - low[1] + y)) * n[0] +
+          const vtkIdType row =
+            ((starts[p][2] - low[2] + z) * n[1] + (starts[p][1] - low[1] + y)) * n[0] +
             (starts[p][0] - low[0]);
           for (int x = 0; x < dims[0]; ++x, ++t)
           {

@@ -125,14 +125,14 @@ void vtkBrumeDisplayPass::Render(const vtkRenderState* s)
   if (!impl.Quad)
   {
     std::string fs = vtkOpenGLRenderUtilities::GetFullScreenQuadFragmentShaderTemplate();
-    vtkShaderProgram::Substitute(
-      fs, "//VTK::FSQ::Decl",
+    vtkShaderProgram::Substitute(fs, "//VTK::FSQ::Decl",
       "uniform sampler2D radiance;\nuniform sampler2D depth;\nuniform float exposure;\n");
     vtkShaderProgram::Substitute(fs, "//VTK::FSQ::Impl",
       "  vec3 x = clamp(exposure * texture2D(radiance, texCoord).rgb, 0.0, 1.0);\n"
       "  vec3 low = 12.92 * x;\n"
       "  vec3 high = 1.055 * pow(x, vec3(1.0 / 2.4)) - 0.055;\n"
-      "  gl_FragData[0] = vec4(mix(high, low, vec3(lessThanEqual(x, vec3(0.0031308)))), texture2D(radiance, texCoord).a);\n"
+      "  gl_FragData[0] = vec4(mix(high, low, vec3(lessThanEqual(x, vec3(0.0031308)))), "
+      "texture2D(radiance, texCoord).a);\n"
       "  float d = texture2D(depth, texCoord).r;\n"
       "  gl_FragDepth = texture2D(radiance, texCoord).a > 0.0 && d >= 1.0 ? 0.99999988 : d;\n");
     impl.Quad.reset(new vtkOpenGLQuadHelper(

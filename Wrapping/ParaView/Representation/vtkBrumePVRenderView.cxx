@@ -124,8 +124,8 @@ void vtkBrumePVRenderView::Render(bool interactive, bool skipRendering)
   // selection's renders run on the server alone and exchange nothing).
   const bool distributed = interactive ? this->GetUseDistributedRenderingForLODRender()
                                        : this->GetUseDistributedRenderingForRender();
-  const Side side = distributed && !this->GetMakingSelection() ? SideOf(this->GetSession())
-                                                                : Side::Alone;
+  const Side side =
+    distributed && !this->GetMakingSelection() ? SideOf(this->GetSession()) : Side::Alone;
   bool progressive = this->RendersProgressively();
   if (side != Side::Alone)
   {

@@ -92,7 +92,10 @@ public:
 
   /// Whether the server drew the last render (client–server with remote
   /// rendering): the counters and states above are then the server's.
-  bool GetLastRenderOnServer() { return this->LastRenderOnServer; }
+  bool GetLastRenderOnServer()
+  {
+    return this->LastRenderOnServer;
+  }
 
 protected:
   vtkBrumePVRenderView();
