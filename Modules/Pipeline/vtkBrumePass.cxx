@@ -112,7 +112,14 @@ bool vtkBrumePass::Trace(bool built)
   // Camera lights where the camera stands now: the scene was maybe built
   // at an earlier camera (ParaView touches mappers at its first renders,
   // and a settings change traces the last scene built).
-  if (built && in.Scene->HasCameraLights())
+  bool behind = built && in.Scene->AreCameraLightsBehind();
+  if (this->Gathers())
+  {
+    // Collective: the processes build again together (their cameras agree,
+    // their MTimes need not).
+    behind = !vtkBrumeProcesses::Agree(in.Pipeline->GetController(), !behind);
+  }
+  if (behind)
   {
     in.Scene->Modified();
     built = in.Scene->GetExecutive()->Update() != 0;

@@ -80,6 +80,9 @@ struct vtkBrumeRendererScene::vtkInternals
   std::set<vtkProp*> Translated;
   // Per light of the last scene: whether it follows the camera.
   std::vector<bool> CameraLights;
+  // The camera and its MTime when the last scene placed those lights.
+  vtkWeakPointer<vtkCamera> PlacedCamera;
+  vtkMTimeType PlacedCameraTime = 0;
 };
 
 namespace
@@ -422,6 +425,8 @@ int vtkBrumeRendererScene::RequestData(
   // Headlights and camera lights where the camera stands now (the renderer
   // places them at its next render; until then, where the last one stood).
   renderer->UpdateLightsGeometryToFollowCamera();
+  this->Internals->PlacedCamera = renderer->GetActiveCamera();
+  this->Internals->PlacedCameraTime = renderer->GetActiveCamera()->GetMTime();
   vtkLightCollection* given = renderer->GetLights();
   given->InitTraversal();
   while (vtkLight* light = given->GetNextItem())
@@ -622,6 +627,15 @@ bool vtkBrumeRendererScene::HasCameraLights()
 {
   const std::vector<bool>& lights = this->Internals->CameraLights;
   return std::find(lights.begin(), lights.end(), true) != lights.end();
+}
+
+bool vtkBrumeRendererScene::AreCameraLightsBehind()
+{
+  vtkRenderer* renderer = this->Internals->Renderer;
+  vtkCamera* camera = renderer ? renderer->GetActiveCamera() : nullptr;
+  return this->HasCameraLights() &&
+    (camera != this->Internals->PlacedCamera ||
+      camera->GetMTime() != this->Internals->PlacedCameraTime);
 }
 
 bool vtkBrumeRendererScene::Translates(vtkProp* prop)

@@ -145,9 +145,12 @@ public:
   bool Translates(vtkProp* prop);
 
   /// Whether the last scene built holds headlights or camera lights (placed
-  /// where the camera stood when it was built: vtkBrumePass builds it again
-  /// before it traces, so that they stand where the camera does then).
+  /// where the camera stood when it was built).
   bool HasCameraLights();
+  /// Whether it holds such lights and the renderer's camera has changed
+  /// since it placed them: vtkBrumePass builds the scene again then before
+  /// it traces, so that they stand where the camera does.
+  bool AreCameraLightsBehind();
 
   /**
    * A 64-bit hash of the last scene built: its objects' names, geometry,
