@@ -657,26 +657,31 @@ vtkSmartPointer<vtkPartitionedDataSetCollection> Gathered(
       // One prop's pieces: one surface, turned as a whole (the pieces come
       // unturned: turned alone, each would be open, and its winding would
       // depend on the camera).
-      vtkNew<vtkAppendPolyData> append;
-      for (const auto& data : object.Data)
+      vtkSmartPointer<vtkPolyData> surface = vtkPolyData::SafeDownCast(object.Data[0]);
+      if (object.Data.size() > 1)
       {
-        append->AddInputData(vtkPolyData::SafeDownCast(data));
+        vtkNew<vtkAppendPolyData> append;
+        for (const auto& data : object.Data)
+        {
+          append->AddInputData(vtkPolyData::SafeDownCast(data));
+        }
+        append->Update();
+        // The pieces' shared edges: their points computed on each process,
+        // equal but for rounding (an edge interpolated from either end), so
+        // merged within a millionth of the surface's size. Unmerged, a
+        // closed surface would stay open, and part of it turned inward.
+        vtkNew<vtkCleanPolyData> seams;
+        seams->SetInputConnection(append->GetOutputPort());
+        seams->PointMergingOn();
+        seams->ToleranceIsAbsoluteOn();
+        seams->SetAbsoluteTolerance(1e-6 * append->GetOutput()->GetLength());
+        seams->ConvertLinesToPointsOff();
+        seams->ConvertPolysToLinesOff();
+        seams->ConvertStripsToPolysOff();
+        seams->Update();
+        surface = seams->GetOutput();
       }
-      append->Update();
-      // The pieces' shared edges: their points computed on each process,
-      // equal but for rounding (an edge interpolated from either end), so
-      // merged within a millionth of the surface's size. Unmerged, a closed
-      // surface would stay open, and part of it turned inward.
-      vtkNew<vtkCleanPolyData> seams;
-      seams->SetInputConnection(append->GetOutputPort());
-      seams->PointMergingOn();
-      seams->ToleranceIsAbsoluteOn();
-      seams->SetAbsoluteTolerance(1e-6 * append->GetOutput()->GetLength());
-      seams->ConvertLinesToPointsOff();
-      seams->ConvertPolysToLinesOff();
-      seams->ConvertStripsToPolysOff();
-      seams->Update();
-      vtkSmartPointer<vtkPolyData> turned = FacingViewer(seams->GetOutput(), camera);
+      vtkSmartPointer<vtkPolyData> turned = FacingViewer(surface, camera);
       turned->GetFieldData()->ShallowCopy(object.Data[0]->GetFieldData());
       partitions->SetPartition(0, turned);
     }
