@@ -78,6 +78,13 @@ void DirectLight::SetMediumGrid(std::size_t m, const BrickedGrid* density)
 Vec3 DirectLight::Transmittance(const Vec3& x, const Vec3& d, float length) const
 {
   double depth[3] = { 0.0, 0.0, 0.0 };
+  this->AddOpticalDepth(x, d, length, depth);
+  return Vec3(static_cast<float>(std::exp(-depth[0])), static_cast<float>(std::exp(-depth[1])),
+    static_cast<float>(std::exp(-depth[2])));
+}
+
+void DirectLight::AddOpticalDepth(const Vec3& x, const Vec3& d, float length, double depth[3]) const
+{
   for (std::size_t m = 0; m < this->SceneRef.Media.size(); ++m)
   {
     const Medium& medium = this->SceneRef.Media[m];
@@ -136,8 +143,6 @@ Vec3 DirectLight::Transmittance(const Vec3& x, const Vec3& d, float length) cons
       depth[c] += sigmaT[c] * integral;
     }
   }
-  return Vec3(static_cast<float>(std::exp(-depth[0])), static_cast<float>(std::exp(-depth[1])),
-    static_cast<float>(std::exp(-depth[2])));
 }
 
 Vec3 DirectLight::DirectionAt(std::size_t k, const Vec3& x) const
@@ -154,9 +159,21 @@ Vec3 DirectLight::DirectionAt(std::size_t k, const Vec3& x) const
 
 bool DirectLight::Arrive(std::size_t k, const Vec3& x, const Vec3& bias, LightArrival& a) const
 {
+  float distance = 0.f;
+  if (!this->ArriveUnattenuated(k, x, bias, a, distance))
+  {
+    return false;
+  }
+  a.Irradiance = a.Irradiance * this->Transmittance(x, -a.Direction, distance);
+  return MaxComponent(a.Irradiance) > 0.f;
+}
+
+bool DirectLight::ArriveUnattenuated(
+  std::size_t k, const Vec3& x, const Vec3& bias, LightArrival& a, float& distance) const
+{
   const Light& light = this->SceneRef.Lights[k];
   Vec3 toLight;
-  float distance = 0.f;
+  distance = 0.f;
   switch (light.Type)
   {
     case LightType::Point:
@@ -197,13 +214,8 @@ bool DirectLight::Arrive(std::size_t k, const Vec3& x, const Vec3& bias, LightAr
   // Surfaces short of the light occlude; the media count all the way.
   const Vec3 start = x + bias;
   SurfaceHit hit;
-  if (this->Caster.Intersect(
-        start, toLight, this->Epsilon, std::max(0.f, distance - this->Epsilon), hit))
-  {
-    return false;
-  }
-  a.Irradiance = a.Irradiance * this->Transmittance(x, toLight, distance);
-  return MaxComponent(a.Irradiance) > 0.f;
+  return !this->Caster.Intersect(
+    start, toLight, this->Epsilon, std::max(0.f, distance - this->Epsilon), hit);
 }
 
 } // namespace brume

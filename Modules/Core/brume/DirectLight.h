@@ -86,14 +86,31 @@ public:
    */
   bool Arrive(std::size_t k, const Vec3& x, const Vec3& bias, LightArrival& arrival) const;
 
+  /**
+   * Arrive() but for the media: the irradiance before the shadow ray's
+   * transmittance, and the distance to the light the media attenuate over
+   * (the transmittance toward the light, -Direction). False when no light
+   * arrives (outside the cone or the beam, or behind a surface).
+   */
+  bool ArriveUnattenuated(
+    std::size_t k, const Vec3& x, const Vec3& bias, LightArrival& arrival, float& distance) const;
+
   /// Light `k`'s direction of travel at `x` (whether or not it arrives).
   Vec3 DirectionAt(std::size_t k, const Vec3& x) const;
 
   /// Transmittance per channel along the segment x + t d, t in [0, length].
   Vec3 Transmittance(const Vec3& x, const Vec3& d, float length) const;
+  /**
+   * Adds the optical depth per channel along the same segment to `depth`
+   * (Transmittance() is its exponential): the media's midpoint march,
+   * which stops a medium's part once every channel is past an optical
+   * depth of 30.
+   */
+  void AddOpticalDepth(const Vec3& x, const Vec3& d, float length, double depth[3]) const;
 
   /// A distance small against the scene (shadow-ray offsets).
   float GetEpsilon() const { return this->Epsilon; }
+  const Scene& GetScene() const { return this->SceneRef; }
 
 private:
   const Scene& SceneRef;

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace brume
 {
@@ -254,6 +255,48 @@ Vec3 DirectTexture::OutputPosition(const ObjectLayout& layout, std::size_t t) co
   return f.Origin + f.U * q.x + f.V * q.y;
 }
 
+std::vector<ShadowSweep> DirectTexture::PlanSweeps(const ObjectLayout& layout,
+  const NativeMediumGrid& native, const std::vector<std::uint8_t>& wanted) const
+{
+  const std::size_t lights = this->Light->NumberOfLights();
+  std::vector<ShadowSweep> sweeps(lights);
+  if (!layout.MediumRef || native.Empty())
+  {
+    return sweeps; // nothing a march through a grid would repeat
+  }
+  const std::size_t texels = wanted.size();
+  const Box& box = layout.MediumRef->Bounds;
+  for (std::size_t l = 0; l < lights; ++l)
+  {
+    ShadowSweep& sweep = sweeps[l];
+    if (!sweep.Plan(*this->Light, l, box, this->Dims))
+    {
+      sweep = ShadowSweep();
+      continue;
+    }
+    // The sweep where its rays march through the box at most half as far
+    // as the texels' own would: each from its texel to where it leaves.
+    double perTexel = 0.0;
+    for (std::size_t t = 0; t < texels; ++t)
+    {
+      if (wanted[t])
+      {
+        const Vec3 x = this->OutputPosition(layout, t);
+        float t0 = 0.f, t1 = std::numeric_limits<float>::max();
+        if (box.Intersect(x, -this->Light->DirectionAt(l, x), t0, t1))
+        {
+          perTexel += t1 - t0;
+        }
+      }
+    }
+    if (!(sweep.MarchLength() < 0.5 * perTexel))
+    {
+      sweep = ShadowSweep();
+    }
+  }
+  return sweeps;
+}
+
 bool DirectTexture::Compute(const ObjectLayout& layout, const std::vector<float>& texture,
   const NativeMediumGrid& native, const ObjectDistribution& distribution,
   const ParallelFor& parallelFor)
@@ -311,7 +354,15 @@ bool DirectTexture::Compute(const ObjectLayout& layout, const std::vector<float>
     read = SparseTexture::CellsRead(dims, layout.MediumRef->Bounds, native.GetDensity());
     cast = WithFaceNeighbours(read, dims, used);
   }
-  // 1. One shadow ray per texel centre.
+  // 1. One shadow ray per texel centre, or, through a medium's own grid,
+  // the rays of a sweep where they march less (ShadowSweep): the texels
+  // then hold the light before the media, which the sweep attenuates.
+  std::vector<std::uint8_t> wanted(texels, 0);
+  for (std::size_t t = mine[0]; t < mine[1]; ++t)
+  {
+    wanted[t] = cast.empty() || cast[t];
+  }
+  const std::vector<ShadowSweep> sweeps = this->PlanSweeps(layout, native, wanted);
   parallelFor(mine[0], mine[1],
     [&](std::size_t begin, std::size_t end)
     {
@@ -325,11 +376,45 @@ bool DirectTexture::Compute(const ObjectLayout& layout, const std::vector<float>
         for (std::size_t l = 0; l < lights; ++l)
         {
           Vec3 irradiance;
-          arrive(l, x, irradiance);
+          if (!sweeps[l].IsPlanned())
+          {
+            arrive(l, x, irradiance);
+          }
+          else
+          {
+            LightArrival a;
+            float distance = 0.f;
+            irradiance =
+              this->Light->ArriveUnattenuated(l, x, bias, a, distance) ? a.Irradiance : Vec3(0.f);
+          }
           store(t, l, irradiance, this->Light->DirectionAt(l, x));
         }
       }
     });
+  for (std::size_t l = 0; l < lights; ++l)
+  {
+    if (sweeps[l].IsPlanned())
+    {
+      const std::vector<float> depths = sweeps[l].Depths(wanted, parallelFor);
+      parallelFor(mine[0], mine[1],
+        [&](std::size_t begin, std::size_t end)
+        {
+          for (std::size_t t = begin; t < end; ++t)
+          {
+            float* out = &arrivals[(t * lights + l) * ArrivalFloats];
+            const float* depth = &depths[3 * t];
+            const Vec3 irradiance = Vec3(out[0], out[1], out[2]) *
+              Vec3(std::exp(-depth[0]), std::exp(-depth[1]), std::exp(-depth[2]));
+            // As arrive() finds it: none where nothing is left.
+            const bool lit = MaxComponent(irradiance) > 0.f;
+            for (int c = 0; c < 3; ++c)
+            {
+              out[c] = lit ? irradiance[c] : 0.f;
+            }
+          }
+        });
+    }
+  }
   distribution.GatherShares(texels, floats, arrivals);
   // 2. Texels on a shadow's or a beam's edge (lit while a face neighbour is
   // not, or the reverse) hold the mean over RefinedSamples^d stratified
