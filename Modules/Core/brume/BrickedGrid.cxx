@@ -218,39 +218,7 @@ int BrickedGrid::ConstantSamples(const Vec3& p, const Vec3& step, int most, floa
 
 void BrickedGrid::ForEachNonZeroCell(const std::function<void(int, int, int, float)>& f) const
 {
-  for (int bk = 0; bk < this->BrickDims[2]; ++bk)
-  {
-    for (int bj = 0; bj < this->BrickDims[1]; ++bj)
-    {
-      for (int bi = 0; bi < this->BrickDims[0]; ++bi)
-      {
-        const std::size_t brick = this->BrickIndex(bi, bj, bk);
-        if (this->Slots[brick] < 0 && this->Constants[brick] == 0.f)
-        {
-          continue;
-        }
-        const int b[3] = { bi, bj, bk };
-        int lower[3], upper[3];
-        for (int a = 0; a < 3; ++a)
-        {
-          lower[a] = Stride * b[a];
-          upper[a] = b[a] == this->BrickDims[a] - 1 ? this->Dims[a] : lower[a] + Stride;
-        }
-        // The brick's own samples (At()'s values, read in place).
-        const std::int32_t slot = this->Slots[brick];
-        const float* samples =
-          slot < 0 ? nullptr : this->Samples.Data() + static_cast<std::size_t>(slot) * BrickSamples;
-        for (int k = lower[2]; k < upper[2]; ++k)
-          for (int j = lower[1]; j < upper[1]; ++j)
-            for (int i = lower[0]; i < upper[0]; ++i)
-            {
-              f(i, j, k,
-                samples ? samples[((k - lower[2]) * Size + (j - lower[1])) * Size + (i - lower[0])]
-                        : this->Constants[brick]);
-            }
-      }
-    }
-  }
+  this->ForEachNonZeroCellOfLayers(0, this->BrickDims[2], f);
 }
 
 } // namespace brume

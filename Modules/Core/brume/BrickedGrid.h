@@ -104,6 +104,10 @@ public:
    * the last brick the rest), in brick order.
    */
   void ForEachNonZeroCell(const std::function<void(int, int, int, float)>& f) const;
+  /// The same for the bricks of layers [first, last) along z (their cells
+  /// k from Stride first), with `f` called inline.
+  template <class F>
+  void ForEachNonZeroCellOfLayers(int first, int last, F&& f) const;
 
 private:
   std::size_t BrickIndex(int bi, int bj, int bk) const
@@ -119,6 +123,44 @@ private:
   std::vector<float> Constants;
   FloatBuffer Samples;
 };
+
+template <class F>
+void BrickedGrid::ForEachNonZeroCellOfLayers(int first, int last, F&& f) const
+{
+  for (int bk = first; bk < last; ++bk)
+  {
+    for (int bj = 0; bj < this->BrickDims[1]; ++bj)
+    {
+      for (int bi = 0; bi < this->BrickDims[0]; ++bi)
+      {
+        const std::size_t brick = this->BrickIndex(bi, bj, bk);
+        if (this->Slots[brick] < 0 && this->Constants[brick] == 0.f)
+        {
+          continue;
+        }
+        const int b[3] = { bi, bj, bk };
+        int lower[3], upper[3];
+        for (int a = 0; a < 3; ++a)
+        {
+          lower[a] = Stride * b[a];
+          upper[a] = b[a] == this->BrickDims[a] - 1 ? this->Dims[a] : lower[a] + Stride;
+        }
+        // The brick's own samples (At()'s values, read in place).
+        const std::int32_t slot = this->Slots[brick];
+        const float* samples =
+          slot < 0 ? nullptr : this->Samples.Data() + static_cast<std::size_t>(slot) * BrickSamples;
+        for (int k = lower[2]; k < upper[2]; ++k)
+          for (int j = lower[1]; j < upper[1]; ++j)
+            for (int i = lower[0]; i < upper[0]; ++i)
+            {
+              f(i, j, k,
+                samples ? samples[((k - lower[2]) * Size + (j - lower[1])) * Size + (i - lower[0])]
+                        : this->Constants[brick]);
+            }
+      }
+    }
+  }
+}
 
 } // namespace brume
 

@@ -91,7 +91,8 @@ public:
 
   /// The density's integral over each of `dims` histogram cells over the
   /// medium's bounds `box`, and its first moments.
-  void BuildTables(const Box& box, const std::array<int, 3>& dims);
+  void BuildTables(
+    const Box& box, const std::array<int, 3>& dims, const ParallelFor& parallelFor = SerialFor());
   bool HasTables() const { return this->DensityTable.GetNumberOfChannels() != 0; }
   /// The density's integral over a region of histogram cells.
   double RegionIntegral(const Region& region) const;

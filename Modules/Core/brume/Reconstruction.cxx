@@ -293,7 +293,7 @@ std::string ObjectRadiance::EstimateTexture(const ParallelFor& parallelFor)
   if (medium && medium->Density && !this->Native.HasTables())
   {
     // Independent of the particles and the view: made once per object.
-    this->Native.BuildTables(medium->Bounds, this->Layout.Dims);
+    this->Native.BuildTables(medium->Bounds, this->Layout.Dims, parallelFor);
   }
   else if (first && !medium)
   {
