@@ -184,19 +184,38 @@ public:
         weight[a][m] = n == 1 ? 0.f : x - static_cast<float>(i0);
       }
     }
+    // Separably, the same operations as one trilinear interpolation per
+    // sample (the same floats): along x for each row of points the samples
+    // read (at most 3 x 3), then along y, then along z.
     auto lerp = [](float a, float b, float t) { return a + (b - a) * t; };
+    int low[3], high[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      low[a] = first[a][0];
+      high[a] = second[a][s - 1];
+    }
+    constexpr int M = MaxNativeSamples;
+    float alongX[3][3][M], alongY[3][M][M];
+    for (int z = low[2]; z <= high[2]; ++z)
+      for (int y = low[1]; y <= high[1]; ++y)
+        for (int x = 0; x < s; ++x)
+        {
+          alongX[z - low[2]][y - low[1]][x] =
+            lerp(at(first[0][x], y, z), at(second[0][x], y, z), weight[0][x]);
+        }
+    for (int z = low[2]; z <= high[2]; ++z)
+      for (int y = 0; y < s; ++y)
+        for (int x = 0; x < s; ++x)
+        {
+          alongY[z - low[2]][y][x] = lerp(alongX[z - low[2]][first[1][y] - low[1]][x],
+            alongX[z - low[2]][second[1][y] - low[1]][x], weight[1][y]);
+        }
     for (int z = 0; z < s; ++z)
       for (int y = 0; y < s; ++y)
         for (int x = 0; x < s; ++x)
         {
-          const int x0 = first[0][x], y0 = first[1][y], z0 = first[2][z];
-          const int x1 = second[0][x], y1 = second[1][y], z1 = second[2][z];
-          const float fx = weight[0][x], fy = weight[1][y], fz = weight[2][z];
-          const float c00 = lerp(at(x0, y0, z0), at(x1, y0, z0), fx);
-          const float c10 = lerp(at(x0, y1, z0), at(x1, y1, z0), fx);
-          const float c01 = lerp(at(x0, y0, z1), at(x1, y0, z1), fx);
-          const float c11 = lerp(at(x0, y1, z1), at(x1, y1, z1), fx);
-          *out++ = lerp(lerp(c00, c10, fy), lerp(c01, c11, fy), fz);
+          *out++ = lerp(alongY[first[2][z] - low[2]][y][x], alongY[second[2][z] - low[2]][y][x],
+            weight[2][z]);
         }
   }
   double NativeMean(int i, int j, int k, const Box& cell, const Box& bounds, int s) const override;
