@@ -256,7 +256,7 @@ Vec3 DirectTexture::OutputPosition(const ObjectLayout& layout, std::size_t t) co
 }
 
 std::vector<ShadowSweep> DirectTexture::PlanSweeps(const ObjectLayout& layout,
-  const NativeMediumGrid& native, const std::vector<std::uint8_t>& wanted) const
+  const NativeMediumGrid& native, const std::vector<std::uint8_t>& cast) const
 {
   const std::size_t lights = this->Light->NumberOfLights();
   std::vector<ShadowSweep> sweeps(lights);
@@ -264,7 +264,8 @@ std::vector<ShadowSweep> DirectTexture::PlanSweeps(const ObjectLayout& layout,
   {
     return sweeps; // nothing a march through a grid would repeat
   }
-  const std::size_t texels = wanted.size();
+  const std::size_t texels =
+    static_cast<std::size_t>(this->Dims[0]) * this->Dims[1] * this->Dims[2];
   const Box& box = layout.MediumRef->Bounds;
   for (std::size_t l = 0; l < lights; ++l)
   {
@@ -276,10 +277,12 @@ std::vector<ShadowSweep> DirectTexture::PlanSweeps(const ObjectLayout& layout,
     }
     // The sweep where its rays march through the box at most half as far
     // as the texels' own would: each from its texel to where it leaves.
+    // Over every texel cast, whichever process casts it, so that every
+    // process decides alike and the texels do not depend on how many.
     double perTexel = 0.0;
     for (std::size_t t = 0; t < texels; ++t)
     {
-      if (wanted[t])
+      if (cast.empty() || cast[t])
       {
         const Vec3 x = this->OutputPosition(layout, t);
         float t0 = 0.f, t1 = std::numeric_limits<float>::max();
@@ -362,7 +365,7 @@ bool DirectTexture::Compute(const ObjectLayout& layout, const std::vector<float>
   {
     wanted[t] = cast.empty() || cast[t];
   }
-  const std::vector<ShadowSweep> sweeps = this->PlanSweeps(layout, native, wanted);
+  const std::vector<ShadowSweep> sweeps = this->PlanSweeps(layout, native, cast);
   parallelFor(mine[0], mine[1],
     [&](std::size_t begin, std::size_t end)
     {

@@ -60,11 +60,12 @@ public:
   const std::vector<float>& GetExtinction() const { return this->Extinction; }
 
 private:
-  // Per light, the sweep of its shadow rays over the `wanted` texels
-  // (ShadowSweep) where the medium's own grid makes it cheaper than one
-  // march per texel; an unplanned one for the lights cast texel by texel.
+  // Per light, the sweep of its shadow rays over the texels `cast` (every
+  // texel where empty) where the medium's own grid makes it cheaper than
+  // one march per texel (ShadowSweep); an unplanned one for the lights cast
+  // texel by texel.
   std::vector<ShadowSweep> PlanSweeps(const ObjectLayout& layout, const NativeMediumGrid& native,
-    const std::vector<std::uint8_t>& wanted) const;
+    const std::vector<std::uint8_t>& cast) const;
   // The output texel's world position.
   Vec3 OutputPosition(const ObjectLayout& layout, std::size_t texel) const;
   // Surfaces of per-triangle materials or per-vertex reflectance: the
