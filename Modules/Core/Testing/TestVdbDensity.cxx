@@ -81,8 +81,8 @@ TEST(VdbDensity, StreamsWithoutOffsetsLoadAndTheirFaultsAreFound)
   // A fuzzer's find (128 bytes): a stream whose descriptor's offsets were
   // taken for the grid, so that the transform's name was read from bytes
   // announcing 3.3 GB. OpenVDB built a 12 GB message in 41 s.
-  const unsigned char found[] = { 0x20, 0x42, 0x44, 0x56, 0, 0, 0, 0, 0xe0, 0, 0, 0, 0x0a, 0, 0,
-    0, 0, 0x0a, 0x3a, 0, 0 };
+  const unsigned char found[] = { 0x20, 0x42, 0x44, 0x56, 0, 0, 0, 0, 0xe0, 0, 0, 0, 0x0a, 0, 0, 0,
+    0, 0x0a, 0x3a, 0, 0 };
   std::string bytes(reinterpret_cast<const char*>(found), sizeof(found));
   bytes += "ccf2766d-07ca-490b-8f8e-fd73023ca69d";
   const unsigned char tail[] = { 0, 0, 0, 0, 1, 0, 0, 0, 7, 0, 0, 0, 'd', 'e', 'n', 's', 'i', 't',
@@ -224,4 +224,45 @@ TEST(VdbDensity, SharedSampleVolumesLoadWhenPresent)
     // Sparse media have empty blocks the tracker skips.
     EXPECT_LE(density->NumberOfOccupiedBlocks(), density->GetMajorants().Max.size()) << name;
   }
+}
+
+TEST(VdbDensity, NativePointsAreTheVoxelsAtTheNativeCellsCentres)
+{
+  // A classified grid's means interpolate these themselves
+  // (ClassifiedDensity::NativeBrick): each must be the field at its cell's
+  // centre, and the field between them their trilinear interpolation.
+  vdbwriter::Grid grid;
+  grid.Background = 0.25f;
+  grid.VoxelSize = 0.1;
+  grid.Lower = { -13, -5, -9 };
+  grid.Upper = { 10, 8, 11 };
+  grid.Value = [](int i, int j, int k)
+  { return 0.5f + 0.3f * std::sin(0.7f * i + 1.3f * j - static_cast<float>(k)); };
+  const std::string path =
+    (std::filesystem::temp_directory_path() / "brume-test-native-points.vdb").string();
+  vdbwriter::Write(path, { grid });
+  std::string error;
+  auto density = VdbDensity::LoadScalars(path, "", error);
+  ASSERT_TRUE(density) << error;
+  const std::array<int, 3> dims = density->NativeResolution();
+  // The active box and one voxel around it.
+  EXPECT_EQ(dims, (std::array<int, 3>{ 26, 16, 23 }));
+  const Box box = density->NativeBox();
+  const std::array<int, 3> lower{ 0, 3, 19 }, count{ 26, 5, 4 }; // the ends included
+  std::vector<float> points(static_cast<std::size_t>(count[0]) * count[1] * count[2]);
+  ASSERT_TRUE(density->NativePoints(lower, count, points.data()));
+  const Vec3 cell = box.Extent() /
+    Vec3(static_cast<float>(dims[0]), static_cast<float>(dims[1]), static_cast<float>(dims[2]));
+  int differing = 0;
+  std::size_t n = 0;
+  for (int k = lower[2]; k < lower[2] + count[2]; ++k)
+    for (int j = lower[1]; j < lower[1] + count[1]; ++j)
+      for (int i = lower[0]; i < lower[0] + count[0]; ++i)
+      {
+        const Vec3 centre = box.lower +
+          (Vec3(static_cast<float>(i), static_cast<float>(j), static_cast<float>(k)) + Vec3(0.5f)) *
+            cell;
+        differing += std::abs(density->Evaluate(centre) - points[n++]) <= 1e-5f ? 0 : 1;
+      }
+  EXPECT_EQ(differing, 0);
 }

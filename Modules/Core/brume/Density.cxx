@@ -159,6 +159,31 @@ std::array<int, 3> DensityField::NativeResolution() const
     this->Majorants.Dims[2] * Cells };
 }
 
+bool GridDensity::NativePoints(
+  const std::array<int, 3>& lower, const std::array<int, 3>& count, float* out) const
+{
+  if (this->CellValues || this->Interpolated != Interpolation::Linear)
+  {
+    return false;
+  }
+  const std::array<int, 3>& dims = this->Dims;
+  this->Values.Visit(
+    [&](const auto* values)
+    {
+      for (int z = 0; z < count[2]; ++z)
+        for (int y = 0; y < count[1]; ++y)
+        {
+          const auto* row =
+            values + (static_cast<std::size_t>(lower[2] + z) * dims[1] + lower[1] + y) * dims[0];
+          for (int x = 0; x < count[0]; ++x)
+          {
+            *out++ = static_cast<float>(row[lower[0] + x]);
+          }
+        }
+    });
+  return true;
+}
+
 std::array<int, 3> GridDensity::NativeResolution() const
 {
   // One cell per value: cell values are the cells, point values the

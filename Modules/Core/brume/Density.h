@@ -71,6 +71,22 @@ public:
    * 64 evaluations (ClassifiedDensity classifies those).
    */
   virtual double NativeMean(int i, int j, int k, const Box& cell, const Box& bounds, int s) const;
+  /**
+   * The values at the centres of the native cells from `lower`, `count`
+   * along each axis (x fastest, inside NativeResolution()), for a field
+   * that is exactly their trilinear interpolation, clamped at the grid's
+   * ends (a grid of point values interpolated linearly, an OpenVDB grid):
+   * for a caller that interpolates them itself. False, with nothing
+   * written, for other fields.
+   */
+  virtual bool NativePoints(
+    const std::array<int, 3>& lower, const std::array<int, 3>& count, float* out) const
+  {
+    (void)lower;
+    (void)count;
+    (void)out;
+    return false;
+  }
   const MajorantGrid& GetMajorants() const { return this->Majorants; }
   /// Number of non-empty majorant blocks (for reporting sparsity).
   std::size_t NumberOfOccupiedBlocks() const;
@@ -214,11 +230,14 @@ public:
       for (int y = 0; y < s; ++y)
         for (int x = 0; x < s; ++x)
         {
-          *out++ = lerp(alongY[first[2][z] - low[2]][y][x], alongY[second[2][z] - low[2]][y][x],
-            weight[2][z]);
+          *out++ = lerp(
+            alongY[first[2][z] - low[2]][y][x], alongY[second[2][z] - low[2]][y][x], weight[2][z]);
         }
   }
   double NativeMean(int i, int j, int k, const Box& cell, const Box& bounds, int s) const override;
+  /// Point values interpolated linearly: the values themselves.
+  bool NativePoints(
+    const std::array<int, 3>& lower, const std::array<int, 3>& count, float* out) const override;
   /// The value itself: point values are the native cells' centres, cell
   /// values the cells.
   float NativeValue(int i, int j, int k, const Vec3& centre) const override

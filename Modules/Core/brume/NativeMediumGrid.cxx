@@ -244,9 +244,34 @@ void NativeMediumGrid::Sample(
         break;
       }
     }
+    // A brick's scalars read together where the field gives its points
+    // (DensityField::NativePoints: a grid's values, an OpenVDB grid's
+    // voxels), else one by one.
     const DensityField& scalars = classified->GetScalars();
-    this->Scalars = BrickedGrid::Sample(
-      dims, box, [&](int i, int j, int k) { return scalars.NativeValue(i, j, k, centre(i, j, k)); },
+    this->Scalars = BrickedGrid::SampleBricks(
+      dims, box,
+      [&](const std::array<int, 3>& lower, float* out)
+      {
+        constexpr int S = BrickedGrid::Size;
+        std::array<int, 3> count{};
+        for (int a = 0; a < 3; ++a)
+        {
+          count[a] = std::min(lower[a] + S, dims[a]) - lower[a];
+        }
+        float points[S * S * S];
+        const bool read = scalars.NativePoints(lower, count, points);
+        for (int k = 0; k < S; ++k)
+          for (int j = 0; j < S; ++j)
+            for (int i = 0; i < S; ++i)
+            {
+              // Cells past the grid's last take the last's.
+              const int x = std::min(i, count[0] - 1), y = std::min(j, count[1] - 1),
+                        z = std::min(k, count[2] - 1);
+              *out++ = read ? points[(z * count[1] + y) * count[0] + x]
+                            : scalars.NativeValue(lower[0] + x, lower[1] + y, lower[2] + z,
+                                centre(lower[0] + x, lower[1] + y, lower[2] + z));
+            }
+      },
       zeroOver, parallelFor, nothing);
     this->Classification = &function;
   }

@@ -305,17 +305,15 @@ bool ClassifiedDensity::NativeBrick(
   const std::array<int, 3>& lower, int size, int s, float* out) const
 {
   constexpr int MostCells = 8, MostPoints = MostCells + 2;
-  const GridDensity* grid = this->Grid;
-  if (!grid || grid->HasCellValues() ||
-    grid->GetInterpolation() != GridDensity::Interpolation::Linear || size < 1 ||
-    size > MostCells || s < 1 || s > GridDensity::MaxNativeSamples)
+  if (size < 1 || size > MostCells || s < 1 || s > GridDensity::MaxNativeSamples)
   {
     return false;
   }
-  const std::array<int, 3>& dims = grid->GetDimensions();
+  const std::array<int, 3> dims = this->Scalars->NativeResolution();
   // The cells along each axis, and the points they read: one beyond on
   // either side, clamped at the grid's ends.
-  int cell[3][MostCells], lo[3], count[3];
+  int cell[3][MostCells], lo[3];
+  std::array<int, 3> first{}, count{};
   for (int a = 0; a < 3; ++a)
   {
     for (int c = 0; c < size; ++c)
@@ -324,23 +322,13 @@ bool ClassifiedDensity::NativeBrick(
     }
     lo[a] = std::max(0, cell[a][0] - 1);
     count[a] = std::min(dims[a] - 1, cell[a][size - 1] + 1) - lo[a] + 1;
+    first[a] = lo[a];
   }
   float points[MostPoints * MostPoints * MostPoints];
-  grid->GetValues().Visit(
-    [&](const auto* values)
-    {
-      float* to = points;
-      for (int z = 0; z < count[2]; ++z)
-        for (int y = 0; y < count[1]; ++y)
-        {
-          const auto* row =
-            values + (static_cast<std::size_t>(lo[2] + z) * dims[1] + lo[1] + y) * dims[0];
-          for (int x = 0; x < count[0]; ++x)
-          {
-            *to++ = static_cast<float>(row[lo[0] + x]);
-          }
-        }
-    });
+  if (!this->Scalars->NativePoints(first, count, points))
+  {
+    return false;
+  }
   auto at = [&](int x, int y, int z)
   { return points[((z - lo[2]) * count[1] + (y - lo[1])) * count[0] + (x - lo[0])]; };
   // Each cell's range over its 27 points (BendsWithinNativeCell()), one axis at a time.

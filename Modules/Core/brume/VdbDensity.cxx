@@ -21,8 +21,9 @@ namespace brume
 struct VdbDensity::Internals
 {
   openvdb::FloatGrid::Ptr Grid;
-  openvdb::Vec3d Origin;    // world position of index (0, 0, 0)
-  openvdb::Vec3d VoxelSize; // world size of a voxel along each axis
+  openvdb::Vec3d Origin;     // world position of index (0, 0, 0)
+  openvdb::Vec3d VoxelSize;  // world size of a voxel along each axis
+  openvdb::Coord FirstVoxel; // the voxel at the centre of native cell (0, 0, 0)
   std::size_t Active = 0;
   // Scalars (LoadScalars): per majorant block, the smallest and largest value.
   std::vector<float> RangeLow, RangeHigh;
@@ -300,8 +301,8 @@ std::shared_ptr<VdbDensity> VdbDensity::LoadGrid(
     return nullptr;
   }
   const openvdb::math::Transform& transform = grid->transform();
-  const std::string what = "OpenVDB grid '" + ShortMessage(grid->getName().c_str()) + "' of '" +
-    fileName + "'";
+  const std::string what =
+    "OpenVDB grid '" + ShortMessage(grid->getName().c_str()) + "' of '" + fileName + "'";
   auto density = std::shared_ptr<VdbDensity>(new VdbDensity);
   Internals& impl = *density->Impl;
   impl.Origin = transform.indexToWorld(openvdb::Vec3d(0.0));
@@ -331,6 +332,7 @@ std::shared_ptr<VdbDensity> VdbDensity::LoadGrid(
   // World box of the active voxels (voxel centres sit at integer indices),
   // widened by one voxel: trilinear interpolation reaches that far.
   const openvdb::Coord lo = bbox.min(), hi = bbox.max();
+  impl.FirstVoxel = lo - openvdb::Coord(1);
   for (int a = 0; a < 3; ++a)
   {
     density->Bounds.lower[a] =
@@ -342,7 +344,8 @@ std::shared_ptr<VdbDensity> VdbDensity::LoadGrid(
     {
       std::ostringstream size;
       size << impl.VoxelSize[a];
-      error = what + ": its active voxels span a box that single precision cannot hold (voxel size " +
+      error = what +
+        ": its active voxels span a box that single precision cannot hold (voxel size " +
         size.str() + ", index box " + std::to_string(lo[a]) + " to " + std::to_string(hi[a]) +
         " along axis " + std::to_string(a) + ")";
       return nullptr;
@@ -391,6 +394,27 @@ Box VdbDensity::NativeBox() const
     box.upper[a] += static_cast<float>(0.5 * this->Impl->VoxelSize[a]);
   }
   return box;
+}
+
+bool VdbDensity::NativePoints(
+  const std::array<int, 3>& lower, const std::array<int, 3>& count, float* out) const
+{
+  // Native cell i's centre is voxel FirstVoxel + i (the bounds' faces sit
+  // on the centres of the voxels around the active box).
+  const Internals& impl = *this->Impl;
+  const openvdb::tree::ValueAccessor<const openvdb::FloatTree, false> accessor(
+    impl.Grid->constTree());
+  for (int z = 0; z < count[2]; ++z)
+    for (int y = 0; y < count[1]; ++y)
+      for (int x = 0; x < count[0]; ++x)
+      {
+        const openvdb::Coord xyz =
+          impl.FirstVoxel + openvdb::Coord(lower[0] + x, lower[1] + y, lower[2] + z);
+        const float* leaf = impl.LeafOf(xyz);
+        *out++ = leaf ? leaf[openvdb::FloatTree::LeafNodeType::coordToOffset(xyz)]
+                      : accessor.getValue(xyz);
+      }
+  return true;
 }
 
 float VdbDensity::Evaluate(const Vec3& p) const

@@ -38,6 +38,9 @@ public:
   /// The voxels of the grid across its (widened) active box.
   std::array<int, 3> NativeResolution() const override;
   Box NativeBox() const override;
+  /// The voxels' values: Evaluate() is OpenVDB's trilinear sampler between them.
+  bool NativePoints(
+    const std::array<int, 3>& lower, const std::array<int, 3>& count, float* out) const override;
   /// Active voxels of the grid.
   std::size_t GetNumberOfActiveVoxels() const;
 
