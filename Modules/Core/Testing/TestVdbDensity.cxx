@@ -31,6 +31,24 @@ std::string WriteSlabGrid(const std::string& name, float value, float voxel)
   vdbwriter::Write(path, { grid });
   return path;
 }
+
+// Varied values on both sides of the origin (0.2 to 0.8) in 0.1 voxels,
+// over a background of 0.25.
+vdbwriter::Grid VariedGrid()
+{
+  vdbwriter::Grid grid;
+  grid.Background = 0.25f;
+  grid.VoxelSize = 0.1;
+  grid.Lower = { -13, -5, -9 };
+  grid.Upper = { 10, 8, 11 };
+  grid.Value = [](int i, int j, int k)
+  {
+    return 0.5f +
+      0.3f *
+      std::sin(0.7f * static_cast<float>(i) + 1.3f * static_cast<float>(j) - static_cast<float>(k));
+  };
+  return grid;
+}
 }
 
 TEST(VdbDensity, LoadsTheGridSparselyWithItsTransform)
@@ -131,17 +149,7 @@ TEST(VdbDensity, SamplesAreOpenVdbsTrilinearSamplesBitwise)
   // Varied values in leaves on both sides of the origin, an active tile
   // where a leaf would be (no leaf: read from the tree) and a background
   // above 0 around them.
-  vdbwriter::Grid grid;
-  grid.Background = 0.25f;
-  grid.VoxelSize = 0.1;
-  grid.Lower = { -13, -5, -9 };
-  grid.Upper = { 10, 8, 11 };
-  grid.Value = [](int i, int j, int k)
-  {
-    return 0.5f +
-      0.3f *
-      std::sin(0.7f * static_cast<float>(i) + 1.3f * static_cast<float>(j) - static_cast<float>(k));
-  };
+  vdbwriter::Grid grid = VariedGrid();
   grid.Tiles = { { 1, { 16, 0, 0 }, 2.f } };
   const std::string path =
     (std::filesystem::temp_directory_path() / "brume-test-varied.vdb").string();
@@ -231,13 +239,7 @@ TEST(VdbDensity, NativePointsAreTheVoxelsAtTheNativeCellsCentres)
   // A classified grid's means interpolate these themselves
   // (ClassifiedDensity::NativeBrick): each must be the field at its cell's
   // centre, and the field between them their trilinear interpolation.
-  vdbwriter::Grid grid;
-  grid.Background = 0.25f;
-  grid.VoxelSize = 0.1;
-  grid.Lower = { -13, -5, -9 };
-  grid.Upper = { 10, 8, 11 };
-  grid.Value = [](int i, int j, int k)
-  { return 0.5f + 0.3f * std::sin(0.7f * i + 1.3f * j - static_cast<float>(k)); };
+  const vdbwriter::Grid grid = VariedGrid();
   const std::string path =
     (std::filesystem::temp_directory_path() / "brume-test-native-points.vdb").string();
   vdbwriter::Write(path, { grid });
