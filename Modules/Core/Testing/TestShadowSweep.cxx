@@ -146,7 +146,7 @@ TEST(ShadowSweep, NotWhereALampIsAmongThePlanes)
   // A lamp inside the grid's span along every axis has no side to sweep from.
   Scene scene;
   scene.Media = { GridMedium([](const Vec3&) { return 1.f; }, 1.f) };
-  scene.Lights = { Lamp(Vec3(0.1f, 0.2f, -0.3f)), Lamp(Vec3(0.1f, 1.2f, -0.3f)) };
+  scene.Lights = { Lamp(Vec3(0.1f, 0.2f, -0.3f)), Lamp(Vec3(0.1f, 3.f, -0.3f)) };
   ASSERT_EQ(scene.Validate(), "");
   const RayCaster caster(scene);
   const DirectLight direct(scene, caster);
@@ -154,4 +154,22 @@ TEST(ShadowSweep, NotWhereALampIsAmongThePlanes)
   EXPECT_FALSE(sweep.Plan(direct, 0, scene.Media[0].Bounds, { 16, 16, 16 }));
   EXPECT_TRUE(sweep.Plan(direct, 1, scene.Media[0].Bounds, { 16, 16, 16 }));
   EXPECT_EQ(sweep.NumberOfPlanes(), 16);
+  EXPECT_LE(static_cast<double>(sweep.NumberOfRays()),
+    ShadowSweep::MaxRayFactor * 16 * 16 * ShadowSweep::RaysPerTexel * ShadowSweep::RaysPerTexel);
+}
+
+TEST(ShadowSweep, NotWhereALampsRaysWouldSpreadFarPastTheGrid)
+{
+  // Just beyond the first plane's texels, a lamp's rays through them spread
+  // over 2 x 64 times the grid at the last plane: far more rays than a
+  // march per texel, so none is planned.
+  Scene scene;
+  scene.Media = { GridMedium([](const Vec3&) { return 1.f; }, 1.f) };
+  scene.Lights = { Lamp(Vec3(0.1f, 1.001f, -0.3f)) };
+  ASSERT_EQ(scene.Validate(), "");
+  const RayCaster caster(scene);
+  const DirectLight direct(scene, caster);
+  ShadowSweep sweep;
+  EXPECT_FALSE(sweep.Plan(direct, 0, scene.Media[0].Bounds, { 64, 64, 64 }));
+  EXPECT_FALSE(sweep.IsPlanned());
 }

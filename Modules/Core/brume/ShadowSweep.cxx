@@ -92,6 +92,7 @@ bool ShadowSweep::Plan(
   // last for rays from a point (there they lie farthest apart, at Pitch).
   const float reference = this->PlaneAt[this->Ascending ? 0 : static_cast<std::size_t>(n - 1)];
   const float farthest = this->PlaneAt[this->Ascending ? static_cast<std::size_t>(n - 1) : 0];
+  double rays[2] = { 0.0, 0.0 };
   for (int s = 0; s < 2; ++s)
   {
     const int b = this->Lateral[s];
@@ -120,7 +121,19 @@ bool ShadowSweep::Plan(
     }
     this->Pitch[s] = pitch[b] / static_cast<float>(RaysPerTexel);
     this->Low[s] = lo;
-    this->Rays[s] = static_cast<std::size_t>(std::floor((hi - lo) / this->Pitch[s])) + 2;
+    rays[s] = std::floor((static_cast<double>(hi) - lo) / this->Pitch[s]) + 2.0;
+  }
+  // Rays from a lamp just beyond the first plane spread over many times
+  // what the far plane needs: past MaxRayFactor times a plane's, none.
+  const double onePlane = static_cast<double>(RaysPerTexel) * RaysPerTexel *
+    dims[this->Lateral[0]] * dims[this->Lateral[1]];
+  if (!(rays[0] * rays[1] <= MaxRayFactor * onePlane))
+  {
+    return false;
+  }
+  for (int s = 0; s < 2; ++s)
+  {
+    this->Rays[s] = static_cast<std::size_t>(rays[s]);
   }
   this->Direct = &light;
   return true;

@@ -39,12 +39,16 @@ class ShadowSweep
 public:
   /// Rays per texel side in the texels' planes.
   static constexpr int RaysPerTexel = 2;
+  /// The most rays a sweep casts, in rays of one plane of texels.
+  static constexpr double MaxRayFactor = 16.0;
 
   /**
    * Plans the rays of light `k` of `light` over the grid of `dims` texels
    * whose centres are those of `dims` cells over `box`. False where a
    * sweep does not apply: a point or spot light between the grid's first
-   * and last planes along every axis, or a grid of fewer than two planes.
+   * and last planes along every axis, a grid of fewer than two planes, or
+   * rays that would number more than MaxRayFactor times a plane's (a lamp
+   * so close to the grid that its rays spread far past it).
    */
   bool Plan(
     const DirectLight& light, std::size_t k, const Box& box, const std::array<int, 3>& dims);
