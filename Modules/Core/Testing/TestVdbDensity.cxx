@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Heterogeneous media from OpenVDB grids the test writes itself.
 #include "brume/LightTracer.h"
+#include "brume/NativeMediumGrid.h"
+#include "brume/TransferFunction.h"
 #include "brume/VdbDensity.h"
 
 #include "BrumeVdbWriter.h"
@@ -266,5 +268,72 @@ TEST(VdbDensity, NativePointsAreTheVoxelsAtTheNativeCellsCentres)
             cell;
         differing += std::abs(density->Evaluate(centre) - points[n++]) <= 1e-5f ? 0 : 1;
       }
+  EXPECT_EQ(differing, 0);
+}
+
+TEST(VdbDensity, AClassifiedGridsCellsAreTheirVoxelsOrTheirMeans)
+{
+  // The native grid of an OpenVDB field classified by a function whose
+  // points lie inside its values (0.2 to 0.8): a cell whose 27 voxels span
+  // one of the points holds the mean of 4^3 samples of the classified
+  // field (OpenVDB's trilinear sampler, classified after), any other the
+  // function at its voxel.
+  const vdbwriter::Grid grid = VariedGrid();
+  const std::string path =
+    (std::filesystem::temp_directory_path() / "brume-test-classified.vdb").string();
+  vdbwriter::Write(path, { grid });
+  std::string error;
+  std::shared_ptr<const DensityField> scalars = VdbDensity::LoadScalars(path, "", error);
+  ASSERT_TRUE(scalars) << error;
+  const auto classified = std::make_shared<ClassifiedDensity>(
+    scalars, OpacityTransferFunction({ { 0.3f, 0.f }, { 0.45f, 0.6f }, { 0.7f, 0.2f } }, 0.05f));
+  Medium medium;
+  medium.Name = "classified";
+  medium.Bounds = classified->GetBounds();
+  medium.SigmaS = Vec3(1.f);
+  medium.Density = classified;
+  NativeMediumGrid native;
+  native.Sample(medium, std::size_t(1) << 30, SerialFor());
+  ASSERT_EQ(native.GetCoarsening(), 1);
+  const std::array<int, 3> dims = scalars->NativeResolution();
+  ASSERT_EQ(native.GetResolution(), dims);
+  const Box box = scalars->NativeBox();
+  const Vec3 cell = box.Extent() /
+    Vec3(static_cast<float>(dims[0]), static_cast<float>(dims[1]), static_cast<float>(dims[2]));
+  int bending = 0, differing = 0;
+  for (int k = 0; k < dims[2]; ++k)
+    for (int j = 0; j < dims[1]; ++j)
+      for (int i = 0; i < dims[0]; ++i)
+      {
+        const Vec3 lower = box.lower +
+          Vec3(static_cast<float>(i), static_cast<float>(j), static_cast<float>(k)) * cell;
+        const Box own{ lower, lower + cell };
+        std::array<int, 3> first{}, count{};
+        const int at[3] = { i, j, k };
+        for (int a = 0; a < 3; ++a)
+        {
+          first[a] = std::max(at[a] - 1, 0);
+          count[a] = std::min(at[a] + 1, dims[a] - 1) - first[a] + 1;
+        }
+        float points[27];
+        ASSERT_TRUE(scalars->NativePoints(first, count, points));
+        const int n = count[0] * count[1] * count[2];
+        const float lo = *std::min_element(points, points + n);
+        const float hi = *std::max_element(points, points + n);
+        bool bends = false;
+        for (const float point : { 0.3f, 0.45f, 0.7f })
+        {
+          bends = bends || (lo < point && point < hi);
+        }
+        bending += bends ? 1 : 0;
+        const double expected = bends
+          ? classified->NativeMean(i, j, k, own, medium.Bounds, NativeMediumGrid::BendSamples)
+          : classified->GetOpacity().Extinction(
+              points[((at[2] - first[2]) * count[1] + at[1] - first[1]) * count[0] + at[0] -
+                first[0]]);
+        const double got = native.GetDensity().At(i, j, k);
+        differing += std::abs(got - expected) <= 1e-4 * std::max(1.0, expected) ? 0 : 1;
+      }
+  EXPECT_GT(bending, 1000);
   EXPECT_EQ(differing, 0);
 }
