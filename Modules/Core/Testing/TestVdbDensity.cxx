@@ -51,6 +51,18 @@ vdbwriter::Grid VariedGrid()
   };
   return grid;
 }
+
+// VariedGrid() written to the temporary file `name` and loaded as scalars
+// a transfer function classifies.
+std::shared_ptr<VdbDensity> VariedScalars(const std::string& name)
+{
+  const std::string path = (std::filesystem::temp_directory_path() / name).string();
+  vdbwriter::Write(path, { VariedGrid() });
+  std::string error;
+  auto scalars = VdbDensity::LoadScalars(path, "", error);
+  EXPECT_TRUE(scalars) << error;
+  return scalars;
+}
 }
 
 TEST(VdbDensity, LoadsTheGridSparselyWithItsTransform)
@@ -241,13 +253,8 @@ TEST(VdbDensity, NativePointsAreTheVoxelsAtTheNativeCellsCentres)
   // A classified grid's means interpolate these themselves
   // (ClassifiedDensity::NativeBrick): each must be the field at its cell's
   // centre, and the field between them their trilinear interpolation.
-  const vdbwriter::Grid grid = VariedGrid();
-  const std::string path =
-    (std::filesystem::temp_directory_path() / "brume-test-native-points.vdb").string();
-  vdbwriter::Write(path, { grid });
-  std::string error;
-  auto density = VdbDensity::LoadScalars(path, "", error);
-  ASSERT_TRUE(density) << error;
+  const std::shared_ptr<VdbDensity> density = VariedScalars("brume-test-native-points.vdb");
+  ASSERT_TRUE(density);
   const std::array<int, 3> dims = density->NativeResolution();
   // The active box and one voxel around it.
   EXPECT_EQ(dims, (std::array<int, 3>{ 26, 16, 23 }));
@@ -278,13 +285,8 @@ TEST(VdbDensity, AClassifiedGridsCellsAreTheirVoxelsOrTheirMeans)
   // one of the points holds the mean of 4^3 samples of the classified
   // field (OpenVDB's trilinear sampler, classified after), any other the
   // function at its voxel.
-  const vdbwriter::Grid grid = VariedGrid();
-  const std::string path =
-    (std::filesystem::temp_directory_path() / "brume-test-classified.vdb").string();
-  vdbwriter::Write(path, { grid });
-  std::string error;
-  std::shared_ptr<const DensityField> scalars = VdbDensity::LoadScalars(path, "", error);
-  ASSERT_TRUE(scalars) << error;
+  const std::shared_ptr<const DensityField> scalars = VariedScalars("brume-test-classified.vdb");
+  ASSERT_TRUE(scalars);
   const auto classified = std::make_shared<ClassifiedDensity>(
     scalars, OpacityTransferFunction({ { 0.3f, 0.f }, { 0.45f, 0.6f }, { 0.7f, 0.2f } }, 0.05f));
   Medium medium;
