@@ -272,8 +272,7 @@ std::vector<ShadowSweep> DirectTexture::PlanSweeps(const ObjectLayout& layout,
     ShadowSweep& sweep = sweeps[l];
     if (!sweep.Plan(*this->Light, l, box, this->Dims))
     {
-      sweep = ShadowSweep();
-      continue;
+      continue; // left unplanned
     }
     // The sweep where its rays march through the box at most half as far
     // as the texels' own would: each from its texel to where it leaves.
