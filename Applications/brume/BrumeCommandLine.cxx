@@ -265,6 +265,15 @@ void AddRender(CLI::App& app, RenderOptions& o, const Defaults& d)
   render->add_flag("--reference", o.Reference,
     "render with the unbiased path tracer instead (no\n"
     "display needed); .vti adds the per-pixel 'Variance'");
+  render
+    ->add_option_function<int>(
+      "--time-step", [&o](const int& step) { o.TimeStep = step; },
+      "of a scene that changes over time (media given as lists\n"
+      "of files), render step K alone (from 0) to OUTPUT\n"
+      "(default: every step, step K to OUTPUT with K before\n"
+      "its suffix: out.0000.png, out.0001.png...)")
+    ->transform(Integer(0, 1000000, "an integer in [0, 1e6]"))
+    ->type_name("K");
   render->add_option("--spp", o.SamplesPerPixel, "samples per pixel of --reference (default 64)")
     ->transform(Integer(1, 1000000, "an integer in [1, 1e6]"))
     ->type_name("N");

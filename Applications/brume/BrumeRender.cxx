@@ -33,6 +33,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <string>
+#include <vector>
 
 namespace
 {
@@ -164,14 +166,75 @@ int WriteImage(vtkImageData* radiance, vtkBrumePipeline* pipeline, const std::st
   return 0;
 }
 
+// The time steps to render: --time-step's alone, else every one; a scene
+// that does not change has one, -1 (no time asked for). False (with the
+// message on stderr) when --time-step names none of the scene's steps.
+bool StepsToRender(
+  vtkBrumePipeline* pipeline, const RenderOptions& options, std::vector<int>& steps)
+{
+  const int count = pipeline->GetNumberOfTimeSteps();
+  steps.clear();
+  if (options.TimeStep)
+  {
+    if (*options.TimeStep >= count)
+    {
+      std::cerr << "brume: --time-step " << *options.TimeStep << ": "
+                << (count == 0 ? std::string("the scene does not change over time (no medium "
+                                             "lists its files per time step)")
+                               : "the scene has " + std::to_string(count) + " time steps, 0 to " +
+                         std::to_string(count - 1))
+                << "\n";
+      return false;
+    }
+    steps.push_back(*options.TimeStep);
+  }
+  for (int k = 0; !options.TimeStep && k < count; ++k)
+  {
+    steps.push_back(k);
+  }
+  if (steps.empty())
+  {
+    steps.push_back(-1);
+  }
+  return true;
+}
+
+// Step K's image of a series: OUTPUT with K before its suffix
+// (out.0003.png); --time-step's, or a scene that does not change, OUTPUT.
+std::string StepOutput(const std::string& output, int step, const RenderOptions& options)
+{
+  if (step < 0 || options.TimeStep)
+  {
+    return output;
+  }
+  char number[16];
+  std::snprintf(number, sizeof(number), ".%04d", step);
+  const std::size_t dot = output.size() - 4; // ".png" or ".vti"
+  return output.substr(0, dot) + number + output.substr(dot);
+}
+
+// The line each time step of a series prints: where it went and its time.
+void PrintStep(vtkBrumePipeline* pipeline, int step, const std::string& output, double seconds,
+  const char* phases)
+{
+  std::printf("time step %d of %d (t = %g): %s in %.3f s%s\n", step,
+    pipeline->GetNumberOfTimeSteps(), pipeline->GetTimeStep(step), output.c_str(), seconds, phases);
+  std::fflush(stdout);
+}
+
 // The reference image: the unbiased path tracer (no display needed), with
 // the pipeline's scene, size, seed, depth and camera.
 int RunReference(const RenderOptions& options)
 {
   vtkNew<vtkBrumePipeline> pipeline;
+  std::vector<int> steps;
   if (!ConfigurePipeline(pipeline, options))
   {
     return 1;
+  }
+  if (!StepsToRender(pipeline, options, steps))
+  {
+    return 2;
   }
   vtkNew<vtkBrumeReferencePathTracer> reference;
   reference->SetInputConnection(pipeline->GetInputConnection());
@@ -180,19 +243,32 @@ int RunReference(const RenderOptions& options)
   reference->SetSeed(pipeline->GetTracer()->GetSeed());
   reference->SetMaximumDepth(pipeline->GetTracer()->GetMaximumDepth());
   BrumeShowProgress(reference, "path tracing");
-  const auto start = std::chrono::steady_clock::now();
-  if (!reference->GetExecutive()->Update())
+  for (const int step : steps)
   {
-    std::cerr << "brume: reference rendering failed.\n";
-    return 1;
+    const auto start = std::chrono::steady_clock::now();
+    if (!(step < 0 ? reference->GetExecutive()->Update()
+                   : reference->UpdateTimeStep(pipeline->GetTimeStep(step))))
+    {
+      std::cerr << "brume: reference rendering failed.\n";
+      return 1;
+    }
+    const double seconds = Seconds(start);
+    if (options.Timings)
+    {
+      std::printf("reference path tracing %8.3f s   %d samples per pixel at %dx%d\n", seconds,
+        options.SamplesPerPixel, pipeline->GetSize()[0], pipeline->GetSize()[1]);
+    }
+    const std::string output = StepOutput(options.Output, step, options);
+    if (const int rc = WriteImage(reference->GetOutput(), pipeline, output))
+    {
+      return rc;
+    }
+    if (step >= 0)
+    {
+      PrintStep(pipeline, step, output, Seconds(start), "");
+    }
   }
-  const double seconds = Seconds(start);
-  if (options.Timings)
-  {
-    std::printf("reference path tracing %8.3f s   %d samples per pixel at %dx%d\n", seconds,
-      options.SamplesPerPixel, pipeline->GetSize()[0], pipeline->GetSize()[1]);
-  }
-  return WriteImage(reference->GetOutput(), pipeline, options.Output);
+  return 0;
 }
 
 // What `--timings` prints: each phase's time (the paper's Table 1), then
@@ -257,7 +333,9 @@ void PrintTextureMemory(vtkPartitionedDataSetCollection* textures)
   std::printf("  %-28s %-18s %23s %9.2f\n", "all textures", "", "", total);
 }
 
-void PrintTimings(vtkBrumePipeline* pipeline, int processes)
+// `reconstruction`: Update()'s time (a later frame's view update resets
+// the pipeline's figure).
+void PrintTimings(vtkBrumePipeline* pipeline, int processes, double reconstruction)
 {
   vtkBrumeLightTracer* tracer = pipeline->GetTracer();
   const long long particles = tracer->GetNumberOfParticles();
@@ -271,7 +349,7 @@ void PrintTimings(vtkBrumePipeline* pipeline, int processes)
     std::printf(" in batches of %lld", batch);
   }
   std::printf(processes > 1 ? " (process 0 of %d; time: the slowest)\n" : "\n", processes);
-  std::printf("reconstruction       %8.3f", pipeline->GetReconstructionSeconds());
+  std::printf("reconstruction       %8.3f", reconstruction);
   if (processes > 1)
   {
     std::printf("   histograms summed across processes: %.1f MB sent and received in all, "
@@ -339,6 +417,11 @@ int RunRender(const RenderOptions& options)
       options.MemoryLimit ? *options.MemoryLimit
                           : static_cast<double>(tracer->GetMemoryLimit()) / 1073741824.0);
   }
+  std::vector<int> steps;
+  if (!StepsToRender(pipeline, options, steps))
+  {
+    return 2;
+  }
   // One image, one viewpoint: view-dependent objects bin toward it and keep
   // no hits, so that a run in batches holds one batch's hits at a time.
   pipeline->GetReconstruction()->SetFixedView(true);
@@ -347,29 +430,51 @@ int RunRender(const RenderOptions& options)
     BrumeShowProgress(tracer, "particle tracing");
     BrumeShowProgress(pipeline->GetReconstruction(), "reconstruction");
   }
-  // Phases 1 and 2, on every process.
-  if (!pipeline->Update())
+  // Step by step through a scene that changes over time: what does not
+  // change (surfaces, constant media) is not read again.
+  for (const int step : steps)
   {
-    std::cerr << "brume: " << pipeline->GetFailedPhase() << " failed.\n";
-    return 1;
-  }
-  if (rank != 0)
-  {
-    return 0; // process 0 renders
-  }
-  // Phase 3: textured surfaces, then the media as slices.
-  const vtkSmartPointer<vtkImageData> radiance = pipeline->RenderImage(options.Supersample);
-  if (!radiance)
-  {
-    return 1;
-  }
-  if (const int rc = WriteImage(radiance, pipeline, options.Output))
-  {
-    return rc;
-  }
-  if (options.Timings)
-  {
-    PrintTimings(pipeline, processes);
+    const auto start = std::chrono::steady_clock::now();
+    if (step >= 0)
+    {
+      pipeline->SetTime(pipeline->GetTimeStep(step));
+    }
+    // Phases 1 and 2, on every process.
+    if (!pipeline->Update())
+    {
+      std::cerr << "brume: " << pipeline->GetFailedPhase() << " failed"
+                << (step >= 0 ? " at time step " + std::to_string(step) : std::string()) << ".\n";
+      return 1;
+    }
+    const double tracing = pipeline->GetTracingSeconds();
+    const double reconstruction = pipeline->GetReconstructionSeconds();
+    if (rank != 0)
+    {
+      continue; // process 0 renders
+    }
+    // Phase 3: textured surfaces, then the media as slices.
+    const vtkSmartPointer<vtkImageData> radiance = pipeline->RenderImage(options.Supersample);
+    if (!radiance)
+    {
+      return 1;
+    }
+    const std::string output = StepOutput(options.Output, step, options);
+    if (const int rc = WriteImage(radiance, pipeline, output))
+    {
+      return rc;
+    }
+    if (step >= 0)
+    {
+      char phases[160];
+      std::snprintf(phases, sizeof(phases),
+        " (tracing %.3f s, reconstruction %.3f s, first frame %.3f s)", tracing, reconstruction,
+        pipeline->GetFirstFrameSeconds());
+      PrintStep(pipeline, step, output, Seconds(start), phases);
+    }
+    if (options.Timings)
+    {
+      PrintTimings(pipeline, processes, reconstruction);
+    }
   }
   return 0;
 }

@@ -36,10 +36,11 @@ struct RenderOptions
   std::optional<double> NativeMemory;   // GiB each medium's own-resolution grids may take
   std::optional<int> MaxDepth;          // interactions after which a particle or a path stops
   // The command's own choices.
-  int Supersample = 1;      // render K x K pixels per output pixel and average them
-  bool Timings = false;     // print each phase's time
-  bool Reference = false;   // the unbiased path tracer instead of the three phases
-  int SamplesPerPixel = 64; // of --reference
+  int Supersample = 1;         // render K x K pixels per output pixel and average them
+  bool Timings = false;        // print each phase's time
+  bool Reference = false;      // the unbiased path tracer instead of the three phases
+  int SamplesPerPixel = 64;    // of --reference
+  std::optional<int> TimeStep; // of a scene that changes over time: this step alone
 };
 
 /**

@@ -5,6 +5,7 @@
 #include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeSceneCamera.h"
 #include "vtkBrumeSceneConversion.h"
+#include "vtkBrumeSceneFileCache.h"
 #include "vtkBrumeSceneFileChecks.h"
 #include "vtkBrumeSceneGeometry.h"
 #include "vtkCellArray.h"
@@ -124,12 +125,26 @@ bool vtkBrumeSceneFileParser::ParseSurface(const json& s, std::size_t i)
     {
       return false;
     }
-    surface = vtkBrumeSceneGeometry::Read(relative(file), error);
-    if (!surface)
+    // A mesh read before (a scene stepping through time) is not read
+    // again: its points and cells are shared, its material set afresh.
+    vtkSmartPointer<vtkPolyData> read =
+      this->Cache ? vtkPolyData::SafeDownCast(this->Cache->Find(relative(file), "mesh")) : nullptr;
+    if (!read)
     {
-      p.Fail(at + ".file", error);
-      return false;
+      read = vtkBrumeSceneGeometry::Read(relative(file), error);
+      if (!read)
+      {
+        p.Fail(at + ".file", error);
+        return false;
+      }
+      if (this->Cache)
+      {
+        this->Cache->Keep(relative(file), "mesh", read);
+      }
     }
+    surface = vtkSmartPointer<vtkPolyData>::New();
+    surface->ShallowCopy(read);
+    surface->GetFieldData()->DeepCopy(read->GetFieldData());
   }
   else
   {

@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+class vtkBrumeSceneFileCache;
 class vtkImageData;
 class vtkPartitionedDataSetCollection;
 class vtkPolyData;
@@ -37,6 +38,28 @@ public:
   /// `file: field: what is wrong`.
   const std::string& GetError() const;
 
+  /**
+   * The time asked for: a density given as a list of files (time steps)
+   * takes the last step whose time is at most `time` (the first when all
+   * are later). Without it, every such density takes its first step.
+   */
+  void SetTime(double time)
+  {
+    this->HasTime = true;
+    this->Time = time;
+  }
+
+  /// Where meshes and .vti densities are looked for before they are read,
+  /// and kept once read (null: read every time).
+  void SetCache(vtkBrumeSceneFileCache* cache) { this->Cache = cache; }
+
+  /**
+   * The time steps of a scene document: the times of every density given
+   * as a list of files, merged and sorted (empty for a scene that does not
+   * change). Lenient: a malformed list is Parse()'s to report.
+   */
+  static std::vector<double> TimeSteps(const json& root);
+
 private:
   class Parser;
 
@@ -47,6 +70,11 @@ private:
   bool ParseMedium(const json& m, std::size_t i);
   vtkSmartPointer<vtkImageData> ParseDensity(const json& m, const std::string& at);
   bool ParseVdb(const json& density, const std::string& at, vtkImageData* image);
+  // The file of `density[key]` at the time asked for, and its field.
+  bool StepFile(const json& density, const std::string& key, const std::string& at,
+    std::string& file, std::string& field);
+  vtkSmartPointer<vtkImageData> ReadImage(
+    const std::filesystem::path& file, const std::string& field);
   bool ParseTransferFunction(const json& function, const std::string& at, vtkImageData* image);
   // OpenVDB media given without a box take the grid's active box.
   void SetBoxesFromGrids(
@@ -63,6 +91,10 @@ private:
   // The field each object came from (name, field), to name it in later messages.
   std::vector<std::pair<std::string, std::string>> ObjectFields;
   std::vector<vtkImageData*> BoxesFromGrids; // held by the scene
+  vtkBrumeSceneFileCache* Cache = nullptr;
+  std::string StepField; // the step's file of the medium parsed, if a list gave it
+  bool HasTime = false;
+  double Time = 0.0;
 };
 
 #endif

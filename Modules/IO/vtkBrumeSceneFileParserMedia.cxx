@@ -6,6 +6,7 @@
 #include "vtkBrumeSceneFileParserInternals.h"
 
 #include "vtkBrumeDataModelNames.h"
+#include "vtkBrumeSceneFileCache.h"
 #include "vtkBrumeSceneFileChecks.h"
 #include "vtkDoubleArray.h"
 #include "vtkExecutive.h"
@@ -20,7 +21,9 @@
 #include "brume/Scene.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <vector>
 
 using namespace vtkBrumeSceneFileParserInternals;
 
@@ -84,7 +87,9 @@ bool vtkBrumeSceneFileParser::ParseMedium(const json& m, std::size_t i)
   AddTuple(mfd, vtkBrumeNames::G, &g, 1);
   AddTuple(mfd, vtkBrumeNames::DensityScale, &scale, 1);
   vtkBrumeSceneConversion::AddObject(this->Scene, image, name);
-  this->ObjectFields.emplace_back(name, at);
+  // A step of a time series names its file in later messages.
+  this->ObjectFields.emplace_back(name, this->StepField.empty() ? at : this->StepField);
+  this->StepField.clear();
   return true;
 }
 
@@ -93,14 +98,14 @@ bool vtkBrumeSceneFileParser::ParseVdb(
 {
   Parser& p = *this->P;
   auto relative = [this](const std::string& name) { return this->Relative(name); };
-  std::string file, grid;
-  if (!p.String(density["vdb"], at + ".density.vdb", file))
+  std::string file, field, grid;
+  if (!this->StepFile(density, "vdb", at + ".density", file, field))
   {
     return false;
   }
   if (!std::filesystem::exists(relative(file)))
   {
-    p.Fail(at + ".density.vdb", "no file '" + relative(file).string() + "'");
+    p.Fail(field, "no file '" + relative(file).string() + "'");
     return false;
   }
   AddString(image->GetFieldData(), vtkBrumeNames::VDBFile, relative(file).string());
@@ -299,6 +304,166 @@ std::string CheckAnnouncedExtent(vtkInformation* information, const std::string&
 }
 }
 
+namespace
+{
+// The times of a density given as `n` files (time steps): its "times",
+// strictly increasing, or 0, 1, ..., n - 1; false with `problem` (the
+// message, after the field) otherwise.
+bool StepTimes(const nlohmann::json& density, std::size_t n, std::vector<double>& times,
+  std::string& field, std::string& problem)
+{
+  times.clear();
+  if (!density.contains("times"))
+  {
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      times.push_back(static_cast<double>(k));
+    }
+    return true;
+  }
+  const nlohmann::json& given = density["times"];
+  if (!given.is_array() || given.size() != n)
+  {
+    problem = "expected " + std::to_string(n) + " numbers, one time per file";
+    return false;
+  }
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    const double t = given[k].is_number() ? given[k].get<double>() : std::nan("");
+    if (!std::isfinite(t) || std::abs(t) > Huge || (k > 0 && !(t > times.back())))
+    {
+      field = "[" + std::to_string(k) + "]";
+      problem = "expected finite numbers, each greater than the one before";
+      return false;
+    }
+    times.push_back(t);
+  }
+  return true;
+}
+}
+
+std::vector<double> vtkBrumeSceneFileParser::TimeSteps(const json& root)
+{
+  std::vector<double> all;
+  const json media = root.is_object() && root.contains("media") ? root["media"] : json::array();
+  for (std::size_t i = 0; media.is_array() && i < media.size(); ++i)
+  {
+    const json& m = media[i];
+    const json density = m.is_object() ? m.value("density", json::object()) : json::object();
+    for (const char* key : { "vti", "vdb" })
+    {
+      std::vector<double> times;
+      std::string field, problem;
+      if (density.is_object() && density.contains(key) && density[key].is_array() &&
+        StepTimes(density, density[key].size(), times, field, problem))
+      {
+        all.insert(all.end(), times.begin(), times.end());
+      }
+    }
+  }
+  std::sort(all.begin(), all.end());
+  all.erase(std::unique(all.begin(), all.end()), all.end());
+  return all;
+}
+
+bool vtkBrumeSceneFileParser::StepFile(const json& density, const std::string& key,
+  const std::string& at, std::string& file, std::string& field)
+{
+  Parser& p = *this->P;
+  field = at + "." + key;
+  const json& given = density[key];
+  if (!given.is_array())
+  {
+    if (density.contains("times"))
+    {
+      return p.Fail(at + ".times", "needs a list of files in '" + key + "', one per time");
+    }
+    return p.String(given, field, file);
+  }
+  if (given.empty())
+  {
+    return p.Fail(field, "expected a file, or a list of files (the time steps), not []");
+  }
+  std::vector<double> times;
+  std::string suffix, problem;
+  if (!StepTimes(density, given.size(), times, suffix, problem))
+  {
+    return p.Fail(at + ".times" + suffix, problem);
+  }
+  // Every step named and there, before any is read.
+  for (std::size_t k = 0; k < given.size(); ++k)
+  {
+    const std::string step = field + "[" + std::to_string(k) + "]";
+    std::string name;
+    if (!p.String(given[k], step, name))
+    {
+      return false;
+    }
+    if (!std::filesystem::exists(this->Relative(name)))
+    {
+      return p.Fail(step, "no file '" + this->Relative(name).string() + "'");
+    }
+  }
+  // The last step at or before the time asked for; the first before it.
+  std::size_t step = 0;
+  while (this->HasTime && step + 1 < times.size() && times[step + 1] <= this->Time)
+  {
+    ++step;
+  }
+  field += "[" + std::to_string(step) + "]";
+  file = given[step].get<std::string>();
+  this->StepField = field;
+  return true;
+}
+
+vtkSmartPointer<vtkImageData> vtkBrumeSceneFileParser::ReadImage(
+  const std::filesystem::path& file, const std::string& field)
+{
+  Parser& p = *this->P;
+  if (this->Cache)
+  {
+    if (auto* kept = vtkImageData::SafeDownCast(this->Cache->Find(file, "vti")))
+    {
+      return kept;
+    }
+  }
+  // The arrays the file announces, from its XML alone: VTK's reader sets
+  // up every component an array announces before anything is checked.
+  std::string announced;
+  if (!vtkBrumeSceneFileChecks::XmlArrays(file, announced))
+  {
+    p.Fail(field, announced);
+    return nullptr;
+  }
+  vtkNew<vtkXMLImageDataReader> reader;
+  reader->SetFileName(file.string().c_str());
+  const bool display = vtkObject::GetGlobalWarningDisplay();
+  vtkObject::GlobalWarningDisplayOff();
+  // The extent the header announces, before anything is allocated for it.
+  const std::string tooLarge = reader->GetExecutive()->UpdateInformation() != 0
+    ? CheckAnnouncedExtent(reader->GetOutputInformation(0), file.string())
+    : std::string();
+  if (!tooLarge.empty())
+  {
+    vtkObject::SetGlobalWarningDisplay(display);
+    p.Fail(field, tooLarge);
+    return nullptr;
+  }
+  const int ok = reader->GetExecutive()->Update();
+  vtkObject::SetGlobalWarningDisplay(display);
+  if (!ok || reader->GetOutput()->GetNumberOfPoints() == 0)
+  {
+    p.Fail(field, "cannot read '" + file.string() + "'");
+    return nullptr;
+  }
+  vtkSmartPointer<vtkImageData> read = reader->GetOutput();
+  if (this->Cache)
+  {
+    this->Cache->Keep(file, "vti", read);
+  }
+  return read;
+}
+
 vtkSmartPointer<vtkImageData> vtkBrumeSceneFileParser::ParseDensity(
   const json& m, const std::string& at)
 {
@@ -307,7 +472,7 @@ vtkSmartPointer<vtkImageData> vtkBrumeSceneFileParser::ParseDensity(
   vtkSmartPointer<vtkImageData> image;
   const json density = m.value("density", json::object());
   if (!p.Keys(density, at + ".density",
-        { "vdb", "grid", "vti", "array", "component", "transfer_function" }))
+        { "vdb", "grid", "vti", "array", "component", "transfer_function", "times" }))
   {
     return nullptr;
   }
@@ -334,42 +499,18 @@ vtkSmartPointer<vtkImageData> vtkBrumeSceneFileParser::ParseDensity(
   }
   if (density.contains("vti"))
   {
-    std::string file;
-    if (!p.String(density["vti"], at + ".density.vti", file))
+    std::string file, field;
+    if (!this->StepFile(density, "vti", at + ".density", file, field))
     {
       return nullptr;
     }
-    // The arrays the file announces, from its XML alone: VTK's reader sets
-    // up every component an array announces before anything is checked.
-    std::string announced;
-    if (!vtkBrumeSceneFileChecks::XmlArrays(relative(file), announced))
+    vtkSmartPointer<vtkImageData> read = this->ReadImage(relative(file), field);
+    if (!read)
     {
-      p.Fail(at + ".density.vti", announced);
-      return nullptr;
-    }
-    vtkNew<vtkXMLImageDataReader> reader;
-    reader->SetFileName(relative(file).string().c_str());
-    const bool display = vtkObject::GetGlobalWarningDisplay();
-    vtkObject::GlobalWarningDisplayOff();
-    // The extent the header announces, before anything is allocated for it.
-    const std::string tooLarge = reader->GetExecutive()->UpdateInformation() != 0
-      ? CheckAnnouncedExtent(reader->GetOutputInformation(0), relative(file).string())
-      : std::string();
-    if (!tooLarge.empty())
-    {
-      vtkObject::SetGlobalWarningDisplay(display);
-      p.Fail(at + ".density.vti", tooLarge);
-      return nullptr;
-    }
-    const int ok = reader->GetExecutive()->Update();
-    vtkObject::SetGlobalWarningDisplay(display);
-    if (!ok || reader->GetOutput()->GetNumberOfPoints() == 0)
-    {
-      p.Fail(at + ".density.vti", "cannot read '" + relative(file).string() + "'");
       return nullptr;
     }
     image = vtkSmartPointer<vtkImageData>::New();
-    image->ShallowCopy(reader->GetOutput());
+    image->ShallowCopy(read);
     image->GetFieldData()->Initialize();
     if (density.contains("array"))
     {

@@ -3,18 +3,22 @@
 
 #include "vtkBrumeQuotes.h"
 
+#include "vtkBrumeSceneFileCache.h"
 #include "vtkBrumeSceneFileParser.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPartitionedDataSetCollection.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 
 #include "brume/Scene.h"
 
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <system_error>
+#include <vector>
 
 vtkStandardNewMacro(vtkBrumeSceneReader);
 
@@ -102,9 +106,25 @@ private:
 };
 }
 
+struct vtkBrumeSceneReader::Document
+{
+  std::string FileName;
+  std::filesystem::file_time_type Time;
+  std::uintmax_t Size = 0;
+  json Root;
+};
+
 vtkBrumeSceneReader::vtkBrumeSceneReader()
+  : Cache(new vtkBrumeSceneFileCache)
 {
   this->SetNumberOfInputPorts(0);
+}
+
+vtkBrumeSceneReader::~vtkBrumeSceneReader() = default;
+
+vtkTypeUInt64 vtkBrumeSceneReader::GetNumberOfFileReads() const
+{
+  return this->Cache->GetReads();
 }
 
 int vtkBrumeSceneReader::CanReadFile(const char* fileName)
@@ -120,55 +140,119 @@ int vtkBrumeSceneReader::CanReadFile(const char* fileName)
   return head.find("\"brume_scene\"") != std::string::npos ? 1 : 0;
 }
 
+bool vtkBrumeSceneReader::ReadDocument(std::string& error)
+{
+  const std::filesystem::path path(this->FileName);
+  std::error_code stat;
+  const auto time = std::filesystem::last_write_time(path, stat);
+  const std::uintmax_t size = stat ? 0 : std::filesystem::file_size(path, stat);
+  if (this->Doc && !stat && this->Doc->FileName == this->FileName && this->Doc->Time == time &&
+    this->Doc->Size == size)
+  {
+    return true;
+  }
+  this->Doc.reset();
+  std::ifstream in(path);
+  if (this->FileName.empty() || !in)
+  {
+    error = "Cannot open the scene file '" + this->FileName + "'.";
+    return false;
+  }
+  ObjectCounter counter;
+  json::sax_parse(in, &counter);
+  if (!counter.Overflow.empty())
+  {
+    error = vtkBrumeBoundQuotes(this->FileName + ": " + counter.Overflow + ": the scene has " +
+      std::to_string(counter.Count) +
+      " objects and lights so far: a scene holds at most 65,535 together");
+    return false;
+  }
+  in.clear();
+  in.seekg(0);
+  std::unique_ptr<Document> doc(new Document);
+  try
+  {
+    doc->Root = json::parse(in);
+  }
+  catch (const std::exception& e)
+  {
+    error = vtkBrumeBoundQuotes(this->FileName + ": not valid JSON: " + e.what());
+    return false;
+  }
+  doc->FileName = this->FileName;
+  doc->Time = time;
+  doc->Size = size;
+  this->Doc = std::move(doc);
+  return true;
+}
+
 int vtkBrumeSceneReader::RequestInformation(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
   // A scene is replicated, not split: every piece (every process of a
   // distributed run) gets all of it.
-  outputVector->GetInformationObject(0)->Set(CAN_HANDLE_PIECE_REQUEST(), 1);
+  outInfo->Set(CAN_HANDLE_PIECE_REQUEST(), 1);
+  // The time steps of the media given as lists of files. A file that
+  // cannot be read announces none: RequestData says what is wrong.
+  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+  std::string error;
+  const std::vector<double> times = this->ReadDocument(error)
+    ? vtkBrumeSceneFileParser::TimeSteps(this->Doc->Root)
+    : std::vector<double>();
+  if (!times.empty())
+  {
+    outInfo->Set(
+      vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(), static_cast<int>(times.size()));
+    const double range[2] = { times.front(), times.back() };
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
+  }
   return 1;
 }
 
 int vtkBrumeSceneReader::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
   auto* output = vtkPartitionedDataSetCollection::GetData(outputVector, 0);
-  const std::filesystem::path path(this->FileName);
-  std::ifstream in(path);
-  if (this->FileName.empty() || !in)
+  std::string error;
+  if (!this->ReadDocument(error))
   {
-    vtkErrorMacro("Cannot open the scene file '" << this->FileName << "'.");
-    return 0;
-  }
-  ObjectCounter counter;
-  json::sax_parse(in, &counter);
-  if (!counter.Overflow.empty())
-  {
-    vtkErrorMacro(<< vtkBrumeBoundQuotes(this->FileName + ": " + counter.Overflow +
-                    ": the scene has " + std::to_string(counter.Count) +
-                    " objects and lights so far: a scene holds at most 65,535 together"));
-    return 0;
-  }
-  in.clear();
-  in.seekg(0);
-  json root;
-  try
-  {
-    root = json::parse(in);
-  }
-  catch (const std::exception& e)
-  {
-    vtkErrorMacro(<< vtkBrumeBoundQuotes(this->FileName + ": not valid JSON: " + e.what()));
+    vtkErrorMacro(<< error);
     return 0;
   }
   vtkNew<vtkPartitionedDataSetCollection> scene;
   vtkBrumeSceneFileParser parser(this->FileName);
-  if (!parser.Parse(root, scene))
+  parser.SetCache(this->Cache.get());
+  const bool stepped = outInfo->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  double time = 0.0;
+  if (stepped && outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
+  {
+    time = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
+    parser.SetTime(time);
+  }
+  this->Cache->BeginParse();
+  const bool parsed = parser.Parse(this->Doc->Root, scene);
+  this->Cache->EndParse();
+  if (!parsed)
   {
     vtkErrorMacro(<< vtkBrumeBoundQuotes(parser.GetError()));
     return 0;
   }
   output->ShallowCopy(scene);
+  if (stepped)
+  {
+    // The step read: the last announced time at or before the one asked for.
+    const double* steps = outInfo->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+    const int n = outInfo->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+    double step = steps[0];
+    for (int k = 1; k < n && steps[k] <= time; ++k)
+    {
+      step = steps[k];
+    }
+    output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), step);
+  }
   return 1;
 }
 

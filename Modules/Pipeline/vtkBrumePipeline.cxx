@@ -17,6 +17,8 @@
 #include "vtkExecutive.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
 #include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPartitionedDataSetCollection.h"
@@ -24,6 +26,7 @@
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkRendererCollection.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTrivialProducer.h"
 
 #include <algorithm>
@@ -166,11 +169,62 @@ bool vtkBrumePipeline::UpdateScene()
     return this->Fail("the scene");
   }
   vtkAlgorithm* source = this->SceneOutput->GetProducer();
-  if (!source->GetExecutive()->Update())
+  if (!(this->TimeSet ? this->UpdateAt(source, this->SceneOutput->GetIndex(), 0, 1)
+                      : source->GetExecutive()->Update() != 0))
   {
     return this->Fail("the scene");
   }
   return true;
+}
+
+void vtkBrumePipeline::SetTime(double time)
+{
+  if (!this->TimeSet || this->Time != time)
+  {
+    this->Time = time;
+    this->TimeSet = true;
+    this->Modified();
+  }
+}
+
+bool vtkBrumePipeline::UpdateAt(vtkAlgorithm* algorithm, int port, int piece, int pieces)
+{
+  if (!this->TimeSet)
+  {
+    return algorithm->UpdatePiece(piece, pieces, 0) != 0;
+  }
+  vtkNew<vtkInformation> request;
+  request->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), piece);
+  request->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), pieces);
+  request->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+  request->Set(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP(), this->Time);
+  vtkNew<vtkInformationVector> requests;
+  requests->SetNumberOfInformationObjects(algorithm->GetNumberOfOutputPorts());
+  requests->SetInformationObject(port, request);
+  return algorithm->Update(port, requests) != 0;
+}
+
+int vtkBrumePipeline::GetNumberOfTimeSteps()
+{
+  vtkInformation* info = this->SceneOutput
+    ? this->SceneOutput->GetProducer()->GetOutputInformation(this->SceneOutput->GetIndex())
+    : nullptr;
+  return info && info->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS())
+    ? info->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS())
+    : 0;
+}
+
+double vtkBrumePipeline::GetTimeStep(int step)
+{
+  if (step < 0 || step >= this->GetNumberOfTimeSteps())
+  {
+    vtkErrorMacro(
+      "No time step " << step << ": the scene has " << this->GetNumberOfTimeSteps() << ".");
+    return 0.0;
+  }
+  return this->SceneOutput->GetProducer()
+    ->GetOutputInformation(this->SceneOutput->GetIndex())
+    ->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS())[step];
 }
 
 vtkDataObject* vtkBrumePipeline::GetScene()
@@ -294,7 +348,7 @@ bool vtkBrumePipeline::Update()
     this->Tracer->SetFirstParticle(first);
     this->Tracer->SetEndParticle(std::min(first + batch, particles));
     auto start = std::chrono::steady_clock::now();
-    const bool traced = this->Tracer->UpdatePiece(rank, processes, 0) != 0;
+    const bool traced = this->UpdateAt(this->Tracer, 0, rank, processes);
     if (!vtkBrumeProcesses::AllSucceeded(controller, traced, "particle tracing"))
     {
       return this->Fail("particle tracing");
@@ -304,7 +358,7 @@ bool vtkBrumePipeline::Update()
     this->NumberOfHits += this->Tracer->GetOutput()->GetNumberOfPoints();
     this->NumberOfRays += this->Tracer->GetLastRayCount();
     start = std::chrono::steady_clock::now();
-    const bool reconstructed = this->Reconstruction->UpdatePiece(rank, processes, 0) != 0;
+    const bool reconstructed = this->UpdateAt(this->Reconstruction, 0, rank, processes);
     if (!vtkBrumeProcesses::AllSucceeded(controller, reconstructed, "reconstruction"))
     {
       return this->Fail("reconstruction");
@@ -343,7 +397,8 @@ bool vtkBrumePipeline::AddParticles(vtkTypeInt64 count)
   this->Tracer->SetEndParticle(0);
   this->Tracer->SetNumberOfParticles(total + count);
   const auto start = std::chrono::steady_clock::now();
-  if (this->Tracer->GetExecutive()->Update())
+  if (this->TimeSet ? this->UpdateAt(this->Tracer, 0, 0, 1)
+                    : this->Tracer->GetExecutive()->Update() != 0)
   {
     this->TracingSeconds = Seconds(start);
     if (this->UpdateView())
@@ -372,7 +427,7 @@ bool vtkBrumePipeline::UpdateView()
   // would sum those traces over the processes. Collective when distributed.
   const int rank = vtkBrumeProcesses::GetRank(this->Controller);
   const int processes = vtkBrumeProcesses::GetSize(this->Controller);
-  if (!this->Reconstruction->UpdatePiece(rank, processes, 0))
+  if (!this->UpdateAt(this->Reconstruction, 0, rank, processes))
   {
     return this->Fail("reconstruction");
   }

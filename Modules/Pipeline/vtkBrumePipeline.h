@@ -40,6 +40,7 @@
 #include "vtkObject.h"
 #include "vtkSmartPointer.h" // For members and return values
 
+class vtkAlgorithm;
 class vtkAlgorithmOutput;
 class vtkBrumeFloatImageCapture;
 class vtkBrumeLightTracer;
@@ -115,6 +116,22 @@ public:
    */
   void SetCamera(vtkCamera* camera);
   vtkCamera* GetCamera();
+  ///@}
+
+  ///@{
+  /**
+   * The time of a scene that changes over time (a scene file whose media
+   * list a file per time step, or any source announcing VTK's TIME_STEPS):
+   * every phase is brought up to date at this time, and a source reads the
+   * step it covers. Unset (the default), the source chooses (a scene file:
+   * its first step). GetNumberOfTimeSteps() and GetTimeStep() list the
+   * source's steps once UpdateScene() ran (none: the scene does not change).
+   */
+  void SetTime(double time);
+  double GetTime() { return this->Time; }
+  bool GetTimeSet() { return this->TimeSet; }
+  int GetNumberOfTimeSteps();
+  double GetTimeStep(int step);
   ///@}
 
   ///@{
@@ -232,11 +249,16 @@ protected:
   ~vtkBrumePipeline() override;
 
   bool Fail(const char* phase);
+  // Updates `algorithm`'s output `port` as piece `piece` of `pieces`, at
+  // the Time when one was set.
+  bool UpdateAt(vtkAlgorithm* algorithm, int port, int piece, int pieces);
   void ConnectPhases();
   bool TakeSceneCamera();
 
   int Size[2] = { 512, 512 };
   double Exposure = 1.0;
+  double Time = 0.0;
+  bool TimeSet = false;
   vtkTypeInt64 BatchSize = 0;
   bool Progressive = false;
 
