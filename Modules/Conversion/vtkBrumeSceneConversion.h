@@ -52,8 +52,10 @@
 #include "vtkBrumeConversionModule.h" // For export macro
 #include "vtkSmartPointer.h"          // For return values
 
-#include "brume/Scene.h" // For brume::Scene
+#include "brume/RayCaster.h" // For brume::RayCaster
+#include "brume/Scene.h"     // For brume::Scene
 
+#include <memory> // For std::shared_ptr
 #include <string>
 #include <vector>
 
@@ -144,6 +146,22 @@ public:
    * it holds a reference to the array.
    */
   static std::size_t GetNumberOfCachedArrays();
+
+  /**
+   * The ray caster (Embree's BVH) of `scene`'s surfaces: one built before
+   * for the same geometry (every surface's vertex and triangle counts, and
+   * a 64-bit hash of their bytes, in order) while anyone still holds it,
+   * else a new one. The tracer keeps its last one, the reconstruction its
+   * shadow rays' one, so that a scene that changes over time, a run traced
+   * in batches and a progressive refinement build the BVH of unchanged
+   * surfaces once, not once per step, batch and phase (a high-quality
+   * build of 2*10^6 triangles takes 1.5 s on 2 cores). One cache for the
+   * process (here, not in the core, which every module links). Thread safe.
+   */
+  static std::shared_ptr<const brume::RayCaster> SharedRayCaster(const brume::Scene& scene);
+
+  /// BVHs SharedRayCaster() built (not found) since the process started.
+  static std::size_t GetNumberOfRayCasterBuilds();
 };
 
 #endif

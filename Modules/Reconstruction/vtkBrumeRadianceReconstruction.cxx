@@ -313,9 +313,14 @@ bool vtkBrumeRadianceReconstruction::Plan(const vtkBrumeReconstructionRequest& r
   // rebuild after new hits writes where the last build's were); the rest of
   // the textures replaced is freed before the new ones are built.
   std::vector<brume::KeptHits> spare;
+  // The replaced textures' ray caster, kept through the build: the new
+  // textures' shadow rays find it where the surfaces are the same (a new
+  // time step, a new trace of the same scene).
+  std::shared_ptr<const brume::RayCaster> caster;
   if (textures)
   {
     spare = textures->ReleaseKeptMemory();
+    caster = textures->GetCaster();
   }
   this->Textures.reset(new vtkBrumeRadianceTextures(this, this->Controller));
   if (!this->Textures->Build(request, settings, *this->WorkDone, std::move(spare)))

@@ -154,6 +154,12 @@ public:
   /// that replace these (Build()'s `spare`).
   std::vector<brume::KeptHits> ReleaseKeptMemory();
 
+  /// The ray caster of the shadow and mirror rays (null without them):
+  /// held while the textures that replace these are built, it is found
+  /// again by vtkBrumeSceneConversion::SharedRayCaster where the surfaces
+  /// did not change.
+  std::shared_ptr<const brume::RayCaster> GetCaster() const { return this->Caster; }
+
   /// The hits of a progressive step, added to every texture's histograms.
   bool Add(const vtkBrumeReconstructionRequest& request, vtkBrumeReconstructionWork& work);
 
@@ -243,8 +249,8 @@ private:
   vtkMTimeType HitsTime = 0;
   vtkBrumeReconstructionSettings Settings;
   brume::Scene Scene;
-  std::unique_ptr<brume::RayCaster> Caster;   // shadow rays and mirrors' rays
-  std::unique_ptr<brume::DirectLight> Direct; // null: no direct light
+  std::shared_ptr<const brume::RayCaster> Caster; // shadow rays and mirrors' rays
+  std::unique_ptr<brume::DirectLight> Direct;     // null: no direct light
   std::vector<vtkBrumeSceneConversion::ObjectSource> Sources;
   std::vector<std::unique_ptr<brume::ObjectRadiance>> Objects;
   std::vector<vtkSmartPointer<vtkPartitionedDataSet>> Outputs;

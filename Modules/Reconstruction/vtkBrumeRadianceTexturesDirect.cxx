@@ -19,9 +19,9 @@ bool vtkBrumeRadianceTextures::CreateDirectLight(
   const vtkBrumeReconstructionSettings& settings, const brume::HitArrays& hits)
 {
   this->Direct.reset();
-  this->Caster.reset();
   if (settings.DirectLightResolution <= 0 || this->Scene.Lights.empty())
   {
+    this->Caster.reset();
     return true;
   }
   if (hits.Count > 0 && (!hits.Emitter || !hits.Depth))
@@ -29,9 +29,11 @@ bool vtkBrumeRadianceTextures::CreateDirectLight(
     vtkWarningWithObjectMacro(this->Filter,
       "The particle hits have no 'EmitterId' and 'Depth' arrays: direct light is estimated from "
       "them, not computed.");
+    this->Caster.reset();
     return true;
   }
-  this->Caster.reset(new brume::RayCaster(this->Scene));
+  // The tracer's, while the surfaces are the same.
+  this->Caster = vtkBrumeSceneConversion::SharedRayCaster(this->Scene);
   if (!this->Caster->GetError().empty())
   {
     vtkErrorWithObjectMacro(

@@ -37,7 +37,7 @@ bool vtkBrumeRadianceTextures::PlanReflections()
   {
     return true;
   }
-  this->Caster.reset(new brume::RayCaster(this->Scene));
+  this->Caster = vtkBrumeSceneConversion::SharedRayCaster(this->Scene);
   if (!this->Caster->GetError().empty())
   {
     vtkErrorWithObjectMacro(

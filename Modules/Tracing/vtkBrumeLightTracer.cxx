@@ -373,7 +373,10 @@ int vtkBrumeLightTracer::RequestData(
     given += light->GetSwitch() ? 1 : 0;
   }
   const std::vector<brume::Light> givenLights(scene.Lights.end() - given, scene.Lights.end());
-  const brume::RayCaster caster(scene);
+  // Kept, and shared with the reconstruction's shadow rays: the next batch,
+  // time step or refinement builds no BVH while the surfaces are the same.
+  this->Caster = vtkBrumeSceneConversion::SharedRayCaster(scene);
+  const brume::RayCaster& caster = *this->Caster;
   if (!caster.GetError().empty())
   {
     vtkErrorMacro("Could not build the ray-casting structure: " << caster.GetError());
