@@ -89,9 +89,11 @@ std::string CheckKeys(const std::string& keys, bool exitAfter)
 {
   for (const char key : keys)
   {
-    if (key != 'p' && key != 'd' && key != 'm' && !(key == 's' && exitAfter))
+    if (key != 'p' && key != 'd' && key != 'm' && key != 'n' && key != 'b' &&
+      !(key == 's' && exitAfter))
     {
-      return std::string("--keys accepts p, d and m (and s with --exit-after), not '") + key + "'";
+      return std::string("--keys accepts p, d, m, n and b (and s with --exit-after), not '") + key +
+        "'";
     }
   }
   return std::string();

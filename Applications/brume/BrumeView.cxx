@@ -186,6 +186,10 @@ public:
       case 's':
         this->Screenshot();
         break;
+      case 'n':
+      case 'b':
+        this->StepTime(key == 'n' ? 1 : -1);
+        break;
       default:
         return false;
     }
@@ -211,6 +215,43 @@ public:
       return;
     }
     std::cerr << "brume: cannot add particles; keeping " << Thousands(total) << ".\n";
+  }
+
+  // A scene that changes over time: the next (+1) or previous (-1) time
+  // step, traced with the particles the view has and reconstructed (what
+  // does not change is not read again); on failure the viewer keeps the
+  // step it shows.
+  void StepTime(int direction)
+  {
+    const int steps = this->Pipeline->GetNumberOfTimeSteps();
+    if (steps == 0)
+    {
+      std::cerr << "brume: the scene does not change over time (no medium lists its files per "
+                   "time step).\n";
+      return;
+    }
+    const int step = std::max(0, std::min(steps - 1, this->TimeStep + direction));
+    if (step == this->TimeStep)
+    {
+      return;
+    }
+    const auto start = Clock::now();
+    this->Pipeline->SetTime(this->Pipeline->GetTimeStep(step));
+    if (!this->Pipeline->Update())
+    {
+      std::cerr << "brume: " << this->Pipeline->GetFailedPhase() << " failed at time step " << step
+                << "; showing step " << this->TimeStep << ".\n";
+      this->Pipeline->SetTime(this->Pipeline->GetTimeStep(this->TimeStep));
+      this->Pipeline->Update();
+      return;
+    }
+    this->TimeStep = step;
+    this->LastTrace = 1000.0 * this->Pipeline->GetTracingSeconds();
+    std::printf("time step %d of %d (t = %g): traced in %.3f s, reconstructed in %.3f s (%.3f s "
+                "in all)\n",
+      step, steps, this->Pipeline->GetTimeStep(step), this->Pipeline->GetTracingSeconds(),
+      this->Pipeline->GetReconstructionSeconds(), Milliseconds(start) / 1000.0);
+    std::fflush(stdout);
   }
 
   bool Save(const std::string& file)
@@ -250,14 +291,21 @@ public:
       return;
     }
     this->OverlayShown = Clock::now();
-    char text[512];
+    char time[96] = "";
+    const int steps = this->Pipeline->GetNumberOfTimeSteps();
+    if (steps > 0)
+    {
+      std::snprintf(time, sizeof(time), "time step %d of %d (t = %g)   n / b next / previous\n",
+        this->TimeStep, steps, this->Pipeline->GetTimeStep(this->TimeStep));
+    }
+    char text[640];
     std::snprintf(text, sizeof(text),
       "%s particles (traced in %.2f s)   media: %s\n"
-      "last frame: update %.1f ms, render %.1f ms\n"
+      "%slast frame: update %.1f ms, render %.1f ms\n"
       "p more particles   d paper / SH   m medium   s screenshot   q quit",
       Thousands(this->Particles()).c_str(), this->LastTrace / 1000.0,
       this->Reconstruction->GetDirectionalRadiance() ? "spherical harmonics" : "per view (paper)",
-      this->LastUpdate, this->LastRender);
+      time, this->LastUpdate, this->LastRender);
     this->Overlay->SetInput(text);
   }
 
@@ -277,6 +325,7 @@ public:
   Clock::time_point OverlayShown;
   bool MediaVisible = true;
   int Screenshots = 0;
+  int TimeStep = 0; // of a scene that changes over time: the step shown
   vtkSmartPointer<vtkBrumePipeline> Pipeline;
   vtkBrumeRadianceReconstruction* Reconstruction = Pipeline->GetReconstruction();
   vtkBrumeSceneActors* Actors = Pipeline->GetActors();

@@ -151,12 +151,12 @@ public:
    * The ray caster (Embree's BVH) of `scene`'s surfaces: one built before
    * for the same geometry (every surface's vertex and triangle counts, and
    * a 64-bit hash of their bytes, in order) while anyone still holds it,
-   * else a new one. The tracer keeps its last one, the reconstruction its
-   * shadow rays' one, so that a scene that changes over time, a run traced
-   * in batches and a progressive refinement build the BVH of unchanged
-   * surfaces once, not once per step, batch and phase (a high-quality
-   * build of 2*10^6 triangles takes 1.5 s on 2 cores). One cache for the
-   * process (here, not in the core, which every module links). Thread safe.
+   * else a new one. The reconstruction keeps its shadow rays' one, so that
+   * the tracer and the reconstruction of the next time step, batch or
+   * refinement find it: unchanged surfaces' BVH is built once, not twice
+   * per step and batch (a high-quality build of 2*10^6 triangles takes
+   * 1.5 s on 2 cores). One cache for the process (here, not in the core,
+   * which every module links). Thread safe.
    */
   static std::shared_ptr<const brume::RayCaster> SharedRayCaster(const brume::Scene& scene);
 

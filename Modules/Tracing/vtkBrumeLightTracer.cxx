@@ -373,10 +373,13 @@ int vtkBrumeLightTracer::RequestData(
     given += light->GetSwitch() ? 1 : 0;
   }
   const std::vector<brume::Light> givenLights(scene.Lights.end() - given, scene.Lights.end());
-  // Kept, and shared with the reconstruction's shadow rays: the next batch,
-  // time step or refinement builds no BVH while the surfaces are the same.
-  this->Caster = vtkBrumeSceneConversion::SharedRayCaster(scene);
-  const brume::RayCaster& caster = *this->Caster;
+  // The BVH the reconstruction's shadow rays keep (from the last batch,
+  // time step or refinement) while the surfaces are the same. Not kept
+  // here: a filter may outlive Embree (ParaView deletes its proxies while
+  // the process exits).
+  const std::shared_ptr<const brume::RayCaster> shared =
+    vtkBrumeSceneConversion::SharedRayCaster(scene);
+  const brume::RayCaster& caster = *shared;
   if (!caster.GetError().empty())
   {
     vtkErrorMacro("Could not build the ray-casting structure: " << caster.GetError());

@@ -54,7 +54,6 @@ struct vtkBrumeLightTracerReturnedBuffers;
 namespace brume
 {
 class LightTracer;
-class RayCaster;
 struct TraceCounters;
 }
 
@@ -235,9 +234,6 @@ private:
   // The output's hit buffers that came back when it let go of them, for the
   // execution that follows to write into (their pages already mapped).
   std::unique_ptr<vtkBrumeLightTracerReturnedBuffers> Returned;
-  // The last execution's surfaces' BVH (vtkBrumeSceneConversion::
-  // SharedRayCaster): found again while the surfaces are the same.
-  std::shared_ptr<const brume::RayCaster> Caster;
 
   vtkBrumeLightTracer(const vtkBrumeLightTracer&) = delete;
   void operator=(const vtkBrumeLightTracer&) = delete;

@@ -1,10 +1,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The surfaces' BVH is built once while they do not change
-// (vtkBrumeSceneConversion::SharedRayCaster):
-// - one run: the tracer builds it, the reconstruction's shadow rays find it;
-// - another seed, a run in batches: no build;
-// - a surface moved: one build, and its image is the one of a pipeline
-//   that never saw the old surfaces (no stale BVH).
+// The surfaces' BVH is built again only when they change
+// (vtkBrumeSceneConversion::SharedRayCaster). The default scene with a
+// point light, whose direct light the reconstruction computes with shadow
+// rays (its textures keep their BVH; the tracer keeps none: a filter may
+// outlive Embree):
+// - a first run: the tracer's BVH, then the shadow rays' (the tracer's is
+//   gone);
+// - another seed, a run in four batches: none, the textures' one is found;
+// - a surface moved: the tracer's and the shadow rays' again, and the
+//   image is the one of a pipeline that never saw the old surfaces.
 #include "vtkBrumeDefaultSceneSource.h"
 #include "vtkBrumeLightTracer.h"
 #include "vtkBrumePipeline.h"
@@ -13,6 +17,7 @@
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkLight.h"
 #include "vtkNew.h"
 #include "vtkPartitionedDataSet.h"
 #include "vtkPartitionedDataSetCollection.h"
@@ -60,6 +65,12 @@ bool Same(vtkImageData* a, vtkImageData* b)
 
 void Configure(vtkBrumePipeline* pipeline)
 {
+  vtkNew<vtkLight> lamp;
+  lamp->SetPositional(true);
+  lamp->SetConeAngle(180.0);
+  lamp->SetPosition(0.0, 0.3, 0.2);
+  lamp->SetIntensity(0.5);
+  pipeline->GetTracer()->AddLight(lamp);
   pipeline->GetTracer()->SetNumberOfParticles(20000);
   pipeline->GetReconstruction()->SetFixedView(true);
   pipeline->SetSize(24, 24);
@@ -72,7 +83,7 @@ int TestSharedRayCaster(int, char*[])
   vtkNew<vtkBrumePipeline> pipeline;
   pipeline->SetInputConnection(source->GetOutputPort());
   Configure(pipeline);
-  UpdateBuilding(pipeline, 1, "one run: one BVH, the tracer's, found by the shadow rays");
+  UpdateBuilding(pipeline, 2, "a first run: the tracer's BVH and the shadow rays'");
   pipeline->GetTracer()->SetSeed(7);
   UpdateBuilding(pipeline, 0, "another seed: no BVH");
   pipeline->SetBatchSize(5000);
@@ -95,7 +106,7 @@ int TestSharedRayCaster(int, char*[])
     surface->GetPoints()->SetPoint(i, p);
   }
   pipeline->SetInputData(moved);
-  UpdateBuilding(pipeline, 1, "a surface moved: one BVH");
+  UpdateBuilding(pipeline, 2, "a surface moved: two BVHs again");
   const vtkSmartPointer<vtkImageData> image = pipeline->RenderImage();
 
   vtkNew<vtkBrumePipeline> fresh;
