@@ -360,6 +360,7 @@ void AddView(CLI::App& app, ViewOptions& o, const Defaults& d)
                "      d  switch the media between per-view textures and spherical harmonics\n"
                "      m  show or hide the media\n"
                "      s  save the window to brume-view-NNNN.png\n"
+               "      n  next time step, b  previous (a scene that changes over time)\n"
                "      q  quit");
   // After the options and their --orbit checks: which keys depends on --exit-after.
   view->final_callback(

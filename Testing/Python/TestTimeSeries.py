@@ -11,7 +11,10 @@
 - the pipeline's time (vtkBrumePipeline.SetTime) gives the same images;
 - lists that are wrong are refused naming the field.
 
-usage: TestTimeSeries.py BRUME OUTPUT_DIR
+- an OpenVDB medium given as a list (the project's cumulus, its box from
+  its grid) renders each step as the file alone does.
+
+usage: TestTimeSeries.py BRUME OUTPUT_DIR [CUMULUS_SCENE]
 """
 import json
 import math
@@ -29,6 +32,7 @@ import numpy as np
 import brume
 
 program, output_dir = sys.argv[1:3]
+cumulus = sys.argv[3] if len(sys.argv) > 3 else None
 work = os.path.join(output_dir, "time-series")
 os.makedirs(work, exist_ok=True)
 failures = []
@@ -227,6 +231,26 @@ result = subprocess.run([program, "render", series, "--time-step", "3", "-o",
                          os.path.join(work, "never.png")], capture_output=True, text=True)
 check(result.returncode == 2 and "the scene has 3 time steps, 0 to 2" in result.stderr,
       "--time-step past the last step: exit 2")
+
+# An OpenVDB list: its steps' boxes come from their grids, as one file's.
+if cumulus:
+    with open(cumulus) as f:
+        cloud = json.load(f)
+    vdb = os.path.join(os.path.dirname(os.path.abspath(cumulus)), "cumulus.vdb")
+    cloud["render"] = {"particles": 20000, "size": [32, 24]}
+    cloud["media"][0]["density"]["vdb"] = vdb
+    alone = write_scene("cloud.json", cloud)
+    cloud["media"][0]["density"]["vdb"] = [vdb, vdb]
+    cloud["media"][0]["density"]["times"] = [0.0, 10.0]
+    listed = write_scene("cloud-series.json", cloud)
+    subprocess.run([program, "render", alone, "-o", os.path.join(work, "cloud.vti")],
+                   check=True, capture_output=True)
+    result = subprocess.run([program, "render", listed, "--time-step", "1", "-o",
+                             os.path.join(work, "cloud-step1.vti")], capture_output=True, text=True)
+    check(result.returncode == 0 and "time step 1 of 2 (t = 10)" in result.stdout
+          and (radiance(os.path.join(work, "cloud-step1.vti"))
+               == radiance(os.path.join(work, "cloud.vti"))).all(),
+          "an OpenVDB list's step renders as its file alone")
 
 if failures:
     sys.exit("%d checks failed" % len(failures))
