@@ -10,6 +10,8 @@
    medium's textures follow the animation time the same way (grouped with
    a ground, the medium first: VTK takes a filter's time steps from its
    first input).
+3. The same series shown as a Volume in a Brume Render View, no Brume
+   filter: a new animation time traces once more, and the fog moves.
 
 usage: pvbatch TestBrumeTimeSeries.py PLUGIN OUTPUT_DIR
 """
@@ -162,6 +164,39 @@ for t in (0.0, 2.0):
 print("brightness centroids of the field's medium at t = 0 and 2:", field_shots)
 check(field_shots[1] - field_shots[0] > 0.1,
       "the field's medium follows ParaView's time: %s" % field_shots)
+Delete(view)
+del view
+
+# 3. The Brume Render View: ParaView's own representations, lit by Brume.
+view = black_view(size, CreateView("BrumeRenderView"))
+view.BrumeParticles = 60000
+volume = Show(series, view)
+volume.SetRepresentationType("Volume")
+ColorBy(volume, ("POINTS", "density"))
+Show(ground, view)
+view.CameraPosition = camera["position"]
+view.CameraFocalPoint = camera["focal_point"]
+view.CameraViewUp = camera["view_up"]
+view.CameraViewAngle = camera["view_angle"]
+
+
+def traces():
+    view.SMProxy.UpdatePropertyInformation()
+    return view.SMProxy.GetProperty("BrumeNumberOfTraces").GetElement(0)
+
+
+view_shots, counts = [], []
+for t in (0.0, 2.0):
+    animation.AnimationTime = t
+    Render(view)
+    png = os.path.join(work, "render-view-t%g.png" % t)
+    SaveScreenshot(png, view, ImageResolution=[size, size])
+    view_shots.append(centroid_x(png))
+    counts.append(traces())
+print("Brume Render View: centroids %s, traces %s" % (view_shots, counts))
+check(counts[1] == counts[0] + 1, "a new time traces once more (%s)" % counts)
+check(view_shots[1] - view_shots[0] > 0.1,
+      "the Brume Render View's fog follows the time: %s" % view_shots)
 Delete(view)
 del view
 finish()
