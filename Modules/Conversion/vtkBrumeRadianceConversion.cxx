@@ -10,6 +10,7 @@
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
 #include "vtkIntArray.h"
 #include "vtkNew.h"
@@ -71,22 +72,48 @@ const char* ChartName(brume::SurfaceChart::Kind kind)
 }
 
 // The surface with separate points per triangle: each has its own chart.
+// Written in place (not point by point: 2*10^6 triangles took 0.3 s that
+// way), triangles on every thread.
 void MapAtlas(const brume::Surface& surface, const brume::SurfaceChart& chart,
   vtkPolyData* sceneSurface, vtkPolyData* mapped, vtkFloatArray* tcoords)
 {
-  vtkNew<vtkPoints> points;
-  vtkNew<vtkCellArray> triangles;
-  for (std::size_t t = 0; t < surface.Triangles.size(); ++t)
-  {
-    vtkIdType ids[3];
-    for (int k = 0; k < 3; ++k)
+  const auto count = static_cast<vtkIdType>(surface.Triangles.size());
+  vtkNew<vtkFloatArray> xyz;
+  xyz->SetNumberOfComponents(3);
+  xyz->SetNumberOfTuples(3 * count);
+  tcoords->SetNumberOfTuples(3 * count);
+  vtkNew<vtkIdTypeArray> offsets, connectivity;
+  offsets->SetNumberOfValues(count + 1);
+  connectivity->SetNumberOfValues(3 * count);
+  float* p = xyz->GetPointer(0);
+  float* uv = tcoords->GetPointer(0);
+  vtkIdType* offset = offsets->GetPointer(0);
+  vtkIdType* ids = connectivity->GetPointer(0);
+  offset[count] = 3 * count;
+  vtkBrumeSMP::ParallelFor()(0, surface.Triangles.size(),
+    [&](std::size_t begin, std::size_t end)
     {
-      const brume::Vec3& v = surface.Vertices[surface.Triangles[t][k]];
-      ids[k] = points->InsertNextPoint(v.x, v.y, v.z);
-      tcoords->InsertNextTuple2(chart.TriangleUV[t][2 * k], chart.TriangleUV[t][2 * k + 1]);
-    }
-    triangles->InsertNextCell(3, ids);
-  }
+      for (std::size_t triangle = begin; triangle < end; ++triangle)
+      {
+        const auto t = static_cast<vtkIdType>(triangle);
+        offset[t] = 3 * t;
+        for (int k = 0; k < 3; ++k)
+        {
+          const brume::Vec3& v = surface.Vertices[surface.Triangles[triangle][k]];
+          const vtkIdType id = 3 * t + k;
+          p[3 * id] = v.x;
+          p[3 * id + 1] = v.y;
+          p[3 * id + 2] = v.z;
+          uv[2 * id] = chart.TriangleUV[triangle][2 * k];
+          uv[2 * id + 1] = chart.TriangleUV[triangle][2 * k + 1];
+          ids[id] = id;
+        }
+      }
+    });
+  vtkNew<vtkPoints> points;
+  points->SetData(xyz);
+  vtkNew<vtkCellArray> triangles;
+  triangles->SetData(offsets, connectivity);
   mapped->SetPoints(points);
   mapped->SetPolys(triangles);
   mapped->GetFieldData()->ShallowCopy(sceneSurface->GetFieldData());
