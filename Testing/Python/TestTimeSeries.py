@@ -206,6 +206,27 @@ for k in (2, 0):
           (vtk_to_numpy(image.GetPointData().GetArray("Radiance")) == images[k]).all(),
           "vtkBrumePipeline.SetTime(%g): brume render's step %d" % (times[k], k))
 
+# Two media of different lists: the scene's steps are both lists' times
+# merged; at each, each medium takes its last step at or before it.
+two = json.loads(json.dumps(scene))
+two["media"][1]["density"] = {"vti": ["blob2.vti", "blob0.vti"], "array": "density",
+                              "times": [0.25, 1.0]}
+merged = brume.vtkBrumeSceneReader()
+merged.SetFileName(write_scene("two-lists.json", two))
+merged.UpdateInformation()
+minfo = merged.GetOutputInformation(0)
+merged_times = [minfo.Get(sddp.TIME_STEPS(), k) for k in range(minfo.Length(sddp.TIME_STEPS()))]
+check(merged_times == [0.0, 0.25, 0.5, 1.0, 2.0], "two lists' times merged: %s" % merged_times)
+for time, blob_step, haze_step in [(0.0, 0, 0), (0.25, 0, 0), (0.5, 1, 0), (1.0, 1, 1),
+                                   (2.0, 2, 1)]:
+    merged.UpdateTimeStep(time)
+    out = merged.GetOutput()
+    got = (peak_x(medium_array(out, "blob")), peak_x(medium_array(out, "haze")))
+    want = (centres[blob_step], [0.25, -0.25][haze_step])
+    check(abs(got[0] - want[0]) < 0.03 and abs(got[1] - want[1]) < 0.03,
+          "at t = %g the media are at their steps %d and %d (peaks %.3f, %.3f)"
+          % (time, blob_step, haze_step, got[0], got[1]))
+
 # Lists that cannot be read.
 bad = [
     ({"vti": [], "array": "density"}, "media[0].density.vti: expected a file, or a list"),
