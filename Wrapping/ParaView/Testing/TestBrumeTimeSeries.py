@@ -26,8 +26,8 @@ from vtkmodules.vtkCommonDataModel import vtkImageData
 from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from brume_testing import (actors_image, black_view, check, finish, image_error,  # noqa: E402
-                           png_pixels)
+from brume_testing import (at_scene_camera, black_view, check, finish,  # noqa: E402
+                           png_pixels, screenshot_like_actors)
 
 plugin, output_dir = sys.argv[1:3]
 LoadPlugin(plugin, ns=globals())
@@ -96,23 +96,24 @@ tracer = BrumeLightTracer(Input=reader, NumberOfParticles=60000, Seed=1)
 reconstruction = BrumeRadianceReconstruction(Scene=reader, Hits=tracer,
                                              EyePosition=camera["position"])
 view = black_view(size)
-display = Show(reconstruction, view)
-view.CameraPosition = camera["position"]
-view.CameraFocalPoint = camera["focal_point"]
-view.CameraViewUp = camera["view_up"]
-view.CameraViewAngle = camera["view_angle"]
+Show(reconstruction, view)
+at_scene_camera(view, camera)
+
+
+def screenshot_at(t, name):
+    """The view's screenshot at animation time t."""
+    animation.AnimationTime = t
+    Render(view)
+    png = os.path.join(work, name)
+    SaveScreenshot(png, view, ImageResolution=[size, size])
+    return png
+
+
 shots = []
 for k, t in enumerate(times):
     animation.AnimationTime = t
-    Render(view)
-    png = os.path.join(work, "scene-step%d.png" % k)
-    SaveScreenshot(png, view, ImageResolution=[size, size])
-    expected = os.path.join(work, "scene-step%d-actors.png" % k)
-    actors_image(view, size, reconstruction.GetClientSideObject().GetOutput(),
-                 view.GetActiveCamera(), expected)
-    check(image_error(png, expected) <= 0.5,
-          "at t = %g the view shows what vtkBrumeSceneActors draws of the textures (error %g)"
-          % (t, image_error(png, expected)))
+    png = screenshot_like_actors(view, reconstruction, size, work, "scene-step%d" % k,
+                                 "at t = %g the view" % t)
     shots.append(centroid_x(png))
 print("brightness centroids (x, -1 to 1) at the three times:", shots)
 check(shots[0] < shots[1] < shots[2] and shots[2] - shots[0] > 0.1,
@@ -149,18 +150,9 @@ field_reconstruction = BrumeRadianceReconstruction(Scene=grouped, Hits=field_tra
                                                    EyePosition=camera["position"])
 view = black_view(size)
 Show(field_reconstruction, view)
-view.CameraPosition = camera["position"]
-view.CameraFocalPoint = camera["focal_point"]
-view.CameraViewUp = camera["view_up"]
-view.CameraViewAngle = camera["view_angle"]
+at_scene_camera(view, camera)
 animation.UpdateAnimationUsingDataTimeSteps()
-field_shots = []
-for t in (0.0, 2.0):
-    animation.AnimationTime = t
-    Render(view)
-    png = os.path.join(work, "field-t%g.png" % t)
-    SaveScreenshot(png, view, ImageResolution=[size, size])
-    field_shots.append(centroid_x(png))
+field_shots = [centroid_x(screenshot_at(t, "field-t%g.png" % t)) for t in (0.0, 2.0)]
 print("brightness centroids of the field's medium at t = 0 and 2:", field_shots)
 check(field_shots[1] - field_shots[0] > 0.1,
       "the field's medium follows ParaView's time: %s" % field_shots)
@@ -174,10 +166,7 @@ volume = Show(series, view)
 volume.SetRepresentationType("Volume")
 ColorBy(volume, ("POINTS", "density"))
 Show(ground, view)
-view.CameraPosition = camera["position"]
-view.CameraFocalPoint = camera["focal_point"]
-view.CameraViewUp = camera["view_up"]
-view.CameraViewAngle = camera["view_angle"]
+at_scene_camera(view, camera)
 
 
 def traces():
@@ -187,11 +176,7 @@ def traces():
 
 view_shots, counts = [], []
 for t in (0.0, 2.0):
-    animation.AnimationTime = t
-    Render(view)
-    png = os.path.join(work, "render-view-t%g.png" % t)
-    SaveScreenshot(png, view, ImageResolution=[size, size])
-    view_shots.append(centroid_x(png))
+    view_shots.append(centroid_x(screenshot_at(t, "render-view-t%g.png" % t)))
     counts.append(traces())
 print("Brume Render View: centroids %s, traces %s" % (view_shots, counts))
 check(counts[1] == counts[0] + 1, "a new time traces once more (%s)" % counts)

@@ -15,8 +15,8 @@ import sys
 from paraview.simple import *  # noqa: F401,F403
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from brume_testing import (actors_image, black_view, check, finish, image_error,  # noqa: E402
-                           png_pixels)
+from brume_testing import (at_scene_camera, black_view, check, finish,  # noqa: E402
+                           png_pixels, screenshot_like_actors)
 
 plugin, directory, scene_file = sys.argv[1:4]
 state = os.path.join(directory, "puff-series.pvsm")
@@ -51,22 +51,12 @@ if reader is not None and reconstruction is not None:
     view = black_view(size)
     Show(reconstruction, view)
     Render(view)  # the first render frames the scene; then the scene's camera
-    view.CameraPosition = camera["position"]
-    view.CameraFocalPoint = camera["focal_point"]
-    view.CameraViewUp = camera["view_up"]
-    view.CameraViewAngle = camera["view_angle"]
+    at_scene_camera(view, camera)
     heights = []
     for t in (animation.AnimationTime, 0.0):
         animation.AnimationTime = t
-        Render(view)
-        png = os.path.join(directory, "puff-t%g.png" % t)
-        SaveScreenshot(png, view, ImageResolution=[size, size])
-        expected = os.path.join(directory, "puff-t%g-actors.png" % t)
-        actors_image(view, size, reconstruction.GetClientSideObject().GetOutput(),
-                     view.GetActiveCamera(), expected)
-        check(image_error(png, expected) <= 0.5,
-              "t = %g: the view shows what vtkBrumeSceneActors draws (error %g)"
-              % (t, image_error(png, expected)))
+        png = screenshot_like_actors(view, reconstruction, size, directory, "puff-t%g" % t,
+                                     "at t = %g the view" % t)
         heights.append(top_row(png))
     print("the puff's top (rows from the bottom) at t = 1 and 0:", heights)
     check(heights[0] >= heights[1] + 4, "the puff stands higher at t = 1 than at t = 0: %s"

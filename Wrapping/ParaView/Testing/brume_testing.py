@@ -148,6 +148,29 @@ def actors_image(view, size, textures, camera, png, interpolate=True, extra=None
     window.Finalize()
 
 
+def at_scene_camera(view, camera_settings):
+    """Puts a view at a scene file's camera (its "camera" block)."""
+    view.CameraPosition = camera_settings["position"]
+    view.CameraFocalPoint = camera_settings["focal_point"]
+    view.CameraViewUp = camera_settings["view_up"]
+    view.CameraViewAngle = camera_settings["view_angle"]
+
+
+def screenshot_like_actors(view, reconstruction, size, output_dir, name, what="the render view"):
+    """Renders the view, saves its screenshot (NAME.png) and
+    vtkBrumeSceneActors' image of the reconstruction's textures
+    (NAME-actors.png), and checks that they agree. Returns the screenshot."""
+    Render(view)
+    shown = os.path.join(output_dir, name + ".png")
+    SaveScreenshot(shown, view, ImageResolution=[size, size])
+    expected = os.path.join(output_dir, name + "-actors.png")
+    actors_image(view, size, reconstruction.GetClientSideObject().GetOutput(),
+                 view.GetActiveCamera(), expected)
+    error = image_error(shown, expected)
+    check(error <= 0.5, "%s shows what vtkBrumeSceneActors draws (error %g)" % (what, error))
+    return shown
+
+
 def shown_at_scene_camera(reconstruction, camera_settings, size, output_dir, name):
     """Shows a reconstruction with "Brume Radiance" in a black view at a
     scene file's camera, saves the screenshot (NAME.png) and
@@ -158,18 +181,8 @@ def shown_at_scene_camera(reconstruction, camera_settings, size, output_dir, nam
     check(display.Representation == "Brume Radiance",
           "Show() gives 'Brume Radiance' (got '%s')" % display.Representation)
     Render(view)  # the first render frames the scene; then the scene's camera
-    view.CameraPosition = camera_settings["position"]
-    view.CameraFocalPoint = camera_settings["focal_point"]
-    view.CameraViewUp = camera_settings["view_up"]
-    view.CameraViewAngle = camera_settings["view_angle"]
-    Render(view)
-    shown = os.path.join(output_dir, name + ".png")
-    SaveScreenshot(shown, view, ImageResolution=[size, size])
-    expected = os.path.join(output_dir, name + "-actors.png")
-    actors_image(view, size, reconstruction.GetClientSideObject().GetOutput(),
-                 view.GetActiveCamera(), expected)
-    error = image_error(shown, expected)
-    check(error <= 0.5, "the render view shows what vtkBrumeSceneActors draws (error %g)" % error)
+    at_scene_camera(view, camera_settings)
+    shown = screenshot_like_actors(view, reconstruction, size, output_dir, name)
     return view, display, shown
 
 
