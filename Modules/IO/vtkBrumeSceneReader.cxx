@@ -226,7 +226,8 @@ int vtkBrumeSceneReader::RequestData(
   vtkBrumeSceneFileParser parser(this->FileName);
   parser.SetCache(this->Cache.get());
   const bool stepped = outInfo->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
-  double time = 0.0;
+  // No time asked for: the first step, as the parser reads it.
+  double time = stepped ? outInfo->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS())[0] : 0.0;
   if (stepped && outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
   {
     time = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
