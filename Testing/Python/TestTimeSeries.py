@@ -23,7 +23,7 @@ import subprocess
 import sys
 
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-from vtkmodules.vtkCommonDataModel import vtkImageData
+from vtkmodules.vtkCommonDataModel import vtkDataObject, vtkImageData
 from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline
 from vtkmodules.vtkFiltersSources import vtkSphereSource
 from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLImageDataWriter, vtkXMLPolyDataWriter
@@ -226,6 +226,16 @@ for time, blob_step, haze_step in [(0.0, 0, 0), (0.25, 0, 0), (0.5, 1, 0), (1.0,
     check(abs(got[0] - want[0]) < 0.03 and abs(got[1] - want[1]) < 0.03,
           "at t = %g the media are at their steps %d and %d (peaks %.3f, %.3f)"
           % (time, blob_step, haze_step, got[0], got[1]))
+
+# Times before zero, no time asked for: the first step, and its time.
+early = json.loads(json.dumps(scene))
+early["media"][0]["density"]["times"] = [-2.0, -1.0, 3.0]
+first = brume.vtkBrumeSceneReader()
+first.SetFileName(write_scene("early.json", early))
+first.Update()
+data_time = first.GetOutput().GetInformation().Get(vtkDataObject.DATA_TIME_STEP())
+check(data_time == -2.0 and abs(peak_x(medium_array(first.GetOutput(), "blob")) - centres[0]) < 0.03,
+      "no time asked for: the first step, at t = %g" % data_time)
 
 # Lists that cannot be read.
 bad = [
