@@ -459,6 +459,12 @@ int RunRender(const RenderOptions& options)
       return 1;
     }
     const std::string output = StepOutput(options.Output, step, options);
+    if (step >= 0)
+    {
+      // A step's .vti records its time (VTK's TimeValue field, as the path
+      // tracer's output does): ParaView reads the files as a time series.
+      radiance->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), pipeline->GetTimeStep(step));
+    }
     if (const int rc = WriteImage(radiance, pipeline, output))
     {
       return rc;

@@ -174,10 +174,20 @@ def radiance(path):
     return vtk_to_numpy(r.GetOutput().GetPointData().GetArray("Radiance"))
 
 
+def time_value(path):
+    r = vtkXMLImageDataReader()
+    r.SetFileName(path)
+    r.Update()
+    value = r.GetOutput().GetFieldData().GetArray("TimeValue")
+    return value.GetValue(0) if value is not None else None
+
+
 images = []
 for k in range(3):
     alone = os.path.join(work, "alone%d.vti" % k)
     subprocess.run([program, "render", steps[k], "-o", alone], check=True, capture_output=True)
+    check(time_value(os.path.join(work, "out.%04d.vti" % k)) == times[k],
+          "step %d's .vti records its time, %g" % (k, times[k]))
     stepped = radiance(os.path.join(work, "out.%04d.vti" % k))
     images.append(stepped)
     check((stepped == radiance(alone)).all() and stepped.mean() > 0,
