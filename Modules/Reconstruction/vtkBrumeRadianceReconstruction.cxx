@@ -317,12 +317,17 @@ bool vtkBrumeRadianceReconstruction::Plan(const vtkBrumeReconstructionRequest& r
   // textures' shadow rays find it where the surfaces are the same (a new
   // time step, a new trace of the same scene).
   std::shared_ptr<const brume::RayCaster> caster;
+  // And its media's grids at their own resolution: an edit of a transfer
+  // function keeps what it did not change.
+  std::vector<brume::NativeMediumGrid> natives;
   if (textures)
   {
     spare = textures->ReleaseKeptMemory();
     caster = textures->GetCaster();
+    natives = textures->ReleaseNativeGrids();
   }
   this->Textures.reset(new vtkBrumeRadianceTextures(this, this->Controller));
+  this->Textures->OfferNativeGrids(std::move(natives));
   if (!this->Textures->Build(request, settings, *this->WorkDone, std::move(spare)))
   {
     this->Textures.reset();
@@ -337,6 +342,8 @@ void vtkBrumeRadianceReconstruction::CountWork()
   this->NumberOfViewUpdates += this->WorkDone->ViewUpdates;
   this->NumberOfParticleAdditions += this->WorkDone->ParticleAdditions;
   this->NumberOfDirectionalBuilds += this->WorkDone->DirectionalBuilds;
+  this->NumberOfNativeBricksSampled += this->WorkDone->NativeBricksSampled;
+  this->NumberOfNativeBricksReused += this->WorkDone->NativeBricksReused;
   *this->WorkDone = vtkBrumeReconstructionWork();
 }
 
@@ -368,4 +375,6 @@ void vtkBrumeRadianceReconstruction::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "DirectLightResolution: " << this->DirectLightResolution << "\n";
   os << indent << "NumberOfParticleAdditions: " << this->NumberOfParticleAdditions << "\n";
   os << indent << "NumberOfDirectionalBuilds: " << this->NumberOfDirectionalBuilds << "\n";
+  os << indent << "NumberOfNativeBricksSampled: " << this->NumberOfNativeBricksSampled << "\n";
+  os << indent << "NumberOfNativeBricksReused: " << this->NumberOfNativeBricksReused << "\n";
 }

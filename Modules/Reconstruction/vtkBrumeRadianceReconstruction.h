@@ -241,6 +241,19 @@ public:
   vtkGetMacro(NumberOfDirectionalBuilds, vtkIdType);
   ///@}
 
+  ///@{
+  /**
+   * Classified media's bricks of extinction at their own resolution
+   * (brume::NativeMediumGrid), so far: evaluated from the scalars, and
+   * taken from the textures a rebuild replaced, where an edit of the
+   * opacity function left the function over the brick's scalars as it was
+   * (all of them after an edit of the colour alone). Either way the same
+   * floats.
+   */
+  vtkGetMacro(NumberOfNativeBricksSampled, vtkIdType);
+  vtkGetMacro(NumberOfNativeBricksReused, vtkIdType);
+  ///@}
+
   vtkMTimeType GetMTime() override;
 
   ///@{
@@ -393,6 +406,8 @@ protected:
   vtkIdType NumberOfViewUpdates = 0;
   vtkIdType NumberOfParticleAdditions = 0;
   vtkIdType NumberOfDirectionalBuilds = 0;
+  vtkIdType NumberOfNativeBricksSampled = 0;
+  vtkIdType NumberOfNativeBricksReused = 0;
 
 private:
   // The steps of RequestData: validate the inputs, plan (build, add or

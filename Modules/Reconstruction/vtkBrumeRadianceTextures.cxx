@@ -85,6 +85,19 @@ std::vector<brume::KeptHits> vtkBrumeRadianceTextures::ReleaseKeptMemory()
   return memory;
 }
 
+std::vector<brume::NativeMediumGrid> vtkBrumeRadianceTextures::ReleaseNativeGrids()
+{
+  std::vector<brume::NativeMediumGrid> grids;
+  for (auto& object : this->Objects)
+  {
+    if (!object->GetNative().Empty())
+    {
+      grids.push_back(object->ReleaseNative());
+    }
+  }
+  return grids;
+}
+
 bool vtkBrumeRadianceTextures::Build(const vtkBrumeReconstructionRequest& request,
   const vtkBrumeReconstructionSettings& settings, vtkBrumeReconstructionWork& work,
   std::vector<brume::KeptHits> spare)
@@ -228,7 +241,7 @@ void vtkBrumeRadianceTextures::ForEachObject(const brume::ObjectHits& groups,
 bool vtkBrumeRadianceTextures::BuildObjects(const vtkBrumeReconstructionRequest& request,
   const brume::ObjectHits& groups, vtkBrumeReconstructionWork& work)
 {
-  this->SampleMedia();
+  this->SampleMedia(work);
   std::vector<std::string> errors(this->Objects.size());
   if (this->Distributed())
   {

@@ -84,6 +84,10 @@ struct vtkBrumeReconstructionWork
   vtkIdType ViewUpdates = 0;
   vtkIdType ParticleAdditions = 0;
   vtkIdType DirectionalBuilds = 0;
+  // Media's bricks at their own resolution: sampled, and taken from the
+  // textures replaced (an edit of a transfer function).
+  vtkIdType NativeBricksSampled = 0;
+  vtkIdType NativeBricksReused = 0;
 };
 
 class vtkBrumeRadianceTextures
@@ -154,6 +158,19 @@ public:
   /// that replace these (Build()'s `spare`).
   std::vector<brume::KeptHits> ReleaseKeptMemory();
 
+  /**
+   * Every medium's grid at its own resolution, moved out of these textures
+   * (which must not be used after), for the textures that replace them:
+   * given to those by OfferNativeGrids() before their Build(), each medium
+   * of the same scalar field takes from its grid what an edit of the
+   * transfer function left as it was (brume::NativeMediumGrid::Sample()).
+   */
+  std::vector<brume::NativeMediumGrid> ReleaseNativeGrids();
+  void OfferNativeGrids(std::vector<brume::NativeMediumGrid> grids)
+  {
+    this->PreviousNatives = std::move(grids);
+  }
+
   /// The ray caster of the shadow and mirror rays (null without them):
   /// held while the textures that replace these are built, it is found
   /// again by vtkBrumeSceneConversion::SharedRayCaster where the surfaces
@@ -212,7 +229,7 @@ private:
   // other processes: true when no process had one.
   // Samples every medium's grid at its own resolution on every thread,
   // and says where one is coarsened.
-  void SampleMedia();
+  void SampleMedia(vtkBrumeReconstructionWork& work);
   bool AgreeOnObjects(const std::vector<std::string>& errors, const char* what);
   bool Distributed() const;
   // Deterministic single scattering: the light, the objects' output grids,
@@ -253,6 +270,7 @@ private:
   std::unique_ptr<brume::DirectLight> Direct;     // null: no direct light
   std::vector<vtkBrumeSceneConversion::ObjectSource> Sources;
   std::vector<std::unique_ptr<brume::ObjectRadiance>> Objects;
+  std::vector<brume::NativeMediumGrid> PreviousNatives; // OfferNativeGrids(), until sampled
   std::vector<vtkSmartPointer<vtkPartitionedDataSet>> Outputs;
   std::vector<vtkSmartPointer<vtkImageData>> NativeExtinction;   // media: made once
   std::vector<vtkSmartPointer<vtkImageData>> LastMediumTextures; // media: the last emitted

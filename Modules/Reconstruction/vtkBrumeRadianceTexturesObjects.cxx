@@ -299,17 +299,30 @@ std::array<int, 3> vtkBrumeRadianceTextures::DirectResolution(std::size_t o, int
   return res;
 }
 
-void vtkBrumeRadianceTextures::SampleMedia()
+void vtkBrumeRadianceTextures::SampleMedia(vtkBrumeReconstructionWork& work)
 {
   // Objects are built concurrently, one thread each (ForEachObject): a
   // medium's grid at its own resolution, independent of the particles, is
   // sampled before, on every thread, one medium after the other.
   const brume::ParallelFor parallelFor = vtkBrumeSMP::ParallelFor();
+  const std::size_t surfaces = this->Scene.Surfaces.size();
   for (std::size_t o = 0; o < this->Objects.size(); ++o)
   {
     brume::ObjectRadiance& object = *this->Objects[o];
+    // The grid of the same scalar field in the textures replaced.
+    for (brume::NativeMediumGrid& previous : this->PreviousNatives)
+    {
+      if (this->Scene.IsMedium(o) && previous.SameField(this->Scene.Media[o - surfaces]))
+      {
+        object.OfferNative(std::move(previous));
+        previous = brume::NativeMediumGrid();
+        break;
+      }
+    }
     object.SampleMedium(parallelFor);
     const brume::NativeMediumGrid& native = object.GetNative();
+    work.NativeBricksSampled += static_cast<vtkIdType>(native.GetSampledBricks());
+    work.NativeBricksReused += static_cast<vtkIdType>(native.GetReusedBricks());
     if (native.GetCoarsening() > 1)
     {
       const auto& field = native.GetFieldResolution();
@@ -325,4 +338,5 @@ void vtkBrumeRadianceTextures::SampleMedia()
                         " MB NativeMemoryLimit (brume: --native-memory)."));
     }
   }
+  this->PreviousNatives.clear();
 }

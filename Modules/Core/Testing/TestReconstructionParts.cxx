@@ -477,6 +477,80 @@ TEST(ReconstructionParts, NativeMediumGridKeepsItsOwnResolutionWhereTheMemoryHol
   EXPECT_TRUE(SameGrids(native, threaded));
 }
 
+TEST(ReconstructionParts, NativeMediumGridKeepsWhatAnEditOfTheFunctionLeft)
+{
+  // The same scalars classified by a function, then by an edit of its
+  // upper part: the edited grid, sampled with the first one offered, is
+  // bitwise the grid sampled afresh, and took from the first the bricks
+  // whose scalars all lie where the edit changed nothing. An unchanged
+  // function (a colour edit) keeps the whole grid and its tables.
+  const Medium waves = ClassifiedWaves(48);
+  const auto& classified = static_cast<const ClassifiedDensity&>(*waves.Density);
+  auto withFunction = [&](std::vector<OpacityTransferFunction::Node> nodes)
+  {
+    Medium edited = waves;
+    edited.SetDensity(std::make_shared<ClassifiedDensity>(
+      classified.GetScalarsPointer(), OpacityTransferFunction(std::move(nodes), 0.1f)));
+    return edited;
+  };
+  const std::size_t memory = std::size_t(4) << 20;
+  NativeMediumGrid before;
+  before.Sample(waves, memory, SerialFor());
+  EXPECT_EQ(before.GetReusedBricks(), 0u);
+  const std::size_t all = before.GetSampledBricks();
+  EXPECT_GT(all, 100u);
+  // Above 0.5 only (the first two points kept, the last one's opacity edited).
+  const Medium upper = withFunction({ { 0.2f, 0.f }, { 0.5f, 0.1f }, { 1.f, 0.6f } });
+  for (const ParallelFor& parallelFor : { SerialFor(), ThreadsFor(3) })
+  {
+    NativeMediumGrid fresh, kept;
+    fresh.Sample(upper, memory, parallelFor);
+    kept.Sample(upper, memory, parallelFor, &before);
+    EXPECT_TRUE(SameGrids(fresh, kept));
+    EXPECT_EQ(fresh.GetSampledBricks(), kept.GetSampledBricks() + kept.GetReusedBricks());
+    EXPECT_GT(kept.GetReusedBricks(), 0u);
+    EXPECT_GT(kept.GetSampledBricks(), 0u);
+    std::cout << "an edit above 0.5: " << kept.GetSampledBricks() << " bricks sampled, "
+              << kept.GetReusedBricks() << " kept\n";
+    // The tables summed from either are the same.
+    const Box& box = waves.Bounds;
+    fresh.BuildTables(box, { 6, 6, 6 });
+    kept.BuildTables(box, { 6, 6, 6 });
+    Region everything;
+    everything.Lo = { 0, 0, 0 };
+    everything.Hi = { 5, 5, 5 };
+    EXPECT_EQ(fresh.RegionIntegral(everything), kept.RegionIntegral(everything));
+  }
+  // A new point inside the kept part, on the function's line: the same
+  // values, but cells whose scalars span it now bend, so those bricks are
+  // sampled again; still the fresh grid.
+  const Medium collinear =
+    withFunction({ { 0.2f, 0.f }, { 0.35f, 0.05f }, { 0.5f, 0.1f }, { 1.f, 0.9f } });
+  NativeMediumGrid fresh, kept;
+  fresh.Sample(collinear, memory, SerialFor());
+  kept.Sample(collinear, memory, SerialFor(), &before);
+  EXPECT_TRUE(SameGrids(fresh, kept));
+  EXPECT_GT(kept.GetSampledBricks(), 0u);
+
+  // The same function: the whole grid and its tables, nothing sampled.
+  before.BuildTables(waves.Bounds, { 6, 6, 6 });
+  NativeMediumGrid same;
+  same.Sample(withFunction(classified.GetOpacity().GetNodes()), memory, SerialFor(), &before);
+  EXPECT_TRUE(SameGrids(before, same));
+  EXPECT_EQ(same.GetSampledBricks(), 0u);
+  EXPECT_EQ(same.GetReusedBricks(), all);
+  EXPECT_TRUE(same.HasTables(waves.Bounds, { 6, 6, 6 }));
+  EXPECT_FALSE(same.HasTables(waves.Bounds, { 7, 7, 7 }));
+
+  // Another field (the same values, another object) is not read.
+  const Medium other = ClassifiedWaves(48);
+  EXPECT_FALSE(before.SameField(other));
+  NativeMediumGrid unrelated;
+  unrelated.Sample(other, memory, SerialFor(), &before);
+  EXPECT_EQ(unrelated.GetReusedBricks(), 0u);
+  EXPECT_TRUE(SameGrids(before, unrelated));
+}
+
 TEST(ReconstructionParts, NativeMediumGridAveragesTheCellsWhereTheFunctionBends)
 {
   // Where a cell's scalars span one of the function's points, its

@@ -131,6 +131,71 @@ TEST(TransferFunction, TheTableIsWithinItsToleranceOfTheExactExtinction)
   }
 }
 
+TEST(TransferFunction, AnEditKeepsTheRangesItLeftAsTheyWere)
+{
+  // Where OpacityFunctionEdit says a range is the same, every scalar in it
+  // classifies to the same floats before and after the edit (densely
+  // sampled, the points themselves among them); where the edit changed
+  // the function, it says so.
+  const Nodes before{ { 0.f, 0.f }, { 50.f, 0.f }, { 120.f, 0.004f }, { 160.f, 0.06f },
+    { 200.f, 0.25f }, { 240.f, 0.9f }, { 255.f, 0.9f } };
+  struct Case
+  {
+    Nodes After;
+    float ChangedLo, ChangedHi; // where the function differs
+  };
+  const std::vector<Case> cases{
+    // A point's opacity raised.
+    { { { 0.f, 0.f }, { 50.f, 0.f }, { 120.f, 0.004f }, { 160.f, 0.06f }, { 200.f, 0.4f },
+        { 240.f, 0.9f }, { 255.f, 0.9f } },
+      160.f, 240.f },
+    // A point added.
+    { { { 0.f, 0.f }, { 50.f, 0.f }, { 120.f, 0.004f }, { 160.f, 0.06f }, { 180.f, 0.2f },
+        { 200.f, 0.25f }, { 240.f, 0.9f }, { 255.f, 0.9f } },
+      160.f, 200.f },
+    // A point moved.
+    { { { 0.f, 0.f }, { 60.f, 0.f }, { 120.f, 0.004f }, { 160.f, 0.06f }, { 200.f, 0.25f },
+        { 240.f, 0.9f }, { 255.f, 0.9f } },
+      0.f, 120.f },
+  };
+  const OpacityTransferFunction f(before, 0.02f);
+  // Unchanged: everything the same.
+  const OpacityTransferFunction copy(before, 0.02f);
+  EXPECT_TRUE(f.SameAs(copy));
+  EXPECT_TRUE(OpacityFunctionEdit(f, copy).SameOver(-10.f, 300.f));
+  EXPECT_FALSE(OpacityFunctionEdit(f, copy).SameOver(0.f, NAN));
+  EXPECT_FALSE(OpacityFunctionEdit(f, OpacityTransferFunction(before, 0.03f)).SameOver(0.f, 1.f));
+  for (const Case& c : cases)
+  {
+    const OpacityTransferFunction g(c.After, 0.02f);
+    EXPECT_FALSE(f.SameAs(g));
+    const OpacityFunctionEdit edit(f, g);
+    int same = 0;
+    for (int r = 0; r < 2000; ++r)
+    {
+      // Ranges of widths from 0 to 64 over [-5, 260], whole numbers among them.
+      const float lo = r % 3 == 0 ? static_cast<float>(r % 261) : -5.f + 265.f * (r % 997) / 997.f;
+      const float hi = lo + static_cast<float>((r * 7) % 65) * (r % 2 ? 1.f : 0.37f);
+      if (!edit.SameOver(lo, hi))
+      {
+        continue;
+      }
+      ++same;
+      EXPECT_TRUE(hi <= c.ChangedLo || lo >= c.ChangedHi) << lo << " " << hi;
+      for (int i = 0; i <= 200; ++i)
+      {
+        const float s = i == 200 ? hi : lo + (hi - lo) * static_cast<float>(i) / 200.f;
+        ASSERT_EQ(f.Extinction(s), g.Extinction(s)) << s << " in " << lo << " " << hi;
+        ASSERT_EQ(f.ExactExtinction(s), g.ExactExtinction(s)) << s;
+      }
+    }
+    // Ranges clear of the edit were found the same.
+    EXPECT_GT(same, 100);
+    EXPECT_TRUE(edit.SameOver(c.ChangedHi + 1.f, c.ChangedHi + 2.f) || c.ChangedHi + 2.f > 255.f);
+    EXPECT_FALSE(edit.SameOver(c.ChangedLo, c.ChangedHi));
+  }
+}
+
 TEST(TransferFunction, StepsAndMaximaOverRanges)
 {
   // A step at s = 0.5 (two points at the same scalar) and a peak at 0.8.

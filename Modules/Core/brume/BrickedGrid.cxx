@@ -32,6 +32,18 @@ BrickedGrid BrickedGrid::Sample(const std::array<int, 3>& dims, const Box& box,
     zeroOver, parallelFor, skipped);
 }
 
+void BrickedGrid::CopyBrick(std::size_t brick, float* out) const
+{
+  const std::int32_t slot = this->Slots[brick];
+  if (slot < 0)
+  {
+    std::fill(out, out + BrickSamples, this->Constants[brick]);
+    return;
+  }
+  const float* in = this->Samples.Data() + static_cast<std::size_t>(slot) * BrickSamples;
+  std::copy(in, in + BrickSamples, out);
+}
+
 BrickedGrid BrickedGrid::SampleBricks(const std::array<int, 3>& dims, const Box& box,
   const std::function<void(const std::array<int, 3>&, float*)>& brick,
   const std::function<bool(const std::array<int, 3>&, const std::array<int, 3>&)>& zeroOver,

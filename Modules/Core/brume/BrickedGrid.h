@@ -84,6 +84,14 @@ public:
   /// The bytes of the three arrays above.
   std::size_t GetMemorySize() const;
 
+  /// The brick whose first cell is `lower` (multiples of Stride), in brick order.
+  std::size_t BrickAt(const std::array<int, 3>& lower) const
+  {
+    return this->BrickIndex(lower[0] / Stride, lower[1] / Stride, lower[2] / Stride);
+  }
+  /// The BrickSamples samples of `brick` (x fastest), a constant one's repeated.
+  void CopyBrick(std::size_t brick, float* out) const;
+
   /// The sample of cell (i, j, k), 0 <= i < Dims[0] ...
   float At(int i, int j, int k) const;
   /// Trilinear between the cells' centres at world point `p`, clamped at the faces.

@@ -13,7 +13,9 @@
 #include "brume/TransferFunction.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <limits>
 
 namespace brume
 {
@@ -120,9 +122,51 @@ bool ZeroOver(const DensityField& density, const Box& bounds, Vec3 lower, Vec3 u
 }
 }
 
+namespace
+{
+bool SameBox(const Box& a, const Box& b)
+{
+  for (int i = 0; i < 3; ++i)
+  {
+    if (a.lower[i] != b.lower[i] || a.upper[i] != b.upper[i])
+    {
+      return false;
+    }
+  }
+  return true;
+}
+}
+
+bool NativeMediumGrid::HasTables(const Box& box, const std::array<int, 3>& dims) const
+{
+  return this->HasTables() && this->TableDims == dims && SameBox(this->TableBox, box);
+}
+
+bool NativeMediumGrid::SameField(const Medium& medium) const
+{
+  const auto* mine = dynamic_cast<const ClassifiedDensity*>(this->Source.get());
+  const auto* theirs = dynamic_cast<const ClassifiedDensity*>(medium.Density.get());
+  return mine && theirs && this->Classification && this->Coarsening == 1 &&
+    !this->Scalars.Empty() && &mine->GetScalars() == &theirs->GetScalars();
+}
+
 void NativeMediumGrid::Sample(
   const Medium& medium, std::size_t memory, const ParallelFor& parallelFor)
 {
+  this->Sample(medium, memory, parallelFor, nullptr);
+}
+
+void NativeMediumGrid::Sample(const Medium& medium, std::size_t memory,
+  const ParallelFor& parallelFor, const NativeMediumGrid* previous)
+{
+  this->ReusedBricks = 0;
+  this->SampledBricks = 0;
+  this->Source = medium.Density;
+  this->BrickRanges.clear();
+  if (previous && !previous->SameField(medium))
+  {
+    previous = nullptr;
+  }
   const DensityField& density = *medium.Density;
   const Box& bounds = medium.Bounds;
   const std::array<int, 3> native = density.NativeResolution();
@@ -232,6 +276,30 @@ void NativeMediumGrid::Sample(
     }
     return p;
   };
+  // The previous grid, where its cells are these: the same layout.
+  if (previous &&
+    (factor != 1 || previous->Density.GetDims() != dims ||
+      !SameBox(previous->Density.GetBox(), box)))
+  {
+    previous = nullptr;
+  }
+  if (previous && previous->Classification->SameAs(classified->GetOpacity()))
+  {
+    // The same function of the same scalars: the same grid and tables.
+    this->Density = previous->Density;
+    this->Scalars = previous->Scalars;
+    this->Classification = &classified->GetOpacity();
+    this->BrickRanges = previous->BrickRanges;
+    this->DensityTable = previous->DensityTable;
+    this->DensityMoments = previous->DensityMoments;
+    this->EmptyIntegral = previous->EmptyIntegral;
+    this->TableDims = previous->TableDims;
+    this->TableBox = previous->TableBox;
+    this->ReusedBricks = previous->ReusedBricks + previous->SampledBricks;
+    return;
+  }
+  this->DensityTable = SummedAreaTable();
+  this->DensityMoments = SummedAreaTable();
   if (classified && factor == 1)
   {
     const OpacityTransferFunction& function = classified->GetOpacity();
@@ -257,6 +325,17 @@ void NativeMediumGrid::Sample(
         for (int a = 0; a < 3; ++a)
         {
           count[a] = std::min(lower[a] + S, dims[a]) - lower[a];
+        }
+        if (previous)
+        {
+          // The field's own values, whichever function: a brick stored
+          // before holds them (one left out held a value of the function's).
+          const std::size_t b = previous->Scalars.BrickAt(lower);
+          if (previous->Scalars.GetSlots()[b] >= 0)
+          {
+            previous->Scalars.CopyBrick(b, out);
+            return;
+          }
         }
         float points[S * S * S];
         const bool read = scalars.NativePoints(lower, count, points);
@@ -311,11 +390,54 @@ void NativeMediumGrid::Sample(
   }
   // A classified grid of point values: a brick's cells together, from its
   // points read once (ClassifiedDensity::NativeBrick), the same values.
+  // Each brick's range of scalars is kept for the next edit of the
+  // function: a brick whose range the edit left as it was is taken from
+  // the previous grid.
+  std::array<int, 3> brickDims{};
+  for (int a = 0; a < 3; ++a)
+  {
+    brickDims[a] = BrickedGrid::BricksAlong(dims[a]);
+  }
+  const std::size_t bricks = static_cast<std::size_t>(brickDims[0]) * brickDims[1] * brickDims[2];
+  if (previous && previous->BrickRanges.size() == 2 * bricks)
+  {
+    this->BrickRanges = previous->BrickRanges;
+  }
+  else
+  {
+    this->BrickRanges.assign(2 * bricks, std::numeric_limits<float>::quiet_NaN());
+  }
+  std::atomic<std::size_t> reused{ 0 }, sampled{ 0 };
+  std::unique_ptr<OpacityFunctionEdit> edit;
+  if (previous)
+  {
+    edit.reset(new OpacityFunctionEdit(*previous->Classification, *function));
+  }
   this->Density = BrickedGrid::SampleBricks(
     dims, box,
     [&](const std::array<int, 3>& lower, float* out)
     {
-      if (classified->NativeBrick(lower, BrickedGrid::Size, BendSamples, out))
+      const std::size_t b =
+        (static_cast<std::size_t>(lower[2] / BrickedGrid::Stride) * brickDims[1] +
+          lower[1] / BrickedGrid::Stride) *
+          brickDims[0] +
+        lower[0] / BrickedGrid::Stride;
+      float* range = &this->BrickRanges[2 * b];
+      if (previous)
+      {
+        if (!(range[0] <= range[1]))
+        {
+          classified->NativeBrickRange(lower, BrickedGrid::Size, range);
+        }
+        if (range[0] <= range[1] && edit->SameOver(range[0], range[1]))
+        {
+          previous->Density.CopyBrick(b, out);
+          reused.fetch_add(1, std::memory_order_relaxed);
+          return;
+        }
+      }
+      sampled.fetch_add(1, std::memory_order_relaxed);
+      if (classified->NativeBrick(lower, BrickedGrid::Size, BendSamples, out, range))
       {
         return;
       }
@@ -328,6 +450,8 @@ void NativeMediumGrid::Sample(
           }
     },
     zeroOver, parallelFor);
+  this->ReusedBricks = reused.load();
+  this->SampledBricks = sampled.load();
 }
 
 void NativeMediumGrid::BuildTables(
@@ -461,6 +585,8 @@ void NativeMediumGrid::BuildTables(
   }
   this->DensityTable = SummedAreaTable(integral);
   this->DensityMoments = SummedAreaTable(moments);
+  this->TableDims = dims;
+  this->TableBox = box;
   // Regions whose integral is below this are empty: their source radiance
   // is 0, not a ratio of two rounding leftovers of the table.
   this->EmptyIntegral = 1e-9 * total;

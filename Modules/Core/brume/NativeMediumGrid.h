@@ -13,6 +13,7 @@
 
 #include <array>
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 namespace brume
@@ -67,6 +68,28 @@ public:
    * Data/scenes/shells.json). Other cells take the field's value there.
    */
   void Sample(const Medium& medium, std::size_t memory, const ParallelFor& parallelFor);
+  /**
+   * Sample(), taking what it would compute again from `previous`, a grid
+   * sampled earlier of the same scalar field (the same object) classified
+   * by another function (an edit of the function): the whole grid where
+   * the function is the same (a colour-only edit), else each brick whose
+   * scalars lie where the two functions give the same floats
+   * (OpacityFunctionEdit::SameOver()). The result is bitwise what
+   * Sample() gives without it; `previous` may be null, or of another
+   * field (then it is not read). GetReusedBricks() counts what was taken.
+   */
+  void Sample(const Medium& medium, std::size_t memory, const ParallelFor& parallelFor,
+    const NativeMediumGrid* previous);
+  /// Whether Sample(medium, ..., this) could take from this grid: both a
+  /// classified density of the same scalars, this one at their own resolution.
+  bool SameField(const Medium& medium) const;
+  /**
+   * Of the extinction's bricks the last Sample() evaluated (those its
+   * majorants did not leave out), how many it took from the previous grid
+   * and how many it sampled (a whole grid kept counts all its bricks as taken).
+   */
+  std::size_t GetReusedBricks() const { return this->ReusedBricks; }
+  std::size_t GetSampledBricks() const { return this->SampledBricks; }
   /// The integer factor the field's own grid was coarsened by (1: none).
   int GetCoarsening() const { return this->Coarsening; }
   /// The field's own resolution (DensityField::NativeResolution()).
@@ -94,6 +117,8 @@ public:
   void BuildTables(
     const Box& box, const std::array<int, 3>& dims, const ParallelFor& parallelFor = SerialFor());
   bool HasTables() const { return this->DensityTable.GetNumberOfChannels() != 0; }
+  /// Tables built (or kept with the grid) for `dims` histogram cells over `box`.
+  bool HasTables(const Box& box, const std::array<int, 3>& dims) const;
   /// The density's integral over a region of histogram cells.
   double RegionIntegral(const Region& region) const;
   /// Regions whose integral is at most this hold no medium.
@@ -111,6 +136,16 @@ private:
   SummedAreaTable DensityTable;   // integral of the density per histogram cell
   SummedAreaTable DensityMoments; // and its first moments (histogram-cell coordinates)
   double EmptyIntegral = 0.0;
+  std::array<int, 3> TableDims{ 0, 0, 0 };
+  Box TableBox;
+  // The density the grid was sampled from (it holds the function
+  // Classification points to, and the scalars), and per brick of the
+  // extinction the range of the scalars its samples were computed from
+  // (ClassifiedDensity::NativeBrickRange(), NaN where not known): what the
+  // next Sample() compares the functions over.
+  std::shared_ptr<const DensityField> Source;
+  std::vector<float> BrickRanges;
+  std::size_t ReusedBricks = 0, SampledBricks = 0;
   int Coarsening = 1;
   std::array<int, 3> FieldResolution{ 0, 0, 0 };
 };

@@ -247,8 +247,15 @@ void ObjectRadiance::SampleMedium(const ParallelFor& parallelFor)
     });
   if (medium->Density && this->Native.Empty())
   {
-    this->Native.Sample(*medium, this->Settings.NativeMemory, parallelFor);
+    this->Native.Sample(
+      *medium, this->Settings.NativeMemory, parallelFor, this->PreviousNative.get());
+    this->PreviousNative.reset();
   }
+}
+
+void ObjectRadiance::OfferNative(NativeMediumGrid&& previous)
+{
+  this->PreviousNative.reset(new NativeMediumGrid(std::move(previous)));
 }
 
 std::string ObjectRadiance::EstimateTexture(const ParallelFor& parallelFor)
@@ -290,7 +297,7 @@ std::string ObjectRadiance::EstimateTexture(const ParallelFor& parallelFor)
         this->Regions[t] = GrowRegionPair(this->WeightTable, this->Layout.Dims, texel, settings);
       }
     });
-  if (medium && medium->Density && !this->Native.HasTables())
+  if (medium && medium->Density && !this->Native.HasTables(medium->Bounds, this->Layout.Dims))
   {
     // Independent of the particles and the view: made once per object.
     this->Native.BuildTables(medium->Bounds, this->Layout.Dims, parallelFor);

@@ -67,6 +67,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -257,6 +258,15 @@ public:
    * one after the other on every thread. No effect on surfaces.
    */
   void SampleMedium(const ParallelFor& parallelFor);
+  /**
+   * A grid an earlier object of the same scalar field sampled
+   * (NativeMediumGrid::SameField()), before an edit of its transfer
+   * function: SampleMedium() takes from it what the edit left as it was
+   * (NativeMediumGrid::Sample()), then lets it go.
+   */
+  void OfferNative(NativeMediumGrid&& previous);
+  /// The grid, moved out for the next object of the same medium (empty after).
+  NativeMediumGrid ReleaseNative() { return std::move(this->Native); }
 
   /// The texture the particles give: GetLayout().Resolution texels.
   TextureView GetTexture() const
@@ -320,6 +330,7 @@ private:
   HitBinning Binning;
   ObjectDistribution Distributed;
   NativeMediumGrid Native;
+  std::unique_ptr<NativeMediumGrid> PreviousNative; // OfferNative()'s, until sampled
   DirectTexture Direct;
   DirectionalRadiance Directional;
 

@@ -49,6 +49,8 @@ OpacityTransferFunction::OpacityTransferFunction(std::vector<Node> nodes, float 
 
 void OpacityTransferFunction::MakeTable()
 {
+  this->CellPoint.assign(TableCells, std::numeric_limits<float>::quiet_NaN());
+  this->CellPointExtinction.assign(TableCells, 0.f);
   const double lo = this->Nodes.front().Scalar, hi = this->Nodes.back().Scalar;
   const double step = (hi - lo) / TableCells;
   if (!(step > 0.0) || !std::isfinite(step))
@@ -109,6 +111,17 @@ void OpacityTransferFunction::MakeTable()
     {
       this->TableExact[static_cast<std::size_t>(c)] = 0;
       this->TableError = std::max(this->TableError, at > 0.0 ? error / at : 0.0);
+    }
+  }
+  // The points' own values, where Extinction() finds their scalars.
+  for (const Node& n : this->Nodes)
+  {
+    const float x = (n.Scalar - this->TableLow) * this->TableScale;
+    if (x >= 0.f && x < static_cast<float>(TableCells))
+    {
+      const std::size_t c = static_cast<std::size_t>(x);
+      this->CellPoint[c] = n.Scalar;
+      this->CellPointExtinction[c] = this->ExactExtinction(n.Scalar);
     }
   }
   // Maxima of the table's values over runs of 2^l ends, for MaxExtinction().
@@ -187,6 +200,110 @@ float OpacityTransferFunction::MaxExtinction(float lo, float hi) const
     }
   }
   return largest;
+}
+
+bool OpacityTransferFunction::SameAs(const OpacityTransferFunction& other) const
+{
+  if (this->UnitDistance != other.UnitDistance || this->Nodes.size() != other.Nodes.size())
+  {
+    return false;
+  }
+  return std::equal(this->Nodes.begin(), this->Nodes.end(), other.Nodes.begin(),
+    [](const Node& a, const Node& b) { return a.Scalar == b.Scalar && a.Opacity == b.Opacity; });
+}
+
+OpacityFunctionEdit::OpacityFunctionEdit(
+  const OpacityTransferFunction& before, const OpacityTransferFunction& after)
+  : Before(before)
+  , After(after)
+{
+  this->Comparable = before.UnitDistance == after.UnitDistance &&
+    before.TableLow == after.TableLow && before.TableScale == after.TableScale &&
+    before.Table.size() == after.Table.size();
+  if (!this->Comparable || before.Table.empty())
+  {
+    return;
+  }
+  // A cell exact in both reads the points (compared per range); one that
+  // is linear in both reads its two table values.
+  const int cells = OpacityTransferFunction::TableCells;
+  this->ChangedCells.assign(static_cast<std::size_t>(cells) + 1, 0);
+  for (std::size_t c = 0; c < static_cast<std::size_t>(cells); ++c)
+  {
+    const bool exact = before.TableExact[c] != 0;
+    const bool same = exact == (after.TableExact[c] != 0) &&
+      (exact || (before.Table[c] == after.Table[c] && before.Table[c + 1] == after.Table[c + 1]));
+    this->ChangedCells[c + 1] = this->ChangedCells[c] + (same ? 0 : 1);
+  }
+}
+
+bool OpacityFunctionEdit::SameOver(float lo, float hi) const
+{
+  if (!this->Comparable || !std::isfinite(lo) || !std::isfinite(hi) || lo > hi)
+  {
+    return false;
+  }
+  const OpacityTransferFunction& before = this->Before;
+  if (!before.Table.empty())
+  {
+    // The cells Extinction() finds for scalars in [lo, hi]: between those
+    // of lo and hi, its float arithmetic being monotonic.
+    const float x0 = (lo - before.TableLow) * before.TableScale;
+    const float x1 = (hi - before.TableLow) * before.TableScale;
+    const float cells = static_cast<float>(OpacityTransferFunction::TableCells);
+    if (x1 >= 0.f && x0 < cells)
+    {
+      const int c0 = x0 < 0.f ? 0 : static_cast<int>(x0);
+      const int c1 = x1 >= cells ? OpacityTransferFunction::TableCells - 1 : static_cast<int>(x1);
+      if (this->ChangedCells[static_cast<std::size_t>(c1) + 1] !=
+        this->ChangedCells[static_cast<std::size_t>(c0)])
+      {
+        return false;
+      }
+    }
+  }
+  // The points Opacity() reads for scalars in [lo, hi]: from the last at
+  // or below lo (or the first) to the first above hi (or the last; not
+  // read where the last at or below hi is at hi itself: a scalar at a
+  // point takes that point's opacity exactly), and whether the range
+  // reaches past either end. Interpolated scalars stay within the values
+  // they lie between (GridDensity's weights are below 1), so [lo, hi]
+  // holds every scalar a brick classifies.
+  struct Span
+  {
+    std::size_t First, Last;
+    bool Before, After;
+  };
+  using Node = OpacityTransferFunction::Node;
+  auto span = [lo, hi](const std::vector<Node>& nodes)
+  {
+    auto above = [](float v, const Node& n) { return v < n.Scalar; };
+    const auto ua = std::upper_bound(nodes.begin(), nodes.end(), lo, above);
+    const auto ub = std::upper_bound(nodes.begin(), nodes.end(), hi, above);
+    Span s{};
+    s.Before = ua == nodes.begin();
+    s.After = ub == nodes.end();
+    s.First = s.Before ? 0 : static_cast<std::size_t>(ua - nodes.begin()) - 1;
+    const std::size_t at = static_cast<std::size_t>(ub - nodes.begin());
+    s.Last = s.After ? nodes.size() - 1 : (at > 0 && nodes[at - 1].Scalar == hi ? at - 1 : at);
+    return s;
+  };
+  const Span mine = span(before.Nodes), theirs = span(this->After.Nodes);
+  if (mine.Before != theirs.Before || mine.After != theirs.After ||
+    mine.Last - mine.First != theirs.Last - theirs.First)
+  {
+    return false;
+  }
+  for (std::size_t n = 0; n <= mine.Last - mine.First; ++n)
+  {
+    const Node& x = before.Nodes[mine.First + n];
+    const Node& y = this->After.Nodes[theirs.First + n];
+    if (x.Scalar != y.Scalar || x.Opacity != y.Opacity)
+    {
+      return false;
+    }
+  }
+  return true;
 }
 
 float OpacityTransferFunction::TableRangeMax(int first, int last) const
@@ -301,10 +418,64 @@ bool ClassifiedDensity::BendsWithinNativeCell(int i, int j, int k, const Box& ce
     });
 }
 
-bool ClassifiedDensity::NativeBrick(
-  const std::array<int, 3>& lower, int size, int s, float* out) const
+namespace
 {
-  constexpr int MostCells = 8, MostPoints = MostCells + 2;
+constexpr int MostBrickCells = 8, MostBrickPoints = MostBrickCells + 2;
+}
+
+bool ClassifiedDensity::NativeBrickPoints(const std::array<int, 3>& lower, int size, float* points,
+  std::array<int, 3>& first, std::array<int, 3>& count) const
+{
+  if (size < 1 || size > MostBrickCells)
+  {
+    return false;
+  }
+  const std::array<int, 3> dims = this->Scalars->NativeResolution();
+  // The cells' points, one beyond on either side, clamped at the grid's ends.
+  for (int a = 0; a < 3; ++a)
+  {
+    const int last = std::min(lower[a] + size - 1, dims[a] - 1);
+    first[a] = std::max(0, std::min(lower[a], dims[a] - 1) - 1);
+    count[a] = std::min(dims[a] - 1, last + 1) - first[a] + 1;
+  }
+  return this->Scalars->NativePoints(first, count, points);
+}
+
+namespace
+{
+// The smallest and largest of n floats (NaN when one is not finite).
+void PointRange(const float* points, std::size_t n, float* range)
+{
+  float lo = points[0], hi = points[0];
+  bool finite = true;
+  for (std::size_t p = 0; p < n; ++p)
+  {
+    finite = finite && std::isfinite(points[p]);
+    lo = std::min(lo, points[p]);
+    hi = std::max(hi, points[p]);
+  }
+  range[0] = finite ? lo : std::numeric_limits<float>::quiet_NaN();
+  range[1] = finite ? hi : std::numeric_limits<float>::quiet_NaN();
+}
+}
+
+bool ClassifiedDensity::NativeBrickRange(
+  const std::array<int, 3>& lower, int size, float* range) const
+{
+  float points[MostBrickPoints * MostBrickPoints * MostBrickPoints];
+  std::array<int, 3> first{}, count{};
+  if (!this->NativeBrickPoints(lower, size, points, first, count))
+  {
+    return false;
+  }
+  PointRange(points, static_cast<std::size_t>(count[0]) * count[1] * count[2], range);
+  return true;
+}
+
+bool ClassifiedDensity::NativeBrick(
+  const std::array<int, 3>& lower, int size, int s, float* out, float* range) const
+{
+  constexpr int MostCells = MostBrickCells, MostPoints = MostBrickPoints;
   if (size < 1 || size > MostCells || s < 1 || s > GridDensity::MaxNativeSamples)
   {
     return false;
@@ -314,20 +485,22 @@ bool ClassifiedDensity::NativeBrick(
   // either side, clamped at the grid's ends.
   int cell[3][MostCells], lo[3];
   std::array<int, 3> first{}, count{};
+  float points[MostPoints * MostPoints * MostPoints];
+  if (!this->NativeBrickPoints(lower, size, points, first, count))
+  {
+    return false;
+  }
   for (int a = 0; a < 3; ++a)
   {
     for (int c = 0; c < size; ++c)
     {
       cell[a][c] = std::min(lower[a] + c, dims[a] - 1);
     }
-    lo[a] = std::max(0, cell[a][0] - 1);
-    count[a] = std::min(dims[a] - 1, cell[a][size - 1] + 1) - lo[a] + 1;
-    first[a] = lo[a];
+    lo[a] = first[a];
   }
-  float points[MostPoints * MostPoints * MostPoints];
-  if (!this->Scalars->NativePoints(first, count, points))
+  if (range)
   {
-    return false;
+    PointRange(points, static_cast<std::size_t>(count[0]) * count[1] * count[2], range);
   }
   auto at = [&](int x, int y, int z)
   { return points[((z - lo[2]) * count[1] + (y - lo[1])) * count[0] + (x - lo[0])]; };

@@ -87,6 +87,12 @@ public:
         // Between a and b, rounding included (MaxExtinction() bounds them).
         return std::min(a + (b - a) * (x - static_cast<float>(c)), std::max(a, b));
       }
+      // A scalar at a point of the function (a scan's or a generated
+      // field's whole numbers at a point): its exact value, made once.
+      if (s == this->CellPoint[static_cast<std::size_t>(c)])
+      {
+        return this->CellPointExtinction[static_cast<std::size_t>(c)];
+      }
     }
     return this->ExactExtinction(s);
   }
@@ -106,7 +112,11 @@ public:
   const std::vector<Node>& GetNodes() const { return this->Nodes; }
   float GetUnitDistance() const { return this->UnitDistance; }
 
+  /// The same points and unit distance: the same function everywhere.
+  bool SameAs(const OpacityTransferFunction& other) const;
+
 private:
+  friend class OpacityFunctionEdit;
   float ExtinctionOfOpacity(float alpha) const;
   void MakeTable();
   float TableRangeMax(int first, int last) const;
@@ -120,8 +130,42 @@ private:
   float TableScale = 0.f;
   std::vector<float> Table;
   std::vector<char> TableExact = std::vector<char>(TableCells, 1);
+  // Per cell, the scalar of a point of the function in it (NaN: none) and
+  // ExactExtinction() there.
+  std::vector<float> CellPoint, CellPointExtinction;
   std::vector<std::vector<float>> TableMax; // maxima of 2^l consecutive values
   double TableError = 0.0;
+};
+
+/**
+ * Where an edit of an opacity function left it as it was: which ranges of
+ * scalars the function after the edit classifies into the same floats as
+ * the one before (Extinction() and ExactExtinction() alike), with the same
+ * points inside them. What was computed from scalars in such a range
+ * (brume::NativeMediumGrid's bricks) stays as it was. Made once per edit
+ * (the table cells compared, counted for a lookup per range); both
+ * functions must outlive it.
+ */
+class OpacityFunctionEdit
+{
+public:
+  OpacityFunctionEdit(const OpacityTransferFunction& before, const OpacityTransferFunction& after);
+  /**
+   * Whether, for every scalar s in [lo, hi], Extinction(s) and
+   * ExactExtinction(s) are the same floats before and after, and the
+   * points strictly between lo and hi are the same (where a classified
+   * cell bends): the same unit distance, the table cells those scalars
+   * fall in alike (placed alike, the same values where linear, exact
+   * in both where exact), and the points Opacity() reads for them alike.
+   * False for a range that is not finite.
+   */
+  bool SameOver(float lo, float hi) const;
+
+private:
+  const OpacityTransferFunction& Before;
+  const OpacityTransferFunction& After;
+  bool Comparable = false;       // the same unit distance and table placement
+  std::vector<int> ChangedCells; // per table cell: cells before it whose table differs
 };
 
 /**
@@ -177,13 +221,27 @@ public:
    * scalars are not a grid of point values interpolated linearly, or size
    * exceeds 8.
    */
-  bool NativeBrick(const std::array<int, 3>& lower, int size, int s, float* out) const;
+  bool NativeBrick(
+    const std::array<int, 3>& lower, int size, int s, float* out, float* range = nullptr) const;
+  /**
+   * The smallest and largest of the scalars NativeBrick() reads for the
+   * same cells (`range`: two floats; what it writes there too): its
+   * samples depend on the function over that range only
+   * (OpacityFunctionEdit::SameOver()). False where NativeBrick() is.
+   */
+  bool NativeBrickRange(const std::array<int, 3>& lower, int size, float* range) const;
 
   const DensityField& GetScalars() const { return *this->Scalars; }
+  /// The scalars' owner (for one that keeps them alive with the function).
+  const std::shared_ptr<const DensityField>& GetScalarsPointer() const { return this->Scalars; }
   const OpacityTransferFunction& GetOpacity() const { return this->Opacity; }
 
 private:
   bool BendsWithinBlocks(const Box& region) const;
+  /// The points NativeBrick() reads for the size^3 cells from `lower`
+  /// (into `points`, (size + 2)^3 at most), their first point and counts.
+  bool NativeBrickPoints(const std::array<int, 3>& lower, int size, float* points,
+    std::array<int, 3>& first, std::array<int, 3>& count) const;
   /// Whether one of the function's points lies strictly between lo and hi.
   bool PointBetween(float lo, float hi) const
   {
@@ -248,6 +306,8 @@ public:
   }
   const ColorTransferFunction& GetColors() const { return this->Colors; }
   const DensityField& GetScalars() const { return *this->Scalars; }
+  /// The scalars' owner (for one that keeps them alive with the function).
+  const std::shared_ptr<const DensityField>& GetScalarsPointer() const { return this->Scalars; }
 
 private:
   std::shared_ptr<const DensityField> Scalars;

@@ -170,6 +170,78 @@ void TestProgressive(vtkRenderer* renderer, vtkRenderWindow* window, vtkBrumePas
     "once converged, a frame traces nothing");
 }
 
+// Edits of a volume's transfer functions: the reconstruction takes from the
+// textures it replaces the bricks of extinction an opacity edit left as
+// they were (all of them after a colour edit), and its textures are
+// bitwise those of a fresh pipeline over the edited scene.
+void TestTransferFunctionEdits()
+{
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkRenderWindow> window;
+  window->SetOffScreenRendering(1);
+  window->SetMultiSamples(0);
+  window->SetSize(Size, Size);
+  window->AddRenderer(renderer);
+  AddGround(renderer, 0.7, 0.7, 0.7);
+  // 49^3 points: 7^3 bricks, the outer ones below 200 and the centre above.
+  const double where[3] = { 0, 0, 0 };
+  vtkVolume* volume = AddWavelet(renderer, 24, 90, 280, 0.6, 0.03, where);
+  // Classified after trilinear interpolation (bricks of nearest values are
+  // sampled again at every edit of the opacity).
+  volume->GetProperty()->SetInterpolationTypeToLinear();
+  vtkPiecewiseFunction* opacity = volume->GetProperty()->GetScalarOpacity();
+  opacity->AddPoint(150, 0.02);
+  opacity->AddPoint(200, 0.1);
+  vtkColorTransferFunction* colour = volume->GetProperty()->GetRGBTransferFunction();
+  const double lightPosition[3] = { 1, 4, 3 };
+  AddPointLight(renderer, lightPosition, 30);
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->SetPosition(0, 1, 4);
+  camera->SetFocalPoint(0, 0, 0);
+  renderer->ResetCameraClippingRange();
+  vtkNew<vtkBrumePass> pass;
+  pass->SetNumberOfParticles(Particles);
+  pass->ProgressiveOff();
+  renderer->SetPass(pass);
+  vtkBrumeRadianceReconstruction* reconstruction = pass->GetPipeline()->GetReconstruction();
+  vtkNew<vtkBrumeRendererScene> scene;
+  scene->SetRenderer(renderer);
+  auto asFresh = [&]()
+  {
+    vtkNew<vtkBrumePipeline> once;
+    once->SetInputConnection(scene->GetOutputPort());
+    once->SetCamera(camera);
+    once->GetTracer()->SetNumberOfParticles(Particles);
+    return once->Update() &&
+      SameTextures(
+        reconstruction->GetOutputDataObject(0), once->GetReconstruction()->GetOutputDataObject(0));
+  };
+  window->Render();
+  const vtkIdType all = reconstruction->GetNumberOfNativeBricksSampled();
+  Check(all > 0 && reconstruction->GetNumberOfNativeBricksReused() == 0,
+    "the first trace samples every brick");
+
+  // The opacity above 200 only.
+  opacity->AddPoint(280, 0.9);
+  window->Render();
+  const vtkIdType sampled = reconstruction->GetNumberOfNativeBricksSampled() - all;
+  const vtkIdType reused = reconstruction->GetNumberOfNativeBricksReused();
+  std::cout << "an opacity edit above 200: " << sampled << " of " << all
+            << " bricks sampled again, " << reused << " kept\n";
+  Check(pass->GetNumberOfTraces() == 2 && sampled > 0 && reused > 0 && sampled + reused == all,
+    "an opacity edit samples again only the bricks whose scalars it changed");
+  Check(asFresh(), "after the opacity edit, the textures of a fresh pipeline");
+
+  // The colour only: every brick kept.
+  colour->AddRGBPoint(200, 1.0, 0.2, 0.1);
+  window->Render();
+  Check(pass->GetNumberOfTraces() == 3 &&
+      reconstruction->GetNumberOfNativeBricksSampled() == all + sampled &&
+      reconstruction->GetNumberOfNativeBricksReused() == reused + all,
+    "a colour edit keeps every brick");
+  Check(asFresh(), "after the colour edit, the textures of a fresh pipeline");
+}
+
 }
 
 int TestBrumePass(int, char*[])
@@ -264,6 +336,7 @@ int TestBrumePass(int, char*[])
     "a colour edit traces once more (and is no view update)");
 
   TestProgressive(renderer, window, pass);
+  TestTransferFunctionEdits();
 
   // A scene that cannot be traced (a rotated volume is refused): not
   // converged, and nothing to refine either, so that a program rendering
