@@ -273,6 +273,8 @@ void vtkBrumeOpenGLSliceVolumeMapper::ReleaseGraphicsResources(vtkWindow* window
   this->Impl->Context = nullptr;
   this->Impl->TextureTime = vtkTimeStamp();
   this->Impl->ExtinctionGrid = nullptr;
+  this->Impl->AtlasSamples = nullptr;
+  this->Impl->AtlasSlots = nullptr;
 }
 
 void vtkBrumeOpenGLSliceVolumeMapper::Render(vtkRenderer* ren, vtkVolume*)

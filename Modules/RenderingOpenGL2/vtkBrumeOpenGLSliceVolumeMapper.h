@@ -48,6 +48,13 @@ public:
    * otherwise; 0 before any.
    */
   int GetExtinctionAtlasTexelBytes() const;
+  /**
+   * How many times the atlas of a bricked grid was filled. A grid of the
+   * same samples as the atlas holds (the same memory: a reconstruction
+   * that kept the scalars' bricks after an edit of a transfer function)
+   * is not sent again; its brick table and transfer function are.
+   */
+  int GetNumberOfExtinctionAtlasUploads() const;
 
   /// Renderer keys: the frame count and the frame whose volumes were drawn.
   static vtkInformationIntegerKey* FRAME();

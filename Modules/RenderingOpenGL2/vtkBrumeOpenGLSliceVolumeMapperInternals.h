@@ -7,6 +7,7 @@
 #define vtkBrumeOpenGLSliceVolumeMapperInternals_h
 
 #include "vtkBrumeOpenGLSliceVolumeMapper.h"
+#include "vtkDataArray.h"
 #include "vtkNew.h"
 #include "vtkOpenGLBufferObject.h"
 #include "vtkOpenGLFramebufferObject.h"
@@ -52,6 +53,15 @@ struct vtkBrumeOpenGLSliceVolumeMapper::Internals
   // the grid's integers less their least): AtlasValue[0] t + AtlasValue[1].
   float AtlasValue[2] = { 1.f, 0.f };
   int AtlasBytes = 0; // per texel
+  // What the atlas holds: the arrays it was filled from (their memory kept
+  // alive, so that the same memory is the same samples; a reconstruction
+  // that keeps a grid after an edit of a transfer function hands the same
+  // memory again), its filter, and the largest stored sample.
+  vtkSmartPointer<vtkDataArray> AtlasSamples;
+  vtkSmartPointer<vtkDataArray> AtlasSlots;
+  int AtlasFilter = -1;
+  double AtlasLargest = 0.0;
+  int AtlasUploads = 0;
   float BrickScale[3] = { 1.f, 1.f, 1.f };
   // Bricks of scalars a transfer function classifies: its extinction in one
   // row (linear filtering), over TransferRange, TransferSamples wide.

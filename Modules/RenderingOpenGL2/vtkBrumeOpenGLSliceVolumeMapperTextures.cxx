@@ -20,6 +20,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <memory>
 
@@ -355,6 +356,22 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   std::vector<char> slotIntegers(static_cast<std::size_t>(slotCount), 1);
   std::atomic<vtkIdType> firstBad{ slotCount };
   vtkFloatArray* floats = vtkFloatArray::FastDownCast(samples);
+  // The same samples (the same memory, which the atlas's arrays keep) in
+  // the same slots, filtered alike: the atlas holds them already, checked.
+  auto sameArray = [](vtkDataArray* a, vtkDataArray* b)
+  {
+    return a && b && a->GetDataType() == b->GetDataType() &&
+      a->GetNumberOfValues() == b->GetNumberOfValues() &&
+      (a->GetVoidPointer(0) == b->GetVoidPointer(0) ||
+        std::memcmp(a->GetVoidPointer(0), b->GetVoidPointer(0),
+          static_cast<std::size_t>(a->GetNumberOfValues()) * a->GetDataTypeSize()) == 0);
+  };
+  const bool sameAtlas = impl.AtlasSamples && samples->GetNumberOfValues() > 0 &&
+    impl.AtlasSamples->GetDataType() == samples->GetDataType() &&
+    impl.AtlasSamples->GetNumberOfValues() == samples->GetNumberOfValues() &&
+    impl.AtlasSamples->GetVoidPointer(0) == samples->GetVoidPointer(0) &&
+    sameArray(impl.AtlasSlots, slots) && impl.AtlasFilter == filter &&
+    impl.Extinction->GetHandle() && impl.Extinction->GetContext() == renWin;
   auto sample = [&](vtkIdType at)
   { return floats ? static_cast<double>(floats->GetValue(at)) : samples->GetTuple1(at); };
   auto check = [&](vtkIdType begin, vtkIdType end)
@@ -380,7 +397,11 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
       }
     }
   };
-  if (floats)
+  if (sameAtlas)
+  {
+    largest = impl.AtlasLargest;
+  }
+  else if (floats)
   {
     vtkSMPTools::For(0, slotCount, check);
   }
@@ -399,6 +420,7 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   {
     largest = std::max(largest, most);
   }
+  const double storedLargest = largest; // of the stored samples alone
   const vtkIdType bricks = slots->GetNumberOfTuples();
   const int brickDims[3] = { ExtinctionBricksAlong(dims[0]), ExtinctionBricksAlong(dims[1]),
     ExtinctionBricksAlong(dims[2]) };
@@ -448,6 +470,10 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   }
   impl.MaxExtinction =
     largest * std::max({ impl.BrickScale[0], impl.BrickScale[1], impl.BrickScale[2] });
+  if (sameAtlas)
+  {
+    return Upload3D(impl.BrickTable, renWin, brickDims, 4, vtkTextureObject::Nearest, table.data());
+  }
   // Grids of integers (a scan's 8- or 16-bit values, read in place) go up
   // as 16-bit normalized integers less their least, which the shader scales
   // back (atlasValue), exactly; other grids as floats. Not 8 bits: a
@@ -459,11 +485,6 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   {
     least = slot == 0 ? slotLeast[0] : std::min(least, slotLeast[static_cast<std::size_t>(slot)]);
     integers = integers && slotIntegers[static_cast<std::size_t>(slot)];
-  }
-  double storedLargest = 0.0; // of the stored samples alone
-  for (const double most : slotLargest)
-  {
-    storedLargest = std::max(storedLargest, most);
   }
   const double span = storedLargest - least;
   const int width = integers && span <= 65535.0 ? 2 : 4;
@@ -529,6 +550,11 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
       width == 2 ? GL_UNSIGNED_SHORT : GL_FLOAT, texelData);
   }
   impl.Extinction->Deactivate();
+  impl.AtlasSamples = samples;
+  impl.AtlasSlots = slots;
+  impl.AtlasFilter = filter;
+  impl.AtlasLargest = storedLargest;
+  ++impl.AtlasUploads;
   return Upload3D(impl.BrickTable, renWin, brickDims, 4, vtkTextureObject::Nearest, table.data());
 }
 
@@ -557,6 +583,11 @@ bool vtkBrumeOpenGLSliceVolumeMapper::CreateAtlas(
     static_cast<unsigned int>(texels[1]), static_cast<unsigned int>(texels[2]), 1, type, nullptr);
   texture->SetInternalFormat(0); // the default for the texture's next use
   return made;
+}
+
+int vtkBrumeOpenGLSliceVolumeMapper::GetNumberOfExtinctionAtlasUploads() const
+{
+  return this->Impl->AtlasUploads;
 }
 
 int vtkBrumeOpenGLSliceVolumeMapper::GetExtinctionAtlasTexelBytes() const

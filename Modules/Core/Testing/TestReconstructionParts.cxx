@@ -507,6 +507,8 @@ TEST(ReconstructionParts, NativeMediumGridKeepsWhatAnEditOfTheFunctionLeft)
     fresh.Sample(upper, memory, parallelFor);
     kept.Sample(upper, memory, parallelFor, &before);
     EXPECT_TRUE(SameGrids(fresh, kept));
+    // The function is 0 where it was: the scalars' bricks are shared.
+    EXPECT_EQ(kept.GetScalars().GetSamples().Data(), before.GetScalars().GetSamples().Data());
     EXPECT_EQ(fresh.GetSampledBricks(), kept.GetSampledBricks() + kept.GetReusedBricks());
     EXPECT_GT(kept.GetReusedBricks(), 0u);
     EXPECT_GT(kept.GetSampledBricks(), 0u);
@@ -531,6 +533,16 @@ TEST(ReconstructionParts, NativeMediumGridKeepsWhatAnEditOfTheFunctionLeft)
   kept.Sample(collinear, memory, SerialFor(), &before);
   EXPECT_TRUE(SameGrids(fresh, kept));
   EXPECT_GT(kept.GetSampledBricks(), 0u);
+
+  // Zero up to 0.45 instead of 0.2: other bricks left out, so the
+  // scalars are sampled again (those stored before copied); still the
+  // fresh grids.
+  const Medium later = withFunction({ { 0.45f, 0.f }, { 0.5f, 0.1f }, { 1.f, 0.9f } });
+  NativeMediumGrid laterFresh, laterKept;
+  laterFresh.Sample(later, memory, SerialFor());
+  laterKept.Sample(later, memory, SerialFor(), &before);
+  EXPECT_TRUE(SameGrids(laterFresh, laterKept));
+  EXPECT_NE(laterKept.GetScalars().GetSamples().Data(), before.GetScalars().GetSamples().Data());
 
   // The same function: the whole grid and its tables, nothing sampled.
   before.BuildTables(waves.Bounds, { 6, 6, 6 });

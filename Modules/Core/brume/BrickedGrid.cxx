@@ -32,6 +32,35 @@ BrickedGrid BrickedGrid::Sample(const std::array<int, 3>& dims, const Box& box,
     zeroOver, parallelFor, skipped);
 }
 
+std::vector<char> BrickedGrid::Candidates(const std::array<int, 3>& dims,
+  const std::function<bool(const std::array<int, 3>&, const std::array<int, 3>&)>& zeroOver,
+  const ParallelFor& parallelFor)
+{
+  std::array<std::size_t, 3> brickDims{};
+  for (int a = 0; a < 3; ++a)
+  {
+    brickDims[a] = static_cast<std::size_t>(BricksAlong(dims[a]));
+  }
+  const std::size_t bx = brickDims[0], bxy = bx * brickDims[1];
+  std::vector<char> candidate(bxy * brickDims[2], 0);
+  parallelFor(0, candidate.size(),
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t b = begin; b < end; ++b)
+      {
+        const std::array<int, 3> lower{ static_cast<int>(b % bx) * Stride,
+          static_cast<int>((b % bxy) / bx) * Stride, static_cast<int>(b / bxy) * Stride };
+        std::array<int, 3> upper{};
+        for (int a = 0; a < 3; ++a)
+        {
+          upper[a] = std::min(lower[a] + Size - 1, dims[a] - 1);
+        }
+        candidate[b] = zeroOver(lower, upper) ? 0 : 1;
+      }
+    });
+  return candidate;
+}
+
 void BrickedGrid::CopyBrick(std::size_t brick, float* out) const
 {
   const std::int32_t slot = this->Slots[brick];
@@ -70,21 +99,7 @@ BrickedGrid BrickedGrid::SampleBricks(const std::array<int, 3>& dims, const Box&
       static_cast<int>((b % bxy) / bx) * Stride, static_cast<int>(b / bxy) * Stride };
   };
   // The bricks that may hold a sample other than 0, in brick order.
-  std::vector<char> candidate(bricks, 0);
-  parallelFor(0, bricks,
-    [&](std::size_t begin, std::size_t end)
-    {
-      for (std::size_t b = begin; b < end; ++b)
-      {
-        const std::array<int, 3> lower = brickOrigin(b);
-        std::array<int, 3> upper{};
-        for (int a = 0; a < 3; ++a)
-        {
-          upper[a] = std::min(lower[a] + Size - 1, dims[a] - 1);
-        }
-        candidate[b] = zeroOver(lower, upper) ? 0 : 1;
-      }
-    });
+  const std::vector<char> candidate = Candidates(dims, zeroOver, parallelFor);
   std::vector<std::size_t> sampled;
   for (std::size_t b = 0; b < bricks; ++b)
   {

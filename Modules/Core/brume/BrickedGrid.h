@@ -66,6 +66,14 @@ public:
     const std::function<bool(const std::array<int, 3>&, const std::array<int, 3>&)>& zeroOver,
     const ParallelFor& parallelFor, float skipped = 0.f);
 
+  /**
+   * Per brick of a grid of `dims` cells (in brick order): whether Sample()
+   * evaluates it, i.e. `zeroOver` does not leave it out.
+   */
+  static std::vector<char> Candidates(const std::array<int, 3>& dims,
+    const std::function<bool(const std::array<int, 3>&, const std::array<int, 3>&)>& zeroOver,
+    const ParallelFor& parallelFor);
+
   bool Empty() const { return this->Slots.empty(); }
   const std::array<int, 3>& GetDims() const { return this->Dims; }
   const Box& GetBox() const { return this->Bounds; }

@@ -290,6 +290,8 @@ void NativeMediumGrid::Sample(const Medium& medium, std::size_t memory,
     this->Scalars = previous->Scalars;
     this->Classification = &classified->GetOpacity();
     this->BrickRanges = previous->BrickRanges;
+    this->ScalarCandidates = previous->ScalarCandidates;
+    this->ScalarSkipped = previous->ScalarSkipped;
     this->DensityTable = previous->DensityTable;
     this->DensityMoments = previous->DensityMoments;
     this->EmptyIntegral = previous->EmptyIntegral;
@@ -316,42 +318,53 @@ void NativeMediumGrid::Sample(const Medium& medium, std::size_t memory,
     // (DensityField::NativePoints: a grid's values, an OpenVDB grid's
     // voxels), else one by one.
     const DensityField& scalars = classified->GetScalars();
-    this->Scalars = BrickedGrid::SampleBricks(
-      dims, box,
-      [&](const std::array<int, 3>& lower, float* out)
-      {
-        constexpr int S = BrickedGrid::Size;
-        std::array<int, 3> count{};
-        for (int a = 0; a < 3; ++a)
-        {
-          count[a] = std::min(lower[a] + S, dims[a]) - lower[a];
-        }
-        if (previous)
-        {
-          // The field's own values, whichever function: a brick stored
-          // before holds them (one left out held a value of the function's).
-          const std::size_t b = previous->Scalars.BrickAt(lower);
-          if (previous->Scalars.GetSlots()[b] >= 0)
+    // The scalars do not depend on the function, only which bricks it
+    // leaves out (holding `nothing`): where those are the previous grid's,
+    // so are the scalars' bricks, shared (and a renderer that holds them
+    // need not send them again).
+    std::vector<char> candidates = BrickedGrid::Candidates(dims, zeroOver, parallelFor);
+    const bool sameScalars =
+      previous && previous->ScalarCandidates == candidates && previous->ScalarSkipped == nothing;
+    this->ScalarCandidates = std::move(candidates);
+    this->ScalarSkipped = nothing;
+    this->Scalars = sameScalars
+      ? previous->Scalars
+      : BrickedGrid::SampleBricks(
+          dims, box,
+          [&](const std::array<int, 3>& lower, float* out)
           {
-            previous->Scalars.CopyBrick(b, out);
-            return;
-          }
-        }
-        float points[S * S * S];
-        const bool read = scalars.NativePoints(lower, count, points);
-        for (int k = 0; k < S; ++k)
-          for (int j = 0; j < S; ++j)
-            for (int i = 0; i < S; ++i)
+            constexpr int S = BrickedGrid::Size;
+            std::array<int, 3> count{};
+            for (int a = 0; a < 3; ++a)
             {
-              // Cells past the grid's last take the last's.
-              const int x = std::min(i, count[0] - 1), y = std::min(j, count[1] - 1),
-                        z = std::min(k, count[2] - 1);
-              *out++ = read ? points[(z * count[1] + y) * count[0] + x]
-                            : scalars.NativeValue(lower[0] + x, lower[1] + y, lower[2] + z,
-                                centre(lower[0] + x, lower[1] + y, lower[2] + z));
+              count[a] = std::min(lower[a] + S, dims[a]) - lower[a];
             }
-      },
-      zeroOver, parallelFor, nothing);
+            if (previous)
+            {
+              // The field's own values, whichever function: a brick stored
+              // before holds them (one left out held a value of the function's).
+              const std::size_t b = previous->Scalars.BrickAt(lower);
+              if (previous->Scalars.GetSlots()[b] >= 0)
+              {
+                previous->Scalars.CopyBrick(b, out);
+                return;
+              }
+            }
+            float points[S * S * S];
+            const bool read = scalars.NativePoints(lower, count, points);
+            for (int k = 0; k < S; ++k)
+              for (int j = 0; j < S; ++j)
+                for (int i = 0; i < S; ++i)
+                {
+                  // Cells past the grid's last take the last's.
+                  const int x = std::min(i, count[0] - 1), y = std::min(j, count[1] - 1),
+                            z = std::min(k, count[2] - 1);
+                  *out++ = read ? points[(z * count[1] + y) * count[0] + x]
+                                : scalars.NativeValue(lower[0] + x, lower[1] + y, lower[2] + z,
+                                    centre(lower[0] + x, lower[1] + y, lower[2] + z));
+                }
+          },
+          zeroOver, parallelFor, nothing);
     this->Classification = &function;
   }
   // One sample at the centre of a native cell (the field's own value

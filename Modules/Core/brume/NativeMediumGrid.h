@@ -145,6 +145,9 @@ private:
   // next Sample() compares the functions over.
   std::shared_ptr<const DensityField> Source;
   std::vector<float> BrickRanges;
+  // Which bricks of the scalars were sampled, and what the others hold.
+  std::vector<char> ScalarCandidates;
+  float ScalarSkipped = 0.f;
   std::size_t ReusedBricks = 0, SampledBricks = 0;
   int Coarsening = 1;
   std::array<int, 3> FieldResolution{ 0, 0, 0 };

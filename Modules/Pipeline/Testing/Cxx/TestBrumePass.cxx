@@ -11,10 +11,12 @@
 #include "VtkSceneTesting.h"
 #include "vtkActor.h"
 #include "vtkBrumeLightTracer.h"
+#include "vtkBrumeOpenGLSliceVolumeMapper.h"
 #include "vtkBrumePass.h"
 #include "vtkBrumePipeline.h"
 #include "vtkBrumeRadianceReconstruction.h"
 #include "vtkBrumeRendererScene.h"
+#include "vtkBrumeSceneActors.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkCellData.h"
@@ -32,6 +34,7 @@
 #include "vtkPlaneSource.h"
 #include "vtkPointData.h"
 #include "vtkPolyDataMapper.h"
+#include "vtkPropCollection.h"
 #include "vtkProperty.h"
 #include "vtkRTAnalyticSource.h"
 #include "vtkRenderWindow.h"
@@ -240,6 +243,51 @@ void TestTransferFunctionEdits()
       reconstruction->GetNumberOfNativeBricksReused() == reused + all,
     "a colour edit keeps every brick");
   Check(asFresh(), "after the colour edit, the textures of a fresh pipeline");
+
+  // Neither edit changed where the function is 0, so the scalars' bricks
+  // were kept too, and the slice mapper did not send its atlas again; a
+  // mapper that sends everything anew draws the same frame.
+  vtkBrumeOpenGLSliceVolumeMapper* mapper = nullptr;
+  vtkPropCollection* props = pass->GetPipeline()->GetActors()->GetProps();
+  props->InitTraversal();
+  for (vtkProp* prop = props->GetNextProp(); prop; prop = props->GetNextProp())
+  {
+    if (auto* medium = vtkVolume::SafeDownCast(prop))
+    {
+      mapper = vtkBrumeOpenGLSliceVolumeMapper::SafeDownCast(medium->GetMapper());
+    }
+  }
+  Check(mapper && mapper->GetNumberOfExtinctionAtlasUploads() == 1,
+    "the atlas of scalars sent once over three traces (sent " +
+      std::to_string(mapper ? mapper->GetNumberOfExtinctionAtlasUploads() : -1) + ")");
+  auto frame = [&]()
+  {
+    vtkNew<vtkWindowToImageFilter> grab;
+    grab->SetInput(window);
+    grab->ReadFrontBufferOff();
+    grab->Update();
+    vtkNew<vtkUnsignedCharArray> pixels;
+    pixels->DeepCopy(grab->GetOutput()->GetPointData()->GetScalars());
+    return vtkSmartPointer<vtkUnsignedCharArray>(pixels);
+  };
+  auto kept = frame();
+  vtkIdType lit = 0;
+  for (vtkIdType v = 0; v < kept->GetNumberOfValues(); ++v)
+  {
+    lit += kept->GetValue(v) > 0 ? 1 : 0;
+  }
+  Check(lit > kept->GetNumberOfValues() / 4, "the edited scene is drawn");
+  if (mapper)
+  {
+    mapper->ReleaseGraphicsResources(window);
+    window->Render();
+    auto sent = frame();
+    Check(mapper->GetNumberOfExtinctionAtlasUploads() == 2 &&
+        kept->GetNumberOfValues() == sent->GetNumberOfValues() &&
+        std::memcmp(kept->GetVoidPointer(0), sent->GetVoidPointer(0),
+          static_cast<std::size_t>(kept->GetNumberOfValues())) == 0,
+      "the frame drawn from the kept atlas is the frame of an atlas sent anew");
+  }
 }
 
 }
