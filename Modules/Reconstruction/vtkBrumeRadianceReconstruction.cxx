@@ -320,14 +320,19 @@ bool vtkBrumeRadianceReconstruction::Plan(const vtkBrumeReconstructionRequest& r
   // And its media's grids at their own resolution: an edit of a transfer
   // function keeps what it did not change.
   std::vector<brume::NativeMediumGrid> natives;
+  // And the direct light's shadow rays, for a scene whose lights, surfaces
+  // and extinction are the same (an edit of a colour).
+  std::shared_ptr<vtkBrumeRadianceTextures::KeptDirect> direct;
   if (textures)
   {
     spare = textures->ReleaseKeptMemory();
     caster = textures->GetCaster();
+    direct = textures->ReleaseDirect();
     natives = textures->ReleaseNativeGrids();
   }
   this->Textures.reset(new vtkBrumeRadianceTextures(this, this->Controller));
   this->Textures->OfferNativeGrids(std::move(natives));
+  this->Textures->OfferDirect(std::move(direct));
   if (!this->Textures->Build(request, settings, *this->WorkDone, std::move(spare)))
   {
     this->Textures.reset();
@@ -344,6 +349,7 @@ void vtkBrumeRadianceReconstruction::CountWork()
   this->NumberOfDirectionalBuilds += this->WorkDone->DirectionalBuilds;
   this->NumberOfNativeBricksSampled += this->WorkDone->NativeBricksSampled;
   this->NumberOfNativeBricksReused += this->WorkDone->NativeBricksReused;
+  this->NumberOfDirectLightsKept += this->WorkDone->DirectArrivalsKept;
   *this->WorkDone = vtkBrumeReconstructionWork();
 }
 
@@ -377,4 +383,5 @@ void vtkBrumeRadianceReconstruction::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfDirectionalBuilds: " << this->NumberOfDirectionalBuilds << "\n";
   os << indent << "NumberOfNativeBricksSampled: " << this->NumberOfNativeBricksSampled << "\n";
   os << indent << "NumberOfNativeBricksReused: " << this->NumberOfNativeBricksReused << "\n";
+  os << indent << "NumberOfDirectLightsKept: " << this->NumberOfDirectLightsKept << "\n";
 }

@@ -254,6 +254,15 @@ public:
   vtkGetMacro(NumberOfNativeBricksReused, vtkIdType);
   ///@}
 
+  /**
+   * Objects whose direct light (of point, spot and directional lights) was
+   * taken from the textures a rebuild replaced instead of casting its
+   * shadow rays again, so far: where the lights, the surfaces and every
+   * medium's extinction were the same (an edit of a colour, an albedo or a
+   * reflectance). The same floats either way.
+   */
+  vtkGetMacro(NumberOfDirectLightsKept, vtkIdType);
+
   vtkMTimeType GetMTime() override;
 
   ///@{
@@ -408,6 +417,7 @@ protected:
   vtkIdType NumberOfDirectionalBuilds = 0;
   vtkIdType NumberOfNativeBricksSampled = 0;
   vtkIdType NumberOfNativeBricksReused = 0;
+  vtkIdType NumberOfDirectLightsKept = 0;
 
 private:
   // The steps of RequestData: validate the inputs, plan (build, add or

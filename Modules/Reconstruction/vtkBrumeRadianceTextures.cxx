@@ -142,7 +142,7 @@ bool vtkBrumeRadianceTextures::Build(const vtkBrumeReconstructionRequest& reques
   // The first batch of a run only bins: the last one estimates.
   if (request.Run.Completes())
   {
-    this->ComputeDirect();
+    this->ComputeDirect(work);
   }
   this->SceneData = request.SceneInput;
   this->HitsData = request.HitData;
@@ -387,7 +387,7 @@ bool vtkBrumeRadianceTextures::Add(
   this->LastFirstParticle = request.Run.FirstParticle;
   if (firstEstimate)
   {
-    this->ComputeDirect();
+    this->ComputeDirect(work);
     for (std::size_t o = 0; o < this->Objects.size(); ++o)
     {
       const brume::ObjectRadiance& radiance = *this->Objects[o];

@@ -88,6 +88,8 @@ struct vtkBrumeReconstructionWork
   // textures replaced (an edit of a transfer function).
   vtkIdType NativeBricksSampled = 0;
   vtkIdType NativeBricksReused = 0;
+  // Objects whose direct light's arrivals were taken from the textures replaced.
+  vtkIdType DirectArrivalsKept = 0;
 };
 
 class vtkBrumeRadianceTextures
@@ -171,6 +173,19 @@ public:
     this->PreviousNatives = std::move(grids);
   }
 
+  /**
+   * The direct light's shadow rays of every object (their arrivals) and
+   * what they were cast through (the lights, the surfaces' caster, the
+   * media's extinction), moved out for the textures that replace these:
+   * given to those by OfferDirect() before their Build(), they take the
+   * arrivals where all of that is the same (an edit of a colour, an
+   * albedo or a reflectance; not a light, a surface or an opacity) instead
+   * of casting the rays again. Call before ReleaseNativeGrids().
+   */
+  struct KeptDirect;
+  std::shared_ptr<KeptDirect> ReleaseDirect();
+  void OfferDirect(std::shared_ptr<KeptDirect> kept) { this->PreviousDirect = std::move(kept); }
+
   /// The ray caster of the shadow and mirror rays (null without them):
   /// held while the textures that replace these are built, it is found
   /// again by vtkBrumeSceneConversion::SharedRayCaster where the surfaces
@@ -244,7 +259,7 @@ private:
   double FitDirectGrids(std::vector<std::array<int, 3>>& grids, double lights) const;
   // Resolution along the longer axis `n` of `extent`, the others in proportion.
   static std::array<int, 3> FixedResolution(const brume::Vec3& extent, int n);
-  void ComputeDirect();
+  void ComputeDirect(vtkBrumeReconstructionWork& work);
   // Mirrors and sharp glossy surfaces (brume::MirrorReflection::Casts):
   // which are cast, before the build; then their reflections toward `eye`,
   // for which view-dependent objects are seen from a planar mirror's
@@ -271,6 +286,10 @@ private:
   std::vector<vtkBrumeSceneConversion::ObjectSource> Sources;
   std::vector<std::unique_ptr<brume::ObjectRadiance>> Objects;
   std::vector<brume::NativeMediumGrid> PreviousNatives; // OfferNativeGrids(), until sampled
+  std::shared_ptr<KeptDirect> PreviousDirect;           // OfferDirect(), until computed
+  /// PreviousDirect's arrivals for object o where they hold for this scene, else null.
+  const std::vector<float>* KeptArrivals(std::size_t o) const;
+  bool DirectKeptHolds() const;
   std::vector<vtkSmartPointer<vtkPartitionedDataSet>> Outputs;
   std::vector<vtkSmartPointer<vtkImageData>> NativeExtinction;   // media: made once
   std::vector<vtkSmartPointer<vtkImageData>> LastMediumTextures; // media: the last emitted

@@ -148,12 +148,161 @@ double vtkBrumeRadianceTextures::FitDirectGrids(
   return fitted(coarse, &grids);
 }
 
-void vtkBrumeRadianceTextures::ComputeDirect()
+struct vtkBrumeRadianceTextures::KeptDirect
+{
+  std::shared_ptr<const brume::RayCaster> Caster;
+  std::vector<brume::Light> Lights;
+  struct Medium
+  {
+    brume::Box Bounds;
+    brume::Vec3 SigmaT;
+    bool Homogeneous = true;
+    brume::BrickedGrid Grid; // shares the grid's samples: the same memory is the same grid
+  };
+  std::vector<Medium> Media;
+  struct Object
+  {
+    std::array<int, 3> Dims{ 0, 0, 0 };
+    std::array<int, 3> Resolution{ 0, 0, 0 };
+    std::vector<float> Arrivals; // empty: none computed
+  };
+  std::vector<Object> Objects;
+};
+
+namespace
+{
+bool SameBox(const brume::Box& a, const brume::Box& b)
+{
+  for (int c = 0; c < 3; ++c)
+  {
+    if (a.lower[c] != b.lower[c] || a.upper[c] != b.upper[c])
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool SameVec(const brume::Vec3& a, const brume::Vec3& b)
+{
+  return a.x == b.x && a.y == b.y && a.z == b.z;
+}
+
+// Everything a light's shadow rays and arrivals read.
+bool SameLight(const brume::Light& a, const brume::Light& b)
+{
+  return a.Type == b.Type && SameVec(a.Position, b.Position) && SameVec(a.Direction, b.Direction) &&
+    SameVec(a.Intensity, b.Intensity) && a.ConeAngle == b.ConeAngle &&
+    SameVec(a.BeamCenter, b.BeamCenter) && a.BeamRadius == b.BeamRadius &&
+    SameVec(a.AimCenter, b.AimCenter) && a.AimRadius == b.AimRadius &&
+    a.AimFraction == b.AimFraction;
+}
+}
+
+std::shared_ptr<vtkBrumeRadianceTextures::KeptDirect> vtkBrumeRadianceTextures::ReleaseDirect()
+{
+  if (!this->Direct || this->Distributed())
+  {
+    return nullptr;
+  }
+  auto kept = std::make_shared<KeptDirect>();
+  kept->Caster = this->Caster;
+  kept->Lights = this->Scene.Lights;
+  const std::size_t surfaces = this->Scene.Surfaces.size();
+  for (std::size_t m = 0; m < this->Scene.Media.size(); ++m)
+  {
+    const brume::Medium& medium = this->Scene.Media[m];
+    KeptDirect::Medium key;
+    key.Bounds = medium.Bounds;
+    key.SigmaT = medium.SigmaT();
+    key.Homogeneous = medium.IsHomogeneous();
+    if (surfaces + m < this->Objects.size())
+    {
+      key.Grid = this->Objects[surfaces + m]->GetNative().GetDensity();
+    }
+    kept->Media.push_back(std::move(key));
+  }
+  for (auto& object : this->Objects)
+  {
+    KeptDirect::Object key;
+    const brume::DirectTexture& direct = object->GetDirect();
+    if (direct.IsEnabled() && direct.HasArrivals())
+    {
+      key.Dims = direct.GetDims();
+      key.Resolution = object->GetLayout().Resolution;
+      key.Arrivals = direct.GetArrivals();
+    }
+    kept->Objects.push_back(std::move(key));
+  }
+  return kept;
+}
+
+bool vtkBrumeRadianceTextures::DirectKeptHolds() const
+{
+  // The same surfaces (the caster found by their geometry), lights and
+  // media's extinction: every shadow ray is the same.
+  const KeptDirect* kept = this->PreviousDirect.get();
+  if (!kept || this->Distributed() || !this->Caster || kept->Caster != this->Caster ||
+    kept->Lights.size() != this->Scene.Lights.size() ||
+    kept->Media.size() != this->Scene.Media.size() || kept->Objects.size() != this->Objects.size())
+  {
+    return false;
+  }
+  for (std::size_t l = 0; l < kept->Lights.size(); ++l)
+  {
+    if (!SameLight(kept->Lights[l], this->Scene.Lights[l]))
+    {
+      return false;
+    }
+  }
+  const std::size_t surfaces = this->Scene.Surfaces.size();
+  for (std::size_t m = 0; m < kept->Media.size(); ++m)
+  {
+    const brume::Medium& medium = this->Scene.Media[m];
+    const KeptDirect::Medium& key = kept->Media[m];
+    if (!SameBox(key.Bounds, medium.Bounds) || !SameVec(key.SigmaT, medium.SigmaT()) ||
+      key.Homogeneous != medium.IsHomogeneous())
+    {
+      return false;
+    }
+    // A heterogeneous medium's rays march its grid: the same grid (the one
+    // kept after an edit that left its function as it was), not an equal one.
+    if (!medium.IsHomogeneous())
+    {
+      const brume::BrickedGrid& grid = this->Objects[surfaces + m]->GetNative().GetDensity();
+      if (grid.Empty() || key.Grid.Empty() || !grid.SameAs(key.Grid))
+      {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+const std::vector<float>* vtkBrumeRadianceTextures::KeptArrivals(std::size_t o) const
+{
+  const KeptDirect::Object& key = this->PreviousDirect->Objects[o];
+  const brume::ObjectRadiance& object = *this->Objects[o];
+  const bool medium = this->Scene.IsMedium(o);
+  if (key.Arrivals.empty() || key.Dims != object.GetDirect().GetDims() ||
+    key.Resolution != object.GetLayout().Resolution ||
+    (medium &&
+      !SameBox(this->PreviousDirect->Media[o - this->Scene.Surfaces.size()].Bounds,
+        this->Scene.Media[o - this->Scene.Surfaces.size()].Bounds)))
+  {
+    return nullptr;
+  }
+  return &key.Arrivals;
+}
+
+void vtkBrumeRadianceTextures::ComputeDirect(vtkBrumeReconstructionWork& work)
 {
   if (!this->Direct)
   {
+    this->PreviousDirect.reset();
     return;
   }
+  const bool holds = this->DirectKeptHolds();
   // Shadow rays march the media's grids of density means, made with the
   // textures.
   const std::size_t surfaces = this->Scene.Surfaces.size();
@@ -172,30 +321,40 @@ void vtkBrumeRadianceTextures::ComputeDirect()
   // distributed run gathers each object's shares in turn, on every process.
   const brume::ParallelFor parallelFor = vtkBrumeSMP::ParallelFor();
   const std::size_t lights = this->Scene.Lights.size();
-  std::vector<brume::ObjectRadiance*> small;
-  for (auto& object : this->Objects)
+  // The arrivals of the textures replaced, where they hold for this scene.
+  std::vector<const std::vector<float>*> kept(this->Objects.size(), nullptr);
+  for (std::size_t o = 0; holds && o < this->Objects.size(); ++o)
   {
-    if (!object->GetDirect().IsEnabled())
+    kept[o] = this->KeptArrivals(o);
+  }
+  std::vector<std::size_t> small;
+  for (std::size_t o = 0; o < this->Objects.size(); ++o)
+  {
+    brume::ObjectRadiance& object = *this->Objects[o];
+    if (!object.GetDirect().IsEnabled())
     {
       continue;
     }
-    const auto& dims = object->GetDirect().GetDims();
+    work.DirectArrivalsKept += kept[o] ? 1 : 0;
+    const auto& dims = object.GetDirect().GetDims();
     const std::size_t arrivals = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2] * lights;
     if (!this->Distributed() && arrivals < SmallDirectArrivals)
     {
-      small.push_back(object.get());
+      small.push_back(o);
     }
     else
     {
-      object->ComputeDirect(parallelFor);
+      object.ComputeDirect(parallelFor, kept[o]);
     }
   }
   vtkSMPTools::For(0, static_cast<vtkIdType>(small.size()),
-    [&small](vtkIdType begin, vtkIdType end)
+    [&](vtkIdType begin, vtkIdType end)
     {
       for (vtkIdType k = begin; k < end; ++k)
       {
-        small[k]->ComputeDirect(brume::SerialFor());
+        const std::size_t o = small[static_cast<std::size_t>(k)];
+        this->Objects[o]->ComputeDirect(brume::SerialFor(), kept[o]);
       }
     });
+  this->PreviousDirect.reset();
 }

@@ -554,6 +554,18 @@ TEST(ReconstructionParts, NativeMediumGridKeepsWhatAnEditOfTheFunctionLeft)
   EXPECT_TRUE(same.HasTables(waves.Bounds, { 6, 6, 6 }));
   EXPECT_FALSE(same.HasTables(waves.Bounds, { 7, 7, 7 }));
 
+  // An unclassified density: the same object shares the whole grid (an
+  // edit of the medium's albedo), another is sampled.
+  Medium plain = waves;
+  plain.SetDensity(classified.GetScalarsPointer());
+  NativeMediumGrid plainBefore, plainAgain, plainOther;
+  plainBefore.Sample(plain, memory, SerialFor());
+  plainAgain.Sample(plain, memory, SerialFor(), &plainBefore);
+  EXPECT_TRUE(plainAgain.GetDensity().SameAs(plainBefore.GetDensity()));
+  plainOther.Sample(plain, memory, SerialFor(), &before);
+  EXPECT_FALSE(plainOther.GetDensity().SameAs(before.GetDensity()));
+  EXPECT_TRUE(SameGrids(plainOther, plainBefore));
+
   // Another field (the same values, another object) is not read.
   const Medium other = ClassifiedWaves(48);
   EXPECT_FALSE(before.SameField(other));

@@ -61,6 +61,21 @@ std::vector<char> BrickedGrid::Candidates(const std::array<int, 3>& dims,
   return candidate;
 }
 
+bool BrickedGrid::SameAs(const BrickedGrid& other) const
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    if (this->Dims[a] != other.Dims[a] || this->Bounds.lower[a] != other.Bounds.lower[a] ||
+      this->Bounds.upper[a] != other.Bounds.upper[a])
+    {
+      return false;
+    }
+  }
+  return this->Samples.Data() == other.Samples.Data() &&
+    this->Samples.Size() == other.Samples.Size() && this->Slots == other.Slots &&
+    this->Constants == other.Constants;
+}
+
 void BrickedGrid::CopyBrick(std::size_t brick, float* out) const
 {
   const std::int32_t slot = this->Slots[brick];

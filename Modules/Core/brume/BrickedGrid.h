@@ -89,6 +89,9 @@ public:
   /// Size^3 samples per stored brick, x fastest within a brick (a buffer
   /// that a VTK array may share: vtkBrumeRadianceConversion::NativeExtinction).
   const FloatBuffer& GetSamples() const { return this->Samples; }
+  /// The same cells, slots and constants, and its samples the same memory
+  /// (a copy of the grid, sharing them).
+  bool SameAs(const BrickedGrid& other) const;
   /// The bytes of the three arrays above.
   std::size_t GetMemorySize() const;
 

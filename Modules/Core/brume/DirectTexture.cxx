@@ -301,7 +301,7 @@ std::vector<ShadowSweep> DirectTexture::PlanSweeps(const ObjectLayout& layout,
 
 bool DirectTexture::Compute(const ObjectLayout& layout, const std::vector<float>& texture,
   const NativeMediumGrid& native, const ObjectDistribution& distribution,
-  const ParallelFor& parallelFor)
+  const ParallelFor& parallelFor, const std::vector<float>* kept)
 {
   this->Arrivals.clear();
   if (!this->Light || texture.empty())
@@ -311,153 +311,162 @@ bool DirectTexture::Compute(const ObjectLayout& layout, const std::vector<float>
   const std::size_t lights = this->Light->NumberOfLights();
   const std::array<int, 3> dims = this->Dims;
   const std::size_t texels = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2];
-  std::vector<float> arrivals(texels * lights * ArrivalFloats, 0.f);
-  const Vec3 bias = layout.MediumRef ? Vec3(0.f) : this->SurfaceNormal * this->Light->GetEpsilon();
-  // Light l's arrival at x (zero when none), surfaces' weighted by the cosine
-  // (they store E cos(theta), shown on their front side only).
-  auto arrive = [&](std::size_t l, const Vec3& x, Vec3& irradiance)
+  std::vector<float> arrivals;
+  if (kept && kept->size() == texels * lights * ArrivalFloats)
   {
-    LightArrival a;
-    irradiance = Vec3(0.f);
-    if (!layout.MediumRef && Dot(this->Light->DirectionAt(l, x), this->SurfaceNormal) >= 0.f)
-    {
-      return; // light on the back side: no shadow ray
-    }
-    if (!this->Light->Arrive(l, x, bias, a))
-    {
-      return;
-    }
-    const float weight =
-      layout.MediumRef ? 1.f : std::max(0.f, -Dot(a.Direction, this->SurfaceNormal));
-    irradiance = a.Irradiance * weight;
-  };
-  auto store = [&](std::size_t t, std::size_t l, const Vec3& irradiance, const Vec3& direction)
-  {
-    float* out = &arrivals[(t * lights + l) * ArrivalFloats];
-    for (int c = 0; c < 3; ++c)
-    {
-      out[c] = irradiance[c];
-      out[3 + c] = direction[c];
-    }
-  };
-  // Distributed runs: each process casts the shadow rays of its share of
-  // the texels, and every process gathers all of them (a texel's rays
-  // depend on the texel only).
-  const auto mine = distribution.Share(texels);
-  const std::size_t floats = lights * ArrivalFloats;
-  // A medium with a density grid of its own: only the texels a renderer
-  // reads (near the density, SparseTexture::CellsRead) get their light; the
-  // others stay 0, as no image shows them. Their face neighbours' rays are
-  // cast too, so that the edges below are found as with every texel.
-  const int used = layout.MediumRef ? 3 : 2;
-  std::vector<std::uint8_t> read, cast;
-  if (layout.MediumRef && !native.Empty())
-  {
-    read = SparseTexture::CellsRead(dims, layout.MediumRef->Bounds, native.GetDensity());
-    cast = WithFaceNeighbours(read, dims, used);
+    arrivals = *kept; // the same rays, cast before
   }
-  // 1. One shadow ray per texel centre, or, through a medium's own grid,
-  // the rays of a sweep where they march less (ShadowSweep): the texels
-  // then hold the light before the media, which the sweep attenuates.
-  std::vector<std::uint8_t> wanted(texels, 0);
-  for (std::size_t t = mine[0]; t < mine[1]; ++t)
+  else
   {
-    wanted[t] = cast.empty() || cast[t];
-  }
-  const std::vector<ShadowSweep> sweeps = this->PlanSweeps(layout, native, cast);
-  parallelFor(mine[0], mine[1],
-    [&](std::size_t begin, std::size_t end)
+    arrivals.assign(texels * lights * ArrivalFloats, 0.f);
+    const Vec3 bias =
+      layout.MediumRef ? Vec3(0.f) : this->SurfaceNormal * this->Light->GetEpsilon();
+    // Light l's arrival at x (zero when none), surfaces' weighted by the cosine
+    // (they store E cos(theta), shown on their front side only).
+    auto arrive = [&](std::size_t l, const Vec3& x, Vec3& irradiance)
     {
-      for (std::size_t t = begin; t < end; ++t)
+      LightArrival a;
+      irradiance = Vec3(0.f);
+      if (!layout.MediumRef && Dot(this->Light->DirectionAt(l, x), this->SurfaceNormal) >= 0.f)
       {
-        if (!cast.empty() && !cast[t])
-        {
-          continue;
-        }
-        const Vec3 x = this->OutputPosition(layout, t);
-        for (std::size_t l = 0; l < lights; ++l)
-        {
-          Vec3 irradiance;
-          if (!sweeps[l].IsPlanned())
-          {
-            arrive(l, x, irradiance);
-          }
-          else
-          {
-            LightArrival a;
-            float distance = 0.f;
-            irradiance =
-              this->Light->ArriveUnattenuated(l, x, bias, a, distance) ? a.Irradiance : Vec3(0.f);
-          }
-          store(t, l, irradiance, this->Light->DirectionAt(l, x));
-        }
+        return; // light on the back side: no shadow ray
       }
-    });
-  for (std::size_t l = 0; l < lights; ++l)
-  {
-    if (sweeps[l].IsPlanned())
-    {
-      const std::vector<float> depths = sweeps[l].Depths(wanted, parallelFor);
-      parallelFor(mine[0], mine[1],
-        [&](std::size_t begin, std::size_t end)
-        {
-          for (std::size_t t = begin; t < end; ++t)
-          {
-            float* out = &arrivals[(t * lights + l) * ArrivalFloats];
-            const float* depth = &depths[3 * t];
-            const Vec3 irradiance = Vec3(out[0], out[1], out[2]) *
-              Vec3(std::exp(-depth[0]), std::exp(-depth[1]), std::exp(-depth[2]));
-            // As arrive() finds it: none where nothing is left.
-            const bool lit = MaxComponent(irradiance) > 0.f;
-            for (int c = 0; c < 3; ++c)
-            {
-              out[c] = lit ? irradiance[c] : 0.f;
-            }
-          }
-        });
-    }
-  }
-  distribution.GatherShares(texels, floats, arrivals);
-  // 2. Texels on a shadow's or a beam's edge (lit while a face neighbour is
-  // not, or the reverse) hold the mean over RefinedSamples^d stratified
-  // points of the texel instead: the edge then lies where it is, not half
-  // way between two texel centres, once the renderer interpolates.
-  const std::vector<std::uint8_t> edge = LightEdges(arrivals, lights, read, dims, used);
-  const Vec3 texel = (layout.MediumRef ? layout.MediumRef->Bounds.Extent() : Vec3(1.f)) /
-    Vec3(static_cast<float>(dims[0]), static_cast<float>(dims[1]), static_cast<float>(dims[2]));
-  const PlanarFrame& frame = layout.Chart.Frame;
-  parallelFor(mine[0], mine[1],
-    [&](std::size_t begin, std::size_t end)
-    {
-      constexpr int S = RefinedSamples;
-      for (std::size_t t = begin; t < end; ++t)
+      if (!this->Light->Arrive(l, x, bias, a))
       {
-        for (std::size_t l = 0; l < lights; ++l)
+        return;
+      }
+      const float weight =
+        layout.MediumRef ? 1.f : std::max(0.f, -Dot(a.Direction, this->SurfaceNormal));
+      irradiance = a.Irradiance * weight;
+    };
+    auto store = [&](std::size_t t, std::size_t l, const Vec3& irradiance, const Vec3& direction)
+    {
+      float* out = &arrivals[(t * lights + l) * ArrivalFloats];
+      for (int c = 0; c < 3; ++c)
+      {
+        out[c] = irradiance[c];
+        out[3 + c] = direction[c];
+      }
+    };
+    // Distributed runs: each process casts the shadow rays of its share of
+    // the texels, and every process gathers all of them (a texel's rays
+    // depend on the texel only).
+    const auto mine = distribution.Share(texels);
+    const std::size_t floats = lights * ArrivalFloats;
+    // A medium with a density grid of its own: only the texels a renderer
+    // reads (near the density, SparseTexture::CellsRead) get their light; the
+    // others stay 0, as no image shows them. Their face neighbours' rays are
+    // cast too, so that the edges below are found as with every texel.
+    const int used = layout.MediumRef ? 3 : 2;
+    std::vector<std::uint8_t> read, cast;
+    if (layout.MediumRef && !native.Empty())
+    {
+      read = SparseTexture::CellsRead(dims, layout.MediumRef->Bounds, native.GetDensity());
+      cast = WithFaceNeighbours(read, dims, used);
+    }
+    // 1. One shadow ray per texel centre, or, through a medium's own grid,
+    // the rays of a sweep where they march less (ShadowSweep): the texels
+    // then hold the light before the media, which the sweep attenuates.
+    std::vector<std::uint8_t> wanted(texels, 0);
+    for (std::size_t t = mine[0]; t < mine[1]; ++t)
+    {
+      wanted[t] = cast.empty() || cast[t];
+    }
+    const std::vector<ShadowSweep> sweeps = this->PlanSweeps(layout, native, cast);
+    parallelFor(mine[0], mine[1],
+      [&](std::size_t begin, std::size_t end)
+      {
+        for (std::size_t t = begin; t < end; ++t)
         {
-          if (!edge[t * lights + l])
+          if (!cast.empty() && !cast[t])
           {
             continue;
           }
-          const Vec3 centre = this->OutputPosition(layout, t);
-          Vec3 sum(0.f);
-          const int n = used == 3 ? S * S * S : S * S;
-          for (int k = 0; k < n; ++k)
+          const Vec3 x = this->OutputPosition(layout, t);
+          for (std::size_t l = 0; l < lights; ++l)
           {
-            const Vec3 f((static_cast<float>(k % S) + 0.5f) / S - 0.5f,
-              (static_cast<float>((k / S) % S) + 0.5f) / S - 0.5f,
-              used == 3 ? (static_cast<float>(k / (S * S)) + 0.5f) / S - 0.5f : 0.f);
-            const Vec3 x = layout.MediumRef
-              ? centre + f * texel
-              : centre + frame.U * (f.x * texel.x) + frame.V * (f.y * texel.y);
             Vec3 irradiance;
-            arrive(l, x, irradiance);
-            sum += irradiance;
+            if (!sweeps[l].IsPlanned())
+            {
+              arrive(l, x, irradiance);
+            }
+            else
+            {
+              LightArrival a;
+              float distance = 0.f;
+              irradiance =
+                this->Light->ArriveUnattenuated(l, x, bias, a, distance) ? a.Irradiance : Vec3(0.f);
+            }
+            store(t, l, irradiance, this->Light->DirectionAt(l, x));
           }
-          store(t, l, sum / static_cast<float>(n), this->Light->DirectionAt(l, centre));
         }
+      });
+    for (std::size_t l = 0; l < lights; ++l)
+    {
+      if (sweeps[l].IsPlanned())
+      {
+        const std::vector<float> depths = sweeps[l].Depths(wanted, parallelFor);
+        parallelFor(mine[0], mine[1],
+          [&](std::size_t begin, std::size_t end)
+          {
+            for (std::size_t t = begin; t < end; ++t)
+            {
+              float* out = &arrivals[(t * lights + l) * ArrivalFloats];
+              const float* depth = &depths[3 * t];
+              const Vec3 irradiance = Vec3(out[0], out[1], out[2]) *
+                Vec3(std::exp(-depth[0]), std::exp(-depth[1]), std::exp(-depth[2]));
+              // As arrive() finds it: none where nothing is left.
+              const bool lit = MaxComponent(irradiance) > 0.f;
+              for (int c = 0; c < 3; ++c)
+              {
+                out[c] = lit ? irradiance[c] : 0.f;
+              }
+            }
+          });
       }
-    });
-  distribution.GatherShares(texels, floats, arrivals);
+    }
+    distribution.GatherShares(texels, floats, arrivals);
+    // 2. Texels on a shadow's or a beam's edge (lit while a face neighbour is
+    // not, or the reverse) hold the mean over RefinedSamples^d stratified
+    // points of the texel instead: the edge then lies where it is, not half
+    // way between two texel centres, once the renderer interpolates.
+    const std::vector<std::uint8_t> edge = LightEdges(arrivals, lights, read, dims, used);
+    const Vec3 texel = (layout.MediumRef ? layout.MediumRef->Bounds.Extent() : Vec3(1.f)) /
+      Vec3(static_cast<float>(dims[0]), static_cast<float>(dims[1]), static_cast<float>(dims[2]));
+    const PlanarFrame& frame = layout.Chart.Frame;
+    parallelFor(mine[0], mine[1],
+      [&](std::size_t begin, std::size_t end)
+      {
+        constexpr int S = RefinedSamples;
+        for (std::size_t t = begin; t < end; ++t)
+        {
+          for (std::size_t l = 0; l < lights; ++l)
+          {
+            if (!edge[t * lights + l])
+            {
+              continue;
+            }
+            const Vec3 centre = this->OutputPosition(layout, t);
+            Vec3 sum(0.f);
+            const int n = used == 3 ? S * S * S : S * S;
+            for (int k = 0; k < n; ++k)
+            {
+              const Vec3 f((static_cast<float>(k % S) + 0.5f) / S - 0.5f,
+                (static_cast<float>((k / S) % S) + 0.5f) / S - 0.5f,
+                used == 3 ? (static_cast<float>(k / (S * S)) + 0.5f) / S - 0.5f : 0.f);
+              const Vec3 x = layout.MediumRef
+                ? centre + f * texel
+                : centre + frame.U * (f.x * texel.x) + frame.V * (f.y * texel.y);
+              Vec3 irradiance;
+              arrive(l, x, irradiance);
+              sum += irradiance;
+            }
+            store(t, l, sum / static_cast<float>(n), this->Light->DirectionAt(l, centre));
+          }
+        }
+      });
+    distribution.GatherShares(texels, floats, arrivals);
+  }
   this->Arrivals.swap(arrivals);
   this->LocateTriangles(layout);
   if (layout.MediumRef)

@@ -41,11 +41,16 @@ public:
    * run shares the texels out), given the object's estimated `texture`
    * (none: nothing is computed) and, for a medium, its native grid (only
    * the texels a renderer reads get their light). Whether it computed.
+   * `kept`: the arrivals (GetArrivals()) of an earlier texture of the same
+   * grid under the same lights, surfaces and media's extinction, taken
+   * instead of casting the rays again (an edit of a colour).
    */
   bool Compute(const ObjectLayout& layout, const std::vector<float>& texture,
     const NativeMediumGrid& native, const ObjectDistribution& distribution,
-    const ParallelFor& parallelFor);
+    const ParallelFor& parallelFor, const std::vector<float>* kept = nullptr);
   bool HasArrivals() const { return !this->Arrivals.empty(); }
+  /// Each output texel's light per light: irradiance RGB and direction.
+  const std::vector<float>& GetArrivals() const { return this->Arrivals; }
   /// The output toward `eye`: `texture` resampled plus the direct light.
   void Combine(const ObjectLayout& layout, const std::vector<float>& texture, const Vec3& eye,
     const ParallelFor& parallelFor);

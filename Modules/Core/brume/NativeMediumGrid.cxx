@@ -163,7 +163,10 @@ void NativeMediumGrid::Sample(const Medium& medium, std::size_t memory,
   this->SampledBricks = 0;
   this->Source = medium.Density;
   this->BrickRanges.clear();
-  if (previous && !previous->SameField(medium))
+  // The previous grid of the same density (an edit of the medium's albedo),
+  // or of the same scalars classified by another function.
+  const bool sameDensity = previous && previous->Source == medium.Density;
+  if (previous && !sameDensity && !previous->SameField(medium))
   {
     previous = nullptr;
   }
@@ -278,17 +281,18 @@ void NativeMediumGrid::Sample(const Medium& medium, std::size_t memory,
   };
   // The previous grid, where its cells are these: the same layout.
   if (previous &&
-    (factor != 1 || previous->Density.GetDims() != dims ||
-      !SameBox(previous->Density.GetBox(), box)))
+    ((factor != 1 && !sameDensity) || previous->Coarsening != factor ||
+      previous->Density.GetDims() != dims || !SameBox(previous->Density.GetBox(), box)))
   {
     previous = nullptr;
   }
-  if (previous && previous->Classification->SameAs(classified->GetOpacity()))
+  if (previous && (sameDensity || previous->Classification->SameAs(classified->GetOpacity())))
   {
-    // The same function of the same scalars: the same grid and tables.
+    // The same density, or the same function of the same scalars: the
+    // same grids and tables.
     this->Density = previous->Density;
     this->Scalars = previous->Scalars;
-    this->Classification = &classified->GetOpacity();
+    this->Classification = classified && factor == 1 ? &classified->GetOpacity() : nullptr;
     this->BrickRanges = previous->BrickRanges;
     this->ScalarCandidates = previous->ScalarCandidates;
     this->ScalarSkipped = previous->ScalarSkipped;

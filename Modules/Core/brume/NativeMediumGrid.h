@@ -70,9 +70,11 @@ public:
   void Sample(const Medium& medium, std::size_t memory, const ParallelFor& parallelFor);
   /**
    * Sample(), taking what it would compute again from `previous`, a grid
-   * sampled earlier of the same scalar field (the same object) classified
-   * by another function (an edit of the function): the whole grid where
-   * the function is the same (a colour-only edit), else each brick whose
+   * sampled earlier of the same density (the same object: an edit of the
+   * medium's albedo), or of the same scalar field (the same object)
+   * classified by another function (an edit of the function): the whole
+   * grid where the density or the function is the same (a colour-only
+   * edit), else each brick whose
    * scalars lie where the two functions give the same floats
    * (OpacityFunctionEdit::SameOver()). The result is bitwise what
    * Sample() gives without it; `previous` may be null, or of another

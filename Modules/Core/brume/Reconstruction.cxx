@@ -454,8 +454,13 @@ void ObjectRadiance::EnableDirect(const DirectLight* light, const std::array<int
 
 void ObjectRadiance::ComputeDirect(const ParallelFor& parallelFor)
 {
+  this->ComputeDirect(parallelFor, nullptr);
+}
+
+void ObjectRadiance::ComputeDirect(const ParallelFor& parallelFor, const std::vector<float>* kept)
+{
   if (this->Direct.Compute(
-        this->Layout, this->Radiance, this->Native, this->Distributed, parallelFor))
+        this->Layout, this->Radiance, this->Native, this->Distributed, parallelFor, kept))
   {
     this->CombineDirect(parallelFor);
     if (this->Directional.GetOrder() >= 0)

@@ -231,6 +231,8 @@ public:
    * and the texture built. Re-evaluated toward each new eye by UpdateView().
    */
   void ComputeDirect(const ParallelFor& parallelFor);
+  /// The same, taking `kept` arrivals (DirectTexture::Compute()) where given.
+  void ComputeDirect(const ParallelFor& parallelFor, const std::vector<float>* kept);
   const DirectTexture& GetDirect() const { return this->Direct; }
 
   /**

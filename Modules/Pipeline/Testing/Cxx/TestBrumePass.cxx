@@ -233,6 +233,8 @@ void TestTransferFunctionEdits()
             << " bricks sampled again, " << reused << " kept\n";
   Check(pass->GetNumberOfTraces() == 2 && sampled > 0 && reused > 0 && sampled + reused == all,
     "an opacity edit samples again only the bricks whose scalars it changed");
+  Check(reconstruction->GetNumberOfDirectLightsKept() == 0,
+    "an opacity edit casts the shadow rays again");
   Check(asFresh(), "after the opacity edit, the textures of a fresh pipeline");
 
   // The colour only: every brick kept.
@@ -242,6 +244,10 @@ void TestTransferFunctionEdits()
       reconstruction->GetNumberOfNativeBricksSampled() == all + sampled &&
       reconstruction->GetNumberOfNativeBricksReused() == reused + all,
     "a colour edit keeps every brick");
+  // The ground and the medium: their shadow rays are those cast before.
+  Check(reconstruction->GetNumberOfDirectLightsKept() == 2,
+    "a colour edit keeps the direct light's shadow rays (kept " +
+      std::to_string(reconstruction->GetNumberOfDirectLightsKept()) + ")");
   Check(asFresh(), "after the colour edit, the textures of a fresh pipeline");
 
   // Neither edit changed where the function is 0, so the scalars' bricks
