@@ -565,13 +565,21 @@ bool ClassifiedDensity::NativeBrick(
           *out++ = this->Opacity.Extinction(at(cell[0][i], cell[1][j], cell[2][k]));
           continue;
         }
-        // NativeMean(): the function's mean over the cell's s^3 samples.
+        // NativeMean(): the function's mean over the cell's s^3 samples,
+        // classified first and summed after, in the same order (a sum
+        // carried across the classification's calls went through memory
+        // at every sample).
         const int index[3] = { cell[0][i], cell[1][j], cell[2][k] };
         GridDensity::InterpolateNativeSamples(index, dims, s, at, samples);
-        double sum = 0.0;
-        for (int n = 0; n < s * s * s; ++n)
+        const int sampleCount = s * s * s;
+        for (int n = 0; n < sampleCount; ++n)
         {
-          sum += this->Opacity.Extinction(samples[n]);
+          samples[n] = this->Opacity.Extinction(samples[n]);
+        }
+        double sum = 0.0;
+        for (int n = 0; n < sampleCount; ++n)
+        {
+          sum += samples[n];
         }
         *out++ = static_cast<float>(sum / (static_cast<double>(s) * s * s));
       }
