@@ -10,7 +10,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <iomanip>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -157,7 +159,17 @@ struct vtkBrumeRadianceTextures::KeptDirect
     brume::Box Bounds;
     brume::Vec3 SigmaT;
     bool Homogeneous = true;
-    brume::BrickedGrid Grid; // shares the grid's samples: the same memory is the same grid
+    // The grid the rays marched, without keeping its samples: their
+    // memory's owner (the same owner is the same samples, which are never
+    // written after the grid is made), its cells, slots and constants.
+    bool HasGrid = false;
+    std::weak_ptr<float> Samples;
+    const float* SampleData = nullptr; // compared, never read
+    std::size_t SampleCount = 0;
+    std::array<int, 3> Dims{ 0, 0, 0 };
+    brume::Box Box;
+    std::vector<std::int32_t> Slots;
+    std::vector<float> Constants;
   };
   std::vector<Medium> Media;
   struct Object
@@ -218,7 +230,15 @@ std::shared_ptr<vtkBrumeRadianceTextures::KeptDirect> vtkBrumeRadianceTextures::
     key.Homogeneous = medium.IsHomogeneous();
     if (surfaces + m < this->Objects.size())
     {
-      key.Grid = this->Objects[surfaces + m]->GetNative().GetDensity();
+      const brume::BrickedGrid& grid = this->Objects[surfaces + m]->GetNative().GetDensity();
+      key.HasGrid = !grid.Empty();
+      key.Samples = grid.GetSamples().Share();
+      key.SampleData = grid.GetSamples().Data();
+      key.SampleCount = grid.GetSamples().Size();
+      key.Dims = grid.GetDims();
+      key.Box = grid.GetBox();
+      key.Slots = grid.GetSlots();
+      key.Constants = grid.GetConstants();
     }
     kept->Media.push_back(std::move(key));
   }
@@ -270,7 +290,13 @@ bool vtkBrumeRadianceTextures::DirectKeptHolds() const
     if (!medium.IsHomogeneous())
     {
       const brume::BrickedGrid& grid = this->Objects[surfaces + m]->GetNative().GetDensity();
-      if (grid.Empty() || key.Grid.Empty() || !grid.SameAs(key.Grid))
+      const std::shared_ptr<float>& samples = grid.GetSamples().Share();
+      const bool sameOwner =
+        !samples.owner_before(key.Samples) && !key.Samples.owner_before(samples);
+      if (grid.Empty() || !key.HasGrid || !sameOwner || samples.get() != key.SampleData ||
+        grid.GetSamples().Size() != key.SampleCount || grid.GetDims() != key.Dims ||
+        !SameBox(grid.GetBox(), key.Box) || grid.GetSlots() != key.Slots ||
+        grid.GetConstants() != key.Constants)
       {
         return false;
       }
