@@ -554,6 +554,33 @@ TEST(ReconstructionParts, NativeMediumGridKeepsWhatAnEditOfTheFunctionLeft)
   EXPECT_TRUE(same.HasTables(waves.Bounds, { 6, 6, 6 }));
   EXPECT_FALSE(same.HasTables(waves.Bounds, { 7, 7, 7 }));
 
+  // Nearest values: the same bricks kept, still the fresh grid.
+  {
+    const auto& grid = static_cast<const GridDensity&>(classified.GetScalars());
+    std::vector<float> values(grid.GetValues().Size());
+    for (std::size_t v = 0; v < values.size(); ++v)
+    {
+      values[v] = grid.GetValues()[v];
+    }
+    auto nearest = std::make_shared<GridDensity>(grid.GetBounds(), grid.GetDimensions(),
+      std::move(values), false, GridDensity::Interpolation::Nearest);
+    auto classify = [&](std::vector<OpacityTransferFunction::Node> nodes)
+    {
+      Medium m = waves;
+      m.SetDensity(std::make_shared<ClassifiedDensity>(
+        nearest, OpacityTransferFunction(std::move(nodes), 0.1f)));
+      return m;
+    };
+    NativeMediumGrid first, nearestFresh, nearestKept;
+    first.Sample(classify(classified.GetOpacity().GetNodes()), memory, SerialFor());
+    const Medium edited = classify({ { 0.2f, 0.f }, { 0.5f, 0.1f }, { 1.f, 0.6f } });
+    nearestFresh.Sample(edited, memory, SerialFor());
+    nearestKept.Sample(edited, memory, ThreadsFor(3), &first);
+    EXPECT_TRUE(SameGrids(nearestFresh, nearestKept));
+    EXPECT_GT(nearestKept.GetReusedBricks(), 0u);
+    EXPECT_GT(nearestKept.GetSampledBricks(), 0u);
+  }
+
   // An unclassified density: the same object shares the whole grid (an
   // edit of the medium's albedo), another is sampled.
   Medium plain = waves;

@@ -464,11 +464,41 @@ bool ClassifiedDensity::NativeBrickRange(
 {
   float points[MostBrickPoints * MostBrickPoints * MostBrickPoints];
   std::array<int, 3> first{}, count{};
-  if (!this->NativeBrickPoints(lower, size, points, first, count))
+  if (this->NativeBrickPoints(lower, size, points, first, count))
+  {
+    PointRange(points, static_cast<std::size_t>(count[0]) * count[1] * count[2], range);
+    return true;
+  }
+  if (!this->Grid || size < 1 || size > MostBrickCells)
   {
     return false;
   }
-  PointRange(points, static_cast<std::size_t>(count[0]) * count[1] * count[2], range);
+  // A grid read otherwise (nearest values, cell values): its cells read
+  // the values of their own cell or point and of the neighbours' (BendsWithin(),
+  // the samples of NativeMean()), the same window of values.
+  const std::array<int, 3>& dims = this->Grid->GetDimensions();
+  for (int a = 0; a < 3; ++a)
+  {
+    const int last = std::min(lower[a] + size - 1, dims[a] - 1);
+    first[a] = std::max(0, std::min(lower[a], dims[a] - 1) - 1);
+    count[a] = std::min(dims[a] - 1, last + 1) - first[a] + 1;
+  }
+  std::size_t n = 0;
+  this->Grid->GetValues().Visit(
+    [&](const auto* values)
+    {
+      for (int z = first[2]; z < first[2] + count[2]; ++z)
+        for (int y = first[1]; y < first[1] + count[1]; ++y)
+        {
+          const auto* row = values + (static_cast<std::size_t>(z) * dims[1] + y) * dims[0];
+          for (int x = first[0]; x < first[0] + count[0]; ++x)
+          {
+            points[n++] = static_cast<float>(row[x]);
+          }
+        }
+      return true;
+    });
+  PointRange(points, n, range);
   return true;
 }
 

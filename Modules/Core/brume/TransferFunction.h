@@ -225,9 +225,13 @@ public:
     const std::array<int, 3>& lower, int size, int s, float* out, float* range = nullptr) const;
   /**
    * The smallest and largest of the scalars NativeBrick() reads for the
-   * same cells (`range`: two floats; what it writes there too): its
-   * samples depend on the function over that range only
-   * (OpacityFunctionEdit::SameOver()). False where NativeBrick() is.
+   * same cells (`range`: two floats; what it writes there too), or, over a
+   * grid read otherwise (nearest values, cell values), of the values its
+   * cells and their neighbours hold, which the cells' samples read
+   * (BendsWithinNativeCell(), NativeMean()): the cells' samples depend on
+   * the function over that range only (OpacityFunctionEdit::SameOver()).
+   * NaN where a value is not finite; false for other fields whose
+   * NativeBrick() is false.
    */
   bool NativeBrickRange(const std::array<int, 3>& lower, int size, float* range) const;
 
