@@ -338,4 +338,35 @@ TEST(VdbDensity, AClassifiedGridsCellsAreTheirVoxelsOrTheirMeans)
       }
   EXPECT_GT(bending, 1000);
   EXPECT_EQ(differing, 0);
+
+  // An edit of the function where no voxel lies (its voxels span 0.2 to
+  // 0.8, its background is 0.25): every brick is kept from its voxels'
+  // range, and the grid is bitwise the one sampled afresh.
+  auto withFunction = [&](float last)
+  {
+    Medium m = medium;
+    m.Density = std::make_shared<ClassifiedDensity>(scalars,
+      OpacityTransferFunction({ { 0.1f, 0.f }, { 0.3f, 0.f }, { 0.45f, 0.6f }, { 0.7f, 0.2f },
+                                { 0.85f, 0.2f }, { 0.95f, last } },
+        0.05f));
+    return m;
+  };
+  NativeMediumGrid before, fresh, kept;
+  before.Sample(withFunction(0.9f), std::size_t(1) << 30, SerialFor());
+  const Medium edited = withFunction(0.4f);
+  fresh.Sample(edited, std::size_t(1) << 30, SerialFor());
+  kept.Sample(edited, std::size_t(1) << 30, SerialFor(), &before);
+  EXPECT_GT(kept.GetReusedBricks(), 0u);
+  EXPECT_EQ(kept.GetSampledBricks(), 0u);
+  int unequal = 0;
+  for (int k = 0; k < dims[2]; ++k)
+    for (int j = 0; j < dims[1]; ++j)
+      for (int i = 0; i < dims[0]; ++i)
+      {
+        unequal += fresh.GetDensity().At(i, j, k) == kept.GetDensity().At(i, j, k) &&
+            fresh.GetScalars().At(i, j, k) == kept.GetScalars().At(i, j, k)
+          ? 0
+          : 1;
+      }
+  EXPECT_EQ(unequal, 0);
 }
