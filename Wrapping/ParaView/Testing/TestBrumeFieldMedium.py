@@ -20,6 +20,9 @@ from brume_testing import (check, check_media_drawn, finish, image_error,  # noq
 
 plugin, output_dir = sys.argv[1:3]
 LoadPlugin(plugin, ns=globals())
+# Brume's Python classes (on PYTHONPATH), so that the reconstruction's
+# client-side object answers with its own methods.
+import brume  # noqa: E402,F401
 
 wavelet = Wavelet()
 lut = GetColorTransferFunction("RTData")
@@ -85,8 +88,20 @@ def screenshot(suffix):
 
 
 # The editors change the functions' proxies: the medium follows.
+filter = reconstruction.GetClientSideObject()
+sampled = filter.GetNumberOfNativeBricksSampled()
+reused = filter.GetNumberOfNativeBricksReused()
+kept = filter.GetNumberOfDirectLightsKept()
 lut.RGBPoints = [90, 0.9, 0.3, 0.1, 280, 0.9, 0.3, 0.1]
 recoloured = screenshot("recoloured")
+# A colour edit keeps the medium's extinction and the shadow rays through it.
+check(sampled > 0 and filter.GetNumberOfNativeBricksSampled() == sampled
+      and filter.GetNumberOfNativeBricksReused() == reused + sampled
+      and filter.GetNumberOfDirectLightsKept() > kept,
+      "a colour edit keeps every brick of extinction and the shadow rays (sampled %d -> %d, "
+      "kept %d -> %d, rays kept %d -> %d)"
+      % (sampled, filter.GetNumberOfNativeBricksSampled(), reused,
+         filter.GetNumberOfNativeBricksReused(), kept, filter.GetNumberOfDirectLightsKept()))
 check(image_error(recoloured, shown) > 10, "a new colour map changes the view (error %g)"
       % image_error(recoloured, shown))
 colours = medium.GetClientSideObject().GetOutput().GetFieldData().GetArray("BrumeScalarColor")
@@ -108,8 +123,12 @@ check(table is not None and all(abs(a - b) < 1e-6 for a, b in
                                 zip(table.GetTuple3(0), (0.81, 0.27, 0.09))),
       "the view's albedo table is the new colour times Albedo: %s"
       % (table.GetTuple3(0) if table else None,))
+kept = filter.GetNumberOfDirectLightsKept()
 opacity.Points = [90, 0.0, 0.5, 0.0, 280, 0.05, 0.5, 0.0]
 thinner = screenshot("thinner")
+check(filter.GetNumberOfNativeBricksSampled() > sampled
+      and filter.GetNumberOfDirectLightsKept() == kept,
+      "an opacity edit samples the extinction and casts the shadow rays again")
 check(image_error(thinner, recoloured) > 10, "a new opacity function changes the view (error %g)"
       % image_error(thinner, recoloured))
 check_media_drawn(view, display, thinner, size, output_dir, name, "the wavelet")
