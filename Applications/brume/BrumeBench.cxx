@@ -226,7 +226,7 @@ int RunBench(const BenchOptions& given)
   const double update = BenchReconstruction(source, tracer, report);
   BenchRendering(source, tracer, update, report);
   BenchMirror(source->GetOutput(), static_cast<vtkIdType>(particles), options.Seed, report);
-  BenchPass(particles, report);
+  BenchPass(particles, options.VolumePoints, report);
   // A command that fails is said, its figures left out, the others kept.
   const bool commands = BenchWholeCommands(options, report);
   report.PrintSummary();

@@ -122,7 +122,7 @@ double BenchReconstruction(vtkAlgorithm* source, vtkAlgorithm* tracer, Report& r
 void BenchRendering(vtkAlgorithm* source, vtkAlgorithm* tracer, double update, Report& report);
 
 /// A VTK program's renderer lit through vtkBrumePass at `particles`.
-void BenchPass(long long particles, Report& report);
+void BenchPass(long long particles, int volumePoints, Report& report);
 
 /// A mirror at display time (the default scene with its floor a mirror).
 void BenchMirror(

@@ -434,6 +434,14 @@ void AddBench(CLI::App& app, BenchOptions& o, const Defaults& d)
   bench->add_option("--json", o.Json, "also write the figures, targets and verdicts as JSON")
     ->transform(NotEmpty("a file name"))
     ->type_name("FILE");
+  bench
+    ->add_option("--volume-size", o.VolumePoints,
+      "points along each axis of the render pass's Wavelet\n"
+      "volume, whose transfer-function edits are timed\n"
+      "(default 21; 512: a scientific volume's, which the\n"
+      "edits' targets are for)")
+    ->transform(Integer(2, 1024, "an integer in [2, 1024]"))
+    ->type_name("N");
 }
 
 void AddChart(CLI::App& app, ChartOptions& o, const Defaults& d)

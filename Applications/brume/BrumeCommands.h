@@ -25,6 +25,9 @@ struct BenchOptions
   std::uint64_t Seed = 0;
   /// Where to write the figures as JSON (none when empty).
   std::string Json;
+  /// Points per axis of the render pass's volume, whose transfer-function
+  /// edits are timed.
+  int VolumePoints = 21;
 };
 
 /// `brume bench`: phase-1 throughput against Embree's raw throughput.
