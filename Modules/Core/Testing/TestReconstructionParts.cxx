@@ -602,6 +602,57 @@ TEST(ReconstructionParts, NativeMediumGridKeepsWhatAnEditOfTheFunctionLeft)
   EXPECT_TRUE(SameGrids(before, unrelated));
 }
 
+TEST(ReconstructionParts, NativeMediumGridOfNearestOrCellValuesIsTheirValuesClassified)
+{
+  // Nearest values (and cell values): every sample of a cell reads its own
+  // value, so the grid, sampled a brick at a time, is each cell's value
+  // classified, and where the function bends inside a cell's neighbourhood
+  // the cell's mean of 4^3 samples gives the same float.
+  for (const bool cells : { false, true })
+  {
+    const Medium linear = ClassifiedWaves(40);
+    const auto& classified = static_cast<const ClassifiedDensity&>(*linear.Density);
+    const auto& grid = static_cast<const GridDensity&>(classified.GetScalars());
+    std::vector<float> values(grid.GetValues().Size());
+    for (std::size_t v = 0; v < values.size(); ++v)
+    {
+      values[v] = grid.GetValues()[v];
+    }
+    auto scalars = std::make_shared<GridDensity>(grid.GetBounds(), grid.GetDimensions(),
+      std::move(values), cells, GridDensity::Interpolation::Nearest);
+    Medium medium = linear;
+    auto density = std::make_shared<ClassifiedDensity>(scalars, classified.GetOpacity());
+    medium.SetDensity(density);
+    NativeMediumGrid native;
+    native.Sample(medium, std::size_t(64) << 20, ThreadsFor(3));
+    ASSERT_EQ(native.GetCoarsening(), 1);
+    const std::array<int, 3>& dims = native.GetResolution();
+    const Box& box = native.GetBox();
+    const Vec3 cell = box.Extent() /
+      Vec3(static_cast<float>(dims[0]), static_cast<float>(dims[1]), static_cast<float>(dims[2]));
+    int bending = 0, differing = 0;
+    for (int k = 0; k < dims[2]; ++k)
+      for (int j = 0; j < dims[1]; ++j)
+        for (int i = 0; i < dims[0]; ++i)
+        {
+          const float own = classified.GetOpacity().Extinction(
+            scalars->GetValues()[(static_cast<std::size_t>(k) * dims[1] + j) * dims[0] + i]);
+          const Vec3 lower = box.lower +
+            Vec3(static_cast<float>(i), static_cast<float>(j), static_cast<float>(k)) * cell;
+          const Box region{ lower, lower + cell };
+          if (density->BendsWithinNativeCell(i, j, k, region))
+          {
+            ++bending;
+            differing += static_cast<float>(density->DensityField::NativeMean(
+                           i, j, k, region, medium.Bounds, NativeMediumGrid::BendSamples)) != own;
+          }
+          differing += native.GetDensity().At(i, j, k) != own;
+        }
+    EXPECT_GT(bending, 1000) << (cells ? "cells" : "points");
+    EXPECT_EQ(differing, 0) << (cells ? "cells" : "points");
+  }
+}
+
 TEST(ReconstructionParts, NativeMediumGridAveragesTheCellsWhereTheFunctionBends)
 {
   // Where a cell's scalars span one of the function's points, its

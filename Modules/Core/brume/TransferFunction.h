@@ -217,8 +217,10 @@ public:
    * from `lower` (x fastest; cells past the grid's last take the last's):
    * NativeMean() of s^3 samples where BendsWithinNativeCell(), else the
    * function at the cell's point; the same floats as cell by cell, from
-   * the brick's points read once. False, with nothing written, where the
-   * scalars are not a grid of point values interpolated linearly, or size
+   * the brick's points read once. A grid of nearest or cell values: each
+   * cell's own value classified (every sample of a cell reads it). False,
+   * with nothing written, where the scalars are neither such a grid nor
+   * one of points interpolated linearly (or an OpenVDB grid), or size
    * exceeds 8.
    */
   bool NativeBrick(
@@ -246,6 +248,8 @@ private:
   /// (into `points`, (size + 2)^3 at most), their first point and counts.
   bool NativeBrickPoints(const std::array<int, 3>& lower, int size, float* points,
     std::array<int, 3>& first, std::array<int, 3>& count) const;
+  /// NativeBrickRange() over the grid's own values, with the cells' neighbours.
+  void GridWindowRange(const std::array<int, 3>& lower, int size, float* range) const;
   /// Whether one of the function's points lies strictly between lo and hi.
   bool PointBetween(float lo, float hi) const
   {
