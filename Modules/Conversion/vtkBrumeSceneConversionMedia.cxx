@@ -24,9 +24,13 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
+#include <filesystem>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <utility>
+#include <vector>
 
 namespace vtkBrumeSceneConversionInternals
 {
@@ -191,6 +195,72 @@ std::string ReadCoefficients(vtkFieldData* fd, brume::Medium& m)
   return {};
 }
 
+// An OpenVDB grid loaded for a conversion, found again by the next one
+// while someone holds it (the textures hold their scene's): the tracer and
+// the reconstruction of a re-trace (an edit of the medium's transfer
+// function or albedo) read the same grid object, so the reconstruction
+// keeps what the edit left (brume::NativeMediumGrid::SameField), and the
+// file is not read again. Keyed by the file's path, size and modification
+// time, the grid's name and how its values are read.
+std::shared_ptr<const brume::VdbDensity> SharedVdb(
+  const std::string& file, const std::string& grid, bool scalars, std::string& error)
+{
+  struct Key
+  {
+    std::string File, Grid;
+    bool Scalars;
+    std::uintmax_t Size;
+    std::filesystem::file_time_type Time;
+    bool operator==(const Key& o) const
+    {
+      return File == o.File && Grid == o.Grid && Scalars == o.Scalars && Size == o.Size &&
+        Time == o.Time;
+    }
+  };
+  std::error_code failed;
+  const std::filesystem::path path = std::filesystem::absolute(file, failed);
+  Key key{ failed ? file : path.lexically_normal().string(), grid, scalars,
+    std::filesystem::file_size(file, failed), {} };
+  if (!failed)
+  {
+    key.Time = std::filesystem::last_write_time(file, failed);
+  }
+  auto load = [&]() -> std::shared_ptr<const brume::VdbDensity>
+  {
+    return scalars ? brume::VdbDensity::LoadScalars(file, grid, error)
+                   : brume::VdbDensity::Load(file, grid, error);
+  };
+  if (failed)
+  {
+    return load(); // says what is wrong with the file
+  }
+  static std::mutex mutex;
+  static std::vector<std::pair<Key, std::weak_ptr<const brume::VdbDensity>>> kept;
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    kept.erase(std::remove_if(kept.begin(), kept.end(),
+                 [](const auto& entry) { return entry.second.expired(); }),
+      kept.end());
+    for (const auto& entry : kept)
+    {
+      if (entry.first == key)
+      {
+        if (auto found = entry.second.lock())
+        {
+          return found;
+        }
+      }
+    }
+  }
+  std::shared_ptr<const brume::VdbDensity> loaded = load();
+  if (loaded)
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    kept.emplace_back(key, loaded);
+  }
+  return loaded;
+}
+
 // The density of a sparse OpenVDB grid, used in place. With a transfer
 // function, the grid's values are scalars it classifies.
 std::string LoadVdbDensity(vtkFieldData* fd, const std::string& vdbFile, brume::Medium& m)
@@ -202,9 +272,8 @@ std::string LoadVdbDensity(vtkFieldData* fd, const std::string& vdbFile, brume::
   {
     return error;
   }
-  std::shared_ptr<const brume::DensityField> density = opacity
-    ? brume::VdbDensity::LoadScalars(vdbFile, ReadString(fd, vtkBrumeNames::VDBGrid), error)
-    : brume::VdbDensity::Load(vdbFile, ReadString(fd, vtkBrumeNames::VDBGrid), error);
+  std::shared_ptr<const brume::DensityField> density =
+    SharedVdb(vdbFile, ReadString(fd, vtkBrumeNames::VDBGrid), opacity.has_value(), error);
   if (!density)
   {
     return error;

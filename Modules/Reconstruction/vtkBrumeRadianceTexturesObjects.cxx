@@ -306,13 +306,28 @@ void vtkBrumeRadianceTextures::SampleMedia(vtkBrumeReconstructionWork& work)
   // sampled before, on every thread, one medium after the other.
   const brume::ParallelFor parallelFor = vtkBrumeSMP::ParallelFor();
   const std::size_t surfaces = this->Scene.Surfaces.size();
+  // The replaced textures' grids that no medium here can take from (a new
+  // time step, another volume) go before any is sampled: a large volume's
+  // next grid is not made beside the last one.
+  auto offers = [](const brume::NativeMediumGrid& grid, const brume::Medium& medium)
+  { return grid.SameDensity(medium) || grid.SameField(medium); };
+  for (brume::NativeMediumGrid& previous : this->PreviousNatives)
+  {
+    if (std::none_of(this->Scene.Media.begin(), this->Scene.Media.end(),
+          [&](const brume::Medium& medium) { return offers(previous, medium); }))
+    {
+      previous = brume::NativeMediumGrid();
+    }
+  }
   for (std::size_t o = 0; o < this->Objects.size(); ++o)
   {
     brume::ObjectRadiance& object = *this->Objects[o];
-    // The grid of the same scalar field in the textures replaced.
+    // The grid of the same density, or of the same scalar field, in the
+    // textures replaced.
     for (brume::NativeMediumGrid& previous : this->PreviousNatives)
     {
-      if (this->Scene.IsMedium(o) && previous.SameField(this->Scene.Media[o - surfaces]))
+      if (this->Scene.IsMedium(o) && !previous.Empty() &&
+        offers(previous, this->Scene.Media[o - surfaces]))
       {
         object.OfferNative(std::move(previous));
         previous = brume::NativeMediumGrid();

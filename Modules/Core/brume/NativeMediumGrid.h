@@ -85,6 +85,11 @@ public:
   /// Whether Sample(medium, ..., this) could take from this grid: both a
   /// classified density of the same scalars, this one at their own resolution.
   bool SameField(const Medium& medium) const;
+  /// Whether this grid was sampled from `medium`'s density itself (the same object).
+  bool SameDensity(const Medium& medium) const
+  {
+    return this->Source && this->Source == medium.Density;
+  }
   /**
    * Of the extinction's bricks the last Sample() evaluated (those its
    * majorants did not leave out), how many it took from the previous grid
