@@ -393,6 +393,19 @@ Medium ClassifiedWaves(int n)
   return waves;
 }
 
+// ClassifiedWaves()'s scalars read as nearest values, or as cell values.
+std::shared_ptr<GridDensity> NearestCopy(const ClassifiedDensity& classified, bool cells)
+{
+  const auto& grid = static_cast<const GridDensity&>(classified.GetScalars());
+  std::vector<float> values(grid.GetValues().Size());
+  for (std::size_t v = 0; v < values.size(); ++v)
+  {
+    values[v] = grid.GetValues()[v];
+  }
+  return std::make_shared<GridDensity>(grid.GetBounds(), grid.GetDimensions(), std::move(values),
+    cells, GridDensity::Interpolation::Nearest);
+}
+
 // Every cell of two grids' density and scalars, compared bitwise.
 bool SameGrids(const NativeMediumGrid& a, const NativeMediumGrid& b)
 {
@@ -556,14 +569,7 @@ TEST(ReconstructionParts, NativeMediumGridKeepsWhatAnEditOfTheFunctionLeft)
 
   // Nearest values: the same bricks kept, still the fresh grid.
   {
-    const auto& grid = static_cast<const GridDensity&>(classified.GetScalars());
-    std::vector<float> values(grid.GetValues().Size());
-    for (std::size_t v = 0; v < values.size(); ++v)
-    {
-      values[v] = grid.GetValues()[v];
-    }
-    auto nearest = std::make_shared<GridDensity>(grid.GetBounds(), grid.GetDimensions(),
-      std::move(values), false, GridDensity::Interpolation::Nearest);
+    auto nearest = NearestCopy(classified, false);
     auto classify = [&](std::vector<OpacityTransferFunction::Node> nodes)
     {
       Medium m = waves;
@@ -612,14 +618,7 @@ TEST(ReconstructionParts, NativeMediumGridOfNearestOrCellValuesIsTheirValuesClas
   {
     const Medium linear = ClassifiedWaves(40);
     const auto& classified = static_cast<const ClassifiedDensity&>(*linear.Density);
-    const auto& grid = static_cast<const GridDensity&>(classified.GetScalars());
-    std::vector<float> values(grid.GetValues().Size());
-    for (std::size_t v = 0; v < values.size(); ++v)
-    {
-      values[v] = grid.GetValues()[v];
-    }
-    auto scalars = std::make_shared<GridDensity>(grid.GetBounds(), grid.GetDimensions(),
-      std::move(values), cells, GridDensity::Interpolation::Nearest);
+    auto scalars = NearestCopy(classified, cells);
     Medium medium = linear;
     auto density = std::make_shared<ClassifiedDensity>(scalars, classified.GetOpacity());
     medium.SetDensity(density);

@@ -177,14 +177,20 @@ void TestProgressive(vtkRenderer* renderer, vtkRenderWindow* window, vtkBrumePas
 // textures it replaces the bricks of extinction an opacity edit left as
 // they were (all of them after a colour edit), and its textures are
 // bitwise those of a fresh pipeline over the edited scene.
-void TestTransferFunctionEdits()
+// An off-screen window of Size^2 pixels showing `renderer`.
+void OffScreen(vtkRenderWindow* window, vtkRenderer* renderer)
 {
-  vtkNew<vtkRenderer> renderer;
-  vtkNew<vtkRenderWindow> window;
   window->SetOffScreenRendering(1);
   window->SetMultiSamples(0);
   window->SetSize(Size, Size);
   window->AddRenderer(renderer);
+}
+
+void TestTransferFunctionEdits()
+{
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkRenderWindow> window;
+  OffScreen(window, renderer);
   AddGround(renderer, 0.7, 0.7, 0.7);
   // 49^3 points: 7^3 bricks, the outer ones below 200 and the centre above.
   const double where[3] = { 0, 0, 0 };
@@ -303,10 +309,7 @@ int TestBrumePass(int, char*[])
   // The VTK program.
   vtkNew<vtkRenderer> renderer;
   vtkNew<vtkRenderWindow> window;
-  window->SetOffScreenRendering(1);
-  window->SetMultiSamples(0);
-  window->SetSize(Size, Size);
-  window->AddRenderer(renderer);
+  OffScreen(window, renderer);
   auto ground = AddPassScene(renderer);
   vtkCamera* camera = renderer->GetActiveCamera();
 

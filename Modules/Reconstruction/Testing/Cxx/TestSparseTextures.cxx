@@ -62,16 +62,26 @@ struct Textures
   vtkIdType Bytes = 0; // the extinction grid's arrays, as brume render --timings counts them
 };
 
+// A scene file read, traced (20,000 particles) and reconstructed.
+struct Chain
+{
+  vtkNew<vtkBrumeSceneReader> Reader;
+  vtkNew<vtkBrumeLightTracer> Tracer;
+  vtkNew<vtkBrumeRadianceReconstruction> Reconstruction;
+  Chain()
+  {
+    this->Tracer->SetInputConnection(this->Reader->GetOutputPort());
+    this->Tracer->SetNumberOfParticles(20000);
+    this->Reconstruction->SetInputConnection(0, this->Reader->GetOutputPort());
+    this->Reconstruction->SetInputConnection(1, this->Tracer->GetOutputPort());
+  }
+};
+
 Textures Reconstruct(const std::string& scene)
 {
-  vtkNew<vtkBrumeSceneReader> reader;
-  reader->SetFileName(scene.c_str());
-  vtkNew<vtkBrumeLightTracer> tracer;
-  tracer->SetInputConnection(reader->GetOutputPort());
-  tracer->SetNumberOfParticles(20000);
-  vtkNew<vtkBrumeRadianceReconstruction> reconstruction;
-  reconstruction->SetInputConnection(0, reader->GetOutputPort());
-  reconstruction->SetInputConnection(1, tracer->GetOutputPort());
+  Chain chain;
+  chain.Reader->SetFileName(scene.c_str());
+  vtkBrumeRadianceReconstruction* reconstruction = chain.Reconstruction;
   Textures t;
   if (!reconstruction->GetExecutive()->Update())
   {
@@ -115,17 +125,12 @@ void TestEdits(const std::string& dir)
     function + R"([[0, 0], [0.1, 0.2], [0.4, 0.5]] } }, "albedo": [0.9, 0.9, 0.9])");
   for (const std::string kind : { "albedo", "opacity" })
   {
-    vtkNew<vtkBrumeSceneReader> reader;
-    vtkNew<vtkBrumeLightTracer> tracer;
-    tracer->SetInputConnection(reader->GetOutputPort());
-    tracer->SetNumberOfParticles(20000);
-    vtkNew<vtkBrumeRadianceReconstruction> reconstruction;
-    reconstruction->SetInputConnection(0, reader->GetOutputPort());
-    reconstruction->SetInputConnection(1, tracer->GetOutputPort());
+    Chain chain;
+    vtkBrumeRadianceReconstruction* reconstruction = chain.Reconstruction;
     bool ran = true;
     for (const char* step : { "-1.json", "-2.json" })
     {
-      reader->SetFileName((dir + "/" + kind + step).c_str());
+      chain.Reader->SetFileName((dir + "/" + kind + step).c_str());
       ran = ran && reconstruction->GetExecutive()->Update();
     }
     Check(ran, kind + " edit: both scenes reconstruct");
