@@ -93,6 +93,15 @@ BrickedGrid BrickedGrid::SampleBricks(const std::array<int, 3>& dims, const Box&
   const std::function<bool(const std::array<int, 3>&, const std::array<int, 3>&)>& zeroOver,
   const ParallelFor& parallelFor, float skipped)
 {
+  // The bricks that may hold a sample other than 0, in brick order.
+  return SampleBricks(
+    dims, box, brick, Candidates(dims, zeroOver, parallelFor), parallelFor, skipped);
+}
+
+BrickedGrid BrickedGrid::SampleBricks(const std::array<int, 3>& dims, const Box& box,
+  const std::function<void(const std::array<int, 3>&, float*)>& brick,
+  const std::vector<char>& candidate, const ParallelFor& parallelFor, float skipped)
+{
   BrickedGrid grid;
   grid.Dims = dims;
   grid.Bounds = box;
@@ -113,8 +122,6 @@ BrickedGrid BrickedGrid::SampleBricks(const std::array<int, 3>& dims, const Box&
     return std::array<int, 3>{ static_cast<int>(b % bx) * Stride,
       static_cast<int>((b % bxy) / bx) * Stride, static_cast<int>(b / bxy) * Stride };
   };
-  // The bricks that may hold a sample other than 0, in brick order.
-  const std::vector<char> candidate = Candidates(dims, zeroOver, parallelFor);
   std::vector<std::size_t> sampled;
   for (std::size_t b = 0; b < bricks; ++b)
   {

@@ -65,6 +65,10 @@ public:
     const std::function<void(const std::array<int, 3>&, float*)>& brick,
     const std::function<bool(const std::array<int, 3>&, const std::array<int, 3>&)>& zeroOver,
     const ParallelFor& parallelFor, float skipped = 0.f);
+  /// The same with the bricks to evaluate given (Candidates()).
+  static BrickedGrid SampleBricks(const std::array<int, 3>& dims, const Box& box,
+    const std::function<void(const std::array<int, 3>&, float*)>& brick,
+    const std::vector<char>& candidate, const ParallelFor& parallelFor, float skipped = 0.f);
 
   /**
    * Per brick of a grid of `dims` cells (in brick order): whether Sample()

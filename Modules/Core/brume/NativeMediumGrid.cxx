@@ -163,6 +163,7 @@ void NativeMediumGrid::Sample(const Medium& medium, std::size_t memory,
   this->SampledBricks = 0;
   this->Source = medium.Density;
   this->BrickRanges.clear();
+  this->Candidates.clear();
   // The previous grid of the same density (an edit of the medium's albedo),
   // or of the same scalars classified by another function.
   const bool sameDensity = previous && previous->Source == medium.Density;
@@ -294,7 +295,7 @@ void NativeMediumGrid::Sample(const Medium& medium, std::size_t memory,
     this->Scalars = previous->Scalars;
     this->Classification = classified && factor == 1 ? &classified->GetOpacity() : nullptr;
     this->BrickRanges = previous->BrickRanges;
-    this->ScalarCandidates = previous->ScalarCandidates;
+    this->Candidates = previous->Candidates;
     this->ScalarSkipped = previous->ScalarSkipped;
     this->DensityTable = previous->DensityTable;
     this->DensityMoments = previous->DensityMoments;
@@ -322,14 +323,15 @@ void NativeMediumGrid::Sample(const Medium& medium, std::size_t memory,
     // (DensityField::NativePoints: a grid's values, an OpenVDB grid's
     // voxels), else one by one.
     const DensityField& scalars = classified->GetScalars();
-    // The scalars do not depend on the function, only which bricks it
-    // leaves out (holding `nothing`): where those are the previous grid's,
-    // so are the scalars' bricks, shared (and a renderer that holds them
-    // need not send them again).
+    // Which bricks the function leaves out (the scalars' and the
+    // extinction's alike). The scalars do not depend on the function, only
+    // on those (holding `nothing`): where they are the previous grid's, so
+    // are the scalars' bricks, shared (and a renderer that holds them need
+    // not send them again).
     std::vector<char> candidates = BrickedGrid::Candidates(dims, zeroOver, parallelFor);
     const bool sameScalars =
-      previous && previous->ScalarCandidates == candidates && previous->ScalarSkipped == nothing;
-    this->ScalarCandidates = std::move(candidates);
+      previous && previous->Candidates == candidates && previous->ScalarSkipped == nothing;
+    this->Candidates = std::move(candidates);
     this->ScalarSkipped = nothing;
     this->Scalars = sameScalars
       ? previous->Scalars
@@ -368,7 +370,7 @@ void NativeMediumGrid::Sample(const Medium& medium, std::size_t memory,
                                     centre(lower[0] + x, lower[1] + y, lower[2] + z));
                 }
           },
-          zeroOver, parallelFor, nothing);
+          this->Candidates, parallelFor, nothing);
     this->Classification = &function;
   }
   // One sample at the centre of a native cell (the field's own value
@@ -466,7 +468,7 @@ void NativeMediumGrid::Sample(const Medium& medium, std::size_t memory,
               std::min(lower[2] + k, dims[2] - 1));
           }
     },
-    zeroOver, parallelFor);
+    this->Candidates, parallelFor);
   this->ReusedBricks = reused.load();
   this->SampledBricks = sampled.load();
 }

@@ -152,8 +152,9 @@ private:
   // next Sample() compares the functions over.
   std::shared_ptr<const DensityField> Source;
   std::vector<float> BrickRanges;
-  // Which bricks of the scalars were sampled, and what the others hold.
-  std::vector<char> ScalarCandidates;
+  // Which bricks were sampled (the scalars' and a classified extinction's),
+  // and what the scalars' others hold.
+  std::vector<char> Candidates;
   float ScalarSkipped = 0.f;
   std::size_t ReusedBricks = 0, SampledBricks = 0;
   int Coarsening = 1;

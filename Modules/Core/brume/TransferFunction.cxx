@@ -421,6 +421,20 @@ bool ClassifiedDensity::BendsWithinNativeCell(int i, int j, int k, const Box& ce
 namespace
 {
 constexpr int MostBrickCells = 8, MostBrickPoints = MostBrickCells + 2;
+
+// The values that the size^3 cells from `lower` read: their own and one
+// beyond on either side, clamped at the grid's ends (`dims` values along
+// each axis).
+void BrickWindow(const std::array<int, 3>& lower, int size, const std::array<int, 3>& dims,
+  std::array<int, 3>& first, std::array<int, 3>& count)
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    const int last = std::min(lower[a] + size - 1, dims[a] - 1);
+    first[a] = std::max(0, std::min(lower[a], dims[a] - 1) - 1);
+    count[a] = std::min(dims[a] - 1, last + 1) - first[a] + 1;
+  }
+}
 }
 
 bool ClassifiedDensity::NativeBrickPoints(const std::array<int, 3>& lower, int size, float* points,
@@ -430,14 +444,7 @@ bool ClassifiedDensity::NativeBrickPoints(const std::array<int, 3>& lower, int s
   {
     return false;
   }
-  const std::array<int, 3> dims = this->Scalars->NativeResolution();
-  // The cells' points, one beyond on either side, clamped at the grid's ends.
-  for (int a = 0; a < 3; ++a)
-  {
-    const int last = std::min(lower[a] + size - 1, dims[a] - 1);
-    first[a] = std::max(0, std::min(lower[a], dims[a] - 1) - 1);
-    count[a] = std::min(dims[a] - 1, last + 1) - first[a] + 1;
-  }
+  BrickWindow(lower, size, this->Scalars->NativeResolution(), first, count);
   return this->Scalars->NativePoints(first, count, points);
 }
 
@@ -486,12 +493,7 @@ void ClassifiedDensity::GridWindowRange(
   float points[MostBrickPoints * MostBrickPoints * MostBrickPoints];
   std::array<int, 3> first{}, count{};
   const std::array<int, 3>& dims = this->Grid->GetDimensions();
-  for (int a = 0; a < 3; ++a)
-  {
-    const int last = std::min(lower[a] + size - 1, dims[a] - 1);
-    first[a] = std::max(0, std::min(lower[a], dims[a] - 1) - 1);
-    count[a] = std::min(dims[a] - 1, last + 1) - first[a] + 1;
-  }
+  BrickWindow(lower, size, dims, first, count);
   std::size_t n = 0;
   this->Grid->GetValues().Visit(
     [&](const auto* values)
