@@ -397,6 +397,12 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
       }
     }
   };
+  if (!sameAtlas)
+  {
+    // Until the atlas is filled anew, it holds nothing to compare with.
+    impl.AtlasSamples = nullptr;
+    impl.AtlasSlots = nullptr;
+  }
   if (sameAtlas)
   {
     largest = impl.AtlasLargest;
