@@ -47,7 +47,7 @@ bool SameArray(vtkDataArray* x, vtkDataArray* y)
   return x && y && x->GetDataType() == y->GetDataType() &&
     x->GetNumberOfComponents() == y->GetNumberOfComponents() &&
     x->GetNumberOfTuples() == y->GetNumberOfTuples() &&
-    (x->GetNumberOfValues() == 0 ||
+    (x->GetNumberOfValues() == 0 || x->GetVoidPointer(0) == y->GetVoidPointer(0) ||
       std::memcmp(x->GetVoidPointer(0), y->GetVoidPointer(0),
         static_cast<std::size_t>(x->GetNumberOfValues()) * x->GetDataTypeSize()) == 0);
 }
@@ -192,9 +192,8 @@ vtkPropCollection* vtkBrumeSceneActors::GetProps()
   return this->Props;
 }
 
-vtkActor* vtkBrumeSceneActors::AddSurfaceActor(
-  vtkRenderer* renderer, vtkImageData* image, vtkPolyData* surface, vtkTexture* texture,
-  vtkPolyDataMapper* mapper)
+vtkActor* vtkBrumeSceneActors::AddSurfaceActor(vtkRenderer* renderer, vtkImageData* image,
+  vtkPolyData* surface, vtkTexture* texture, vtkPolyDataMapper* mapper)
 {
   texture->SetInputData(image);
   texture->SetInterpolate(this->Interpolate);
@@ -238,8 +237,7 @@ bool vtkBrumeSceneActors::AddToRenderer(vtkRenderer* renderer)
   auto surfaceData = [this](unsigned int i, vtkImageData*& image, vtkPolyData*& surface)
   {
     vtkPartitionedDataSet* pds = this->Input->GetPartitionedDataSet(i);
-    vtkDataObject* first =
-      pds && pds->GetNumberOfPartitions() > 0 ? pds->GetPartition(0) : nullptr;
+    vtkDataObject* first = pds && pds->GetNumberOfPartitions() > 0 ? pds->GetPartition(0) : nullptr;
     image = vtkImageData::SafeDownCast(first);
     surface = KindOf(first) == "surface" && pds->GetNumberOfPartitions() >= 2
       ? vtkPolyData::SafeDownCast(pds->GetPartition(1))
@@ -321,8 +319,8 @@ bool vtkBrumeSceneActors::AddToRenderer(vtkRenderer* renderer)
   {
     Atlas atlas{ std::move(data), vtkSmartPointer<vtkTexture>::New(),
       vtkSmartPointer<vtkPolyDataMapper>::New() };
-    this->AddSurfaceActor(renderer, atlas.Data.GetImage(), atlas.Data.GetGeometry(),
-      atlas.Texture, atlas.Mapper);
+    this->AddSurfaceActor(
+      renderer, atlas.Data.GetImage(), atlas.Data.GetGeometry(), atlas.Texture, atlas.Mapper);
     for (std::size_t k = 0; k < atlas.Data.GetMembers().size(); ++k)
     {
       Entry& entry = this->Entries[entryOf[atlas.Data.GetMembers()[k].Index]];
@@ -342,7 +340,50 @@ int vtkBrumeSceneActors::GetNumberOfSurfaceAtlases()
 vtkImageData* vtkBrumeSceneActors::GetSurfaceAtlas(int k)
 {
   return k >= 0 && k < static_cast<int>(this->Atlases.size()) ? this->Atlases[k].Data.GetImage()
-                                                               : nullptr;
+                                                              : nullptr;
+}
+
+int vtkBrumeSceneActors::FirstMismatch(vtkPartitionedDataSetCollection* textures)
+{
+  const unsigned int objects = textures->GetNumberOfPartitionedDataSets();
+  auto kind = [](vtkPartitionedDataSetCollection* c, unsigned int i)
+  {
+    vtkPartitionedDataSet* pds =
+      i < c->GetNumberOfPartitionedDataSets() ? c->GetPartitionedDataSet(i) : nullptr;
+    return KindOf(pds && pds->GetNumberOfPartitions() > 0 ? pds->GetPartition(0) : nullptr);
+  };
+  // Objects without props (media not shown) keep their kind too.
+  if (this->Input && this->Input != textures)
+  {
+    const unsigned int before = this->Input->GetNumberOfPartitionedDataSets();
+    for (unsigned int i = 0; i < std::max(objects, before); ++i)
+    {
+      if (i >= objects || i >= before || kind(textures, i) != kind(this->Input, i))
+      {
+        return static_cast<int>(i);
+      }
+    }
+  }
+  for (const Entry& e : this->Entries)
+  {
+    vtkPartitionedDataSet* pds =
+      e.Index < objects ? textures->GetPartitionedDataSet(e.Index) : nullptr;
+    vtkDataObject* first = pds && pds->GetNumberOfPartitions() > 0 ? pds->GetPartition(0) : nullptr;
+    const bool surface = (e.Texture || e.Atlas >= 0) && KindOf(first) == "surface" &&
+      pds->GetNumberOfPartitions() >= 2 && vtkImageData::SafeDownCast(first) &&
+      vtkPolyData::SafeDownCast(pds->GetPartition(1));
+    const bool medium = e.Slices && KindOf(first) == "medium" && vtkImageData::SafeDownCast(first);
+    if (!surface && !medium)
+    {
+      return static_cast<int>(e.Index);
+    }
+  }
+  return -1;
+}
+
+bool vtkBrumeSceneActors::CanUpdateInputs(vtkPartitionedDataSetCollection* textures)
+{
+  return textures && this->Renderer && this->FirstMismatch(textures) < 0;
 }
 
 bool vtkBrumeSceneActors::UpdateInputs(vtkPartitionedDataSetCollection* textures)
@@ -353,21 +394,11 @@ bool vtkBrumeSceneActors::UpdateInputs(vtkPartitionedDataSetCollection* textures
     return false;
   }
   // Check every object first: a mismatch changes nothing.
-  for (const Entry& e : this->Entries)
+  const int mismatch = this->FirstMismatch(textures);
+  if (mismatch >= 0)
   {
-    vtkPartitionedDataSet* pds = e.Index < textures->GetNumberOfPartitionedDataSets()
-      ? textures->GetPartitionedDataSet(e.Index)
-      : nullptr;
-    vtkDataObject* first = pds && pds->GetNumberOfPartitions() > 0 ? pds->GetPartition(0) : nullptr;
-    const bool surface = (e.Texture || e.Atlas >= 0) && KindOf(first) == "surface" &&
-      pds->GetNumberOfPartitions() >= 2 && vtkImageData::SafeDownCast(first) &&
-      vtkPolyData::SafeDownCast(pds->GetPartition(1));
-    const bool medium = e.Slices && KindOf(first) == "medium" && vtkImageData::SafeDownCast(first);
-    if (!surface && !medium)
-    {
-      vtkErrorMacro("Object " << e.Index << " does not match the props made by AddToRenderer().");
-      return false;
-    }
+    vtkErrorMacro("Object " << mismatch << " does not match the props made by AddToRenderer().");
+    return false;
   }
   // A prop keeps the data set it shows when the new one holds the same
   // geometry and bytes (textures delivered from a ParaView server are new
@@ -397,8 +428,8 @@ bool vtkBrumeSceneActors::UpdateInputs(vtkPartitionedDataSetCollection* textures
       const bool newTexels = take(member.Image, image);
       if (take(member.Surface, surface) ||
         (newTexels &&
-          (!std::equal(image->GetDimensions(), image->GetDimensions() + 3,
-             member.Image->GetDimensions()) ||
+          (!std::equal(
+             image->GetDimensions(), image->GetDimensions() + 3, member.Image->GetDimensions()) ||
             !vtkBrumeSceneActorsInternals::SurfaceAtlas::Accepts(image, surface))))
       {
         rebuild = true;
@@ -408,7 +439,8 @@ bool vtkBrumeSceneActors::UpdateInputs(vtkPartitionedDataSetCollection* textures
         texels.emplace_back(&e, image);
       }
     }
-    else if (e.Texture)    {
+    else if (e.Texture)
+    {
       if (take(e.Texture->GetInput(), image))
       {
         e.Texture->SetInputData(image);
@@ -619,6 +651,10 @@ void vtkBrumeSceneActors::RemoveFromRenderer(vtkRenderer* renderer)
   this->Props->RemoveAllItems();
   this->Entries.clear();
   this->Atlases.clear();
+  if (renderer == this->Renderer)
+  {
+    this->Renderer = nullptr;
+  }
 }
 
 void vtkBrumeSceneActors::PrintSelf(ostream& os, vtkIndent indent)

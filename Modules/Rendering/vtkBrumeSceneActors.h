@@ -135,6 +135,16 @@ public:
    */
   bool UpdateInputs(vtkPartitionedDataSetCollection* textures);
 
+  /**
+   * Whether UpdateInputs() would take `textures` (quietly): props were
+   * added to a renderer, and `textures` holds as many objects as the input,
+   * each of the same kind, each shown object in the form its prop draws.
+   * A program that builds the textures anew for an edited scene (a
+   * transfer function, a colour) keeps its props this way, and with them
+   * what their mappers hold on the GPU that did not change.
+   */
+  bool CanUpdateInputs(vtkPartitionedDataSetCollection* textures);
+
   /// The data sets (images, surfaces, extinction grids) the last
   /// UpdateInputs() changed in the props; -1 before the first.
   vtkGetMacro(NumberOfChangedDataSets, int);
@@ -201,6 +211,9 @@ public:
 protected:
   vtkBrumeSceneActors();
   ~vtkBrumeSceneActors() override;
+
+  /// The first object of `textures` that does not match the input and the props, or -1.
+  int FirstMismatch(vtkPartitionedDataSetCollection* textures);
 
   vtkSmartPointer<vtkPartitionedDataSetCollection> Input;
   int NumberOfChangedDataSets = -1;

@@ -1,6 +1,7 @@
 """vtkBrumeSceneActors.UpdateInputs: a prop keeps the data set it shows when
 the new one holds the same geometry and bytes, and takes any that differ.
 A view update's new medium texture keeps its unchanged extinction array.
+CanUpdateInputs says quietly which collections UpdateInputs would take.
 
 usage: python3 TestSceneActorsUpdate.py
 """
@@ -35,8 +36,25 @@ first.ShallowCopy(reconstruction.GetOutput())
 
 actors = brume.vtkBrumeSceneActors()
 actors.SetInputData(first)
+check(not actors.CanUpdateInputs(first), "no props to update before AddToRenderer")
 renderer = vtkRenderer()
 check(actors.AddToRenderer(renderer), "the props are made")
+check(actors.CanUpdateInputs(first), "the props can take their own input")
+
+# Other objects: one fewer, or two swapped (a surface where the fog was).
+fewer = vtkPartitionedDataSetCollection()
+fewer.SetNumberOfPartitionedDataSets(first.GetNumberOfPartitionedDataSets() - 1)
+for i in range(fewer.GetNumberOfPartitionedDataSets()):
+    fewer.SetPartitionedDataSet(i, first.GetPartitionedDataSet(i))
+check(not actors.CanUpdateInputs(fewer), "one object fewer is not taken")
+swapped = vtkPartitionedDataSetCollection()
+swapped.ShallowCopy(first)
+fog = [i for i in range(first.GetNumberOfPartitionedDataSets())
+       if first.GetPartitionedDataSet(i).GetPartition(0).GetCellData().GetArray("SourceRadiance")][0]
+other = 0 if fog != 0 else 1
+swapped.SetPartitionedDataSet(fog, first.GetPartitionedDataSet(other))
+swapped.SetPartitionedDataSet(other, first.GetPartitionedDataSet(fog))
+check(not actors.CanUpdateInputs(swapped), "a surface where the fog was is not taken")
 check(actors.GetNumberOfChangedDataSets() == -1, "no update yet")
 
 # The same textures as new objects (as a ParaView server sends them again).

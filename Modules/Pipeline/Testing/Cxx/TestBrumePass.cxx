@@ -225,7 +225,22 @@ void TestTransferFunctionEdits()
       SameTextures(
         reconstruction->GetOutputDataObject(0), once->GetReconstruction()->GetOutputDataObject(0));
   };
+  auto mediumMapper = [&]()
+  {
+    vtkBrumeOpenGLSliceVolumeMapper* found = nullptr;
+    vtkPropCollection* props = pass->GetPipeline()->GetActors()->GetProps();
+    props->InitTraversal();
+    for (vtkProp* prop = props->GetNextProp(); prop; prop = props->GetNextProp())
+    {
+      if (auto* medium = vtkVolume::SafeDownCast(prop))
+      {
+        found = vtkBrumeOpenGLSliceVolumeMapper::SafeDownCast(medium->GetMapper());
+      }
+    }
+    return found;
+  };
   window->Render();
+  vtkBrumeOpenGLSliceVolumeMapper* firstMapper = mediumMapper();
   const vtkIdType all = reconstruction->GetNumberOfNativeBricksSampled();
   Check(all > 0 && reconstruction->GetNumberOfNativeBricksReused() == 0,
     "the first trace samples every brick");
@@ -257,18 +272,11 @@ void TestTransferFunctionEdits()
   Check(asFresh(), "after the colour edit, the textures of a fresh pipeline");
 
   // Neither edit changed where the function is 0, so the scalars' bricks
-  // were kept too, and the slice mapper did not send its atlas again; a
-  // mapper that sends everything anew draws the same frame.
-  vtkBrumeOpenGLSliceVolumeMapper* mapper = nullptr;
-  vtkPropCollection* props = pass->GetPipeline()->GetActors()->GetProps();
-  props->InitTraversal();
-  for (vtkProp* prop = props->GetNextProp(); prop; prop = props->GetNextProp())
-  {
-    if (auto* medium = vtkVolume::SafeDownCast(prop))
-    {
-      mapper = vtkBrumeOpenGLSliceVolumeMapper::SafeDownCast(medium->GetMapper());
-    }
-  }
+  // were kept too: the pass kept its props (the same objects), and the
+  // slice mapper did not send its atlas again; a mapper that sends
+  // everything anew draws the same frame.
+  vtkBrumeOpenGLSliceVolumeMapper* mapper = mediumMapper();
+  Check(mapper && mapper == firstMapper, "the pass keeps the medium's mapper over the edits");
   Check(mapper && mapper->GetNumberOfExtinctionAtlasUploads() == 1,
     "the atlas of scalars sent once over three traces (sent " +
       std::to_string(mapper ? mapper->GetNumberOfExtinctionAtlasUploads() : -1) + ")");
