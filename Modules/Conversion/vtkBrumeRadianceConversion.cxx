@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumeRadianceConversion.h"
 #include "vtkBrumeSMP.h"
+#include "vtkBrumeSceneConversionInternals.h"
 #include "vtkBrumeSharedArray.h"
 
 #include "vtkBrumeDataModelNames.h"
@@ -27,10 +28,64 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <string>
 
 namespace
 {
+
+// The tables the slice mapper classifies scalars by (its ExtinctionData's
+// ExtinctionTransferFunction, ExtinctionTransferRange and, with colours,
+// AlbedoTransferFunction): the function's extinction at
+// TransferFunctionSamples scalars evenly over its points' range (its end
+// values beyond), and the albedo the colour function gives, over both
+// functions' points. Replaces those arrays in `fd`.
+void AddTransferTables(vtkFieldData* fd, const brume::OpacityTransferFunction& function,
+  const brume::ColorTransferFunction* colors, const brume::Vec3& albedoScale)
+{
+  constexpr int samples = vtkBrumeRadianceConversion::TransferFunctionSamples;
+  float lo = function.GetNodes().front().Scalar;
+  float last = function.GetNodes().back().Scalar;
+  if (colors)
+  {
+    lo = std::min(lo, colors->GetNodes().front().Scalar);
+    last = std::max(last, colors->GetNodes().back().Scalar);
+  }
+  // One point (or all at one scalar): any range past it holds the end values.
+  const float hi = last > lo ? last : lo + std::max(1.f, std::abs(lo));
+  vtkNew<vtkFloatArray> table;
+  table->SetName(vtkBrumeNames::ExtinctionTransferFunction);
+  table->SetNumberOfValues(samples);
+  vtkNew<vtkFloatArray> albedo;
+  albedo->SetName(vtkBrumeNames::AlbedoTransferFunction);
+  albedo->SetNumberOfComponents(3);
+  albedo->SetNumberOfTuples(colors ? samples : 0);
+  for (int i = 0; i < samples; ++i)
+  {
+    const float t = static_cast<float>(i) / static_cast<float>(samples - 1);
+    const float s = lo + (hi - lo) * t;
+    table->SetValue(i, function.Extinction(s));
+    if (colors)
+    {
+      const brume::Vec3 a = albedoScale * colors->Color(s);
+      albedo->SetTypedTuple(i, &a.x);
+    }
+  }
+  fd->RemoveArray(vtkBrumeNames::ExtinctionTransferFunction);
+  fd->RemoveArray(vtkBrumeNames::AlbedoTransferFunction);
+  fd->RemoveArray(vtkBrumeNames::ExtinctionTransferRange);
+  fd->AddArray(table);
+  if (colors)
+  {
+    fd->AddArray(albedo);
+  }
+  vtkNew<vtkDoubleArray> range;
+  range->SetName(vtkBrumeNames::ExtinctionTransferRange);
+  range->SetNumberOfComponents(2);
+  range->InsertNextTuple2(lo, hi);
+  fd->AddArray(range);
+}
 void AddVec3(vtkFieldData* fd, const char* name, const brume::Vec3& v)
 {
   vtkNew<vtkDoubleArray> a;
@@ -406,54 +461,14 @@ vtkSmartPointer<vtkImageData> vtkBrumeRadianceConversion::NativeExtinction(
   fd->AddArray(scale);
   if (function)
   {
-    // The function's extinction at TransferFunctionSamples scalars evenly
-    // over its points' range (its end values beyond), and the albedo its
-    // colour function gives, over both functions' points.
-    // (A colour of other scalars than the density's cannot share its table.)
+    // A colour of other scalars than the density's cannot share its table.
     const auto* colors = dynamic_cast<const brume::ClassifiedAlbedo*>(medium.AlbedoFactor.get());
     const auto* classified = dynamic_cast<const brume::ClassifiedDensity*>(medium.Density.get());
     if (colors && !(classified && &colors->GetScalars() == &classified->GetScalars()))
     {
       colors = nullptr;
     }
-    float lo = function->GetNodes().front().Scalar;
-    float last = function->GetNodes().back().Scalar;
-    if (colors)
-    {
-      lo = std::min(lo, colors->GetColors().GetNodes().front().Scalar);
-      last = std::max(last, colors->GetColors().GetNodes().back().Scalar);
-    }
-    // One point (or all at one scalar): any range past it holds the end values.
-    const float hi = last > lo ? last : lo + std::max(1.f, std::abs(lo));
-    vtkNew<vtkFloatArray> table;
-    table->SetName(vtkBrumeNames::ExtinctionTransferFunction);
-    table->SetNumberOfValues(TransferFunctionSamples);
-    vtkNew<vtkFloatArray> albedo;
-    albedo->SetName(vtkBrumeNames::AlbedoTransferFunction);
-    albedo->SetNumberOfComponents(3);
-    albedo->SetNumberOfTuples(colors ? TransferFunctionSamples : 0);
-    const brume::Vec3 albedoScale = medium.Albedo();
-    for (int i = 0; i < TransferFunctionSamples; ++i)
-    {
-      const float t = static_cast<float>(i) / static_cast<float>(TransferFunctionSamples - 1);
-      const float s = lo + (hi - lo) * t;
-      table->SetValue(i, function->Extinction(s));
-      if (colors)
-      {
-        const brume::Vec3 a = albedoScale * colors->GetColors().Color(s);
-        albedo->SetTypedTuple(i, &a.x);
-      }
-    }
-    fd->AddArray(table);
-    if (colors)
-    {
-      fd->AddArray(albedo);
-    }
-    vtkNew<vtkDoubleArray> range;
-    range->SetName(vtkBrumeNames::ExtinctionTransferRange);
-    range->SetNumberOfComponents(2);
-    range->InsertNextTuple2(lo, hi);
-    fd->AddArray(range);
+    AddTransferTables(fd, *function, colors ? &colors->GetColors() : nullptr, medium.Albedo());
   }
   AddString(fd, vtkBrumeNames::ObjectKind, "medium extinction");
   return extinction;
@@ -467,6 +482,88 @@ double vtkBrumeRadianceConversion::Classify(vtkDataArray* table, const double ra
   const vtkIdType i = std::min(static_cast<vtkIdType>(x), n - 2);
   const double f = x - static_cast<double>(i);
   return table->GetTuple1(i) * (1.0 - f) + table->GetTuple1(i + 1) * f;
+}
+
+vtkSmartPointer<vtkImageData> vtkBrumeRadianceConversion::Reclassified(
+  vtkImageData* extinction, vtkFieldData* before, vtkFieldData* medium, std::string& why)
+{
+  vtkFieldData* old = extinction ? extinction->GetFieldData() : nullptr;
+  if (!old || !old->GetArray(vtkBrumeNames::ExtinctionTransferFunction) ||
+    !old->GetArray(vtkBrumeNames::ExtinctionBrickSamples))
+  {
+    why = "the extinction is not of classified scalars in bricks";
+    return nullptr;
+  }
+  brume::Medium m, was;
+  std::optional<brume::OpacityTransferFunction> opacity, wasOpacity;
+  std::optional<brume::ColorTransferFunction> colors, wasColors;
+  why = vtkBrumeSceneConversionInternals::ReadMediumFunctions(medium, m, opacity, colors);
+  if (why.empty())
+  {
+    why = vtkBrumeSceneConversionInternals::ReadMediumFunctions(before, was, wasOpacity, wasColors);
+  }
+  if (!why.empty())
+  {
+    return nullptr;
+  }
+  if (!opacity || !wasOpacity)
+  {
+    why = "the medium has no opacity transfer function";
+    return nullptr;
+  }
+  if (colors.has_value() != (old->GetArray(vtkBrumeNames::AlbedoTransferFunction) != nullptr))
+  {
+    why = colors ? "the medium's albedo now varies" : "the medium's albedo no longer varies";
+    return nullptr;
+  }
+  // Where the old function gave nothing, bricks were left out: they hold
+  // one scalar, not their own. The new function must give nothing there
+  // too, over each interval of scalars where the old one is 0 (linear
+  // between its points, its end values beyond).
+  const auto& nodes = wasOpacity->GetNodes();
+  const float inf = std::numeric_limits<float>::infinity();
+  auto givesSomething = [&](float a, float b)
+  {
+    if (opacity->Opacity(std::max(a, -std::numeric_limits<float>::max())) > 0.f ||
+      opacity->Opacity(std::min(b, std::numeric_limits<float>::max())) > 0.f)
+    {
+      return true;
+    }
+    for (const auto& n : opacity->GetNodes())
+    {
+      if (n.Scalar > a && n.Scalar < b && n.Opacity > 0.f)
+      {
+        return true;
+      }
+    }
+    return false;
+  };
+  for (std::size_t k = 0; k <= nodes.size(); ++k)
+  {
+    const float a = k == 0 ? -inf : nodes[k - 1].Scalar;
+    const float b = k == nodes.size() ? inf : nodes[k].Scalar;
+    const bool zero =
+      (k == 0 || nodes[k - 1].Opacity == 0.f) && (k == nodes.size() || nodes[k].Opacity == 0.f);
+    if (zero && givesSomething(a, b))
+    {
+      why = "the new function gives an extinction where the old one left bricks out";
+      return nullptr;
+    }
+  }
+  vtkNew<vtkFieldData> fd;
+  fd->ShallowCopy(old);
+  AddTransferTables(fd, *opacity, colors ? &*colors : nullptr, m.Albedo());
+  vtkNew<vtkDoubleArray> scale;
+  scale->SetName(vtkBrumeNames::ExtinctionScale);
+  scale->SetNumberOfComponents(3);
+  const brume::Vec3 sigmaT = m.SigmaT();
+  scale->InsertNextTuple3(sigmaT.x, sigmaT.y, sigmaT.z);
+  fd->RemoveArray(vtkBrumeNames::ExtinctionScale);
+  fd->AddArray(scale);
+  auto preview = vtkSmartPointer<vtkImageData>::New();
+  preview->CopyStructure(extinction);
+  preview->SetFieldData(fd);
+  return preview;
 }
 
 vtkSmartPointer<vtkImageData> vtkBrumeRadianceConversion::DenseExtinction(vtkImageData* sparse)

@@ -48,12 +48,15 @@
 #define vtkBrumeRadianceConversion_h
 
 #include "vtkBrumeConversionModule.h" // For export macro
-#include "vtkSmartPointer.h"         // For return values
+#include "vtkSmartPointer.h"          // For return values
 
 #include "brume/Reconstruction.h" // For brume::ObjectRadiance
 #include "brume/SparseTexture.h"  // For SourceBricks
 
+#include <string> // For Reclassified's reason
+
 class vtkDataArray;
+class vtkFieldData;
 class vtkImageData;
 class vtkPartitionedDataSet;
 class vtkPolyData;
@@ -129,6 +132,23 @@ public:
    */
   static constexpr int TransferFunctionSamples = 4096;
   static double Classify(vtkDataArray* table, const double range[2], double scalar);
+
+  /**
+   * A preview of an edit of a classified medium's transfer functions:
+   * `extinction` (a NativeExtinction of classified scalars, made for the
+   * medium `before`) with the tables and the extinction scale of `medium`;
+   * both are a scene medium's field data as vtkBrumeSceneConversion reads
+   * it (BrumeScalarOpacity, BrumeScalarColor, the coefficients). The
+   * scalars' bricks are shared, not copied. What the slice mapper draws
+   * from it is the new functions applied to the old light. Null, with
+   * `why`, when the old light cannot be drawn so: the extinction is not of
+   * classified scalars; a medium's functions are invalid or absent; the
+   * albedo varies in one and not the other (the source radiance then means
+   * another thing); or the new opacity is above 0 somewhere the old one is
+   * 0, where bricks were left out and hold no scalars of their own.
+   */
+  static vtkSmartPointer<vtkImageData> Reclassified(
+    vtkImageData* extinction, vtkFieldData* before, vtkFieldData* medium, std::string& why);
 };
 
 #endif

@@ -10,8 +10,10 @@
 #include "vtkStringArray.h"
 
 #include "brume/Medium.h"
+#include "brume/TransferFunction.h"
 #include "brume/Vec3.h"
 
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -58,6 +60,12 @@ inline std::string ReadString(vtkFieldData* fd, const char* name)
 /// A medium from its image (the schema in vtkBrumeSceneConversion.h); empty
 /// when valid, otherwise what is wrong.
 std::string ConvertMedium(vtkImageData* image, brume::Medium& m);
+
+/// A medium's coefficients and transfer functions as ConvertMedium reads
+/// them from its field data, without its density; empty when valid.
+std::string ReadMediumFunctions(vtkFieldData* fd, brume::Medium& m,
+  std::optional<brume::OpacityTransferFunction>& opacity,
+  std::optional<brume::ColorTransferFunction>& colors);
 }
 
 #endif

@@ -402,6 +402,14 @@ std::string ReadDensityValues(
 
 }
 
+std::string ReadMediumFunctions(vtkFieldData* fd, brume::Medium& m,
+  std::optional<brume::OpacityTransferFunction>& opacity,
+  std::optional<brume::ColorTransferFunction>& colors)
+{
+  const std::string error = ReadCoefficients(fd, m);
+  return error.empty() ? ReadTransferFunctions(fd, opacity, colors) : error;
+}
+
 std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
 {
   vtkFieldData* fd = image->GetFieldData();

@@ -1,20 +1,26 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumePass.h"
 
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeDisplayPass.h"
 #include "vtkBrumeLightTracer.h"
 #include "vtkBrumePipeline.h"
 #include "vtkBrumeProcesses.h"
+#include "vtkBrumeRadianceConversion.h"
 #include "vtkBrumeRadianceReconstruction.h"
 #include "vtkBrumeRendererScene.h"
 #include "vtkBrumeSceneActors.h"
 #include "vtkBrumeSliceVolumeMapper.h"
 #include "vtkCamera.h"
 #include "vtkCommand.h"
+#include "vtkDataArray.h"
 #include "vtkExecutive.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkPartitionedDataSet.h"
 #include "vtkPartitionedDataSetCollection.h"
 #include "vtkProp.h"
 #include "vtkPropCollection.h"
@@ -26,6 +32,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cstring>
+#include <string>
+#include <utility>
 #include <vector>
 
 vtkStandardNewMacro(vtkBrumePass);
@@ -63,6 +72,7 @@ struct vtkBrumePass::vtkInternals
   bool Empty = false;               // nothing to light: VTK draws the renderer
   std::array<double, 3> ShownEye{}; // the eye at the last frame
   bool Failed = false;
+  bool PendingTrace = false; // a preview was drawn; the next frame traces
 };
 
 vtkBrumePass::vtkBrumePass()
@@ -89,7 +99,7 @@ vtkBrumeRendererScene* vtkBrumePass::GetScene()
 bool vtkBrumePass::IsConverged()
 {
   const vtkInternals& in = *this->Internals;
-  return in.Tried && !in.Failed &&
+  return in.Tried && !in.Failed && !in.PendingTrace &&
     (in.Empty ||
       (in.Holder && in.Pipeline->GetTracer()->GetNumberOfParticles() >= this->NumberOfParticles));
 }
@@ -224,6 +234,71 @@ bool vtkBrumePass::Step()
   return true;
 }
 
+bool vtkBrumePass::Preview()
+{
+  vtkInternals& in = *this->Internals;
+  vtkPartitionedDataSetCollection* scene = in.Scene->GetOutput();
+  if (!in.Holder || in.Failed || in.Empty || !in.Traced || !scene ||
+    scene->GetNumberOfPartitionedDataSets() != in.Traced->GetNumberOfPartitionedDataSets())
+  {
+    return false;
+  }
+  auto same = [](vtkFieldData* a, vtkFieldData* b, const char* name)
+  {
+    vtkDataArray* x = a->GetArray(name);
+    vtkDataArray* y = b->GetArray(name);
+    return (!x && !y) ||
+      (x && y && x->GetDataType() == y->GetDataType() &&
+        x->GetNumberOfValues() == y->GetNumberOfValues() &&
+        std::memcmp(x->GetVoidPointer(0), y->GetVoidPointer(0),
+          static_cast<std::size_t>(x->GetNumberOfValues()) * x->GetDataTypeSize()) == 0);
+  };
+  vtkBrumeSceneActors* actors = in.Pipeline->GetActors();
+  std::vector<std::pair<vtkBrumeSliceVolumeMapper*, vtkSmartPointer<vtkImageData>>> previews;
+  bool changed = false;
+  for (unsigned int i = 0; i < scene->GetNumberOfPartitionedDataSets(); ++i)
+  {
+    vtkBrumeSliceVolumeMapper* mapper = actors->GetMediumMapper(i);
+    vtkImageData* shown = mapper ? mapper->GetExtinctionData() : nullptr;
+    if (!shown || !shown->GetFieldData()->GetArray(vtkBrumeNames::ExtinctionTransferFunction))
+    {
+      continue; // not classified by its mapper: shown as it was until the trace
+    }
+    auto mediumOf = [i](vtkPartitionedDataSetCollection* c)
+    {
+      vtkPartitionedDataSet* pds = c->GetPartitionedDataSet(i);
+      return pds && pds->GetNumberOfPartitions() > 0 ? pds->GetPartition(0) : nullptr;
+    };
+    vtkDataObject* before = mediumOf(in.Traced);
+    vtkDataObject* medium = mediumOf(scene);
+    std::string why;
+    vtkSmartPointer<vtkImageData> preview = before && medium
+      ? vtkBrumeRadianceConversion::Reclassified(
+          shown, before->GetFieldData(), medium->GetFieldData(), why)
+      : nullptr;
+    if (!preview)
+    {
+      return false;
+    }
+    vtkFieldData* a = shown->GetFieldData();
+    vtkFieldData* b = preview->GetFieldData();
+    changed = changed || !same(a, b, vtkBrumeNames::ExtinctionTransferFunction) ||
+      !same(a, b, vtkBrumeNames::AlbedoTransferFunction) ||
+      !same(a, b, vtkBrumeNames::ExtinctionTransferRange) ||
+      !same(a, b, vtkBrumeNames::ExtinctionScale);
+    previews.emplace_back(mapper, preview);
+  }
+  if (!changed)
+  {
+    return false; // nothing the mappers classify changed: a preview would show the old frame
+  }
+  for (const auto& [mapper, preview] : previews)
+  {
+    mapper->SetExtinctionData(preview);
+  }
+  return true;
+}
+
 void vtkBrumePass::ReportProgress()
 {
   double fraction =
@@ -277,12 +352,38 @@ bool vtkBrumePass::Prepare(vtkRenderer* renderer)
     // What building the scene touched (a mapper's default colour map, made
     // on first use) is not an edit.
     in.TracedScene = std::max(in.TracedScene, in.Scene->GetMTime());
+    if (!same && this->PreviewEdits && this->Progressive && !gathers && built && this->Preview())
+    {
+      ++this->NumberOfPreviews;
+      in.PendingTrace = true;
+      return true;
+    }
     if (!same)
     {
+      in.PendingTrace = false;
       const bool traced = this->Trace(built);
       in.TracedScene = std::max(in.TracedScene, in.Scene->GetMTime());
       return traced;
     }
+    if (in.PendingTrace)
+    {
+      // Back to the traced scene before its trace: the textures are right,
+      // the mappers are shown them again.
+      in.PendingTrace = false;
+      if (!in.Pipeline->GetActors()->UpdateInputs(in.Pipeline->GetTextures()))
+      {
+        in.Failed = true;
+        return false;
+      }
+    }
+  }
+  if (in.PendingTrace)
+  {
+    // The edit previewed: traced now, from the scene built then.
+    in.PendingTrace = false;
+    const bool traced = this->Trace(true);
+    in.TracedScene = std::max(in.TracedScene, in.Scene->GetMTime());
+    return traced;
   }
   if (in.Failed || in.Empty)
   {
@@ -364,6 +465,8 @@ void vtkBrumePass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfParticles: " << this->NumberOfParticles << "\n";
   os << indent << "Progressive: " << this->Progressive << "\n";
   os << indent << "DistributedScene: " << this->DistributedScene << "\n";
+  os << indent << "PreviewEdits: " << this->PreviewEdits << "\n";
+  os << indent << "NumberOfPreviews: " << this->NumberOfPreviews << "\n";
   os << indent << "FirstStepParticles: " << this->FirstStepParticles << "\n";
   os << indent << "NumberOfTraces: " << this->NumberOfTraces << "\n";
   os << indent << "NumberOfSteps: " << this->NumberOfSteps << "\n";

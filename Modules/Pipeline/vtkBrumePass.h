@@ -100,6 +100,29 @@ public:
 
   ///@{
   /**
+   * Preview an edit of a medium's transfer functions (default off; with
+   * Progressive only). On, the first frame after an edit that changes only
+   * what the slice mappers classify (a volume property's scalar opacity or
+   * colour, the scene's albedo of a classified medium) draws the light of
+   * the last trace under the new functions, which the GPU applies to the
+   * scalars it holds: nothing is traced and no texture is built, so the
+   * frame costs a draw. The next Render() traces the edited scene, and the
+   * frames after it are those of Progressive, bitwise. The preview is not
+   * the edited scene's light: where the edit makes the medium denser or
+   * thinner, its shadows and glow are those of the old one until the trace.
+   * An edit the mappers cannot show so (the scene's objects, their data, a
+   * function that gives an extinction where the old one left bricks out)
+   * is traced at once. IsConverged() is false while a trace is pending;
+   * GetNumberOfPreviews() counts the previews drawn.
+   */
+  vtkSetMacro(PreviewEdits, bool);
+  vtkGetMacro(PreviewEdits, bool);
+  vtkBooleanMacro(PreviewEdits, bool);
+  vtkGetMacro(NumberOfPreviews, int);
+  ///@}
+
+  ///@{
+  /**
    * Whether each process holds only a part of the renderer's scene
    * (default off: under mpirun every process holds all of it), as in
    * ParaView's parallel views. On, with the pipeline's controller holding
@@ -146,6 +169,8 @@ protected:
   vtkTypeInt64 NumberOfParticles = 1000000;
   bool Progressive = true;
   bool DistributedScene = false;
+  bool PreviewEdits = false;
+  int NumberOfPreviews = 0;
   vtkTypeInt64 FirstStepParticles = 131072;
   int NumberOfTraces = 0;
   int NumberOfSteps = 0;
@@ -160,6 +185,9 @@ private:
   /// DistributedScene, over several processes.
   bool Gathers();
   bool Step();
+  /// Sets the media's mappers to the scene's new functions (PreviewEdits);
+  /// false when it cannot show the edit.
+  bool Preview();
   void ReportProgress();
 
   struct vtkInternals;

@@ -381,6 +381,18 @@ int vtkBrumeSceneActors::FirstMismatch(vtkPartitionedDataSetCollection* textures
   return -1;
 }
 
+vtkBrumeSliceVolumeMapper* vtkBrumeSceneActors::GetMediumMapper(unsigned int index)
+{
+  for (const Entry& e : this->Entries)
+  {
+    if (e.Index == index && e.Slices)
+    {
+      return e.Slices;
+    }
+  }
+  return nullptr;
+}
+
 bool vtkBrumeSceneActors::CanUpdateInputs(vtkPartitionedDataSetCollection* textures)
 {
   return textures && this->Renderer && this->FirstMismatch(textures) < 0;

@@ -145,6 +145,10 @@ public:
    */
   bool CanUpdateInputs(vtkPartitionedDataSetCollection* textures);
 
+  /// The slice mapper AddToRenderer() made for the object `index` of the
+  /// input (null when that object is not a medium shown).
+  vtkBrumeSliceVolumeMapper* GetMediumMapper(unsigned int index);
+
   /// The data sets (images, surfaces, extinction grids) the last
   /// UpdateInputs() changed in the props; -1 before the first.
   vtkGetMacro(NumberOfChangedDataSets, int);

@@ -8,8 +8,11 @@
 //   textures; a colour edit traces once more.
 // - Progressive frames: a sixteenth of the budget, then a quarter, then
 //   all of it, each step's textures bitwise those of one run of its count.
+// - Transfer-function edits keep what they did not change, and are
+//   previewed (PreviewEdits) in one frame.
 #include "VtkSceneTesting.h"
 #include "vtkActor.h"
+#include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeLightTracer.h"
 #include "vtkBrumeOpenGLSliceVolumeMapper.h"
 #include "vtkBrumePass.h"
@@ -26,8 +29,10 @@
 #include "vtkDataSet.h"
 #include "vtkFieldData.h"
 #include "vtkFixedPointVolumeRayCastMapper.h"
+#include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
+#include "vtkLightCollection.h"
 #include "vtkNew.h"
 #include "vtkPNGWriter.h"
 #include "vtkPiecewiseFunction.h"
@@ -312,6 +317,151 @@ void TestTransferFunctionEdits()
 
 }
 
+// The pixels of the window's last frame (not rendered again).
+vtkSmartPointer<vtkUnsignedCharArray> Frame(vtkRenderWindow* window)
+{
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  grab->ShouldRerenderOff();
+  grab->ReadFrontBufferOff();
+  grab->Update();
+  auto pixels = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  pixels->DeepCopy(grab->GetOutput()->GetPointData()->GetScalars());
+  return pixels;
+}
+
+bool SameBytes(vtkDataArray* a, vtkDataArray* b)
+{
+  return a && b && a->GetDataType() == b->GetDataType() &&
+    a->GetNumberOfValues() == b->GetNumberOfValues() &&
+    std::memcmp(a->GetVoidPointer(0), b->GetVoidPointer(0),
+      static_cast<std::size_t>(a->GetNumberOfValues()) * a->GetDataTypeSize()) == 0;
+}
+
+// PreviewEdits: the first frame after an edit of a volume's transfer
+// functions draws the last light under the new functions, with the table
+// the trace then gives (bitwise), and traces nothing; the next frame
+// traces, and the converged frames are those of a pass without previews
+// (bitwise). An edit that gives extinction where the old function left
+// bricks out, and an edit of a light, are traced at once.
+void TestPreviewEdits()
+{
+  auto run = [](bool preview)
+  {
+    std::vector<vtkSmartPointer<vtkUnsignedCharArray>> converged;
+    vtkNew<vtkRenderer> renderer;
+    vtkNew<vtkRenderWindow> window;
+    OffScreen(window, renderer);
+    AddGround(renderer, 0.7, 0.7, 0.7);
+    const double where[3] = { 0, 0, 0 };
+    vtkVolume* volume = AddWavelet(renderer, 24, 90, 280, 0.6, 0.03, where);
+    volume->GetProperty()->SetInterpolationTypeToLinear();
+    vtkPiecewiseFunction* opacity = volume->GetProperty()->GetScalarOpacity();
+    opacity->AddPoint(170, 0.0); // nothing below 170: the outer bricks left out
+    vtkColorTransferFunction* colour = volume->GetProperty()->GetRGBTransferFunction();
+    const double lightPosition[3] = { 1, 4, 3 };
+    AddPointLight(renderer, lightPosition, 30);
+    auto* light = vtkLight::SafeDownCast(renderer->GetLights()->GetItemAsObject(0));
+    vtkCamera* camera = renderer->GetActiveCamera();
+    camera->SetPosition(0, 1, 4);
+    camera->SetFocalPoint(0, 0, 0);
+    renderer->ResetCameraClippingRange();
+    vtkNew<vtkBrumePass> pass;
+    pass->SetNumberOfParticles(Particles);
+    pass->SetFirstStepParticles(Particles / 16);
+    pass->SetPreviewEdits(preview);
+    renderer->SetPass(pass);
+    auto converge = [&]()
+    {
+      for (int frames = 0; frames < 20 && !(frames > 0 && pass->IsConverged()); ++frames)
+      {
+        window->Render();
+      }
+      converged.push_back(Frame(window));
+    };
+    auto mapper = [&]() { return pass->GetPipeline()->GetActors()->GetMediumMapper(1); };
+    auto table = [&]()
+    {
+      vtkImageData* extinction = mapper() ? mapper()->GetExtinctionData() : nullptr;
+      vtkNew<vtkFloatArray> copy;
+      if (vtkDataArray* t = extinction
+          ? extinction->GetFieldData()->GetArray(vtkBrumeNames::ExtinctionTransferFunction)
+          : nullptr)
+      {
+        copy->DeepCopy(t);
+      }
+      return vtkSmartPointer<vtkFloatArray>(copy);
+    };
+    converge();
+    Check(pass->GetNumberOfPreviews() == 0, "the first frame is traced, not previewed");
+    // The edits that only a table changes: the opacity above 200, then a colour.
+    for (int edit = 0; edit < 2; ++edit)
+    {
+      auto before = Frame(window);
+      if (edit == 0)
+      {
+        opacity->AddPoint(240, 0.5);
+      }
+      else
+      {
+        colour->AddRGBPoint(200, 1.0, 0.2, 0.1);
+      }
+      if (!preview)
+      {
+        converge();
+        continue;
+      }
+      const int traces = pass->GetNumberOfTraces();
+      auto oldTable = table();
+      window->Render();
+      Check(pass->GetNumberOfPreviews() == edit + 1 && pass->GetNumberOfTraces() == traces &&
+          !pass->IsConverged() && pass->IsRefining(),
+        "edit " + std::to_string(edit) + " is previewed, nothing traced");
+      auto previewTable = table();
+      Check(!SameBytes(before, Frame(window)), "the preview draws the edited functions");
+      Check(edit == 1 || !SameBytes(oldTable, previewTable), "the preview's table is new");
+      window->Render();
+      Check(pass->GetNumberOfTraces() == traces + 1, "the frame after a preview traces");
+      Check(SameBytes(previewTable, table()), "the preview's table is the trace's");
+      converge();
+    }
+    // Left-out bricks given an extinction: traced at once.
+    vtkImageData* extinction = mapper() ? mapper()->GetExtinctionData() : nullptr;
+    vtkDataArray* slots = extinction
+      ? extinction->GetFieldData()->GetArray(vtkBrumeNames::ExtinctionBrickSlots)
+      : nullptr;
+    bool leftOut = false;
+    for (vtkIdType b = 0; slots && b < slots->GetNumberOfTuples(); ++b)
+    {
+      leftOut = leftOut || slots->GetTuple1(b) < 0;
+    }
+    Check(leftOut, "the function leaves bricks out");
+    opacity->AddPoint(120, 0.3);
+    int traces = pass->GetNumberOfTraces();
+    window->Render();
+    Check(
+      pass->GetNumberOfPreviews() == (preview ? 2 : 0) && pass->GetNumberOfTraces() == traces + 1,
+      "an edit that gives extinction to bricks left out is traced at once");
+    converge();
+    light->SetIntensity(20);
+    traces = pass->GetNumberOfTraces();
+    window->Render();
+    Check(
+      pass->GetNumberOfPreviews() == (preview ? 2 : 0) && pass->GetNumberOfTraces() == traces + 1,
+      "a light's edit is traced at once");
+    converge();
+    return converged;
+  };
+  const auto with = run(true);
+  const auto without = run(false);
+  Check(with.size() == without.size(), "as many converged frames with previews as without");
+  for (std::size_t i = 0; i < std::min(with.size(), without.size()); ++i)
+  {
+    Check(SameBytes(with[i], without[i]),
+      "converged frame " + std::to_string(i) + " with previews is the frame without");
+  }
+}
+
 int TestBrumePass(int, char*[])
 {
   // The VTK program.
@@ -402,6 +552,7 @@ int TestBrumePass(int, char*[])
 
   TestProgressive(renderer, window, pass);
   TestTransferFunctionEdits();
+  TestPreviewEdits();
 
   // A scene that cannot be traced (a rotated volume is refused): not
   // converged, and nothing to refine either, so that a program rendering
