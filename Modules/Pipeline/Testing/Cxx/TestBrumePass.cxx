@@ -191,28 +191,36 @@ void OffScreen(vtkRenderWindow* window, vtkRenderer* renderer)
   window->AddRenderer(renderer);
 }
 
-void TestTransferFunctionEdits()
+// The scene of the edit tests: a ground, a 49^3 Wavelet (7^3 bricks, the
+// outer ones below 200 and the centre above) classified after trilinear
+// interpolation (bricks of nearest values are sampled again at every edit
+// of the opacity), a point light, and the camera; the Wavelet's volume.
+vtkVolume* AddEditScene(vtkRenderer* renderer)
 {
-  vtkNew<vtkRenderer> renderer;
-  vtkNew<vtkRenderWindow> window;
-  OffScreen(window, renderer);
   AddGround(renderer, 0.7, 0.7, 0.7);
-  // 49^3 points: 7^3 bricks, the outer ones below 200 and the centre above.
   const double where[3] = { 0, 0, 0 };
   vtkVolume* volume = AddWavelet(renderer, 24, 90, 280, 0.6, 0.03, where);
-  // Classified after trilinear interpolation (bricks of nearest values are
-  // sampled again at every edit of the opacity).
   volume->GetProperty()->SetInterpolationTypeToLinear();
-  vtkPiecewiseFunction* opacity = volume->GetProperty()->GetScalarOpacity();
-  opacity->AddPoint(150, 0.02);
-  opacity->AddPoint(200, 0.1);
-  vtkColorTransferFunction* colour = volume->GetProperty()->GetRGBTransferFunction();
   const double lightPosition[3] = { 1, 4, 3 };
   AddPointLight(renderer, lightPosition, 30);
   vtkCamera* camera = renderer->GetActiveCamera();
   camera->SetPosition(0, 1, 4);
   camera->SetFocalPoint(0, 0, 0);
   renderer->ResetCameraClippingRange();
+  return volume;
+}
+
+void TestTransferFunctionEdits()
+{
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkRenderWindow> window;
+  OffScreen(window, renderer);
+  vtkVolume* volume = AddEditScene(renderer);
+  vtkPiecewiseFunction* opacity = volume->GetProperty()->GetScalarOpacity();
+  opacity->AddPoint(150, 0.02);
+  opacity->AddPoint(200, 0.1);
+  vtkColorTransferFunction* colour = volume->GetProperty()->GetRGBTransferFunction();
+  vtkCamera* camera = renderer->GetActiveCamera();
   vtkNew<vtkBrumePass> pass;
   pass->SetNumberOfParticles(Particles);
   pass->ProgressiveOff();
@@ -352,20 +360,11 @@ void TestPreviewEdits()
     vtkNew<vtkRenderer> renderer;
     vtkNew<vtkRenderWindow> window;
     OffScreen(window, renderer);
-    AddGround(renderer, 0.7, 0.7, 0.7);
-    const double where[3] = { 0, 0, 0 };
-    vtkVolume* volume = AddWavelet(renderer, 24, 90, 280, 0.6, 0.03, where);
-    volume->GetProperty()->SetInterpolationTypeToLinear();
+    vtkVolume* volume = AddEditScene(renderer);
     vtkPiecewiseFunction* opacity = volume->GetProperty()->GetScalarOpacity();
     opacity->AddPoint(170, 0.0); // nothing below 170: the outer bricks left out
     vtkColorTransferFunction* colour = volume->GetProperty()->GetRGBTransferFunction();
-    const double lightPosition[3] = { 1, 4, 3 };
-    AddPointLight(renderer, lightPosition, 30);
     auto* light = vtkLight::SafeDownCast(renderer->GetLights()->GetItemAsObject(0));
-    vtkCamera* camera = renderer->GetActiveCamera();
-    camera->SetPosition(0, 1, 4);
-    camera->SetFocalPoint(0, 0, 0);
-    renderer->ResetCameraClippingRange();
     vtkNew<vtkBrumePass> pass;
     pass->SetNumberOfParticles(Particles);
     pass->SetFirstStepParticles(Particles / 16);
