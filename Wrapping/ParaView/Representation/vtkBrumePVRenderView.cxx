@@ -164,11 +164,11 @@ bool vtkBrumePVRenderView::ShareProgressive(bool progressive)
 void vtkBrumePVRenderView::ShareServerState()
 {
   vtkPVSession* session = this->GetSession();
-  int state[5] = { 0, 0, 0, 1, 0 };
+  int state[6] = { 0, 0, 0, 1, 0, 0 };
   if (vtkMultiProcessController* server = session->GetController(vtkPVSession::RENDER_SERVER_ROOT))
   {
-    server->Receive(state, 5, 1, StateTag);
-    this->ServerState = { state[0], state[1], state[2], state[3], state[4] };
+    server->Receive(state, 6, 1, StateTag);
+    this->ServerState = { state[0], state[1], state[2], state[3], state[4], state[5] };
   }
   else if (vtkMultiProcessController* client = session->GetController(vtkPVSession::CLIENT))
   {
@@ -177,8 +177,14 @@ void vtkBrumePVRenderView::ShareServerState()
     state[2] = this->Pass->GetNumberOfViewUpdates();
     state[3] = this->Pass->IsConverged() ? 1 : 0;
     state[4] = this->Pass->GetProgressive() && this->Pass->IsRefining() ? 1 : 0;
-    client->Send(state, 5, 1, StateTag);
+    state[5] = this->Pass->GetNumberOfPreviews();
+    client->Send(state, 6, 1, StateTag);
   }
+}
+
+void vtkBrumePVRenderView::SetPreviewEdits(int preview)
+{
+  this->Pass->SetPreviewEdits(preview != 0);
 }
 
 void vtkBrumePVRenderView::SetVolumeAlbedo(double r, double g, double b)
@@ -229,6 +235,11 @@ int vtkBrumePVRenderView::GetNumberOfViewUpdates()
 {
   return this->LastRenderOnServer ? this->ServerState.ViewUpdates
                                   : this->Pass->GetNumberOfViewUpdates();
+}
+
+int vtkBrumePVRenderView::GetNumberOfPreviews()
+{
+  return this->LastRenderOnServer ? this->ServerState.Previews : this->Pass->GetNumberOfPreviews();
 }
 
 void vtkBrumePVRenderView::PrintSelf(ostream& os, vtkIndent indent)

@@ -60,6 +60,8 @@ public:
   void SetExposure(double exposure);
   /// 0 off, 1 on, 2 (the default) on in the GUI's window, off elsewhere.
   void SetProgressive(int mode);
+  /// Previews of transfer-function edits while progressive (vtkBrumePass::SetPreviewEdits).
+  void SetPreviewEdits(int preview);
   void SetVolumeAlbedo(double r, double g, double b);
   void SetPhysicalLights(int physical);
   void SetLightIntensityScale(double scale);
@@ -83,11 +85,12 @@ public:
   bool IsRefining();
 
   ///@{
-  /// The pass's counters (vtkBrumePass): traces, progressive steps, and
-  /// renders whose camera had moved.
+  /// The pass's counters (vtkBrumePass): traces, progressive steps,
+  /// renders whose camera had moved, and previews of edits.
   int GetNumberOfTraces();
   int GetNumberOfSteps();
   int GetNumberOfViewUpdates();
+  int GetNumberOfPreviews();
   ///@}
 
   /// Whether the server drew the last render (client–server with remote
@@ -125,6 +128,7 @@ private:
     int ViewUpdates = 0;
     int Converged = 1;
     int Refining = 0;
+    int Previews = 0;
   };
   PassState ServerState;
   bool LastRenderOnServer = false;

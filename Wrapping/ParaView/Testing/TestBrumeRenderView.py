@@ -6,7 +6,8 @@ a colour map, in a Brume Render View. The first render traces once and
 gives a lit image (the ground's colours on it, the contour's shadow); a
 camera move traces nothing again and updates the view; a colour-map edit
 traces once more and changes the ground's colours; a settings change
-(Particles) traces again. Nothing is written to the error output.
+(Particles) traces again. Progressive, an edit of the volume's opacity is
+previewed first (BrumePreviewEdits). Nothing is written to the error output.
 
 usage: pvbatch TestBrumeRenderView.py PLUGIN OUTPUT_DIR
 """
@@ -114,5 +115,26 @@ while flag("BrumeIsRefining") and steps < 10:
     steps += 1
 check(steps > 1 and flag("BrumeIsConverged") == 1 and flag("BrumeIsRefining") == 0,
       "a progressive view refines step by step until converged (%d renders)" % steps)
+
+# Previews (on by default, while progressive): an edit of the volume's
+# opacity is drawn at once from the last light, and traced at the next
+# render, which the GUI makes by itself (the view is refining).
+opacity = GetOpacityTransferFunction("RTData")
+low, high = opacity.Points[0], opacity.Points[-4]
+traces, _ = counters(view)
+previews = flag("BrumeNumberOfPreviews")
+opacity.Points = [low, 0.0, 0.5, 0.0, 160.0, 0.6, 0.5, 0.0, high, 1.0, 0.5, 0.0]
+Render(view)
+check(flag("BrumeNumberOfPreviews") == previews + 1 and counters(view)[0] == traces,
+      "an opacity edit is previewed, nothing traced (previews %d, traces %d)"
+      % (flag("BrumeNumberOfPreviews"), counters(view)[0]))
+check(flag("BrumeIsRefining") == 1, "the view refines after a preview")
+Render(view)  # (a screenshot would render again too: the preview is one frame)
+check(counters(view)[0] == traces + 1, "the render after a preview traces")
+view.BrumePreviewEdits = 0
+opacity.Points = [low, 0.0, 0.5, 0.0, 160.0, 0.3, 0.5, 0.0, high, 1.0, 0.5, 0.0]
+Render(view)
+check(flag("BrumeNumberOfPreviews") == previews + 1 and counters(view)[0] == traces + 2,
+      "with previews off, an edit is traced at once")
 Delete(view)  # before the interpreter's exit, as pvbatch expects
 finish()
