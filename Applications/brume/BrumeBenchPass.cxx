@@ -210,5 +210,26 @@ void BenchPass(long long particles, int volumePoints, Report& report)
     "the first frame after a colour edit of the volume" + size);
   report.Add("pass_colour_edit_full", colourFull, "s", large ? "<= 3" : "",
     "a colour edit of the volume to the budget" + size);
+
+  // The same edits previewed (PreviewEdits): the first frame draws the
+  // last light under the new functions; the trace follows.
+  pass->PreviewEditsOn();
+  scene.Opacity->AddPoint(240, 0.6);
+  const double opacityPreview = Frame(window);
+  const int previews = pass->GetNumberOfPreviews();
+  Converge(window, pass);
+  scene.Colour->AddRGBPoint(240, 1.0, 0.8, 0.4);
+  const double colourPreview = Frame(window);
+  Converge(window, pass);
+  std::printf("previewed edits    %8.3f s the preview after an opacity edit, %.3f s after a "
+              "colour edit (%d of 2 previewed)\n",
+    opacityPreview, colourPreview, pass->GetNumberOfPreviews());
+  if (previews == 1 && pass->GetNumberOfPreviews() == 2)
+  {
+    report.Add("pass_opacity_edit_preview", opacityPreview, "s", large ? "<= 0.3" : "",
+      "the previewed frame after an opacity edit" + size);
+    report.Add("pass_colour_edit_preview", colourPreview, "s", large ? "<= 0.3" : "",
+      "the previewed frame after a colour edit" + size);
+  }
 }
 }
