@@ -365,17 +365,9 @@ bool vtkBrumePass::Prepare(vtkRenderer* renderer)
       in.TracedScene = std::max(in.TracedScene, in.Scene->GetMTime());
       return traced;
     }
-    if (in.PendingTrace)
-    {
-      // Back to the traced scene before its trace: the textures are right,
-      // the mappers are shown them again.
-      in.PendingTrace = false;
-      if (!in.Pipeline->GetActors()->UpdateInputs(in.Pipeline->GetTextures()))
-      {
-        in.Failed = true;
-        return false;
-      }
-    }
+    // Back to the traced scene before a previewed edit's trace: nothing to
+    // trace; the update below shows the mappers the traced textures again.
+    in.PendingTrace = false;
   }
   if (in.PendingTrace)
   {

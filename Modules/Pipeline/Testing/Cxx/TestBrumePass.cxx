@@ -350,8 +350,9 @@ bool SameBytes(vtkDataArray* a, vtkDataArray* b)
 // functions draws the last light under the new functions, with the table
 // the trace then gives (bitwise), and traces nothing; the next frame
 // traces, and the converged frames are those of a pass without previews
-// (bitwise). An edit that gives extinction where the old function left
-// bricks out, and an edit of a light, are traced at once.
+// (bitwise). An edit undone before its trace shows the last frame again;
+// an edit that gives extinction where the old function left bricks out,
+// and an edit of a light, are traced at once.
 void TestPreviewEdits()
 {
   auto run = [](bool preview)
@@ -393,6 +394,21 @@ void TestPreviewEdits()
     };
     converge();
     Check(pass->GetNumberOfPreviews() == 0, "the first frame is traced, not previewed");
+    if (preview)
+    {
+      // An edit undone before its trace: the traced textures shown again.
+      auto before = Frame(window);
+      const int traces = pass->GetNumberOfTraces();
+      opacity->AddPoint(210, 0.6);
+      window->Render();
+      Check(!SameBytes(before, Frame(window)), "the preview of an edit to undo differs");
+      opacity->RemovePoint(210);
+      window->Render();
+      Check(pass->GetNumberOfPreviews() == 1 && pass->GetNumberOfTraces() == traces &&
+          pass->IsConverged() && SameBytes(before, Frame(window)),
+        "an edit undone after its preview traces nothing and shows the last frame again");
+    }
+    const int base = pass->GetNumberOfPreviews();
     // The edits that only a table changes: the opacity above 200, then a colour.
     for (int edit = 0; edit < 2; ++edit)
     {
@@ -413,7 +429,7 @@ void TestPreviewEdits()
       const int traces = pass->GetNumberOfTraces();
       auto oldTable = table();
       window->Render();
-      Check(pass->GetNumberOfPreviews() == edit + 1 && pass->GetNumberOfTraces() == traces &&
+      Check(pass->GetNumberOfPreviews() == base + edit + 1 && pass->GetNumberOfTraces() == traces &&
           !pass->IsConverged() && pass->IsRefining(),
         "edit " + std::to_string(edit) + " is previewed, nothing traced");
       auto previewTable = table();
@@ -438,15 +454,15 @@ void TestPreviewEdits()
     opacity->AddPoint(120, 0.3);
     int traces = pass->GetNumberOfTraces();
     window->Render();
-    Check(
-      pass->GetNumberOfPreviews() == (preview ? 2 : 0) && pass->GetNumberOfTraces() == traces + 1,
+    Check(pass->GetNumberOfPreviews() == base + (preview ? 2 : 0) &&
+        pass->GetNumberOfTraces() == traces + 1,
       "an edit that gives extinction to bricks left out is traced at once");
     converge();
     light->SetIntensity(20);
     traces = pass->GetNumberOfTraces();
     window->Render();
-    Check(
-      pass->GetNumberOfPreviews() == (preview ? 2 : 0) && pass->GetNumberOfTraces() == traces + 1,
+    Check(pass->GetNumberOfPreviews() == base + (preview ? 2 : 0) &&
+        pass->GetNumberOfTraces() == traces + 1,
       "a light's edit is traced at once");
     converge();
     return converged;
