@@ -72,7 +72,8 @@ struct vtkBrumePass::vtkInternals
   bool Empty = false;               // nothing to light: VTK draws the renderer
   std::array<double, 3> ShownEye{}; // the eye at the last frame
   bool Failed = false;
-  bool PendingTrace = false; // a preview was drawn; the next frame traces
+  bool PendingTrace = false;  // a preview was drawn; the next frame traces
+  double ShownDistance = 0.0; // the actors' image sample distance before a preview (0: none)
 };
 
 vtkBrumePass::vtkBrumePass()
@@ -296,6 +297,8 @@ bool vtkBrumePass::Preview()
   {
     mapper->SetExtinctionData(preview);
   }
+  in.ShownDistance = actors->GetImageSampleDistance();
+  actors->SetImageSampleDistance(this->PreviewImageSampleDistance);
   return true;
 }
 
@@ -317,6 +320,12 @@ bool vtkBrumePass::Prepare(vtkRenderer* renderer)
   vtkInternals& in = *this->Internals;
   in.Scene->SetRenderer(renderer);
   in.Pipeline->SetCamera(renderer->GetActiveCamera());
+  if (in.ShownDistance > 0.0)
+  {
+    // After a preview, the media at the distance they had.
+    in.Pipeline->GetActors()->SetImageSampleDistance(in.ShownDistance);
+    in.ShownDistance = 0.0;
+  }
   const vtkMTimeType scene = in.Scene->GetMTime();
   const bool settings = this->GetMTime() > in.TracedSettings;
   // With a distributed scene, the processes decide together: each looks
@@ -459,6 +468,7 @@ void vtkBrumePass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "DistributedScene: " << this->DistributedScene << "\n";
   os << indent << "PreviewEdits: " << this->PreviewEdits << "\n";
   os << indent << "NumberOfPreviews: " << this->NumberOfPreviews << "\n";
+  os << indent << "PreviewImageSampleDistance: " << this->PreviewImageSampleDistance << "\n";
   os << indent << "FirstStepParticles: " << this->FirstStepParticles << "\n";
   os << indent << "NumberOfTraces: " << this->NumberOfTraces << "\n";
   os << indent << "NumberOfSteps: " << this->NumberOfSteps << "\n";

@@ -123,6 +123,18 @@ public:
 
   ///@{
   /**
+   * The image sample distance of a preview's media (default 2: drawn at
+   * half the window's resolution and scaled up, as VTK's volume mappers
+   * draw while the camera moves; vtkBrumeSliceVolumeMapper::
+   * SetImageSampleDistance). The frames after it are drawn at the distance
+   * the pipeline's actors had (vtkBrumeSceneActors).
+   */
+  vtkSetClampMacro(PreviewImageSampleDistance, double, 1.0, 16.0);
+  vtkGetMacro(PreviewImageSampleDistance, double);
+  ///@}
+
+  ///@{
+  /**
    * Whether each process holds only a part of the renderer's scene
    * (default off: under mpirun every process holds all of it), as in
    * ParaView's parallel views. On, with the pipeline's controller holding
@@ -171,6 +183,7 @@ protected:
   bool DistributedScene = false;
   bool PreviewEdits = false;
   int NumberOfPreviews = 0;
+  double PreviewImageSampleDistance = 2.0;
   vtkTypeInt64 FirstStepParticles = 131072;
   int NumberOfTraces = 0;
   int NumberOfSteps = 0;

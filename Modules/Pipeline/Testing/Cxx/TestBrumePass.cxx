@@ -433,10 +433,14 @@ void TestPreviewEdits()
           !pass->IsConverged() && pass->IsRefining(),
         "edit " + std::to_string(edit) + " is previewed, nothing traced");
       auto previewTable = table();
+      vtkBrumeSceneActors* actors = pass->GetPipeline()->GetActors();
+      Check(actors->GetLastImageSampleDistance() == pass->GetPreviewImageSampleDistance(),
+        "the preview's media drawn at the preview's image sample distance");
       Check(!SameBytes(before, Frame(window)), "the preview draws the edited functions");
       Check(edit == 1 || !SameBytes(oldTable, previewTable), "the preview's table is new");
       window->Render();
-      Check(pass->GetNumberOfTraces() == traces + 1, "the frame after a preview traces");
+      Check(pass->GetNumberOfTraces() == traces + 1 && actors->GetLastImageSampleDistance() == 1.0,
+        "the frame after a preview traces, its media at the window's resolution");
       Check(SameBytes(previewTable, table()), "the preview's table is the trace's");
       converge();
     }
