@@ -34,7 +34,6 @@
 
 namespace
 {
-
 // The tables the slice mapper classifies scalars by (its ExtinctionData's
 // ExtinctionTransferFunction, ExtinctionTransferRange and, with colours,
 // AlbedoTransferFunction): the function's extinction at
@@ -86,6 +85,7 @@ void AddTransferTables(vtkFieldData* fd, const brume::OpacityTransferFunction& f
   range->InsertNextTuple2(lo, hi);
   fd->AddArray(range);
 }
+
 void AddVec3(vtkFieldData* fd, const char* name, const brume::Vec3& v)
 {
   vtkNew<vtkDoubleArray> a;

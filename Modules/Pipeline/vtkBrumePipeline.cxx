@@ -432,11 +432,21 @@ bool vtkBrumePipeline::UpdateView()
     return this->Fail("reconstruction");
   }
   this->ReconstructionSeconds = Seconds(start);
-  if (this->ActorsRenderer && !this->Actors->UpdateInputs(this->Reconstruction->GetOutput()))
+  if (!this->ActorsRenderer)
   {
-    return this->Fail("rendering");
+    return true;
   }
-  return true;
+  vtkPartitionedDataSetCollection* textures = this->Reconstruction->GetOutput();
+  if (this->Actors->CanUpdateInputs(textures))
+  {
+    return this->Actors->UpdateInputs(textures) || this->Fail("rendering");
+  }
+  // Other objects than the props show (a scene with objects added or
+  // removed, traced anew): the props made again where they were.
+  vtkSmartPointer<vtkRenderer> renderer = this->ActorsRenderer;
+  this->Actors->RemoveFromRenderer(renderer);
+  this->ActorsRenderer = nullptr;
+  return this->AddToRenderer(renderer);
 }
 
 vtkPartitionedDataSetCollection* vtkBrumePipeline::GetTextures()

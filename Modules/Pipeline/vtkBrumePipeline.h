@@ -194,7 +194,9 @@ public:
   /**
    * Brings the view-dependent textures up to date with the camera and the
    * reconstruction's settings (only what changed is recomputed), then the
-   * actors' inputs (only what changed is uploaded).
+   * actors' inputs (only what changed is uploaded). Textures of other
+   * objects than the actors show (a scene with objects added or removed,
+   * updated since) get new actors, in the renderer the last ones were in.
    */
   bool UpdateView();
 
