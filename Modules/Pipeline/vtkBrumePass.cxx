@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBrumePass.h"
 
+#include "vtkBrumeArrayBytes.h"
 #include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeDisplayPass.h"
 #include "vtkBrumeLightTracer.h"
@@ -32,7 +33,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cstring>
 #include <string>
 #include <utility>
 #include <vector>
@@ -176,27 +176,18 @@ bool vtkBrumePass::Trace(bool built)
     return false;
   }
   in.Failed = false;
-  // The same objects as the last scene's (an edit of a transfer function,
-  // a colour, a light): the props take the new textures, and their mappers
-  // keep on the GPU what did not change (a medium's atlas of scalars, 0.5 GB
-  // for a 512^3 field). Other objects: the props made anew.
-  vtkBrumeSceneActors* actors = in.Pipeline->GetActors();
-  if (in.Holder && actors->CanUpdateInputs(in.Pipeline->GetTextures()))
-  {
-    if (!actors->UpdateInputs(in.Pipeline->GetTextures()))
-    {
-      in.Failed = true;
-      return false;
-    }
-  }
-  else
+  // One holder for every trace: the props of the same objects as the last
+  // scene's take the new textures (vtkBrumePipeline::AddToRenderer), and
+  // their mappers keep on the GPU what did not change (a medium's atlas of
+  // scalars, 0.5 GB for a 512^3 field).
+  if (!in.Holder)
   {
     in.Holder = vtkSmartPointer<vtkRenderer>::New();
-    if (!in.Pipeline->AddToRenderer(in.Holder))
-    {
-      in.Failed = true;
-      return false;
-    }
+  }
+  if (!in.Pipeline->AddToRenderer(in.Holder))
+  {
+    in.Failed = true;
+    return false;
   }
   in.Volumes->RemoveAllItems();
   vtkPropCollection* props = in.Pipeline->GetActors()->GetProps();
@@ -244,15 +235,12 @@ bool vtkBrumePass::Preview()
   {
     return false;
   }
+  // Both without the array, or both with the same values.
   auto same = [](vtkFieldData* a, vtkFieldData* b, const char* name)
   {
     vtkDataArray* x = a->GetArray(name);
     vtkDataArray* y = b->GetArray(name);
-    return (!x && !y) ||
-      (x && y && x->GetDataType() == y->GetDataType() &&
-        x->GetNumberOfValues() == y->GetNumberOfValues() &&
-        std::memcmp(x->GetVoidPointer(0), y->GetVoidPointer(0),
-          static_cast<std::size_t>(x->GetNumberOfValues()) * x->GetDataTypeSize()) == 0);
+    return (!x && !y) || vtkBrumeArrayBytes::Same(x, y);
   };
   vtkBrumeSceneActors* actors = in.Pipeline->GetActors();
   std::vector<std::pair<vtkBrumeSliceVolumeMapper*, vtkSmartPointer<vtkImageData>>> previews;

@@ -432,21 +432,32 @@ bool vtkBrumePipeline::UpdateView()
     return this->Fail("reconstruction");
   }
   this->ReconstructionSeconds = Seconds(start);
-  if (!this->ActorsRenderer)
-  {
-    return true;
-  }
+  return !this->ActorsRenderer || this->ShowTextures(this->ActorsRenderer);
+}
+
+bool vtkBrumePipeline::ShowTextures(vtkRenderer* renderer)
+{
   vtkPartitionedDataSetCollection* textures = this->Reconstruction->GetOutput();
-  if (this->Actors->CanUpdateInputs(textures))
+  if (this->ActorsRenderer == renderer && this->Actors->CanUpdateInputs(textures))
   {
+    // The props of the same objects take the new textures: only what
+    // changed is uploaded, and a mapper keeps on the GPU what did not.
     return this->Actors->UpdateInputs(textures) || this->Fail("rendering");
   }
-  // Other objects than the props show (a scene with objects added or
-  // removed, traced anew): the props made again where they were.
-  vtkSmartPointer<vtkRenderer> renderer = this->ActorsRenderer;
-  this->Actors->RemoveFromRenderer(renderer);
+  // Other objects (a first call, another renderer, a scene with objects
+  // added or removed): the props made again there.
+  if (this->ActorsRenderer)
+  {
+    this->Actors->RemoveFromRenderer(this->ActorsRenderer);
+  }
   this->ActorsRenderer = nullptr;
-  return this->AddToRenderer(renderer);
+  this->Actors->SetInputData(textures);
+  if (!this->Actors->AddToRenderer(renderer))
+  {
+    return this->Fail("rendering");
+  }
+  this->ActorsRenderer = renderer;
+  return true;
 }
 
 vtkPartitionedDataSetCollection* vtkBrumePipeline::GetTextures()
@@ -461,17 +472,10 @@ bool vtkBrumePipeline::AddToRenderer(vtkRenderer* renderer)
     vtkErrorMacro("AddToRenderer needs a renderer.");
     return this->Fail("rendering");
   }
-  if (this->ActorsRenderer && this->ActorsRenderer != renderer)
+  if (!this->ShowTextures(renderer))
   {
-    this->Actors->RemoveFromRenderer(this->ActorsRenderer);
+    return false;
   }
-  this->Actors->SetInputData(this->Reconstruction->GetOutput());
-  if (!this->Actors->AddToRenderer(renderer))
-  {
-    this->ActorsRenderer = nullptr;
-    return this->Fail("rendering");
-  }
-  this->ActorsRenderer = renderer;
   renderer->SetActiveCamera(this->Camera);
   renderer->ResetCameraClippingRange();
   return true;

@@ -206,7 +206,11 @@ public:
   /**
    * Adds the scene's props (textured surfaces, slice volumes) to
    * `renderer` and makes the pipeline's camera its active camera. After
-   * Update(); false when the textures cannot be shown.
+   * Update(); false when the textures cannot be shown. Again after another
+   * Update(), with the same renderer: the props there take the new
+   * textures where the objects are the same ones (an edit of a transfer
+   * function, a colour, a light: the slice mappers keep on the GPU what
+   * did not change), otherwise they are made again.
    */
   bool AddToRenderer(vtkRenderer* renderer);
 
@@ -251,6 +255,9 @@ protected:
   ~vtkBrumePipeline() override;
 
   bool Fail(const char* phase);
+  /// The textures in props in `renderer`: those there already take them
+  /// where their objects are the same, otherwise they are made again.
+  bool ShowTextures(vtkRenderer* renderer);
   // Updates `algorithm`'s output `port` as piece `piece` of `pieces`, at
   // the Time when one was set.
   bool UpdateAt(vtkAlgorithm* algorithm, int port, int piece, int pieces);

@@ -2,6 +2,7 @@
 #include "vtkBrumeSceneActors.h"
 
 #include "vtkActor.h"
+#include "vtkBrumeArrayBytes.h"
 #include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeSliceVolumeMapper.h"
 #include "vtkBrumeSurfaceAtlas.h"
@@ -27,7 +28,6 @@
 #include "vtkVolumeProperty.h"
 
 #include <algorithm>
-#include <cstring>
 #include <unordered_map>
 
 vtkStandardNewMacro(vtkBrumeSceneActors);
@@ -40,16 +40,6 @@ vtkImageData* NativeExtinction(vtkPartitionedDataSet* pds)
 {
   return pds->GetNumberOfPartitions() >= 2 ? vtkImageData::SafeDownCast(pds->GetPartition(1))
                                            : nullptr;
-}
-
-bool SameArray(vtkDataArray* x, vtkDataArray* y)
-{
-  return x && y && x->GetDataType() == y->GetDataType() &&
-    x->GetNumberOfComponents() == y->GetNumberOfComponents() &&
-    x->GetNumberOfTuples() == y->GetNumberOfTuples() &&
-    (x->GetNumberOfValues() == 0 || x->GetVoidPointer(0) == y->GetVoidPointer(0) ||
-      std::memcmp(x->GetVoidPointer(0), y->GetVoidPointer(0),
-        static_cast<std::size_t>(x->GetNumberOfValues()) * x->GetDataTypeSize()) == 0);
 }
 
 bool SameArrays(vtkFieldData* a, vtkFieldData* b)
@@ -65,7 +55,7 @@ bool SameArrays(vtkFieldData* a, vtkFieldData* b)
     {
       continue; // string arrays (the objects' kinds) are the layout's
     }
-    if (!SameArray(x, x->GetName() ? b->GetArray(x->GetName()) : nullptr))
+    if (!vtkBrumeArrayBytes::Same(x, x->GetName() ? b->GetArray(x->GetName()) : nullptr))
     {
       return false;
     }
@@ -113,10 +103,11 @@ bool SameDataSet(vtkDataObject* a, vtkDataObject* b)
   {
     return false;
   }
-  return SameArray(surface->GetPoints()->GetData(), other->GetPoints()->GetData()) &&
-    SameArray(
+  return vtkBrumeArrayBytes::Same(surface->GetPoints()->GetData(), other->GetPoints()->GetData()) &&
+    vtkBrumeArrayBytes::Same(
       surface->GetPolys()->GetConnectivityArray(), other->GetPolys()->GetConnectivityArray()) &&
-    SameArray(surface->GetPolys()->GetOffsetsArray(), other->GetPolys()->GetOffsetsArray());
+    vtkBrumeArrayBytes::Same(
+      surface->GetPolys()->GetOffsetsArray(), other->GetPolys()->GetOffsetsArray());
 }
 
 std::string KindOf(vtkDataObject* data)

@@ -4,6 +4,7 @@
 // evaluation toward the eye.
 #include "vtkBrumeOpenGLSliceVolumeMapperInternals.h"
 
+#include "vtkBrumeArrayBytes.h"
 #include "vtkBrumeDataModelNames.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
@@ -20,7 +21,6 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 #include <memory>
 
@@ -358,19 +358,11 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   vtkFloatArray* floats = vtkFloatArray::FastDownCast(samples);
   // The same samples (the same memory, which the atlas's arrays keep) in
   // the same slots, filtered alike: the atlas holds them already, checked.
-  auto sameArray = [](vtkDataArray* a, vtkDataArray* b)
-  {
-    return a && b && a->GetDataType() == b->GetDataType() &&
-      a->GetNumberOfValues() == b->GetNumberOfValues() &&
-      (a->GetVoidPointer(0) == b->GetVoidPointer(0) ||
-        std::memcmp(a->GetVoidPointer(0), b->GetVoidPointer(0),
-          static_cast<std::size_t>(a->GetNumberOfValues()) * a->GetDataTypeSize()) == 0);
-  };
   const bool sameAtlas = impl.AtlasSamples && samples->GetNumberOfValues() > 0 &&
     impl.AtlasSamples->GetDataType() == samples->GetDataType() &&
     impl.AtlasSamples->GetNumberOfValues() == samples->GetNumberOfValues() &&
     impl.AtlasSamples->GetVoidPointer(0) == samples->GetVoidPointer(0) &&
-    sameArray(impl.AtlasSlots, slots) && impl.AtlasFilter == filter &&
+    vtkBrumeArrayBytes::Same(impl.AtlasSlots, slots) && impl.AtlasFilter == filter &&
     impl.Extinction->GetHandle() && impl.Extinction->GetContext() == renWin;
   auto sample = [&](vtkIdType at)
   { return floats ? static_cast<double>(floats->GetValue(at)) : samples->GetTuple1(at); };
