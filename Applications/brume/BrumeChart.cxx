@@ -135,13 +135,13 @@ bool ReportSweepObjects(vtkBrumeStabilitySweep* sweep, vtkDataObject* scene)
             << "'\n";
   if (!*medium)
   {
-    std::printf("The scene has no medium: the g, optical thickness, albedo and sheet cases are "
-                "skipped.\n\n");
+    std::printf("The scene has no medium: the g, optical thickness, albedo, sheet and "
+                "surface-in-medium cases are skipped.\n\n");
   }
   if (!*surface)
   {
-    std::printf("The scene has no (non-emissive) surface: the glossy and mirror cases are "
-                "skipped.\n\n");
+    std::printf("The scene has no (non-emissive) surface: the glossy, mirror and "
+                "surface-in-medium cases are skipped.\n\n");
   }
   return true;
 }

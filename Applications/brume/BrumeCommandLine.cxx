@@ -528,14 +528,16 @@ void AddChart(CLI::App& app, ChartOptions& o, const Defaults& d)
     ->type_name("NAME");
   chart
     ->add_option("--surface", o.Surface,
-      "the surface the sweep makes glossy and mirror\n(default: chosen automatically)")
+      "the surface the sweep makes glossy and mirror, and\n"
+      "the medium reaches through (default: chosen\n"
+      "automatically)")
     ->transform(NotEmpty("a surface's name"))
     ->type_name("NAME");
   chart
     ->add_option("--parameter", o.Parameter,
       "the sweep runs only this parameter's cases: g, optical\n"
-      "thickness, albedo, sheet voxels, particles, or the\n"
-      "surface's name")
+      "thickness, albedo, sheet voxels, particles, the\n"
+      "surface's name, or surface in medium")
     ->transform(NotEmpty("a parameter's name"))
     ->type_name("NAME");
 }

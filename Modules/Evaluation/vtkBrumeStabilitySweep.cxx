@@ -30,6 +30,7 @@
 #include "brume/RayCaster.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -198,6 +199,99 @@ void AddSurfaceCases(std::vector<Case>& cases, int surface, const std::string& n
       SetField(s, surface, vtkBrumeNames::Specular, { 0.9, 0.9, 0.9 });
     },
     n });
+}
+
+// The medium's box grown along one axis until the surface stands inside
+// it: along the axis where the surface lies beside the box (the two
+// overlapping across the other axes; the nearest such, where several),
+// the face nearest the surface moved past it by a quarter of the distance
+// from the surface to the far face, as a fog bank or a cloud reaching
+// into the ground. The density grid is stretched with it. `bounds` gets
+// the new box; true also when the surface already crosses the box (kept);
+// false when the surface is beside the box along no axis.
+bool GrownThrough(Scene* scene, int medium, int surface, double bounds[6])
+{
+  auto* image = vtkImageData::SafeDownCast(ObjectData(scene, medium));
+  auto* mesh = vtkPolyData::SafeDownCast(ObjectData(scene, surface));
+  if (!image || !mesh || mesh->GetNumberOfPoints() == 0)
+  {
+    return false;
+  }
+  double s[6];
+  image->GetBounds(bounds);
+  mesh->GetBounds(s);
+  auto overlaps = [&](int a)
+  { return s[2 * a] < bounds[2 * a + 1] && s[2 * a + 1] > bounds[2 * a]; };
+  if (overlaps(0) && overlaps(1) && overlaps(2))
+  {
+    return true; // the surface crosses the box already
+  }
+  int axis = -1;
+  double gap = std::numeric_limits<double>::infinity();
+  bool below = false;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (!overlaps((a + 1) % 3) || !overlaps((a + 2) % 3))
+    {
+      continue;
+    }
+    if (s[2 * a + 1] <= bounds[2 * a] && bounds[2 * a] - s[2 * a + 1] < gap)
+    {
+      axis = a;
+      gap = bounds[2 * a] - s[2 * a + 1];
+      below = true;
+    }
+    else if (s[2 * a] >= bounds[2 * a + 1] && s[2 * a] - bounds[2 * a + 1] < gap)
+    {
+      axis = a;
+      gap = s[2 * a] - bounds[2 * a + 1];
+      below = false;
+    }
+  }
+  if (axis < 0)
+  {
+    return false;
+  }
+  const int a = axis;
+  if (below)
+  {
+    bounds[2 * a] = s[2 * a] - 0.25 * (bounds[2 * a + 1] - s[2 * a]);
+  }
+  else
+  {
+    bounds[2 * a + 1] = s[2 * a + 1] + 0.25 * (s[2 * a + 1] - bounds[2 * a]);
+  }
+  return true;
+}
+
+void AddSurfaceInMediumCases(std::vector<Case>& cases, int medium, const std::string& name,
+  const double bounds[6], vtkTypeInt64 n)
+{
+  const std::array<double, 6> box{ bounds[0], bounds[1], bounds[2], bounds[3], bounds[4],
+    bounds[5] };
+  for (double k : { 1.0, 10.0, 100.0 })
+  {
+    cases.push_back({ "surface in medium", std::to_string(1.1 * k), name,
+      [=](Scene* s)
+      {
+        auto* image = vtkImageData::SafeDownCast(ObjectData(s, medium));
+        int extent[6];
+        image->GetExtent(extent);
+        double spacing[3], origin[3];
+        image->GetSpacing(spacing);
+        for (int a = 0; a < 3; ++a)
+        {
+          const int cells = extent[2 * a + 1] - extent[2 * a];
+          spacing[a] = cells > 0 ? (box[2 * a + 1] - box[2 * a]) / cells : spacing[a];
+          origin[a] = box[2 * a] - extent[2 * a] * spacing[a];
+        }
+        image->SetOrigin(origin);
+        image->SetSpacing(spacing);
+        SetField(s, medium, vtkBrumeNames::SigmaS, { k, k, k });
+        SetField(s, medium, vtkBrumeNames::SigmaA, { 0.1 * k, 0.1 * k, 0.1 * k });
+      },
+      n });
+  }
 }
 
 // The collection index of the non-emissive surface hit by the most pixels'
@@ -557,6 +651,11 @@ int vtkBrumeStabilitySweep::RequestData(
   {
     AddSurfaceCases(cases, surface, this->ChosenSurface, particles);
   }
+  double grown[6];
+  if (medium >= 0 && surface >= 0 && GrownThrough(scene, medium, surface, grown))
+  {
+    AddSurfaceInMediumCases(cases, medium, this->ChosenMedium, grown, particles);
+  }
   if (this->Parameter && *this->Parameter)
   {
     const std::string wanted = this->Parameter;
@@ -567,7 +666,8 @@ int vtkBrumeStabilitySweep::RequestData(
     {
       vtkErrorMacro("No case of the sweep varies '"
         << wanted
-        << "' (g, optical thickness, albedo, sheet voxels, particles, or the surface's name).");
+        << "' (g, optical thickness, albedo, sheet voxels, particles, the surface's name, or "
+           "surface in medium).");
       return 0;
     }
   }

@@ -25,7 +25,18 @@
  * - the surface's name = `glossy` (Phong: BrumeReflectance 0.2,
  *   BrumeSpecular 0.6, BrumeExponent 50), `glossy e=1000` (the same with
  *   BrumeExponent 1000: its lobe is cast, brume::MirrorReflection) and
- *   `mirror` (BrumeReflectance 0, BrumeSpecular 0.9).
+ *   `mirror` (BrumeReflectance 0, BrumeSpecular 0.9);
+ * - `surface in medium` = 1.1 k for k = 1, 10, 100: the medium reaching
+ *   through the surface (BrumeSigmaS = k, BrumeSigmaA = 0.1 k per
+ *   channel), a surface lit through a dense medium and a medium cut by a
+ *   surface, as fog lying on a floor or a cloud reaching into the ground.
+ *   Along the axis where the surface lies beside the medium's box (the
+ *   two overlapping across the other axes; the nearest, where several),
+ *   the box's face nearest the surface is moved past it by a quarter of
+ *   the distance from the surface to the box's far face, its density grid
+ *   stretched with it; a surface that crosses the box already leaves it
+ *   as it is. Skipped when the scene has no medium or no surface, or the
+ *   surface lies beside the box along no axis.
  *
  * The medium cases edit one medium: MediumName, or when it is empty the
  * scene's first medium (its first vtkImageData object). The surface cases
@@ -53,7 +64,8 @@
  * Rows are appended as they are measured, each followed by a progress
  * event. With Parameter set, only that parameter's cases run (the
  * `parameter` column's value: `g`, `optical thickness`, `albedo`,
- * `sheet voxels`, `particles`, or the surface's name).
+ * `sheet voxels`, `particles`, the surface's name, or `surface in
+ * medium`).
  *
  * Converged references are cached under CacheKey (default: SceneName),
  * followed by `-sweep-`, the medium's name for the medium cases, the

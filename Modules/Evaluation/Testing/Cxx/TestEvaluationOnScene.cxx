@@ -114,11 +114,19 @@ void TestSweep(const std::string& directory, bool medium)
   Expect(surface == "stage" || surface == "backdrop", "a surface in view: " + surface);
   Expect(std::string(sweep->GetChosenMediumName()) == (medium ? "mist" : ""), "the medium");
   // 24 medium cases (9 g, 6 optical thickness, 6 albedo, 3 sheets; or
-  // none), 1 particles case, 3 surface cases.
-  const vtkIdType rows = medium ? 28 : 4;
+  // none), 1 particles case, 3 surface cases, then, with the mist (which
+  // stands on the stage and before the backdrop), 3 cases of the mist
+  // reaching through the surface.
+  const vtkIdType rows = medium ? 31 : 4;
   Expect(table->GetNumberOfRows() == rows, "rows: " + std::to_string(table->GetNumberOfRows()));
   auto* parameter = vtkStringArray::SafeDownCast(table->GetColumnByName("parameter"));
-  Expect(parameter && parameter->GetValue(rows - 1) == surface, "the surface cases name it");
+  const vtkIdType lastSurface = medium ? rows - 4 : rows - 1;
+  Expect(parameter && parameter->GetValue(lastSurface) == surface, "the surface cases name it");
+  for (vtkIdType r = lastSurface + 1; r < rows; ++r)
+  {
+    Expect(parameter && parameter->GetValue(r) == "surface in medium",
+      "the medium reaching through the surface, case " + std::to_string(r));
+  }
   Expect(parameter && parameter->GetValue(0) == (medium ? "g" : "particles"), "the first case");
   Expect(sweep->GetAllFinite() && Finite(table), "finite errors and times");
   const std::string csv = directory + "/evaluation-sweep.csv";
