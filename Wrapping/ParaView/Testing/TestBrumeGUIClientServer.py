@@ -42,7 +42,8 @@ try:
         [paraview, "--server-url=" + server.url(), "--dr",
          "--script=" + os.path.join(here, "TestBrumeGUIClientServerSetup.py"),
          "--test-script=" + os.path.join(here, "TestBrumeGUIClientServer.xml"), "--exit"],
-        env=dict(os.environ, BRUME_GUI_LOG=log), capture_output=True, text=True, timeout=150)
+        env=dict(os.environ, BRUME_GUI_LOG=log, BRUME_TESTING_DIR=here), capture_output=True,
+        text=True, timeout=150)
     server.process.wait(timeout=30)  # it exits when its client does
 except BaseException:
     server.kill()

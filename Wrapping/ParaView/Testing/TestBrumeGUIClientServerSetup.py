@@ -6,20 +6,15 @@ state, as the client reports it, to BRUME_GUI_LOG; the script renders
 once, and the GUI's own renders follow while the events file lets its
 event loop run."""
 import os
+import sys
 
 from paraview.simple import *  # noqa: F401,F403
 
 GetSettingsProxy("RenderViewSettings").RemoteRenderThreshold = 0
-stock = GetActiveView()
-layout = GetLayout(stock)
-Delete(stock)
-view = CreateView("BrumeRenderView")
-AssignViewToLayout(view=view, layout=layout, hint=0)
-view.BrumeParticles = 600000  # 131,072, then 524,288, then 600,000
-wavelet = Wavelet()
-volume = Show(wavelet, view)
-volume.SetRepresentationType("Volume")
-ColorBy(volume, ("POINTS", "RTData"))
+sys.path.insert(0, os.environ["BRUME_TESTING_DIR"])
+from brume_testing import gui_wavelet_view  # noqa: E402
+
+view, wavelet, volume = gui_wavelet_view(600000)  # 131,072, then 524,288, then 600,000
 Show(Contour(Input=wavelet, ContourBy=["POINTS", "RTData"], Isosurfaces=[200.0]), view)
 view.CameraPosition = [30, 20, 60]
 view.CameraFocalPoint = [0, 0, 0]

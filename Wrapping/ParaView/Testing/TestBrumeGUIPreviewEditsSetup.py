@@ -7,6 +7,7 @@ point counts, and the frame's size, mean and mean difference from the last
 frame of the same size (read from the window, not rendered again); the
 events file then edits the functions through the Color Map Editor."""
 import os
+import sys
 import time
 
 import numpy
@@ -14,16 +15,10 @@ from paraview.simple import *  # noqa: F401,F403
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkRenderingCore import vtkWindowToImageFilter
 
-stock = GetActiveView()
-layout = GetLayout(stock)
-Delete(stock)
-view = CreateView("BrumeRenderView")
-AssignViewToLayout(view=view, layout=layout, hint=0)
-view.BrumeParticles = 600000  # 131,072, then 524,288, then 600,000
-wavelet = Wavelet()
-volume = Show(wavelet, view)
-volume.SetRepresentationType("Volume")
-ColorBy(volume, ("POINTS", "RTData"))
+sys.path.insert(0, os.environ["BRUME_TESTING_DIR"])
+from brume_testing import gui_wavelet_view  # noqa: E402
+
+view, wavelet, volume = gui_wavelet_view(600000)  # 131,072, then 524,288, then 600,000
 SetActiveSource(wavelet)
 view.CameraPosition = [30, 20, 60]
 view.CameraFocalPoint = [0, 0, 0]

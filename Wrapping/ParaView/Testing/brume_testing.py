@@ -1,6 +1,6 @@
 """What the plugin's test scripts share: named checks and the exit status
 they give, a black render view looking at the default scene as `brume
-render` does, vtkBrumeSceneActors' image of textures as a VTK user would
+render` does, the GUI's window given a Brume Render View of a Wavelet, vtkBrumeSceneActors' image of textures as a VTK user would
 draw them, vtkImageDifference's error between two PNG files, and what a
 saved state (.pvsm) holds."""
 import os
@@ -66,6 +66,26 @@ def black_view(size, view=None):
     view.Background = [0, 0, 0]
     view.OrientationAxesVisibility = 0
     return view
+
+
+def gui_wavelet_view(particles):
+    """In the GUI's start script: the window's view replaced, in its layout,
+    by a Brume Render View of `particles` showing a Wavelet as a Volume
+    coloured by RTData. Returns the view, the Wavelet and its display."""
+    from paraview.simple import AssignViewToLayout, ColorBy, Delete, GetActiveView, GetLayout
+    from paraview.simple import Wavelet
+
+    stock = GetActiveView()
+    layout = GetLayout(stock)
+    Delete(stock)
+    view = CreateView("BrumeRenderView")
+    AssignViewToLayout(view=view, layout=layout, hint=0)
+    view.BrumeParticles = particles
+    wavelet = Wavelet()
+    volume = Show(wavelet, view)
+    volume.SetRepresentationType("Volume")
+    ColorBy(volume, ("POINTS", "RTData"))
+    return view, wavelet, volume
 
 
 def frame_then_default_camera(view):
