@@ -72,8 +72,9 @@ struct vtkBrumePass::vtkInternals
   bool Empty = false;               // nothing to light: VTK draws the renderer
   std::array<double, 3> ShownEye{}; // the eye at the last frame
   bool Failed = false;
-  bool PendingTrace = false;  // a preview was drawn; the next frame traces
-  double ShownDistance = 0.0; // the actors' image sample distance before a preview (0: none)
+  bool PendingTrace = false;      // a preview was drawn; the next frame traces
+  double ShownDistance = 0.0;     // the actors' image sample distance before a preview (0: none)
+  double ShownSpacingScale = 1.0; // and their slice spacing's factor
 };
 
 vtkBrumePass::vtkBrumePass()
@@ -286,7 +287,9 @@ bool vtkBrumePass::Preview()
     mapper->SetExtinctionData(preview);
   }
   in.ShownDistance = actors->GetImageSampleDistance();
+  in.ShownSpacingScale = actors->GetSliceSpacingScale();
   actors->SetImageSampleDistance(this->PreviewImageSampleDistance);
+  actors->SetSliceSpacingScale(this->PreviewSliceSpacingScale);
   return true;
 }
 
@@ -310,8 +313,9 @@ bool vtkBrumePass::Prepare(vtkRenderer* renderer)
   in.Pipeline->SetCamera(renderer->GetActiveCamera());
   if (in.ShownDistance > 0.0)
   {
-    // After a preview, the media at the distance they had.
+    // After a preview, the media at the distance and spacing they had.
     in.Pipeline->GetActors()->SetImageSampleDistance(in.ShownDistance);
+    in.Pipeline->GetActors()->SetSliceSpacingScale(in.ShownSpacingScale);
     in.ShownDistance = 0.0;
   }
   const vtkMTimeType scene = in.Scene->GetMTime();
@@ -457,6 +461,7 @@ void vtkBrumePass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PreviewEdits: " << this->PreviewEdits << "\n";
   os << indent << "NumberOfPreviews: " << this->NumberOfPreviews << "\n";
   os << indent << "PreviewImageSampleDistance: " << this->PreviewImageSampleDistance << "\n";
+  os << indent << "PreviewSliceSpacingScale: " << this->PreviewSliceSpacingScale << "\n";
   os << indent << "FirstStepParticles: " << this->FirstStepParticles << "\n";
   os << indent << "NumberOfTraces: " << this->NumberOfTraces << "\n";
   os << indent << "NumberOfSteps: " << this->NumberOfSteps << "\n";

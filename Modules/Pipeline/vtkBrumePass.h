@@ -135,6 +135,19 @@ public:
 
   ///@{
   /**
+   * The factor on the distance between a preview's slices (default 2:
+   * about half the slices, each slab twice as thick;
+   * vtkBrumeSliceVolumeMapper::SetSliceSpacingScale), as VTK's volume
+   * mappers sample farther apart while the camera moves. A structure
+   * thinner than a slab may flicker in the preview. The frames after it
+   * are drawn at the actors' own spacing.
+   */
+  vtkSetClampMacro(PreviewSliceSpacingScale, double, 1.0, 16.0);
+  vtkGetMacro(PreviewSliceSpacingScale, double);
+  ///@}
+
+  ///@{
+  /**
    * Whether each process holds only a part of the renderer's scene
    * (default off: under mpirun every process holds all of it), as in
    * ParaView's parallel views. On, with the pipeline's controller holding
@@ -184,6 +197,7 @@ protected:
   bool PreviewEdits = false;
   int NumberOfPreviews = 0;
   double PreviewImageSampleDistance = 2.0;
+  double PreviewSliceSpacingScale = 2.0;
   vtkTypeInt64 FirstStepParticles = 131072;
   int NumberOfTraces = 0;
   int NumberOfSteps = 0;

@@ -28,6 +28,7 @@
 #include "vtkVolumeProperty.h"
 
 #include <algorithm>
+#include <cmath>
 #include <unordered_map>
 
 vtkStandardNewMacro(vtkBrumeSceneActors);
@@ -282,6 +283,7 @@ bool vtkBrumeSceneActors::AddToRenderer(vtkRenderer* renderer)
       mapper->SetInputData(image);
       mapper->SetExtinctionData(NativeExtinction(pds));
       mapper->SetSliceSpacing(this->SliceSpacing);
+      mapper->SetSliceSpacingScale(this->SliceSpacingScale);
       mapper->SetRadianceScale(this->Exposure);
       mapper->SetWriteDepth(this->MediaWriteDepth);
       mapper->SetImageSampleDistance(this->ImageSampleDistance);
@@ -539,6 +541,16 @@ void vtkBrumeSceneActors::SetSliceSpacing(double spacing)
   }
 }
 
+void vtkBrumeSceneActors::SetSliceSpacingScale(double scale)
+{
+  scale = std::isnan(scale) ? 1.0 : std::min(16.0, std::max(1.0, scale));
+  if (this->SliceSpacingScale != scale)
+  {
+    this->SliceSpacingScale = scale;
+    this->ApplyToMedia([=](vtkBrumeSliceVolumeMapper* m) { m->SetSliceSpacingScale(scale); });
+  }
+}
+
 void vtkBrumeSceneActors::SetMediaWriteDepth(bool write)
 {
   if (this->MediaWriteDepth != write)
@@ -666,6 +678,7 @@ void vtkBrumeSceneActors::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ShowMedia: " << this->ShowMedia << "\n";
   os << indent << "BackfaceCulling: " << this->BackfaceCulling << "\n";
   os << indent << "SliceSpacing: " << this->SliceSpacing << "\n";
+  os << indent << "SliceSpacingScale: " << this->SliceSpacingScale << "\n";
   os << indent << "MediaWriteDepth: " << this->MediaWriteDepth << "\n";
   os << indent << "ImageSampleDistance: " << this->ImageSampleDistance << "\n";
   os << indent << "Interpolate: " << this->Interpolate << "\n";

@@ -202,6 +202,16 @@ public:
 
   ///@{
   /**
+   * A factor on the distance between the media's slices
+   * (vtkBrumeSliceVolumeMapper::SetSliceSpacingScale; default 1), those
+   * made already included: 2 draws about half the slices, for a quick draw.
+   */
+  void SetSliceSpacingScale(double scale);
+  vtkGetMacro(SliceSpacingScale, double);
+  ///@}
+
+  ///@{
+  /**
    * The media's slices write their depth (vtkBrumeSliceVolumeMapper::
    * SetWriteDepth; default off), those made already included.
    */
@@ -225,6 +235,7 @@ protected:
   bool ShowMedia = true;
   bool BackfaceCulling = true;
   double SliceSpacing = 0.0;
+  double SliceSpacingScale = 1.0;
   bool Interpolate = true;
   double Exposure = 1.0;
   bool MediaWriteDepth = false;

@@ -389,11 +389,17 @@ void vtkBrumeSliceVolumeMapper::SetImageSampleDistance(double distance)
   this->ImageSampleDistance = std::isnan(distance) ? 1.0 : std::min(16.0, std::max(1.0, distance));
 }
 
+void vtkBrumeSliceVolumeMapper::SetSliceSpacingScale(double scale)
+{
+  this->SliceSpacingScale = std::isnan(scale) ? 1.0 : std::min(16.0, std::max(1.0, scale));
+}
+
 void vtkBrumeSliceVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "VolumeGroup: " << this->VolumeGroup.GetPointer() << "\n";
   os << indent << "SliceSpacing: " << this->SliceSpacing << "\n";
+  os << indent << "SliceSpacingScale: " << this->SliceSpacingScale << "\n";
   os << indent << "WriteDepth: " << this->WriteDepth << "\n";
   os << indent << "RadianceScale: " << this->RadianceScale << "\n";
   os << indent << "DirectionalEvaluation: "

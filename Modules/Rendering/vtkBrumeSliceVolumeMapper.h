@@ -128,6 +128,21 @@ public:
   /// The image sample distance the last render drew this volume at.
   vtkGetMacro(LastImageSampleDistance, double);
   ///@}
+
+  ///@{
+  /**
+   * A factor on the distance between slices, the automatic one or
+   * SliceSpacing (default 1; clamped to [1, 16]): fewer slices, each a
+   * thicker slab, for a quicker draw (vtkBrumePass's previews of edits
+   * draw at 2). Each slab still takes exp(-sigma_t delta) of its own
+   * thickness, but its sigma_t and source only at its slice: a structure
+   * thinner than a slab may fall between slices or be drawn a slab thick.
+   * A drawing setting only, as SetImageSampleDistance: it does not mark
+   * the mapper modified. GetLastNumberOfSlices() gives its effect.
+   */
+  void SetSliceSpacingScale(double scale);
+  vtkGetMacro(SliceSpacingScale, double);
+  ///@}
   ///@{
   /**
    * Multiplies the radiance the slices emit, not their transmittance
@@ -298,6 +313,7 @@ protected:
   vtkVolumeCollection* GetDrawnVolumes(vtkRenderer* ren);
 
   double SliceSpacing = 0.0;
+  double SliceSpacingScale = 1.0;
   double ImageSampleDistance = 1.0;
   double LastImageSampleDistance = 1.0;
   double RadianceScale = 1.0;

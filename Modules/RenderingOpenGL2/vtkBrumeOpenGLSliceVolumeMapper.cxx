@@ -436,7 +436,8 @@ void vtkBrumeOpenGLSliceVolumeMapper::CutSlices(
   }
   const double automatic =
     AutomaticSpacing(model, input, this->ExtinctionData, this->Impl->MaxExtinction, cornersWC);
-  const double requested = this->SliceSpacing > 0.0 ? this->SliceSpacing : automatic;
+  const double requested =
+    (this->SliceSpacing > 0.0 ? this->SliceSpacing : automatic) * this->SliceSpacingScale;
   const int count =
     static_cast<int>(std::min(8192.0, std::max(1.0, std::ceil((dmax - dmin) / requested))));
   // An exact partition of [dmin, dmax] into slabs; each slice at its slab's centre.

@@ -428,6 +428,7 @@ void TestPreviewEdits()
       }
       const int traces = pass->GetNumberOfTraces();
       auto oldTable = table();
+      const int slices = mapper() ? mapper()->GetLastNumberOfSlices() : 0;
       window->Render();
       Check(pass->GetNumberOfPreviews() == base + edit + 1 && pass->GetNumberOfTraces() == traces &&
           !pass->IsConverged() && pass->IsRefining(),
@@ -436,11 +437,19 @@ void TestPreviewEdits()
       vtkBrumeSceneActors* actors = pass->GetPipeline()->GetActors();
       Check(actors->GetLastImageSampleDistance() == pass->GetPreviewImageSampleDistance(),
         "the preview's media drawn at the preview's image sample distance");
+      // Half the slices, give or take one: their count is the depth over the spacing, rounded up.
+      const int previewSlices = mapper() ? mapper()->GetLastNumberOfSlices() : 0;
+      Check(slices > 4 && std::abs(2 * previewSlices - slices) <= 2,
+        "the preview's slices twice as far apart: " + std::to_string(previewSlices) + " of " +
+          std::to_string(slices));
       Check(!SameBytes(before, Frame(window)), "the preview draws the edited functions");
       Check(edit == 1 || !SameBytes(oldTable, previewTable), "the preview's table is new");
       window->Render();
       Check(pass->GetNumberOfTraces() == traces + 1 && actors->GetLastImageSampleDistance() == 1.0,
         "the frame after a preview traces, its media at the window's resolution");
+      Check(actors->GetSliceSpacingScale() == 1.0 && mapper() &&
+          mapper()->GetLastNumberOfSlices() == slices,
+        "and at the actors' own slice spacing");
       Check(SameBytes(previewTable, table()), "the preview's table is the trace's");
       converge();
     }
