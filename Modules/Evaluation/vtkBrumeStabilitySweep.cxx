@@ -137,7 +137,17 @@ void MakeSheet(Scene* scene, int medium, double voxels)
     scene, medium, vtkBrumeNames::SigmaA, { 0.1 / thickness, 0.1 / thickness, 0.1 / thickness });
 }
 
-void AddMediumCases(std::vector<Case>& cases, int medium, const std::string& name, vtkTypeInt64 n)
+// Whether the medium is read from an OpenVDB file (BrumeVDBFile), which
+// gives its box and density: its image's geometry and arrays are not used.
+bool FromVdbFile(Scene* scene, int medium)
+{
+  vtkDataObject* data = ObjectData(scene, medium);
+  return data && data->GetFieldData()->GetAbstractArray(vtkBrumeNames::VDBFile);
+}
+
+// `reshape`: the sheet cases too, which replace the medium's grid.
+void AddMediumCases(
+  std::vector<Case>& cases, int medium, const std::string& name, vtkTypeInt64 n, bool reshape)
 {
   for (double g : { -0.99, -0.5, 0.0, 0.5, 0.75, 0.8, 0.9, 0.95, 0.99 })
   {
@@ -166,6 +176,10 @@ void AddMediumCases(std::vector<Case>& cases, int medium, const std::string& nam
   }
   for (double voxels : { 1.0, 2.0, 4.0 })
   {
+    if (!reshape)
+    {
+      break;
+    }
     cases.push_back({ "sheet voxels", std::to_string(voxels), name,
       [=](Scene* s) { MakeSheet(s, medium, voxels); }, n });
   }
@@ -213,7 +227,7 @@ bool GrownThrough(Scene* scene, int medium, int surface, double bounds[6])
 {
   auto* image = vtkImageData::SafeDownCast(ObjectData(scene, medium));
   auto* mesh = vtkPolyData::SafeDownCast(ObjectData(scene, surface));
-  if (!image || !mesh || mesh->GetNumberOfPoints() == 0)
+  if (!image || !mesh || mesh->GetNumberOfPoints() == 0 || FromVdbFile(scene, medium))
   {
     return false;
   }
@@ -641,7 +655,7 @@ int vtkBrumeStabilitySweep::RequestData(
   std::vector<Case> cases;
   if (medium >= 0)
   {
-    AddMediumCases(cases, medium, this->ChosenMedium, particles);
+    AddMediumCases(cases, medium, this->ChosenMedium, particles, !FromVdbFile(scene, medium));
   }
   for (vtkTypeInt64 n = std::max<vtkTypeInt64>(100, this->MinParticles); n <= particles; n *= 10)
   {

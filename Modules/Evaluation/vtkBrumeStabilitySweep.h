@@ -38,6 +38,10 @@
  *   as it is. Skipped when the scene has no medium or no surface, or the
  *   surface lies beside the box along no axis.
  *
+ * A medium read from an OpenVDB file (BrumeVDBFile) takes its box and its
+ * density from the file: its sheet and surface-in-medium cases, which
+ * reshape the medium's grid, are skipped.
+ *
  * The medium cases edit one medium: MediumName, or when it is empty the
  * scene's first medium (its first vtkImageData object). The surface cases
  * edit one surface: SurfaceName, or when it is empty the surface that
