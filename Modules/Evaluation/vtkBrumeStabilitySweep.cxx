@@ -278,14 +278,16 @@ bool GrownThrough(Scene* scene, int medium, int surface, double bounds[6])
   return true;
 }
 
+// Its references are cached under the medium's and the surface's names:
+// each surface makes another scene.
 void AddSurfaceInMediumCases(std::vector<Case>& cases, int medium, const std::string& name,
-  const double bounds[6], vtkTypeInt64 n)
+  const std::string& surface, const double bounds[6], vtkTypeInt64 n)
 {
   const std::array<double, 6> box{ bounds[0], bounds[1], bounds[2], bounds[3], bounds[4],
     bounds[5] };
   for (double k : { 1.0, 10.0, 100.0 })
   {
-    cases.push_back({ "surface in medium", std::to_string(1.1 * k), name,
+    cases.push_back({ "surface in medium", std::to_string(1.1 * k), name + " through " + surface,
       [=](Scene* s)
       {
         auto* image = vtkImageData::SafeDownCast(ObjectData(s, medium));
@@ -668,7 +670,8 @@ int vtkBrumeStabilitySweep::RequestData(
   double grown[6];
   if (medium >= 0 && surface >= 0 && GrownThrough(scene, medium, surface, grown))
   {
-    AddSurfaceInMediumCases(cases, medium, this->ChosenMedium, grown, particles);
+    AddSurfaceInMediumCases(
+      cases, medium, this->ChosenMedium, this->ChosenSurface, grown, particles);
   }
   if (this->Parameter && *this->Parameter)
   {

@@ -72,8 +72,9 @@
  * medium`).
  *
  * Converged references are cached under CacheKey (default: SceneName),
- * followed by `-sweep-`, the medium's name for the medium cases, the
- * parameter and the value. Needs an OpenGL context (an X display).
+ * followed by `-sweep-`, the medium's name for the medium cases (the
+ * medium's and the surface's, `MEDIUM through SURFACE`, for the
+ * surface-in-medium cases), the parameter and the value. Needs an OpenGL context (an X display).
  *
  * @sa vtkBrumeErrorChart vtkBrumeTimedPipeline
  */

@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <string>
@@ -140,6 +141,21 @@ void TestSweep(const std::string& directory, bool medium)
   {
     return;
   }
+  // The mist reaching through the other surface is another scene: its
+  // references are its own, not the first surface's read from the cache.
+  sweep->SetSurfaceName(surface == "stage" ? "backdrop" : "stage");
+  sweep->SetParameter("surface in medium");
+  Expect(sweep->GetExecutive()->Update() == 1, "the surface-in-medium cases alone run");
+  int references = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(directory + "/evaluation-cache"))
+  {
+    const std::string file = entry.path().filename().string();
+    references += file.find("mist_through_") != std::string::npos &&
+      file.find("surface_in_medium") != std::string::npos;
+  }
+  Expect(references == 6,
+    "a reference per surface and case: " + std::to_string(references) + " instead of 6");
+  sweep->SetSurfaceName(nullptr);
   // One parameter alone, against references of 64 and 256 samples per
   // pixel: the references' own noise halves (their standard errors go as
   // 1/sqrt(spp)) where the samples' variance is well estimated, at
