@@ -187,6 +187,16 @@ void vtkBrumePVRenderView::SetPreviewEdits(int preview)
   this->Pass->SetPreviewEdits(preview != 0);
 }
 
+void vtkBrumePVRenderView::SetPreviewSliceSpacingScale(double scale)
+{
+  this->Pass->SetPreviewSliceSpacingScale(scale);
+}
+
+double vtkBrumePVRenderView::GetPreviewSliceSpacingScale()
+{
+  return this->Pass->GetPreviewSliceSpacingScale();
+}
+
 void vtkBrumePVRenderView::SetVolumeAlbedo(double r, double g, double b)
 {
   this->Pass->GetScene()->SetAlbedo(r, g, b);

@@ -62,6 +62,10 @@ public:
   void SetProgressive(int mode);
   /// Previews of transfer-function edits while progressive (vtkBrumePass::SetPreviewEdits).
   void SetPreviewEdits(int preview);
+  /// How much farther apart a preview's slices lie than a traced frame's
+  /// (vtkBrumePass::SetPreviewSliceSpacingScale; 2 by default).
+  void SetPreviewSliceSpacingScale(double scale);
+  double GetPreviewSliceSpacingScale();
   void SetVolumeAlbedo(double r, double g, double b);
   void SetPhysicalLights(int physical);
   void SetLightIntensityScale(double scale);

@@ -7,7 +7,8 @@ gives a lit image (the ground's colours on it, the contour's shadow); a
 camera move traces nothing again and updates the view; a colour-map edit
 traces once more and changes the ground's colours; a settings change
 (Particles) traces again. Progressive, an edit of the volume's opacity is
-previewed first (BrumePreviewEdits). Nothing is written to the error output.
+previewed first (BrumePreviewEdits), its slices as far apart as
+BrumePreviewSliceSpacing says. Nothing is written to the error output.
 
 usage: pvbatch TestBrumeRenderView.py PLUGIN OUTPUT_DIR
 """
@@ -131,6 +132,17 @@ check(flag("BrumeNumberOfPreviews") == previews + 1 and counters(view)[0] == tra
 check(flag("BrumeIsRefining") == 1, "the view refines after a preview")
 Render(view)  # (a screenshot would render again too: the preview is one frame)
 check(counters(view)[0] == traces + 1, "the render after a preview traces")
+# A preview's slice spacing (a drawing setting, traced frames keep theirs)
+# reaches the view's pass; its effect on the slices is Brume.Pass's to check.
+def spacing(view):
+    view.SMProxy.UpdatePropertyInformation()
+    return view.GetProperty("BrumePreviewSliceSpacingInfo").GetElement(0)
+
+
+check(spacing(view) == 2.0, "previews draw slices twice as far apart by default (%g)"
+      % spacing(view))
+view.BrumePreviewSliceSpacing = 3.0
+check(spacing(view) == 3.0, "BrumePreviewSliceSpacing reaches the pass (%g)" % spacing(view))
 view.BrumePreviewEdits = 0
 opacity.Points = [low, 0.0, 0.5, 0.0, 160.0, 0.3, 0.5, 0.0, high, 1.0, 0.5, 0.0]
 Render(view)
