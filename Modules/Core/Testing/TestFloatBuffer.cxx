@@ -9,6 +9,10 @@
 
 #include <gtest/gtest.h>
 
+#if defined(__linux__)
+#include <sys/resource.h>
+#endif
+
 #include <cstdint>
 #include <memory>
 #include <numeric>
@@ -33,6 +37,84 @@ TEST(FloatBuffer, LargeBuffersAreSharedAndCut)
   buffer = FloatBuffer();
   EXPECT_EQ(share.get()[12345], 12345.f);
 }
+
+#if defined(__linux__)
+namespace
+{
+long MinorFaults()
+{
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_minflt;
+}
+
+// Writes every float of the buffer (its index), and checks them; the
+// minor page faults that took.
+long FillAndCheck(FloatBuffer& buffer)
+{
+  const long before = MinorFaults();
+  std::iota(buffer.Data(), buffer.Data() + buffer.Size(), 0.f);
+  const long faults = MinorFaults() - before;
+  for (std::size_t i = 0; i < buffer.Size(); i += 4099)
+  {
+    EXPECT_EQ(buffer[i], static_cast<float>(i));
+  }
+  return faults;
+}
+
+bool UnderAddressSanitizer()
+{
+#if defined(__SANITIZE_ADDRESS__)
+  return true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+  return true;
+#endif
+#endif
+  return false;
+}
+}
+
+TEST(FloatBuffer, ALargeBufferReleasedServesTheNextOfItsSize)
+{
+  // A grid sampled again after an edit: its buffer takes the pages of the
+  // grid before it, already faulted in, not fresh ones.
+  if (UnderAddressSanitizer())
+  {
+    GTEST_SKIP() << "every buffer comes from operator new under AddressSanitizer";
+  }
+  const std::size_t n = std::size_t(16) << 20; // 64 MB
+  long fresh = 0;
+  {
+    FloatBuffer first = FloatBuffer::Allocate(n);
+    fresh = FillAndCheck(first);
+  }
+  FloatBuffer second = FloatBuffer::Allocate(n);
+  const long reused = FillAndCheck(second);
+  EXPECT_GT(fresh, 0);
+  EXPECT_LT(reused, fresh / 4 + 1) << "fresh pages faulted " << fresh << " times";
+}
+
+TEST(FloatBuffer, ReleasedMappingsGrowShrinkOrGo)
+{
+  // A kept mapping serves a buffer up to twice its size (grown) or cut to
+  // a smaller one; a buffer under half its size maps its own. Every float
+  // of each holds what was written.
+  const std::size_t n = std::size_t(4) << 20;
+  for (const std::size_t next : { n + n / 2, n / 3, n / 5, n })
+  {
+    {
+      FloatBuffer before = FloatBuffer::Allocate(n);
+      FillAndCheck(before);
+    }
+    FloatBuffer buffer = FloatBuffer::Allocate(next);
+    ASSERT_EQ(buffer.Size(), next);
+    FillAndCheck(buffer);
+    buffer.Truncate(next / 2);
+    EXPECT_EQ(buffer[next / 2 - 1], static_cast<float>(next / 2 - 1));
+  }
+}
+#endif
 
 TEST(FloatBuffer, SmallBuffersAreCopiedWhenCut)
 {

@@ -2,7 +2,10 @@
 #include "brume/FloatBuffer.h"
 
 #include <algorithm>
+#include <mutex>
 #include <new>
+#include <utility>
+#include <vector>
 
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -35,12 +38,132 @@ namespace
 // Buffers from this size on are mapped on their own, in huge pages where offered.
 constexpr std::size_t MappedBytes = std::size_t(2) << 20;
 
-// Unmaps a mapping of `bytes` (its length may have been cut since: the
-// deleter holds the length that is still mapped).
+std::size_t PageBytes()
+{
+  static const std::size_t page = static_cast<std::size_t>(sysconf(_SC_PAGESIZE));
+  return page;
+}
+
+std::size_t WholePages(std::size_t bytes)
+{
+  const std::size_t page = PageBytes();
+  return (bytes + page - 1) / page * page;
+}
+
+/**
+ * The mappings of buffers no one holds any more, kept for the next
+ * Allocate() of a large buffer: a grid sampled again after an edit of its
+ * transfer function is written into the pages the grid before it had
+ * faulted in, where fresh pages would each be zeroed by the system first
+ * (on a virtual machine, 3 of a 512^3 grid's 7 s after an edit). Kept
+ * pages are given to the system to take back when it needs them
+ * (MADV_FREE), and every kept mapping is unmapped as soon as a large
+ * buffer is allocated that none of them serves, before it is mapped: the
+ * process's peak memory is never above what it would be without them.
+ */
+class MappingCache
+{
+public:
+  static MappingCache& Get()
+  {
+    static MappingCache* cache = new MappingCache(); // never destroyed: buffers outlive statics
+    return *cache;
+  }
+
+  // A mapping of `bytes` (whole pages): a kept one of at least half that
+  // size, cut or grown to it, else a new one; null where none could be made.
+  void* Take(std::size_t bytes)
+  {
+    std::vector<std::pair<void*, std::size_t>> released;
+    void* taken = nullptr;
+    std::size_t had = 0;
+    {
+      std::lock_guard<std::mutex> lock(this->Mutex);
+      // The kept mapping closest in size among those of at least half of it.
+      auto best = this->Kept.end();
+      for (auto it = this->Kept.begin(); it != this->Kept.end(); ++it)
+      {
+        const auto distance = [&](std::size_t n) { return n > bytes ? n - bytes : bytes - n; };
+        if (2 * it->second >= bytes &&
+          (best == this->Kept.end() || distance(it->second) < distance(best->second)))
+        {
+          best = it;
+        }
+      }
+      if (best != this->Kept.end())
+      {
+        taken = best->first;
+        had = best->second;
+        this->Kept.erase(best);
+      }
+      released.swap(this->Kept);
+    }
+    for (const auto& [p, n] : released)
+    {
+      munmap(p, n);
+    }
+    if (taken && had > bytes)
+    {
+      munmap(static_cast<char*>(taken) + bytes, had - bytes);
+    }
+    else if (taken && had < bytes)
+    {
+      // Grown where it lies or moved: its pages keep their memory either way.
+      void* grown = mremap(taken, had, bytes, MREMAP_MAYMOVE);
+      if (grown == MAP_FAILED)
+      {
+        munmap(taken, had);
+        taken = nullptr;
+      }
+      else
+      {
+        taken = grown;
+      }
+    }
+    if (taken)
+    {
+#if defined(MADV_HUGEPAGE)
+      madvise(taken, bytes, MADV_HUGEPAGE);
+#endif
+      return taken;
+    }
+    void* p = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (p == MAP_FAILED)
+    {
+      return nullptr;
+    }
+#if defined(MADV_HUGEPAGE)
+    madvise(p, bytes, MADV_HUGEPAGE); // advice only: without huge pages it stays 4 kB pages
+#endif
+    return p;
+  }
+
+  void Give(void* p, std::size_t bytes)
+  {
+#if defined(MADV_FREE)
+    madvise(p, bytes, MADV_FREE);
+#endif
+    std::lock_guard<std::mutex> lock(this->Mutex);
+    this->Kept.emplace_back(p, bytes);
+  }
+
+private:
+  std::mutex Mutex;
+  std::vector<std::pair<void*, std::size_t>> Kept;
+};
+
+// Gives a mapping back to the cache (its length may have been cut since:
+// the deleter holds the length that is still mapped).
 struct Unmap
 {
   std::shared_ptr<std::size_t> Bytes;
-  void operator()(float* p) const { munmap(p, *this->Bytes); }
+  void operator()(float* p) const
+  {
+    if (*this->Bytes != 0)
+    {
+      MappingCache::Get().Give(p, *this->Bytes);
+    }
+  }
 };
 #endif
 }
@@ -58,17 +181,14 @@ FloatBuffer FloatBuffer::Allocate(std::size_t n)
     throw std::bad_alloc();
   }
 #if BRUME_MAPPED_BUFFERS
-  const std::size_t bytes = n * sizeof(float);
-  if (bytes >= MappedBytes)
+  if (n * sizeof(float) >= MappedBytes)
   {
-    void* p = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-    if (p == MAP_FAILED)
+    const std::size_t bytes = WholePages(n * sizeof(float));
+    void* p = MappingCache::Get().Take(bytes);
+    if (!p)
     {
       throw std::bad_alloc();
     }
-#if defined(MADV_HUGEPAGE)
-    madvise(p, bytes, MADV_HUGEPAGE); // advice only: without huge pages it stays 4 kB pages
-#endif
     buffer.Memory =
       std::shared_ptr<float>(static_cast<float*>(p), Unmap{ std::make_shared<std::size_t>(bytes) });
     return buffer;
@@ -96,8 +216,7 @@ void FloatBuffer::Truncate(std::size_t n)
 #if BRUME_MAPPED_BUFFERS
   if (Unmap* unmap = std::get_deleter<Unmap>(this->Memory))
   {
-    const std::size_t page = static_cast<std::size_t>(sysconf(_SC_PAGESIZE));
-    const std::size_t keep = (n * sizeof(float) + page - 1) / page * page;
+    const std::size_t keep = WholePages(n * sizeof(float));
     if (keep < *unmap->Bytes)
     {
       munmap(reinterpret_cast<char*>(this->Memory.get()) + keep, *unmap->Bytes - keep);

@@ -25,7 +25,14 @@ namespace brume
  * on their own and advised into huge pages where the system offers them
  * (Linux's transparent huge pages): a first touch then costs one fault per
  * 2 MB instead of one per 4 kB, which on a virtual machine is most of the
- * cost of filling a large grid.
+ * cost of filling a large grid. The mapping of such a buffer that no one
+ * holds any more is kept (its pages the system's to take back when it
+ * needs them) for the next large Allocate() of about its size, which then
+ * writes into pages already faulted in: a grid sampled again after an
+ * edit costs no new pages. Kept mappings are unmapped as soon as a large
+ * buffer is allocated that none of them serves, before it is mapped, so
+ * that the process's peak memory is never above what it would be without
+ * them.
  */
 class FloatBuffer
 {

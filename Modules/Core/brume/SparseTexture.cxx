@@ -87,15 +87,26 @@ std::vector<std::uint8_t> SparseTexture::CellsRead(
           samples.Data() + static_cast<std::size_t>(slot) * BrickedGrid::BrickSamples;
         for (int k = lower[2]; k <= upper[2]; ++k)
           for (int j = lower[1]; j <= upper[1]; ++j)
+          {
+            // Each run of non-zero cells along the row at once: the texture
+            // cells its cells reach are those from its first's to its last's.
+            const float* row = values + ((k - lower[2]) * Size + (j - lower[1])) * Size;
             for (int i = lower[0]; i <= upper[0]; ++i)
             {
-              const int local = ((k - lower[2]) * Size + (j - lower[1])) * Size + (i - lower[0]);
-              if (values[local] != 0.f)
+              if (row[i - lower[0]] == 0.f)
               {
-                const int c[3] = { i, j, k };
-                mark(c, c);
+                continue;
               }
+              int last = i;
+              while (last < upper[0] && row[last + 1 - lower[0]] != 0.f)
+              {
+                ++last;
+              }
+              const int first[3] = { i, j, k }, end[3] = { last, j, k };
+              mark(first, end);
+              i = last;
             }
+          }
       }
   // ... and their neighbours, whose values trilinear interpolation of the
   // texture mixes in up to one cell away.
