@@ -37,35 +37,13 @@ double DensityField::MeanOccupiedDensity() const
                                     : this->Majorants.GlobalMax();
 }
 
-void DensityField::CountOccupied(
-  std::size_t count, const std::function<float(std::size_t)>& value, const ParallelFor& parallelFor)
+void DensityField::SetOccupied(
+  double values, const std::vector<double>& occupied, const std::vector<double>& sums)
 {
-  constexpr std::size_t Chunk = std::size_t(1) << 16;
-  const std::size_t chunks = (count + Chunk - 1) / Chunk;
-  std::vector<double> occupied(chunks, 0.0), sums(chunks, 0.0);
-  parallelFor(0, chunks,
-    [&](std::size_t begin, std::size_t end)
-    {
-      for (std::size_t c = begin; c < end; ++c)
-      {
-        double n = 0.0, sum = 0.0;
-        for (std::size_t i = c * Chunk; i < std::min(count, (c + 1) * Chunk); ++i)
-        {
-          const float v = value(i);
-          if (v > 0.f)
-          {
-            n += 1.0;
-            sum += v;
-          }
-        }
-        occupied[c] = n;
-        sums[c] = sum;
-      }
-    });
-  this->GridValues = static_cast<double>(count);
+  this->GridValues = values;
   this->OccupiedValues = 0.0;
   this->OccupiedSum = 0.0;
-  for (std::size_t c = 0; c < chunks; ++c)
+  for (std::size_t c = 0; c < occupied.size(); ++c)
   {
     this->OccupiedValues += occupied[c];
     this->OccupiedSum += sums[c];
@@ -235,8 +213,13 @@ GridDensity::GridDensity(const Box& bounds, std::array<int, 3> dims, TypedValues
   , Interpolated(interpolation)
 {
   this->Bounds = bounds;
-  this->CountOccupied(
-    this->Values.Size(), [this](std::size_t i) { return this->Values[i]; }, parallelFor);
+  this->Values.Visit(
+    [&](const auto* stored)
+    {
+      this->CountOccupied(
+        this->Values.Size(), [stored](std::size_t i) { return static_cast<float>(stored[i]); },
+        parallelFor);
+    });
   // Cells of the grid (point data: one fewer than the points).
   std::array<int, 3> cells{};
   for (int a = 0; a < 3; ++a)

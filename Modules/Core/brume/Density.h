@@ -116,10 +116,40 @@ protected:
    * Counts into GridValues, OccupiedValues and OccupiedSum the `count`
    * values value(i) that are above 0, on `parallelFor`: in fixed chunks
    * summed in order, so the sums are the same whatever the threads (and
-   * those of a plain loop up to one chunk).
+   * those of a plain loop up to one chunk). `value` is inlined: over a
+   * 512^3 grid a call per value through std::function took half a second
+   * of each edit of a transfer function.
    */
-  void CountOccupied(std::size_t count, const std::function<float(std::size_t)>& value,
-    const ParallelFor& parallelFor);
+  template <typename Value>
+  void CountOccupied(std::size_t count, const Value& value, const ParallelFor& parallelFor)
+  {
+    constexpr std::size_t Chunk = std::size_t(1) << 16;
+    const std::size_t chunks = (count + Chunk - 1) / Chunk;
+    std::vector<double> occupied(chunks, 0.0), sums(chunks, 0.0);
+    parallelFor(0, chunks,
+      [&](std::size_t begin, std::size_t end)
+      {
+        for (std::size_t c = begin; c < end; ++c)
+        {
+          double n = 0.0, sum = 0.0;
+          for (std::size_t i = c * Chunk; i < std::min(count, (c + 1) * Chunk); ++i)
+          {
+            const float v = value(i);
+            if (v > 0.f)
+            {
+              n += 1.0;
+              sum += v;
+            }
+          }
+          occupied[c] = n;
+          sums[c] = sum;
+        }
+      });
+    this->SetOccupied(static_cast<double>(count), occupied, sums);
+  }
+  /// CountOccupied()'s totals, from its chunks' counts and sums, in order.
+  void SetOccupied(
+    double values, const std::vector<double>& occupied, const std::vector<double>& sums);
 
   Box Bounds;
   MajorantGrid Majorants;

@@ -337,10 +337,15 @@ ClassifiedDensity::ClassifiedDensity(std::shared_ptr<const DensityField> scalars
   // positive (other fields: the non-empty majorant blocks').
   if (const auto* grid = dynamic_cast<const GridDensity*>(this->Scalars.get()))
   {
-    const TypedValues& values = grid->GetValues();
-    this->CountOccupied(
-      values.Size(), [&](std::size_t i) { return this->Opacity.Extinction(values[i]); },
-      parallelFor);
+    const TypedValues& typed = grid->GetValues();
+    typed.Visit(
+      [&](const auto* values)
+      {
+        this->CountOccupied(
+          typed.Size(),
+          [&](std::size_t i) { return this->Opacity.Extinction(static_cast<float>(values[i])); },
+          parallelFor);
+      });
   }
   this->Majorants = this->Scalars->GetMajorants();
   std::vector<float>& lo = this->RangeLow;
