@@ -58,8 +58,8 @@ std::size_t WholePages(std::size_t bytes)
  * (on a virtual machine, 3 of a 512^3 grid's 7 s after an edit). Kept
  * pages are given to the system to take back when it needs them
  * (MADV_FREE), and every kept mapping is unmapped as soon as a large
- * buffer is allocated that none of them serves, before it is mapped: the
- * process's peak memory is never above what it would be without them.
+ * buffer is allocated that none of them serves, before it is mapped: a
+ * new large buffer is never mapped beside kept ones.
  */
 class MappingCache
 {

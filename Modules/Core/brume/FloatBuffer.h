@@ -31,8 +31,7 @@ namespace brume
  * writes into pages already faulted in: a grid sampled again after an
  * edit costs no new pages. Kept mappings are unmapped as soon as a large
  * buffer is allocated that none of them serves, before it is mapped, so
- * that the process's peak memory is never above what it would be without
- * them.
+ * that a new large buffer is never mapped beside kept ones.
  */
 class FloatBuffer
 {
