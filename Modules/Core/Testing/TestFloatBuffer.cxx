@@ -95,6 +95,28 @@ TEST(FloatBuffer, ALargeBufferReleasedServesTheNextOfItsSize)
   EXPECT_LT(reused, fresh / 4 + 1) << "fresh pages faulted " << fresh << " times";
 }
 
+TEST(FloatBuffer, BuffersReleasedTogetherServeTheNextTogether)
+{
+  // A grid's scalars and extinction released together (a new time step, a
+  // volume read again) and made again one after the other: both take kept
+  // pages.
+  if (UnderAddressSanitizer())
+  {
+    GTEST_SKIP() << "every buffer comes from operator new under AddressSanitizer";
+  }
+  const std::size_t n = std::size_t(8) << 20; // 32 MB each
+  long fresh = 0;
+  {
+    FloatBuffer a = FloatBuffer::Allocate(n), b = FloatBuffer::Allocate(n);
+    fresh = FillAndCheck(a) + FillAndCheck(b);
+  }
+  FloatBuffer c = FloatBuffer::Allocate(n);
+  FloatBuffer d = FloatBuffer::Allocate(n);
+  const long reused = FillAndCheck(c) + FillAndCheck(d);
+  EXPECT_GT(fresh, 0);
+  EXPECT_LT(reused, fresh / 4 + 1) << "fresh pages faulted " << fresh << " times";
+}
+
 TEST(FloatBuffer, ReleasedMappingsGrowShrinkOrGo)
 {
   // A kept mapping serves a buffer up to twice its size (grown) or cut to

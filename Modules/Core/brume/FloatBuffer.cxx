@@ -79,11 +79,13 @@ public:
     std::size_t had = 0;
     {
       std::lock_guard<std::mutex> lock(this->Mutex);
-      // The kept mapping closest in size among those of at least half of it.
+      // The kept mapping closest in size among those of at least half of it;
+      // the others stay for the allocations after it (a grid's scalars and
+      // extinction, released and made again together), unless none serves.
+      const auto distance = [&](std::size_t n) { return n > bytes ? n - bytes : bytes - n; };
       auto best = this->Kept.end();
       for (auto it = this->Kept.begin(); it != this->Kept.end(); ++it)
       {
-        const auto distance = [&](std::size_t n) { return n > bytes ? n - bytes : bytes - n; };
         if (2 * it->second >= bytes &&
           (best == this->Kept.end() || distance(it->second) < distance(best->second)))
         {
@@ -96,7 +98,10 @@ public:
         had = best->second;
         this->Kept.erase(best);
       }
-      released.swap(this->Kept);
+      else
+      {
+        released.swap(this->Kept);
+      }
     }
     for (const auto& [p, n] : released)
     {
