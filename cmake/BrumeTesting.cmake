@@ -4,6 +4,14 @@
 # (create_test_sourcelist): `NAME TestX [args]` runs TestX(argc, argv) after
 # BrumeTestSetup (the threaded SMP backend). RENDERING registers the OpenGL
 # implementations (VTK's and the slice mapper's) with the object factories.
+#
+# BRUME_TEST_COMPILE_OPTIONS (a list) is added to every test executable's own
+# sources, after the build's flags: scripts/sanitize.sh compiles them at -O0,
+# half the time of -O1 under the sanitizers, the code they test being
+# optimized.
+set(BRUME_TEST_COMPILE_OPTIONS "" CACHE STRING
+  "Compiler options added to the test executables' own sources (a list)")
+mark_as_advanced(BRUME_TEST_COMPILE_OPTIONS)
 function (brume_test_driver name)
   cmake_parse_arguments(PARSE_ARGV 1 arg "RENDERING" "" "TESTS;LIBRARIES")
   create_test_sourcelist(sources "${name}.cxx" ${arg_TESTS}
@@ -14,6 +22,7 @@ function (brume_test_driver name)
     "${CMAKE_CURRENT_SOURCE_DIR}" "${PROJECT_SOURCE_DIR}/Testing/Cxx")
   target_link_libraries("${name}" PRIVATE Brume::DataModel Brume::Conversion ${arg_LIBRARIES})
   brume_set_warnings("${name}")
+  target_compile_options("${name}" PRIVATE ${BRUME_TEST_COMPILE_OPTIONS})
   if (arg_RENDERING)
     target_link_libraries("${name}" PRIVATE
       VTK::RenderingOpenGL2 VTK::RenderingVolumeOpenGL2 Brume::RenderingOpenGL2)
