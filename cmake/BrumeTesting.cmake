@@ -12,6 +12,18 @@
 set(BRUME_TEST_COMPILE_OPTIONS "" CACHE STRING
   "Compiler options added to the test executables' own sources (a list)")
 mark_as_advanced(BRUME_TEST_COMPILE_OPTIONS)
+
+# Tests whose windows go through an X server run alone
+# (set_tests_properties(... PROPERTIES ${brume_windows_alone})): Xvfb
+# refused windows now and then when several opened at once. In a build
+# configured without a display (CI's first pass, a headless server) they
+# draw through EGL or OSMesa, or are skipped where they need X: they then
+# keep only from each other, beside the other tests.
+if (DEFINED ENV{DISPLAY})
+  set(brume_windows_alone RUN_SERIAL TRUE)
+else ()
+  set(brume_windows_alone RESOURCE_LOCK BrumeWindows)
+endif ()
 function (brume_test_driver name)
   cmake_parse_arguments(PARSE_ARGV 1 arg "RENDERING" "" "TESTS;LIBRARIES")
   create_test_sourcelist(sources "${name}.cxx" ${arg_TESTS}

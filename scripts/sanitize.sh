@@ -19,7 +19,7 @@
 # setting: the reports keep their file and line, the build takes about 40 %
 # less time than at -O2 -g. Two exceptions, both still instrumented: the
 # core's libraries, which hold the Monte Carlo inner loops, at -O2 (the
-# Monte Carlo tests take about 40 % less time); the test executables' own
+# Monte Carlo tests take 35-45 % less time); the test executables' own
 # sources, and the writer of test volumes, at -O0 (half the compile time).
 set -euo pipefail
 cd "$(dirname "$0")/.."
