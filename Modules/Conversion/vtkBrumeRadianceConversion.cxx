@@ -639,9 +639,16 @@ vtkSmartPointer<vtkImageData> vtkBrumeRadianceConversion::DenseExtinction(vtkIma
 brume::SparseTexture vtkBrumeRadianceConversion::SourceBricks(
   const brume::ObjectRadiance& radiance, const brume::Medium& medium, bool directional)
 {
+  const auto& dims = directional ? radiance.GetLayout().Resolution : radiance.GetOutput().Dims;
+  // The direct light found the same cells for its texels where it cast
+  // their rays (the output grid).
+  const brume::DirectTexture& direct = radiance.GetDirect();
+  if (!direct.GetCellsRead().empty() && direct.GetDims() == dims)
+  {
+    return brume::SparseTexture::FromCellsRead(dims, direct.GetCellsRead());
+  }
   return brume::SparseTexture::WhereDensity(
-    directional ? radiance.GetLayout().Resolution : radiance.GetOutput().Dims, medium.Bounds,
-    radiance.GetNative().GetDensity());
+    dims, medium.Bounds, radiance.GetNative().GetDensity(), vtkBrumeSMP::ParallelFor());
 }
 
 vtkSmartPointer<vtkPartitionedDataSet> vtkBrumeRadianceConversion::FromMedium(

@@ -91,7 +91,9 @@ public:
    * directional) that the slice mapper reads: those near the density
    * (brume::SparseTexture::WhereDensity). It depends on the texture's
    * resolution and the density alone: a caller may keep it while the
-   * resolution stays.
+   * resolution stays. Taken from the cells the object's direct light read
+   * (brume::DirectTexture::GetCellsRead()) where it found them on the same
+   * grid, so that a reconstruction reads the density's bricks for them once.
    */
   static brume::SparseTexture SourceBricks(
     const brume::ObjectRadiance& radiance, const brume::Medium& medium, bool directional);

@@ -7,8 +7,11 @@
 #include "brume/SparseTexture.h"
 #include "brume/Vec3.h"
 
+#include "TestScenes.h"
+
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace brume;
@@ -101,6 +104,42 @@ TEST(SparseTexture, DropsBricksFarFromTheDensity)
   // No density anywhere: nothing stored.
   const BrickedGrid empty = Ball({ 64, 16, 16 }, box, Vec3(-100.f, 0.f, 0.f), 1.f);
   EXPECT_EQ(SparseTexture::WhereDensity({ 64, 16, 16 }, box, empty).NumberOfStoredBricks(), 0u);
+}
+
+TEST(SparseTexture, CellsReadAreTheSameWhateverTheThreads)
+{
+  // Bricks along z that reach the same texture planes (coarser texture),
+  // one each (as fine) and planes of their own (finer); the layers taken
+  // in reverse on four threads, one to seven layers a piece.
+  const Box densityBox{ Vec3(-1.f, -1.f, -1.f), Vec3(3.f, 1.f, 1.f) };
+  const Box textureBox{ Vec3(-0.9f, -0.95f, -0.9f), Vec3(2.9f, 0.95f, 0.9f) };
+  const BrickedGrid density = Ball({ 40, 20, 45 }, densityBox, Vec3(0.2f, 0.1f, 0.f), 0.7f);
+  for (const std::array<int, 3>& dims :
+    { std::array<int, 3>{ 19, 9, 9 }, std::array<int, 3>{ 38, 19, 43 },
+      std::array<int, 3>{ 77, 37, 90 }, std::array<int, 3>{ 50, 5, 3 } })
+  {
+    const std::vector<std::uint8_t> serial =
+      SparseTexture::CellsRead(dims, textureBox, density, SerialFor());
+    ASSERT_EQ(serial.size(), static_cast<std::size_t>(dims[0]) * dims[1] * dims[2]);
+    EXPECT_GT(std::count(serial.begin(), serial.end(), 1), 0);
+    EXPECT_LT(std::count(serial.begin(), serial.end(), 1), static_cast<long>(serial.size()));
+    for (std::size_t pieces : { 7, 3, 1 })
+    {
+      EXPECT_EQ(
+        SparseTexture::CellsRead(dims, textureBox, density, brume::testing::ThreadedFor(4, pieces)),
+        serial)
+        << dims[0] << " " << dims[1] << " " << dims[2] << ", " << pieces << " pieces";
+    }
+    // The bricks of those cells, found before, are WhereDensity()'s.
+    const SparseTexture kept = SparseTexture::FromCellsRead(dims, serial);
+    const SparseTexture found = SparseTexture::WhereDensity(dims, textureBox, density);
+    EXPECT_EQ(kept.GetSlots(), found.GetSlots());
+    EXPECT_EQ(kept.NumberOfStoredBricks(), found.NumberOfStoredBricks());
+    // Cells of another texture: none read, none stored.
+    EXPECT_EQ(SparseTexture::FromCellsRead({ dims[0] + 1, dims[1], dims[2] }, serial)
+                .NumberOfStoredBricks(),
+      0u);
+  }
 }
 
 TEST(SparseTexture, GathersCellsBrickByBrick)

@@ -304,6 +304,7 @@ bool DirectTexture::Compute(const ObjectLayout& layout, const std::vector<float>
   const ParallelFor& parallelFor, const std::vector<float>* kept)
 {
   this->Arrivals.clear();
+  this->Read.clear();
   if (!this->Light || texture.empty())
   {
     return false;
@@ -358,10 +359,12 @@ bool DirectTexture::Compute(const ObjectLayout& layout, const std::vector<float>
     // others stay 0, as no image shows them. Their face neighbours' rays are
     // cast too, so that the edges below are found as with every texel.
     const int used = layout.MediumRef ? 3 : 2;
-    std::vector<std::uint8_t> read, cast;
+    std::vector<std::uint8_t>& read = this->Read;
+    std::vector<std::uint8_t> cast;
     if (layout.MediumRef && !native.Empty())
     {
-      read = SparseTexture::CellsRead(dims, layout.MediumRef->Bounds, native.GetDensity());
+      read =
+        SparseTexture::CellsRead(dims, layout.MediumRef->Bounds, native.GetDensity(), parallelFor);
       cast = WithFaceNeighbours(read, dims, used);
     }
     // 1. One shadow ray per texel centre, or, through a medium's own grid,

@@ -63,6 +63,14 @@ public:
   const std::array<int, 3>& GetDims() const { return this->Dims; }
   const std::vector<float>& GetRadiance() const { return this->Radiance; }
   const std::vector<float>& GetExtinction() const { return this->Extinction; }
+  /**
+   * A medium with a native grid: per output texel (x fastest), 1 where a
+   * renderer reads it (SparseTexture::CellsRead() of the medium's bounds
+   * and native density), as the last Compute() found it to cast only
+   * those texels' rays. Empty when it took kept arrivals instead, or found
+   * none.
+   */
+  const std::vector<std::uint8_t>& GetCellsRead() const { return this->Read; }
 
 private:
   // Per light, the sweep of its shadow rays over the texels `cast` (every
@@ -79,7 +87,8 @@ private:
 
   const DirectLight* Light = nullptr;
   std::array<int, 3> Dims{ 0, 0, 0 };
-  std::vector<float> Arrivals; // per output texel and light: irradiance RGB, direction
+  std::vector<float> Arrivals;    // per output texel and light: irradiance RGB, direction
+  std::vector<std::uint8_t> Read; // GetCellsRead()
   // The triangle at each output texel's centre (-1 where none), whose
   // material (there) reflects its direct light; empty for one material.
   std::vector<std::int32_t> Triangles;

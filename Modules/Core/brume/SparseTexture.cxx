@@ -9,8 +9,8 @@
 namespace brume
 {
 
-std::vector<std::uint8_t> SparseTexture::CellsRead(
-  const std::array<int, 3>& dims, const Box& box, const BrickedGrid& density)
+std::vector<std::uint8_t> SparseTexture::CellsRead(const std::array<int, 3>& dims, const Box& box,
+  const BrickedGrid& density, const ParallelFor& parallelFor)
 {
   std::size_t cells = 1;
   for (int a = 0; a < 3; ++a)
@@ -43,73 +43,115 @@ std::vector<std::uint8_t> SparseTexture::CellsRead(
         std::min(static_cast<int>(std::floor((centre + nativeCell - lower) / cell)), dims[a] - 1));
     }
   }
-  auto index = [&](int i, int j, int k)
-  { return (static_cast<std::size_t>(k) * dims[1] + j) * dims[0] + i; };
-  // ... marked for the cells lower..upper (inclusive) of the density.
-  auto mark = [&](const int lower[3], const int upper[3])
-  {
-    const int x0 = from[0][lower[0]], x1 = to[0][upper[0]], y0 = from[1][lower[1]],
-              y1 = to[1][upper[1]], z0 = from[2][lower[2]], z1 = to[2][upper[2]];
-    for (int z = z0; z <= z1; ++z)
-      for (int y = y0; y <= y1; ++y)
-        for (int x = x0; x <= x1; ++x)
-        {
-          near[index(x, y, z)] = 1;
-        }
-  };
+  const std::size_t plane = static_cast<std::size_t>(dims[0]) * dims[1];
+  // ... marked for the cells lower..upper (inclusive) of the density, each
+  // layer of bricks along z into a slab of its own (the texture's z cells
+  // it reaches), on every thread; the slabs are then merged. Marks are only
+  // ever set, so the result does not depend on the threads.
   constexpr int Stride = BrickedGrid::Stride, Size = BrickedGrid::Size;
   const auto& bricks = density.GetBrickDims();
-  const FloatBuffer& samples = density.GetSamples();
-  std::size_t brick = 0;
-  for (int bk = 0; bk < bricks[2]; ++bk)
-    for (int bj = 0; bj < bricks[1]; ++bj)
-      for (int bi = 0; bi < bricks[0]; ++bi, ++brick)
+  struct Slab
+  {
+    int First = 0; // the texture's z cell of its first plane
+    std::vector<std::uint8_t> Marks;
+  };
+  std::vector<Slab> slabs(static_cast<std::size_t>(bricks[2]));
+  parallelFor(0, slabs.size(),
+    [&](std::size_t firstLayer, std::size_t endLayer)
+    {
+      for (std::size_t layer = firstLayer; layer < endLayer; ++layer)
       {
-        const int slot = density.GetSlots()[brick];
-        if (slot < 0 && density.GetConstants()[brick] == 0.f)
+        const int bk = static_cast<int>(layer);
+        const int k0 = Stride * bk;
+        const int k1 = (bk == bricks[2] - 1 ? nativeDims[2] : k0 + Stride) - 1;
+        Slab& slab = slabs[layer];
+        slab.First = from[2][k0];
+        const int planes = to[2][k1] - slab.First + 1;
+        if (planes <= 0)
         {
           continue;
         }
-        // The brick's own cells (Stride per axis, the last brick the rest).
-        const int b[3] = { bi, bj, bk };
-        int lower[3], upper[3];
-        for (int a = 0; a < 3; ++a)
+        std::vector<std::uint8_t>& marks = slab.Marks;
+        auto mark = [&](const int lower[3], const int upper[3])
         {
-          lower[a] = Stride * b[a];
-          upper[a] = (b[a] == bricks[a] - 1 ? nativeDims[a] : lower[a] + Stride) - 1;
-        }
-        if (slot < 0)
-        {
-          mark(lower, upper); // one value, not 0, everywhere
-          continue;
-        }
-        const float* values =
-          samples.Data() + static_cast<std::size_t>(slot) * BrickedGrid::BrickSamples;
-        for (int k = lower[2]; k <= upper[2]; ++k)
-          for (int j = lower[1]; j <= upper[1]; ++j)
+          const int x0 = from[0][lower[0]], x1 = to[0][upper[0]], y0 = from[1][lower[1]],
+                    y1 = to[1][upper[1]], z0 = from[2][lower[2]], z1 = to[2][upper[2]];
+          if (marks.empty())
           {
-            // Each run of non-zero cells along the row at once: the texture
-            // cells its cells reach are those from its first's to its last's.
-            const float* row = values + ((k - lower[2]) * Size + (j - lower[1])) * Size;
-            for (int i = lower[0]; i <= upper[0]; ++i)
+            marks.assign(plane * static_cast<std::size_t>(planes), 0);
+          }
+          for (int z = z0; z <= z1; ++z)
+            for (int y = y0; y <= y1; ++y)
             {
-              if (row[i - lower[0]] == 0.f)
-              {
-                continue;
-              }
-              int last = i;
-              while (last < upper[0] && row[last + 1 - lower[0]] != 0.f)
-              {
-                ++last;
-              }
-              const int first[3] = { i, j, k }, end[3] = { last, j, k };
-              mark(first, end);
-              i = last;
+              std::uint8_t* row =
+                &marks[(static_cast<std::size_t>(z - slab.First) * dims[1] + y) * dims[0]];
+              std::fill(row + x0, row + x1 + 1, std::uint8_t(1));
             }
+        };
+        const FloatBuffer& samples = density.GetSamples();
+        for (int bj = 0; bj < bricks[1]; ++bj)
+          for (int bi = 0; bi < bricks[0]; ++bi)
+          {
+            const std::size_t brick =
+              (static_cast<std::size_t>(bk) * bricks[1] + bj) * bricks[0] + bi;
+            const int slot = density.GetSlots()[brick];
+            if (slot < 0 && density.GetConstants()[brick] == 0.f)
+            {
+              continue;
+            }
+            // The brick's own cells (Stride per axis, the last brick the rest).
+            const int b[3] = { bi, bj, bk };
+            int lower[3], upper[3];
+            for (int a = 0; a < 3; ++a)
+            {
+              lower[a] = Stride * b[a];
+              upper[a] = (b[a] == bricks[a] - 1 ? nativeDims[a] : lower[a] + Stride) - 1;
+            }
+            if (slot < 0)
+            {
+              mark(lower, upper); // one value, not 0, everywhere
+              continue;
+            }
+            const float* values =
+              samples.Data() + static_cast<std::size_t>(slot) * BrickedGrid::BrickSamples;
+            for (int k = lower[2]; k <= upper[2]; ++k)
+              for (int j = lower[1]; j <= upper[1]; ++j)
+              {
+                // Each run of non-zero cells along the row at once: the
+                // texture cells its cells reach are those from its first's
+                // to its last's.
+                const float* row = values + ((k - lower[2]) * Size + (j - lower[1])) * Size;
+                for (int i = lower[0]; i <= upper[0]; ++i)
+                {
+                  if (row[i - lower[0]] == 0.f)
+                  {
+                    continue;
+                  }
+                  int last = i;
+                  while (last < upper[0] && row[last + 1 - lower[0]] != 0.f)
+                  {
+                    ++last;
+                  }
+                  const int first[3] = { i, j, k }, end[3] = { last, j, k };
+                  mark(first, end);
+                  i = last;
+                }
+              }
           }
       }
+    });
+  for (const Slab& slab : slabs)
+  {
+    std::uint8_t* out = near.data() + plane * static_cast<std::size_t>(slab.First);
+    for (std::size_t c = 0; c < slab.Marks.size(); ++c)
+    {
+      out[c] |= slab.Marks[c];
+    }
+  }
   // ... and their neighbours, whose values trilinear interpolation of the
   // texture mixes in up to one cell away.
+  auto index = [&](int i, int j, int k)
+  { return (static_cast<std::size_t>(k) * dims[1] + j) * dims[0] + i; };
   for (int a = 0; a < 3; ++a)
   {
     std::vector<std::uint8_t> grown(near);
@@ -131,8 +173,14 @@ std::vector<std::uint8_t> SparseTexture::CellsRead(
   return near;
 }
 
-SparseTexture SparseTexture::WhereDensity(
-  const std::array<int, 3>& dims, const Box& box, const BrickedGrid& density)
+SparseTexture SparseTexture::WhereDensity(const std::array<int, 3>& dims, const Box& box,
+  const BrickedGrid& density, const ParallelFor& parallelFor)
+{
+  return FromCellsRead(dims, CellsRead(dims, box, density, parallelFor));
+}
+
+SparseTexture SparseTexture::FromCellsRead(
+  const std::array<int, 3>& dims, const std::vector<std::uint8_t>& read)
 {
   SparseTexture t;
   t.Dims = dims;
@@ -143,7 +191,11 @@ SparseTexture SparseTexture::WhereDensity(
     bricks *= static_cast<std::size_t>(t.BrickDims[a]);
   }
   t.Slots.assign(bricks, -1);
-  const std::vector<std::uint8_t> read = CellsRead(dims, box, density);
+  if (read.size() !=
+    static_cast<std::size_t>(std::max(dims[0], 0)) * std::max(dims[1], 0) * std::max(dims[2], 0))
+  {
+    return t; // not a mask of these cells: nothing read
+  }
   std::size_t cell = 0;
   for (int k = 0; k < dims[2]; ++k)
     for (int j = 0; j < dims[1]; ++j)

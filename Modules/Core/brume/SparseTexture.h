@@ -4,6 +4,7 @@
 #ifndef brume_SparseTexture_h
 #define brume_SparseTexture_h
 
+#include "brume/Parallel.h"
 #include "brume/Vec3.h"
 
 #include <array>
@@ -48,18 +49,26 @@ public:
    * The bricks of a texture of `dims` cells over `box` that a renderer reads
    * where `density` (over its own box, sampled at its cells' centres) is
    * not 0. Deterministic; does not depend on the density's values, only on
-   * where they are not 0.
+   * where they are not 0, nor on `parallelFor`'s threads.
    */
-  static SparseTexture WhereDensity(
-    const std::array<int, 3>& dims, const Box& box, const BrickedGrid& density);
+  static SparseTexture WhereDensity(const std::array<int, 3>& dims, const Box& box,
+    const BrickedGrid& density, const ParallelFor& parallelFor = SerialFor());
+  /**
+   * The same, from CellsRead() of the same texture and density, found
+   * before (brume::DirectTexture keeps it for its medium). A `read` that is
+   * not one value per cell of `dims` reads nothing: no brick is stored.
+   */
+  static SparseTexture FromCellsRead(
+    const std::array<int, 3>& dims, const std::vector<std::uint8_t>& read);
 
   /**
    * Per cell of that texture (x fastest), 1 where a renderer may read it:
    * the cells WhereDensity's bricks are kept for. All 0 for an empty
-   * density.
+   * density. The density's layers of bricks are read on `parallelFor`'s
+   * threads; the result does not depend on them.
    */
-  static std::vector<std::uint8_t> CellsRead(
-    const std::array<int, 3>& dims, const Box& box, const BrickedGrid& density);
+  static std::vector<std::uint8_t> CellsRead(const std::array<int, 3>& dims, const Box& box,
+    const BrickedGrid& density, const ParallelFor& parallelFor = SerialFor());
 
   const std::array<int, 3>& GetDims() const { return this->Dims; }
   const std::array<int, 3>& GetBrickDims() const { return this->BrickDims; }
