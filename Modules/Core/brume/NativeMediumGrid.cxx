@@ -533,6 +533,11 @@ void NativeMediumGrid::BuildTables(
         const std::size_t nx = static_cast<std::size_t>(dims[0]);
         const std::size_t rows = static_cast<std::size_t>(k1 - k0) * nd[1];
         std::vector<double> byX(2 * rows * nx, 0.0);
+        // The histogram x cell the last cells added into is summed in
+        // registers until another is: the same additions in the same order
+        // as into memory, without waiting on a store per cell.
+        double* at = nullptr;
+        double mass0 = 0.0, moment0 = 0.0, total = 0.0;
         grid.ForEachNonZeroCellOfLayers(static_cast<int>(l), static_cast<int>(l) + 1,
           [&](int i, int j, int k, float density)
           {
@@ -541,15 +546,33 @@ void NativeMediumGrid::BuildTables(
             {
               return;
             }
-            part.Total += mass;
+            total += mass;
             double* row = &byX[2 * ((static_cast<std::size_t>(k - k0) * nd[1] + j) * nx)];
             for (const Overlap& x : overlaps[0][static_cast<std::size_t>(i)])
             {
+              double* cell = row + 2 * x.Coarse;
+              if (cell != at)
+              {
+                if (at)
+                {
+                  at[0] = mass0;
+                  at[1] = moment0;
+                }
+                at = cell;
+                mass0 = cell[0];
+                moment0 = cell[1];
+              }
               const double share = mass * x.Fraction;
-              row[2 * x.Coarse] += share;
-              row[2 * x.Coarse + 1] += share * x.Centre;
+              mass0 += share;
+              moment0 += share * x.Centre;
             }
           });
+        if (at)
+        {
+          at[0] = mass0;
+          at[1] = moment0;
+        }
+        part.Total = total;
         const std::size_t ny = static_cast<std::size_t>(dims[1]);
         std::vector<double> byY(3 * nx * ny);
         for (int k = k0; k < k1; ++k)
