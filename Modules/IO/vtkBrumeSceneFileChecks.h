@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <string>
 
+class vtkXMLReader;
 class vtkXMLUnstructuredDataReader;
 
 class vtkBrumeSceneFileChecks
@@ -24,16 +25,20 @@ public:
   static bool Obj(const std::filesystem::path& file, std::string& error);
   /// Binary STL: 84 + 50 n bytes for the n triangles its header announces.
   static bool Stl(const std::filesystem::path& file, std::string& error);
-  /// VTP and VTU: XmlArrays(), then through `reader`'s own header parse (it
-  /// is given the file name): the points and cells fit in memory and,
-  /// uncompressed, in the file.
+  /// VTP and VTU: XmlArrays(), then from the same header parse: the
+  /// points and cells fit in memory and, uncompressed, in the file.
   static bool VtkXml(
     vtkXMLUnstructuredDataReader* reader, const std::filesystem::path& file, std::string& error);
-  /// Any VTK XML file (VTI, VTP, VTU), from its XML alone, before a reader
-  /// sees it: every array announces 1 to MaxComponents components, and all
-  /// of them (components x the piece's points or cells x the type's size)
-  /// fit in memory. A file that is not VTK XML passes (its reader fails).
-  static bool XmlArrays(const std::filesystem::path& file, std::string& error);
+  /**
+   * Any VTK XML file (VTI, VTP, VTU) `reader` is given the name of, from
+   * its header parse alone (UpdateInformation(), which sets up no array),
+   * before it reads data: every array announces 1 to MaxComponents
+   * components, and all of them (components x the piece's points or cells
+   * x the type's size) fit in memory and in what the file can hold. A file
+   * the reader cannot parse passes (its Update() fails).
+   */
+  static bool XmlArrays(
+    vtkXMLReader* reader, const std::filesystem::path& file, std::string& error);
   /// The most components an array of a file a scene names may announce.
   static constexpr double MaxComponents = 256.0;
   /// What a file's announced sizes may ask for: half of this machine's

@@ -427,20 +427,17 @@ vtkSmartPointer<vtkImageData> vtkBrumeSceneFileParser::ReadImage(
       return kept;
     }
   }
-  // The arrays the file announces, from its XML alone: VTK's reader sets
-  // up every component an array announces before anything is checked.
-  std::string announced;
-  if (!vtkBrumeSceneFileChecks::XmlArrays(file, announced))
-  {
-    p.Fail(field, announced);
-    return nullptr;
-  }
   vtkNew<vtkXMLImageDataReader> reader;
   reader->SetFileName(file.string().c_str());
   const bool display = vtkObject::GetGlobalWarningDisplay();
   vtkObject::GlobalWarningDisplayOff();
-  // The extent the header announces, before anything is allocated for it.
-  const std::string tooLarge = reader->GetExecutive()->UpdateInformation() != 0
+  // The arrays and the extent the header announces, before anything is
+  // allocated for them: VTK's reader sets up every component an array
+  // announces when it reads the data.
+  std::string announced;
+  const bool fits = vtkBrumeSceneFileChecks::XmlArrays(reader, file, announced);
+  const std::string tooLarge = !fits ? announced
+    : reader->GetExecutive()->UpdateInformation() != 0
     ? CheckAnnouncedExtent(reader->GetOutputInformation(0), file.string())
     : std::string();
   if (!tooLarge.empty())
