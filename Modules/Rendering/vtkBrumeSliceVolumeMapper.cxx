@@ -407,5 +407,6 @@ void vtkBrumeSliceVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ImageSampleDistance: " << this->ImageSampleDistance << "\n";
   os << indent << "LastImageSampleDistance: " << this->LastImageSampleDistance << "\n";
   os << indent << "LastNumberOfSlices: " << this->LastNumberOfSlices << "\n";
+  os << indent << "LastSlabSamples: " << this->LastSlabSamples << "\n";
   os << indent << "ExtinctionData: " << this->ExtinctionData.GetPointer() << "\n";
 }

@@ -94,6 +94,13 @@ public:
    * and at most two optical depths at its largest extinction, but no closer
    * than one of its cells (an optically thick medium's lit skin is then
    * sampled where it is). Negative values are an error.
+   *
+   * With an extinction grid of its own finer than the spacing, each slab
+   * takes the mean of its extinction at one sample per fine cell of the
+   * spacing along each ray (at most 8; GetLastSlabSamples()), so that a
+   * structure one cell thin is integrated across the slab instead of
+   * falling between slices or being drawn a slab thick. Quick draws
+   * (SliceSpacingScale or a reduced ImageSampleDistance above 1) take one.
    */
   vtkSetMacro(SliceSpacing, double);
   vtkGetMacro(SliceSpacing, double);
@@ -258,6 +265,9 @@ public:
 
   /// Number of slices of this volume drawn by the last render.
   vtkGetMacro(LastNumberOfSlices, int);
+  /// Extinction samples each slab of this volume took along a ray in the
+  /// last render (SetSliceSpacing).
+  vtkGetMacro(LastSlabSamples, int);
 
   /**
    * Empty when `image` has what the mapper draws, otherwise why not (missing
@@ -320,6 +330,7 @@ protected:
   int DirectionalEvaluation = PerVoxel;
   bool WriteDepth = false;
   int LastNumberOfSlices = 0;
+  int LastSlabSamples = 1;
   vtkSmartPointer<vtkImageData> ExtinctionData;
   vtkWeakPointer<vtkVolumeCollection> VolumeGroup;
 

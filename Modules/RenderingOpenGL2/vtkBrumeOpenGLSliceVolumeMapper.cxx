@@ -65,6 +65,10 @@ Vec Transform(vtkMatrix4x4* m, const Vec& p)
 // The most optical depths a slab of the automatic spacing holds at the
 // largest sigma_t of an extinction grid of its own (CutSlices).
 constexpr double MaxSlabDepth = 2.0;
+// The most extinction samples a slab takes along a ray: its thickness over
+// the extinction's own finest cell, so that structures one cell thin are
+// integrated across the slab (the automatic spacing spans at most four).
+constexpr int MaxSlabSamples = 8;
 
 constexpr int BoxEdges[12][2] = { { 0, 1 }, { 2, 3 }, { 4, 5 }, { 6, 7 }, { 0, 2 }, { 1, 3 },
   { 4, 6 }, { 5, 7 }, { 0, 4 }, { 1, 5 }, { 2, 6 }, { 3, 7 } };
@@ -85,6 +89,26 @@ struct SlicePoint
   Vec World, Data;
   double Angle;
 };
+
+// World units per data unit along data axis a.
+double AxisScale(vtkMatrix4x4* model, int a)
+{
+  return std::sqrt(model->GetElement(0, a) * model->GetElement(0, a) +
+    model->GetElement(1, a) * model->GetElement(1, a) +
+    model->GetElement(2, a) * model->GetElement(2, a));
+}
+
+// A grid's smallest cell side, in world units.
+double SmallestCell(vtkMatrix4x4* model, vtkImageData* grid)
+{
+  double cell = VTK_DOUBLE_MAX;
+  const double* spacing = grid->GetSpacing();
+  for (int a = 0; a < 3; ++a)
+  {
+    cell = std::min(cell, AxisScale(model, a) * spacing[a]);
+  }
+  return cell;
+}
 
 // The slices' spacing, in world units, when SliceSpacing is 0 (automatic).
 // Slices half a voxel of the source apart but no closer than 1/40 of the
@@ -120,23 +144,8 @@ struct SlicePoint
 double AutomaticSpacing(vtkMatrix4x4* model, vtkImageData* input, vtkImageData* extinction,
   double maxExtinction, const Vec cornersWC[8])
 {
-  // World units per data unit along data axis a.
-  auto axisScale = [&](int a)
-  {
-    return std::sqrt(model->GetElement(0, a) * model->GetElement(0, a) +
-      model->GetElement(1, a) * model->GetElement(1, a) +
-      model->GetElement(2, a) * model->GetElement(2, a));
-  };
-  auto smallestCell = [&](vtkImageData* grid)
-  {
-    double cell = VTK_DOUBLE_MAX;
-    const double* spacing = grid->GetSpacing();
-    for (int a = 0; a < 3; ++a)
-    {
-      cell = std::min(cell, axisScale(a) * spacing[a]);
-    }
-    return cell;
-  };
+  auto axisScale = [&](int a) { return AxisScale(model, a); };
+  auto smallestCell = [&](vtkImageData* grid) { return SmallestCell(model, grid); };
   double longest = 0.0; // the medium's longest side, in world units
   for (int a = 0; a < 3; ++a)
   {
@@ -372,6 +381,13 @@ bool vtkBrumeOpenGLSliceVolumeMapper::PrepareSlices(
       impl.EyeData[a] = static_cast<float>(eyeData[a]);
       impl.BoundsLower[a] = static_cast<float>(bounds[2 * a]);
       impl.BoundsExtent[a] = static_cast<float>(bounds[2 * a + 1] - bounds[2 * a]);
+      // Texture coordinate a per world unit along each world axis.
+      const double extent = bounds[2 * a + 1] - bounds[2 * a];
+      for (int w = 0; w < 3; ++w)
+      {
+        impl.TextureFromWorld[a][w] =
+          extent > 0.0 ? static_cast<float>(inverse->GetElement(a, w) / extent) : 0.f;
+      }
     }
   }
   {
@@ -436,8 +452,21 @@ void vtkBrumeOpenGLSliceVolumeMapper::CutSlices(
   }
   const double automatic =
     AutomaticSpacing(model, input, this->ExtinctionData, this->Impl->MaxExtinction, cornersWC);
-  const double requested =
-    (this->SliceSpacing > 0.0 ? this->SliceSpacing : automatic) * this->SliceSpacingScale;
+  const double unscaled = this->SliceSpacing > 0.0 ? this->SliceSpacing : automatic;
+  const double requested = unscaled * this->SliceSpacingScale;
+  // Samples of the extinction's own grid across a slab: one per fine cell
+  // of the spacing, one without such a grid or in a quick draw (thicker
+  // slabs asked for speed).
+  this->Impl->SlabSamples = 1;
+  if (this->ExtinctionData && this->SliceSpacingScale <= 1.0)
+  {
+    const double fine = SmallestCell(model, this->ExtinctionData);
+    if (fine > 0.0)
+    {
+      this->Impl->SlabSamples = static_cast<int>(
+        std::clamp(std::ceil(unscaled / fine - 1e-6), 1.0, static_cast<double>(MaxSlabSamples)));
+    }
+  }
   const int count =
     static_cast<int>(std::min(8192.0, std::max(1.0, std::ceil((dmax - dmin) / requested))));
   // An exact partition of [dmin, dmax] into slabs; each slice at its slab's centre.
@@ -600,6 +629,10 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawRuns(vtkRenderer* ren, bool reduced)
     kind.SourceIsRadiance = owner.SourceIsRadiance;
     kind.Classified = owner.Bricked && owner.Classified;
     kind.Albedo = kind.Classified && owner.Albedo;
+    // A reduced resolution is a quick draw: one sample a slab.
+    const int samples = reduced ? 1 : owner.SlabSamples;
+    run.Owner->LastSlabSamples = samples;
+    kind.Slabs = samples > 1;
     kind.Extinction = owner.Bricked ? vtkBrumeSliceVolumeShader::ExtinctionBricks
       : owner.ConstantExtinction    ? vtkBrumeSliceVolumeShader::ExtinctionConstant
                                     : vtkBrumeSliceVolumeShader::ExtinctionTexture;
@@ -634,6 +667,13 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawRuns(vtkRenderer* ren, bool reduced)
     program->SetUniformi("sourceTexture", owner.Source->GetTextureUnit());
     program->SetUniformi("extinctionTexture", owner.Extinction->GetTextureUnit());
     program->SetUniformf("sliceSpacing", run.Spacing);
+    if (kind.Slabs)
+    {
+      program->SetUniformi("slabSamples", samples);
+      program->SetUniform3f("textureFromWorldX", owner.TextureFromWorld[0]);
+      program->SetUniform3f("textureFromWorldY", owner.TextureFromWorld[1]);
+      program->SetUniform3f("textureFromWorldZ", owner.TextureFromWorld[2]);
+    }
     program->SetUniform3f("extinctionScale", owner.ExtinctionScale);
     program->SetUniform3f("extinctionOffset", owner.ExtinctionOffset);
     program->SetUniform3f("extinctionFactor", owner.ExtinctionFactor);

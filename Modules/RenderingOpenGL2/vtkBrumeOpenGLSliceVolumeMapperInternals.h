@@ -96,6 +96,12 @@ struct vtkBrumeOpenGLSliceVolumeMapper::Internals
   // sigma_t's factor for a forward peak drawn as transport (field data
   // BrumeExtinctionFactor; 1 without).
   float ExtinctionFactor[3] = { 1.f, 1.f, 1.f };
+  // The rows of the map from world to texture coordinates (the model's
+  // inverse over the box's extent), and the extinction samples a slab
+  // takes along each ray (CutSlices: one per cell of an extinction grid
+  // of its own the slices' spacing spans, at most MaxSlabSamples).
+  float TextureFromWorld[3][3] = { { 1.f, 0.f, 0.f }, { 0.f, 1.f, 0.f }, { 0.f, 0.f, 1.f } };
+  int SlabSamples = 1;
   vtkTimeStamp TextureTime;
   std::vector<float> SourceValues; // RGBA per cell, reused from one upload to the next
   std::vector<float> Scratch;      // the input's extinction, likewise

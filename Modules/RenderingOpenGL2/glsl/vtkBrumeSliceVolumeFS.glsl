@@ -12,7 +12,8 @@
 // 1 (a sparse grid's atlas of bricks) or 2 (constant: a homogeneous medium);
 // BRUME_SOURCE_IS_RADIANCE 1 where sourceTexture holds S, not J;
 // BRUME_CLASSIFIED 1 where the bricks hold scalars a transfer function
-// classifies, and BRUME_ALBEDO 1 where its table gives an albedo too. Each kind
+// classifies, and BRUME_ALBEDO 1 where its table gives an albedo too;
+// BRUME_SLABS 1 where slabs take several extinction samples. Each kind
 // is compiled apart: a software rasterizer runs both sides of a branch on a
 // uniform, texture fetches included.
 //BRUME::Slice::Defines
@@ -29,6 +30,18 @@ uniform vec3 extinctionScale;        // texcoord to the extinction grid's own bo
 uniform vec3 extinctionOffset;
 uniform vec3 extinctionFactor;       // forward peak drawn as transport: sigma_t's factor
 uniform float radianceScale;         // an exposure: the emitted radiance only, not T
+#if BRUME_SLABS
+// The slab's extinction (and albedo) is the mean of slabSamples samples
+// along this fragment's ray, evenly across the slab's thickness: an
+// extinction grid of its own finer than the slices' spacing (one voxel
+// sheets) is then integrated across the slab, not sampled at its slice
+// (where a thin structure falls between slices or is drawn a slab thick).
+// textureFromWorld* are the rows of the world-to-texture-coordinate map.
+uniform int slabSamples;
+uniform vec3 textureFromWorldX;
+uniform vec3 textureFromWorldY;
+uniform vec3 textureFromWorldZ;
+#endif
 #if BRUME_EXTINCTION == 1
 // A sparse extinction grid (vtkBrumeSliceVolumeMapper::SetExtinctionData):
 // bricks of 8^3 cells, 7 apart, so that the cells a point interpolates lie
@@ -112,12 +125,51 @@ void main()
 {
   vec3 emission = texture(sourceTexture, texcoord).rgb;
   //BRUME::Directional::Impl
-  vec3 albedo;
-  vec3 sigmaT = extinctionAt(texcoord * extinctionScale + extinctionOffset, albedo);
+  // Distance between two slice planes along this fragment's viewing ray:
+  // it grows as 1/cos(angle to the view direction) in perspective.
+  float delta = sliceSpacing;
+  if (perspective != 0)
+  {
+    vec3 ray = positionWC - eyeWC;
+    delta = sliceSpacing * length(ray) / max(dot(ray, viewDirectionWC), 1e-6);
+  }
+#if BRUME_SLABS
+  // The slab's samples, in texture coordinates, evenly across it along the
+  // ray; samples beyond the medium's box hold none of it.
+  vec3 ray = perspective != 0 ? normalize(positionWC - eyeWC) : viewDirectionWC;
+  vec3 across = delta * vec3(dot(textureFromWorldX, ray), dot(textureFromWorldY, ray),
+    dot(textureFromWorldZ, ray));
+  int samples = slabSamples;
+#else
+  const int samples = 1; // at the slice
+#endif
+  vec3 sigmaT = vec3(0.0);
 #if BRUME_ALBEDO
-  // J = sigma_t a X; the peak's share a Forward of sigma_t is transport.
-  emission *= sigmaT * albedo;
-  sigmaT *= vec3(1.0) - albedo * forwardFraction;
+  vec3 scattering = vec3(0.0);
+#endif
+  for (int k = 0; k < samples; ++k)
+  {
+    vec3 t = texcoord;
+#if BRUME_SLABS
+    t += across * ((float(k) + 0.5) / float(samples) - 0.5);
+    if (any(lessThan(t, vec3(0.0))) || any(greaterThan(t, vec3(1.0))))
+    {
+      continue;
+    }
+#endif
+    vec3 albedo;
+    vec3 sigma = extinctionAt(t * extinctionScale + extinctionOffset, albedo);
+#if BRUME_ALBEDO
+    // J = sigma_t a X; the peak's share a Forward of sigma_t is transport.
+    scattering += sigma * albedo;
+    sigmaT += sigma * (vec3(1.0) - albedo * forwardFraction);
+#else
+    sigmaT += sigma;
+#endif
+  }
+  sigmaT /= float(samples);
+#if BRUME_ALBEDO
+  emission *= scattering / float(samples);
 #else
   sigmaT *= extinctionFactor;
 #endif
@@ -129,14 +181,6 @@ void main()
   // J = S sigma_t was filtered with sigma_t unreduced.
   emission *= extinctionFactor;
 #endif
-  // Distance between two slice planes along this fragment's viewing ray:
-  // it grows as 1/cos(angle to the view direction) in perspective.
-  float delta = sliceSpacing;
-  if (perspective != 0)
-  {
-    vec3 ray = positionWC - eyeWC;
-    delta = sliceSpacing * length(ray) / max(dot(ray, viewDirectionWC), 1e-6);
-  }
   vec3 transmittance = exp(-sigmaT * delta);
   float meanTransmittance = dot(transmittance, vec3(1.0 / 3.0));
   // S (1 - T) with S = J / sigma_t; J Delta where sigma_t Delta is tiny.
