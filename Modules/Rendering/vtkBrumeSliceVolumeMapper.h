@@ -99,8 +99,10 @@ public:
    * takes the mean of its extinction at one sample per fine cell of the
    * spacing along each ray (at most 8; GetLastSlabSamples()), so that a
    * structure one cell thin is integrated across the slab instead of
-   * falling between slices or being drawn a slab thick. Quick draws
-   * (SliceSpacingScale or a reduced ImageSampleDistance above 1) take one.
+   * falling between slices or being drawn a slab thick. Quick draws take
+   * one: SliceSpacingScale or a reduced ImageSampleDistance above 1, or a
+   * render window whose desired update rate is 1 frame a second or more
+   * (what VTK's interactor styles ask for while the camera moves).
    */
   vtkSetMacro(SliceSpacing, double);
   vtkGetMacro(SliceSpacing, double);

@@ -69,6 +69,9 @@ constexpr double MaxSlabDepth = 2.0;
 // the extinction's own finest cell, so that structures one cell thin are
 // integrated across the slab (the automatic spacing spans at most four).
 constexpr int MaxSlabSamples = 8;
+// The window's desired update rate (frames a second) from which a draw is
+// interactive: one sample a slab.
+constexpr double InteractiveUpdateRate = 1.0;
 
 constexpr int BoxEdges[12][2] = { { 0, 1 }, { 2, 3 }, { 4, 5 }, { 6, 7 }, { 0, 2 }, { 1, 3 },
   { 4, 6 }, { 5, 7 }, { 0, 4 }, { 1, 5 }, { 2, 6 }, { 3, 7 } };
@@ -419,6 +422,14 @@ bool vtkBrumeOpenGLSliceVolumeMapper::PrepareSlices(
     return false;
   }
   this->CutSlices(camera, model, input, slices);
+  // While an interaction asks for frames (VTK's interactor styles raise the
+  // window's desired update rate from the still one, 0.0001, to 15 while the
+  // camera moves; at least one frame a second here), one sample a slab, as
+  // vtkGPUVolumeRayCastMapper samples more coarsely then.
+  if (renWin->GetDesiredUpdateRate() >= InteractiveUpdateRate)
+  {
+    impl.SlabSamples = 1;
+  }
   return true;
 }
 

@@ -588,6 +588,22 @@ bool ThinSheet()
                   << samples << "\n";
         ok = false;
       }
+      if (!quick)
+      {
+        // While the camera moves (an interactor style's desired update
+        // rate), one sample a slab; still frames, four again.
+        SharedWindow()->SetDesiredUpdateRate(15.0);
+        Render({ volume }, parallel);
+        const int moving = mapper->GetLastSlabSamples();
+        SharedWindow()->SetDesiredUpdateRate(0.0001);
+        Render({ volume }, parallel);
+        if (moving != 1 || mapper->GetLastSlabSamples() != 4)
+        {
+          std::cerr << what << ": " << moving << " samples a slab while interacting and "
+                    << mapper->GetLastSlabSamples() << " still, not 1 and 4\n";
+          ok = false;
+        }
+      }
       // Parallel: exact but for the texture filter's 8-bit weights;
       // perspective: rays up to 20 degrees off the axis stretch the
       // samples' spacing by up to 6 %.
