@@ -337,7 +337,8 @@ void vtkBrumeRadianceTextures::ComputeDirect(vtkBrumeReconstructionWork& work)
     const brume::ObjectRadiance& medium = *this->Objects[o];
     if (!medium.GetNative().GetDensity().Empty())
     {
-      this->Direct->SetMediumGrid(o - surfaces, &medium.GetNative().GetDensity());
+      this->Direct->SetMediumGrid(
+        o - surfaces, &medium.GetNative().GetDensity(), vtkBrumeSMP::ParallelFor());
     }
   }
   // Objects of few texels x lights are computed side by side, each on one

@@ -51,15 +51,37 @@ DirectLight::DirectLight(const Scene& scene, const RayCaster& caster)
   this->Epsilon = 1e-4f * (std::isfinite(diagonal) && diagonal > 0.f ? diagonal : 1.f);
 }
 
-void DirectLight::SetMediumGrid(std::size_t m, const BrickedGrid* density)
+void DirectLight::SetMediumGrid(
+  std::size_t m, const BrickedGrid* density, const ParallelFor& parallelFor)
 {
   if (m < this->Grids.size())
   {
     this->Grids[m] = density;
     if (density)
     {
+      // The stored samples' largest, in fixed chunks (a 512^3 grid's 0.8 GB
+      // took 0.1 s on one thread at every edit of a transfer function).
+      constexpr std::size_t Chunk = std::size_t(1) << 20;
+      const FloatBuffer& samples = density->GetSamples();
+      const std::size_t chunks = (samples.Size() + Chunk - 1) / Chunk;
+      std::vector<float> largests(chunks, 0.f);
+      parallelFor(0, chunks,
+        [&](std::size_t begin, std::size_t end)
+        {
+          for (std::size_t c = begin; c < end; ++c)
+          {
+            const float* v = samples.Data() + c * Chunk;
+            const std::size_t n = std::min(Chunk, samples.Size() - c * Chunk);
+            float most = 0.f;
+            for (std::size_t i = 0; i < n; ++i)
+            {
+              most = std::max(most, v[i]);
+            }
+            largests[c] = most;
+          }
+        });
       float largest = 0.f;
-      for (float v : density->GetSamples())
+      for (float v : largests)
       {
         largest = std::max(largest, v);
       }

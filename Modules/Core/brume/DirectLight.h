@@ -24,6 +24,7 @@
 #define brume_DirectLight_h
 
 #include "brume/BrickedGrid.h"
+#include "brume/Parallel.h"
 #include "brume/RayCaster.h"
 #include "brume/Scene.h"
 
@@ -75,9 +76,11 @@ public:
    * The march's midpoint rule takes steps of one cell, but of at most
    * MaxStepDepth optical depths at the grid's largest extinction and never
    * less than half a cell (a field without a grid: half a cell of its
-   * native resolution).
+   * native resolution). The grid's largest value is found on
+   * `parallelFor`'s threads (the same whatever they are).
    */
-  void SetMediumGrid(std::size_t m, const BrickedGrid* density);
+  void SetMediumGrid(
+    std::size_t m, const BrickedGrid* density, const ParallelFor& parallelFor = SerialFor());
 
   /**
    * Light `k`'s direct arrival at `x`; false when none arrives (outside the
