@@ -405,6 +405,9 @@ void vtkBrumePass::Render(const vtkRenderState* s)
   vtkInternals& in = *this->Internals;
   const bool lit = this->Prepare(renderer);
   in.ShownEye = Eye(in.Pipeline->GetCamera());
+  // Frames the next steps replace take one extinction sample a slab (a
+  // quicker draw); the converged one takes the full count.
+  in.Pipeline->GetActors()->SetSlabSampling(!this->IsRefining());
   // Brume's props, then the renderer's that the scene does not hold.
   std::vector<vtkProp*> props;
   // A distributed scene: every process draws the whole of it (the same

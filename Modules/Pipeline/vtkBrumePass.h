@@ -32,12 +32,15 @@
  *   the budget is reached: IsConverged() says when, and a
  *   vtkCommand::ProgressEvent
  *   (call data: a double, the fraction of the budget traced) follows each
- *   step. Each step's image is bitwise that of one run of its count at the
- *   same texture resolutions (chosen once per change for the budget,
+ *   step. Each step's textures are bitwise those of one run of its count
+ *   at the same texture resolutions (chosen once per change for the budget,
  *   vtkBrumeRadianceReconstruction::SetPlannedParticles) when the budget
  *   is the first step's count times a power of four (10^6 is 15625 x 4^3),
- *   otherwise to float rounding at the last step. Keep rendering while
- *   !IsConverged() (a timer in an interactive program).
+ *   otherwise to float rounding at the last step. The frames before the
+ *   last draw the media with one extinction sample a slab, a quicker draw
+ *   (vtkBrumeSliceVolumeMapper::SetSlabSampling); the converged frame with
+ *   their full count. Keep rendering while !IsConverged() (a timer in an
+ *   interactive program).
  * - The phases' other settings: GetPipeline() (seed, threshold,
  *   exposure...). The renderer's active camera is the pipeline's.
  * - A failed phase leaves the frame black and says why (vtkErrorMacro).

@@ -284,6 +284,7 @@ bool vtkBrumeSceneActors::AddToRenderer(vtkRenderer* renderer)
       mapper->SetExtinctionData(NativeExtinction(pds));
       mapper->SetSliceSpacing(this->SliceSpacing);
       mapper->SetSliceSpacingScale(this->SliceSpacingScale);
+      mapper->SetSlabSampling(this->SlabSampling);
       mapper->SetRadianceScale(this->Exposure);
       mapper->SetWriteDepth(this->MediaWriteDepth);
       mapper->SetImageSampleDistance(this->ImageSampleDistance);
@@ -551,6 +552,15 @@ void vtkBrumeSceneActors::SetSliceSpacingScale(double scale)
   }
 }
 
+void vtkBrumeSceneActors::SetSlabSampling(bool sampling)
+{
+  if (this->SlabSampling != sampling)
+  {
+    this->SlabSampling = sampling;
+    this->ApplyToMedia([=](vtkBrumeSliceVolumeMapper* m) { m->SetSlabSampling(sampling); });
+  }
+}
+
 void vtkBrumeSceneActors::SetMediaWriteDepth(bool write)
 {
   if (this->MediaWriteDepth != write)
@@ -679,6 +689,7 @@ void vtkBrumeSceneActors::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BackfaceCulling: " << this->BackfaceCulling << "\n";
   os << indent << "SliceSpacing: " << this->SliceSpacing << "\n";
   os << indent << "SliceSpacingScale: " << this->SliceSpacingScale << "\n";
+  os << indent << "SlabSampling: " << this->SlabSampling << "\n";
   os << indent << "MediaWriteDepth: " << this->MediaWriteDepth << "\n";
   os << indent << "ImageSampleDistance: " << this->ImageSampleDistance << "\n";
   os << indent << "Interpolate: " << this->Interpolate << "\n";

@@ -212,6 +212,16 @@ public:
 
   ///@{
   /**
+   * Whether the media's slabs take several extinction samples along each
+   * ray (vtkBrumeSliceVolumeMapper::SetSlabSampling; default on), those
+   * made already included.
+   */
+  void SetSlabSampling(bool sampling);
+  bool GetSlabSampling() const { return this->SlabSampling; }
+  ///@}
+
+  ///@{
+  /**
    * The media's slices write their depth (vtkBrumeSliceVolumeMapper::
    * SetWriteDepth; default off), those made already included.
    */
@@ -236,6 +246,7 @@ protected:
   bool BackfaceCulling = true;
   double SliceSpacing = 0.0;
   double SliceSpacingScale = 1.0;
+  bool SlabSampling = true;
   bool Interpolate = true;
   double Exposure = 1.0;
   bool MediaWriteDepth = false;

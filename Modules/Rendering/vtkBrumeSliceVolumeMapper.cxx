@@ -400,6 +400,7 @@ void vtkBrumeSliceVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "VolumeGroup: " << this->VolumeGroup.GetPointer() << "\n";
   os << indent << "SliceSpacing: " << this->SliceSpacing << "\n";
   os << indent << "SliceSpacingScale: " << this->SliceSpacingScale << "\n";
+  os << indent << "SlabSampling: " << this->SlabSampling << "\n";
   os << indent << "WriteDepth: " << this->WriteDepth << "\n";
   os << indent << "RadianceScale: " << this->RadianceScale << "\n";
   os << indent << "DirectionalEvaluation: "

@@ -469,7 +469,7 @@ void vtkBrumeOpenGLSliceVolumeMapper::CutSlices(
   // of the spacing, one without such a grid or in a quick draw (thicker
   // slabs asked for speed).
   this->Impl->SlabSamples = 1;
-  if (this->ExtinctionData && this->SliceSpacingScale <= 1.0)
+  if (this->ExtinctionData && this->SlabSampling && this->SliceSpacingScale <= 1.0)
   {
     const double fine = SmallestCell(model, this->ExtinctionData);
     if (fine > 0.0)

@@ -150,10 +150,13 @@ void TestProgressive(vtkRenderer* renderer, vtkRenderWindow* window, vtkBrumePas
   bool same = true;
   int frames = 0;
   bool refining = true; // while steps remain
+  bool quick = true;    // slab sampling off exactly while steps remain
   for (; frames < 10 && (frames == 0 || !pass->IsConverged()); ++frames)
   {
     window->Render();
     refining = refining && (pass->IsRefining() == !pass->IsConverged());
+    // Frames the next steps replace are quick draws: one sample a slab.
+    quick = quick && (pass->GetPipeline()->GetActors()->GetSlabSampling() == pass->IsConverged());
     const vtkTypeInt64 count = pass->GetPipeline()->GetTracer()->GetNumberOfParticles();
     vtkNew<vtkBrumePipeline> once;
     once->SetInputConnection(scene->GetOutputPort());
@@ -170,6 +173,9 @@ void TestProgressive(vtkRenderer* renderer, vtkRenderWindow* window, vtkBrumePas
     "a change, then two steps: the budget's sixteenth, quarter and whole in three frames");
   Check(same, "each step's textures are bitwise those of one run of its count");
   Check(refining && !pass->IsRefining(), "IsRefining() while steps remain, not once converged");
+  Check(quick && pass->GetPipeline()->GetActors()->GetSlabSampling(),
+    "the media drawn with one sample a slab while steps remain, with the full count once "
+    "converged");
   Check(progress.size() == 3 && progress[0] == 0.0625 && progress[1] == 0.25 && progress[2] == 1.0,
     "a ProgressEvent after each step, with the fraction traced");
   const int steps = pass->GetNumberOfSteps();
