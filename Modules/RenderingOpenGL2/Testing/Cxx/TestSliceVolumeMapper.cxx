@@ -451,6 +451,25 @@ double CellCentred(const std::vector<double>& values, double lo, double hi, doub
   return values[i0] + (x - i0) * (values[i1] - values[i0]);
 }
 
+// An extinction grid of its own over the box: one cell across x and y, a
+// cell per value along z (grey sigma_t, the first value lowest).
+vtkSmartPointer<vtkImageData> ColumnGrid(const double box[6], const std::vector<double>& sigma)
+{
+  const int cells = static_cast<int>(sigma.size());
+  auto grid = vtkSmartPointer<vtkImageData>::New();
+  grid->SetDimensions(2, 2, cells + 1);
+  grid->SetOrigin(box[0], box[2], box[4]);
+  grid->SetSpacing(box[1] - box[0], box[3] - box[2], (box[5] - box[4]) / cells);
+  vtkNew<vtkFloatArray> extinction;
+  extinction->SetName(vtkBrumeNames::Extinction);
+  for (double v : sigma)
+  {
+    extinction->InsertNextValue(static_cast<float>(v));
+  }
+  grid->GetCellData()->AddArray(extinction);
+  return grid;
+}
+
 bool ThickSkin()
 {
   // A dense medium (sigma_t 64 per unit, 2 optical depths a fine cell)
@@ -476,19 +495,12 @@ bool ThickSkin()
     sourceValues.push_back(s);
     layers.push_back({ { s, s, s }, { 0.0, 0.0, 0.0 } });
   }
-  auto grid = vtkSmartPointer<vtkImageData>::New();
-  grid->SetDimensions(2, 2, fineCells + 1);
-  grid->SetOrigin(box[0], box[2], box[4]);
-  grid->SetSpacing(1.0, 1.0, 1.0 / fineCells);
-  vtkNew<vtkFloatArray> extinction;
-  extinction->SetName(vtkBrumeNames::Extinction);
   for (int k = 0; k < fineCells; ++k)
   {
     const double z = box[4] + (k + 0.5) / fineCells;
     sigmaValues.push_back(z < skin ? sigma : 0.0);
-    extinction->InsertNextValue(static_cast<float>(sigmaValues.back()));
   }
-  grid->GetCellData()->AddArray(extinction);
+  auto grid = ColumnGrid(box, sigmaValues);
   // The quadrature from the front face down, 10^5 steps.
   double expected = 0.0, depth = 0.0;
   const int steps = 100000;
@@ -546,17 +558,9 @@ bool ThinSheet()
   const double box[6] = { -0.5, 0.5, -0.5, 0.5, -0.5, 0.5 };
   const int fineCells = 32;
   const Layer source{ { 1.0, 1.0, 1.0 }, { 0.0, 0.0, 0.0 } };
-  auto grid = vtkSmartPointer<vtkImageData>::New();
-  grid->SetDimensions(2, 2, fineCells + 1);
-  grid->SetOrigin(box[0], box[2], box[4]);
-  grid->SetSpacing(1.0, 1.0, 1.0 / fineCells);
-  vtkNew<vtkFloatArray> extinction;
-  extinction->SetName(vtkBrumeNames::Extinction);
-  for (int k = 0; k < fineCells; ++k)
-  {
-    extinction->InsertNextValue(k == 13 ? static_cast<float>(fineCells) : 0.f);
-  }
-  grid->GetCellData()->AddArray(extinction);
+  std::vector<double> sheet(fineCells, 0.0);
+  sheet[13] = fineCells;
+  auto grid = ColumnGrid(box, sheet);
   const double expected = 1.0 - std::exp(-1.0);
   bool ok = true;
   for (bool parallel : { true, false })
