@@ -125,22 +125,18 @@ public:
         taken = grown;
       }
     }
-    if (taken)
+    if (!taken)
     {
-#if defined(MADV_HUGEPAGE)
-      madvise(taken, bytes, MADV_HUGEPAGE);
-#endif
-      return taken;
-    }
-    void* p = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-    if (p == MAP_FAILED)
-    {
-      return nullptr;
+      taken = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+      if (taken == MAP_FAILED)
+      {
+        return nullptr;
+      }
     }
 #if defined(MADV_HUGEPAGE)
-    madvise(p, bytes, MADV_HUGEPAGE); // advice only: without huge pages it stays 4 kB pages
+    madvise(taken, bytes, MADV_HUGEPAGE); // advice only: without huge pages it stays 4 kB pages
 #endif
-    return p;
+    return taken;
   }
 
   void Give(void* p, std::size_t bytes)
