@@ -14,8 +14,11 @@ set(BRUME_TEST_COMPILE_OPTIONS "" CACHE STRING
 mark_as_advanced(BRUME_TEST_COMPILE_OPTIONS)
 
 # Tests whose windows go through an X server run alone
-# (set_tests_properties(... PROPERTIES ${brume_windows_alone})): Xvfb
-# refused windows now and then when several opened at once. In a build
+# (set_tests_properties(... PROPERTIES ${brume_windows_alone})): an X
+# server resets when its last client disconnects and refuses connections
+# while it does (Xvfb as `xvfb-run` starts it, without -noreset), so a
+# window opened just as another closed was refused now and then, more often
+# when several tests opened windows at once. In a build
 # configured without a display (CI's first pass, a headless server) they
 # draw through EGL or OSMesa, or are skipped where they need X: they then
 # keep only from each other, beside the other tests.
