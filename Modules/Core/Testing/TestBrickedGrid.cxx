@@ -228,3 +228,49 @@ TEST(BrickedGrid, ConstantRunsAreWhatInterpolationGives)
   EXPECT_GT(counted, 10000); // most of the box is bricks of one value (14,752 counted)
   EXPECT_GT(longest, 20);
 }
+
+TEST(BrickedGrid, MarchSumsWhatInterpolationGivesAtEachPoint)
+{
+  // Blocks of ten cells, each of one value (1 or 2) or varying: a shadow
+  // ray's midpoint march (SumAlong) is the sum of Interpolate() at its
+  // points, to the bit, through constant bricks, stored ones and the faces
+  // between them, and stops where Interpolate()'s sum first passes its stop.
+  const std::array<int, 3> n{ 64, 48, 40 };
+  const Box box{ Vec3(-1.f, 0.f, 2.f), Vec3(1.f, 3.f, 2.5f) };
+  auto value = [](int i, int j, int k)
+  {
+    const int block = (i / 10 + j / 10 + k / 10) % 3;
+    return block == 0 ? 0.1f * static_cast<float>(i % 5 + j % 3) : static_cast<float>(block);
+  };
+  const BrickedGrid grid = BrickedGrid::Sample(n, box, value, Never, SerialFor());
+  ASSERT_GT(grid.NumberOfStoredBricks(), 0u);
+  ASSERT_LT(grid.NumberOfStoredBricks(), grid.NumberOfBricks());
+  Random random(5, 0);
+  int stopped = 0;
+  for (int ray = 0; ray < 1000; ++ray)
+  {
+    Vec3 x, d;
+    for (int a = 0; a < 3; ++a)
+    {
+      x[a] = box.lower[a] + box.Extent()[a] * (1.2f * random.NextFloat() - 0.1f);
+      d[a] = 2.f * random.NextFloat() - 1.f;
+    }
+    d = d / Length(d);
+    const float t0 = 0.1f * random.NextFloat();
+    const float h = (box.Extent().x / 64.f) * (0.25f + random.NextFloat());
+    const int samples = 1 + static_cast<int>(random.NextFloat() * 300.f);
+    const double stop = ray % 2 ? 0.0 : 40.0 * random.NextFloat();
+    double expected = 0.0;
+    for (int i = 0; i < samples; ++i)
+    {
+      expected += grid.Interpolate(x + d * (t0 + (static_cast<float>(i) + 0.5f) * h));
+      if (stop > 0.0 && expected > stop)
+      {
+        ++stopped;
+        break;
+      }
+    }
+    ASSERT_EQ(grid.SumAlong(x, d, t0, h, samples, stop), expected) << "ray " << ray;
+  }
+  EXPECT_GT(stopped, 50);
+}

@@ -183,14 +183,12 @@ float BrickedGrid::At(int i, int j, int k) const
     static_cast<std::size_t>((l[2] * Size + l[1]) * Size + l[0])];
 }
 
-float BrickedGrid::Interpolate(const Vec3& p) const
+std::size_t BrickedGrid::Locate(const Vec3& q, int i0[3], float w[3]) const
 {
   // u: the position in samples (cell centres at integers), clamped. No
   // division: 10^8 calls march a 512^3 grid's shadow rays.
-  const Vec3 q = (p - this->Bounds.lower) * this->CellsPerLength;
   constexpr float PerStride = 1.f / static_cast<float>(Stride);
-  int b[3], i0[3];
-  float w[3];
+  int b[3];
   for (int a = 0; a < 3; ++a)
   {
     const float n = static_cast<float>(this->Dims[a]);
@@ -202,12 +200,11 @@ float BrickedGrid::Interpolate(const Vec3& p) const
     i0[a] = std::min(std::max(static_cast<int>(local), 0), Size - 2);
     w[a] = local - static_cast<float>(i0[a]);
   }
-  const std::size_t brick = this->BrickIndex(b[0], b[1], b[2]);
-  const std::int32_t slot = this->Slots[brick];
-  if (slot < 0)
-  {
-    return this->Constants[brick];
-  }
+  return this->BrickIndex(b[0], b[1], b[2]);
+}
+
+float BrickedGrid::Trilinear(std::int32_t slot, const int i0[3], const float w[3]) const
+{
   const float* s = this->Samples.Data() + static_cast<std::size_t>(slot) * BrickSamples +
     (i0[2] * Size + i0[1]) * Size + i0[0];
   auto row = [&](int dj, int dk)
@@ -220,35 +217,31 @@ float BrickedGrid::Interpolate(const Vec3& p) const
   return c0 * (1.f - w[2]) + c1 * w[2];
 }
 
-int BrickedGrid::ConstantSamples(const Vec3& p, const Vec3& step, int most, float& value) const
+float BrickedGrid::Interpolate(const Vec3& p) const
 {
-  // p's brick, as Interpolate() finds it.
-  const Vec3 q = (p - this->Bounds.lower) * this->CellsPerLength;
-  const Vec3 dq = step * this->CellsPerLength;
-  constexpr float PerStride = 1.f / static_cast<float>(Stride);
-  constexpr double Margin = 1e-3; // cells
-  int b[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    const float n = static_cast<float>(this->Dims[a]);
-    float u = q[a] - 0.5f;
-    u = u < 0.f ? 0.f : (u > n - 1.f ? n - 1.f : u);
-    b[a] = std::max(std::min(static_cast<int>(u * PerStride), this->BrickDims[a] - 1), 0);
-  }
-  const std::size_t brick = this->BrickIndex(b[0], b[1], b[2]);
-  if (this->Slots[brick] >= 0)
-  {
-    return 0;
-  }
-  value = this->Constants[brick];
+  int i0[3];
+  float w[3];
+  const std::size_t brick = this->Locate((p - this->Bounds.lower) * this->CellsPerLength, i0, w);
+  const std::int32_t slot = this->Slots[brick];
+  return slot < 0 ? this->Constants[brick] : this->Trilinear(slot, i0, w);
+}
+
+int BrickedGrid::ConstantRun(const Vec3& q, const Vec3& dq, std::size_t brick, int most) const
+{
   // Along each axis, the brick takes the positions (before clamping) from
   // Stride b to Stride (b + 1), beyond them at the first and last bricks.
+  constexpr double Margin = 1e-3; // cells
+  const std::size_t bricks[3] = { brick % static_cast<std::size_t>(this->BrickDims[0]),
+    brick / static_cast<std::size_t>(this->BrickDims[0]) %
+      static_cast<std::size_t>(this->BrickDims[1]),
+    brick / (static_cast<std::size_t>(this->BrickDims[0]) * this->BrickDims[1]) };
   double run = most;
   for (int a = 0; a < 3; ++a)
   {
+    const int b = static_cast<int>(bricks[a]);
     const double u = static_cast<double>(q[a]) - 0.5, du = dq[a];
-    const bool first = b[a] == 0, last = b[a] == this->BrickDims[a] - 1;
-    const double lo = Stride * b[a] + Margin, hi = Stride * (b[a] + 1) - Margin;
+    const bool first = b == 0, last = b == this->BrickDims[a] - 1;
+    const double lo = Stride * b + Margin, hi = Stride * (b + 1) - Margin;
     if ((!first && u < lo) || (!last && u > hi))
     {
       return 0;
@@ -263,6 +256,50 @@ int BrickedGrid::ConstantSamples(const Vec3& p, const Vec3& step, int most, floa
     }
   }
   return static_cast<int>(std::max(run, 0.0));
+}
+
+int BrickedGrid::ConstantSamples(const Vec3& p, const Vec3& step, int most, float& value) const
+{
+  // p's brick, as Interpolate() finds it.
+  int i0[3];
+  float w[3];
+  const Vec3 q = (p - this->Bounds.lower) * this->CellsPerLength;
+  const std::size_t brick = this->Locate(q, i0, w);
+  if (this->Slots[brick] >= 0)
+  {
+    return 0;
+  }
+  value = this->Constants[brick];
+  return this->ConstantRun(q, step * this->CellsPerLength, brick, most);
+}
+
+double BrickedGrid::SumAlong(
+  const Vec3& x, const Vec3& d, float t0, float h, int n, double stop) const
+{
+  const Vec3 dq = d * h * this->CellsPerLength;
+  double sum = 0.0;
+  for (int i = 0; i < n;)
+  {
+    const Vec3 p = x + d * (t0 + (static_cast<float>(i) + 0.5f) * h);
+    const Vec3 q = (p - this->Bounds.lower) * this->CellsPerLength;
+    int i0[3];
+    float w[3];
+    const std::size_t brick = this->Locate(q, i0, w);
+    const std::int32_t slot = this->Slots[brick];
+    // A constant brick's value at p and at the points of its run after p
+    // (none where p lies within a margin of a face: then p alone).
+    const int samples = slot < 0 ? std::max(this->ConstantRun(q, dq, brick, n - i), 1) : 1;
+    const float value = slot < 0 ? this->Constants[brick] : this->Trilinear(slot, i0, w);
+    for (int k = 0; k < samples; ++k, ++i)
+    {
+      sum += value;
+      if (stop > 0.0 && sum > stop)
+      {
+        return sum;
+      }
+    }
+  }
+  return sum;
 }
 
 void BrickedGrid::ForEachNonZeroCell(const std::function<void(int, int, int, float)>& f) const

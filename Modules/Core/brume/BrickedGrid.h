@@ -120,6 +120,15 @@ public:
    * brick stores its samples, or p lies that close to a face.
    */
   int ConstantSamples(const Vec3& p, const Vec3& step, int most, float& value) const;
+  /**
+   * The midpoint march of a shadow ray: the sum, in double and in order, of
+   * Interpolate() at the `n` points x + d (t0 + (i + 1/2) h), i = 0 ... n - 1,
+   * ended at the first point where it passes `stop` when `stop` > 0. The
+   * same sum as Interpolate() called at each point, with each point's brick
+   * found once and a constant brick's run (ConstantSamples()) added without
+   * a lookup per point.
+   */
+  double SumAlong(const Vec3& x, const Vec3& d, float t0, float h, int n, double stop) const;
 
   /**
    * Calls `f(i, j, k, value)` once for every cell whose brick is not a
@@ -137,6 +146,15 @@ private:
   {
     return (static_cast<std::size_t>(bk) * this->BrickDims[1] + bj) * this->BrickDims[0] + bi;
   }
+  // The brick of the point at `q` (in cells from the box's lower corner),
+  // and the first of the eight samples (i0, in the brick) and the weights
+  // that interpolate it.
+  std::size_t Locate(const Vec3& q, int i0[3], float w[3]) const;
+  // Trilinear between the eight samples of stored brick `slot` from i0.
+  float Trilinear(std::int32_t slot, const int i0[3], const float w[3]) const;
+  // ConstantSamples()'s run from `q` by steps `dq` (both in cells) in
+  // constant brick `brick`.
+  int ConstantRun(const Vec3& q, const Vec3& dq, std::size_t brick, int most) const;
 
   std::array<int, 3> Dims{ 0, 0, 0 };
   std::array<int, 3> BrickDims{ 0, 0, 0 };

@@ -129,33 +129,20 @@ void DirectLight::AddOpticalDepth(const Vec3& x, const Vec3& d, float length, do
       const float h = (t1 - t0) / static_cast<float>(n);
       const double opaque =
         MinComponent(sigmaT) > 0.f ? OpaqueDepth / MinComponent(sigmaT) / h : 0.0;
-      integral = 0.0;
-      int constantLeft = 0; // samples still in a brick of one value
-      float constant = 0.f;
-      for (int i = 0; i < n; ++i)
+      if (grid)
       {
-        if (constantLeft > 0)
+        integral = grid->SumAlong(x, d, t0, h, n, opaque);
+      }
+      else
+      {
+        integral = 0.0;
+        for (int i = 0; i < n; ++i)
         {
-          --constantLeft;
-          integral += constant; // what Interpolate() gives there
-        }
-        else
-        {
-          const Vec3 p = x + d * (t0 + (static_cast<float>(i) + 0.5f) * h);
-          const int run = grid ? grid->ConstantSamples(p, d * h, n - i, constant) : 0;
-          if (run > 0)
+          integral += medium.Density->Evaluate(x + d * (t0 + (static_cast<float>(i) + 0.5f) * h));
+          if (opaque > 0.0 && integral > opaque)
           {
-            constantLeft = run - 1;
-            integral += constant;
+            break; // opaque in every channel
           }
-          else
-          {
-            integral += grid ? grid->Interpolate(p) : medium.Density->Evaluate(p);
-          }
-        }
-        if (opaque > 0.0 && integral > opaque)
-        {
-          break; // opaque in every channel
         }
       }
       integral *= h;
