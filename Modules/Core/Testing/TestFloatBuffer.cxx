@@ -247,5 +247,54 @@ TEST(TypedValues, AnEightBitGridIsTheGridOfItsFloats)
       ASSERT_EQ(typed.BendsWithin(around), floats.BendsWithin(around));
     }
     EXPECT_EQ(typed.GetMajorants().Max, floats.GetMajorants().Max);
+    // The occupancy an edit's classification needs, from the bytes' counts
+    // per integer (a lookup per integer) and from every float: the same
+    // count, and the same sum added in another order.
+    const std::vector<std::uint64_t>& counts = g.Typed->GetValueCounts();
+    ASSERT_EQ(counts.size(), 256u);
+    EXPECT_EQ(std::accumulate(counts.begin(), counts.end(), std::uint64_t(0)), g.Bytes.size());
+    EXPECT_TRUE(g.Floats->GetValueCounts().empty());
+    EXPECT_EQ(typed.OccupiedFraction(), floats.OccupiedFraction());
+    EXPECT_NEAR(typed.MeanOccupiedDensity(), floats.MeanOccupiedDensity(),
+      1e-12 * floats.MeanOccupiedDensity());
+    EXPECT_GT(typed.OccupiedFraction(), 0.3);
+    EXPECT_LT(typed.OccupiedFraction(), 0.9);
   }
+}
+
+TEST(TypedValues, SixteenBitGridsClassifyFromTheirCounts)
+{
+  // Unsigned and signed 16-bit values over their whole range, classified
+  // by a function with points on both sides of 0: the occupancy from the
+  // counts per integer is that of the same values as floats.
+  const std::array<int, 3> dims{ 17, 13, 11 };
+  const std::size_t n = 17 * 13 * 11;
+  Random rng(13, 0);
+  std::vector<std::uint16_t> unsignedValues(n);
+  std::vector<std::int16_t> signedValues(n);
+  std::vector<float> unsignedFloats(n), signedFloats(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    unsignedValues[i] = static_cast<std::uint16_t>(rng.NextFloat() * 65535.f);
+    signedValues[i] = static_cast<std::int16_t>(rng.NextFloat() * 65535.f - 32768.f);
+    unsignedFloats[i] = unsignedValues[i];
+    signedFloats[i] = signedValues[i];
+  }
+  const Box box{ Vec3(0.f), Vec3(1.f) };
+  const OpacityTransferFunction opacity(
+    { { -20000.f, 0.f }, { -3000.f, 0.4f }, { 9000.f, 0.f }, { 40000.f, 0.7f } }, 0.1f);
+  auto compare = [&](const TypedValues& values, std::vector<float> floats, int lowest)
+  {
+    auto typedGrid = std::make_shared<const GridDensity>(box, dims, values, false);
+    auto floatGrid = std::make_shared<const GridDensity>(box, dims, std::move(floats), false);
+    EXPECT_EQ(typedGrid->GetLowestValue(), lowest);
+    EXPECT_EQ(typedGrid->GetValueCounts().size(), 65536u);
+    const ClassifiedDensity typed(typedGrid, opacity), asFloats(floatGrid, opacity);
+    EXPECT_EQ(typed.OccupiedFraction(), asFloats.OccupiedFraction());
+    EXPECT_NEAR(typed.MeanOccupiedDensity(), asFloats.MeanOccupiedDensity(),
+      1e-12 * asFloats.MeanOccupiedDensity());
+    EXPECT_GT(typed.OccupiedFraction(), 0.2);
+  };
+  compare(TypedValues::Wrap(unsignedValues.data(), n, nullptr), unsignedFloats, 0);
+  compare(TypedValues::Wrap(signedValues.data(), n, nullptr), signedFloats, -32768);
 }

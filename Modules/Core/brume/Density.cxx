@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
+#include <type_traits>
 
 namespace brume
 {
@@ -199,6 +201,43 @@ TypedValues Buffer(const std::vector<float>& values)
 }
 }
 
+void GridDensity::CountValues(const ParallelFor& parallelFor)
+{
+  this->Values.Visit(
+    [&](const auto* stored)
+    {
+      using Stored = std::remove_cv_t<std::remove_pointer_t<decltype(stored)>>;
+      if constexpr (std::is_integral_v<Stored>)
+      {
+        // Counts per chunk of values, added together: integers, so the
+        // same whatever the threads.
+        constexpr std::size_t Chunk = std::size_t(1) << 22;
+        const std::size_t count = this->Values.Size();
+        const std::size_t chunks = (count + Chunk - 1) / Chunk;
+        const auto lowest = static_cast<int>(std::numeric_limits<Stored>::lowest());
+        const std::size_t bins = std::size_t(1) << (8 * sizeof(Stored));
+        std::vector<std::uint64_t> counts(bins, 0);
+        std::mutex adding;
+        parallelFor(0, chunks,
+          [&](std::size_t begin, std::size_t end)
+          {
+            std::vector<std::uint64_t> mine(bins, 0);
+            for (std::size_t i = begin * Chunk; i < std::min(count, end * Chunk); ++i)
+            {
+              ++mine[static_cast<std::size_t>(static_cast<int>(stored[i]) - lowest)];
+            }
+            const std::lock_guard<std::mutex> lock(adding);
+            for (std::size_t b = 0; b < bins; ++b)
+            {
+              counts[b] += mine[b];
+            }
+          });
+        this->ValueCounts = std::move(counts);
+        this->LowestValue = lowest;
+      }
+    });
+}
+
 GridDensity::GridDensity(const Box& bounds, std::array<int, 3> dims, std::vector<float> values,
   bool cellValues, Interpolation interpolation, const ParallelFor& parallelFor)
   : GridDensity(bounds, dims, Buffer(values), cellValues, interpolation, parallelFor)
@@ -220,6 +259,7 @@ GridDensity::GridDensity(const Box& bounds, std::array<int, 3> dims, TypedValues
         this->Values.Size(), [stored](std::size_t i) { return static_cast<float>(stored[i]); },
         parallelFor);
     });
+  this->CountValues(parallelFor);
   // Cells of the grid (point data: one fewer than the points).
   std::array<int, 3> cells{};
   for (int a = 0; a < 3; ++a)

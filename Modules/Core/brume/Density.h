@@ -296,6 +296,14 @@ public:
   const TypedValues& GetValues() const { return this->Values; }
   bool HasCellValues() const { return this->CellValues; }
   Interpolation GetInterpolation() const { return this->Interpolated; }
+  /**
+   * Integer values (8 or 16 bits): how many values the grid holds of each
+   * integer from GetLowestValue() on, counted once at construction, so
+   * that a transfer function's occupancy (ClassifiedDensity) costs a
+   * lookup per integer, not per value. Empty for floats.
+   */
+  const std::vector<std::uint64_t>& GetValueCounts() const { return this->ValueCounts; }
+  int GetLowestValue() const { return this->LowestValue; }
 
 private:
   float Value(int i, int j, int k) const
@@ -303,12 +311,15 @@ private:
     return this->Values[(static_cast<std::size_t>(k) * this->Dims[1] + j) * this->Dims[0] + i];
   }
   void FindBlockRanges(const ParallelFor& parallelFor);
+  void CountValues(const ParallelFor& parallelFor);
 
   std::array<int, 3> Dims;
   TypedValues Values;
   bool CellValues;
   Interpolation Interpolated;
   std::vector<float> BlockLow, BlockHigh;
+  std::vector<std::uint64_t> ValueCounts;
+  int LowestValue = 0;
 };
 
 } // namespace brume

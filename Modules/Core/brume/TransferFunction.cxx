@@ -335,7 +335,27 @@ ClassifiedDensity::ClassifiedDensity(std::shared_ptr<const DensityField> scalars
   }
   // A grid's values: the fraction and mean of those the function makes
   // positive (other fields: the non-empty majorant blocks').
-  if (const auto* grid = dynamic_cast<const GridDensity*>(this->Scalars.get()))
+  const GridDensity* grid = this->Grid;
+  if (grid && !grid->GetValueCounts().empty())
+  {
+    // Integers: each integer's extinction once, weighted by how many values
+    // hold it (the sums of the loop below, added in another order).
+    const std::vector<std::uint64_t>& counts = grid->GetValueCounts();
+    double occupied = 0.0, sum = 0.0;
+    for (std::size_t b = 0; b < counts.size(); ++b)
+    {
+      const float v = counts[b]
+        ? this->Opacity.Extinction(static_cast<float>(grid->GetLowestValue() + static_cast<int>(b)))
+        : 0.f;
+      if (v > 0.f)
+      {
+        occupied += static_cast<double>(counts[b]);
+        sum += static_cast<double>(counts[b]) * v;
+      }
+    }
+    this->SetOccupied(static_cast<double>(grid->GetValues().Size()), { occupied }, { sum });
+  }
+  else if (grid)
   {
     const TypedValues& typed = grid->GetValues();
     typed.Visit(
