@@ -13,7 +13,9 @@
 #include <sys/resource.h>
 #endif
 
+#include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <numeric>
 #include <vector>
@@ -247,19 +249,83 @@ TEST(TypedValues, AnEightBitGridIsTheGridOfItsFloats)
       ASSERT_EQ(typed.BendsWithin(around), floats.BendsWithin(around));
     }
     EXPECT_EQ(typed.GetMajorants().Max, floats.GetMajorants().Max);
-    // The occupancy an edit's classification needs, from the bytes' counts
-    // per integer (a lookup per integer) and from every float: the same
-    // count, and the same sum added in another order.
+    // The occupancy an edit's classification needs, from the counts per
+    // integer (a lookup per integer): the bytes' over their type's range,
+    // the floats' (whole numbers) over theirs, the same counts.
     const std::vector<std::uint64_t>& counts = g.Typed->GetValueCounts();
     ASSERT_EQ(counts.size(), 256u);
+    EXPECT_EQ(g.Typed->GetLowestValue(), 0);
     EXPECT_EQ(std::accumulate(counts.begin(), counts.end(), std::uint64_t(0)), g.Bytes.size());
-    EXPECT_TRUE(g.Floats->GetValueCounts().empty());
+    const std::vector<std::uint64_t>& wholeCounts = g.Floats->GetValueCounts();
+    const int lowest = *std::min_element(g.Bytes.begin(), g.Bytes.end());
+    const int highest = *std::max_element(g.Bytes.begin(), g.Bytes.end());
+    ASSERT_EQ(g.Floats->GetLowestValue(), lowest);
+    ASSERT_EQ(wholeCounts.size(), static_cast<std::size_t>(highest - lowest + 1));
+    for (std::size_t b = 0; b < wholeCounts.size(); ++b)
+    {
+      ASSERT_EQ(wholeCounts[b], counts[b + static_cast<std::size_t>(lowest)]) << b;
+    }
     EXPECT_EQ(typed.OccupiedFraction(), floats.OccupiedFraction());
-    EXPECT_NEAR(typed.MeanOccupiedDensity(), floats.MeanOccupiedDensity(),
-      1e-12 * floats.MeanOccupiedDensity());
+    EXPECT_EQ(typed.MeanOccupiedDensity(), floats.MeanOccupiedDensity());
+    // Against the function at every value: the same count, and the same
+    // sum added in another order.
+    double occupied = 0.0, sum = 0.0;
+    for (const std::uint8_t value : g.Bytes)
+    {
+      const float e = opacity.Extinction(static_cast<float>(value));
+      occupied += e > 0.f ? 1.0 : 0.0;
+      sum += e > 0.f ? e : 0.f;
+    }
+    EXPECT_EQ(typed.OccupiedFraction(), occupied / static_cast<double>(g.Bytes.size()));
+    EXPECT_NEAR(typed.MeanOccupiedDensity(), sum / occupied, 1e-12 * sum / occupied);
     EXPECT_GT(typed.OccupiedFraction(), 0.3);
     EXPECT_LT(typed.OccupiedFraction(), 0.9);
   }
+}
+
+TEST(TypedValues, OnlyWholeFloatsAreCountedPerInteger)
+{
+  // Floats that are not all whole numbers within 16 bits' range (a
+  // fraction, a NaN, a value past either end) are not counted per integer:
+  // they are classified value by value, and both ways give the occupancy
+  // of the function at every value.
+  const std::array<int, 3> dims{ 5, 4, 3 };
+  const Box box{ Vec3(0.f), Vec3(1.f) };
+  std::vector<float> whole(60);
+  for (std::size_t i = 0; i < whole.size(); ++i)
+  {
+    whole[i] = static_cast<float>(static_cast<int>(i * 37 % 61) - 20);
+  }
+  EXPECT_FALSE(GridDensity(box, dims, whole, false).GetValueCounts().empty());
+  EXPECT_EQ(GridDensity(box, dims, whole, false).GetLowestValue(), -20);
+  for (const float odd : { 0.5f, std::numeric_limits<float>::quiet_NaN(), 65536.f, -32769.f })
+  {
+    std::vector<float> values = whole;
+    values[33] = odd;
+    EXPECT_TRUE(GridDensity(box, dims, values, false).GetValueCounts().empty()) << odd;
+  }
+  // 0.5 in one value, the others whole: the per-value path's occupancy.
+  std::vector<float> values = whole;
+  values[7] = 10.5f;
+  const OpacityTransferFunction opacity({ { -5.f, 0.f }, { 12.f, 0.6f }, { 40.f, 0.1f } }, 0.1f);
+  const ClassifiedDensity counted(
+    std::make_shared<const GridDensity>(box, dims, whole, false), opacity);
+  const ClassifiedDensity each(
+    std::make_shared<const GridDensity>(box, dims, values, false), opacity);
+  auto occupiedShare = [&](const std::vector<float>& v)
+  {
+    double n = 0.0;
+    for (const float x : v)
+    {
+      n += opacity.Extinction(x) > 0.f ? 1.0 : 0.0;
+    }
+    return n / static_cast<double>(v.size());
+  };
+  EXPECT_EQ(counted.OccupiedFraction(), occupiedShare(whole));
+  EXPECT_EQ(each.OccupiedFraction(), occupiedShare(values));
+  // values[7] was -5, where the function is 0: one more value occupied.
+  EXPECT_EQ(whole[7], -5.f);
+  EXPECT_EQ(each.OccupiedFraction(), counted.OccupiedFraction() + 1.0 / 60.0);
 }
 
 TEST(TypedValues, SixteenBitGridsClassifyFromTheirCounts)

@@ -2,6 +2,7 @@
 #include "brume/Density.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <mutex>
@@ -203,39 +204,85 @@ TypedValues Buffer(const std::vector<float>& values)
 
 void GridDensity::CountValues(const ParallelFor& parallelFor)
 {
+  constexpr std::size_t Chunk = std::size_t(1) << 22;
+  const std::size_t count = this->Values.Size();
+  const std::size_t chunks = (count + Chunk - 1) / Chunk;
+  // The integers the values take: a type's whole range, or the range of
+  // floats that are all whole numbers within 16 bits' (a scan saved as
+  // floats); none for other floats, found at their first fraction.
+  int lowest = 0, highest = -1;
   this->Values.Visit(
     [&](const auto* stored)
     {
       using Stored = std::remove_cv_t<std::remove_pointer_t<decltype(stored)>>;
       if constexpr (std::is_integral_v<Stored>)
       {
-        // Counts per chunk of values, added together: integers, so the
-        // same whatever the threads.
-        constexpr std::size_t Chunk = std::size_t(1) << 22;
-        const std::size_t count = this->Values.Size();
-        const std::size_t chunks = (count + Chunk - 1) / Chunk;
-        const auto lowest = static_cast<int>(std::numeric_limits<Stored>::lowest());
-        const std::size_t bins = std::size_t(1) << (8 * sizeof(Stored));
-        std::vector<std::uint64_t> counts(bins, 0);
-        std::mutex adding;
+        lowest = static_cast<int>(std::numeric_limits<Stored>::lowest());
+        highest = static_cast<int>(std::numeric_limits<Stored>::max());
+      }
+      else
+      {
+        constexpr float Low = -32768.f, High = 65535.f;
+        std::atomic<bool> whole{ count > 0 };
+        std::vector<float> lows(chunks, High), highs(chunks, Low);
         parallelFor(0, chunks,
           [&](std::size_t begin, std::size_t end)
           {
-            std::vector<std::uint64_t> mine(bins, 0);
-            for (std::size_t i = begin * Chunk; i < std::min(count, end * Chunk); ++i)
+            for (std::size_t c = begin; c < end && whole.load(std::memory_order_relaxed); ++c)
             {
-              ++mine[static_cast<std::size_t>(static_cast<int>(stored[i]) - lowest)];
-            }
-            const std::lock_guard<std::mutex> lock(adding);
-            for (std::size_t b = 0; b < bins; ++b)
-            {
-              counts[b] += mine[b];
+              float lo = High, hi = Low;
+              for (std::size_t i = c * Chunk; i < std::min(count, (c + 1) * Chunk); ++i)
+              {
+                const float v = stored[i];
+                // NaN fails every comparison: not whole.
+                if (!(v >= Low && v <= High && v == std::floor(v)))
+                {
+                  whole.store(false, std::memory_order_relaxed);
+                  return;
+                }
+                lo = std::min(lo, v);
+                hi = std::max(hi, v);
+              }
+              lows[c] = lo;
+              highs[c] = hi;
             }
           });
-        this->ValueCounts = std::move(counts);
-        this->LowestValue = lowest;
+        if (whole.load())
+        {
+          lowest = static_cast<int>(*std::min_element(lows.begin(), lows.end()));
+          highest = static_cast<int>(*std::max_element(highs.begin(), highs.end()));
+        }
       }
     });
+  if (highest < lowest)
+  {
+    return;
+  }
+  // Counts per chunk of values, added together: integers, so the same
+  // whatever the threads.
+  const std::size_t bins = static_cast<std::size_t>(highest - lowest) + 1;
+  std::vector<std::uint64_t> counts(bins, 0);
+  std::mutex adding;
+  this->Values.Visit(
+    [&](const auto* stored)
+    {
+      parallelFor(0, chunks,
+        [&](std::size_t begin, std::size_t end)
+        {
+          std::vector<std::uint64_t> mine(bins, 0);
+          for (std::size_t i = begin * Chunk; i < std::min(count, end * Chunk); ++i)
+          {
+            ++mine[static_cast<std::size_t>(static_cast<int>(stored[i]) - lowest)];
+          }
+          const std::lock_guard<std::mutex> lock(adding);
+          for (std::size_t b = 0; b < bins; ++b)
+          {
+            counts[b] += mine[b];
+          }
+        });
+    });
+  this->ValueCounts = std::move(counts);
+  this->LowestValue = lowest;
 }
 
 GridDensity::GridDensity(const Box& bounds, std::array<int, 3> dims, std::vector<float> values,

@@ -297,10 +297,12 @@ public:
   bool HasCellValues() const { return this->CellValues; }
   Interpolation GetInterpolation() const { return this->Interpolated; }
   /**
-   * Integer values (8 or 16 bits): how many values the grid holds of each
-   * integer from GetLowestValue() on, counted once at construction, so
-   * that a transfer function's occupancy (ClassifiedDensity) costs a
-   * lookup per integer, not per value. Empty for floats.
+   * Values that are integers (8- or 16-bit ones, or floats that are all
+   * whole numbers from -32768 to 65535, as a scan saved as floats): how
+   * many values the grid holds of each integer from GetLowestValue() on,
+   * counted once at construction, so that a transfer function's occupancy
+   * (ClassifiedDensity) costs a lookup per integer, not per value. Empty
+   * for other floats (found at their first fraction or non-finite value).
    */
   const std::vector<std::uint64_t>& GetValueCounts() const { return this->ValueCounts; }
   int GetLowestValue() const { return this->LowestValue; }
