@@ -7,6 +7,24 @@
 namespace brume
 {
 
+namespace
+{
+// How many steps ahead of its use a march asks for a point's samples:
+// the shells' shadow rays spent 2026, 1774, 1650-1680 and 1660-1720 profile
+// samples marching at none, 1, 4 and 8.
+constexpr int PrefetchSteps = 4;
+
+// Asks for the cache line holding `p` ahead of its use (a hint).
+inline void Prefetch(const float* p)
+{
+#if defined(__GNUC__)
+  __builtin_prefetch(p);
+#else
+  (void)p;
+#endif
+}
+}
+
 BrickedGrid BrickedGrid::Sample(const std::array<int, 3>& dims, const Box& box,
   const std::function<float(int, int, int)>& value,
   const std::function<bool(const std::array<int, 3>&, const std::array<int, 3>&)>& zeroOver,
@@ -276,20 +294,57 @@ int BrickedGrid::ConstantSamples(const Vec3& p, const Vec3& step, int most, floa
 double BrickedGrid::SumAlong(
   const Vec3& x, const Vec3& d, float t0, float h, int n, double stop) const
 {
-  const Vec3 dq = d * h * this->CellsPerLength;
-  double sum = 0.0;
-  for (int i = 0; i < n;)
+  // A point of the march: where it lies in cells, its brick, and the
+  // first of its eight samples with their weights.
+  struct Point
+  {
+    Vec3 Q;
+    std::size_t Brick;
+    int I0[3];
+    float W[3];
+  };
+  auto locate = [&](int i, Point& point)
   {
     const Vec3 p = x + d * (t0 + (static_cast<float>(i) + 0.5f) * h);
-    const Vec3 q = (p - this->Bounds.lower) * this->CellsPerLength;
-    int i0[3];
-    float w[3];
-    const std::size_t brick = this->Locate(q, i0, w);
-    const std::int32_t slot = this->Slots[brick];
-    // A constant brick's value at p and at the points of its run after p
-    // (none where p lies within a margin of a face: then p alone).
-    const int samples = slot < 0 ? std::max(this->ConstantRun(q, dq, brick, n - i), 1) : 1;
-    const float value = slot < 0 ? this->Constants[brick] : this->Trilinear(slot, i0, w);
+    point.Q = (p - this->Bounds.lower) * this->CellsPerLength;
+    point.Brick = this->Locate(point.Q, point.I0, point.W);
+  };
+  const Vec3 dq = d * h * this->CellsPerLength;
+  double sum = 0.0;
+  Point at{}, next{};
+  if (n > 0)
+  {
+    locate(0, at);
+  }
+  for (int i = 0; i < n;)
+  {
+    const std::int32_t slot = this->Slots[at.Brick];
+    // A constant brick's value at the point and at those of its run after
+    // it (none where it lies within a margin of a face: then it alone).
+    const int samples = slot < 0 ? std::max(this->ConstantRun(at.Q, dq, at.Brick, n - i), 1) : 1;
+    // The next point found first, and the samples of the point a few
+    // steps past it asked of memory while this one's are interpolated: a
+    // shadow ray's samples are mostly cache misses (the rays of a sweep
+    // cross each brick once per plane). Where it lies need not be exact.
+    if (i + samples < n)
+    {
+      locate(i + samples, next);
+      int aheadI0[3];
+      float aheadW[3];
+      const std::size_t ahead =
+        this->Locate(next.Q + dq * static_cast<float>(PrefetchSteps), aheadI0, aheadW);
+      const std::int32_t aheadSlot = this->Slots[ahead];
+      if (aheadSlot >= 0)
+      {
+        const float* s = this->Samples.Data() + static_cast<std::size_t>(aheadSlot) * BrickSamples +
+          (aheadI0[2] * Size + aheadI0[1]) * Size + aheadI0[0];
+        for (const int row : { 0, Size, Size * Size, Size * Size + Size })
+        {
+          Prefetch(s + row);
+        }
+      }
+    }
+    const float value = slot < 0 ? this->Constants[at.Brick] : this->Trilinear(slot, at.I0, at.W);
     for (int k = 0; k < samples; ++k, ++i)
     {
       sum += value;
@@ -297,6 +352,10 @@ double BrickedGrid::SumAlong(
       {
         return sum;
       }
+    }
+    if (i < n)
+    {
+      at = next;
     }
   }
   return sum;
