@@ -7,6 +7,8 @@
 #include "brume/TransferFunction.h"
 #include "brume/Vec3.h"
 
+#include "TestScenes.h"
+
 #include <gtest/gtest.h>
 
 #if defined(__linux__)
@@ -252,14 +254,14 @@ TEST(TypedValues, AnEightBitGridIsTheGridOfItsFloats)
     // The occupancy an edit's classification needs, from the counts per
     // integer (a lookup per integer): the bytes' over their type's range,
     // the floats' (whole numbers) over theirs, the same counts.
-    const std::vector<std::uint64_t>& counts = g.Typed->GetValueCounts();
+    const std::vector<std::uint64_t>& counts = g.Typed->GetValueCounts(SerialFor()).Counts;
     ASSERT_EQ(counts.size(), 256u);
-    EXPECT_EQ(g.Typed->GetLowestValue(), 0);
+    EXPECT_EQ(g.Typed->GetValueCounts(SerialFor()).Lowest, 0);
     EXPECT_EQ(std::accumulate(counts.begin(), counts.end(), std::uint64_t(0)), g.Bytes.size());
-    const std::vector<std::uint64_t>& wholeCounts = g.Floats->GetValueCounts();
+    const std::vector<std::uint64_t>& wholeCounts = g.Floats->GetValueCounts(SerialFor()).Counts;
     const int lowest = *std::min_element(g.Bytes.begin(), g.Bytes.end());
     const int highest = *std::max_element(g.Bytes.begin(), g.Bytes.end());
-    ASSERT_EQ(g.Floats->GetLowestValue(), lowest);
+    ASSERT_EQ(g.Floats->GetValueCounts(SerialFor()).Lowest, lowest);
     ASSERT_EQ(wholeCounts.size(), static_cast<std::size_t>(highest - lowest + 1));
     for (std::size_t b = 0; b < wholeCounts.size(); ++b)
     {
@@ -296,13 +298,14 @@ TEST(TypedValues, OnlyWholeFloatsAreCountedPerInteger)
   {
     whole[i] = static_cast<float>(static_cast<int>(i * 37 % 61) - 20);
   }
-  EXPECT_FALSE(GridDensity(box, dims, whole, false).GetValueCounts().empty());
-  EXPECT_EQ(GridDensity(box, dims, whole, false).GetLowestValue(), -20);
+  EXPECT_FALSE(GridDensity(box, dims, whole, false).GetValueCounts(SerialFor()).Counts.empty());
+  EXPECT_EQ(GridDensity(box, dims, whole, false).GetValueCounts(SerialFor()).Lowest, -20);
   for (const float odd : { 0.5f, std::numeric_limits<float>::quiet_NaN(), 65536.f, -32769.f })
   {
     std::vector<float> values = whole;
     values[33] = odd;
-    EXPECT_TRUE(GridDensity(box, dims, values, false).GetValueCounts().empty()) << odd;
+    EXPECT_TRUE(GridDensity(box, dims, values, false).GetValueCounts(SerialFor()).Counts.empty())
+      << odd;
   }
   // 0.5 in one value, the others whole: the per-value path's occupancy.
   std::vector<float> values = whole;
@@ -353,8 +356,8 @@ TEST(TypedValues, SixteenBitGridsClassifyFromTheirCounts)
   {
     auto typedGrid = std::make_shared<const GridDensity>(box, dims, values, false);
     auto floatGrid = std::make_shared<const GridDensity>(box, dims, std::move(floats), false);
-    EXPECT_EQ(typedGrid->GetLowestValue(), lowest);
-    EXPECT_EQ(typedGrid->GetValueCounts().size(), 65536u);
+    EXPECT_EQ(typedGrid->GetValueCounts(SerialFor()).Lowest, lowest);
+    EXPECT_EQ(typedGrid->GetValueCounts(SerialFor()).Counts.size(), 65536u);
     const ClassifiedDensity typed(typedGrid, opacity), asFloats(floatGrid, opacity);
     EXPECT_EQ(typed.OccupiedFraction(), asFloats.OccupiedFraction());
     EXPECT_NEAR(typed.MeanOccupiedDensity(), asFloats.MeanOccupiedDensity(),
@@ -363,4 +366,36 @@ TEST(TypedValues, SixteenBitGridsClassifyFromTheirCounts)
   };
   compare(TypedValues::Wrap(unsignedValues.data(), n, nullptr), unsignedFloats, 0);
   compare(TypedValues::Wrap(signedValues.data(), n, nullptr), signedFloats, -32768);
+}
+
+TEST(TypedValues, CountsAreTheSameWhateverTheThreads)
+{
+  // Two chunks of counted values (bytes, and the same as whole floats),
+  // counted once serially and once on three threads in seven pieces.
+  const std::array<int, 3> dims{ 256, 128, 160 };
+  const std::size_t n = 256 * 128 * 160;
+  std::vector<std::uint8_t> bytes(n);
+  std::vector<float> floats(n);
+  Random rng(17, 0);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    bytes[i] = static_cast<std::uint8_t>(rng.NextFloat() * 200.f + 20.f);
+    floats[i] = bytes[i];
+  }
+  const Box box{ Vec3(0.f), Vec3(1.f) };
+  for (const bool whole : { false, true })
+  {
+    auto make = [&]()
+    {
+      return whole ? GridDensity(box, dims, floats, false)
+                   : GridDensity(box, dims, TypedValues::Wrap(bytes.data(), n, nullptr), false);
+    };
+    const GridDensity serial = make(), threaded = make();
+    const GridDensity::ValueCounts& a = serial.GetValueCounts(SerialFor());
+    const GridDensity::ValueCounts& b = threaded.GetValueCounts(brume::testing::ThreadedFor(3, 7));
+    EXPECT_EQ(a.Lowest, whole ? 20 : 0);
+    EXPECT_EQ(b.Lowest, a.Lowest);
+    EXPECT_EQ(b.Counts, a.Counts);
+    EXPECT_EQ(std::accumulate(a.Counts.begin(), a.Counts.end(), std::uint64_t(0)), n);
+  }
 }

@@ -202,7 +202,14 @@ TypedValues Buffer(const std::vector<float>& values)
 }
 }
 
-void GridDensity::CountValues(const ParallelFor& parallelFor)
+const GridDensity::ValueCounts& GridDensity::GetValueCounts(const ParallelFor& parallelFor) const
+{
+  CountedOnce& counts = *this->Counts;
+  std::call_once(counts.Once, [&]() { counts.Counted = this->CountValues(parallelFor); });
+  return counts.Counted;
+}
+
+GridDensity::ValueCounts GridDensity::CountValues(const ParallelFor& parallelFor) const
 {
   constexpr std::size_t Chunk = std::size_t(1) << 22;
   const std::size_t count = this->Values.Size();
@@ -256,7 +263,7 @@ void GridDensity::CountValues(const ParallelFor& parallelFor)
     });
   if (highest < lowest)
   {
-    return;
+    return {};
   }
   // Counts per chunk of values, added together: integers, so the same
   // whatever the threads.
@@ -281,8 +288,7 @@ void GridDensity::CountValues(const ParallelFor& parallelFor)
           }
         });
     });
-  this->ValueCounts = std::move(counts);
-  this->LowestValue = lowest;
+  return { lowest, std::move(counts) };
 }
 
 GridDensity::GridDensity(const Box& bounds, std::array<int, 3> dims, std::vector<float> values,
@@ -306,7 +312,6 @@ GridDensity::GridDensity(const Box& bounds, std::array<int, 3> dims, TypedValues
         this->Values.Size(), [stored](std::size_t i) { return static_cast<float>(stored[i]); },
         parallelFor);
     });
-  this->CountValues(parallelFor);
   // Cells of the grid (point data: one fewer than the points).
   std::array<int, 3> cells{};
   for (int a = 0; a < 3; ++a)

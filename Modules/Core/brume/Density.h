@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <array>
 #include <functional>
+#include <memory>
+#include <mutex>
 #include <vector>
 
 namespace brume
@@ -296,16 +298,22 @@ public:
   const TypedValues& GetValues() const { return this->Values; }
   bool HasCellValues() const { return this->CellValues; }
   Interpolation GetInterpolation() const { return this->Interpolated; }
+  /// How many values a grid of integers holds of each (GetValueCounts()).
+  struct ValueCounts
+  {
+    int Lowest = 0;                    // the integer Counts[0] counts
+    std::vector<std::uint64_t> Counts; // empty: the values are not integers
+  };
   /**
    * Values that are integers (8- or 16-bit ones, or floats that are all
    * whole numbers from -32768 to 65535, as a scan saved as floats): how
-   * many values the grid holds of each integer from GetLowestValue() on,
-   * counted once at construction, so that a transfer function's occupancy
-   * (ClassifiedDensity) costs a lookup per integer, not per value. Empty
-   * for other floats (found at their first fraction or non-finite value).
+   * many values the grid holds of each integer, so that a transfer
+   * function's occupancy (ClassifiedDensity) costs a lookup per integer,
+   * not per value. Counted at the first call, on `parallelFor`, and kept
+   * (thread safe): a grid no function classifies never counts. Empty for
+   * other floats (found at their first fraction or non-finite value).
    */
-  const std::vector<std::uint64_t>& GetValueCounts() const { return this->ValueCounts; }
-  int GetLowestValue() const { return this->LowestValue; }
+  const ValueCounts& GetValueCounts(const ParallelFor& parallelFor) const;
 
 private:
   float Value(int i, int j, int k) const
@@ -313,15 +321,19 @@ private:
     return this->Values[(static_cast<std::size_t>(k) * this->Dims[1] + j) * this->Dims[0] + i];
   }
   void FindBlockRanges(const ParallelFor& parallelFor);
-  void CountValues(const ParallelFor& parallelFor);
+  ValueCounts CountValues(const ParallelFor& parallelFor) const;
 
   std::array<int, 3> Dims;
   TypedValues Values;
   bool CellValues;
   Interpolation Interpolated;
   std::vector<float> BlockLow, BlockHigh;
-  std::vector<std::uint64_t> ValueCounts;
-  int LowestValue = 0;
+  struct CountedOnce
+  {
+    std::once_flag Once;
+    ValueCounts Counted;
+  };
+  std::shared_ptr<CountedOnce> Counts = std::make_shared<CountedOnce>();
 };
 
 } // namespace brume

@@ -336,16 +336,17 @@ ClassifiedDensity::ClassifiedDensity(std::shared_ptr<const DensityField> scalars
   // A grid's values: the fraction and mean of those the function makes
   // positive (other fields: the non-empty majorant blocks').
   const GridDensity* grid = this->Grid;
-  if (grid && !grid->GetValueCounts().empty())
+  const GridDensity::ValueCounts* integers = grid ? &grid->GetValueCounts(parallelFor) : nullptr;
+  if (integers && !integers->Counts.empty())
   {
     // Integers: each integer's extinction once, weighted by how many values
     // hold it (the sums of the loop below, added in another order).
-    const std::vector<std::uint64_t>& counts = grid->GetValueCounts();
+    const std::vector<std::uint64_t>& counts = integers->Counts;
     double occupied = 0.0, sum = 0.0;
     for (std::size_t b = 0; b < counts.size(); ++b)
     {
       const float v = counts[b]
-        ? this->Opacity.Extinction(static_cast<float>(grid->GetLowestValue() + static_cast<int>(b)))
+        ? this->Opacity.Extinction(static_cast<float>(integers->Lowest + static_cast<int>(b)))
         : 0.f;
       if (v > 0.f)
       {
