@@ -125,8 +125,9 @@ public:
    * Interpolate() at the `n` points x + d (t0 + (i + 1/2) h), i = 0 ... n - 1,
    * ended at the first point where it passes `stop` when `stop` > 0. The
    * same sum as Interpolate() called at each point, with each point's brick
-   * found once and a constant brick's run (ConstantSamples()) added without
-   * a lookup per point.
+   * found once, a constant brick's run (ConstantSamples()) added without a
+   * lookup per point, and the samples of the point a few steps ahead asked
+   * of memory while the current one is interpolated.
    */
   double SumAlong(const Vec3& x, const Vec3& d, float t0, float h, int n, double stop) const;
 
