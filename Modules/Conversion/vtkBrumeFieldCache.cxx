@@ -95,17 +95,22 @@ std::shared_ptr<const brume::ClassifiedDensity> FieldCache::Classified(
   const std::shared_ptr<const brume::DensityField>& scalars,
   const brume::OpacityTransferFunction& opacity, const MakeClassified& make)
 {
+  std::shared_ptr<const brume::ClassifiedDensity> previous;
   {
     std::lock_guard<std::mutex> lock(this->Mutex);
     for (const Entry& e : this->Entries)
     {
-      if (e.Grid == scalars && e.Classified && SameFunction(e.Classified->GetOpacity(), opacity))
+      if (e.Grid == scalars && e.Classified)
       {
-        return e.Classified;
+        if (SameFunction(e.Classified->GetOpacity(), opacity))
+        {
+          return e.Classified;
+        }
+        previous = e.Classified;
       }
     }
   }
-  std::shared_ptr<const brume::ClassifiedDensity> classified = make();
+  std::shared_ptr<const brume::ClassifiedDensity> classified = make(previous.get());
   std::lock_guard<std::mutex> lock(this->Mutex);
   for (Entry& e : this->Entries)
   {

@@ -53,7 +53,10 @@ public:
   };
 
   using MakeGrid = std::function<std::shared_ptr<const brume::GridDensity>()>;
-  using MakeClassified = std::function<std::shared_ptr<const brume::ClassifiedDensity>()>;
+  /// Makes the classified scalars, given those the grid's last function
+  /// classified (null where none is kept), whose work it may reuse.
+  using MakeClassified = std::function<std::shared_ptr<const brume::ClassifiedDensity>(
+    const brume::ClassifiedDensity* previous)>;
 
   /// The grid of `key`: the one kept, or make()'s (kept unless null).
   std::shared_ptr<const brume::GridDensity> Grid(const GridKey& key, const MakeGrid& make);

@@ -156,10 +156,10 @@ void SetClassified(brume::Medium& m, const std::shared_ptr<const brume::DensityF
   }
   m.SetDensity(
     Holding(vtkBrumeSceneConversionInternals::FieldCache::Instance().Classified(scalars, *opacity,
-              [&]()
+              [&](const brume::ClassifiedDensity* previous)
               {
                 return std::make_shared<const brume::ClassifiedDensity>(
-                  scalars, *opacity, vtkBrumeSMP::ParallelFor());
+                  scalars, *opacity, vtkBrumeSMP::ParallelFor(), previous);
               }),
       array));
 }

@@ -433,3 +433,43 @@ TEST(TransferFunction, AlbedoIsTheColourAfterInterpolationTimesTheMediumAlbedo)
   EXPECT_FLOAT_EQ(blue.z, 1.f);
   EXPECT_FLOAT_EQ(m.SigmaTAt(Vec3(0.599f, 0.3f, 0.8f)).x, m.SigmaTAt(Vec3(0.601f, 0.3f, 0.8f)).x);
 }
+
+TEST(TransferFunction, AnEditKeepsTheOccupancyOfChunksItLeftAsTheyWere)
+{
+  // Floats that are not whole numbers, rising with z: each chunk of
+  // 65,536 values (eight slices) spans its own range. An edit of the
+  // function's point at 40 leaves it as it was below 20: the two chunks
+  // there keep their occupancy, the others are counted again, and the
+  // totals are those of the edited function counted afresh, to the bit.
+  const std::array<int, 3> dims{ 128, 64, 64 };
+  std::vector<float> values(static_cast<std::size_t>(dims[0]) * dims[1] * dims[2]);
+  for (std::size_t i = 0; i < values.size(); ++i)
+  {
+    const std::size_t z = i / (static_cast<std::size_t>(dims[0]) * dims[1]);
+    values[i] = static_cast<float>(z) + 0.25f + 0.5f * static_cast<float>(i % 3) / 3.f;
+  }
+  auto grid = std::make_shared<const GridDensity>(Box{ Vec3(0.f), Vec3(1.f) }, dims, values, false);
+  ASSERT_TRUE(grid->GetValueCounts(SerialFor()).Counts.empty()); // not whole numbers
+  const OpacityTransferFunction before(
+    Nodes{ { 0.f, 0.f }, { 20.f, 0.3f }, { 40.f, 0.5f }, { 70.f, 0.8f } }, 0.1f);
+  const OpacityTransferFunction after(
+    Nodes{ { 0.f, 0.f }, { 20.f, 0.3f }, { 40.f, 0.65f }, { 70.f, 0.8f } }, 0.1f);
+  const ClassifiedDensity first(grid, before);
+  const ClassifiedDensity edited(grid, after, SerialFor(), &first);
+  const ClassifiedDensity afresh(grid, after);
+  EXPECT_EQ(first.GetNumberOfKeptChunks(), 0u);
+  EXPECT_EQ(edited.GetNumberOfKeptChunks(), 2u);
+  EXPECT_EQ(edited.OccupiedFraction(), afresh.OccupiedFraction());
+  EXPECT_EQ(edited.MeanOccupiedDensity(), afresh.MeanOccupiedDensity());
+  EXPECT_NE(edited.MeanOccupiedDensity(), first.MeanOccupiedDensity());
+  // The same edit back: the same two chunks kept, the first's totals.
+  const ClassifiedDensity back(grid, before, SerialFor(), &edited);
+  EXPECT_EQ(back.GetNumberOfKeptChunks(), 2u);
+  EXPECT_EQ(back.MeanOccupiedDensity(), first.MeanOccupiedDensity());
+  // Another grid's previous function keeps nothing.
+  auto other =
+    std::make_shared<const GridDensity>(Box{ Vec3(0.f), Vec3(1.f) }, dims, values, false);
+  const ClassifiedDensity elsewhere(other, after, SerialFor(), &first);
+  EXPECT_EQ(elsewhere.GetNumberOfKeptChunks(), 0u);
+  EXPECT_EQ(elsewhere.MeanOccupiedDensity(), afresh.MeanOccupiedDensity());
+}

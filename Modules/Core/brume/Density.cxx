@@ -204,9 +204,46 @@ TypedValues Buffer(const std::vector<float>& values)
 
 const GridDensity::ValueCounts& GridDensity::GetValueCounts(const ParallelFor& parallelFor) const
 {
-  CountedOnce& counts = *this->Counts;
-  std::call_once(counts.Once, [&]() { counts.Counted = this->CountValues(parallelFor); });
-  return counts.Counted;
+  FoundOnce& found = *this->Found;
+  std::call_once(found.CountsOnce, [&]() { found.Counts = this->CountValues(parallelFor); });
+  return found.Counts;
+}
+
+const std::vector<float>& GridDensity::GetChunkRanges(const ParallelFor& parallelFor) const
+{
+  FoundOnce& found = *this->Found;
+  std::call_once(found.RangesOnce,
+    [&]()
+    {
+      const std::size_t count = this->Values.Size();
+      const std::size_t chunks = (count + OccupiedChunk - 1) / OccupiedChunk;
+      std::vector<float>& ranges = found.ChunkRanges;
+      ranges.assign(2 * chunks, 0.f);
+      this->Values.Visit(
+        [&](const auto* stored)
+        {
+          parallelFor(0, chunks,
+            [&](std::size_t begin, std::size_t end)
+            {
+              for (std::size_t c = begin; c < end; ++c)
+              {
+                float lo = static_cast<float>(stored[c * OccupiedChunk]), hi = lo;
+                bool finite = true;
+                for (std::size_t i = c * OccupiedChunk;
+                     i < std::min(count, (c + 1) * OccupiedChunk); ++i)
+                {
+                  const float v = static_cast<float>(stored[i]);
+                  finite = finite && std::isfinite(v);
+                  lo = std::min(lo, v);
+                  hi = std::max(hi, v);
+                }
+                ranges[2 * c] = finite ? lo : std::numeric_limits<float>::quiet_NaN();
+                ranges[2 * c + 1] = finite ? hi : std::numeric_limits<float>::quiet_NaN();
+              }
+            });
+        });
+    });
+  return found.ChunkRanges;
 }
 
 GridDensity::ValueCounts GridDensity::CountValues(const ParallelFor& parallelFor) const

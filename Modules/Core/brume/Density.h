@@ -125,14 +125,36 @@ protected:
   template <typename Value>
   void CountOccupied(std::size_t count, const Value& value, const ParallelFor& parallelFor)
   {
-    constexpr std::size_t Chunk = std::size_t(1) << 16;
+    std::vector<double> occupied, sums;
+    this->CountOccupiedChunks(count, value, parallelFor, {}, occupied, sums);
+    this->SetOccupied(static_cast<double>(count), occupied, sums);
+  }
+  /// The values CountOccupied() counts in one chunk.
+  static constexpr std::size_t OccupiedChunk = std::size_t(1) << 16;
+  /**
+   * CountOccupied()'s counts and sums per chunk of OccupiedChunk values,
+   * into `occupied` and `sums` (resized to the chunks), without setting
+   * the totals; chunks marked in `known` (empty: none) keep what the two
+   * vectors hold for them.
+   */
+  template <typename Value>
+  static void CountOccupiedChunks(std::size_t count, const Value& value,
+    const ParallelFor& parallelFor, const std::vector<char>& known, std::vector<double>& occupied,
+    std::vector<double>& sums)
+  {
+    constexpr std::size_t Chunk = OccupiedChunk;
     const std::size_t chunks = (count + Chunk - 1) / Chunk;
-    std::vector<double> occupied(chunks, 0.0), sums(chunks, 0.0);
+    occupied.resize(chunks, 0.0);
+    sums.resize(chunks, 0.0);
     parallelFor(0, chunks,
       [&](std::size_t begin, std::size_t end)
       {
         for (std::size_t c = begin; c < end; ++c)
         {
+          if (!known.empty() && known[c])
+          {
+            continue;
+          }
           double n = 0.0, sum = 0.0;
           for (std::size_t i = c * Chunk; i < std::min(count, (c + 1) * Chunk); ++i)
           {
@@ -147,7 +169,6 @@ protected:
           sums[c] = sum;
         }
       });
-    this->SetOccupied(static_cast<double>(count), occupied, sums);
   }
   /// CountOccupied()'s totals, from its chunks' counts and sums, in order.
   void SetOccupied(
@@ -314,6 +335,15 @@ public:
    * other floats (found at their first fraction or non-finite value).
    */
   const ValueCounts& GetValueCounts(const ParallelFor& parallelFor) const;
+  /**
+   * Per chunk of OccupiedChunk values (in the order of the values), the
+   * smallest and largest value, two floats each (NaN where one is not
+   * finite): what a transfer function's occupancy of the chunk depends on
+   * (ClassifiedDensity keeps a chunk's across an edit that leaves the
+   * function as it was over that range). Found at the first call, on
+   * `parallelFor`, and kept (thread safe).
+   */
+  const std::vector<float>& GetChunkRanges(const ParallelFor& parallelFor) const;
 
 private:
   float Value(int i, int j, int k) const
@@ -328,12 +358,14 @@ private:
   bool CellValues;
   Interpolation Interpolated;
   std::vector<float> BlockLow, BlockHigh;
-  struct CountedOnce
+  // What is found of the values at the first call that needs it.
+  struct FoundOnce
   {
-    std::once_flag Once;
-    ValueCounts Counted;
+    std::once_flag CountsOnce, RangesOnce;
+    ValueCounts Counts;
+    std::vector<float> ChunkRanges;
   };
-  std::shared_ptr<CountedOnce> Counts = std::make_shared<CountedOnce>();
+  std::shared_ptr<FoundOnce> Found = std::make_shared<FoundOnce>();
 };
 
 } // namespace brume

@@ -321,6 +321,13 @@ float OpacityTransferFunction::TableRangeMax(int first, int last) const
 
 ClassifiedDensity::ClassifiedDensity(std::shared_ptr<const DensityField> scalars,
   OpacityTransferFunction opacity, const ParallelFor& parallelFor)
+  : ClassifiedDensity(std::move(scalars), std::move(opacity), parallelFor, nullptr)
+{
+}
+
+ClassifiedDensity::ClassifiedDensity(std::shared_ptr<const DensityField> scalars,
+  OpacityTransferFunction opacity, const ParallelFor& parallelFor,
+  const ClassifiedDensity* previous)
   : Scalars(std::move(scalars))
   , Opacity(std::move(opacity))
 {
@@ -358,15 +365,39 @@ ClassifiedDensity::ClassifiedDensity(std::shared_ptr<const DensityField> scalars
   }
   else if (grid)
   {
+    // Counted chunk by chunk, each chunk's occupancy kept from the previous
+    // function where the edit left the function as it was over the chunk's
+    // values (the same floats: the totals are those counted afresh).
     const TypedValues& typed = grid->GetValues();
+    const std::size_t chunks = (typed.Size() + OccupiedChunk - 1) / OccupiedChunk;
+    std::vector<char> kept;
+    if (previous && previous->Scalars == this->Scalars && previous->ChunkOccupied.size() == chunks)
+    {
+      const std::vector<float>& ranges = grid->GetChunkRanges(parallelFor);
+      const OpacityFunctionEdit edit(previous->Opacity, this->Opacity);
+      kept.assign(chunks, 0);
+      this->ChunkOccupied.assign(chunks, 0.0);
+      this->ChunkSums.assign(chunks, 0.0);
+      for (std::size_t c = 0; c < chunks; ++c)
+      {
+        if (edit.SameOver(ranges[2 * c], ranges[2 * c + 1]))
+        {
+          kept[c] = 1;
+          this->ChunkOccupied[c] = previous->ChunkOccupied[c];
+          this->ChunkSums[c] = previous->ChunkSums[c];
+          ++this->KeptChunks;
+        }
+      }
+    }
     typed.Visit(
       [&](const auto* values)
       {
-        this->CountOccupied(
+        CountOccupiedChunks(
           typed.Size(),
           [&](std::size_t i) { return this->Opacity.Extinction(static_cast<float>(values[i])); },
-          parallelFor);
+          parallelFor, kept, this->ChunkOccupied, this->ChunkSums);
       });
+    this->SetOccupied(static_cast<double>(typed.Size()), this->ChunkOccupied, this->ChunkSums);
   }
   this->Majorants = this->Scalars->GetMajorants();
   std::vector<float>& lo = this->RangeLow;

@@ -185,6 +185,15 @@ public:
   /// `scalars` should know its ValueRanges (a GridDensity, a VdbDensity loaded as scalars).
   ClassifiedDensity(std::shared_ptr<const DensityField> scalars, OpacityTransferFunction opacity,
     const ParallelFor& parallelFor = SerialFor());
+  /**
+   * The same after an edit of `previous`'s function over the same scalars:
+   * a grid of floats keeps `previous`'s occupancy of each chunk of values
+   * (GridDensity::GetChunkRanges()) over whose range the edit left the
+   * function as it was (OpacityFunctionEdit::SameOver()), and counts the
+   * others, so that its totals are those counted afresh, to the bit.
+   */
+  ClassifiedDensity(std::shared_ptr<const DensityField> scalars, OpacityTransferFunction opacity,
+    const ParallelFor& parallelFor, const ClassifiedDensity* previous);
   float Evaluate(const Vec3& p) const override
   {
     return this->Opacity.Extinction(this->Scalars->Evaluate(p));
@@ -241,6 +250,8 @@ public:
   /// The scalars' owner (for one that keeps them alive with the function).
   const std::shared_ptr<const DensityField>& GetScalarsPointer() const { return this->Scalars; }
   const OpacityTransferFunction& GetOpacity() const { return this->Opacity; }
+  /// The chunks of values whose occupancy was kept from the previous function.
+  std::size_t GetNumberOfKeptChunks() const { return this->KeptChunks; }
 
 private:
   bool BendsWithinBlocks(const Box& region) const;
@@ -263,6 +274,11 @@ private:
   // Per majorant block, the field's value range (empty when it cannot say).
   std::vector<float> RangeLow, RangeHigh;
   OpacityTransferFunction Opacity;
+  // A grid of floats: per chunk of values, the occupied count and sum
+  // (DensityField::CountOccupiedChunks()), and how many came from a previous
+  // function.
+  std::vector<double> ChunkOccupied, ChunkSums;
+  std::size_t KeptChunks = 0;
 };
 
 /**
