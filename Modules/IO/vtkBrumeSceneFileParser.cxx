@@ -22,7 +22,6 @@
 #include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
-#include "vtkXMLImageDataReader.h"
 
 #include "brume/Scene.h"
 

@@ -8,6 +8,7 @@
 #include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeSceneFileCache.h"
 #include "vtkBrumeSceneFileChecks.h"
+#include "vtkBrumeXMLReaders.h"
 #include "vtkDoubleArray.h"
 #include "vtkExecutive.h"
 #include "vtkImageData.h"
@@ -16,7 +17,6 @@
 #include "vtkPartitionedDataSet.h"
 #include "vtkPartitionedDataSetCollection.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
-#include "vtkXMLImageDataReader.h"
 
 #include "brume/Scene.h"
 
@@ -427,7 +427,7 @@ vtkSmartPointer<vtkImageData> vtkBrumeSceneFileParser::ReadImage(
       return kept;
     }
   }
-  vtkNew<vtkXMLImageDataReader> reader;
+  vtkNew<vtkBrumeXMLImageDataReader> reader; // appended data too, whatever the expat
   reader->SetFileName(file.string().c_str());
   const bool display = vtkObject::GetGlobalWarningDisplay();
   vtkObject::GlobalWarningDisplayOff();

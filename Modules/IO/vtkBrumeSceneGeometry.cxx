@@ -3,15 +3,14 @@
 
 #include "vtkAlgorithm.h"
 #include "vtkBrumeSceneFileChecks.h"
+#include "vtkBrumeXMLReaders.h"
 #include "vtkDataSetSurfaceFilter.h"
 #include "vtkExecutive.h"
 #include "vtkOBJReader.h"
 #include "vtkPLYReader.h"
 #include "vtkPolyData.h"
 #include "vtkSTLReader.h"
-#include "vtkXMLPolyDataReader.h"
 #include "vtkXMLUnstructuredDataReader.h"
-#include "vtkXMLUnstructuredGridReader.h"
 
 namespace
 {
@@ -66,7 +65,7 @@ vtkSmartPointer<vtkPolyData> vtkBrumeSceneGeometry::Read(
   }
   else if (ext == ".vtp")
   {
-    auto r = vtkSmartPointer<vtkXMLPolyDataReader>::New();
+    auto r = vtkSmartPointer<vtkBrumeXMLPolyDataReader>::New();
     r->SetFileName(file.string().c_str());
     if (!Quietly([&] { return vtkBrumeSceneFileChecks::VtkXml(r, file, error); }))
     {
@@ -76,7 +75,7 @@ vtkSmartPointer<vtkPolyData> vtkBrumeSceneGeometry::Read(
   }
   else if (ext == ".vtu")
   {
-    auto r = vtkSmartPointer<vtkXMLUnstructuredGridReader>::New();
+    auto r = vtkSmartPointer<vtkBrumeXMLUnstructuredGridReader>::New();
     r->SetFileName(file.string().c_str());
     if (!Quietly([&] { return vtkBrumeSceneFileChecks::VtkXml(r, file, error); }))
     {
@@ -92,7 +91,8 @@ vtkSmartPointer<vtkPolyData> vtkBrumeSceneGeometry::Read(
     return nullptr;
   }
   // Readers report problems through errors, not return values: silence and check.
-  const int ok = Quietly([&] { return reader->GetExecutive() ? reader->GetExecutive()->Update() : 0; });
+  const int ok =
+    Quietly([&] { return reader->GetExecutive() ? reader->GetExecutive()->Update() : 0; });
   auto* output = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
   if (!ok || !output || output->GetNumberOfCells() == 0)
   {
