@@ -238,6 +238,39 @@ void vtkBrumeRadianceTextures::ForEachObject(const brume::ObjectHits& groups,
   }
 }
 
+std::vector<char> vtkBrumeRadianceTextures::BinWide(const brume::ObjectHits& groups,
+  const std::function<void(std::size_t, const brume::ParallelFor&)>& bin)
+{
+  // One thread an object left the others waiting for the one with the most
+  // hits: past four threads the reconstruction no longer scaled (issue 53).
+  // Its exact sums take its hits split between threads instead
+  // (brume::HitBinning), the same bits whatever the split.
+  std::vector<char> wide(this->Objects.size(), 0);
+  const auto threads =
+    static_cast<std::size_t>(std::max(1, vtkSMPTools::GetEstimatedNumberOfThreads()));
+  auto hitsOf = [&](std::size_t o) { return groups.Offset[o + 1] - groups.Offset[o]; };
+  std::size_t total = 0; // the hits of the objects built one thread each
+  for (std::size_t o = 0; o < this->Objects.size(); ++o)
+  {
+    total += this->Objects[o]->GetBinning().KeepsHits() ? 0 : hitsOf(o);
+  }
+  const brume::ParallelFor parallelFor = vtkBrumeSMP::ParallelFor();
+  for (std::size_t o = 0; threads > 1 && o < this->Objects.size(); ++o)
+  {
+    // More than a thread's even share: on one thread, it would keep the
+    // others waiting after they had built the rest.
+    if (!this->Objects[o]->GetBinning().KeepsHits() && hitsOf(o) >= WideObjectHits &&
+      hitsOf(o) * threads > total)
+    {
+      this->Objects[o]->Options().BinOnEveryThread = true;
+      bin(o, parallelFor);
+      this->Objects[o]->Options().BinOnEveryThread = false;
+      wide[o] = 1;
+    }
+  }
+  return wide;
+}
+
 bool vtkBrumeRadianceTextures::BuildObjects(const vtkBrumeReconstructionRequest& request,
   const brume::ObjectHits& groups, vtkBrumeReconstructionWork& work)
 {
@@ -252,14 +285,30 @@ bool vtkBrumeRadianceTextures::BuildObjects(const vtkBrumeReconstructionRequest&
   }
   else
   {
+    const bool estimate = request.Run.Completes();
+    auto binHits = [&](std::size_t o, const brume::ParallelFor& objectFor)
+    {
+      this->Objects[o]->Options().ParticleFlux = request.ParticleFlux;
+      this->Objects[o]->Options().RunShare = request.Run.EndParticle / request.Run.Particles;
+      errors[o] = this->Objects[o]->BuildHits(request.Hits, groups.Index.data() + groups.Offset[o],
+        groups.Offset[o + 1] - groups.Offset[o], request.Eye, request.ThresholdFlux, objectFor,
+        estimate);
+    };
+    // The objects with many hits binned first, each on every thread; then
+    // every object estimated (and the others binned) as ForEachObject()
+    // shares them out.
+    const std::vector<char> wide = this->BinWide(groups, binHits);
     this->ForEachObject(groups,
       [&](std::size_t o, const brume::ParallelFor& objectFor)
       {
-        this->Objects[o]->Options().ParticleFlux = request.ParticleFlux;
-        this->Objects[o]->Options().RunShare = request.Run.EndParticle / request.Run.Particles;
-        errors[o] = this->Objects[o]->Build(request.Hits, groups.Index.data() + groups.Offset[o],
-          groups.Offset[o + 1] - groups.Offset[o], request.Eye, request.ThresholdFlux, objectFor,
-          request.Run.Completes());
+        if (!wide[o])
+        {
+          binHits(o, objectFor);
+        }
+        if (errors[o].empty() && estimate)
+        {
+          errors[o] = this->Objects[o]->Finish(request.Eye, objectFor);
+        }
       });
   }
   this->Filter->UpdateProgress(0.5);
@@ -308,7 +357,15 @@ bool vtkBrumeRadianceTextures::BuildDistributed(const vtkBrumeReconstructionRequ
   // Every process's hits were checked before (CheckHits): a failure here
   // is one process's alone (a term beyond the exact sums' bound), and every
   // process stops, without entering a reduction.
-  this->ForEachObject(groups, bin);
+  const std::vector<char> wide = this->BinWide(groups, bin);
+  this->ForEachObject(groups,
+    [&](std::size_t o, const brume::ParallelFor& objectFor)
+    {
+      if (!wide[o])
+      {
+        bin(o, objectFor);
+      }
+    });
   if (!this->AgreeOnObjects(errors, "Cannot reconstruct"))
   {
     return false;
@@ -370,7 +427,18 @@ bool vtkBrumeRadianceTextures::Add(
       groups.Offset[o + 1] - groups.Offset[o], this->Particles / request.Run.Particles, eye,
       request.ThresholdFlux, objectFor, complete);
   };
-  this->ForEachObject(groups, add);
+  // A batch that only bins: the objects with many hits on every thread
+  // first (BinWide()); the one that estimates builds each on one thread.
+  const std::vector<char> wide =
+    complete ? std::vector<char>(this->Objects.size(), 0) : this->BinWide(groups, add);
+  this->ForEachObject(groups,
+    [&](std::size_t o, const brume::ParallelFor& objectFor)
+    {
+      if (!wide[o])
+      {
+        add(o, objectFor);
+      }
+    });
   if (!this->AgreeOnObjects(errors, "Cannot add particles to"))
   {
     return false;

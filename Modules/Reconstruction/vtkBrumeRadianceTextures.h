@@ -239,6 +239,13 @@ private:
   // each on every thread.
   void ForEachObject(const brume::ObjectHits& groups,
     const std::function<void(std::size_t, const brume::ParallelFor&)>& step);
+  // bin(o, parallelFor) on every thread (ObjectOptions::BinOnEveryThread),
+  // one object after another, for the view-independent objects with more
+  // than a thread's even share of their hits (and WideObjectHits at
+  // least), when there are two threads or more; flags them.
+  static constexpr std::size_t WideObjectHits = 131072;
+  std::vector<char> BinWide(const brume::ObjectHits& groups,
+    const std::function<void(std::size_t, const brume::ParallelFor&)>& bin);
   bool Agree(bool ok);
   // Reports each object's error ("what 'name': error.") and agrees with the
   // other processes: true when no process had one.

@@ -8,8 +8,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
+#include <thread>
 #include <vector>
 
 using namespace brume;
@@ -88,6 +90,55 @@ TEST(ExactHistogram, SameBitsInAnyOrderAndGrouping)
   {
     EXPECT_NEAR(doubles.GetValues()[cell], static_cast<double>(reference[cell]), bound) << cell;
   }
+}
+
+TEST(ExactHistogram, ThreadsAddingToTheSameCellsKeepEveryBit)
+{
+  // AddNonNegative<true>: four threads adding at once into the same five
+  // cells, terms large enough that the low words carry every few terms,
+  // some negative and one NaN (Add()'s way, atomically too): the sums of
+  // adding them all on one thread, and the clamp reported.
+  const int e = ExactHistogram::QuantumExponent(1.0);
+  const double quantum = std::ldexp(1.0, e);
+  constexpr int Threads = 4, Terms = 100000;
+  std::vector<std::array<double, 2>> terms(static_cast<std::size_t>(Threads) * Terms);
+  Random random(11, 0);
+  for (std::size_t k = 0; k < terms.size(); ++k)
+  {
+    for (double& t : terms[k])
+    {
+      t = quantum * std::ldexp(random.NextDouble(), 61) * (k % 9 == 0 ? -1.0 : 1.0);
+    }
+  }
+  terms[12345][1] = std::nan("");
+  ExactHistogram one({ 5, 1, 1 }, 2, e), shared({ 5, 1, 1 }, 2, e);
+  for (std::size_t k = 0; k < terms.size(); ++k)
+  {
+    const double values[2] = { terms[k][0], terms[k][1] };
+    one.AddNonNegative(k % 5, 0, values);
+  }
+  std::vector<std::thread> threads;
+  for (int t = 0; t < Threads; ++t)
+  {
+    threads.emplace_back(
+      [&, t]
+      {
+        for (std::size_t k = t; k < terms.size(); k += Threads)
+        {
+          const double values[2] = { terms[k][0], terms[k][1] };
+          shared.AddNonNegative<true>(k % 5, 0, values);
+        }
+      });
+  }
+  for (std::thread& thread : threads)
+  {
+    thread.join();
+  }
+  EXPECT_EQ(shared.GetSums(), one.GetSums());
+  EXPECT_TRUE(one.Saturated());
+  EXPECT_TRUE(shared.Saturated());
+  // The sums went past one word: the carries were counted.
+  EXPECT_GT(one.MaxMagnitude(), static_cast<Int128>(1) << 64);
 }
 
 TEST(ExactHistogram, WorstCaseSumsStayExact)

@@ -925,6 +925,53 @@ TEST(Reconstruction, AFixedViewBinsToTheTexturesOfKeptHitsBitForBit)
   EXPECT_NE(kept.back()->GetTexture().Radiance, fixed.back()->GetTexture().Radiance);
 }
 
+TEST(Reconstruction, AnObjectBinnedOnEveryThreadHasTheSumsOfOneThread)
+{
+  // ObjectOptions::BinOnEveryThread: the hits split between threads that
+  // add atomically into the same exact sums give the bits of one thread's
+  // pass in hit order, whatever the split (fixed views: binned in place).
+  const GlossyFogRun run;
+  ASSERT_EQ(run.GroupError, "");
+  const HitArrays hits = run.Store.View();
+  const ObjectHits& groups = run.Groups;
+  const auto one = GlossyFogObjects(run.Setting);
+  const auto every = GlossyFogObjects(run.Setting);
+  for (std::size_t o = 0; o < one.size(); ++o)
+  {
+    const std::uint32_t* index = groups.Index.data() + groups.Offset[o];
+    const std::size_t count = groups.Offset[o + 1] - groups.Offset[o];
+    ASSERT_GT(count, 1000u) << o;
+    for (auto* set : { &one, &every })
+    {
+      (*set)[o]->Options().ParticleFlux = run.ParticleFlux;
+      (*set)[o]->FixView(run.Eye);
+    }
+    every[o]->Options().BinOnEveryThread = true;
+    ASSERT_EQ(one[o]->Build(hits, index, count, run.Eye, run.Threshold, SerialFor()), "");
+    for (const ParallelFor& parallelFor :
+      { brume::testing::ThreadedFor(3, 7), brume::testing::ThreadedFor(4, 1000) })
+    {
+      ASSERT_EQ(every[o]->BuildHits(hits, index, count, run.Eye, run.Threshold, parallelFor), "");
+      // What was binned, then what is estimated from it (on one thread).
+      EXPECT_EQ(every[o]->GetBinning().GetWeightHistogram().GetValues(),
+        one[o]->GetBinning().GetWeightHistogram().GetValues())
+        << o;
+      EXPECT_EQ(every[o]->GetBinning().GetValueHistogram().GetValues(),
+        one[o]->GetBinning().GetValueHistogram().GetValues())
+        << o;
+      ASSERT_EQ(every[o]->Finish(run.Eye, SerialFor()), "");
+      EXPECT_EQ(every[o]->GetTexture().Radiance, one[o]->GetTexture().Radiance) << o;
+    }
+  }
+  // The sums hold every hit: half of them bin to other sums (the test can fail).
+  const std::size_t count = groups.Offset[1] - groups.Offset[0];
+  ASSERT_EQ(every[0]->BuildHits(hits, groups.Index.data(), count / 2, run.Eye, run.Threshold,
+              brume::testing::ThreadedFor(3, 7)),
+    "");
+  EXPECT_NE(every[0]->GetBinning().GetWeightHistogram().GetValues(),
+    one[0]->GetBinning().GetWeightHistogram().GetValues());
+}
+
 TEST(Reconstruction, KeptHitsInBatchesKeepTheirTrianglesAndGrowthScales)
 {
   // Kept hits hold a surface's triangle and, once a light was aimed, each

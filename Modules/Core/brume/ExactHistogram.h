@@ -82,12 +82,17 @@ public:
   {
     this->AddNonNegativeAt(cell * N, values);
   }
-  /// AddNonNegative() into N of the channels, from channel `first` on (a
-  /// half's channels of HitBinning's sums; the others unchanged).
-  template <int N>
+  /**
+   * AddNonNegative() into N of the channels, from channel `first` on (a
+   * half's channels of HitBinning's sums; the others unchanged). With
+   * `Shared`, threads may add to the same cell at once: each word is added
+   * atomically (the sums are exact, so the order of the terms does not
+   * change a bit); the histogram is not read meanwhile.
+   */
+  template <bool Shared = false, int N>
   void AddNonNegative(std::size_t cell, int first, const double (&values)[N])
   {
-    this->AddNonNegativeAt(cell * static_cast<std::size_t>(this->Channels) + first, values);
+    this->AddNonNegativeAt<Shared>(cell * static_cast<std::size_t>(this->Channels) + first, values);
   }
 
   /// Asks for the cache line of `cell`'s sums ahead of adding to them.
@@ -157,8 +162,21 @@ private:
     return this->Clamp(x); // beyond the bound, or NaN
   }
   std::int64_t Clamp(double x);
+  // Adds k to the low word `low` and returns its value before (atomically
+  // where Shared).
+  template <bool Shared>
+  static std::uint64_t AddLow(std::uint64_t& low, std::uint64_t k)
+  {
+    if (Shared)
+    {
+      return __atomic_fetch_add(&low, k, __ATOMIC_RELAXED);
+    }
+    const std::uint64_t before = low;
+    low = before + k;
+    return before;
+  }
   // Adds values[c] to sum `at + c`.
-  template <int N>
+  template <bool Shared = false, int N>
   void AddNonNegativeAt(std::size_t at, const double (&values)[N])
   {
     std::uint64_t* low = this->Low.data() + at;
@@ -168,14 +186,12 @@ private:
       const double x = values[c] * inverse;
       if (!(x >= 0.0 && x < TermBound))
       {
-        this->AddOne(at + c, values[c]);
+        this->AddOne<Shared>(at + c, values[c]);
         continue;
       }
       // Below 2^62: the signed conversion (one instruction) gives the same k.
       const auto k = static_cast<std::uint64_t>(static_cast<std::int64_t>(x + 0.5));
-      const std::uint64_t sum = low[c] + k;
-      low[c] = sum;
-      if (sum < k) // carried
+      if (AddLow<Shared>(low[c], k) + k < k) // carried
       {
         this->MoveHigh(at + c, 1);
         low = this->Low.data() + at;
@@ -183,13 +199,12 @@ private:
     }
   }
   // One term into value i, of any sign.
+  template <bool Shared = false>
   void AddOne(std::size_t i, double v)
   {
     const std::int64_t k = this->Quantize(v);
-    std::uint64_t& low = this->Low[i];
-    const std::uint64_t before = low;
-    low = before + static_cast<std::uint64_t>(k);
-    const bool carry = low < before;
+    const std::uint64_t before = AddLow<Shared>(this->Low[i], static_cast<std::uint64_t>(k));
+    const bool carry = before + static_cast<std::uint64_t>(k) < before;
     if (carry != (k < 0)) // the high word moves: +1 on a carry, -1 on a borrow
     {
       this->MoveHigh(i, carry ? 1 : -1);

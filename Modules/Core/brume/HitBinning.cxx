@@ -215,7 +215,8 @@ inline bool HitBinning::FromFront(
 }
 
 void HitBinning::Bin(const ObjectLayout& layout, const HitArrays& hits, const std::uint32_t* index,
-  std::size_t count, const DirectLight* direct, double runShare, const ParallelFor& parallelFor)
+  std::size_t count, const DirectLight* direct, double runShare, const ParallelFor& parallelFor,
+  bool everyThread)
 {
   const CellLocator cellOfHit(layout);
   std::vector<std::uint32_t> scattered;
@@ -235,7 +236,7 @@ void HitBinning::Bin(const ObjectLayout& layout, const HitArrays& hits, const st
   }
   if (!this->KeepsHits())
   {
-    this->BinInPlace(layout, hits, index, count, cellOfHit);
+    this->BinInPlace(layout, hits, index, count, cellOfHit, parallelFor, everyThread);
   }
   else
   {
@@ -288,6 +289,7 @@ inline void HitBinning::WeighHit(const ObjectLayout& layout, const Vec3& eye, co
   }
 }
 
+template <bool Shared>
 inline void HitBinning::AddTerms(
   const ObjectLayout& layout, const HitArrays& hits, std::uint32_t i, std::uint32_t cell)
 {
@@ -302,14 +304,14 @@ inline void HitBinning::AddTerms(
     // (WeighKept()), their growth scale in float as kept.
     const double w[1] = { (static_cast<double>(f[0]) + f[1] + f[2]) / 3.0 *
       static_cast<float>(hits.GrowthScale(i)) };
-    this->Weights.AddNonNegative(cell, half, w);
+    this->Weights.AddNonNegative<Shared>(cell, half, w);
     this->WeighHit(layout, this->FixedEye, hits.Position + 3 * i, hits.Direction + 3 * i, f,
       triangle, this->FixedNormals, v);
-    this->Values.AddNonNegative(cell, 3 * half, v);
+    this->Values.AddNonNegative<Shared>(cell, 3 * half, v);
     return;
   }
   const double w[1] = { (static_cast<double>(f[0]) + f[1] + f[2]) / 3.0 * hits.GrowthScale(i) };
-  this->Weights.AddNonNegative(cell, half, w);
+  this->Weights.AddNonNegative<Shared>(cell, half, w);
   if (layout.MediumRef)
   {
     for (int c = 0; c < 3; ++c)
@@ -330,23 +332,45 @@ inline void HitBinning::AddTerms(
       v[c] = m.Reflectance[c] * InvPi * static_cast<double>(f[c]);
     }
   }
-  this->Values.AddNonNegative(cell, 3 * half, v);
+  this->Values.AddNonNegative<Shared>(cell, 3 * half, v);
 }
 
 template <typename Locator>
 void HitBinning::BinInPlace(const ObjectLayout& layout, const HitArrays& hits,
+  const std::uint32_t* index, std::size_t count, const Locator& cellOfHit,
+  const ParallelFor& parallelFor, bool everyThread)
+{
+  // View-independent objects: every hit is added to its cell; nothing is
+  // kept. The sums are exact (any order of the terms gives the same bits),
+  // so on every thread the hits are split between threads that add into
+  // the same sums word by word atomically: the same bits whatever the
+  // split, and no memory beyond the object's sums. An atomic add costs
+  // more than a plain one: one thread adds plainly.
+  if (everyThread)
+  {
+    parallelFor(0, count,
+      [&](std::size_t begin, std::size_t end)
+      { this->BinInto<true>(layout, hits, index + begin, end - begin, cellOfHit); });
+  }
+  else
+  {
+    this->BinInto<false>(layout, hits, index, count, cellOfHit);
+  }
+  this->Clamped = this->Clamped || this->Weights.Saturated() || this->Values.Saturated();
+}
+
+template <bool Shared, typename Locator>
+void HitBinning::BinInto(const ObjectLayout& layout, const HitArrays& hits,
   const std::uint32_t* index, std::size_t count, const Locator& cellOfHit)
 {
-  // View-independent objects: every hit is added to its cell (exact sums:
-  // any order of the terms gives the same bits); nothing is kept. The loop
-  // is bound by memory latency, not arithmetic: an object's hits are spread
-  // over the whole run's arrays, and a fine histogram (32 bytes a cell: a
-  // weight and three values; megabytes at 10^7 particles) misses the
-  // caches at nearly every hit. So a hit Ahead of the one whose cell is
-  // found is asked for, and its cell's sums are asked for Lag hits before
-  // they are added to (a software pipeline): 10^7 particles of the default
-  // scene bin in 0.07-0.09 s a wall instead of 0.17 s with the hits grouped by
-  // ranges of cells first, and nothing is allocated.
+  // The loop is bound by memory latency, not arithmetic: an object's hits
+  // are spread over the whole run's arrays, and a fine histogram (64 bytes
+  // a cell: a weight and three values a half; megabytes at 10^7 particles)
+  // misses the caches at nearly every hit. So a hit Ahead of the one whose
+  // cell is found is asked for, and its cell's sums are asked for Lag hits
+  // before they are added to (a software pipeline): 10^7 particles of the
+  // default scene bin in 0.07-0.09 s a wall instead of 0.17 s with the hits
+  // grouped by ranges of cells first, and nothing is allocated.
   // A surface shows light arriving on its front side only (the back side's
   // is reflected, not shown): other hits have no cell.
   constexpr std::uint32_t NoCell = ~std::uint32_t(0);
@@ -358,7 +382,7 @@ void HitBinning::BinInPlace(const ObjectLayout& layout, const HitArrays& hits,
     const std::size_t slot = k % Lag;
     if (k >= Lag && waitingCell[slot] != NoCell)
     {
-      this->AddTerms(layout, hits, waitingHit[slot], waitingCell[slot]);
+      this->AddTerms<Shared>(layout, hits, waitingHit[slot], waitingCell[slot]);
     }
     if (k < count)
     {
@@ -381,7 +405,6 @@ void HitBinning::BinInPlace(const ObjectLayout& layout, const HitArrays& hits,
       waitingCell[slot] = cell;
     }
   }
-  this->Clamped = this->Clamped || this->Weights.Saturated() || this->Values.Saturated();
 }
 
 template <typename Locator>

@@ -81,7 +81,8 @@ public:
    * left out (computed, not estimated). `runShare`: ObjectOptions::RunShare.
    */
   void Bin(const ObjectLayout& layout, const HitArrays& hits, const std::uint32_t* index,
-    std::size_t count, const DirectLight* direct, double runShare, const ParallelFor& parallelFor);
+    std::size_t count, const DirectLight* direct, double runShare, const ParallelFor& parallelFor,
+    bool everyThread = false);
   /// Multiplies what was binned by `scale` (progressive runs), the sums'
   /// quantum becoming 2^sumsExponent.
   void Scale(double scale, int sumsExponent, const ParallelFor& parallelFor);
@@ -118,11 +119,18 @@ private:
   // view-dependent ones keep their hits by cell.
   template <typename Locator>
   void BinInPlace(const ObjectLayout& layout, const HitArrays& hits, const std::uint32_t* index,
+    std::size_t count, const Locator& cellOfHit, const ParallelFor& parallelFor, bool everyThread);
+  // BinInPlace() of `count` hits, from one thread (Shared: from one of
+  // several at once, adding atomically).
+  template <bool Shared, typename Locator>
+  void BinInto(const ObjectLayout& layout, const HitArrays& hits, const std::uint32_t* index,
     std::size_t count, const Locator& cellOfHit);
   template <typename Locator>
   void KeepHits(const ObjectLayout& layout, const HitArrays& hits, const std::uint32_t* index,
     std::size_t count, const Locator& cellOfHit, double runShare, const ParallelFor& parallelFor);
-  // What a view-independent bin or a fixed view's adds for hit i at its cell.
+  // What a view-independent bin or a fixed view's adds for hit i at its
+  // cell, into `weights` and `values`.
+  template <bool Shared>
   void AddTerms(
     const ObjectLayout& layout, const HitArrays& hits, std::uint32_t i, std::uint32_t cell);
   // The flux of a hit arriving at `position` along `direction` weighted

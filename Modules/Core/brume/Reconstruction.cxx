@@ -49,16 +49,28 @@ std::string ObjectRadiance::Build(const HitArrays& hits, const std::uint32_t* in
   std::size_t count, const Vec3& eye, double thresholdFlux, const ParallelFor& parallelFor,
   bool estimate)
 {
-  if (this->Binning.IsViewFixed() && !SameEye(eye, this->Binning.GetFixedEye()))
-  {
-    return FixedViewError(this->Binning.GetFixedEye());
-  }
   const std::string error =
-    this->BuildHistograms(hits, index, count, thresholdFlux, parallelFor, estimate);
+    this->BuildHits(hits, index, count, eye, thresholdFlux, parallelFor, estimate);
   if (!error.empty() || !estimate)
   {
     return error;
   }
+  return this->Finish(eye, parallelFor);
+}
+
+std::string ObjectRadiance::BuildHits(const HitArrays& hits, const std::uint32_t* index,
+  std::size_t count, const Vec3& eye, double thresholdFlux, const ParallelFor& parallelFor,
+  bool estimate)
+{
+  if (this->Binning.IsViewFixed() && !SameEye(eye, this->Binning.GetFixedEye()))
+  {
+    return FixedViewError(this->Binning.GetFixedEye());
+  }
+  return this->BuildHistograms(hits, index, count, thresholdFlux, parallelFor, estimate);
+}
+
+std::string ObjectRadiance::Finish(const Vec3& eye, const ParallelFor& parallelFor)
+{
   this->SumHistograms(eye, parallelFor);
   const std::string saturation = this->EstimateTexture(parallelFor);
   this->ShareTexture(parallelFor);
@@ -99,7 +111,7 @@ std::string ObjectRadiance::BuildHistograms(const HitArrays& hits, const std::ui
   this->Regions.clear();
   this->Directional.Clear();
   this->Binning.Bin(this->Layout, hits, index, count, this->Direct.GetLight(),
-    this->Settings.RunShare, parallelFor);
+    this->Settings.RunShare, parallelFor, this->Settings.BinOnEveryThread);
   this->Built = true;
   return this->Binning.Saturation();
 }
@@ -137,7 +149,7 @@ std::string ObjectRadiance::Add(const HitArrays& hits, const std::uint32_t* inde
   this->Binning.Scale(scale, exponent, parallelFor);
   this->Binning.SetDeferred(!estimate);
   this->Binning.Bin(this->Layout, hits, index, count, this->Direct.GetLight(),
-    this->Settings.RunShare, parallelFor);
+    this->Settings.RunShare, parallelFor, this->Settings.BinOnEveryThread);
   if (!estimate)
   {
     return this->Binning.Saturation();

@@ -111,6 +111,14 @@ struct ObjectOptions
    */
   double RunShare = 1.0;
   /**
+   * A view-independent object (or a fixed view) bins its hits on every
+   * thread of the ParallelFor it is given, each adding atomically into the
+   * same exact sums (the same bits), instead of on the calling thread.
+   * For a caller that builds one object with many hits on every thread
+   * rather than each object on one (vtkBrumeRadianceTextures).
+   */
+  bool BinOnEveryThread = false;
+  /**
    * Media: the bytes the density's grid at its own resolution may take
    * (NativeMediumGrid::Sample()); past them it is coarsened.
    * vtkBrumeRadianceReconstruction derives it from the machine's memory.
@@ -169,6 +177,16 @@ public:
    */
   std::string Build(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
     const Vec3& eye, double thresholdFlux, const ParallelFor& parallelFor, bool estimate = true);
+  /**
+   * Build() in two halves, which may run on different threads: BuildHits()
+   * bins (a view fixed toward another eye is an error, as in Build()),
+   * Finish() estimates the texture after a BuildHits() with `estimate`
+   * that returned no error. A caller bins an object with many hits on
+   * every thread, then estimates it beside the others, one thread each.
+   */
+  std::string BuildHits(const HitArrays& hits, const std::uint32_t* index, std::size_t count,
+    const Vec3& eye, double thresholdFlux, const ParallelFor& parallelFor, bool estimate = true);
+  std::string Finish(const Vec3& eye, const ParallelFor& parallelFor);
 
   /**
    * Build() in its four steps, for a distributed run that builds many
