@@ -105,6 +105,8 @@ bool ConfigurePipeline(vtkBrumePipeline* pipeline, const RenderOptions& options)
   }
   vtkBrumeLightTracer* tracer = pipeline->GetTracer();
   vtkBrumeRadianceReconstruction* reconstruction = pipeline->GetReconstruction();
+  // --timings prints the steady frame's time too: a second frame, timed only.
+  pipeline->SetMeasureFrame(options.Timings);
   IfGiven(options.Particles, [&](long long n) { tracer->SetNumberOfParticles(n); });
   // At most 2^63 - 1 (the option's range).
   IfGiven(options.Seed, [&](std::uint64_t s) { tracer->SetSeed(static_cast<vtkIdType>(s)); });

@@ -250,6 +250,19 @@ public:
   vtkGetMacro(FrameSeconds, double);
   ///@}
 
+  ///@{
+  /**
+   * Whether RenderImage() (without supersampling) draws a second frame,
+   * after the one it returns, to time a frame whose textures are resident
+   * (GetFrameSeconds(); 0 otherwise). Off by default: the image is the
+   * first frame's, and a second would only be timed (`brume render
+   * --timings` turns it on).
+   */
+  vtkSetMacro(MeasureFrame, bool);
+  vtkGetMacro(MeasureFrame, bool);
+  vtkBooleanMacro(MeasureFrame, bool);
+  ///@}
+
 protected:
   vtkBrumePipeline();
   ~vtkBrumePipeline() override;
@@ -279,6 +292,7 @@ protected:
   double ReductionSeconds = 0.0;
   double FirstFrameSeconds = 0.0;
   double FrameSeconds = 0.0;
+  bool MeasureFrame = false;
 
 private:
   vtkBrumePipeline(const vtkBrumePipeline&) = delete;

@@ -144,6 +144,15 @@ void TestSameAsByHand(vtkAlgorithm* scene)
     "the pipeline's image is bitwise that of the phases wired by hand");
   // A second image of the same view: nothing recomputed, the same pixels.
   Check(Same(pipeline->RenderImage(), expected), "a second RenderImage gives the same image");
+  // The image is the frame that uploads the textures: none is drawn only to
+  // be timed unless asked (MeasureFrameOn(), as brume render --timings
+  // does), and one drawn then changes no pixel.
+  Check(pipeline->GetFrameSeconds() == 0.0 && pipeline->GetFirstFrameSeconds() > 0.0,
+    "one frame, timed, unless a second is asked for");
+  pipeline->MeasureFrameOn();
+  Check(Same(pipeline->RenderImage(), expected) && pipeline->GetFrameSeconds() > 0.0,
+    "a frame drawn to be timed leaves the image as it was");
+  pipeline->MeasureFrameOff();
 
   // Batches of one run bin as they come: the same textures, the same image.
   auto batched = MakePipeline(scene);
