@@ -36,11 +36,6 @@ SetReparseDeferral ReparseDeferralSetter()
 }
 }
 
-bool vtkBrumeXMLDataParser::ExpatDefersReparsing()
-{
-  return ReparseDeferralSetter() != nullptr;
-}
-
 int vtkBrumeXMLDataParser::CreateParser()
 {
   if (!this->Superclass::CreateParser())

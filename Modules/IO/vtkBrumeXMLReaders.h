@@ -27,10 +27,6 @@ public:
   static vtkBrumeXMLDataParser* New();
   vtkTypeMacro(vtkBrumeXMLDataParser, vtkXMLDataParser);
 
-  /// Whether the expat linked at run time defers reparsing (has
-  /// XML_SetReparseDeferralEnabled()), which these parsers switch off.
-  static bool ExpatDefersReparsing();
-
 protected:
   vtkBrumeXMLDataParser() = default;
   ~vtkBrumeXMLDataParser() override = default;
