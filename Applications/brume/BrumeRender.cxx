@@ -318,11 +318,18 @@ void PrintTextureMemory(vtkPartitionedDataSetCollection* textures)
         source ? vtkBrumeNames::SourceBrickSlots : vtkBrumeNames::ExtinctionBrickSlots);
       vtkDataArray* samples = fd->GetArray(
         source ? vtkBrumeNames::SourceRadianceBrickSamples : vtkBrumeNames::ExtinctionBrickSamples);
-      if (slots && samples)
+      if (slots && (samples || fd->GetArray(vtkBrumeNames::ExtinctionCellValues)))
       {
-        std::printf("   sparse: %lld of %lld bricks",
-          static_cast<long long>(samples->GetNumberOfTuples() / 512),
-          static_cast<long long>(slots->GetNumberOfTuples()));
+        // Bricks read in place from the field's cells store no samples here.
+        long long stored = 0;
+        for (vtkIdType b = 0; !samples && b < slots->GetNumberOfTuples(); ++b)
+        {
+          stored += slots->GetTuple1(b) >= 0 ? 1 : 0;
+        }
+        std::printf("   sparse: %lld of %lld bricks%s",
+          samples ? static_cast<long long>(samples->GetNumberOfTuples() / 512) : stored,
+          static_cast<long long>(slots->GetNumberOfTuples()),
+          samples ? "" : " (field's own values)");
       }
       std::printf("\n");
     }

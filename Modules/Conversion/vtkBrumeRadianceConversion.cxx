@@ -21,6 +21,7 @@
 #include "vtkPolyData.h"
 #include "vtkStringArray.h"
 
+#include "brume/Density.h"
 #include "brume/SparseTexture.h"
 #include "brume/SphericalHarmonics.h"
 #include "brume/TransferFunction.h"
@@ -450,9 +451,19 @@ vtkSmartPointer<vtkImageData> vtkBrumeRadianceConversion::NativeExtinction(
   values->SetNumberOfValues(static_cast<vtkIdType>(density.GetConstants().size()));
   std::copy(density.GetConstants().begin(), density.GetConstants().end(), values->GetPointer(0));
   fd->AddArray(values);
-  // The grid's own samples (10^8 of them for a 512^3 field), shared, not copied.
-  fd->AddArray(
-    vtkBrumeSharedArray::Share(density.GetSamples(), vtkBrumeNames::ExtinctionBrickSamples));
+  // The grid's own samples (10^8 of them for a 512^3 field), shared, not
+  // copied; scalars read in place are the field's own array, lent with the
+  // medium's density, which holds it.
+  if (const brume::GridDensity* field = radiance.GetNative().GetScalarField())
+  {
+    fd->AddArray(vtkBrumeSharedArray::Lend(field->GetValues(),
+      std::shared_ptr<const void>(medium.Density), vtkBrumeNames::ExtinctionCellValues));
+  }
+  else
+  {
+    fd->AddArray(
+      vtkBrumeSharedArray::Share(density.GetSamples(), vtkBrumeNames::ExtinctionBrickSamples));
+  }
   vtkNew<vtkDoubleArray> scale;
   scale->SetName(vtkBrumeNames::ExtinctionScale);
   scale->SetNumberOfComponents(3);
@@ -489,7 +500,8 @@ vtkSmartPointer<vtkImageData> vtkBrumeRadianceConversion::Reclassified(
 {
   vtkFieldData* old = extinction ? extinction->GetFieldData() : nullptr;
   if (!old || !old->GetArray(vtkBrumeNames::ExtinctionTransferFunction) ||
-    !old->GetArray(vtkBrumeNames::ExtinctionBrickSamples))
+    !(old->GetArray(vtkBrumeNames::ExtinctionBrickSamples) ||
+      old->GetArray(vtkBrumeNames::ExtinctionCellValues)))
   {
     why = "the extinction is not of classified scalars in bricks";
     return nullptr;
@@ -572,8 +584,11 @@ vtkSmartPointer<vtkImageData> vtkBrumeRadianceConversion::DenseExtinction(vtkIma
   vtkDataArray* slots = fd ? fd->GetArray(vtkBrumeNames::ExtinctionBrickSlots) : nullptr;
   vtkDataArray* values = fd ? fd->GetArray(vtkBrumeNames::ExtinctionBrickValues) : nullptr;
   vtkDataArray* samples = fd ? fd->GetArray(vtkBrumeNames::ExtinctionBrickSamples) : nullptr;
+  // Or the stored bricks' cells' own values.
+  vtkDataArray* cellValues = fd ? fd->GetArray(vtkBrumeNames::ExtinctionCellValues) : nullptr;
   vtkDataArray* scale = fd ? fd->GetArray(vtkBrumeNames::ExtinctionScale) : nullptr;
-  if (!slots || !values || !samples || !scale || scale->GetNumberOfComponents() != 3)
+  if (!slots || !values || !(samples || cellValues) || !scale ||
+    scale->GetNumberOfComponents() != 3)
   {
     return nullptr;
   }
@@ -597,7 +612,9 @@ vtkSmartPointer<vtkImageData> vtkBrumeRadianceConversion::DenseExtinction(vtkIma
   }
   constexpr int B = brume::BrickedGrid::Size, S = brume::BrickedGrid::Stride;
   if (dims[0] < 1 || dims[1] < 1 || dims[2] < 1 || slots->GetNumberOfTuples() != count ||
-    values->GetNumberOfTuples() != count)
+    values->GetNumberOfTuples() != count ||
+    (!samples &&
+      cellValues->GetNumberOfTuples() != static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2]))
   {
     return nullptr;
   }
@@ -618,14 +635,15 @@ vtkSmartPointer<vtkImageData> vtkBrumeRadianceConversion::DenseExtinction(vtkIma
         const vtkIdType brick =
           (static_cast<vtkIdType>(b[2]) * bricks[1] + b[1]) * bricks[0] + b[0];
         const vtkIdType slot = static_cast<vtkIdType>(slots->GetTuple1(brick));
+        const vtkIdType cell = (static_cast<vtkIdType>(k) * dims[1] + j) * dims[0] + i;
         double v = slot < 0 ? values->GetTuple1(brick)
-                            : samples->GetTuple1(slot * B * B * B +
-                                ((k - S * b[2]) * B + (j - S * b[1])) * B + (i - S * b[0]));
+          : samples         ? samples->GetTuple1(slot * B * B * B +
+                                ((k - S * b[2]) * B + (j - S * b[1])) * B + (i - S * b[0]))
+                            : cellValues->GetTuple1(cell);
         if (table && rangeArray)
         {
           v = Classify(table, range, v);
         }
-        const vtkIdType cell = (static_cast<vtkIdType>(k) * dims[1] + j) * dims[0] + i;
         for (int c = 0; c < 3; ++c)
         {
           sigmaT->SetTypedComponent(cell, c, static_cast<float>(v * scale->GetComponent(0, c)));

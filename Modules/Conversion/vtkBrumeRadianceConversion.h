@@ -27,7 +27,9 @@
  *   the density's own resolution (brume::NativeMediumGrid times the
  *   medium's sigma_t) in vtkBrumeSliceVolumeMapper's sparse form
  *   (field arrays `ExtinctionBrickSlots`, `ExtinctionBrickValues`,
- *   `ExtinctionBrickSamples`, `ExtinctionScale`; see
+ *   `ExtinctionBrickSamples`, `ExtinctionScale`; classified scalars that
+ *   are a grid's own values give `ExtinctionCellValues`, the field's array
+ *   itself, instead of the samples; see
  *   vtkBrumeSliceVolumeMapper::SetExtinctionData): memory follows the
  *   bricks where the density varies, not the box. The mapper draws the
  *   medium's structure with it; DenseExtinction() expands it.

@@ -6,8 +6,10 @@
 #include "vtkUnsignedCharArray.h"
 #include "vtkUnsignedShortArray.h"
 
+#include <cstdint>
 #include <memory>
 #include <mutex>
+#include <type_traits>
 #include <unordered_map>
 
 namespace vtkBrumeSharedArray
@@ -19,7 +21,7 @@ namespace
 struct Shares
 {
   std::mutex Mutex;
-  std::unordered_multimap<const void*, std::shared_ptr<float>> Held;
+  std::unordered_multimap<const void*, std::shared_ptr<const void>> Held;
 };
 Shares& TheShares()
 {
@@ -30,7 +32,7 @@ Shares& TheShares()
 
 void LetGo(void* memory)
 {
-  std::shared_ptr<float> gone; // released after the lock
+  std::shared_ptr<const void> gone; // released after the lock
   Shares& shares = TheShares();
   std::lock_guard<std::mutex> lock(shares.Mutex);
   auto it = shares.Held.find(memory);
@@ -60,6 +62,58 @@ vtkSmartPointer<vtkFloatArray> Share(const brume::FloatBuffer& buffer, const cha
     vtkAbstractArray::VTK_DATA_ARRAY_USER_DEFINED);
   array->SetArrayFreeFunction(LetGo);
   return array;
+}
+
+namespace
+{
+template <typename Array, typename T>
+vtkSmartPointer<vtkDataArray> LendAs(
+  const T* memory, std::size_t count, std::shared_ptr<const void> keep, const char* name)
+{
+  auto array = vtkSmartPointer<Array>::New();
+  array->SetName(name);
+  if (count == 0)
+  {
+    return array;
+  }
+  {
+    Shares& shares = TheShares();
+    std::lock_guard<std::mutex> lock(shares.Mutex);
+    shares.Held.emplace(memory, std::move(keep));
+  }
+  // VTK's arrays take writable memory; no one writes through this one.
+  array->SetArray(const_cast<T*>(memory), static_cast<vtkIdType>(count), 0,
+    vtkAbstractArray::VTK_DATA_ARRAY_USER_DEFINED);
+  array->SetArrayFreeFunction(LetGo);
+  return array;
+}
+}
+
+vtkSmartPointer<vtkDataArray> Lend(
+  const brume::TypedValues& values, std::shared_ptr<const void> keep, const char* name)
+{
+  const std::size_t count = values.Size();
+  return values.Visit(
+    [&](const auto* memory) -> vtkSmartPointer<vtkDataArray>
+    {
+      using T = std::remove_cv_t<std::remove_pointer_t<decltype(memory)>>;
+      if constexpr (std::is_same_v<T, float>)
+      {
+        return LendAs<vtkFloatArray>(memory, count, std::move(keep), name);
+      }
+      else if constexpr (std::is_same_v<T, std::uint8_t>)
+      {
+        return LendAs<vtkUnsignedCharArray>(memory, count, std::move(keep), name);
+      }
+      else if constexpr (std::is_same_v<T, std::uint16_t>)
+      {
+        return LendAs<vtkUnsignedShortArray>(memory, count, std::move(keep), name);
+      }
+      else
+      {
+        return LendAs<vtkShortArray>(memory, count, std::move(keep), name);
+      }
+    });
 }
 
 brume::TypedValues Borrow(vtkDataArray* array, std::size_t count)

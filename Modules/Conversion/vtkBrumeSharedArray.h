@@ -7,6 +7,8 @@
 
 #include "brume/FloatBuffer.h" // brume::FloatBuffer, brume::TypedValues
 
+#include <memory>
+
 class vtkDataArray;
 class vtkFloatArray;
 
@@ -21,6 +23,16 @@ namespace vtkBrumeSharedArray
  * user.
  */
 vtkSmartPointer<vtkFloatArray> Share(const brume::FloatBuffer& buffer, const char* name);
+
+/**
+ * A VTK array of one component over `values` in their own type
+ * (vtkFloatArray, vtkUnsignedCharArray, vtkUnsignedShortArray,
+ * vtkShortArray), without a copy: the array holds `keep` (what keeps the
+ * values alive: the field they belong to) until it is deleted or given
+ * other memory. Not for writing: the values are read in place by others.
+ */
+vtkSmartPointer<vtkDataArray> Lend(
+  const brume::TypedValues& values, std::shared_ptr<const void> keep, const char* name);
 
 /**
  * The values of `array` (`count` tuples) in place, in their own type,

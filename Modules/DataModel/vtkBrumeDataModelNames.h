@@ -223,6 +223,11 @@ inline constexpr const char* ExtinctionBrickValues = "ExtinctionBrickValues";
 /// The extinction's samples (density or scalars), float, one brick of
 /// cells per slot.
 inline constexpr const char* ExtinctionBrickSamples = "ExtinctionBrickSamples";
+/// Instead of ExtinctionBrickSamples: a value per cell of the grid (x
+/// fastest; float, 8- or 16-bit integers), a stored brick's samples read
+/// from its cells (classified scalars read in place from the field's own
+/// array); a slot is then only where a brick goes.
+inline constexpr const char* ExtinctionCellValues = "ExtinctionCellValues";
 /// sigma_t per unit density, double[3].
 inline constexpr const char* ExtinctionScale = "ExtinctionScale";
 /// A classified medium's extinction at scalars evenly over

@@ -14,6 +14,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
 
 vtkAbstractObjectFactoryNewMacro(vtkBrumeSliceVolumeMapper);
 
@@ -255,15 +257,22 @@ std::string vtkBrumeSliceVolumeMapper::ValidateBricks(
   }
   const vtkIdType brickCells =
     static_cast<vtkIdType>(ExtinctionBrickSize) * ExtinctionBrickSize * ExtinctionBrickSize;
+  // The samples in slots, or the cells' own values (one per cell).
+  const bool cellValues = fd->GetArray(vtkBrumeNames::ExtinctionBrickSamples) != samples;
+  const vtkIdType cells =
+    static_cast<vtkIdType>(pointDims[0] - 1) * (pointDims[1] - 1) * (pointDims[2] - 1);
   if (!slots || !values || !scale || slots->GetNumberOfComponents() != 1 ||
     values->GetNumberOfComponents() != 1 || samples->GetNumberOfComponents() != 1 ||
     scale->GetNumberOfComponents() != 3 || scale->GetNumberOfTuples() < 1 ||
     slots->GetNumberOfTuples() != bricks || values->GetNumberOfTuples() != bricks ||
-    samples->GetNumberOfTuples() % brickCells != 0)
+    (cellValues ? samples->GetNumberOfTuples() != cells
+                : samples->GetNumberOfTuples() % brickCells != 0))
   {
     return "the sparse extinction needs the field arrays 'ExtinctionBrickSlots' and "
            "'ExtinctionBrickValues' (one value per brick), 'ExtinctionBrickSamples' (" +
-      std::to_string(brickCells) + " values per slot) and 'ExtinctionScale' (3 components)";
+      std::to_string(brickCells) +
+      " values per slot) or 'ExtinctionCellValues' (one value per cell), and "
+      "'ExtinctionScale' (3 components)";
   }
   vtkDataArray* table = fd->GetArray(vtkBrumeNames::ExtinctionTransferFunction);
   vtkDataArray* range = fd->GetArray(vtkBrumeNames::ExtinctionTransferRange);
@@ -311,14 +320,23 @@ std::string vtkBrumeSliceVolumeMapper::ValidateBricks(
   {
     return "'AlbedoTransferFunction' needs classified scalars ('ExtinctionTransferFunction')";
   }
-  const vtkIdType slotCount = samples->GetNumberOfTuples() / brickCells;
+  // Slots in samples must be held there; slots of cells' values are where
+  // the bricks go, each brick its own (fewer than the bricks).
+  const vtkIdType slotCount = cellValues ? bricks : samples->GetNumberOfTuples() / brickCells;
+  std::vector<char> taken(cellValues ? static_cast<std::size_t>(bricks) : 0, 0);
   for (vtkIdType b = 0; b < bricks; ++b)
   {
     const double slot = slots->GetTuple1(b);
     if (!(slot >= -1.0 && slot < static_cast<double>(slotCount)) || slot != std::floor(slot))
     {
+      return "the sparse extinction's brick " + std::to_string(b) + " names a slot that " +
+        (cellValues ? "is not below the number of bricks"
+                    : "'ExtinctionBrickSamples' does not hold");
+    }
+    if (cellValues && slot >= 0.0 && taken[static_cast<std::size_t>(slot)]++)
+    {
       return "the sparse extinction's brick " + std::to_string(b) +
-        " names a slot that 'ExtinctionBrickSamples' does not hold";
+        " names the slot of another brick ('ExtinctionCellValues' gives each its own)";
     }
   }
   return {};
@@ -340,7 +358,12 @@ std::string vtkBrumeSliceVolumeMapper::ValidateExtinction(
   const vtkIdType cells =
     static_cast<vtkIdType>(pointDims[0] - 1) * (pointDims[1] - 1) * (pointDims[2] - 1);
   vtkFieldData* fd = extinction->GetFieldData();
-  if (vtkDataArray* samples = fd->GetArray(vtkBrumeNames::ExtinctionBrickSamples))
+  vtkDataArray* samples = fd->GetArray(vtkBrumeNames::ExtinctionBrickSamples);
+  if (!samples)
+  {
+    samples = fd->GetArray(vtkBrumeNames::ExtinctionCellValues);
+  }
+  if (samples)
   {
     const std::string problem = ValidateBricks(pointDims, fd, samples);
     if (!problem.empty())

@@ -235,6 +235,12 @@ public:
    * - `ExtinctionBrickValues` (one per brick): that value (brick slot -1);
    * - `ExtinctionBrickSamples` (1 component): ExtinctionBrickSize^3 values
    *   per slot, x fastest within a brick;
+   * - or instead `ExtinctionCellValues` (1 component, float or 8- or 16-bit
+   *   integers): one value per cell of the grid, x fastest, a stored
+   *   brick's samples read from its own cells; its slot is then only where
+   *   the brick goes in the atlas, each brick a slot of its own (a field's
+   *   array read in place: vtkBrumeRadianceConversion::NativeExtinction
+   *   gives classified scalars so, not a bricked copy of them);
    * - `ExtinctionScale` (3 components): the extinction per unit of the
    *   values, per colour channel (a density's sigma_t);
    * - optionally `ExtinctionTransferFunction` (n >= 2 values) and

@@ -13,6 +13,9 @@
 #include "vtkImageData.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkSMPTools.h"
+#include "vtkShortArray.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkUnsignedShortArray.h"
 #include "vtk_glew.h"
 
 #include "brume/SphericalHarmonics.h"
@@ -275,7 +278,8 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadExtinction(vtkOpenGLRenderWindow* re
   int pointDims[3];
   grid->GetDimensions(pointDims);
   const int dims[3] = { pointDims[0] - 1, pointDims[1] - 1, pointDims[2] - 1 };
-  impl.Bricked = grid->GetFieldData()->GetArray(vtkBrumeNames::ExtinctionBrickSamples) != nullptr;
+  impl.Bricked = grid->GetFieldData()->GetArray(vtkBrumeNames::ExtinctionBrickSamples) ||
+    grid->GetFieldData()->GetArray(vtkBrumeNames::ExtinctionCellValues);
   if (impl.Bricked ? !this->UploadBricks(grid, dims, renWin, filter)
                    : !this->UploadDenseExtinction(grid, dims, renWin, filter))
   {
@@ -320,11 +324,39 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   vtkFieldData* fd = grid->GetFieldData();
   vtkDataArray* slots = fd->GetArray(vtkBrumeNames::ExtinctionBrickSlots);
   vtkDataArray* values = fd->GetArray(vtkBrumeNames::ExtinctionBrickValues);
-  vtkDataArray* samples = fd->GetArray(vtkBrumeNames::ExtinctionBrickSamples);
   vtkDataArray* scale = fd->GetArray(vtkBrumeNames::ExtinctionScale);
   constexpr int B = ExtinctionBrickSize;
   constexpr vtkIdType BrickCells = B * B * B;
-  const vtkIdType slotCount = samples->GetNumberOfTuples() / BrickCells;
+  const int brickDims[3] = { ExtinctionBricksAlong(dims[0]), ExtinctionBricksAlong(dims[1]),
+    ExtinctionBricksAlong(dims[2]) };
+  const vtkIdType bricks = slots->GetNumberOfTuples();
+  // The slots' samples, or the cells' own values (a field's array read in
+  // place), each slot then the brick whose cells it holds, from its first.
+  vtkDataArray* samples = fd->GetArray(vtkBrumeNames::ExtinctionBrickSamples);
+  vtkDataArray* cellValues = samples ? nullptr : fd->GetArray(vtkBrumeNames::ExtinctionCellValues);
+  std::vector<int> slotFirst; // 3 per slot
+  vtkIdType slotCount = samples ? samples->GetNumberOfTuples() / BrickCells : 0;
+  if (cellValues)
+  {
+    for (vtkIdType b = 0; b < bricks; ++b)
+    {
+      slotCount = std::max(slotCount, static_cast<vtkIdType>(slots->GetTuple1(b)) + 1);
+    }
+    slotFirst.assign(3 * static_cast<std::size_t>(slotCount), 0);
+    for (vtkIdType b = 0; b < bricks; ++b)
+    {
+      const auto slot = static_cast<vtkIdType>(slots->GetTuple1(b));
+      if (slot >= 0)
+      {
+        int* first = &slotFirst[3 * static_cast<std::size_t>(slot)];
+        first[0] = (B - 1) * static_cast<int>(b % brickDims[0]);
+        first[1] = (B - 1) * static_cast<int>((b / brickDims[0]) % brickDims[1]);
+        first[2] =
+          (B - 1) * static_cast<int>(b / (static_cast<vtkIdType>(brickDims[0]) * brickDims[1]));
+      }
+    }
+  }
+  vtkDataArray* source = samples ? samples : cellValues;
   int atlas[3];
   atlas[0] = std::max(1, static_cast<int>(std::ceil(std::cbrt(static_cast<double>(slotCount)))));
   atlas[1] =
@@ -355,26 +387,59 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   std::vector<double> slotLeast(static_cast<std::size_t>(slotCount), 0.0);
   std::vector<char> slotIntegers(static_cast<std::size_t>(slotCount), 1);
   std::atomic<vtkIdType> firstBad{ slotCount };
-  vtkFloatArray* floats = vtkFloatArray::FastDownCast(samples);
+  vtkFloatArray* floats = vtkFloatArray::FastDownCast(source);
+  vtkUnsignedCharArray* bytes = vtkUnsignedCharArray::FastDownCast(source);
+  vtkUnsignedShortArray* shorts = vtkUnsignedShortArray::FastDownCast(source);
+  vtkShortArray* signedShorts = vtkShortArray::FastDownCast(source);
+  // Arrays read in their own memory are read on every thread.
+  const bool threads = floats || bytes || shorts || signedShorts;
   // The same samples (the same memory, which the atlas's arrays keep) in
   // the same slots, filtered alike: the atlas holds them already, checked.
-  const bool sameAtlas = impl.AtlasSamples && samples->GetNumberOfValues() > 0 &&
-    impl.AtlasSamples->GetDataType() == samples->GetDataType() &&
-    impl.AtlasSamples->GetNumberOfValues() == samples->GetNumberOfValues() &&
-    impl.AtlasSamples->GetVoidPointer(0) == samples->GetVoidPointer(0) &&
+  const bool sameAtlas = impl.AtlasSamples && source->GetNumberOfValues() > 0 &&
+    impl.AtlasSamples->GetDataType() == source->GetDataType() &&
+    impl.AtlasSamples->GetNumberOfValues() == source->GetNumberOfValues() &&
+    impl.AtlasSamples->GetVoidPointer(0) == source->GetVoidPointer(0) &&
     vtkBrumeArrayBytes::Same(impl.AtlasSlots, slots) && impl.AtlasFilter == filter &&
     impl.Extinction->GetHandle() && impl.Extinction->GetContext() == renWin;
-  auto sample = [&](vtkIdType at)
-  { return floats ? static_cast<double>(floats->GetValue(at)) : samples->GetTuple1(at); };
+  auto value = [&](vtkIdType at) -> double
+  {
+    if (floats)
+    {
+      return floats->GetValue(at);
+    }
+    if (bytes)
+    {
+      return bytes->GetValue(at);
+    }
+    if (shorts)
+    {
+      return shorts->GetValue(at);
+    }
+    return signedShorts ? signedShorts->GetValue(at) : source->GetTuple1(at);
+  };
+  // Sample n (x fastest) of slot `slot`.
+  auto sample = [&](vtkIdType slot, int n) -> double
+  {
+    if (!cellValues)
+    {
+      return value(slot * BrickCells + n);
+    }
+    // Cells past the grid's last take the last's.
+    const int* first = &slotFirst[3 * static_cast<std::size_t>(slot)];
+    const int x = std::min(first[0] + n % B, dims[0] - 1);
+    const int y = std::min(first[1] + (n / B) % B, dims[1] - 1);
+    const int z = std::min(first[2] + n / (B * B), dims[2] - 1);
+    return value((static_cast<vtkIdType>(z) * dims[1] + y) * dims[0] + x);
+  };
   auto check = [&](vtkIdType begin, vtkIdType end)
   {
     for (vtkIdType slot = begin; slot < end; ++slot)
     {
-      double most = 0.0, least = sample(slot * BrickCells);
+      double most = 0.0, least = sample(slot, 0);
       bool bad = false, integers = true;
-      for (vtkIdType at = slot * BrickCells; at < (slot + 1) * BrickCells; ++at)
+      for (int n = 0; n < BrickCells; ++n)
       {
-        const double v = sample(at);
+        const double v = sample(slot, n);
         bad = bad || invalidSample(v);
         most = std::max(most, v);
         least = std::min(least, v);
@@ -399,7 +464,7 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   {
     largest = impl.AtlasLargest;
   }
-  else if (floats)
+  else if (threads)
   {
     vtkSMPTools::For(0, slotCount, check);
   }
@@ -419,9 +484,6 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
     largest = std::max(largest, most);
   }
   const double storedLargest = largest; // of the stored samples alone
-  const vtkIdType bricks = slots->GetNumberOfTuples();
-  const int brickDims[3] = { ExtinctionBricksAlong(dims[0]), ExtinctionBricksAlong(dims[1]),
-    ExtinctionBricksAlong(dims[2]) };
   std::vector<float> table(4 * static_cast<std::size_t>(bricks));
   for (vtkIdType b = 0; b < bricks; ++b)
   {
@@ -514,8 +576,7 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
           for (int i = 0; i < B; ++i)
           {
             // Zeros in the atlas's unused slots.
-            const double v =
-              slot < slotCount ? sample(slot * BrickCells + (k * B + j) * B + i) : least;
+            const double v = slot < slotCount ? sample(slot, (k * B + j) * B + i) : least;
             if (width == 2)
             {
               layer16[row + i] = static_cast<std::uint16_t>(v - least);
@@ -533,7 +594,7 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   for (int sz = 0; sz < atlas[2]; ++sz)
   {
     const vtkIdType first = sz * layerSlots;
-    if (floats)
+    if (threads)
     {
       vtkSMPTools::For(
         0, layerSlots, [&](vtkIdType begin, vtkIdType end) { pack(first, begin, end); });
@@ -548,7 +609,7 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
       width == 2 ? GL_UNSIGNED_SHORT : GL_FLOAT, texelData);
   }
   impl.Extinction->Deactivate();
-  impl.AtlasSamples = samples;
+  impl.AtlasSamples = source;
   impl.AtlasSlots = slots;
   impl.AtlasFilter = filter;
   impl.AtlasLargest = storedLargest;

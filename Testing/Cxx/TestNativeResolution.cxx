@@ -168,9 +168,15 @@ void TestOutputOutlivesTheFilters()
     {
       return;
     }
+    // The classified field's scalars, read in place: the field's own
+    // values (one per cell), lent, not copied.
     auto* samples = vtkFloatArray::SafeDownCast(
-      native->GetFieldData()->GetArray(vtkBrumeNames::ExtinctionBrickSamples));
-    Check(samples && samples->GetNumberOfValues() > 0, "the grid stores bricks");
+      native->GetFieldData()->GetArray(vtkBrumeNames::ExtinctionCellValues));
+    Check(samples && samples->GetNumberOfValues() == 24 * 24 * 24 &&
+        !native->GetFieldData()->GetArray(vtkBrumeNames::ExtinctionBrickSamples) &&
+        samples->GetPointer(0) ==
+          vtkFloatArray::SafeDownCast(field->GetPointData()->GetScalars())->GetPointer(0),
+      "the grid's scalars are the field's values, in place");
     if (!samples)
     {
       return;
@@ -178,7 +184,7 @@ void TestOutputOutlivesTheFilters()
     before.assign(samples->GetPointer(0), samples->GetPointer(0) + samples->GetNumberOfValues());
   }
   auto* samples = vtkFloatArray::SafeDownCast(
-    native->GetFieldData()->GetArray(vtkBrumeNames::ExtinctionBrickSamples));
+    native->GetFieldData()->GetArray(vtkBrumeNames::ExtinctionCellValues));
   Check(samples && static_cast<std::size_t>(samples->GetNumberOfValues()) == before.size() &&
       std::equal(before.begin(), before.end(), samples->GetPointer(0)),
     "the output keeps its extinction samples after the filters are gone");

@@ -419,7 +419,7 @@ bool SameGrids(const NativeMediumGrid& a, const NativeMediumGrid& b)
       for (int i = 0; i < dims[0]; ++i)
       {
         if (a.GetDensity().At(i, j, k) != b.GetDensity().At(i, j, k) ||
-          (!a.GetScalars().Empty() && a.GetScalars().At(i, j, k) != b.GetScalars().At(i, j, k)))
+          (!a.GetScalars().Empty() && a.ScalarAt(i, j, k) != b.ScalarAt(i, j, k)))
         {
           return false;
         }
@@ -453,8 +453,9 @@ ParallelFor ThreadsFor(int threads)
 
 TEST(ReconstructionParts, NativeMediumGridKeepsItsOwnResolutionWhereTheMemoryHoldsIt)
 {
-  // 48^3 points: 48^3 cells of 7^3 bricks' samples, twice (the density
-  // and the scalars): 2 x 343 bricks x 2 KB is about 1.4 MB.
+  // 48^3 points: 48^3 cells of 7^3 bricks' samples (the density; the
+  // scalars are the field's own, not copied): 343 bricks x 2 KB is about
+  // 0.7 MB.
   const Medium waves = ClassifiedWaves(48);
   NativeMediumGrid native;
   native.Sample(waves, std::size_t(4) << 20, SerialFor());
@@ -467,7 +468,7 @@ TEST(ReconstructionParts, NativeMediumGridKeepsItsOwnResolutionWhereTheMemoryHol
   EXPECT_LE(native.GetDensity().GetMemorySize() + native.GetScalars().GetMemorySize(),
     std::size_t(4) << 20);
 
-  // Half a megabyte does not hold them: coarsened by the smallest factor
+  // Half a megabyte does not hold even one: coarsened by the smallest factor
   // that fits, the density alone (a mean of scalars is not what the
   // function classifies).
   NativeMediumGrid coarse;
@@ -488,6 +489,89 @@ TEST(ReconstructionParts, NativeMediumGridKeepsItsOwnResolutionWhereTheMemoryHol
   NativeMediumGrid threaded;
   threaded.Sample(waves, std::size_t(4) << 20, ThreadsFor(3));
   EXPECT_TRUE(SameGrids(native, threaded));
+}
+
+TEST(ReconstructionParts, NativeMediumGridReadsAGridsScalarsInPlace)
+{
+  // A classified grid's scalars are its own values: the grid keeps an
+  // outline of their bricks (slots and constants, as a copy would have
+  // them), not a copy. Each stored brick's cells read the field's values,
+  // each constant brick's cells all hold its constant, or the function
+  // leaves the brick out (its extinction 0).
+  const Medium all = ClassifiedWaves(48);
+  const auto& classified = static_cast<const ClassifiedDensity&>(*all.Density);
+  const auto& field = static_cast<const GridDensity&>(classified.GetScalars());
+  // Nothing up to 0.85: bricks left out.
+  Medium waves = all;
+  waves.SetDensity(std::make_shared<ClassifiedDensity>(classified.GetScalarsPointer(),
+    OpacityTransferFunction({ { 0.85f, 0.f }, { 0.9f, 0.1f }, { 1.f, 0.9f } }, 0.1f)));
+  for (const ParallelFor& parallelFor : { SerialFor(), ThreadsFor(3) })
+  {
+    NativeMediumGrid native;
+    native.Sample(waves, std::size_t(4) << 20, parallelFor);
+    ASSERT_TRUE(native.ScalarsInPlace());
+    EXPECT_EQ(native.GetScalarField(), &field);
+    const BrickedGrid& outline = native.GetScalars();
+    EXPECT_FALSE(outline.HasSamples());
+    EXPECT_GT(outline.NumberOfStoredBricks(), 100u);
+    EXPECT_EQ(
+      outline.GetMemorySize(), outline.NumberOfBricks() * (sizeof(std::int32_t) + sizeof(float)));
+    const auto& dims = native.GetResolution();
+    const auto& brickDims = outline.GetBrickDims();
+    constexpr int S = BrickedGrid::Size;
+    std::int32_t nextSlot = 0;
+    int wrong = 0, leftOut = 0;
+    for (int bk = 0; bk < brickDims[2]; ++bk)
+      for (int bj = 0; bj < brickDims[1]; ++bj)
+        for (int bi = 0; bi < brickDims[0]; ++bi)
+        {
+          const std::array<int, 3> lower{ bi * BrickedGrid::Stride, bj * BrickedGrid::Stride,
+            bk * BrickedGrid::Stride };
+          const std::size_t b = outline.BrickAt(lower);
+          const std::int32_t slot = outline.GetSlots()[b];
+          bool allEqual = true, densityZero = true;
+          const float first = field.NativeValue(lower[0], lower[1], lower[2], Vec3(0.f));
+          for (int k = 0; k < S; ++k)
+            for (int j = 0; j < S; ++j)
+              for (int i = 0; i < S; ++i)
+              {
+                const int x = std::min(lower[0] + i, dims[0] - 1),
+                          y = std::min(lower[1] + j, dims[1] - 1),
+                          z = std::min(lower[2] + k, dims[2] - 1);
+                const float v = field.NativeValue(x, y, z, Vec3(0.f));
+                allEqual = allEqual && v == first;
+                densityZero = densityZero && native.GetDensity().At(x, y, z) == 0.f;
+                // The brick's own cells answer ScalarAt() with their values
+                // (a constant brick with its constant).
+                if (outline.BrickOf(x, y, z) == b &&
+                  native.ScalarAt(x, y, z) != (slot >= 0 ? v : outline.GetConstants()[b]))
+                {
+                  ++wrong;
+                }
+              }
+          if (slot >= 0)
+          {
+            // Stored bricks vary, in brick order.
+            wrong += slot == nextSlot++ && !allEqual ? 0 : 1;
+          }
+          else if (!(allEqual && outline.GetConstants()[b] == first))
+          {
+            ++leftOut;
+            wrong += densityZero ? 0 : 1;
+          }
+        }
+    EXPECT_EQ(wrong, 0);
+    EXPECT_GT(leftOut, 0);
+    EXPECT_EQ(static_cast<std::size_t>(nextSlot), outline.NumberOfStoredBricks());
+  }
+  // Its memory counts the density's samples once: a budget that holds
+  // one grid's samples (and both tables) keeps the field's resolution.
+  // (343 bricks of 2 KB: 0.7 MB once, 1.4 MB twice.)
+  NativeMediumGrid once;
+  once.Sample(all, std::size_t(1) << 20, SerialFor());
+  EXPECT_EQ(once.GetCoarsening(), 1);
+  EXPECT_LE(
+    once.GetDensity().GetMemorySize() + once.GetScalars().GetMemorySize(), std::size_t(1) << 20);
 }
 
 TEST(ReconstructionParts, NativeMediumGridKeepsWhatAnEditOfTheFunctionLeft)
@@ -520,8 +604,10 @@ TEST(ReconstructionParts, NativeMediumGridKeepsWhatAnEditOfTheFunctionLeft)
     fresh.Sample(upper, memory, parallelFor);
     kept.Sample(upper, memory, parallelFor, &before);
     EXPECT_TRUE(SameGrids(fresh, kept));
-    // The function is 0 where it was: the scalars' bricks are shared.
-    EXPECT_EQ(kept.GetScalars().GetSamples().Data(), before.GetScalars().GetSamples().Data());
+    // The function is 0 where it was: the scalars' bricks are the same
+    // (an outline of the field's own values, which are not copied).
+    EXPECT_TRUE(kept.ScalarsInPlace());
+    EXPECT_TRUE(kept.GetScalars().SameAs(before.GetScalars()));
     EXPECT_EQ(fresh.GetSampledBricks(), kept.GetSampledBricks() + kept.GetReusedBricks());
     EXPECT_GT(kept.GetReusedBricks(), 0u);
     EXPECT_GT(kept.GetSampledBricks(), 0u);
@@ -555,7 +641,7 @@ TEST(ReconstructionParts, NativeMediumGridKeepsWhatAnEditOfTheFunctionLeft)
   laterFresh.Sample(later, memory, SerialFor());
   laterKept.Sample(later, memory, SerialFor(), &before);
   EXPECT_TRUE(SameGrids(laterFresh, laterKept));
-  EXPECT_NE(laterKept.GetScalars().GetSamples().Data(), before.GetScalars().GetSamples().Data());
+  EXPECT_FALSE(laterKept.GetScalars().SameAs(before.GetScalars()));
 
   // The same function: the whole grid and its tables, nothing sampled.
   before.BuildTables(waves.Bounds, { 6, 6, 6 });
@@ -670,7 +756,7 @@ TEST(ReconstructionParts, NativeMediumGridAveragesTheCellsWhereTheFunctionBends)
     for (int j = 0; j < 40; ++j)
       for (int i = 0; i < 40; ++i)
       {
-        const float atScalar = classified.GetOpacity().Extinction(native.GetScalars().At(i, j, k));
+        const float atScalar = classified.GetOpacity().Extinction(native.ScalarAt(i, j, k));
         const Vec3 lower = box.lower +
           Vec3(static_cast<float>(i), static_cast<float>(j), static_cast<float>(k)) * cell;
         // The grid asks it from the 27 points directly: the same answer.

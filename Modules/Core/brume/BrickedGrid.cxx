@@ -177,6 +177,64 @@ BrickedGrid BrickedGrid::SampleBricks(const std::array<int, 3>& dims, const Box&
   }
   samples.Truncate(static_cast<std::size_t>(slots) * BrickSamples);
   grid.Samples = std::move(samples);
+  grid.Stored = static_cast<std::size_t>(slots);
+  return grid;
+}
+
+BrickedGrid BrickedGrid::Outline(const std::array<int, 3>& dims, const Box& box,
+  const std::function<void(const std::array<int, 3>&, float*)>& brick,
+  const std::vector<char>& candidate, const ParallelFor& parallelFor, float skipped)
+{
+  BrickedGrid grid;
+  grid.Dims = dims;
+  grid.Bounds = box;
+  grid.CellsPerLength =
+    Vec3(static_cast<float>(dims[0]), static_cast<float>(dims[1]), static_cast<float>(dims[2])) /
+    box.Extent();
+  for (int a = 0; a < 3; ++a)
+  {
+    grid.BrickDims[a] = BricksAlong(dims[a]);
+  }
+  const std::size_t bricks =
+    static_cast<std::size_t>(grid.BrickDims[0]) * grid.BrickDims[1] * grid.BrickDims[2];
+  grid.Slots.assign(bricks, -1);
+  grid.Constants.assign(bricks, skipped);
+  const std::size_t bx = grid.BrickDims[0], bxy = bx * grid.BrickDims[1];
+  // Each candidate evaluated into one brick's buffer: constant (its value
+  // kept) or stored (marked, its slot given after, in brick order).
+  std::vector<char> stored(bricks, 0);
+  parallelFor(0, bricks,
+    [&](std::size_t begin, std::size_t end)
+    {
+      float in[BrickSamples];
+      for (std::size_t b = begin; b < end; ++b)
+      {
+        if (!candidate[b])
+        {
+          continue;
+        }
+        brick({ static_cast<int>(b % bx) * Stride, static_cast<int>((b % bxy) / bx) * Stride,
+                static_cast<int>(b / bxy) * Stride },
+          in);
+        if (std::all_of(in, in + BrickSamples, [&](float v) { return v == in[0]; }))
+        {
+          grid.Constants[b] = in[0];
+        }
+        else
+        {
+          stored[b] = 1;
+        }
+      }
+    });
+  std::int32_t slots = 0;
+  for (std::size_t b = 0; b < bricks; ++b)
+  {
+    if (stored[b])
+    {
+      grid.Slots[b] = slots++;
+    }
+  }
+  grid.Stored = static_cast<std::size_t>(slots);
   return grid;
 }
 

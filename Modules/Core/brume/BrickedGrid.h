@@ -8,6 +8,7 @@
 #include "brume/Parallel.h"
 #include "brume/Vec3.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -71,6 +72,21 @@ public:
     const std::vector<char>& candidate, const ParallelFor& parallelFor, float skipped = 0.f);
 
   /**
+   * The slots and constants SampleBricks() gives, without its samples: an
+   * outline of a grid whose samples are kept elsewhere (a classified
+   * density's scalars, which its own array holds: brume::NativeMediumGrid).
+   * Each candidate brick is evaluated into a buffer of one brick and told
+   * constant or stored; the stored ones take slots in brick order, as
+   * SampleBricks() gives them. The outline answers NumberOfStoredBricks(),
+   * GetSlots() and GetConstants(); it holds no samples (HasSamples() is
+   * false where a brick is stored), so At(), CopyBrick(), Interpolate()
+   * and the marches are not for it.
+   */
+  static BrickedGrid Outline(const std::array<int, 3>& dims, const Box& box,
+    const std::function<void(const std::array<int, 3>&, float*)>& brick,
+    const std::vector<char>& candidate, const ParallelFor& parallelFor, float skipped = 0.f);
+
+  /**
    * Per brick of a grid of `dims` cells (in brick order): whether Sample()
    * evaluates it, i.e. `zeroOver` does not leave it out.
    */
@@ -84,7 +100,9 @@ public:
   const std::array<int, 3>& GetBrickDims() const { return this->BrickDims; }
   std::size_t NumberOfBricks() const { return this->Slots.size(); }
   /// Bricks that store their samples.
-  std::size_t NumberOfStoredBricks() const { return this->Samples.Size() / BrickSamples; }
+  std::size_t NumberOfStoredBricks() const { return this->Stored; }
+  /// Whether the stored bricks' samples are here (not an Outline()).
+  bool HasSamples() const { return this->Samples.Size() == this->Stored * BrickSamples; }
 
   /// Per brick (x fastest): its slot in GetSamples(), or -1 when constant.
   const std::vector<std::int32_t>& GetSlots() const { return this->Slots; }
@@ -107,6 +125,12 @@ public:
   /// The BrickSamples samples of `brick` (x fastest), a constant one's repeated.
   void CopyBrick(std::size_t brick, float* out) const;
 
+  /// The brick whose own cells hold cell (i, j, k), in brick order.
+  std::size_t BrickOf(int i, int j, int k) const
+  {
+    return this->BrickIndex(std::min(i / Stride, this->BrickDims[0] - 1),
+      std::min(j / Stride, this->BrickDims[1] - 1), std::min(k / Stride, this->BrickDims[2] - 1));
+  }
   /// The sample of cell (i, j, k), 0 <= i < Dims[0] ...
   float At(int i, int j, int k) const;
   /// Trilinear between the cells' centres at world point `p`, clamped at the faces.
@@ -164,6 +188,7 @@ private:
   std::vector<std::int32_t> Slots;
   std::vector<float> Constants;
   FloatBuffer Samples;
+  std::size_t Stored = 0; // bricks with a slot
 };
 
 template <class F>

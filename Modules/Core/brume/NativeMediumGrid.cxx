@@ -202,11 +202,19 @@ void NativeMediumGrid::Sample(const Medium& medium, std::size_t memory,
       static_cast<float>(upper[2] + 1));
     return ZeroOver(density, bounds, box.lower + lo * cell, box.lower + hi * cell);
   };
+  // A classified grid's own values, read in place (a GridDensity of the
+  // native cells): at the field's resolution its scalars are not copied.
+  const auto* scalarGrid =
+    classified ? dynamic_cast<const GridDensity*>(&classified->GetScalars()) : nullptr;
+  if (scalarGrid && (scalarGrid->GetDimensions() != native || scalarGrid->GetValues().Empty()))
+  {
+    scalarGrid = nullptr;
+  }
   // The smallest integer coarsening, the same on every axis, whose grids
   // fit the memory: the occupied bricks' samples and every brick's table
-  // entry, twice for a classified density kept with its scalars (bricks of
-  // one value other than 0 count as stored here: only sampling tells them
-  // apart).
+  // entry, twice for a classified density kept with its scalars (their
+  // samples once where they are the field's own; bricks of one value other
+  // than 0 count as stored here: only sampling tells them apart).
   auto fits = [&](int factor)
   {
     layout(factor);
@@ -249,7 +257,9 @@ void NativeMediumGrid::Sample(const Medium& medium, std::size_t memory,
     {
       stored += static_cast<double>(n);
     }
-    return grids * (stored * brickBytes + bricks * tableBytes) <= static_cast<double>(memory);
+    const double copies = factor == 1 && scalarGrid ? 1.0 : grids;
+    return copies * stored * brickBytes + grids * bricks * tableBytes <=
+      static_cast<double>(memory);
   };
   int factor = 1;
   while (!fits(factor))
@@ -268,6 +278,7 @@ void NativeMediumGrid::Sample(const Medium& medium, std::size_t memory,
   // bricks the majorants leave out hold a scalar the function takes to 0
   // (a node of opacity 0; with none, no brick is left out).
   this->Scalars = BrickedGrid();
+  this->ScalarField = nullptr;
   this->Classification = nullptr;
   auto centre = [&](int i, int j, int k)
   {
@@ -293,6 +304,7 @@ void NativeMediumGrid::Sample(const Medium& medium, std::size_t memory,
     // same grids and tables.
     this->Density = previous->Density;
     this->Scalars = previous->Scalars;
+    this->ScalarField = previous->ScalarField;
     this->Classification = classified && factor == 1 ? &classified->GetOpacity() : nullptr;
     this->BrickRanges = previous->BrickRanges;
     this->Candidates = previous->Candidates;
@@ -333,44 +345,45 @@ void NativeMediumGrid::Sample(const Medium& medium, std::size_t memory,
       previous && previous->Candidates == candidates && previous->ScalarSkipped == nothing;
     this->Candidates = std::move(candidates);
     this->ScalarSkipped = nothing;
-    this->Scalars = sameScalars
-      ? previous->Scalars
-      : BrickedGrid::SampleBricks(
-          dims, box,
-          [&](const std::array<int, 3>& lower, float* out)
+    auto scalarBrick = [&](const std::array<int, 3>& lower, float* out)
+    {
+      constexpr int S = BrickedGrid::Size;
+      std::array<int, 3> count{};
+      for (int a = 0; a < 3; ++a)
+      {
+        count[a] = std::min(lower[a] + S, dims[a]) - lower[a];
+      }
+      if (previous && previous->Scalars.HasSamples())
+      {
+        // The field's own values, whichever function: a brick stored
+        // before holds them (one left out held a value of the function's).
+        const std::size_t b = previous->Scalars.BrickAt(lower);
+        if (previous->Scalars.GetSlots()[b] >= 0)
+        {
+          previous->Scalars.CopyBrick(b, out);
+          return;
+        }
+      }
+      float points[S * S * S];
+      const bool read = scalars.NativePoints(lower, count, points);
+      for (int k = 0; k < S; ++k)
+        for (int j = 0; j < S; ++j)
+          for (int i = 0; i < S; ++i)
           {
-            constexpr int S = BrickedGrid::Size;
-            std::array<int, 3> count{};
-            for (int a = 0; a < 3; ++a)
-            {
-              count[a] = std::min(lower[a] + S, dims[a]) - lower[a];
-            }
-            if (previous)
-            {
-              // The field's own values, whichever function: a brick stored
-              // before holds them (one left out held a value of the function's).
-              const std::size_t b = previous->Scalars.BrickAt(lower);
-              if (previous->Scalars.GetSlots()[b] >= 0)
-              {
-                previous->Scalars.CopyBrick(b, out);
-                return;
-              }
-            }
-            float points[S * S * S];
-            const bool read = scalars.NativePoints(lower, count, points);
-            for (int k = 0; k < S; ++k)
-              for (int j = 0; j < S; ++j)
-                for (int i = 0; i < S; ++i)
-                {
-                  // Cells past the grid's last take the last's.
-                  const int x = std::min(i, count[0] - 1), y = std::min(j, count[1] - 1),
-                            z = std::min(k, count[2] - 1);
-                  *out++ = read ? points[(z * count[1] + y) * count[0] + x]
-                                : scalars.NativeValue(lower[0] + x, lower[1] + y, lower[2] + z,
-                                    centre(lower[0] + x, lower[1] + y, lower[2] + z));
-                }
-          },
-          this->Candidates, parallelFor, nothing);
+            // Cells past the grid's last take the last's.
+            const int x = std::min(i, count[0] - 1), y = std::min(j, count[1] - 1),
+                      z = std::min(k, count[2] - 1);
+            *out++ = read ? points[(z * count[1] + y) * count[0] + x]
+                          : scalars.NativeValue(lower[0] + x, lower[1] + y, lower[2] + z,
+                              centre(lower[0] + x, lower[1] + y, lower[2] + z));
+          }
+    };
+    // The field's own values are not copied: an outline of the same slots.
+    this->Scalars = sameScalars ? previous->Scalars
+      : scalarGrid
+      ? BrickedGrid::Outline(dims, box, scalarBrick, this->Candidates, parallelFor, nothing)
+      : BrickedGrid::SampleBricks(dims, box, scalarBrick, this->Candidates, parallelFor, nothing);
+    this->ScalarField = this->Scalars.HasSamples() ? nullptr : scalarGrid;
     this->Classification = &function;
   }
   // One sample at the centre of a native cell (the field's own value
@@ -392,7 +405,7 @@ void NativeMediumGrid::Sample(const Medium& medium, std::size_t memory,
         return static_cast<float>(
           density.NativeMean(i, j, k, Box{ lower, lower + cell }, bounds, BendSamples));
       }
-      return function->Extinction(this->Scalars.At(i, j, k));
+      return function->Extinction(this->ScalarAt(i, j, k));
     }
     if (samples == 1)
     {
@@ -471,6 +484,17 @@ void NativeMediumGrid::Sample(const Medium& medium, std::size_t memory,
     this->Candidates, parallelFor);
   this->ReusedBricks = reused.load();
   this->SampledBricks = sampled.load();
+}
+
+float NativeMediumGrid::ScalarAt(int i, int j, int k) const
+{
+  if (!this->ScalarField)
+  {
+    return this->Scalars.At(i, j, k);
+  }
+  const std::size_t brick = this->Scalars.BrickOf(i, j, k);
+  return this->Scalars.GetSlots()[brick] < 0 ? this->Scalars.GetConstants()[brick]
+                                             : this->ScalarField->NativeValue(i, j, k, Vec3(0.f));
 }
 
 void NativeMediumGrid::BuildTables(

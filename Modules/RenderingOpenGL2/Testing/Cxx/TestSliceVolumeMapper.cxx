@@ -24,8 +24,10 @@
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkRendererCollection.h"
+#include "vtkShortArray.h"
 #include "vtkSmartPointer.h"
 #include "vtkSphereSource.h"
+#include "vtkUnsignedShortArray.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 
@@ -387,20 +389,54 @@ bool SparseExtinction(double unit, int texelBytes)
   {
     sparse->GetFieldData()->AddArray(a);
   }
+  // The same bricks with their samples read from the cells themselves
+  // (ExtinctionCellValues: a field's own array, read in place): the same
+  // slots, so the same atlas.
+  // In the scan's own type where its integers fit 16 bits.
+  auto inPlace = grid();
+  vtkSmartPointer<vtkDataArray> cellValues;
+  if (unit == 0.01)
+  {
+    cellValues = vtkSmartPointer<vtkUnsignedShortArray>::New();
+  }
+  else if (unit == 0.001)
+  {
+    cellValues = vtkSmartPointer<vtkShortArray>::New();
+  }
+  else
+  {
+    cellValues = vtkSmartPointer<vtkFloatArray>::New();
+  }
+  cellValues->SetName(vtkBrumeNames::ExtinctionCellValues);
+  for (int k = 0; k < n[2]; ++k)
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i)
+      {
+        cellValues->InsertNextTuple1(density(i, j, k));
+      }
+  for (vtkDataArray* a : { static_cast<vtkDataArray*>(slots), static_cast<vtkDataArray*>(values),
+         cellValues.GetPointer(), static_cast<vtkDataArray*>(perDensity) })
+  {
+    inPlace->GetFieldData()->AddArray(a);
+  }
   const Layer coarse{ { 2.0, 1.0, 0.5 }, { 10.0, 10.0, 10.0 } };
   bool ok = constant > 0 && constant < slots->GetNumberOfTuples();
   ok = vtkBrumeSliceVolumeMapper::ValidateExtinction(Medium(box, { coarse }), sparse).empty() && ok;
+  ok =
+    vtkBrumeSliceVolumeMapper::ValidateExtinction(Medium(box, { coarse }), inPlace).empty() && ok;
   for (bool nearest : { true, false })
   {
-    Frame frames[2];
-    for (int form = 0; form < 2; ++form)
+    Frame frames[3];
+    for (int form = 0; form < 3; ++form)
     {
       auto volume = Volume(Medium(box, { coarse }), 0.0, nearest);
       vtkBrumeSliceVolumeMapper::SafeDownCast(volume->GetMapper())
-        ->SetExtinctionData(form == 0 ? dense : sparse);
+        ->SetExtinctionData(form == 0 ? dense
+            : form == 1               ? sparse
+                                      : inPlace);
       frames[form] = Render({ volume }, false);
       auto* opengl = vtkBrumeOpenGLSliceVolumeMapper::SafeDownCast(volume->GetMapper());
-      if (form == 1 && (!opengl || opengl->GetExtinctionAtlasTexelBytes() != texelBytes))
+      if (form > 0 && (!opengl || opengl->GetExtinctionAtlasTexelBytes() != texelBytes))
       {
         std::cerr << "sparse extinction in units of " << unit << ": an atlas of "
                   << (opengl ? opengl->GetExtinctionAtlasTexelBytes() : -1)
@@ -423,6 +459,20 @@ bool SparseExtinction(double unit, int texelBytes)
     std::cout << "sparse extinction in units of " << unit << ", "
               << (nearest ? "nearest" : "linear")
               << ": largest relative difference to the dense grid " << worst << "\n";
+    // Read from the cells or from the slots, the atlas is the same: bitwise.
+    int unequal = 0;
+    for (int j = 0; j < Size; ++j)
+      for (int i = 0; i < Size; ++i)
+        for (int c = 0; c < 3; ++c)
+        {
+          unequal += frames[1].At(i, j)[c] == frames[2].At(i, j)[c] ? 0 : 1;
+        }
+    if (unequal != 0)
+    {
+      std::cerr << "sparse extinction read from its cells, " << (nearest ? "nearest" : "linear")
+                << ": " << unequal << " values differ from the slots' samples\n";
+      ok = false;
+    }
     if (!(worst < 1e-4) || !(sum > 0.0))
     {
       std::cerr << "sparse extinction, " << (nearest ? "nearest" : "linear")
@@ -430,6 +480,25 @@ bool SparseExtinction(double unit, int texelBytes)
       ok = false;
     }
   }
+  // Cells' values one short, or two bricks in one slot, are refused.
+  cellValues->SetNumberOfValues(cellValues->GetNumberOfValues() - 1);
+  ok =
+    !vtkBrumeSliceVolumeMapper::ValidateExtinction(Medium(box, { coarse }), inPlace).empty() && ok;
+  cellValues->InsertNextTuple1(0.0);
+  ok =
+    vtkBrumeSliceVolumeMapper::ValidateExtinction(Medium(box, { coarse }), inPlace).empty() && ok;
+  vtkIdType stored = 0;
+  while (slots->GetValue(stored) < 0)
+  {
+    ++stored;
+  }
+  const int firstSlot = slots->GetValue(stored);
+  const vtkIdType constantBrick = stored == 0 ? slots->GetNumberOfTuples() - 1 : 0;
+  const int was = slots->GetValue(constantBrick);
+  slots->SetValue(constantBrick, firstSlot);
+  ok =
+    !vtkBrumeSliceVolumeMapper::ValidateExtinction(Medium(box, { coarse }), inPlace).empty() && ok;
+  slots->SetValue(constantBrick, was);
   // A brick naming a slot the samples do not hold is refused.
   slots->SetValue(0, 1000);
   ok =
