@@ -469,7 +469,9 @@ void vtkBrumeOpenGLSliceVolumeMapper::CutSlices(
   // of the spacing, one without such a grid or in a quick draw (thicker
   // slabs asked for speed).
   this->Impl->SlabSamples = 1;
-  if (this->ExtinctionData && this->SlabSampling && this->SliceSpacingScale <= 1.0)
+  this->Impl->SlabsWanted =
+    this->ExtinctionData && this->SlabSampling && this->SliceSpacingScale <= 1.0;
+  if (this->Impl->SlabsWanted)
   {
     const double fine = SmallestCell(model, this->ExtinctionData);
     if (fine > 0.0)
@@ -643,7 +645,11 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawRuns(vtkRenderer* ren, bool reduced)
     // A reduced resolution is a quick draw: one sample a slab.
     const int samples = reduced ? 1 : owner.SlabSamples;
     run.Owner->LastSlabSamples = samples;
-    kind.Slabs = samples > 1;
+    // Classified bricks may bend: their samples take four each (slabs of
+    // one sample too).
+    kind.Bends = !reduced && kind.Classified && owner.SlabsWanted && run.Owner->GetBendSampling() &&
+      owner.BendingBricks > 0;
+    kind.Slabs = !reduced && (samples > 1 || kind.Bends);
     kind.Extinction = owner.Bricked ? vtkBrumeSliceVolumeShader::ExtinctionBricks
       : owner.ConstantExtinction    ? vtkBrumeSliceVolumeShader::ExtinctionConstant
                                     : vtkBrumeSliceVolumeShader::ExtinctionTexture;

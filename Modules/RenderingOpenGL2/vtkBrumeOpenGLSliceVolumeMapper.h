@@ -49,6 +49,16 @@ public:
    */
   int GetExtinctionAtlasTexelBytes() const;
   /**
+   * Of the last bricked grid of classified scalars sent to the GPU, the
+   * stored bricks whose scalars span a point of the transfer function (a
+   * change of its slope). Along a ray through such a brick each slab
+   * sample takes four, spread over its share of the slab: one sample a
+   * fine cell misses the classified extinction of a structure a cell thin
+   * (a one-voxel sheet through a step of the function: -21 % to +51 % of
+   * its optical depth, by where the samples fall; ±1.5 % with four).
+   */
+  int GetNumberOfBendingBricks() const;
+  /**
    * How many times the atlas of a bricked grid was filled. A grid of the
    * same samples as the atlas holds (the same memory: a reconstruction
    * that kept the scalars' bricks after an edit of a transfer function)

@@ -62,6 +62,11 @@ struct vtkBrumeOpenGLSliceVolumeMapper::Internals
   int AtlasFilter = -1;
   double AtlasLargest = 0.0;
   int AtlasUploads = 0;
+  // Per slot of the atlas, the least and largest of its scalars, which a
+  // transfer function bends within (a brick whose samples' interval holds
+  // one of the function's kinks); kept with the atlas for the next function.
+  std::vector<float> SlotLow, SlotHigh;
+  int BendingBricks = 0;
   float BrickScale[3] = { 1.f, 1.f, 1.f };
   // Bricks of scalars a transfer function classifies: its extinction in one
   // row (linear filtering), over TransferRange, TransferSamples wide.
@@ -102,6 +107,9 @@ struct vtkBrumeOpenGLSliceVolumeMapper::Internals
   // of its own the slices' spacing spans, at most MaxSlabSamples).
   float TextureFromWorld[3][3] = { { 1.f, 0.f, 0.f }, { 0.f, 1.f, 0.f }, { 0.f, 0.f, 1.f } };
   int SlabSamples = 1;
+  // Whether the slabs may take samples along the rays (still frames): a
+  // classified grid's bending bricks then take four for each.
+  bool SlabsWanted = false;
   vtkTimeStamp TextureTime;
   std::vector<float> SourceValues; // RGBA per cell, reused from one upload to the next
   std::vector<float> Scratch;      // the input's extinction, likewise

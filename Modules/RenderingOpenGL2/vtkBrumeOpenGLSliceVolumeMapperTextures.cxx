@@ -29,6 +29,49 @@
 
 namespace
 {
+// The scalars where a transfer function's extinction table (evenly over
+// `range`, linear between its values, its end values beyond) changes its
+// slope: its points. A brick whose scalars' interval holds one is bent by
+// the function within: a ray's classified extinction there is not
+// integrated by one sample a fine cell (a one-voxel sheet's tent through a
+// step took -21 % to +51 % of its optical depth, by where the samples
+// fell). A slope that changes by more than a hundredth of itself from one
+// table value to the next is a point; -ln(1 - alpha) curves by less
+// between its points (by 0.3 % at alpha = 0.9 over 4,096 values), until
+// alpha nears 1. Changes within the floats' rounding are none.
+std::vector<double> TransferKinks(vtkDataArray* table, const double range[2])
+{
+  std::vector<double> kinks;
+  const vtkIdType n = table ? table->GetNumberOfTuples() : 0;
+  if (n < 2)
+  {
+    return kinks;
+  }
+  std::vector<double> v(static_cast<std::size_t>(n));
+  double largest = 0.0;
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    v[static_cast<std::size_t>(i)] = table->GetTuple1(i);
+    largest = std::max(largest, std::abs(v[static_cast<std::size_t>(i)]));
+  }
+  const double rounding = 1e-6 * largest;
+  auto scalar = [&](std::size_t i) {
+    return range[0] + (range[1] - range[0]) * static_cast<double>(i) / static_cast<double>(n - 1);
+  };
+  // Slope i: from value i to i + 1; flat beyond the ends.
+  auto slope = [&](std::size_t i) { return i == 0 || i == v.size() ? 0.0 : v[i] - v[i - 1]; };
+  for (std::size_t i = 0; i < v.size(); ++i)
+  {
+    const double before = slope(i), after = slope(i + 1);
+    const double change = std::abs(after - before);
+    if (change > rounding && change > 0.01 * std::max(std::abs(before), std::abs(after)))
+    {
+      kinks.push_back(scalar(i));
+    }
+  }
+  return kinks;
+}
+
 // Uploads `values` (`components` floats per voxel) as a 3D texture clamped
 // at the edges and filtered with `filter` (nearest or linear). RGB data go
 // up as RGBA (4 floats a voxel): a software rasterizer samples 16-byte
@@ -386,6 +429,7 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   std::vector<double> slotLargest(static_cast<std::size_t>(slotCount), 0.0);
   std::vector<double> slotLeast(static_cast<std::size_t>(slotCount), 0.0);
   std::vector<char> slotIntegers(static_cast<std::size_t>(slotCount), 1);
+  std::vector<float> slotHigh(static_cast<std::size_t>(slotCount), 0.f); // scalars: can be < 0
   std::atomic<vtkIdType> firstBad{ slotCount };
   vtkFloatArray* floats = vtkFloatArray::FastDownCast(source);
   vtkUnsignedCharArray* bytes = vtkUnsignedCharArray::FastDownCast(source);
@@ -435,7 +479,7 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   {
     for (vtkIdType slot = begin; slot < end; ++slot)
     {
-      double most = 0.0, least = sample(slot, 0);
+      double most = 0.0, least = sample(slot, 0), high = least;
       bool bad = false, integers = true;
       for (int n = 0; n < BrickCells; ++n)
       {
@@ -443,8 +487,10 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
         bad = bad || invalidSample(v);
         most = std::max(most, v);
         least = std::min(least, v);
+        high = std::max(high, v);
         integers = integers && v == std::floor(v);
       }
+      slotHigh[static_cast<std::size_t>(slot)] = static_cast<float>(high);
       slotLargest[static_cast<std::size_t>(slot)] = most;
       slotLeast[static_cast<std::size_t>(slot)] = least;
       slotIntegers[static_cast<std::size_t>(slot)] = integers ? 1 : 0;
@@ -482,6 +528,12 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   for (const double most : slotLargest)
   {
     largest = std::max(largest, most);
+  }
+  if (!sameAtlas)
+  {
+    // The slots' scalars' intervals, for this function and the next ones.
+    impl.SlotLow.assign(slotLeast.begin(), slotLeast.end());
+    impl.SlotHigh = std::move(slotHigh);
   }
   const double storedLargest = largest; // of the stored samples alone
   std::vector<float> table(4 * static_cast<std::size_t>(bricks));
@@ -527,6 +579,33 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   if (impl.Classified && !this->UploadTransferFunction(fd, renWin, largest))
   {
     return false;
+  }
+  // Stored bricks whose scalars' interval holds a kink of the function are
+  // sampled finer along the rays (the shader's bendsAt: w = 2).
+  impl.BendingBricks = 0;
+  if (impl.Classified && impl.SlotLow.size() == static_cast<std::size_t>(slotCount))
+  {
+    double range[2];
+    fd->GetArray(vtkBrumeNames::ExtinctionTransferRange)->GetTuple(0, range);
+    const std::vector<double> kinks =
+      TransferKinks(fd->GetArray(vtkBrumeNames::ExtinctionTransferFunction), range);
+    for (vtkIdType b = 0; b < bricks && !kinks.empty(); ++b)
+    {
+      float* entry = &table[4 * static_cast<std::size_t>(b)];
+      const vtkIdType slot = static_cast<vtkIdType>(slots->GetTuple1(b));
+      if (slot < 0)
+      {
+        continue;
+      }
+      const double low = impl.SlotLow[static_cast<std::size_t>(slot)];
+      const double high = impl.SlotHigh[static_cast<std::size_t>(slot)];
+      auto above = std::upper_bound(kinks.begin(), kinks.end(), low);
+      if (above != kinks.end() && *above < high)
+      {
+        entry[3] = 2.f;
+        ++impl.BendingBricks;
+      }
+    }
   }
   impl.MaxExtinction =
     largest * std::max({ impl.BrickScale[0], impl.BrickScale[1], impl.BrickScale[2] });
@@ -652,6 +731,11 @@ int vtkBrumeOpenGLSliceVolumeMapper::GetNumberOfExtinctionAtlasUploads() const
 int vtkBrumeOpenGLSliceVolumeMapper::GetExtinctionAtlasTexelBytes() const
 {
   return this->Impl->AtlasBytes;
+}
+
+int vtkBrumeOpenGLSliceVolumeMapper::GetNumberOfBendingBricks() const
+{
+  return this->Impl->BendingBricks;
 }
 
 bool vtkBrumeOpenGLSliceVolumeMapper::UploadTransferFunction(

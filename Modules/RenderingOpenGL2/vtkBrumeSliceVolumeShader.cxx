@@ -33,7 +33,8 @@ std::string vtkBrumeSliceVolumeShader::Fragment(const Kind& kind)
     "#define BRUME_EXTINCTION " + std::to_string(static_cast<int>(kind.Extinction)) +
       "\n#define BRUME_SOURCE_IS_RADIANCE " + (kind.SourceIsRadiance ? "1" : "0") +
       "\n#define BRUME_CLASSIFIED " + (kind.Classified ? "1" : "0") + "\n#define BRUME_ALBEDO " +
-      (kind.Albedo ? "1" : "0") + "\n#define BRUME_SLABS " + (kind.Slabs ? "1" : "0") + "\n");
+      (kind.Albedo ? "1" : "0") + "\n#define BRUME_SLABS " + (kind.Slabs ? "1" : "0") +
+      "\n#define BRUME_BENDS " + (kind.Bends ? "1" : "0") + "\n");
   const int order = kind.Order;
   if (order < 1)
   {

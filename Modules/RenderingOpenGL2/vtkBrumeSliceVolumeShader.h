@@ -29,11 +29,12 @@ public:
     bool Classified = false;       ///< the bricks hold scalars a transfer function classifies
     bool Albedo = false;           ///< and its table gives an albedo, applied per fragment
     bool Slabs = false;            ///< slabs take several extinction samples along each ray
+    bool Bends = false; ///< and four for each in bricks the transfer function bends within
     bool operator==(const Kind& other) const
     {
       return this->Order == other.Order && this->Extinction == other.Extinction &&
         this->SourceIsRadiance == other.SourceIsRadiance && this->Classified == other.Classified &&
-        this->Albedo == other.Albedo && this->Slabs == other.Slabs;
+        this->Albedo == other.Albedo && this->Slabs == other.Slabs && this->Bends == other.Bends;
     }
   };
 

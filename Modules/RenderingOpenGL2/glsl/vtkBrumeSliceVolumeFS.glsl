@@ -13,7 +13,9 @@
 // BRUME_SOURCE_IS_RADIANCE 1 where sourceTexture holds S, not J;
 // BRUME_CLASSIFIED 1 where the bricks hold scalars a transfer function
 // classifies, and BRUME_ALBEDO 1 where its table gives an albedo too;
-// BRUME_SLABS 1 where slabs take several extinction samples. Each kind
+// BRUME_SLABS 1 where slabs take several extinction samples, and with it
+// BRUME_BENDS 1 where classified bricks the function bends within take four
+// for each (vtkBrumeSliceVolumeMapper::SetBendSampling). Each kind
 // is compiled apart: a software rasterizer runs both sides of a branch on a
 // uniform, texture fetches included.
 //BRUME::Slice::Defines
@@ -82,6 +84,18 @@ uniform float forwardFraction;
 #endif
 #if BRUME_EXTINCTION == 2
 uniform vec3 constantExtinction;     // sigma_t of a homogeneous medium
+#endif
+#if BRUME_BENDS
+// Whether the brick holding t (as extinctionAt finds it) has scalars whose
+// interval holds a point of the transfer function (the brick table's w is
+// 2): one sample a fine cell does not integrate the classified extinction
+// of a structure a cell thin there.
+bool bendsAt(vec3 t)
+{
+  vec3 u = clamp(t * gridCells - 0.5, vec3(0.0), gridCells - 1.0);
+  vec3 brick = min(floor(u / 7.0), brickCount - 1.0);
+  return texelFetch(brickTable, ivec3(brick), 0).w > 1.5;
+}
 #endif
 
 // sigma_t at t in [0, 1]^3 over the extinction grid's box, and the albedo
@@ -152,20 +166,44 @@ void main()
     vec3 t = texcoord;
 #if BRUME_SLABS
     t += across * ((float(k) + 0.5) / float(samples) - 0.5);
-    if (any(lessThan(t, vec3(0.0))) || any(greaterThan(t, vec3(1.0))))
+    if (samples > 1 && (any(lessThan(t, vec3(0.0))) || any(greaterThan(t, vec3(1.0)))))
     {
       continue;
     }
 #endif
-    vec3 albedo;
-    vec3 sigma = extinctionAt(t * extinctionScale + extinctionOffset, albedo);
-#if BRUME_ALBEDO
-    // J = sigma_t a X; the peak's share a Forward of sigma_t is transport.
-    scattering += sigma * albedo;
-    sigmaT += sigma * (vec3(1.0) - albedo * forwardFraction);
+    // Where the function bends, four samples spread over this one's share
+    // of the slab, their mean its value. The share (at most a fine cell)
+    // may reach into a bending brick from one that does not: both its ends
+    // are asked.
+#if BRUME_BENDS
+    vec3 share = across / float(samples);
+    int parts = bendsAt((t - 0.5 * share) * extinctionScale + extinctionOffset) ||
+        bendsAt((t + 0.5 * share) * extinctionScale + extinctionOffset)
+      ? 4
+      : 1;
 #else
-    sigmaT += sigma;
+    const int parts = 1;
 #endif
+    for (int j = 0; j < parts; ++j)
+    {
+      vec3 part = t;
+#if BRUME_BENDS
+      part += share * ((float(j) + 0.5) / float(parts) - 0.5);
+      if (any(lessThan(part, vec3(0.0))) || any(greaterThan(part, vec3(1.0))))
+      {
+        continue;
+      }
+#endif
+      vec3 albedo;
+      vec3 sigma = extinctionAt(part * extinctionScale + extinctionOffset, albedo) / float(parts);
+#if BRUME_ALBEDO
+      // J = sigma_t a X; the peak's share a Forward of sigma_t is transport.
+      scattering += sigma * albedo;
+      sigmaT += sigma * (vec3(1.0) - albedo * forwardFraction);
+#else
+      sigmaT += sigma;
+#endif
+    }
   }
   sigmaT /= float(samples);
 #if BRUME_ALBEDO
