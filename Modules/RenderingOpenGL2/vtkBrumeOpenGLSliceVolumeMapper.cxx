@@ -469,6 +469,7 @@ void vtkBrumeOpenGLSliceVolumeMapper::CutSlices(
   // of the spacing, one without such a grid or in a quick draw (thicker
   // slabs asked for speed).
   this->Impl->SlabSamples = 1;
+  this->Impl->BendParts = 1;
   this->Impl->SlabsWanted =
     this->ExtinctionData && this->SlabSampling && this->SliceSpacingScale <= 1.0;
   if (this->Impl->SlabsWanted)
@@ -478,6 +479,12 @@ void vtkBrumeOpenGLSliceVolumeMapper::CutSlices(
     {
       this->Impl->SlabSamples = static_cast<int>(
         std::clamp(std::ceil(unscaled / fine - 1e-6), 1.0, static_cast<double>(MaxSlabSamples)));
+      // Where the transfer function bends, four samples a fine cell: each
+      // sample split in as many parts as that takes (none where the slices
+      // lie a quarter of a cell apart or closer).
+      const double apart = requested / this->Impl->SlabSamples;
+      this->Impl->BendParts =
+        static_cast<int>(std::clamp(std::ceil(4.0 * apart / fine - 1e-6), 1.0, 4.0));
     }
   }
   const int count =
@@ -648,7 +655,7 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawRuns(vtkRenderer* ren, bool reduced)
     // Classified bricks may bend: their samples take four each (slabs of
     // one sample too).
     kind.Bends = !reduced && kind.Classified && owner.SlabsWanted && run.Owner->GetBendSampling() &&
-      owner.BendingBricks > 0;
+      owner.BendingBricks > 0 && owner.BendParts > 1;
     kind.Slabs = !reduced && (samples > 1 || kind.Bends);
     kind.Extinction = owner.Bricked ? vtkBrumeSliceVolumeShader::ExtinctionBricks
       : owner.ConstantExtinction    ? vtkBrumeSliceVolumeShader::ExtinctionConstant
@@ -684,6 +691,10 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawRuns(vtkRenderer* ren, bool reduced)
     program->SetUniformi("sourceTexture", owner.Source->GetTextureUnit());
     program->SetUniformi("extinctionTexture", owner.Extinction->GetTextureUnit());
     program->SetUniformf("sliceSpacing", run.Spacing);
+    if (kind.Bends)
+    {
+      program->SetUniformi("bendParts", owner.BendParts);
+    }
     if (kind.Slabs)
     {
       program->SetUniformi("slabSamples", samples);

@@ -50,12 +50,12 @@ public:
   int GetExtinctionAtlasTexelBytes() const;
   /**
    * Of the last bricked grid of classified scalars sent to the GPU, the
-   * stored bricks whose scalars span a point of the transfer function (a
-   * change of its slope). Along a ray through such a brick each slab
-   * sample takes four, spread over its share of the slab: one sample a
-   * fine cell misses the classified extinction of a structure a cell thin
-   * (a one-voxel sheet through a step of the function: -21 % to +51 % of
-   * its optical depth, by where the samples fall; ±1.5 % with four).
+   * stored bricks sampled four times a fine cell along the rays
+   * (SetBendSampling): their scalars span a point of the transfer
+   * function steeply enough that one sample a fine cell would miss their
+   * classified extinction (a one-voxel sheet through a step of the
+   * function: -21 % to +51 % of its optical depth, by where the samples
+   * fall; within 1.5 % with four).
    */
   int GetNumberOfBendingBricks() const;
   /**

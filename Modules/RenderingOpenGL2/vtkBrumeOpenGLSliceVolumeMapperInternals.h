@@ -66,6 +66,7 @@ struct vtkBrumeOpenGLSliceVolumeMapper::Internals
   // transfer function bends within (a brick whose samples' interval holds
   // one of the function's kinks); kept with the atlas for the next function.
   std::vector<float> SlotLow, SlotHigh;
+  std::vector<float> SlotSteep; // the largest step between neighbouring samples
   int BendingBricks = 0;
   float BrickScale[3] = { 1.f, 1.f, 1.f };
   // Bricks of scalars a transfer function classifies: its extinction in one
@@ -110,6 +111,9 @@ struct vtkBrumeOpenGLSliceVolumeMapper::Internals
   // Whether the slabs may take samples along the rays (still frames): a
   // classified grid's bending bricks then take four for each.
   bool SlabsWanted = false;
+  // Parts each sample takes in bricks the transfer function bends within:
+  // four samples a fine cell.
+  int BendParts = 1;
   vtkTimeStamp TextureTime;
   std::vector<float> SourceValues; // RGBA per cell, reused from one upload to the next
   std::vector<float> Scratch;      // the input's extinction, likewise

@@ -14,8 +14,8 @@
 // BRUME_CLASSIFIED 1 where the bricks hold scalars a transfer function
 // classifies, and BRUME_ALBEDO 1 where its table gives an albedo too;
 // BRUME_SLABS 1 where slabs take several extinction samples, and with it
-// BRUME_BENDS 1 where classified bricks the function bends within take four
-// for each (vtkBrumeSliceVolumeMapper::SetBendSampling). Each kind
+// BRUME_BENDS 1 where classified bricks the function bends within take
+// samples four a fine cell (vtkBrumeSliceVolumeMapper::SetBendSampling). Each kind
 // is compiled apart: a software rasterizer runs both sides of a branch on a
 // uniform, texture fetches included.
 //BRUME::Slice::Defines
@@ -86,6 +86,7 @@ uniform float forwardFraction;
 uniform vec3 constantExtinction;     // sigma_t of a homogeneous medium
 #endif
 #if BRUME_BENDS
+uniform int bendParts;               // parts of a sample there: four samples a fine cell
 // Whether the brick holding t (as extinctionAt finds it) has scalars whose
 // interval holds a point of the transfer function (the brick table's w is
 // 2): one sample a fine cell does not integrate the classified extinction
@@ -171,15 +172,15 @@ void main()
       continue;
     }
 #endif
-    // Where the function bends, four samples spread over this one's share
-    // of the slab, their mean its value. The share (at most a fine cell)
-    // may reach into a bending brick from one that does not: both its ends
-    // are asked.
+    // Where the function bends, bendParts samples spread over this one's
+    // share of the slab (four a fine cell), their mean its value. The share
+    // (at most a fine cell) may reach into a bending brick from one that
+    // does not: both its ends are asked.
 #if BRUME_BENDS
     vec3 share = across / float(samples);
     int parts = bendsAt((t - 0.5 * share) * extinctionScale + extinctionOffset) ||
         bendsAt((t + 0.5 * share) * extinctionScale + extinctionOffset)
-      ? 4
+      ? bendParts
       : 1;
 #else
     const int parts = 1;
