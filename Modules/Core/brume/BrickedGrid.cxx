@@ -116,9 +116,7 @@ BrickedGrid BrickedGrid::SampleBricks(const std::array<int, 3>& dims, const Box&
     dims, box, brick, Candidates(dims, zeroOver, parallelFor), parallelFor, skipped);
 }
 
-BrickedGrid BrickedGrid::SampleBricks(const std::array<int, 3>& dims, const Box& box,
-  const std::function<void(const std::array<int, 3>&, float*)>& brick,
-  const std::vector<char>& candidate, const ParallelFor& parallelFor, float skipped)
+BrickedGrid BrickedGrid::Layout(const std::array<int, 3>& dims, const Box& box, float skipped)
 {
   BrickedGrid grid;
   grid.Dims = dims;
@@ -134,6 +132,15 @@ BrickedGrid BrickedGrid::SampleBricks(const std::array<int, 3>& dims, const Box&
     static_cast<std::size_t>(grid.BrickDims[0]) * grid.BrickDims[1] * grid.BrickDims[2];
   grid.Slots.assign(bricks, -1);
   grid.Constants.assign(bricks, skipped);
+  return grid;
+}
+
+BrickedGrid BrickedGrid::SampleBricks(const std::array<int, 3>& dims, const Box& box,
+  const std::function<void(const std::array<int, 3>&, float*)>& brick,
+  const std::vector<char>& candidate, const ParallelFor& parallelFor, float skipped)
+{
+  BrickedGrid grid = Layout(dims, box, skipped);
+  const std::size_t bricks = grid.Slots.size();
   const std::size_t bx = grid.BrickDims[0], bxy = bx * grid.BrickDims[1];
   auto brickOrigin = [&](std::size_t b)
   {
@@ -185,20 +192,8 @@ BrickedGrid BrickedGrid::Outline(const std::array<int, 3>& dims, const Box& box,
   const std::function<void(const std::array<int, 3>&, float*)>& brick,
   const std::vector<char>& candidate, const ParallelFor& parallelFor, float skipped)
 {
-  BrickedGrid grid;
-  grid.Dims = dims;
-  grid.Bounds = box;
-  grid.CellsPerLength =
-    Vec3(static_cast<float>(dims[0]), static_cast<float>(dims[1]), static_cast<float>(dims[2])) /
-    box.Extent();
-  for (int a = 0; a < 3; ++a)
-  {
-    grid.BrickDims[a] = BricksAlong(dims[a]);
-  }
-  const std::size_t bricks =
-    static_cast<std::size_t>(grid.BrickDims[0]) * grid.BrickDims[1] * grid.BrickDims[2];
-  grid.Slots.assign(bricks, -1);
-  grid.Constants.assign(bricks, skipped);
+  BrickedGrid grid = Layout(dims, box, skipped);
+  const std::size_t bricks = grid.Slots.size();
   const std::size_t bx = grid.BrickDims[0], bxy = bx * grid.BrickDims[1];
   // Each candidate evaluated into one brick's buffer: constant (its value
   // kept) or stored (marked, its slot given after, in brick order).

@@ -167,6 +167,8 @@ public:
   void ForEachNonZeroCellOfLayers(int first, int last, F&& f) const;
 
 private:
+  // A grid of `dims` cells over `box` whose bricks all hold `skipped`.
+  static BrickedGrid Layout(const std::array<int, 3>& dims, const Box& box, float skipped);
   std::size_t BrickIndex(int bi, int bj, int bk) const
   {
     return (static_cast<std::size_t>(bk) * this->BrickDims[1] + bj) * this->BrickDims[0] + bi;
