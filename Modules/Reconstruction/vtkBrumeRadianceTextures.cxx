@@ -242,7 +242,7 @@ std::vector<char> vtkBrumeRadianceTextures::BinWide(const brume::ObjectHits& gro
   const std::function<void(std::size_t, const brume::ParallelFor&)>& bin)
 {
   // One thread an object left the others waiting for the one with the most
-  // hits: past four threads the reconstruction no longer scaled (issue 53).
+  // hits: past four threads the reconstruction no longer scaled.
   // Its exact sums take its hits split between threads instead
   // (brume::HitBinning), the same bits whatever the split.
   std::vector<char> wide(this->Objects.size(), 0);

@@ -485,7 +485,7 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
     {
       double most = 0.0, least = sample(slot, 0), high = least, steep = 0.0;
       bool bad = false, integers = true;
-      double row[B] = {}, column[B * B] = {}, plane[B * B * B] = {};
+      double brick[B * B * B];
       for (int n = 0; n < BrickCells; ++n)
       {
         const double v = sample(slot, n);
@@ -495,22 +495,20 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
         high = std::max(high, v);
         integers = integers && v == std::floor(v);
         // The largest step between neighbouring samples, along any axis.
+        brick[n] = v;
         const int i = n % B, j = (n / B) % B, k = n / (B * B);
         if (i > 0)
         {
-          steep = std::max(steep, std::abs(v - row[i - 1]));
+          steep = std::max(steep, std::abs(v - brick[n - 1]));
         }
         if (j > 0)
         {
-          steep = std::max(steep, std::abs(v - column[(j - 1) * B + i]));
+          steep = std::max(steep, std::abs(v - brick[n - B]));
         }
         if (k > 0)
         {
-          steep = std::max(steep, std::abs(v - plane[n - B * B]));
+          steep = std::max(steep, std::abs(v - brick[n - B * B]));
         }
-        row[i] = v;
-        column[j * B + i] = v;
-        plane[n] = v;
       }
       slotHigh[static_cast<std::size_t>(slot)] = static_cast<float>(high);
       slotSteep[static_cast<std::size_t>(slot)] = static_cast<float>(steep);
