@@ -268,6 +268,7 @@ void vtkBrumeOpenGLSliceVolumeMapper::ReleaseGraphicsResources(vtkWindow* window
   this->Impl->Source->ReleaseGraphicsResources(window);
   this->Impl->Extinction->ReleaseGraphicsResources(window);
   this->Impl->BrickTable->ReleaseGraphicsResources(window);
+  this->Impl->BendMask->ReleaseGraphicsResources(window);
   this->Impl->TransferTable->ReleaseGraphicsResources(window);
   for (auto& texture : this->Impl->Coefficients)
   {
@@ -694,6 +695,8 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawRuns(vtkRenderer* ren, bool reduced)
     if (kind.Bends)
     {
       program->SetUniformi("bendParts", owner.BendParts);
+      owner.BendMask->Activate();
+      program->SetUniformi("bendMask", owner.BendMask->GetTextureUnit());
     }
     if (kind.Slabs)
     {
@@ -750,6 +753,10 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawRuns(vtkRenderer* ren, bool reduced)
     if (owner.Bricked)
     {
       owner.BrickTable->Deactivate();
+    }
+    if (kind.Bends)
+    {
+      owner.BendMask->Deactivate();
     }
     if (kind.Classified)
     {

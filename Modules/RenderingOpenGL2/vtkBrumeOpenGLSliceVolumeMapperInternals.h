@@ -68,6 +68,10 @@ struct vtkBrumeOpenGLSliceVolumeMapper::Internals
   std::vector<float> SlotLow, SlotHigh;
   std::vector<float> SlotSteep; // the largest step between neighbouring samples
   int BendingBricks = 0;
+  // Per brick, which of its 4^3 parts of 2^3 cells bend (a bit each, four
+  // floats of 16 bits; uploaded where a brick bends), and how many do.
+  vtkNew<vtkTextureObject> BendMask;
+  vtkIdType BendingParts = 0;
   float BrickScale[3] = { 1.f, 1.f, 1.f };
   // Bricks of scalars a transfer function classifies: its extinction in one
   // row (linear filtering), over TransferRange, TransferSamples wide.

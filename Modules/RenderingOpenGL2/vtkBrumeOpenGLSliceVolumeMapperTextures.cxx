@@ -22,6 +22,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bitset>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -603,13 +604,20 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
     return false;
   }
   // Stored bricks whose scalars' interval holds a point of the function
-  // that one sample a fine cell may miss are sampled finer along the rays
-  // (the shader's bendsAt: w = 2). Across a cell whose scalar changes by D
-  // (the brick's largest step between neighbouring samples), a point whose
-  // slope changes by K moves a midpoint sample's optical depth by at most
-  // K D h / 8 (h the finest cell): bricks where that stays below 10^-3 are
-  // left as they are (a smooth field's cells crossing a point).
+  // that one sample a fine cell may miss are sampled finer along the rays,
+  // in the parts of 2^3 cells where it may (the shader's bendsAt). Across a
+  // cell whose scalar changes by D (the largest step between neighbouring
+  // samples), a point whose slope changes by K moves a midpoint sample's
+  // optical depth by at most K D h / 8 (h the finest cell): where that
+  // stays below 10^-2 samples are left as they are (a smooth field's cells
+  // crossing a point). A brick is tested first with its slot's interval and
+  // steepest step, then each of its 4^3 parts (the samples 2c to 2c + 2
+  // along each axis, the last part's 6 and 7: those that the points of the
+  // part interpolate) with its own: a bit each in the bend mask, four
+  // floats of 16 bits a brick.
   impl.BendingBricks = 0;
+  impl.BendingParts = 0;
+  std::vector<float> bendMask;
   if (impl.Classified && impl.SlotLow.size() == static_cast<std::size_t>(slotCount) &&
     impl.SlotSteep.size() == impl.SlotLow.size())
   {
@@ -621,17 +629,10 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
     const double h = std::min({ spacing[0], spacing[1], spacing[2] });
     const double perUnit = std::max({ impl.BrickScale[0], impl.BrickScale[1], impl.BrickScale[2] });
     constexpr double Tolerance = 1e-2;
-    for (vtkIdType b = 0; b < bricks && !kinks.empty(); ++b)
+    // Whether samples over [low, high] whose steps reach `steep` may miss
+    // the tolerance at a kink.
+    auto bends = [&](double low, double high, double steep)
     {
-      float* entry = &table[4 * static_cast<std::size_t>(b)];
-      const vtkIdType slot = static_cast<vtkIdType>(slots->GetTuple1(b));
-      if (slot < 0)
-      {
-        continue;
-      }
-      const double low = impl.SlotLow[static_cast<std::size_t>(slot)];
-      const double high = impl.SlotHigh[static_cast<std::size_t>(slot)];
-      const double steep = impl.SlotSteep[static_cast<std::size_t>(slot)];
       auto k = std::upper_bound(kinks.begin(), kinks.end(), low,
         [](double s, const Kink& kink) { return s < kink.Scalar; });
       double change = 0.0;
@@ -639,12 +640,105 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
       {
         change = std::max(change, k->SlopeChange);
       }
-      if (change * perUnit * steep * h / 8.0 > Tolerance)
+      return change * perUnit * steep * h / 8.0 > Tolerance;
+    };
+    std::vector<std::uint64_t> masks(kinks.empty() ? 0 : static_cast<std::size_t>(bricks), 0);
+    std::vector<vtkIdType> slotOf(masks.size());
+    for (std::size_t b = 0; b < slotOf.size(); ++b)
+    {
+      slotOf[b] = static_cast<vtkIdType>(slots->GetTuple1(static_cast<vtkIdType>(b)));
+    }
+    auto test = [&](vtkIdType begin, vtkIdType end)
+    {
+      double brick[B * B * B];
+      for (vtkIdType b = begin; b < end; ++b)
       {
-        entry[3] = 2.f;
-        ++impl.BendingBricks;
+        const vtkIdType slot = slotOf[static_cast<std::size_t>(b)];
+        if (slot < 0 ||
+          !bends(impl.SlotLow[static_cast<std::size_t>(slot)],
+            impl.SlotHigh[static_cast<std::size_t>(slot)],
+            impl.SlotSteep[static_cast<std::size_t>(slot)]))
+        {
+          continue;
+        }
+        for (int n = 0; n < BrickCells; ++n)
+        {
+          brick[n] = sample(slot, n);
+        }
+        std::uint64_t mask = 0;
+        for (int part = 0; part < 64; ++part)
+        {
+          const int c[3] = { part % 4, (part / 4) % 4, part / 16 };
+          int from[3], to[3];
+          for (int a = 0; a < 3; ++a)
+          {
+            from[a] = 2 * c[a];
+            to[a] = std::min(2 * c[a] + 2, B - 1);
+          }
+          double low = brick[(from[2] * B + from[1]) * B + from[0]], high = low, steep = 0.0;
+          for (int k = from[2]; k <= to[2]; ++k)
+            for (int j = from[1]; j <= to[1]; ++j)
+              for (int i = from[0]; i <= to[0]; ++i)
+              {
+                const int n = (k * B + j) * B + i;
+                const double v = brick[n];
+                low = std::min(low, v);
+                high = std::max(high, v);
+                if (i > from[0])
+                {
+                  steep = std::max(steep, std::abs(v - brick[n - 1]));
+                }
+                if (j > from[1])
+                {
+                  steep = std::max(steep, std::abs(v - brick[n - B]));
+                }
+                if (k > from[2])
+                {
+                  steep = std::max(steep, std::abs(v - brick[n - B * B]));
+                }
+              }
+          if (bends(low, high, steep))
+          {
+            mask |= std::uint64_t{ 1 } << part;
+          }
+        }
+        masks[static_cast<std::size_t>(b)] = mask;
+      }
+    };
+    if (!masks.empty())
+    {
+      if (threads)
+      {
+        vtkSMPTools::For(0, bricks, test);
+      }
+      else
+      {
+        test(0, bricks); // vtkDataArray's GetTuple1 is not for threads
       }
     }
+    for (std::size_t b = 0; b < masks.size(); ++b)
+    {
+      if (masks[b] == 0)
+      {
+        continue;
+      }
+      if (bendMask.empty())
+      {
+        bendMask.assign(4 * static_cast<std::size_t>(bricks), 0.f);
+      }
+      for (int word = 0; word < 4; ++word)
+      {
+        bendMask[4 * b + static_cast<std::size_t>(word)] =
+          static_cast<float>((masks[b] >> (16 * word)) & 0xffffu);
+      }
+      ++impl.BendingBricks;
+      impl.BendingParts += static_cast<vtkIdType>(std::bitset<64>(masks[b]).count());
+    }
+  }
+  if (!bendMask.empty() &&
+    !Upload3D(impl.BendMask, renWin, brickDims, 4, vtkTextureObject::Nearest, bendMask.data()))
+  {
+    return false;
   }
   impl.MaxExtinction =
     largest * std::max({ impl.BrickScale[0], impl.BrickScale[1], impl.BrickScale[2] });
@@ -775,6 +869,11 @@ int vtkBrumeOpenGLSliceVolumeMapper::GetExtinctionAtlasTexelBytes() const
 int vtkBrumeOpenGLSliceVolumeMapper::GetNumberOfBendingBricks() const
 {
   return this->Impl->BendingBricks;
+}
+
+vtkIdType vtkBrumeOpenGLSliceVolumeMapper::GetNumberOfBendingParts() const
+{
+  return this->Impl->BendingParts;
 }
 
 bool vtkBrumeOpenGLSliceVolumeMapper::UploadTransferFunction(

@@ -87,15 +87,20 @@ uniform vec3 constantExtinction;     // sigma_t of a homogeneous medium
 #endif
 #if BRUME_BENDS
 uniform int bendParts;               // parts of a sample there: four samples a fine cell
-// Whether the brick holding t (as extinctionAt finds it) has scalars whose
-// interval holds a point of the transfer function (the brick table's w is
-// 2): one sample a fine cell does not integrate the classified extinction
-// of a structure a cell thin there.
+// Per brick, a bit for each of its 4^3 parts of 2^3 cells (16 in each
+// float) whose scalars span a point of the transfer function steeply.
+uniform sampler3D bendMask;
+// Whether the part of the brick holding t (as extinctionAt finds it) bends:
+// one sample a fine cell does not integrate the classified extinction of a
+// structure a cell thin there.
 bool bendsAt(vec3 t)
 {
   vec3 u = clamp(t * gridCells - 0.5, vec3(0.0), gridCells - 1.0);
   vec3 brick = min(floor(u / 7.0), brickCount - 1.0);
-  return texelFetch(brickTable, ivec3(brick), 0).w > 1.5;
+  ivec3 part = ivec3(min(floor((u - 7.0 * brick) * 0.5), vec3(3.0)));
+  int bit = part.x + 4 * part.y + 16 * part.z;
+  int word = int(texelFetch(bendMask, ivec3(brick), 0)[bit / 16]);
+  return ((word >> (bit % 16)) & 1) != 0;
 }
 #endif
 
@@ -162,49 +167,44 @@ void main()
 #if BRUME_ALBEDO
   vec3 scattering = vec3(0.0);
 #endif
-  for (int k = 0; k < samples; ++k)
+#if BRUME_BENDS
+  // Where the function bends, a slab takes bendParts times as many samples
+  // (four a fine cell), evenly across it, each counting 1 / bendParts: a
+  // slab any of whose samples' shares (at most a fine cell each) has an end
+  // in a bending part. One loop over them all: under llvmpipe a loop over
+  // each sample's parts within the loop over the samples cost the shells'
+  // frame 0.8 s more.
+  vec3 share = across / float(samples);
+  bool bends = false;
+  for (int k = 0; k <= samples; ++k)
+  {
+    bends = bends || bendsAt((texcoord + share * (float(k) - 0.5 * float(samples))) *
+      extinctionScale + extinctionOffset);
+  }
+  int parts = bends ? bendParts : 1;
+#else
+  const int parts = 1;
+#endif
+  int taken = samples * parts;
+  for (int q = 0; q < taken; ++q)
   {
     vec3 t = texcoord;
 #if BRUME_SLABS
-    t += across * ((float(k) + 0.5) / float(samples) - 0.5);
-    if (samples > 1 && (any(lessThan(t, vec3(0.0))) || any(greaterThan(t, vec3(1.0)))))
+    t += across * ((float(q) + 0.5) / float(taken) - 0.5);
+    if (taken > 1 && (any(lessThan(t, vec3(0.0))) || any(greaterThan(t, vec3(1.0)))))
     {
       continue;
     }
 #endif
-    // Where the function bends, bendParts samples spread over this one's
-    // share of the slab (four a fine cell), their mean its value. The share
-    // (at most a fine cell) may reach into a bending brick from one that
-    // does not: both its ends are asked.
-#if BRUME_BENDS
-    vec3 share = across / float(samples);
-    int parts = bendsAt((t - 0.5 * share) * extinctionScale + extinctionOffset) ||
-        bendsAt((t + 0.5 * share) * extinctionScale + extinctionOffset)
-      ? bendParts
-      : 1;
-#else
-    const int parts = 1;
-#endif
-    for (int j = 0; j < parts; ++j)
-    {
-      vec3 part = t;
-#if BRUME_BENDS
-      part += share * ((float(j) + 0.5) / float(parts) - 0.5);
-      if (any(lessThan(part, vec3(0.0))) || any(greaterThan(part, vec3(1.0))))
-      {
-        continue;
-      }
-#endif
-      vec3 albedo;
-      vec3 sigma = extinctionAt(part * extinctionScale + extinctionOffset, albedo) / float(parts);
+    vec3 albedo;
+    vec3 sigma = extinctionAt(t * extinctionScale + extinctionOffset, albedo) / float(parts);
 #if BRUME_ALBEDO
-      // J = sigma_t a X; the peak's share a Forward of sigma_t is transport.
-      scattering += sigma * albedo;
-      sigmaT += sigma * (vec3(1.0) - albedo * forwardFraction);
+    // J = sigma_t a X; the peak's share a Forward of sigma_t is transport.
+    scattering += sigma * albedo;
+    sigmaT += sigma * (vec3(1.0) - albedo * forwardFraction);
 #else
-      sigmaT += sigma;
+    sigmaT += sigma;
 #endif
-    }
   }
   sigmaT /= float(samples);
 #if BRUME_ALBEDO

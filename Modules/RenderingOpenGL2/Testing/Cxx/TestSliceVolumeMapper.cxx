@@ -801,7 +801,8 @@ bool ClassifiedThinSheet()
       const std::string what = std::string("classified thin sheet, ") +
         (parallel ? "parallel" : "perspective") + ", " + std::to_string(offset) + " cell off";
       std::cout << what << ": tau " << tau << ", " << mapper->GetNumberOfBendingBricks()
-                << " bending bricks, largest error " << 100.0 * worst << " % (centre "
+                << " bending bricks (" << mapper->GetNumberOfBendingParts()
+                << " parts), largest error " << 100.0 * worst << " % (centre "
                 << f.At(Size / 2, Size / 2)[0] << " of " << expected << ")\n";
       // The bricks whose cells hold the sheet's (cell 13: 0 to 200 there).
       int bending = 0;
@@ -813,6 +814,15 @@ bool ClassifiedThinSheet()
       {
         std::cerr << what << ": " << mapper->GetNumberOfBendingBricks() << " bricks bend, not "
                   << bending << "\n";
+        ok = false;
+      }
+      // Of each, the parts whose points hold the sheet's and a 0 beside it
+      // (two of four along z: points 4 to 6 and 6 to 7 of the brick from
+      // cell 7), every one across x and y: 32 of its 64.
+      if (mapper->GetNumberOfBendingParts() != 32 * bending)
+      {
+        std::cerr << what << ": " << mapper->GetNumberOfBendingParts() << " parts bend, not "
+                  << 32 * bending << "\n";
         ok = false;
       }
       // Parallel: the four samples a fine cell (within 1 % of the optical
