@@ -480,23 +480,73 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
     const int z = std::min(first[2] + n / (B * B), dims[2] - 1);
     return value((static_cast<vtkIdType>(z) * dims[1] + y) * dims[0] + x);
   };
-  auto check = [&](vtkIdType begin, vtkIdType end)
+  // The B^3 samples of a slot, as sample() gives them: a row of the
+  // field's own array at a time where it is read in place.
+  auto readSlot = [&](vtkIdType slot, double* out)
   {
-    for (vtkIdType slot = begin; slot < end; ++slot)
+    auto rows = [&](const auto* data)
     {
-      double most = 0.0, least = sample(slot, 0), high = least, steep = 0.0;
-      bool bad = false, integers = true;
-      double brick[B * B * B];
+      const int* first = &slotFirst[3 * static_cast<std::size_t>(slot)];
+      int xs[B];
+      for (int i = 0; i < B; ++i)
+      {
+        xs[i] = std::min(first[0] + i, dims[0] - 1);
+      }
+      for (int k = 0; k < B; ++k)
+      {
+        const vtkIdType z = std::min(first[2] + k, dims[2] - 1);
+        for (int j = 0; j < B; ++j)
+        {
+          const vtkIdType y = std::min(first[1] + j, dims[1] - 1);
+          const auto* row = data + (z * dims[1] + y) * dims[0];
+          for (int i = 0; i < B; ++i)
+          {
+            *out++ = static_cast<double>(row[xs[i]]);
+          }
+        }
+      }
+    };
+    if (cellValues && floats)
+    {
+      rows(floats->GetPointer(0));
+    }
+    else if (cellValues && bytes)
+    {
+      rows(bytes->GetPointer(0));
+    }
+    else if (cellValues && shorts)
+    {
+      rows(shorts->GetPointer(0));
+    }
+    else if (cellValues && signedShorts)
+    {
+      rows(signedShorts->GetPointer(0));
+    }
+    else
+    {
       for (int n = 0; n < BrickCells; ++n)
       {
-        const double v = sample(slot, n);
+        out[n] = sample(slot, n);
+      }
+    }
+  };
+  auto check = [&](vtkIdType begin, vtkIdType end)
+  {
+    double brick[B * B * B];
+    for (vtkIdType slot = begin; slot < end; ++slot)
+    {
+      readSlot(slot, brick);
+      double most = 0.0, least = brick[0], high = least, steep = 0.0;
+      bool bad = false, integers = true;
+      for (int n = 0; n < BrickCells; ++n)
+      {
+        const double v = brick[n];
         bad = bad || invalidSample(v);
         most = std::max(most, v);
         least = std::min(least, v);
         high = std::max(high, v);
         integers = integers && v == std::floor(v);
         // The largest step between neighbouring samples, along any axis.
-        brick[n] = v;
         const int i = n % B, j = (n / B) % B, k = n / (B * B);
         if (i > 0)
         {
@@ -661,10 +711,41 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
         {
           continue;
         }
-        for (int n = 0; n < BrickCells; ++n)
-        {
-          brick[n] = sample(slot, n);
-        }
+        readSlot(slot, brick);
+        // Each part's interval, separably (x, then y, then z); its steepest
+        // step only where the interval alone may miss the tolerance (a step
+        // is at most the interval's width): the fog beside a sheet is let
+        // go on its interval.
+        double lowX[B][B][4], highX[B][B][4], lowXY[B][4][4], highXY[B][4][4];
+        for (int k = 0; k < B; ++k)
+          for (int j = 0; j < B; ++j)
+          {
+            const double* row = &brick[(k * B + j) * B];
+            for (int c = 0; c < 4; ++c)
+            {
+              double lo = row[2 * c], hi = lo;
+              for (int i = 2 * c + 1; i <= std::min(2 * c + 2, B - 1); ++i)
+              {
+                lo = std::min(lo, row[i]);
+                hi = std::max(hi, row[i]);
+              }
+              lowX[k][j][c] = lo;
+              highX[k][j][c] = hi;
+            }
+          }
+        for (int k = 0; k < B; ++k)
+          for (int cy = 0; cy < 4; ++cy)
+            for (int cx = 0; cx < 4; ++cx)
+            {
+              double lo = lowX[k][2 * cy][cx], hi = highX[k][2 * cy][cx];
+              for (int j = 2 * cy + 1; j <= std::min(2 * cy + 2, B - 1); ++j)
+              {
+                lo = std::min(lo, lowX[k][j][cx]);
+                hi = std::max(hi, highX[k][j][cx]);
+              }
+              lowXY[k][cy][cx] = lo;
+              highXY[k][cy][cx] = hi;
+            }
         std::uint64_t mask = 0;
         for (int part = 0; part < 64; ++part)
         {
@@ -675,15 +756,23 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
             from[a] = 2 * c[a];
             to[a] = std::min(2 * c[a] + 2, B - 1);
           }
-          double low = brick[(from[2] * B + from[1]) * B + from[0]], high = low, steep = 0.0;
+          double low = lowXY[from[2]][c[1]][c[0]], high = highXY[from[2]][c[1]][c[0]];
+          for (int k = from[2] + 1; k <= to[2]; ++k)
+          {
+            low = std::min(low, lowXY[k][c[1]][c[0]]);
+            high = std::max(high, highXY[k][c[1]][c[0]]);
+          }
+          if (!bends(low, high, high - low))
+          {
+            continue;
+          }
+          double steep = 0.0;
           for (int k = from[2]; k <= to[2]; ++k)
             for (int j = from[1]; j <= to[1]; ++j)
               for (int i = from[0]; i <= to[0]; ++i)
               {
                 const int n = (k * B + j) * B + i;
                 const double v = brick[n];
-                low = std::min(low, v);
-                high = std::max(high, v);
                 if (i > from[0])
                 {
                   steep = std::max(steep, std::abs(v - brick[n - 1]));
@@ -776,10 +865,15 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   std::vector<std::uint16_t> layer16(width == 2 ? layerTexels : 0);
   auto pack = [&](vtkIdType first, vtkIdType begin, vtkIdType end)
   {
+    double brick[B * B * B];
     for (vtkIdType s = begin; s < end; ++s)
     {
       const vtkIdType slot = first + s;
       const int sx = static_cast<int>(s % atlas[0]), sy = static_cast<int>(s / atlas[0]);
+      if (slot < slotCount)
+      {
+        readSlot(slot, brick);
+      }
       for (int k = 0; k < B; ++k)
         for (int j = 0; j < B; ++j)
         {
@@ -788,7 +882,7 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
           for (int i = 0; i < B; ++i)
           {
             // Zeros in the atlas's unused slots.
-            const double v = slot < slotCount ? sample(slot, (k * B + j) * B + i) : least;
+            const double v = slot < slotCount ? brick[(k * B + j) * B + i] : least;
             if (width == 2)
             {
               layer16[row + i] = static_cast<std::uint16_t>(v - least);
