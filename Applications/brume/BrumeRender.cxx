@@ -434,6 +434,9 @@ int RunRender(const RenderOptions& options)
   // One image, one viewpoint: view-dependent objects bin toward it and keep
   // no hits, so that a run in batches holds one batch's hits at a time.
   pipeline->GetReconstruction()->SetFixedView(true);
+  // A volume the GPU cannot hold at its own resolution is coarsened to fit
+  // (where the driver says what it has free; every process alike).
+  pipeline->LimitToGPUMemory(rank == 0 ? pipeline->GetImageWindow() : nullptr);
   if (rank == 0)
   {
     BrumeShowProgress(tracer, "particle tracing");

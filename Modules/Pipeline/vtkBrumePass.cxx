@@ -169,6 +169,10 @@ bool vtkBrumePass::Trace(bool built)
   in.Pipeline->SetProgressive(progressive);
   in.Pipeline->GetTracer()->SetNumberOfParticles(first);
   in.Pipeline->GetReconstruction()->SetPlannedParticles(progressive ? this->NumberOfParticles : 0);
+  // A volume this GPU cannot hold at its own resolution is coarsened to
+  // fit (collective where the pipeline's processes trace together).
+  vtkRenderer* renderer = in.Scene->GetRenderer();
+  in.Pipeline->LimitToGPUMemory(renderer ? renderer->GetRenderWindow() : nullptr);
   if (!in.Pipeline->Update())
   {
     vtkErrorMacro("Brume's " << in.Pipeline->GetFailedPhase()

@@ -6,12 +6,14 @@
 #include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeFloatImageCapture.h"
 #include "vtkBrumeLightTracer.h"
+#include "vtkBrumeOpenGLSliceVolumeMapper.h"
 #include "vtkBrumeProcesses.h"
 #include "vtkBrumeRadianceReconstruction.h"
 #include "vtkBrumeSMP.h"
 #include "vtkBrumeSceneActors.h"
 #include "vtkBrumeSceneCamera.h"
 #include "vtkCamera.h"
+#include "vtkCommunicator.h"
 #include "vtkDataArray.h"
 #include "vtkDataObject.h"
 #include "vtkExecutive.h"
@@ -21,6 +23,7 @@
 #include "vtkInformationVector.h"
 #include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
+#include "vtkOpenGLRenderWindow.h"
 #include "vtkPartitionedDataSetCollection.h"
 #include "vtkPolyData.h"
 #include "vtkRenderWindow.h"
@@ -481,6 +484,56 @@ bool vtkBrumePipeline::AddToRenderer(vtkRenderer* renderer)
   return true;
 }
 
+void vtkBrumePipeline::MakeImageWindow()
+{
+  if (this->ImageWindow)
+  {
+    return;
+  }
+  auto renderer = vtkSmartPointer<vtkRenderer>::New();
+  renderer->SetBackground(0, 0, 0);
+  this->ImageWindow = vtkSmartPointer<vtkRenderWindow>::New();
+  this->ImageWindow->SetOffScreenRendering(1);
+  this->ImageWindow->SetMultiSamples(0);
+  this->ImageWindow->AddRenderer(renderer);
+  this->ImageCapture = vtkSmartPointer<vtkBrumeFloatImageCapture>::New();
+  this->ImageCapture->Attach(renderer);
+}
+
+vtkRenderWindow* vtkBrumePipeline::GetImageWindow()
+{
+  this->MakeImageWindow();
+  this->ImageWindow->SetSize(this->Size[0], this->Size[1]);
+  if (auto* gl = vtkOpenGLRenderWindow::SafeDownCast(this->ImageWindow))
+  {
+    gl->Initialize();
+  }
+  return this->ImageWindow;
+}
+
+vtkTypeInt64 vtkBrumePipeline::LimitToGPUMemory(vtkRenderWindow* window)
+{
+  // Asked once per window: what later textures of the same run take is
+  // not to coarsen the next trace's volume.
+  if (window && window != this->AskedWindow)
+  {
+    this->AskedWindow = window;
+    this->AskedFree = vtkBrumeOpenGLSliceVolumeMapper::GetFreeGPUMemory(window);
+  }
+  vtkTypeInt64 limit = window && this->AskedFree > 0
+    ? static_cast<vtkTypeInt64>(0.75 * static_cast<double>(this->AskedFree))
+    : VTK_TYPE_INT64_MAX;
+  if (vtkBrumeProcesses::IsDistributed(this->Controller))
+  {
+    vtkTypeInt64 least = limit;
+    this->Controller->AllReduce(&limit, &least, 1, vtkCommunicator::MIN_OP);
+    limit = least;
+  }
+  limit = limit == VTK_TYPE_INT64_MAX ? 0 : limit;
+  this->Reconstruction->SetGPUMemoryLimit(limit);
+  return limit;
+}
+
 vtkSmartPointer<vtkImageData> vtkBrumePipeline::RenderImage(int supersample)
 {
   this->FailedPhase = "";
@@ -515,17 +568,7 @@ vtkSmartPointer<vtkImageData> vtkBrumePipeline::RenderImage(int supersample)
     this->Fail("rendering");
     return nullptr;
   }
-  if (!this->ImageWindow)
-  {
-    auto renderer = vtkSmartPointer<vtkRenderer>::New();
-    renderer->SetBackground(0, 0, 0);
-    this->ImageWindow = vtkSmartPointer<vtkRenderWindow>::New();
-    this->ImageWindow->SetOffScreenRendering(1);
-    this->ImageWindow->SetMultiSamples(0);
-    this->ImageWindow->AddRenderer(renderer);
-    this->ImageCapture = vtkSmartPointer<vtkBrumeFloatImageCapture>::New();
-    this->ImageCapture->Attach(renderer);
-  }
+  this->MakeImageWindow();
   vtkRenderer* renderer = this->ImageWindow->GetRenderers()->GetFirstRenderer();
   this->ImageWindow->SetSize(this->Size[0], this->Size[1]);
   if (this->ActorsRenderer != renderer)

@@ -225,6 +225,22 @@ public:
    */
   vtkSmartPointer<vtkImageData> RenderImage(int supersample = 1);
 
+  /**
+   * Limits each medium's grids at their own resolution to three quarters
+   * of the memory the GPU of `window` had free when first asked
+   * (vtkBrumeOpenGLSliceVolumeMapper::GetFreeGPUMemory(),
+   * vtkBrumeRadianceReconstruction::SetGPUMemoryLimit()): a volume the GPU
+   * cannot hold is coarsened to fit, with a warning, instead of failing to
+   * draw. No limit where the driver does not say. With a controller every
+   * process takes the smallest of the processes' limits, so that all
+   * sample alike (collective: a process without a window passes null).
+   * `window` must have its context: within a render, or after one
+   * (GetImageWindow() makes RenderImage()'s). Returns the limit (0: none).
+   */
+  vtkTypeInt64 LimitToGPUMemory(vtkRenderWindow* window);
+  /// RenderImage()'s window, off screen, its context made.
+  vtkRenderWindow* GetImageWindow();
+
   /// The 8-bit sRGB image of `radiance` at Exposure.
   vtkSmartPointer<vtkImageData> ToneMap(vtkImageData* radiance);
 
@@ -307,8 +323,12 @@ private:
   vtkSmartPointer<vtkCamera> Camera;
   bool CameraChosen = false;          // SetCamera(), ApplySceneSettings() or a first Update()
   vtkMTimeType CameraDefaultTime = 0; // the camera's, until someone moves it
-  vtkSmartPointer<vtkRenderer> ActorsRenderer;  // where AddToRenderer() put the props
+  vtkSmartPointer<vtkRenderer> ActorsRenderer; // where AddToRenderer() put the props
+  void MakeImageWindow();
   vtkSmartPointer<vtkRenderWindow> ImageWindow; // RenderImage()'s
+  // The window whose GPU LimitToGPUMemory() asked, and what it said.
+  vtkRenderWindow* AskedWindow = nullptr;
+  vtkTypeInt64 AskedFree = -1;
   vtkSmartPointer<vtkBrumeFloatImageCapture> ImageCapture;
   const char* FailedPhase = "";
 };

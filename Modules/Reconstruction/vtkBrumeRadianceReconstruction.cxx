@@ -252,9 +252,18 @@ bool vtkBrumeRadianceReconstruction::Validate(
 
 vtkTypeInt64 vtkBrumeRadianceReconstruction::GetEffectiveNativeMemoryLimit() const
 {
-  return this->NativeMemoryLimit > 0
-    ? this->NativeMemoryLimit
-    : static_cast<vtkTypeInt64>(0.25 * vtkBrumeSMP::UsableMemory());
+  if (this->NativeMemoryLimit > 0)
+  {
+    return this->NativeMemoryLimit;
+  }
+  const auto machine = static_cast<vtkTypeInt64>(0.25 * vtkBrumeSMP::UsableMemory());
+  return this->GPUMemoryLimit > 0 ? std::min(machine, this->GPUMemoryLimit) : machine;
+}
+
+bool vtkBrumeRadianceReconstruction::IsNativeMemoryLimitedByGPU() const
+{
+  return this->NativeMemoryLimit <= 0 && this->GPUMemoryLimit > 0 &&
+    this->GetEffectiveNativeMemoryLimit() == this->GPUMemoryLimit;
 }
 
 bool vtkBrumeRadianceReconstruction::Plan(const vtkBrumeReconstructionRequest& request)
@@ -267,7 +276,7 @@ bool vtkBrumeRadianceReconstruction::Plan(const vtkBrumeReconstructionRequest& r
     this->DirectLighting ? this->DirectLightResolution : 0, this->MirrorResolution,
     this->CentroidMatching, this->SparseMedia, this->FixedView,
     this->FixedView && this->DirectionalRadiance, static_cast<double>(this->PlannedParticles),
-    this->GetEffectiveNativeMemoryLimit() };
+    this->GetEffectiveNativeMemoryLimit(), this->IsNativeMemoryLimitedByGPU() };
   vtkBrumeRadianceTextures* textures = this->Textures.get();
   const auto& run = request.Run;
   const bool sameSettings = textures && textures->SameSceneAndSettings(request, settings);
@@ -368,6 +377,7 @@ void vtkBrumeRadianceReconstruction::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CentroidMatching: " << this->CentroidMatching << "\n";
   os << indent << "SparseMedia: " << this->SparseMedia << "\n";
   os << indent << "NativeMemoryLimit: " << this->NativeMemoryLimit << "\n";
+  os << indent << "GPUMemoryLimit: " << this->GPUMemoryLimit << "\n";
   os << indent << "IncrementalUpdate: " << this->IncrementalUpdate << "\n";
   os << indent << "NumberOfTextureBuilds: " << this->NumberOfTextureBuilds << "\n";
   os << indent << "NumberOfViewUpdates: " << this->NumberOfViewUpdates << "\n";

@@ -379,6 +379,25 @@ public:
   vtkTypeInt64 GetEffectiveNativeMemoryLimit() const;
   ///@}
 
+  ///@{
+  /**
+   * The bytes of GPU memory a medium's grid at its own resolution may take
+   * (the slice mapper's atlas holds its samples); 0, the default: not
+   * known. A renderer that knows its GPU sets it: vtkBrumePass and brume's
+   * commands, to three quarters of what the GPU reports free
+   * (vtkBrumeOpenGLSliceVolumeMapper::GetFreeGPUMemory(): drivers with
+   * GL_NVX_gpu_memory_info or GL_ATI_meminfo; Mesa's llvmpipe has
+   * neither). Where NativeMemoryLimit is 0 the automatic limit is the
+   * smaller of the machine's and this one, and the warning of a medium
+   * coarsened to fit it names the GPU; an explicit NativeMemoryLimit
+   * overrides both.
+   */
+  vtkSetClampMacro(GPUMemoryLimit, vtkTypeInt64, 0, VTK_TYPE_INT64_MAX);
+  vtkGetMacro(GPUMemoryLimit, vtkTypeInt64);
+  /// Whether GetEffectiveNativeMemoryLimit() is GPUMemoryLimit.
+  bool IsNativeMemoryLimitedByGPU() const;
+  ///@}
+
 protected:
   vtkBrumeRadianceReconstruction();
   ~vtkBrumeRadianceReconstruction() override;
@@ -400,6 +419,7 @@ protected:
   bool CentroidMatching = true;
   bool SparseMedia = true;
   vtkTypeInt64 NativeMemoryLimit = 0;
+  vtkTypeInt64 GPUMemoryLimit = 0;
   vtkCamera* Camera = nullptr;
   vtkMultiProcessController* Controller = nullptr;
   vtkTypeInt64 LastReductionBytes = 0;

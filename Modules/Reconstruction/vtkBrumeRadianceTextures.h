@@ -57,11 +57,12 @@ struct vtkBrumeReconstructionSettings
   int DirectLightResolution = 0; // 0: no deterministic single scattering
   int MirrorResolution = 0;
   bool CentroidMatching = true;
-  bool SparseMedia = true;       // heterogeneous media's textures in the sparse form
-  bool FixedView = false;        // view-dependent objects binned toward one eye
-  bool DirectionalMedia = false; // with FixedView: anisotropic media keep their hits
-  double PlannedParticles = 0.0; // resolutions chosen for this many particles, if more
-  vtkTypeInt64 NativeMemory = 0; // bytes each medium's own-resolution grids may take
+  bool SparseMedia = true;        // heterogeneous media's textures in the sparse form
+  bool FixedView = false;         // view-dependent objects binned toward one eye
+  bool DirectionalMedia = false;  // with FixedView: anisotropic media keep their hits
+  double PlannedParticles = 0.0;  // resolutions chosen for this many particles, if more
+  vtkTypeInt64 NativeMemory = 0;  // bytes each medium's own-resolution grids may take
+  bool NativeMemoryOfGPU = false; // NativeMemory is the GPU's (for the warning)
 
   bool operator==(const vtkBrumeReconstructionSettings& o) const
   {
@@ -73,7 +74,8 @@ struct vtkBrumeReconstructionSettings
       this->MirrorResolution == o.MirrorResolution &&
       this->CentroidMatching == o.CentroidMatching && this->SparseMedia == o.SparseMedia &&
       this->FixedView == o.FixedView && this->DirectionalMedia == o.DirectionalMedia &&
-      this->PlannedParticles == o.PlannedParticles && this->NativeMemory == o.NativeMemory;
+      this->PlannedParticles == o.PlannedParticles && this->NativeMemory == o.NativeMemory &&
+      this->NativeMemoryOfGPU == o.NativeMemoryOfGPU;
   }
 };
 
@@ -287,6 +289,7 @@ private:
   vtkPolyData* HitsData = nullptr;
   vtkMTimeType HitsTime = 0;
   vtkBrumeReconstructionSettings Settings;
+  bool NativeMemoryOfGPU = false; // the objects' NativeMemory is the GPU's (for the warning)
   brume::Scene Scene;
   std::shared_ptr<const brume::RayCaster> Caster; // shadow rays and mirrors' rays
   std::unique_ptr<brume::DirectLight> Direct;     // null: no direct light

@@ -238,6 +238,7 @@ bool vtkBrumeRadianceTextures::CreateObjects(const vtkBrumeReconstructionSetting
     radiance->Distribution().SetReduction(this->Reduction.get());
     radiance->Options().CentroidMatching = settings.CentroidMatching;
     radiance->Options().NativeMemory = static_cast<std::size_t>(settings.NativeMemory);
+    this->NativeMemoryOfGPU = settings.NativeMemoryOfGPU;
     this->Objects.push_back(std::move(radiance));
     this->Outputs.push_back(nullptr);
   }
@@ -350,7 +351,10 @@ void vtkBrumeRadianceTextures::SampleMedia(vtkBrumeReconstructionWork& work)
                         " coarsened by " + std::to_string(native.GetCoarsening()) +
                         ": its grids at its own resolution would take more than the " +
                         std::to_string(object.Options().NativeMemory >> 20) +
-                        " MB NativeMemoryLimit (brume: --native-memory)."));
+                        (this->NativeMemoryOfGPU
+                            ? " MB the GPU has free for them (GPUMemoryLimit; an explicit "
+                              "NativeMemoryLimit, brume: --native-memory, overrides it)."
+                            : " MB NativeMemoryLimit (brume: --native-memory).")));
     }
   }
   this->PreviousNatives.clear();

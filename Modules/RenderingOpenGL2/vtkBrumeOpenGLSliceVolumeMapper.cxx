@@ -263,6 +263,46 @@ vtkBrumeOpenGLSliceVolumeMapper::vtkBrumeOpenGLSliceVolumeMapper()
 
 vtkBrumeOpenGLSliceVolumeMapper::~vtkBrumeOpenGLSliceVolumeMapper() = default;
 
+vtkTypeInt64 vtkBrumeOpenGLSliceVolumeMapper::GetFreeGPUMemory(vtkRenderWindow* window)
+{
+  auto* gl = vtkOpenGLRenderWindow::SafeDownCast(window);
+  if (!gl)
+  {
+    return -1;
+  }
+  gl->MakeCurrent(); // nothing to make current before the context is
+  if (!gl->IsCurrent())
+  {
+    return -1;
+  }
+  bool nvx = false, ati = false;
+  GLint extensions = 0;
+  glGetIntegerv(GL_NUM_EXTENSIONS, &extensions);
+  for (GLint e = 0; e < extensions; ++e)
+  {
+    const auto* name = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, e));
+    const std::string extension = name ? name : "";
+    nvx = nvx || extension == "GL_NVX_gpu_memory_info";
+    ati = ati || extension == "GL_ATI_meminfo";
+  }
+  // Kilobytes: GL_GPU_MEMORY_INFO_CURRENT_AVAILABLE_VIDMEM_NVX, or the
+  // first of GL_TEXTURE_FREE_MEMORY_ATI's four (the pool's free total).
+  constexpr GLenum CurrentAvailableNVX = 0x9049, TextureFreeATI = 0x87FC;
+  GLint kilobytes[4] = { -1, -1, -1, -1 };
+  if (nvx)
+  {
+    glGetIntegerv(CurrentAvailableNVX, kilobytes);
+  }
+  else if (ati)
+  {
+    glGetIntegerv(TextureFreeATI, kilobytes);
+  }
+  while (glGetError() != GL_NO_ERROR)
+  {
+  }
+  return kilobytes[0] >= 0 ? static_cast<vtkTypeInt64>(kilobytes[0]) * 1024 : -1;
+}
+
 void vtkBrumeOpenGLSliceVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Impl->Source->ReleaseGraphicsResources(window);

@@ -27,6 +27,7 @@ class vtkImageData;
 class vtkInformationIntegerKey;
 class vtkMatrix4x4;
 class vtkOpenGLRenderWindow;
+class vtkRenderWindow;
 class vtkRenderer;
 class vtkVolume;
 
@@ -75,6 +76,16 @@ public:
 
   /// Renderer keys: the frame count and the frame whose volumes were drawn.
   static vtkInformationIntegerKey* FRAME();
+  /**
+   * The bytes of memory the GPU of `window` reports free: the current
+   * available video memory of GL_NVX_gpu_memory_info (NVIDIA), or the free
+   * texture memory of GL_ATI_meminfo (AMD); -1 where its driver has
+   * neither (Mesa's llvmpipe and OSMesa among them) or the window has no
+   * OpenGL context yet (before its first render). Makes the context
+   * current. The mapper asks it before it makes an atlas: one that does
+   * not fit fails with a message instead of the driver's out-of-memory.
+   */
+  static vtkTypeInt64 GetFreeGPUMemory(vtkRenderWindow* window);
   static vtkInformationIntegerKey* DRAWN_FRAME();
 
 protected:

@@ -939,6 +939,23 @@ bool vtkBrumeOpenGLSliceVolumeMapper::CreateAtlas(
   {
     return true; // the same storage, filled in place
   }
+  // An atlas the GPU says it cannot hold (beside what the one it replaces
+  // frees) fails here, with the sizes, rather than in the driver.
+  const double needed = static_cast<double>(texels[0]) * texels[1] * texels[2] * bytes;
+  const vtkTypeInt64 available = vtkBrumeOpenGLSliceVolumeMapper::GetFreeGPUMemory(renWin);
+  const double replaced = texture->GetHandle() && texture->GetContext() == renWin
+    ? static_cast<double>(texture->GetWidth()) * texture->GetHeight() * texture->GetDepth() *
+      texture->GetComponents() * vtkAbstractArray::GetDataTypeSize(texture->GetVTKDataType())
+    : 0.0;
+  if (available >= 0 && needed > static_cast<double>(available) + replaced)
+  {
+    vtkErrorMacro("Cannot draw this medium: its bricks of extinction need a texture of "
+      << std::llround(needed / 1048576.0) << " MB, more than the "
+      << std::llround((static_cast<double>(available) + replaced) / 1048576.0)
+      << " MB this GPU has free. A smaller NativeMemoryLimit coarsens it "
+         "(vtkBrumeRadianceReconstruction; brume: --native-memory).");
+    return false;
+  }
   texture->SetContext(renWin);
   texture->SetWrapS(vtkTextureObject::ClampToEdge);
   texture->SetWrapT(vtkTextureObject::ClampToEdge);

@@ -112,7 +112,7 @@ struct WarningCatcher
 // (partition 1), after a run with `limit` bytes for it; the warnings in
 // `warnings`. The filters are gone when it returns.
 vtkSmartPointer<vtkImageData> NativeImage(
-  vtkImageData* field, vtkTypeInt64 limit, std::string& warnings)
+  vtkImageData* field, vtkTypeInt64 limit, std::string& warnings, vtkTypeInt64 gpuLimit = 0)
 {
   vtkSmartPointer<vtkPartitionedDataSetCollection> scene = Scene(field);
   vtkNew<vtkBrumeLightTracer> tracer;
@@ -124,6 +124,7 @@ vtkSmartPointer<vtkImageData> NativeImage(
   reconstruction->SetInputConnection(1, tracer->GetOutputPort());
   reconstruction->SetEyePosition(0, 0.4, 3);
   reconstruction->SetNativeMemoryLimit(limit);
+  reconstruction->SetGPUMemoryLimit(gpuLimit);
   WarningCatcher catcher;
   vtkNew<vtkCallbackCommand> command;
   command->SetCallback(WarningCatcher::Callback);
@@ -139,10 +140,11 @@ vtkSmartPointer<vtkImageData> NativeImage(
 }
 
 // The cells of that grid.
-std::array<int, 3> NativeCells(vtkImageData* field, vtkTypeInt64 limit, std::string& warnings)
+std::array<int, 3> NativeCells(
+  vtkImageData* field, vtkTypeInt64 limit, std::string& warnings, vtkTypeInt64 gpuLimit = 0)
 {
   std::array<int, 3> cells{ 0, 0, 0 };
-  vtkSmartPointer<vtkImageData> native = NativeImage(field, limit, warnings);
+  vtkSmartPointer<vtkImageData> native = NativeImage(field, limit, warnings, gpuLimit);
   if (native)
   {
     int dims[3];
@@ -212,6 +214,43 @@ void TestOwnResolution()
   Check(warnings.find("Medium 'wave' is drawn at 24 x 24 x 24, its own 48 x 48 x 48 coarsened "
                       "by 2") != std::string::npos,
     "one warning says so, naming the medium: '" + warnings + "'");
+}
+
+// A GPU that has less free than the machine's limit (the render pass and
+// brume's commands set it from GL_NVX_gpu_memory_info or GL_ATI_meminfo)
+// bounds the automatic limit, and the warning names it; an explicit
+// NativeMemoryLimit overrides it.
+void TestGPUMemoryLimit()
+{
+  vtkNew<vtkBrumeRadianceReconstruction> r;
+  const vtkTypeInt64 machine = r->GetEffectiveNativeMemoryLimit();
+  r->SetGPUMemoryLimit(vtkTypeInt64(1) << 19);
+  Check(r->GetEffectiveNativeMemoryLimit() == (vtkTypeInt64(1) << 19) &&
+      r->IsNativeMemoryLimitedByGPU(),
+    "a GPU with half a megabyte free bounds the automatic limit");
+  r->SetGPUMemoryLimit(machine + 1);
+  Check(r->GetEffectiveNativeMemoryLimit() == machine && !r->IsNativeMemoryLimitedByGPU(),
+    "a GPU with more free than the machine's limit leaves it");
+  r->SetGPUMemoryLimit(vtkTypeInt64(1) << 19);
+  r->SetNativeMemoryLimit(vtkTypeInt64(16) << 20);
+  Check(r->GetEffectiveNativeMemoryLimit() == (vtkTypeInt64(16) << 20) &&
+      !r->IsNativeMemoryLimitedByGPU(),
+    "an explicit NativeMemoryLimit overrides the GPU's");
+
+  vtkSmartPointer<vtkImageData> field = Field(48);
+  std::string warnings;
+  const std::array<int, 3> coarse = NativeCells(field, 0, warnings, vtkTypeInt64(1) << 19);
+  Check(coarse == (std::array<int, 3>{ 24, 24, 24 }),
+    "under a GPU's half megabyte it is coarsened by 2, to 24^3, not " + std::to_string(coarse[0]));
+  Check(warnings.find("coarsened by 2") != std::string::npos &&
+      warnings.find("the GPU has free") != std::string::npos,
+    "the warning names the GPU: '" + warnings + "'");
+  const std::array<int, 3> own =
+    NativeCells(field, vtkTypeInt64(16) << 20, warnings, vtkTypeInt64(1) << 19);
+  Check(
+    own == (std::array<int, 3>{ 48, 48, 48 }) && warnings.find("coarsened") == std::string::npos,
+    "with 16 MB asked for, it keeps its own 48^3 whatever the GPU's limit, not " +
+      std::to_string(own[0]));
 }
 
 // The density of the scene's one medium.
@@ -345,6 +384,7 @@ void TestTypedScalars()
 int TestNativeResolution(int, char*[])
 {
   TestOwnResolution();
+  TestGPUMemoryLimit();
   TestConvertedOnce();
   TestReleasedWithTheArray();
   TestOutputOutlivesTheFilters();

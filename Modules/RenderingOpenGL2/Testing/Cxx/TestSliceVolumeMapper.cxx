@@ -942,6 +942,37 @@ bool ClassifiedExtinction()
   return ok;
 }
 
+bool FreeGPUMemory()
+{
+  // No window, or one before its context: -1. After a render, the driver's
+  // figure where it has GL_NVX_gpu_memory_info or GL_ATI_meminfo, -1 where
+  // it has neither (llvmpipe, which these tests run on without a GPU).
+  bool ok = vtkBrumeOpenGLSliceVolumeMapper::GetFreeGPUMemory(nullptr) == -1;
+  vtkNew<vtkRenderWindow> window;
+  window->SetOffScreenRendering(1);
+  window->SetSize(8, 8);
+  vtkNew<vtkRenderer> renderer;
+  window->AddRenderer(renderer);
+  const vtkTypeInt64 before = vtkBrumeOpenGLSliceVolumeMapper::GetFreeGPUMemory(window);
+  window->Render();
+  // The extensions as VTK lists them (one a line).
+  const std::string capabilities = window->ReportCapabilities();
+  const bool reports = capabilities.find("GL_NVX_gpu_memory_info\n") != std::string::npos ||
+    capabilities.find("GL_ATI_meminfo\n") != std::string::npos;
+  const bool listed = capabilities.find("GL_ARB_") != std::string::npos;
+  const vtkTypeInt64 after = vtkBrumeOpenGLSliceVolumeMapper::GetFreeGPUMemory(window);
+  std::cout << "free GPU memory: " << before << " before the first render, " << after
+            << " bytes after (" << (reports ? "a driver that reports it" : "a driver that does not")
+            << ")\n";
+  ok = ok && listed && before == -1 && (reports ? after > 0 : after == -1);
+  if (!ok)
+  {
+    std::cerr << "free GPU memory: -1 without a context and "
+              << (reports ? "a positive figure" : "-1") << " after a render were expected\n";
+  }
+  return ok;
+}
+
 int TestSliceVolumeMapper(int, char*[])
 {
   bool ok = true;
@@ -964,5 +995,6 @@ int TestSliceVolumeMapper(int, char*[])
   ok = ThickSkin() && ok;
   ok = ThinSheet() && ok;
   ok = ClassifiedThinSheet() && ok;
+  ok = FreeGPUMemory() && ok;
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }
