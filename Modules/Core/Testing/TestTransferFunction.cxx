@@ -77,6 +77,81 @@ double Quadrature(const Medium& medium, const Vec3& o, const Vec3& d, float leng
 }
 }
 
+// A density whose majorant blocks are given: each block's value is half
+// its majorant, its regions marked empty where every block is 0 or not.
+class BlockDensity : public DensityField
+{
+public:
+  BlockDensity(std::array<int, 3> blocks, std::vector<float> max, bool mark)
+  {
+    this->Bounds = Box{ Vec3(0.f), Vec3(1.f) };
+    this->Majorants.Bounds = this->Bounds;
+    this->Majorants.Dims = blocks;
+    this->Majorants.Max = std::move(max);
+    if (mark)
+    {
+      this->Majorants.MarkEmptyRegions();
+    }
+  }
+  float Evaluate(const Vec3& p) const override
+  {
+    const MajorantGrid& g = this->Majorants;
+    int b[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      b[a] = std::clamp(static_cast<int>(p[a] * static_cast<float>(g.Dims[a])), 0, g.Dims[a] - 1);
+    }
+    return 0.5f * g.At(b[0], b[1], b[2]);
+  }
+};
+
+TEST(TransferFunction, EmptyRegionsAreSteppedThroughAlike)
+{
+  // 40^3 blocks (5^3 regions of 8^3), two occupied blocks in opposite
+  // corners: every region but theirs is empty, and the trackers collide at
+  // the same distances, bit for bit, whether the regions are marked or not.
+  const std::array<int, 3> dims{ 40, 40, 40 };
+  std::vector<float> max(40 * 40 * 40, 0.f);
+  max[(3 * 40 + 2) * 40 + 1] = 30.f;
+  max[(37 * 40 + 38) * 40 + 39] = 60.f;
+  auto marked = std::make_shared<BlockDensity>(dims, max, true);
+  auto plain = std::make_shared<BlockDensity>(dims, max, false);
+  const MajorantGrid& g = marked->GetMajorants();
+  ASSERT_EQ(g.RegionDims, (std::array<int, 3>{ 5, 5, 5 }));
+  EXPECT_EQ(std::count(g.EmptyRegions.begin(), g.EmptyRegions.end(), 1), 123);
+  const int occupied[3] = { 1, 2, 3 }, farCorner[3] = { 39, 38, 37 }, empty[3] = { 20, 20, 20 };
+  EXPECT_FALSE(g.InEmptyRegion(occupied));
+  EXPECT_FALSE(g.InEmptyRegion(farCorner));
+  EXPECT_TRUE(g.InEmptyRegion(empty));
+  EXPECT_TRUE(plain->GetMajorants().EmptyRegions.empty());
+  Medium a = Absorber(marked), b = Absorber(plain);
+  a.SigmaS = b.SigmaS = Vec3(1.f);
+  const std::vector<Medium> withRegions{ a }, without{ b };
+  MediumTracker ta, tb;
+  int collided = 0;
+  for (std::uint64_t i = 0; i < 20000; ++i)
+  {
+    // Rays from the first occupied block toward the other, and across.
+    Random pick(11, i);
+    const Vec3 o(0.04f + 0.01f * pick.NextFloat(), 0.06f, 0.09f);
+    const Vec3 to(0.975f, 0.95f + 0.02f * pick.NextFloat(), 0.1f + 0.85f * pick.NextFloat());
+    const Vec3 d = Normalize(to - o);
+    Random ra(5, i), rb(5, i);
+    Vec3 wa(1.f), wb(1.f);
+    float tA = -1.f, tB = -1.f;
+    const Medium* hitA = SampleCollision(withRegions, o, d, 2.f, ra, wa, tA, &ta);
+    const Medium* hitB = SampleCollision(without, o, d, 2.f, rb, wb, tB, &tb);
+    ASSERT_EQ(hitA != nullptr, hitB != nullptr) << "ray " << i;
+    if (hitA)
+    {
+      ASSERT_EQ(tA, tB) << "ray " << i;
+      ++collided;
+    }
+    ASSERT_EQ(ra.NextUInt(), rb.NextUInt()) << "ray " << i << ": the same numbers drawn";
+  }
+  EXPECT_GT(collided, 1000);
+}
+
 TEST(TransferFunction, OpacityPerUnitDistanceIsVtksCompositing)
 {
   // alpha 0.5 per unit distance 2: a step of 2 lets half through, as VTK's

@@ -16,6 +16,42 @@ float MajorantGrid::GlobalMax() const
   return this->Max.empty() ? 0.f : *std::max_element(this->Max.begin(), this->Max.end());
 }
 
+void MajorantGrid::MarkEmptyRegions()
+{
+  this->EmptyRegions.clear();
+  this->RegionDims = { 0, 0, 0 };
+  const std::size_t blocks =
+    static_cast<std::size_t>(this->Dims[0]) * this->Dims[1] * this->Dims[2];
+  if (this->Max.size() != blocks ||
+    std::max({ this->Dims[0], this->Dims[1], this->Dims[2] }) <= RegionBlocks)
+  {
+    return;
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    this->RegionDims[a] = (this->Dims[a] + RegionBlocks - 1) / RegionBlocks;
+  }
+  this->EmptyRegions.assign(
+    static_cast<std::size_t>(this->RegionDims[0]) * this->RegionDims[1] * this->RegionDims[2], 1);
+  for (int k = 0; k < this->Dims[2]; ++k)
+    for (int j = 0; j < this->Dims[1]; ++j)
+    {
+      const float* row =
+        &this->Max[(static_cast<std::size_t>(k) * this->Dims[1] + j) * this->Dims[0]];
+      unsigned char* regions =
+        &this->EmptyRegions[(static_cast<std::size_t>(k / RegionBlocks) * this->RegionDims[1] +
+                              j / RegionBlocks) *
+          this->RegionDims[0]];
+      for (int i = 0; i < this->Dims[0]; ++i)
+      {
+        if (!(row[i] == 0.f))
+        {
+          regions[i / RegionBlocks] = 0;
+        }
+      }
+    }
+}
+
 std::size_t DensityField::NumberOfOccupiedBlocks() const
 {
   return static_cast<std::size_t>(std::count_if(
@@ -372,6 +408,7 @@ GridDensity::GridDensity(const Box& bounds, std::array<int, 3> dims, TypedValues
   const std::vector<float>& hi = this->BlockHigh;
   mg.Max.resize(hi.size());
   std::transform(hi.begin(), hi.end(), mg.Max.begin(), [](float v) { return v > 0.f ? v : 0.f; });
+  mg.MarkEmptyRegions();
 }
 
 void GridDensity::FindBlockRanges(const ParallelFor& parallelFor)

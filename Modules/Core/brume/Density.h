@@ -31,6 +31,27 @@ struct MajorantGrid
   }
   /// Maximum over all blocks.
   float GlobalMax() const;
+
+  /**
+   * Regions of RegionBlocks^3 blocks whose every majorant is 0, marked by
+   * MarkEmptyRegions() once Max is final: a tracker steps through them
+   * without reading their blocks (a sparse cloud's empty air, 10^7
+   * blocks of a 2048^3 OpenVDB grid). None are marked in grids under a
+   * region along every axis.
+   */
+  static constexpr int RegionBlocks = 8;
+  std::array<int, 3> RegionDims{ 0, 0, 0 };
+  std::vector<unsigned char> EmptyRegions;
+  void MarkEmptyRegions();
+  /// Whether block `cell` lies in a region MarkEmptyRegions() found empty.
+  bool InEmptyRegion(const int cell[3]) const
+  {
+    return !this->EmptyRegions.empty() &&
+      this->EmptyRegions[(static_cast<std::size_t>(cell[2] / RegionBlocks) * this->RegionDims[1] +
+                           cell[1] / RegionBlocks) *
+          this->RegionDims[0] +
+        cell[0] / RegionBlocks] != 0;
+  }
 };
 
 /// A scalar density over a box; sigma(x) = density(x) * sigma (per channel).

@@ -148,6 +148,14 @@ bool MediumTracker::Next(Random& rng)
     {
       return false;
     }
+    // Through an empty region, the same steps without reading its blocks.
+    while (this->Grid->InEmptyRegion(this->Cell))
+    {
+      if (!this->Advance())
+      {
+        return false;
+      }
+    }
   }
 }
 

@@ -410,6 +410,7 @@ ClassifiedDensity::ClassifiedDensity(std::shared_ptr<const DensityField> scalars
     const auto& nodes = this->Opacity.GetNodes();
     const float all = this->Opacity.MaxExtinction(nodes.front().Scalar, nodes.back().Scalar);
     std::fill(this->Majorants.Max.begin(), this->Majorants.Max.end(), all);
+    this->Majorants.MarkEmptyRegions();
     return;
   }
   for (std::size_t b = 0; b < hi.size(); ++b)
@@ -417,6 +418,7 @@ ClassifiedDensity::ClassifiedDensity(std::shared_ptr<const DensityField> scalars
     // A block of non-finite values only (none to range over) has none to classify.
     this->Majorants.Max[b] = lo[b] <= hi[b] ? this->Opacity.MaxExtinction(lo[b], hi[b]) : 0.f;
   }
+  this->Majorants.MarkEmptyRegions();
 }
 
 double ClassifiedDensity::NativeMean(

@@ -253,6 +253,7 @@ bool VdbDensity::Internals::BuildMajorants(VdbDensity& density, const openvdb::F
       impl.RangeHigh[b] = std::max(impl.RangeHigh[b], background);
     }
   }
+  mg.MarkEmptyRegions();
   return true;
 }
 
