@@ -8,6 +8,7 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkIntArray.h"
 #include "vtkObjectFactory.h"
 #include "vtkRenderer.h"
 #include "vtkVolumeCollection.h"
@@ -324,9 +325,10 @@ std::string vtkBrumeSliceVolumeMapper::ValidateBricks(
   // the bricks go, each brick its own (fewer than the bricks).
   const vtkIdType slotCount = cellValues ? bricks : samples->GetNumberOfTuples() / brickCells;
   std::vector<char> taken(cellValues ? static_cast<std::size_t>(bricks) : 0, 0);
+  vtkIntArray* ints = vtkIntArray::FastDownCast(slots); // the reconstruction's
   for (vtkIdType b = 0; b < bricks; ++b)
   {
-    const double slot = slots->GetTuple1(b);
+    const double slot = ints ? ints->GetValue(b) : slots->GetTuple1(b);
     if (!(slot >= -1.0 && slot < static_cast<double>(slotCount)) || slot != std::floor(slot))
     {
       return "the sparse extinction's brick " + std::to_string(b) + " names a slot that " +

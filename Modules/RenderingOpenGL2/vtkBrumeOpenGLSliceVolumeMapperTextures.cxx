@@ -11,6 +11,7 @@
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkIntArray.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkSMPTools.h"
 #include "vtkShortArray.h"
@@ -381,18 +382,31 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   // place), each slot then the brick whose cells it holds, from its first.
   vtkDataArray* samples = fd->GetArray(vtkBrumeNames::ExtinctionBrickSamples);
   vtkDataArray* cellValues = samples ? nullptr : fd->GetArray(vtkBrumeNames::ExtinctionCellValues);
+  // Each brick's slot, read once (a sparse 2048^3 grid has 2.5 10^7 bricks).
+  std::vector<vtkIdType> slotOf(static_cast<std::size_t>(bricks));
+  if (vtkIntArray* ints = vtkIntArray::FastDownCast(slots))
+  {
+    std::copy(ints->GetPointer(0), ints->GetPointer(0) + bricks, slotOf.begin());
+  }
+  else
+  {
+    for (vtkIdType b = 0; b < bricks; ++b)
+    {
+      slotOf[static_cast<std::size_t>(b)] = static_cast<vtkIdType>(slots->GetTuple1(b));
+    }
+  }
   std::vector<int> slotFirst; // 3 per slot
   vtkIdType slotCount = samples ? samples->GetNumberOfTuples() / BrickCells : 0;
   if (cellValues)
   {
-    for (vtkIdType b = 0; b < bricks; ++b)
+    for (const vtkIdType slot : slotOf)
     {
-      slotCount = std::max(slotCount, static_cast<vtkIdType>(slots->GetTuple1(b)) + 1);
+      slotCount = std::max(slotCount, slot + 1);
     }
     slotFirst.assign(3 * static_cast<std::size_t>(slotCount), 0);
     for (vtkIdType b = 0; b < bricks; ++b)
     {
-      const auto slot = static_cast<vtkIdType>(slots->GetTuple1(b));
+      const vtkIdType slot = slotOf[static_cast<std::size_t>(b)];
       if (slot >= 0)
       {
         int* first = &slotFirst[3 * static_cast<std::size_t>(slot)];
@@ -610,13 +624,14 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   }
   const double storedLargest = largest; // of the stored samples alone
   std::vector<float> table(4 * static_cast<std::size_t>(bricks));
+  vtkFloatArray* constants = vtkFloatArray::FastDownCast(values);
   for (vtkIdType b = 0; b < bricks; ++b)
   {
-    const vtkIdType slot = static_cast<vtkIdType>(slots->GetTuple1(b));
+    const vtkIdType slot = slotOf[static_cast<std::size_t>(b)];
     float* entry = &table[4 * static_cast<std::size_t>(b)];
     if (slot < 0)
     {
-      const double v = values->GetTuple1(b);
+      const double v = constants ? constants->GetValue(b) : values->GetTuple1(b);
       if (invalidSample(v))
       {
         vtkErrorMacro("Cannot draw this medium: its extinction must be finite and non-negative "
@@ -693,11 +708,6 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
       return change * perUnit * steep * h / 8.0 > Tolerance;
     };
     std::vector<std::uint64_t> masks(kinks.empty() ? 0 : static_cast<std::size_t>(bricks), 0);
-    std::vector<vtkIdType> slotOf(masks.size());
-    for (std::size_t b = 0; b < slotOf.size(); ++b)
-    {
-      slotOf[b] = static_cast<vtkIdType>(slots->GetTuple1(static_cast<vtkIdType>(b)));
-    }
     auto test = [&](vtkIdType begin, vtkIdType end)
     {
       double brick[B * B * B];
@@ -802,7 +812,7 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
       }
       else
       {
-        test(0, bricks); // vtkDataArray's GetTuple1 is not for threads
+        test(0, bricks); // the samples' vtkDataArray is not for threads
       }
     }
     for (std::size_t b = 0; b < masks.size(); ++b)
