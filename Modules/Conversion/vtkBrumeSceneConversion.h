@@ -162,6 +162,14 @@ public:
 
   /// BVHs SharedRayCaster() built (not found) since the process started.
   static std::size_t GetNumberOfRayCasterBuilds();
+
+  /**
+   * OpenVDB grids read from their files since the process started: a
+   * grid is found again, not read, while anyone holds it (the scene
+   * reader's check of its scene, the tracer until its next run, the
+   * reconstruction's textures), so that one run reads each file once.
+   */
+  static std::size_t GetNumberOfOpenVDBLoads();
 };
 
 #endif

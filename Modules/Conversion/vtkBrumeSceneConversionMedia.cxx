@@ -4,6 +4,8 @@
 // the medium has one.
 #include "vtkBrumeSceneConversionInternals.h"
 
+#include "vtkBrumeSceneConversion.h"
+
 #include "vtkBrumeFieldCache.h"
 #include "vtkBrumeSharedArray.h"
 
@@ -195,6 +197,8 @@ std::string ReadCoefficients(vtkFieldData* fd, brume::Medium& m)
   return {};
 }
 
+std::atomic<std::size_t> OpenVDBLoads{ 0 };
+
 // An OpenVDB grid loaded for a conversion, found again by the next one
 // while someone holds it (the textures hold their scene's): the tracer and
 // the reconstruction of a re-trace (an edit of the medium's transfer
@@ -227,6 +231,7 @@ std::shared_ptr<const brume::VdbDensity> SharedVdb(
   }
   auto load = [&]() -> std::shared_ptr<const brume::VdbDensity>
   {
+    OpenVDBLoads.fetch_add(1, std::memory_order_relaxed);
     return scalars ? brume::VdbDensity::LoadScalars(file, grid, error)
                    : brume::VdbDensity::Load(file, grid, error);
   };
@@ -539,4 +544,9 @@ std::string ConvertMedium(vtkImageData* image, brume::Medium& m)
   SetClassified(m, grid, density, opacity, colors);
   return {};
 }
+}
+
+std::size_t vtkBrumeSceneConversion::GetNumberOfOpenVDBLoads()
+{
+  return vtkBrumeSceneConversionInternals::OpenVDBLoads.load();
 }

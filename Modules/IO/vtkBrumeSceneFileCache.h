@@ -15,7 +15,14 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <string>
+#include <vector>
+
+namespace brume
+{
+class DensityField;
+}
 
 class vtkBrumeSceneFileCache
 {
@@ -30,6 +37,14 @@ public:
   void EndParse();
   /// Files read from disk (not found kept) since the cache was made.
   std::uint64_t GetReads() const { return this->Reads; }
+  /// The densities the last parse's check of its scene made (an OpenVDB
+  /// grid read, its majorants built), held until the next parse's: the
+  /// tracer's conversion finds the same grid (vtkBrumeSceneConversion keeps
+  /// one while someone holds it) instead of reading its file again.
+  void KeepDensities(std::vector<std::shared_ptr<const brume::DensityField>> densities)
+  {
+    this->Densities = std::move(densities);
+  }
 
 private:
   struct Entry
@@ -43,6 +58,7 @@ private:
     const std::filesystem::path& file, std::filesystem::file_time_type& time, std::uintmax_t& size);
   std::map<std::pair<std::string, std::string>, Entry> Entries;
   std::uint64_t Reads = 0;
+  std::vector<std::shared_ptr<const brume::DensityField>> Densities;
 };
 
 #endif

@@ -379,6 +379,18 @@ bool vtkBrumeSceneFileParser::CheckScene()
   if (invalid.empty())
   {
     this->SetBoxesFromGrids(check, sources);
+    if (this->Cache)
+    {
+      std::vector<std::shared_ptr<const brume::DensityField>> densities;
+      for (const brume::Medium& medium : check.Media)
+      {
+        if (medium.Density)
+        {
+          densities.push_back(medium.Density);
+        }
+      }
+      this->Cache->KeepDensities(std::move(densities));
+    }
   }
   if (!invalid.empty())
   {

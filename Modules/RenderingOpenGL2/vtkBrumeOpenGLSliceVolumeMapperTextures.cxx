@@ -382,31 +382,35 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   // place), each slot then the brick whose cells it holds, from its first.
   vtkDataArray* samples = fd->GetArray(vtkBrumeNames::ExtinctionBrickSamples);
   vtkDataArray* cellValues = samples ? nullptr : fd->GetArray(vtkBrumeNames::ExtinctionCellValues);
-  // Each brick's slot, read once (a sparse 2048^3 grid has 2.5 10^7 bricks).
-  std::vector<vtkIdType> slotOf(static_cast<std::size_t>(bricks));
+  // Each brick's slot: the reconstruction's integers where they are that
+  // (a sparse 2048^3 grid has 2.5 10^7 bricks), else read once.
+  std::vector<int> converted;
+  const int* slotOf = nullptr;
   if (vtkIntArray* ints = vtkIntArray::FastDownCast(slots))
   {
-    std::copy(ints->GetPointer(0), ints->GetPointer(0) + bricks, slotOf.begin());
+    slotOf = ints->GetPointer(0);
   }
   else
   {
+    converted.resize(static_cast<std::size_t>(bricks));
     for (vtkIdType b = 0; b < bricks; ++b)
     {
-      slotOf[static_cast<std::size_t>(b)] = static_cast<vtkIdType>(slots->GetTuple1(b));
+      converted[static_cast<std::size_t>(b)] = static_cast<int>(slots->GetTuple1(b));
     }
+    slotOf = converted.data();
   }
   std::vector<int> slotFirst; // 3 per slot
   vtkIdType slotCount = samples ? samples->GetNumberOfTuples() / BrickCells : 0;
   if (cellValues)
   {
-    for (const vtkIdType slot : slotOf)
+    for (vtkIdType b = 0; b < bricks; ++b)
     {
-      slotCount = std::max(slotCount, slot + 1);
+      slotCount = std::max(slotCount, static_cast<vtkIdType>(slotOf[b]) + 1);
     }
     slotFirst.assign(3 * static_cast<std::size_t>(slotCount), 0);
     for (vtkIdType b = 0; b < bricks; ++b)
     {
-      const vtkIdType slot = slotOf[static_cast<std::size_t>(b)];
+      const vtkIdType slot = slotOf[b];
       if (slot >= 0)
       {
         int* first = &slotFirst[3 * static_cast<std::size_t>(slot)];
@@ -627,7 +631,7 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   vtkFloatArray* constants = vtkFloatArray::FastDownCast(values);
   for (vtkIdType b = 0; b < bricks; ++b)
   {
-    const vtkIdType slot = slotOf[static_cast<std::size_t>(b)];
+    const vtkIdType slot = slotOf[b];
     float* entry = &table[4 * static_cast<std::size_t>(b)];
     if (slot < 0)
     {
@@ -713,7 +717,7 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
       double brick[B * B * B];
       for (vtkIdType b = begin; b < end; ++b)
       {
-        const vtkIdType slot = slotOf[static_cast<std::size_t>(b)];
+        const vtkIdType slot = slotOf[b];
         if (slot < 0 ||
           !bends(impl.SlotLow[static_cast<std::size_t>(slot)],
             impl.SlotHigh[static_cast<std::size_t>(slot)],

@@ -364,6 +364,14 @@ int vtkBrumeLightTracer::RequestData(
   {
     return 0;
   }
+  this->Densities.clear();
+  for (const brume::Medium& medium : scene.Media)
+  {
+    if (medium.Density)
+    {
+      this->Densities.push_back(medium.Density);
+    }
+  }
   // The switched-on vtkLights come last among the scene's lights; the
   // output names them for the reconstruction, which sees only the scene.
   std::size_t given = 0;

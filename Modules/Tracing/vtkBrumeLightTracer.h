@@ -46,6 +46,7 @@
 #include "vtkSmartPointer.h" // For Lights
 
 #include <memory> // For the reused batch memory
+#include <vector> // For Densities
 
 class vtkLight;
 class vtkLightCollection;
@@ -53,6 +54,7 @@ class vtkBrumeLightTracerOutput;
 struct vtkBrumeLightTracerReturnedBuffers;
 namespace brume
 {
+class DensityField;
 class LightTracer;
 struct TraceCounters;
 }
@@ -234,6 +236,11 @@ private:
   // The output's hit buffers that came back when it let go of them, for the
   // execution that follows to write into (their pages already mapped).
   std::unique_ptr<vtkBrumeLightTracerReturnedBuffers> Returned;
+  // The last trace's media's densities, held until the next: the
+  // reconstruction that follows converts the same scene and finds the same
+  // OpenVDB grid instead of reading its file again (vtkBrumeSceneConversion
+  // keeps a grid while someone holds it).
+  std::vector<std::shared_ptr<const brume::DensityField>> Densities;
 
   vtkBrumeLightTracer(const vtkBrumeLightTracer&) = delete;
   void operator=(const vtkBrumeLightTracer&) = delete;

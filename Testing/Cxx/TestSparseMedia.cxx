@@ -10,6 +10,7 @@
 #include "vtkBrumeLightTracer.h"
 #include "vtkBrumeRadianceReconstruction.h"
 #include "vtkBrumeSceneActors.h"
+#include "vtkBrumeSceneConversion.h"
 #include "vtkBrumeSceneReader.h"
 #include "vtkBrumeSliceVolumeMapper.h"
 #include "vtkCamera.h"
@@ -141,6 +142,15 @@ int TestSparseMedia(int argc, char* argv[])
   WriteBalls(dir + "/balls.vdb");
   WriteScene(dir + "/balls.json", dir + "/balls.vdb");
   const std::string scene = dir + "/balls.json";
+  {
+    // The reader's check of its scene, the tracer and the reconstruction
+    // find one grid: the file is read once a run, not three times.
+    const std::size_t loads = vtkBrumeSceneConversion::GetNumberOfOpenVDBLoads();
+    const Result once = Render(scene, true, false, vtkBrumeSliceVolumeMapper::PerVoxel);
+    const std::size_t read = vtkBrumeSceneConversion::GetNumberOfOpenVDBLoads() - loads;
+    Check(once.Texture && read == 1,
+      "one run reads the OpenVDB file once, not " + std::to_string(read) + " times");
+  }
   struct Case
   {
     const char* Name;
