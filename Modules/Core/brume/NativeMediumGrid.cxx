@@ -109,6 +109,24 @@ bool ZeroOver(const DensityField& density, const Box& bounds, Vec3 lower, Vec3 u
     b0[a] = index(lower[a] - 1e-4f * block[a]);
     b1[a] = index(upper[a] + 1e-4f * block[a]);
   }
+  // Blocks in regions found empty are 0: the regions first, a few
+  // kilobytes for a sparse grid's 10^7 blocks.
+  if (!mg.EmptyRegions.empty())
+  {
+    constexpr int R = MajorantGrid::RegionBlocks;
+    bool empty = true;
+    for (int k = b0[2] / R; empty && k <= b1[2] / R; ++k)
+      for (int j = b0[1] / R; empty && j <= b1[1] / R; ++j)
+        for (int i = b0[0] / R; empty && i <= b1[0] / R; ++i)
+        {
+          const int region[3] = { i * R, j * R, k * R };
+          empty = mg.InEmptyRegion(region);
+        }
+    if (empty)
+    {
+      return true;
+    }
+  }
   for (int k = b0[2]; k <= b1[2]; ++k)
     for (int j = b0[1]; j <= b1[1]; ++j)
       for (int i = b0[0]; i <= b1[0]; ++i)
