@@ -418,6 +418,14 @@ bool VdbDensity::NativePoints(
   return true;
 }
 
+float VdbDensity::NativeValue(int i, int j, int k, const Vec3& centre) const
+{
+  (void)centre;
+  float value = 0.f;
+  this->NativePoints({ i, j, k }, { 1, 1, 1 }, &value);
+  return value;
+}
+
 float VdbDensity::Evaluate(const Vec3& p) const
 {
   const Internals& impl = *this->Impl;

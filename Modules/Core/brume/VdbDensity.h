@@ -41,6 +41,9 @@ public:
   /// The voxels' values: Evaluate() is OpenVDB's trilinear sampler between them.
   bool NativePoints(
     const std::array<int, 3>& lower, const std::array<int, 3>& count, float* out) const override;
+  /// The voxel at native cell (i, j, k)'s centre, read from its leaf: the
+  /// value Evaluate() interpolates there, without eight reads.
+  float NativeValue(int i, int j, int k, const Vec3& centre) const override;
   /// Active voxels of the grid.
   std::size_t GetNumberOfActiveVoxels() const;
 
