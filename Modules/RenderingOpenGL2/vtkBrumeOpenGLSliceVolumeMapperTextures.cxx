@@ -711,17 +711,16 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
       }
       return change * perUnit * steep * h / 8.0 > Tolerance;
     };
-    std::vector<std::uint64_t> masks(kinks.empty() ? 0 : static_cast<std::size_t>(bricks), 0);
+    // Per stored slot (a sparse grid's bricks are mostly not stored).
+    std::vector<std::uint64_t> masks(kinks.empty() ? 0 : static_cast<std::size_t>(slotCount), 0);
     auto test = [&](vtkIdType begin, vtkIdType end)
     {
       double brick[B * B * B];
-      for (vtkIdType b = begin; b < end; ++b)
+      for (vtkIdType slot = begin; slot < end; ++slot)
       {
-        const vtkIdType slot = slotOf[b];
-        if (slot < 0 ||
-          !bends(impl.SlotLow[static_cast<std::size_t>(slot)],
-            impl.SlotHigh[static_cast<std::size_t>(slot)],
-            impl.SlotSteep[static_cast<std::size_t>(slot)]))
+        if (!bends(impl.SlotLow[static_cast<std::size_t>(slot)],
+              impl.SlotHigh[static_cast<std::size_t>(slot)],
+              impl.SlotSteep[static_cast<std::size_t>(slot)]))
         {
           continue;
         }
@@ -805,23 +804,25 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
             mask |= std::uint64_t{ 1 } << part;
           }
         }
-        masks[static_cast<std::size_t>(b)] = mask;
+        masks[static_cast<std::size_t>(slot)] = mask;
       }
     };
     if (!masks.empty())
     {
       if (threads)
       {
-        vtkSMPTools::For(0, bricks, test);
+        vtkSMPTools::For(0, slotCount, test);
       }
       else
       {
-        test(0, bricks); // the samples' vtkDataArray is not for threads
+        test(0, slotCount); // the samples' vtkDataArray is not for threads
       }
     }
-    for (std::size_t b = 0; b < masks.size(); ++b)
+    for (std::size_t b = 0; !masks.empty() && b < static_cast<std::size_t>(bricks); ++b)
     {
-      if (masks[b] == 0)
+      const int slot = slotOf[b];
+      const std::uint64_t mask = slot < 0 ? 0 : masks[static_cast<std::size_t>(slot)];
+      if (mask == 0)
       {
         continue;
       }
@@ -832,10 +833,10 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
       for (int word = 0; word < 4; ++word)
       {
         bendMask[4 * b + static_cast<std::size_t>(word)] =
-          static_cast<float>((masks[b] >> (16 * word)) & 0xffffu);
+          static_cast<float>((mask >> (16 * word)) & 0xffffu);
       }
       ++impl.BendingBricks;
-      impl.BendingParts += static_cast<vtkIdType>(std::bitset<64>(masks[b]).count());
+      impl.BendingParts += static_cast<vtkIdType>(std::bitset<64>(mask).count());
     }
   }
   if (!bendMask.empty() &&
