@@ -206,6 +206,41 @@ TEST(TransferFunction, TheTableIsWithinItsToleranceOfTheExactExtinction)
   }
 }
 
+TEST(TransferFunction, ManyScalarsAtOnceAreEachClassifiedAlike)
+{
+  // Extinctions() gives each scalar Extinction()'s float: in the table's
+  // cells, in those evaluated exactly, at the function's points, outside
+  // its range, and for a function of one point (no table).
+  const std::vector<std::vector<OpacityTransferFunction::Node>> functions{
+    { { 0.f, 0.f }, { 0.5f, 0.f }, { 0.5f, 0.4f }, { 0.8f, 0.6f }, { 1.f, 0.2f } },
+    { { -3.f, 0.f }, { 2.f, 0.999f }, { 2.5f, 0.9999f }, { 4.f, 0.1f } },
+    { { 7.f, 0.3f } },
+  };
+  for (const auto& nodes : functions)
+  {
+    const OpacityTransferFunction f(nodes, 0.05f);
+    const float lo = nodes.front().Scalar - 1.f, hi = nodes.back().Scalar + 1.f;
+    std::vector<float> scalars;
+    for (int i = 0; i <= 20000; ++i)
+    {
+      scalars.push_back(lo + (hi - lo) * static_cast<float>(i) / 20000.f);
+    }
+    for (const auto& node : nodes)
+    {
+      scalars.push_back(node.Scalar);
+    }
+    std::vector<float> classified = scalars;
+    f.Extinctions(classified.data(), static_cast<int>(classified.size()));
+    int exact = 0;
+    for (std::size_t i = 0; i < scalars.size(); ++i)
+    {
+      ASSERT_EQ(classified[i], f.Extinction(scalars[i])) << scalars[i];
+      exact += classified[i] == f.ExactExtinction(scalars[i]) ? 1 : 0;
+    }
+    EXPECT_GT(exact, 0);
+  }
+}
+
 TEST(TransferFunction, AnEditKeepsTheRangesItLeftAsTheyWere)
 {
   // Where OpacityFunctionEdit says a range is the same, every scalar in it

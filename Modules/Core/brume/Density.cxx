@@ -161,12 +161,7 @@ double GridDensity::NativeMean(int i, int j, int k, const Box& cell, const Box& 
   {
     return DensityField::NativeMean(i, j, k, cell, bounds, s);
   }
-  double sum = 0.0;
-  for (int n = 0; n < s * s * s; ++n)
-  {
-    sum += samples[n];
-  }
-  return sum / (static_cast<double>(s) * s * s);
+  return NativeSampleMean(samples, s * s * s);
 }
 
 std::array<int, 3> DensityField::NativeResolution() const

@@ -96,6 +96,9 @@ public:
     }
     return this->ExactExtinction(s);
   }
+  /// Extinction() of each of `n` scalars, in place: the same floats, a
+  /// cell's samples at a time (brume::ClassifiedDensity::NativeBrick()).
+  void Extinctions(float* values, int n) const;
   /// sigma_t(s) evaluated from the function's points.
   float ExactExtinction(float s) const;
   /// The largest extinction Extinction() or ExactExtinction() gives over
