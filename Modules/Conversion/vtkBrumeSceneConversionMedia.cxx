@@ -232,8 +232,8 @@ std::shared_ptr<const brume::VdbDensity> SharedVdb(
   auto load = [&]() -> std::shared_ptr<const brume::VdbDensity>
   {
     OpenVDBLoads.fetch_add(1, std::memory_order_relaxed);
-    return scalars ? brume::VdbDensity::LoadScalars(file, grid, error)
-                   : brume::VdbDensity::Load(file, grid, error);
+    return scalars ? brume::VdbDensity::LoadScalars(file, grid, error, vtkBrumeSMP::ParallelFor())
+                   : brume::VdbDensity::Load(file, grid, error, vtkBrumeSMP::ParallelFor());
   };
   if (failed)
   {

@@ -9,12 +9,15 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <random>
+#include <thread>
 #include <vector>
 
 using namespace brume;
@@ -372,4 +375,81 @@ TEST(VdbDensity, AClassifiedGridsCellsAreTheirVoxelsOrTheirMeans)
           : 1;
       }
   EXPECT_EQ(unequal, 0);
+}
+
+TEST(VdbDensity, MajorantsAndRangesAreFoundAlikeOnThreadsAndBoundTheSamples)
+{
+  // Leaves of varied values, an active tile and a background: the
+  // majorants, the scalars' block ranges and the occupancy found leaf by
+  // leaf on three threads are those found on one, and bound OpenVDB's
+  // trilinear samples of every block.
+  vdbwriter::Grid grid = VariedGrid();
+  grid.Tiles = { { 1, { 16, 0, 0 }, 2.f } };
+  const std::string path =
+    (std::filesystem::temp_directory_path() / "brume-test-majorants.vdb").string();
+  vdbwriter::Write(path, { grid });
+  const ParallelFor threads = [](std::size_t begin, std::size_t end,
+                                const std::function<void(std::size_t, std::size_t)>& body)
+  {
+    std::vector<std::thread> pool;
+    for (int t = 0; t < 3; ++t)
+    {
+      const std::size_t b = begin + (end - begin) * t / 3, e = begin + (end - begin) * (t + 1) / 3;
+      pool.emplace_back([&body, b, e]() { body(b, e); });
+    }
+    for (auto& thread : pool)
+    {
+      thread.join();
+    }
+  };
+  std::mt19937 random(11);
+  std::uniform_real_distribution<float> x(-1.6f, 3.4f), y(-0.8f, 1.2f), z(-1.2f, 1.5f);
+  for (const bool scalars : { false, true })
+  {
+    std::string error;
+    const auto serial =
+      scalars ? VdbDensity::LoadScalars(path, "", error) : VdbDensity::Load(path, "", error);
+    ASSERT_TRUE(serial) << error;
+    const auto threaded = scalars ? VdbDensity::LoadScalars(path, "", error, threads)
+                                  : VdbDensity::Load(path, "", error, threads);
+    ASSERT_TRUE(threaded) << error;
+    const MajorantGrid& majorants = serial->GetMajorants();
+    EXPECT_EQ(majorants.Max, threaded->GetMajorants().Max);
+    EXPECT_EQ(serial->OccupiedFraction(), threaded->OccupiedFraction());
+    EXPECT_EQ(serial->MeanOccupiedDensity(), threaded->MeanOccupiedDensity());
+    std::vector<float> lo, hi, threadedLo, threadedHi;
+    EXPECT_EQ(serial->ValueRanges(lo, hi), scalars);
+    EXPECT_EQ(threaded->ValueRanges(threadedLo, threadedHi), scalars);
+    EXPECT_EQ(lo, threadedLo);
+    EXPECT_EQ(hi, threadedHi);
+    EXPECT_EQ(*std::max_element(majorants.Max.begin(), majorants.Max.end()), 2.f); // the tile
+    const Vec3 block = majorants.Bounds.Extent() /
+      Vec3(static_cast<float>(majorants.Dims[0]), static_cast<float>(majorants.Dims[1]),
+        static_cast<float>(majorants.Dims[2]));
+    int outside = 0;
+    for (int n = 0; n < 20000; ++n)
+    {
+      const Vec3 p(x(random), y(random), z(random));
+      const Vec3 q = (p - majorants.Bounds.lower) / block;
+      int b[3];
+      for (int a = 0; a < 3; ++a)
+      {
+        b[a] = std::clamp(static_cast<int>(std::floor(q[a])), 0, majorants.Dims[a] - 1);
+      }
+      if (!serial->GetBounds().Contains(p))
+      {
+        continue;
+      }
+      const float v = serial->Evaluate(p);
+      const std::size_t at =
+        (static_cast<std::size_t>(b[2]) * majorants.Dims[1] + b[1]) * majorants.Dims[0] + b[0];
+      outside += v <= majorants.Max[at] ? 0 : 1;
+      if (scalars)
+      {
+        outside += lo[at] <= v && v <= hi[at] ? 0 : 1;
+      }
+    }
+    EXPECT_EQ(outside, 0) << (scalars ? "scalars" : "densities");
+  }
+  std::filesystem::remove(path);
 }

@@ -54,7 +54,8 @@ struct VdbDensity::Internals
   // scalars, and the occupied values; false, with `error`, at an active
   // value that is not finite (or a negative density).
   static bool BuildMajorants(VdbDensity& density, const openvdb::FloatGrid& grid,
-    const openvdb::CoordBBox& bbox, float background, bool scalars, std::string& error);
+    const openvdb::CoordBBox& bbox, float background, bool scalars, const ParallelFor& parallelFor,
+    std::string& error);
   // Leaves, LeafOrigin and LeafDims.
   void BuildLeafTable(const openvdb::FloatGrid& grid, const openvdb::CoordBBox& bbox);
 };
@@ -136,16 +137,16 @@ openvdb::FloatGrid::Ptr ReadVdbFloatGrid(
   return grid;
 }
 
-std::shared_ptr<VdbDensity> VdbDensity::Load(
-  const std::string& fileName, const std::string& gridName, std::string& error)
+std::shared_ptr<VdbDensity> VdbDensity::Load(const std::string& fileName,
+  const std::string& gridName, std::string& error, const ParallelFor& parallelFor)
 {
-  return LoadGrid(fileName, gridName, false, error);
+  return LoadGrid(fileName, gridName, false, error, parallelFor);
 }
 
-std::shared_ptr<VdbDensity> VdbDensity::LoadScalars(
-  const std::string& fileName, const std::string& gridName, std::string& error)
+std::shared_ptr<VdbDensity> VdbDensity::LoadScalars(const std::string& fileName,
+  const std::string& gridName, std::string& error, const ParallelFor& parallelFor)
 {
-  return LoadGrid(fileName, gridName, true, error);
+  return LoadGrid(fileName, gridName, true, error, parallelFor);
 }
 
 bool VdbDensity::ValueRanges(std::vector<float>& lo, std::vector<float>& hi) const
@@ -160,7 +161,8 @@ bool VdbDensity::ValueRanges(std::vector<float>& lo, std::vector<float>& hi) con
 }
 
 bool VdbDensity::Internals::BuildMajorants(VdbDensity& density, const openvdb::FloatGrid& grid,
-  const openvdb::CoordBBox& bbox, float background, bool scalars, std::string& error)
+  const openvdb::CoordBBox& bbox, float background, bool scalars, const ParallelFor& parallelFor,
+  std::string& error)
 {
   Internals& impl = *density.Impl;
   const openvdb::Coord lo = bbox.min();
@@ -196,43 +198,39 @@ bool VdbDensity::Internals::BuildMajorants(VdbDensity& density, const openvdb::F
     const int b = static_cast<int>(std::floor((index - (lo[a] - 1.0)) / B));
     return std::min(mg.Dims[a] - 1, std::max(0, b));
   };
-  for (auto it = grid.cbeginValueOn(); it; ++it)
+  auto reach = [&](const openvdb::CoordBBox& region, int b0[3], int b1[3])
   {
-    const float v = *it;
-    if (!std::isfinite(v) || (!scalars && !(v >= 0.f)))
-    {
-      error = "OpenVDB grid '" + grid.getName() + "' has negative or non-finite " +
-        (scalars ? "scalars" : "densities");
-      return false;
-    }
-    if (v > 0.f)
-    {
-      const double voxels = static_cast<double>(it.getVoxelCount());
-      density.OccupiedValues += voxels;
-      density.OccupiedSum += voxels * v;
-    }
-    if (v <= background && !scalars)
-    {
-      continue;
-    }
-    openvdb::CoordBBox region;
-    it.getBoundingBox(region);
-    int b0[3], b1[3];
     for (int a = 0; a < 3; ++a)
     {
       b0[a] = blockOf(a, region.min()[a] - 1.0);
       b1[a] = blockOf(a, region.max()[a] + 1.0);
     }
+  };
+  // Value v over `region` into the blocks it reaches, block (i, j, k)
+  // being entry at(i, j, k) of the arrays: the largest value and, for
+  // scalars, the range and the active voxels around (whole numbers, summed
+  // exactly in any order: blocks found apart merge into the same grid).
+  struct Arrays
+  {
+    float* Max;
+    float* Low;
+    float* High;
+    double* Around;
+  };
+  auto add = [&](float v, const openvdb::CoordBBox& region, const Arrays& to, const auto& at)
+  {
+    int b0[3], b1[3];
+    reach(region, b0, b1);
     for (int k = b0[2]; k <= b1[2]; ++k)
       for (int j = b0[1]; j <= b1[1]; ++j)
         for (int i = b0[0]; i <= b1[0]; ++i)
         {
-          const std::size_t b = (static_cast<std::size_t>(k) * mg.Dims[1] + j) * mg.Dims[0] + i;
-          mg.Max[b] = std::max(mg.Max[b], v);
+          const std::size_t w = at(i, j, k);
+          to.Max[w] = std::max(to.Max[w], v);
           if (scalars)
           {
-            impl.RangeLow[b] = std::min(impl.RangeLow[b], v);
-            impl.RangeHigh[b] = std::max(impl.RangeHigh[b], v);
+            to.Low[w] = std::min(to.Low[w], v);
+            to.High[w] = std::max(to.High[w], v);
             const int block[3] = { i, j, k };
             double overlap = 1.0;
             for (int a = 0; a < 3; ++a)
@@ -241,10 +239,149 @@ bool VdbDensity::Internals::BuildMajorants(VdbDensity& density, const openvdb::F
               overlap *=
                 std::max(0, std::min(region.max()[a], last) - std::max(region.min()[a], first) + 1);
             }
-            activeAround[b] += overlap;
+            to.Around[w] += overlap;
           }
         }
+  };
+  const Arrays grids{ mg.Max.data(), impl.RangeLow.data(), impl.RangeHigh.data(),
+    activeAround.data() };
+  auto gridAt = [&](int i, int j, int k)
+  { return (static_cast<std::size_t>(k) * mg.Dims[1] + j) * mg.Dims[0] + i; };
+  // Whether a value may be read, and the occupied values and their sum.
+  double occupiedValues = 0.0, occupiedSum = 0.0;
+  auto valid = [&](float v) { return std::isfinite(v) && (scalars || v >= 0.f); };
+  // The leaves' voxels, a batch of leaves at a time on `parallelFor`: each
+  // leaf into the window of blocks its voxels reach (at most 3 along an
+  // axis), merged into the grid in the leaves' order.
+  constexpr int Window = 3;
+  struct LeafBlocks
+  {
+    int First[3] = { 0, 0, 0 }, Count[3] = { 0, 0, 0 };
+    float Max[Window * Window * Window], Low[Window * Window * Window],
+      High[Window * Window * Window];
+    double Around[Window * Window * Window];
+    double OccupiedValues = 0.0, OccupiedSum = 0.0;
+    bool Valid = true;
+  };
+  using Leaf = openvdb::FloatTree::LeafNodeType;
+  std::vector<const Leaf*> leaves;
+  leaves.reserve(grid.constTree().leafCount());
+  for (auto leaf = grid.constTree().cbeginLeaf(); leaf; ++leaf)
+  {
+    leaves.push_back(leaf.getLeaf());
   }
+  constexpr std::size_t Batch = 8192;
+  std::vector<LeafBlocks> found(std::min(Batch, leaves.size()));
+  bool allValid = true;
+  for (std::size_t first = 0; first < leaves.size() && allValid; first += Batch)
+  {
+    const std::size_t n = std::min(Batch, leaves.size() - first);
+    parallelFor(0, n,
+      [&](std::size_t begin, std::size_t end)
+      {
+        for (std::size_t l = begin; l < end; ++l)
+        {
+          const Leaf& leaf = *leaves[first + l];
+          LeafBlocks& blocks = found[l];
+          int b0[3], b1[3];
+          reach(leaf.getNodeBoundingBox(), b0, b1);
+          for (int a = 0; a < 3; ++a)
+          {
+            blocks.First[a] = b0[a];
+            blocks.Count[a] = b1[a] - b0[a] + 1;
+          }
+          std::fill(std::begin(blocks.Max), std::end(blocks.Max), background);
+          std::fill(
+            std::begin(blocks.Low), std::end(blocks.Low), std::numeric_limits<float>::infinity());
+          std::fill(std::begin(blocks.High), std::end(blocks.High),
+            -std::numeric_limits<float>::infinity());
+          std::fill(std::begin(blocks.Around), std::end(blocks.Around), 0.0);
+          blocks.OccupiedValues = blocks.OccupiedSum = 0.0;
+          blocks.Valid = true;
+          const Arrays to{ blocks.Max, blocks.Low, blocks.High, blocks.Around };
+          auto at = [&](int i, int j, int k)
+          {
+            return static_cast<std::size_t>(
+              ((k - blocks.First[2]) * blocks.Count[1] + (j - blocks.First[1])) * blocks.Count[0] +
+              (i - blocks.First[0]));
+          };
+          for (auto it = leaf.cbeginValueOn(); it; ++it)
+          {
+            const float v = *it;
+            if (!valid(v))
+            {
+              blocks.Valid = false;
+              break;
+            }
+            if (v > 0.f)
+            {
+              blocks.OccupiedValues += 1.0;
+              blocks.OccupiedSum += v;
+            }
+            if (v > background || scalars)
+            {
+              const openvdb::Coord xyz = it.getCoord();
+              add(v, openvdb::CoordBBox(xyz, xyz), to, at);
+            }
+          }
+        }
+      });
+    for (std::size_t l = 0; l < n && allValid; ++l)
+    {
+      const LeafBlocks& blocks = found[l];
+      allValid = blocks.Valid;
+      occupiedValues += blocks.OccupiedValues;
+      occupiedSum += blocks.OccupiedSum;
+      for (int k = 0; k < blocks.Count[2]; ++k)
+        for (int j = 0; j < blocks.Count[1]; ++j)
+          for (int i = 0; i < blocks.Count[0]; ++i)
+          {
+            const std::size_t w =
+              static_cast<std::size_t>((k * blocks.Count[1] + j) * blocks.Count[0] + i);
+            const std::size_t b =
+              gridAt(blocks.First[0] + i, blocks.First[1] + j, blocks.First[2] + k);
+            mg.Max[b] = std::max(mg.Max[b], blocks.Max[w]);
+            if (scalars)
+            {
+              impl.RangeLow[b] = std::min(impl.RangeLow[b], blocks.Low[w]);
+              impl.RangeHigh[b] = std::max(impl.RangeHigh[b], blocks.High[w]);
+              activeAround[b] += blocks.Around[w];
+            }
+          }
+    }
+  }
+  // The active tiles above the leaves, in turn, into the grid itself.
+  openvdb::FloatGrid::ValueOnCIter tile = grid.cbeginValueOn();
+  tile.setMaxDepth(openvdb::FloatGrid::ValueOnCIter::LEAF_DEPTH - 1);
+  for (; tile && allValid; ++tile)
+  {
+    const float v = *tile;
+    allValid = valid(v);
+    if (!allValid)
+    {
+      break;
+    }
+    if (v > 0.f)
+    {
+      const double voxels = static_cast<double>(tile.getVoxelCount());
+      occupiedValues += voxels;
+      occupiedSum += voxels * v;
+    }
+    if (v > background || scalars)
+    {
+      openvdb::CoordBBox region;
+      tile.getBoundingBox(region);
+      add(v, region, grids, gridAt);
+    }
+  }
+  if (!allValid)
+  {
+    error = "OpenVDB grid '" + grid.getName() + "' has negative or non-finite " +
+      (scalars ? "scalars" : "densities");
+    return false;
+  }
+  density.OccupiedValues += occupiedValues;
+  density.OccupiedSum += occupiedSum;
   for (std::size_t b = 0; b < activeAround.size(); ++b)
   {
     if (activeAround[b] < static_cast<double>((B + 2) * (B + 2) * (B + 2)))
@@ -293,8 +430,8 @@ void VdbDensity::Internals::BuildLeafTable(
   }
 }
 
-std::shared_ptr<VdbDensity> VdbDensity::LoadGrid(
-  const std::string& fileName, const std::string& gridName, bool scalars, std::string& error)
+std::shared_ptr<VdbDensity> VdbDensity::LoadGrid(const std::string& fileName,
+  const std::string& gridName, bool scalars, std::string& error, const ParallelFor& parallelFor)
 {
   const openvdb::FloatGrid::Ptr grid = ReadVdbFloatGrid(fileName, gridName, error);
   if (!grid)
@@ -352,7 +489,7 @@ std::shared_ptr<VdbDensity> VdbDensity::LoadGrid(
       return nullptr;
     }
   }
-  if (!Internals::BuildMajorants(*density, *grid, bbox, background, scalars, error))
+  if (!Internals::BuildMajorants(*density, *grid, bbox, background, scalars, parallelFor, error))
   {
     return nullptr;
   }

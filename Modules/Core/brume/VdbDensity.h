@@ -22,15 +22,16 @@ public:
    * float grid, no active voxels, negative or non-finite values, or a
    * transform that is not an axis-aligned scale and translation.
    */
-  static std::shared_ptr<VdbDensity> Load(
-    const std::string& fileName, const std::string& gridName, std::string& error);
+  static std::shared_ptr<VdbDensity> Load(const std::string& fileName, const std::string& gridName,
+    std::string& error, const ParallelFor& parallelFor = SerialFor());
   /**
    * The same for a grid of scalars a transfer function classifies
    * (ClassifiedDensity): any finite values and background, and the value
-   * ranges of its blocks.
+   * ranges of its blocks. The majorants (and ranges) are found leaf by
+   * leaf on `parallelFor`: the same whatever the threads.
    */
-  static std::shared_ptr<VdbDensity> LoadScalars(
-    const std::string& fileName, const std::string& gridName, std::string& error);
+  static std::shared_ptr<VdbDensity> LoadScalars(const std::string& fileName,
+    const std::string& gridName, std::string& error, const ParallelFor& parallelFor = SerialFor());
   bool ValueRanges(std::vector<float>& lo, std::vector<float>& hi) const override;
 
   ~VdbDensity() override;
@@ -49,8 +50,8 @@ public:
 
 private:
   VdbDensity();
-  static std::shared_ptr<VdbDensity> LoadGrid(
-    const std::string& fileName, const std::string& gridName, bool scalars, std::string& error);
+  static std::shared_ptr<VdbDensity> LoadGrid(const std::string& fileName,
+    const std::string& gridName, bool scalars, std::string& error, const ParallelFor& parallelFor);
   struct Internals;
   std::unique_ptr<Internals> Impl;
 };
