@@ -382,6 +382,12 @@ void NativeMediumGrid::Sample(const Medium& medium, std::size_t memory,
           return;
         }
       }
+      // A brick inside the grid: its points are its samples, in order.
+      if (count[0] == S && count[1] == S && count[2] == S &&
+        scalars.NativePoints(lower, count, out))
+      {
+        return;
+      }
       float points[S * S * S];
       const bool read = scalars.NativePoints(lower, count, points);
       for (int k = 0; k < S; ++k)
