@@ -166,33 +166,38 @@ void OpacityTransferFunction::Extinctions(float* values, int n) const
   };
   int m = 0;
 #if defined(__SSE2__)
-  // Four at a time where all four lie in cells read from the table: the
-  // same operations lane by lane (std::min(r, t) is (t < r) ? t : r, that
-  // is _mm_min_ps(t, r); std::max(a, b) is _mm_max_ps(b, a)).
+  // Four at a time: the table's operations lane by lane (std::min(r, t)
+  // is (t < r) ? t : r, that is _mm_min_ps(t, r); std::max(a, b) is
+  // _mm_max_ps(b, a)), from cells clamped into the table so that every
+  // read is in it; a lane outside the table or in a cell evaluated
+  // exactly (a function's point: a scan's whole numbers often lie there)
+  // is then given Extinction() alone.
   const __m128 lowV = _mm_set1_ps(low), scaleV = _mm_set1_ps(scale);
   const __m128 zero = _mm_setzero_ps(), cells = _mm_set1_ps(static_cast<float>(TableCells));
-  for (; m + 4 <= n; m += 4)
+  const __m128 last = _mm_set1_ps(std::nextafter(static_cast<float>(TableCells), 0.f));
+  for (; !this->Table.empty() && m + 4 <= n; m += 4)
   {
-    const __m128 x = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(values + m), lowV), scaleV);
-    if (_mm_movemask_ps(_mm_and_ps(_mm_cmpge_ps(x, zero), _mm_cmplt_ps(x, cells))) == 0xF)
-    {
-      const __m128i cell = _mm_cvttps_epi32(x);
-      alignas(16) int c[4];
-      _mm_store_si128(reinterpret_cast<__m128i*>(c), cell);
-      if (!(exact[c[0]] | exact[c[1]] | exact[c[2]] | exact[c[3]]))
-      {
-        const __m128 a = _mm_setr_ps(table[c[0]], table[c[1]], table[c[2]], table[c[3]]);
-        const __m128 b =
-          _mm_setr_ps(table[c[0] + 1], table[c[1] + 1], table[c[2] + 1], table[c[3] + 1]);
-        const __m128 r =
-          _mm_add_ps(a, _mm_mul_ps(_mm_sub_ps(b, a), _mm_sub_ps(x, _mm_cvtepi32_ps(cell))));
-        _mm_storeu_ps(values + m, _mm_min_ps(_mm_max_ps(b, a), r));
-        continue;
-      }
-    }
+    alignas(16) float scalars[4];
+    const __m128 v = _mm_loadu_ps(values + m);
+    _mm_store_ps(scalars, v);
+    const __m128 x = _mm_mul_ps(_mm_sub_ps(v, lowV), scaleV);
+    const int inside = _mm_movemask_ps(_mm_and_ps(_mm_cmpge_ps(x, zero), _mm_cmplt_ps(x, cells)));
+    const __m128 within = _mm_min_ps(_mm_max_ps(x, zero), last); // x itself where inside
+    const __m128i cell = _mm_cvttps_epi32(within);
+    alignas(16) int c[4];
+    _mm_store_si128(reinterpret_cast<__m128i*>(c), cell);
+    const __m128 a = _mm_setr_ps(table[c[0]], table[c[1]], table[c[2]], table[c[3]]);
+    const __m128 b =
+      _mm_setr_ps(table[c[0] + 1], table[c[1] + 1], table[c[2] + 1], table[c[3] + 1]);
+    const __m128 r =
+      _mm_add_ps(a, _mm_mul_ps(_mm_sub_ps(b, a), _mm_sub_ps(within, _mm_cvtepi32_ps(cell))));
+    _mm_storeu_ps(values + m, _mm_min_ps(_mm_max_ps(b, a), r));
     for (int l = 0; l < 4; ++l)
     {
-      one(values[m + l]);
+      if (!((inside >> l) & 1) || exact[c[l]])
+      {
+        values[m + l] = this->Extinction(scalars[l]);
+      }
     }
   }
 #endif
