@@ -89,6 +89,11 @@ public:
     this->Reconstruction->SetDirectionalRadiance(this->Options.Directional);
     this->Reconstruction->SetDirectionalOrder(this->Options.Order);
     BrumeShowProgress(this->Pipeline->GetTracer(), "particle tracing");
+    // A volume the GPU cannot hold at its own resolution is coarsened to
+    // fit (where the driver says what it has free), asked, as brume render
+    // asks, of the pipeline's offscreen window: the viewer's own is made
+    // after the first trace, on the same driver.
+    this->Pipeline->LimitToGPUMemory(this->Pipeline->GetImageWindow());
     if (!this->Pipeline->Update())
     {
       std::cerr << "brume: " << this->Pipeline->GetFailedPhase() << " failed.\n";
