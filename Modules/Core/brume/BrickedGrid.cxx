@@ -155,14 +155,18 @@ BrickedGrid BrickedGrid::SampleBricks(const std::array<int, 3>& dims, const Box&
       sampled.push_back(b);
     }
   }
-  // Sample them all, then keep those that vary, compacted in brick order.
+  // Sample them all, each told constant or not while its samples are at
+  // hand, then keep those that vary, compacted in brick order.
   FloatBuffer samples = FloatBuffer::Allocate(sampled.size() * BrickSamples);
+  std::vector<char> constant(sampled.size(), 0);
   parallelFor(0, sampled.size(),
     [&](std::size_t begin, std::size_t end)
     {
       for (std::size_t s = begin; s < end; ++s)
       {
-        brick(brickOrigin(sampled[s]), samples.Data() + s * BrickSamples);
+        float* out = samples.Data() + s * BrickSamples;
+        brick(brickOrigin(sampled[s]), out);
+        constant[s] = std::all_of(out, out + BrickSamples, [&](float v) { return v == out[0]; });
       }
     });
   std::int32_t slots = 0;
@@ -170,7 +174,7 @@ BrickedGrid BrickedGrid::SampleBricks(const std::array<int, 3>& dims, const Box&
   {
     const float* in = samples.Data() + s * BrickSamples;
     const std::size_t b = sampled[s];
-    if (std::all_of(in, in + BrickSamples, [&](float v) { return v == in[0]; }))
+    if (constant[s])
     {
       grid.Constants[b] = in[0];
       continue;
