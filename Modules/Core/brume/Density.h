@@ -54,29 +54,16 @@ struct MajorantGrid
   }
 };
 
-/**
- * The mean of a native cell's `n` samples (NativeMean()), summed in double
- * in four running sums (samples m, m + 4, ... in sum m % 4), added in
- * pairs after: every caller gives the same double, and the sums are four
- * independent chains (one chain of 64 dependent additions held a 512^3
- * classified grid's cell means to the adder's latency).
- */
+/// The mean of a native cell's `n` samples (NativeMean()), summed in
+/// double in order: every caller gives the same double.
 inline double NativeSampleMean(const float* samples, int n)
 {
-  double sum[4] = { 0.0, 0.0, 0.0, 0.0 };
-  int m = 0;
-  for (; m + 4 <= n; m += 4)
+  double sum = 0.0;
+  for (int m = 0; m < n; ++m)
   {
-    sum[0] += samples[m];
-    sum[1] += samples[m + 1];
-    sum[2] += samples[m + 2];
-    sum[3] += samples[m + 3];
+    sum += samples[m];
   }
-  for (; m < n; ++m)
-  {
-    sum[m % 4] += samples[m];
-  }
-  return ((sum[0] + sum[1]) + (sum[2] + sum[3])) / static_cast<double>(n);
+  return sum / static_cast<double>(n);
 }
 
 /// A scalar density over a box; sigma(x) = density(x) * sigma (per channel).

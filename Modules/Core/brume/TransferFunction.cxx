@@ -144,35 +144,17 @@ void OpacityTransferFunction::MakeTable()
 
 void OpacityTransferFunction::Extinctions(float* values, int n) const
 {
-  // Extinction()'s arithmetic, with the table's memory read once for all.
-  const float low = this->TableLow, scale = this->TableScale;
-  const float* table = this->Table.data();
-  const char* exact = this->TableExact.data();
-  auto one = [&](float& value)
-  {
-    const float x = (value - low) * scale;
-    if (x >= 0.f && x < static_cast<float>(TableCells))
-    {
-      const int c = static_cast<int>(x);
-      if (!exact[c])
-      {
-        const float a = table[c];
-        const float b = table[c + 1];
-        value = std::min(a + (b - a) * (x - static_cast<float>(c)), std::max(a, b));
-        return;
-      }
-    }
-    value = this->Extinction(value);
-  };
   int m = 0;
 #if defined(__SSE2__)
+  const float* table = this->Table.data();
+  const char* exact = this->TableExact.data();
   // Four at a time: the table's operations lane by lane (std::min(r, t)
   // is (t < r) ? t : r, that is _mm_min_ps(t, r); std::max(a, b) is
   // _mm_max_ps(b, a)), from cells clamped into the table so that every
   // read is in it; a lane outside the table or in a cell evaluated
   // exactly (a function's point: a scan's whole numbers often lie there)
   // is then given Extinction() alone.
-  const __m128 lowV = _mm_set1_ps(low), scaleV = _mm_set1_ps(scale);
+  const __m128 lowV = _mm_set1_ps(this->TableLow), scaleV = _mm_set1_ps(this->TableScale);
   const __m128 zero = _mm_setzero_ps(), cells = _mm_set1_ps(static_cast<float>(TableCells));
   const __m128 last = _mm_set1_ps(std::nextafter(static_cast<float>(TableCells), 0.f));
   for (; !this->Table.empty() && m + 4 <= n; m += 4)
@@ -203,7 +185,7 @@ void OpacityTransferFunction::Extinctions(float* values, int n) const
 #endif
   for (; m < n; ++m)
   {
-    one(values[m]);
+    values[m] = this->Extinction(values[m]);
   }
 }
 
