@@ -184,6 +184,30 @@ public:
   ///@}
   ///@{
   /**
+   * The largest error of optical depth, along any ray across a bricked
+   * extinction grid (SetExtinctionData), that the GPU's copy of its floats
+   * may make by holding them as 16-bit values, each brick's over its own
+   * interval (default 10^-3; at least 0). Where half the largest brick's
+   * step, times the largest extinction per unit of value (a transfer
+   * function's steepest slope for classified scalars) and the grid's
+   * diagonal, stays within it, and a classified albedo moves by no more
+   * than it, the atlas takes half the memory (a 512^3 float field's
+   * 0.80 GB, 0.40 GB); otherwise it keeps 32-bit floats. Within that
+   * bound each pixel moves by at most twice the tolerance times the
+   * largest source radiance. 0 keeps floats exactly. Grids of integers
+   * spanning at most 65,535 go up as 16 bits exactly whatever it is. A
+   * drawing setting: a grid already on the GPU is sent again when its
+   * bound exceeds a new tolerance or the bound under a new transfer
+   * function does.
+   */
+  void SetExtinctionDepthTolerance(double tolerance)
+  {
+    this->ExtinctionDepthTolerance = tolerance > 0.0 ? tolerance : 0.0;
+  }
+  double GetExtinctionDepthTolerance() const { return this->ExtinctionDepthTolerance; }
+  ///@}
+  ///@{
+  /**
    * Multiplies the radiance the slices emit, not their transmittance
    * (default 1, at least 0): an exposure for displays of linear radiance
    * (the "Brume Radiance" representation's Exposure). Light from behind a
@@ -364,6 +388,7 @@ protected:
   double SliceSpacingScale = 1.0;
   bool SlabSampling = true;
   bool BendSampling = true;
+  double ExtinctionDepthTolerance = 1e-3;
   double ImageSampleDistance = 1.0;
   double LastImageSampleDistance = 1.0;
   double RadianceScale = 1.0;

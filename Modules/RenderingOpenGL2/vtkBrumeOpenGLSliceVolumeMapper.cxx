@@ -755,7 +755,6 @@ void vtkBrumeOpenGLSliceVolumeMapper::DrawRuns(vtkRenderer* ren, bool reduced)
       program->SetUniform3f("gridCells", owner.GridCells);
       program->SetUniform3f("brickCount", owner.BrickCount);
       program->SetUniform3f("atlasSize", owner.AtlasSize);
-      program->SetUniform2f("atlasValue", owner.AtlasValue);
       program->SetUniform3f("brickScale", owner.BrickScale);
       if (kind.Classified)
       {

@@ -45,10 +45,19 @@ public:
   /**
    * The bytes per texel of the atlas of a bricked extinction grid last
    * sent to the GPU: 2 for a grid of integers spanning at most 65,535 (a
-   * scan's own 8- or 16-bit values, classified by a transfer function), 4
-   * otherwise; 0 before any.
+   * scan's own 8- or 16-bit values, classified by a transfer function) and
+   * for floats whose 16-bit values keep within SetExtinctionDepthTolerance(),
+   * 4 otherwise; 0 before any.
    */
   int GetExtinctionAtlasTexelBytes() const;
+  /**
+   * The bound, in optical depth along any ray across the grid, of what the
+   * last atlas's 16-bit values may change from its floats (half their
+   * quantum times the largest extinction per unit of value and the grid's
+   * diagonal; for classified scalars, the larger of that and the albedo's
+   * largest change): 0 when the atlas holds its values exactly.
+   */
+  double GetExtinctionAtlasDepthError() const;
   /**
    * Of the last bricked grid of classified scalars sent to the GPU, the
    * stored bricks where samples are taken four times a fine cell along the

@@ -49,10 +49,16 @@ struct vtkBrumeOpenGLSliceVolumeMapper::Internals
   float GridCells[3] = { 1.f, 1.f, 1.f };
   float BrickCount[3] = { 1.f, 1.f, 1.f };
   float AtlasSize[3] = { 1.f, 1.f, 1.f };
-  // The grid's value of an atlas texel t (a 16-bit normalized texture holds
-  // the grid's integers less their least): AtlasValue[0] t + AtlasValue[1].
-  float AtlasValue[2] = { 1.f, 0.f };
+  // Per slot of the atlas, the value of a texel t: SlotValue[0] t +
+  // SlotValue[1] (a 16-bit normalized texture holds the grid's integers
+  // less their least, or the slot's floats over their interval; floats are
+  // themselves: 1 and 0). Kept with the atlas.
+  std::vector<float> SlotValue;
   int AtlasBytes = 0; // per texel
+  // Half the quantum of 16-bit floats (0: exact) and the bound in optical
+  // depth it makes under the current function.
+  double AtlasHalfQuantum = 0.0;
+  double AtlasDepthError = 0.0;
   // What the atlas holds: the arrays it was filled from (their memory kept
   // alive, so that the same memory is the same samples; a reconstruction
   // that keeps a grid after an edit of a transfer function hands the same

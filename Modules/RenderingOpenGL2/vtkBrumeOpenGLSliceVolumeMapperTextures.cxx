@@ -77,6 +77,31 @@ std::vector<Kink> TransferKinks(vtkDataArray* table, const double range[2])
   return kinks;
 }
 
+// The steepest slope of a table (each component of it, evenly over `range`
+// and linear between its values): the most its value changes per unit of
+// the scalar, 0 for a table of one value or no range. The GPU's row,
+// resampled from it linearly, is no steeper.
+double TransferSteepest(vtkDataArray* table, const double range[2])
+{
+  const vtkIdType n = table ? table->GetNumberOfTuples() : 0;
+  if (n < 2 || !(range[1] > range[0]))
+  {
+    return 0.0;
+  }
+  double steepest = 0.0;
+  for (int c = 0; c < table->GetNumberOfComponents(); ++c)
+  {
+    double last = table->GetComponent(0, c);
+    for (vtkIdType i = 1; i < n; ++i)
+    {
+      const double v = table->GetComponent(i, c);
+      steepest = std::max(steepest, std::abs(v - last));
+      last = v;
+    }
+  }
+  return steepest * static_cast<double>(n - 1) / (range[1] - range[0]);
+}
+
 // Uploads `values` (`components` floats per voxel) as a 3D texture clamped
 // at the edges and filtered with `filter` (nearest or linear). RGB data go
 // up as RGBA (4 floats a voxel): a software rasterizer samples 16-byte
@@ -319,7 +344,8 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadExtinction(vtkOpenGLRenderWindow* re
   Internals& impl = *this->Impl;
   vtkImageData* grid = this->ExtinctionData;
   if (impl.ExtinctionGrid == grid && impl.ExtinctionTime > grid->GetMTime() &&
-    impl.ExtinctionInterpolation == filter && impl.Extinction->GetHandle())
+    impl.ExtinctionInterpolation == filter && impl.Extinction->GetHandle() &&
+    !(impl.Bricked && impl.AtlasDepthError > this->ExtinctionDepthTolerance))
   {
     return true;
   }
@@ -432,7 +458,9 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   const int texels[3] = { B * atlas[0], B * atlas[1], B * atlas[2] };
   int maxSize = 0;
   glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxSize);
-  if (texels[0] > maxSize || texels[1] > maxSize || texels[2] > maxSize)
+  // The brick table names a slot as x + 2048 y in a float, exactly.
+  if (texels[0] > maxSize || texels[1] > maxSize || texels[2] > maxSize || atlas[0] > 2048 ||
+    atlas[1] > 2048)
   {
     vtkErrorMacro("Cannot draw this medium: its "
       << slotCount << " bricks of extinction need a 3D texture of " << texels[0] << " x "
@@ -452,6 +480,7 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   std::vector<double> slotLeast(static_cast<std::size_t>(slotCount), 0.0);
   std::vector<char> slotIntegers(static_cast<std::size_t>(slotCount), 1);
   std::vector<float> slotHigh(static_cast<std::size_t>(slotCount), 0.f); // scalars: can be < 0
+  std::vector<double> slotTop(static_cast<std::size_t>(slotCount), 0.0);
   std::vector<float> slotSteep(static_cast<std::size_t>(slotCount), 0.f);
   std::atomic<vtkIdType> firstBad{ slotCount };
   vtkFloatArray* floats = vtkFloatArray::FastDownCast(source);
@@ -460,9 +489,40 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   vtkShortArray* signedShorts = vtkShortArray::FastDownCast(source);
   // Arrays read in their own memory are read on every thread.
   const bool threads = floats || bytes || shorts || signedShorts;
+  // What 16-bit values of half quantum h may change: along any ray across
+  // the grid (at most its diagonal) the extinction moves by at most h times
+  // its largest change per unit of value (the scale, times a transfer
+  // function's steepest slope), and a classified albedo by h times its own.
+  double perValue = 0.0, albedoPerValue = 0.0;
+  for (int c = 0; c < 3; ++c)
+  {
+    perValue = std::max(perValue, std::abs(scale->GetComponent(0, c)));
+  }
+  if (transfer)
+  {
+    double transferRange[2] = { 0.0, 0.0 };
+    if (vtkDataArray* r = fd->GetArray(vtkBrumeNames::ExtinctionTransferRange))
+    {
+      r->GetTuple(0, transferRange);
+    }
+    perValue *= TransferSteepest(transfer, transferRange);
+    albedoPerValue =
+      TransferSteepest(fd->GetArray(vtkBrumeNames::AlbedoTransferFunction), transferRange);
+  }
+  const double* cellSize = grid->GetSpacing();
+  double diagonal = 0.0;
+  for (int c = 0; c < 3; ++c)
+  {
+    diagonal += std::pow(cellSize[c] * dims[c], 2);
+  }
+  diagonal = std::sqrt(diagonal);
+  auto depthError = [&](double halfQuantum)
+  { return std::max(halfQuantum * perValue * diagonal, halfQuantum * albedoPerValue); };
   // The same samples (the same memory, which the atlas's arrays keep) in
-  // the same slots, filtered alike: the atlas holds them already, checked.
+  // the same slots, filtered alike, within the tolerance under this
+  // function: the atlas holds them already, checked.
   const bool sameAtlas = impl.AtlasSamples && source->GetNumberOfValues() > 0 &&
+    !(depthError(impl.AtlasHalfQuantum) > this->ExtinctionDepthTolerance) &&
     impl.AtlasSamples->GetDataType() == source->GetDataType() &&
     impl.AtlasSamples->GetNumberOfValues() == source->GetNumberOfValues() &&
     impl.AtlasSamples->GetVoidPointer(0) == source->GetVoidPointer(0) &&
@@ -580,6 +640,7 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
         }
       }
       slotHigh[static_cast<std::size_t>(slot)] = static_cast<float>(high);
+      slotTop[static_cast<std::size_t>(slot)] = high;
       slotSteep[static_cast<std::size_t>(slot)] = static_cast<float>(steep);
       slotLargest[static_cast<std::size_t>(slot)] = most;
       slotLeast[static_cast<std::size_t>(slot)] = least;
@@ -627,6 +688,48 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
     impl.SlotSteep = std::move(slotSteep);
   }
   const double storedLargest = largest; // of the stored samples alone
+  // Grids of integers (a scan's 8- or 16-bit values, read in place) go up
+  // as 16-bit normalized integers less their least, which the shader scales
+  // back, exactly. Floats go up so too, each slot's over its own interval
+  // in 65,535 steps, where the largest step's half keeps within the
+  // tolerance of optical depth (a smooth field, whose bricks span a little
+  // of its range: half the memory and the upload); other grids as floats.
+  // Not 8 bits: a software rasterizer filters those with 8-bit weights
+  // (2.3 % off in Brume.SliceVolumeMapper under llvmpipe), 16-bit ones as
+  // floats. Each stored brick's table entry gives the value of a texel t
+  // of its slot as scale t + offset.
+  if (!sameAtlas)
+  {
+    double least = 0.0;
+    bool integers = slotCount > 0;
+    double halfQuantum = 0.0;
+    for (vtkIdType slot = 0; slot < slotCount; ++slot)
+    {
+      const std::size_t at = static_cast<std::size_t>(slot);
+      least = slot == 0 ? slotLeast[0] : std::min(least, slotLeast[at]);
+      integers = integers && slotIntegers[at];
+      halfQuantum = std::max(halfQuantum, 0.5 * (slotTop[at] - slotLeast[at]) / 65535.0);
+    }
+    const bool exact = integers && storedLargest - least <= 65535.0;
+    const bool quantized = !exact && slotCount > 0 && std::isfinite(halfQuantum) &&
+      !(depthError(halfQuantum) > this->ExtinctionDepthTolerance);
+    impl.AtlasBytes = exact || quantized ? 2 : 4;
+    impl.AtlasHalfQuantum = quantized ? halfQuantum : 0.0;
+    impl.SlotValue.assign(2 * static_cast<std::size_t>(slotCount), 0.f);
+    for (vtkIdType slot = 0; slot < slotCount; ++slot)
+    {
+      const std::size_t at = static_cast<std::size_t>(slot);
+      float* slotValue = &impl.SlotValue[2 * at];
+      slotValue[0] = exact ? 65535.f
+        : quantized        ? static_cast<float>(slotTop[at] - slotLeast[at])
+                           : 1.f;
+      slotValue[1] = exact ? static_cast<float>(least)
+        : quantized        ? static_cast<float>(slotLeast[at])
+                           : 0.f;
+    }
+  }
+  impl.AtlasDepthError = depthError(impl.AtlasHalfQuantum);
+  const int width = impl.AtlasBytes;
   std::vector<float> table(4 * static_cast<std::size_t>(bricks));
   vtkFloatArray* constants = vtkFloatArray::FastDownCast(values);
   for (vtkIdType b = 0; b < bricks; ++b)
@@ -644,14 +747,16 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
         return false;
       }
       entry[0] = static_cast<float>(v);
-      entry[3] = -1.f;
+      entry[1] = -1.f;
       largest = std::max(largest, v);
       continue;
     }
-    entry[0] = static_cast<float>(B * (slot % atlas[0]));
-    entry[1] = static_cast<float>(B * ((slot / atlas[0]) % atlas[1]));
-    entry[2] = static_cast<float>(B * (slot / (static_cast<vtkIdType>(atlas[0]) * atlas[1])));
-    entry[3] = 1.f;
+    // The slot's place in the atlas, in slots: x + 2048 y (at most 16,384
+    // texels, 2,048 slots, along x), and z; then its scale and offset.
+    entry[0] = static_cast<float>(slot % atlas[0] + 2048 * ((slot / atlas[0]) % atlas[1]));
+    entry[1] = static_cast<float>(slot / (static_cast<vtkIdType>(atlas[0]) * atlas[1]));
+    entry[2] = impl.SlotValue[2 * static_cast<std::size_t>(slot)];
+    entry[3] = impl.SlotValue[2 * static_cast<std::size_t>(slot) + 1];
   }
   for (int c = 0; c < 3; ++c)
   {
@@ -850,23 +955,6 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
   {
     return Upload3D(impl.BrickTable, renWin, brickDims, 4, vtkTextureObject::Nearest, table.data());
   }
-  // Grids of integers (a scan's 8- or 16-bit values, read in place) go up
-  // as 16-bit normalized integers less their least, which the shader scales
-  // back (atlasValue), exactly; other grids as floats. Not 8 bits: a
-  // software rasterizer filters those with 8-bit weights (2.3 % off in
-  // Brume.SliceVolumeMapper under llvmpipe), 16-bit ones as floats.
-  double least = 0.0;
-  bool integers = slotCount > 0;
-  for (vtkIdType slot = 0; slot < slotCount; ++slot)
-  {
-    least = slot == 0 ? slotLeast[0] : std::min(least, slotLeast[static_cast<std::size_t>(slot)]);
-    integers = integers && slotIntegers[static_cast<std::size_t>(slot)];
-  }
-  const double span = storedLargest - least;
-  const int width = integers && span <= 65535.0 ? 2 : 4;
-  impl.AtlasValue[0] = width == 2 ? 65535.f : 1.f;
-  impl.AtlasValue[1] = width == 4 ? 0.f : static_cast<float>(least);
-  impl.AtlasBytes = width;
   if (!this->CreateAtlas(renWin, texels, width, filter))
   {
     return false;
@@ -885,9 +973,13 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
     {
       const vtkIdType slot = first + s;
       const int sx = static_cast<int>(s % atlas[0]), sy = static_cast<int>(s / atlas[0]);
+      double offset = 0.0, perStep = 0.0; // the slot's steps of 1 / 65,535 per unit of value
       if (slot < slotCount)
       {
         readSlot(slot, brick);
+        const float* slotValue = &impl.SlotValue[2 * static_cast<std::size_t>(slot)];
+        offset = slotValue[1];
+        perStep = slotValue[0] > 0.f ? 65535.0 / slotValue[0] : 0.0;
       }
       for (int k = 0; k < B; ++k)
         for (int j = 0; j < B; ++j)
@@ -897,14 +989,17 @@ bool vtkBrumeOpenGLSliceVolumeMapper::UploadBricks(
           for (int i = 0; i < B; ++i)
           {
             // Zeros in the atlas's unused slots.
-            const double v = slot < slotCount ? brick[(k * B + j) * B + i] : least;
+            const double v = slot < slotCount ? brick[(k * B + j) * B + i] : 0.0;
             if (width == 2)
             {
-              layer16[row + i] = static_cast<std::uint16_t>(v - least);
+              layer16[row + i] = slot < slotCount
+                ? static_cast<std::uint16_t>(
+                    std::clamp(std::nearbyint((v - offset) * perStep), 0.0, 65535.0))
+                : std::uint16_t{ 0 };
             }
             else
             {
-              layer[row + i] = slot < slotCount ? static_cast<float>(v) : 0.f;
+              layer[row + i] = static_cast<float>(v);
             }
           }
         }
@@ -980,6 +1075,11 @@ bool vtkBrumeOpenGLSliceVolumeMapper::CreateAtlas(
     static_cast<unsigned int>(texels[1]), static_cast<unsigned int>(texels[2]), 1, type, nullptr);
   texture->SetInternalFormat(0); // the default for the texture's next use
   return made;
+}
+
+double vtkBrumeOpenGLSliceVolumeMapper::GetExtinctionAtlasDepthError() const
+{
+  return this->Impl->AtlasDepthError;
 }
 
 int vtkBrumeOpenGLSliceVolumeMapper::GetNumberOfExtinctionAtlasUploads() const

@@ -47,14 +47,14 @@ uniform vec3 textureFromWorldZ;
 #if BRUME_EXTINCTION == 1
 // A sparse extinction grid (vtkBrumeSliceVolumeMapper::SetExtinctionData):
 // bricks of 8^3 cells, 7 apart, so that the cells a point interpolates lie
-// in one brick; the table gives a brick's place in the atlas or its value.
+// in one brick. The table gives a brick's value (x, y < 0), or its slot in
+// the atlas (x + 2048 y and z, in slots) and the grid's value of a texel t
+// there, z t + w (a 16-bit normalized atlas holds integers less their
+// least, or each slot's values over its own interval).
 uniform sampler3D brickTable;
 uniform vec3 gridCells;
 uniform vec3 brickCount;
 uniform vec3 atlasSize;
-// The grid's value of an atlas texel t: atlasValue.x t + atlasValue.y (a
-// 16-bit normalized atlas holds integers less their least).
-uniform vec2 atlasValue;
 uniform vec3 brickScale;             // sigma_t per unit of the grid's values
 #endif
 #if BRUME_EXTINCTION == 1 && BRUME_CLASSIFIED
@@ -117,15 +117,17 @@ vec3 extinctionAt(vec3 t, out vec3 albedo)
   vec3 brick = min(floor(u / 7.0), brickCount - 1.0);
   vec4 entry = texelFetch(brickTable, ivec3(brick), 0);
   vec4 classified;
-  if (entry.w < 0.0)
+  if (entry.y < 0.0)
   {
     classified = classify(entry.x);
   }
   else
   {
+    float row = floor(entry.x / 2048.0);
+    vec3 slot = 8.0 * vec3(entry.x - 2048.0 * row, row, entry.y);
     vec3 local = min(u - 7.0 * brick, vec3(7.0));
-    float t = texture(extinctionTexture, (entry.xyz + local + 0.5) / atlasSize).r;
-    classified = classify(atlasValue.x * t + atlasValue.y);
+    float t = texture(extinctionTexture, (slot + local + 0.5) / atlasSize).r;
+    classified = classify(entry.z * t + entry.w);
   }
 #if BRUME_ALBEDO
   albedo = classified.gba;

@@ -294,7 +294,7 @@ bool NativeExtinction()
   return ok;
 }
 
-bool SparseExtinction(double unit, int texelBytes)
+bool SparseExtinction(double unit, int texelBytes, double tolerance)
 {
   // sigma_t on a grid of 30 x 20 x 4 cells over the unit cube, given densely
   // and in the sparse form written here from its documentation (bricks of
@@ -302,7 +302,9 @@ bool SparseExtinction(double unit, int texelBytes)
   // smooth field over x < 0.2, a constant 2 beyond, 0 in the top rows.
   // Both forms must draw the same image. With a `unit`, the grid holds
   // whole numbers of it (a scan's integers), which the atlas keeps in
-  // `texelBytes` per texel, exactly.
+  // `texelBytes` per texel, exactly. Under a `tolerance` of optical depth
+  // (SetExtinctionDepthTolerance) other values may go up as 16 bits too,
+  // rounded: the image then stays within the bound the mapper states.
   const double box[6] = { -0.5, 0.5, -0.5, 0.5, -0.5, 0.5 };
   const int n[3] = { 30, 20, 4 };
   auto smooth = [&](int i, int j, int k)
@@ -427,13 +429,13 @@ bool SparseExtinction(double unit, int texelBytes)
   for (bool nearest : { true, false })
   {
     Frame frames[3];
+    double depthError = -1.0;
     for (int form = 0; form < 3; ++form)
     {
       auto volume = Volume(Medium(box, { coarse }), 0.0, nearest);
-      vtkBrumeSliceVolumeMapper::SafeDownCast(volume->GetMapper())
-        ->SetExtinctionData(form == 0 ? dense
-            : form == 1               ? sparse
-                                      : inPlace);
+      auto* mapper = vtkBrumeSliceVolumeMapper::SafeDownCast(volume->GetMapper());
+      mapper->SetExtinctionDepthTolerance(tolerance);
+      mapper->SetExtinctionData(form == 0 ? dense : form == 1 ? sparse : inPlace);
       frames[form] = Render({ volume }, false);
       auto* opengl = vtkBrumeOpenGLSliceVolumeMapper::SafeDownCast(volume->GetMapper());
       if (form > 0 && (!opengl || opengl->GetExtinctionAtlasTexelBytes() != texelBytes))
@@ -443,22 +445,43 @@ bool SparseExtinction(double unit, int texelBytes)
                   << " bytes a texel, not " << texelBytes << "\n";
         ok = false;
       }
+      if (form > 0 && opengl)
+      {
+        depthError = opengl->GetExtinctionAtlasDepthError();
+      }
     }
+    // Rounded to 16 bits (floats, or integers spanning more), the atlas's
+    // values move sigma_t by at most e/d along a ray of length at most the
+    // diagonal d, e the stated bound: a pixel L = int S sigma exp(-tau) ds
+    // moves by at most S e through sigma, and S e through exp(-tau), whose
+    // weights sigma exp(-tau) integrate to at most 1.
+    const bool rounded = texelBytes == 2 && unit != 0.01 && unit != 0.001;
+    if (rounded != (depthError > 0.0) || !(depthError <= tolerance))
+    {
+      std::cerr << "sparse extinction in units of " << unit << ": a bound of " << depthError
+                << " on optical depth under a tolerance of " << tolerance << "\n";
+      ok = false;
+    }
+    const double sourceLargest = 2.0;
     // Both forms interpolate the same cells with the same weights, up to
     // float rounding of the coordinates (an atlas is a larger texture):
     // 1.2e-6 measured under llvmpipe.
-    double worst = 0.0, sum = 0.0;
+    double worst = 0.0, sum = 0.0, rounding = 0.0;
     for (int j = 0; j < Size; ++j)
       for (int i = 0; i < Size; ++i)
         for (int c = 0; c < 3; ++c)
         {
           const double a = frames[0].At(i, j)[c], b = frames[1].At(i, j)[c];
-          worst = std::max(worst, std::abs(a - b) / (std::abs(a) + 1e-3));
+          const double beyond = std::max(0.0, std::abs(a - b) - 2.0 * sourceLargest * depthError);
+          worst = std::max(worst, beyond / (std::abs(a) + 1e-3));
+          rounding = std::max(rounding, std::abs(a - b));
           sum += a;
         }
     std::cout << "sparse extinction in units of " << unit << ", "
-              << (nearest ? "nearest" : "linear")
-              << ": largest relative difference to the dense grid " << worst << "\n";
+              << (nearest ? "nearest" : "linear") << ", " << texelBytes
+              << " bytes a texel: largest difference to the dense grid " << rounding << " (allowed "
+              << 2.0 * sourceLargest * depthError << " by the rounding), relative beyond it "
+              << worst << "\n";
     // Read from the cells or from the slots, the atlas is the same: bitwise.
     int unequal = 0;
     for (int j = 0; j < Size; ++j)
@@ -888,14 +911,22 @@ bool ClassifiedExtinction()
       {
         samples->InsertNextValue(static_cast<float>(std::min(i, 7)) / 7.f);
       }
-  // The function's extinction at 4096 scalars over [0, 1].
+  // The function's extinction at 4096 scalars over [0, 1]: the step, or
+  // a gentle ramp of opacity from `low` to `high`.
   table->SetName(vtkBrumeNames::ExtinctionTransferFunction);
   const int n = 4096;
-  for (int i = 0; i < n; ++i)
+  auto fill = [&](bool stepped)
   {
-    const double s = static_cast<double>(i) / (n - 1);
-    table->InsertNextValue(static_cast<float>(-std::log1p(-(s < step ? low : high))));
-  }
+    table->SetNumberOfValues(n);
+    for (int i = 0; i < n; ++i)
+    {
+      const double s = static_cast<double>(i) / (n - 1);
+      const double alpha = stepped ? (s < step ? low : high) : low + (high - low) * s;
+      table->SetValue(i, static_cast<float>(-std::log1p(-alpha)));
+    }
+    table->Modified();
+  };
+  fill(false);
   vtkNew<vtkDoubleArray> range, perUnit;
   range->SetName(vtkBrumeNames::ExtinctionTransferRange);
   range->SetNumberOfComponents(2);
@@ -916,6 +947,49 @@ bool ClassifiedExtinction()
     const double sigma = -std::log1p(-alpha);
     return Layer{ coarse.Source, { sigma * scale[0], sigma * scale[1], sigma * scale[2] } };
   };
+  {
+    // The scalars' 16-bit values under the ramp keep within the default
+    // tolerance of optical depth (its slope 3 per unit of scalar, times the
+    // scale's 3 and the diagonal's sqrt(3), over 2 65,535 steps: 1.2e-4);
+    // under the step they would not (its slope is 5,676), so the same
+    // grid, modified, goes up again as floats.
+    auto volume = Volume(Medium(box, { coarse }), 0.0, false);
+    auto* mapper = vtkBrumeOpenGLSliceVolumeMapper::SafeDownCast(volume->GetMapper());
+    if (!mapper)
+    {
+      std::cerr << "classified scalars: not an OpenGL slice mapper\n";
+      return false;
+    }
+    mapper->SetExtinctionData(grid);
+    Render({ volume }, true);
+    const int rampBytes = mapper->GetExtinctionAtlasTexelBytes();
+    const double rampError = mapper->GetExtinctionAtlasDepthError();
+    fill(true);
+    grid->Modified();
+    const Frame f = Render({ volume }, true);
+    std::cout << "classified scalars: under the ramp " << rampBytes << " bytes a texel (bound "
+              << rampError << "), under the step " << mapper->GetExtinctionAtlasTexelBytes()
+              << " (bound " << mapper->GetExtinctionAtlasDepthError() << "), "
+              << mapper->GetNumberOfExtinctionAtlasUploads() << " uploads\n";
+    if (rampBytes != 2 || !(rampError > 1e-4 && rampError < 1.3e-4) ||
+      mapper->GetExtinctionAtlasTexelBytes() != 4 ||
+      mapper->GetExtinctionAtlasDepthError() != 0.0 ||
+      mapper->GetNumberOfExtinctionAtlasUploads() != 2)
+    {
+      std::cerr << "classified scalars: the ramp's atlas should be 16-bit within 1.2e-4, the "
+                   "step's sent again as floats\n";
+      ok = false;
+    }
+    for (int i = 0; i < Size; ++i)
+    {
+      const double x = Coordinate(i);
+      if (std::abs(x) <= 0.45)
+      {
+        const RGB expected = Slab(level(x < 0.125 ? low : high), 1.0);
+        ok = Near(f.At(i, Size / 2), expected, 0.01, "classified scalars, after the ramp") && ok;
+      }
+    }
+  }
   for (bool nearest : { true, false })
   {
     auto volume = Volume(Medium(box, { coarse }), 0.0, nearest);
@@ -987,10 +1061,12 @@ int TestSliceVolumeMapper(int, char*[])
   ok = BadInput() && ok;
   ok = Directional() && ok;
   ok = NativeExtinction() && ok;
-  ok = SparseExtinction(0.0, 4) && ok;
-  ok = SparseExtinction(0.01, 2) && ok;  // whole numbers up to 280 (8-bit data): 16 bits
-  ok = SparseExtinction(0.001, 2) && ok; // up to 2,800
-  ok = SparseExtinction(1e-5, 4) && ok;  // up to 280,000: floats
+  ok = SparseExtinction(0.0, 4, 0.0) && ok;   // floats, kept exactly
+  ok = SparseExtinction(0.0, 2, 1e-3) && ok;  // floats rounded within the default tolerance
+  ok = SparseExtinction(0.01, 2, 0.0) && ok;  // whole numbers up to 280 (8-bit data): 16 bits
+  ok = SparseExtinction(0.001, 2, 0.0) && ok; // up to 2,800
+  ok = SparseExtinction(1e-5, 4, 0.0) && ok;  // up to 280,000: floats when kept exactly
+  ok = SparseExtinction(1e-5, 2, 1e-3) && ok; // or rounded to 16 bits within the tolerance
   ok = ClassifiedExtinction() && ok;
   ok = ThickSkin() && ok;
   ok = ThinSheet() && ok;
