@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "brume/BrickedGrid.h"
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 #include <algorithm>
 #include <cmath>
 
@@ -127,6 +130,8 @@ BrickedGrid BrickedGrid::Layout(const std::array<int, 3>& dims, const Box& box, 
   for (int a = 0; a < 3; ++a)
   {
     grid.BrickDims[a] = BricksAlong(dims[a]);
+    grid.LastSample[a] = static_cast<float>(std::max(dims[a] - 1, 0));
+    grid.LastBrick[a] = static_cast<float>(grid.BrickDims[a] - 1);
   }
   const std::size_t bricks =
     static_cast<std::size_t>(grid.BrickDims[0]) * grid.BrickDims[1] * grid.BrickDims[2];
@@ -258,24 +263,48 @@ float BrickedGrid::At(int i, int j, int k) const
     static_cast<std::size_t>((l[2] * Size + l[1]) * Size + l[0])];
 }
 
-std::size_t BrickedGrid::Locate(const Vec3& q, int i0[3], float w[3]) const
+inline std::size_t BrickedGrid::Locate(const Vec3& q, int i0[3], float w[3]) const
 {
   // u: the position in samples (cell centres at integers), clamped. No
-  // division: 10^8 calls march a 512^3 grid's shadow rays.
+  // division: 10^8 calls march a 512^3 grid's shadow rays, so the three
+  // axes go through SSE2's lanes together: the same float operations, the
+  // clamps of the brick and of i0 taken before truncating (equal for the
+  // non-negative values they see).
   constexpr float PerStride = 1.f / static_cast<float>(Stride);
+#if defined(__SSE2__)
+  const __m128 zero = _mm_setzero_ps();
+  __m128 u = _mm_sub_ps(_mm_set_ps(0.f, q.z, q.y, q.x), _mm_set1_ps(0.5f));
+  u = _mm_min_ps(_mm_max_ps(u, zero), _mm_load_ps(this->LastSample.data()));
+  const __m128i b = _mm_cvttps_epi32(
+    _mm_min_ps(_mm_mul_ps(u, _mm_set1_ps(PerStride)), _mm_load_ps(this->LastBrick.data())));
+  const __m128 local =
+    _mm_sub_ps(u, _mm_mul_ps(_mm_cvtepi32_ps(b), _mm_set1_ps(static_cast<float>(Stride))));
+  const __m128i first = _mm_cvttps_epi32(
+    _mm_min_ps(_mm_max_ps(local, zero), _mm_set1_ps(static_cast<float>(Size - 2))));
+  alignas(16) int bricks[4], firsts[4];
+  alignas(16) float weights[4];
+  _mm_store_si128(reinterpret_cast<__m128i*>(bricks), b);
+  _mm_store_si128(reinterpret_cast<__m128i*>(firsts), first);
+  _mm_store_ps(weights, _mm_sub_ps(local, _mm_cvtepi32_ps(first)));
+  for (int a = 0; a < 3; ++a)
+  {
+    i0[a] = firsts[a];
+    w[a] = weights[a];
+  }
+  return this->BrickIndex(bricks[0], bricks[1], bricks[2]);
+#else
   int b[3];
   for (int a = 0; a < 3; ++a)
   {
-    const float n = static_cast<float>(this->Dims[a]);
     float u = q[a] - 0.5f;
-    u = u < 0.f ? 0.f : (u > n - 1.f ? n - 1.f : u);
-    b[a] = std::min(static_cast<int>(u * PerStride), this->BrickDims[a] - 1);
-    b[a] = std::max(b[a], 0);
+    u = u > 0.f ? (u < this->LastSample[a] ? u : this->LastSample[a]) : 0.f;
+    b[a] = static_cast<int>(std::min(u * PerStride, this->LastBrick[a]));
     const float local = u - static_cast<float>(Stride * b[a]);
-    i0[a] = std::min(std::max(static_cast<int>(local), 0), Size - 2);
+    i0[a] = static_cast<int>(std::min(std::max(local, 0.f), static_cast<float>(Size - 2)));
     w[a] = local - static_cast<float>(i0[a]);
   }
   return this->BrickIndex(b[0], b[1], b[2]);
+#endif
 }
 
 float BrickedGrid::Trilinear(std::int32_t slot, const int i0[3], const float w[3]) const

@@ -185,6 +185,9 @@ private:
 
   std::array<int, 3> Dims{ 0, 0, 0 };
   std::array<int, 3> BrickDims{ 0, 0, 0 };
+  // Dims - 1 and BrickDims - 1 as floats, four for Locate()'s lanes.
+  alignas(16) std::array<float, 4> LastSample{ 0.f, 0.f, 0.f, 0.f };
+  alignas(16) std::array<float, 4> LastBrick{ 0.f, 0.f, 0.f, 0.f };
   Box Bounds;
   Vec3 CellsPerLength{ 0.f }; // Dims / Bounds.Extent()
   std::vector<std::int32_t> Slots;
