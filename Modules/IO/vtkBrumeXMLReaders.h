@@ -15,17 +15,36 @@
 #ifndef vtkBrumeXMLReaders_h
 #define vtkBrumeXMLReaders_h
 
+#include "vtkDataArray.h"
+#include "vtkXMLDataElement.h"
 #include "vtkXMLDataParser.h"
 #include "vtkXMLImageDataReader.h"
 #include "vtkXMLPolyDataReader.h"
 #include "vtkXMLUnstructuredGridReader.h"
 
-/// vtkXMLDataParser with expat's reparse deferral switched off.
+#include <string>
+
+/// vtkXMLDataParser with expat's reparse deferral switched off, which
+/// also reads a whole compressed appended array on every thread.
 class vtkBrumeXMLDataParser : public vtkXMLDataParser
 {
 public:
   static vtkBrumeXMLDataParser* New();
   vtkTypeMacro(vtkBrumeXMLDataParser, vtkXMLDataParser);
+
+  /**
+   * Reads all `numWords` words (`wordSize` bytes each) of the compressed
+   * array at `offset` in the appended data of `fileName` (the file this
+   * parser parsed), raw or base64, into `buffer`: its blocks decoded and
+   * decompressed on vtkSMPTools' threads, each into its place, so the
+   * values are those VTK's serial reading gives. 1: read; 0: not such an
+   * array (uncompressed, of the other byte order, or of another size than
+   * `numWords`), for VTK's reading; -1: an error, reported (the file holds
+   * less than its header announces, or a block does not decompress to its
+   * size).
+   */
+  int ReadCompressedAppendedArray(
+    const char* fileName, vtkTypeInt64 offset, void* buffer, size_t numWords, size_t wordSize);
 
 protected:
   vtkBrumeXMLDataParser() = default;
@@ -36,6 +55,10 @@ private:
   vtkBrumeXMLDataParser(const vtkBrumeXMLDataParser&) = delete;
   void operator=(const vtkBrumeXMLDataParser&) = delete;
 };
+
+/// VTK XML's name of a type of array values (Float32, UInt8, ...), null for
+/// others (vtkIdType, bits, strings), which VTK's reading converts.
+const char* vtkBrumeXMLWordTypeName(int dataType);
 
 /// A VTK XML reader (vtkXMLImageDataReader, ...) parsing with
 /// vtkBrumeXMLDataParser.
@@ -61,6 +84,35 @@ protected:
       this->DestroyXMLParser();
     }
     this->XMLParser = vtkBrumeXMLDataParser::New();
+  }
+  /// A whole array of a file's compressed appended data, of at least
+  /// 1 MB, is read on every thread
+  /// (vtkBrumeXMLDataParser::ReadCompressedAppendedArray); the rest as VTK reads it.
+  int ReadArrayValues(vtkXMLDataElement* da, vtkIdType arrayIndex, vtkAbstractArray* array,
+    vtkIdType startIndex, vtkIdType numValues,
+    vtkXMLReader::FieldType type = vtkXMLReader::OTHER) override
+  {
+    auto* parser = vtkBrumeXMLDataParser::SafeDownCast(this->XMLParser);
+    auto* data = vtkDataArray::FastDownCast(array);
+    vtkTypeInt64 offset = 0;
+    const char* format = da ? da->GetAttribute("format") : nullptr;
+    const char* fileType = da ? da->GetAttribute("type") : nullptr;
+    const char* arrayType = data ? vtkBrumeXMLWordTypeName(data->GetDataType()) : nullptr;
+    if (parser && data && this->FileName && !this->ReadFromInputString && format &&
+      std::string(format) == "appended" && fileType && arrayType &&
+      std::string(fileType) == arrayType && da->GetScalarAttribute("offset", offset) &&
+      arrayIndex == 0 && startIndex == 0 && numValues == data->GetNumberOfValues() &&
+      static_cast<double>(numValues) * data->GetDataTypeSize() >= 1 << 20)
+    {
+      const int read =
+        parser->ReadCompressedAppendedArray(this->FileName, offset, data->GetVoidPointer(0),
+          static_cast<size_t>(numValues), static_cast<size_t>(data->GetDataTypeSize()));
+      if (read != 0)
+      {
+        return read > 0 ? 1 : 0;
+      }
+    }
+    return Reader::ReadArrayValues(da, arrayIndex, array, startIndex, numValues, type);
   }
 
 private:
