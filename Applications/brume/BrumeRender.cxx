@@ -460,6 +460,13 @@ int RunRender(const RenderOptions& options)
     }
     const double tracing = pipeline->GetTracingSeconds();
     const double reconstruction = pipeline->GetReconstructionSeconds();
+    if (step == steps.back())
+    {
+      // No rebuild follows the last image: what the reconstruction keeps
+      // for one (a large volume's extinction at its own resolution) is
+      // freed before the GPU takes its copy of the textures.
+      pipeline->GetReconstruction()->ReleaseBuildState();
+    }
     if (rank != 0)
     {
       continue; // process 0 renders

@@ -20,6 +20,7 @@
 #include "vtkPolyData.h"
 
 #include "brume/Camera.h"
+#include "brume/FloatBuffer.h"
 #include "brume/SphericalHarmonics.h"
 
 #include <algorithm>
@@ -58,6 +59,13 @@ int vtkBrumeRadianceReconstruction::FillInputPortInformation(int port, vtkInform
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), port == 0 ? "vtkDataObject" : "vtkPolyData");
   return 1;
+}
+
+vtkTypeInt64 vtkBrumeRadianceReconstruction::ReleaseBuildState()
+{
+  // The output's arrays hold what they share by their own references.
+  this->Textures.reset();
+  return static_cast<vtkTypeInt64>(brume::FloatBuffer::ReleaseKept());
 }
 
 vtkTypeBool vtkBrumeRadianceReconstruction::ProcessRequest(

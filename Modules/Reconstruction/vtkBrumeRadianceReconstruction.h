@@ -263,6 +263,22 @@ public:
    */
   vtkGetMacro(NumberOfDirectLightsKept, vtkIdType);
 
+  /**
+   * Frees what the filter keeps between executions beyond its output, for
+   * a program that draws the output and reconstructs no more (`brume
+   * render` before drawing its last image): the state a rebuild would take
+   * from (each medium's extinction at its own resolution, 0.8 GB for a
+   * classified 512^3 field, the direct light's shadow rays, the ray
+   * caster, kept hits and histograms), and the mappings the freed grids
+   * would have been sampled into again (brume::FloatBuffer::ReleaseKept()).
+   * The output is not changed, and what it shares (a grid's samples, a
+   * field's own values) stays with it. The next execution rebuilds in
+   * full from its hits input, as a first one does; where that input holds
+   * only a run's last batch it fails, asking to trace again. Returns the
+   * bytes of mappings given back to the system.
+   */
+  vtkTypeInt64 ReleaseBuildState();
+
   vtkMTimeType GetMTime() override;
 
   ///@{

@@ -121,6 +121,28 @@ TEST(FloatBuffer, BuffersReleasedTogetherServeTheNextTogether)
   EXPECT_LT(reused, fresh / 4 + 1) << "fresh pages faulted " << fresh << " times";
 }
 
+TEST(FloatBuffer, KeptMappingsGoBackToTheSystemWhenAsked)
+{
+  // A program that draws its last image gives the kept pages back: they
+  // are unmapped (counted), and the next buffer faults in fresh pages.
+  if (UnderAddressSanitizer())
+  {
+    GTEST_SKIP() << "every buffer comes from operator new under AddressSanitizer";
+  }
+  const std::size_t n = std::size_t(16) << 20; // 64 MB
+  long fresh = 0;
+  {
+    FloatBuffer first = FloatBuffer::Allocate(n);
+    fresh = FillAndCheck(first);
+  }
+  EXPECT_GE(FloatBuffer::ReleaseKept(), n * sizeof(float));
+  EXPECT_EQ(FloatBuffer::ReleaseKept(), 0u);
+  FloatBuffer second = FloatBuffer::Allocate(n);
+  const long again = FillAndCheck(second);
+  EXPECT_GT(fresh, 0);
+  EXPECT_GT(again, fresh / 2) << "fresh pages faulted " << fresh << " times";
+}
+
 TEST(FloatBuffer, ReleasedMappingsGrowShrinkOrGo)
 {
   // A kept mapping serves a buffer up to twice its size (grown) or cut to

@@ -139,6 +139,22 @@ public:
     return taken;
   }
 
+  std::size_t Release()
+  {
+    std::vector<std::pair<void*, std::size_t>> released;
+    {
+      std::lock_guard<std::mutex> lock(this->Mutex);
+      released.swap(this->Kept);
+    }
+    std::size_t bytes = 0;
+    for (const auto& [p, n] : released)
+    {
+      munmap(p, n);
+      bytes += n;
+    }
+    return bytes;
+  }
+
   void Give(void* p, std::size_t bytes)
   {
 #if defined(MADV_FREE)
@@ -197,6 +213,15 @@ FloatBuffer FloatBuffer::Allocate(std::size_t n)
 #endif
   buffer.Memory = std::shared_ptr<float>(new float[n], std::default_delete<float[]>());
   return buffer;
+}
+
+std::size_t FloatBuffer::ReleaseKept()
+{
+#if BRUME_MAPPED_BUFFERS
+  return MappingCache::Get().Release();
+#else
+  return 0;
+#endif
 }
 
 FloatBuffer FloatBuffer::Wrap(const float* data, std::size_t n, std::shared_ptr<const void> owner)

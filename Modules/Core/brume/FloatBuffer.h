@@ -41,6 +41,13 @@ public:
   static FloatBuffer Allocate(std::size_t n);
   /// `n` floats at `data`, kept alive by `owner` (an array of someone else's).
   static FloatBuffer Wrap(const float* data, std::size_t n, std::shared_ptr<const void> owner);
+  /**
+   * Gives the kept mappings of buffers no one holds any more back to the
+   * system now, for a program that allocates no more large buffers (one
+   * that draws its last image): kept pages count in its resident memory
+   * until the system takes them back. Returns the bytes unmapped.
+   */
+  static std::size_t ReleaseKept();
 
   float* Data() { return this->Memory.get(); }
   const float* Data() const { return this->Memory.get(); }

@@ -4,7 +4,8 @@
 // one run traced one after the other; a run that does not continue the
 // textures' is refused, and directional media follow the
 // camera without any reconstruction, then return to per-view textures that
-// equal a fresh reconstruction's.
+// equal a fresh reconstruction's; with its build state released, the
+// output stays and a later execution rebuilds it in full.
 #include "BrumeTestScenes.h"
 #include "vtkBrumeDataModelNames.h"
 #include "vtkBrumeLightTracer.h"
@@ -254,6 +255,46 @@ int TestProgressiveDirectional(int, char*[])
   single->Update();
   ok =
     SameTextures(directional->GetOutput(), single->GetOutput(), "directional, then per view") && ok;
+  // 5. The build state released, as by a program that draws its last
+  // image: the output stays as it was; a later execution rebuilds every
+  // object (toward a turned camera, as a fresh run's textures), and a run's
+  // next batch cannot continue textures that are no longer held.
+  {
+    auto released = reconstructionOf(singleTracer);
+    released->Update();
+    vtkPartitionedDataSetCollection* output = released->GetOutput();
+    vtkNew<vtkPartitionedDataSetCollection> before;
+    before->DeepCopy(output);
+    released->ReleaseBuildState();
+    ok =
+      released->GetOutput() == output && SameTextures(output, before, "released: the output") && ok;
+    const vtkIdType builds = released->GetNumberOfTextureBuilds();
+    camera->Azimuth(10.0);
+    released->Update();
+    single->Update();
+    ok = SameTextures(released->GetOutput(), single->GetOutput(), "released, then turned") && ok;
+    if (released->GetNumberOfTextureBuilds() != builds + objects)
+    {
+      std::cerr << "released, then turned: expected " << objects << " objects built again, got "
+                << released->GetNumberOfTextureBuilds() - builds << "\n";
+      ok = false;
+    }
+    vtkNew<vtkBrumeLightTracer> batchTracer;
+    batchTracer->SetInputData(scene);
+    batchTracer->SetNumberOfParticles(40000);
+    batchTracer->SetEndParticle(20000);
+    auto batched = reconstructionOf(batchTracer);
+    batched->AccumulateParticlesOn();
+    batched->Update();
+    batched->ReleaseBuildState();
+    batchTracer->SetFirstParticle(20000);
+    batchTracer->SetEndParticle(40000);
+    if (!FailsWithError(batched))
+    {
+      std::cerr << "a batch continued textures whose build state was released\n";
+      ok = false;
+    }
+  }
   std::cout << "progressive, batches, continuation checks and directional mode: "
             << (ok ? "ok" : "FAILED") << "\n";
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
