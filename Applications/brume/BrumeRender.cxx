@@ -465,7 +465,7 @@ int RunRender(const RenderOptions& options)
       // No rebuild follows the last image: what the reconstruction keeps
       // for one (a large volume's extinction at its own resolution) is
       // freed before the GPU takes its copy of the textures.
-      pipeline->GetReconstruction()->ReleaseBuildState();
+      pipeline->ReleaseBuildState();
     }
     if (rank != 0)
     {

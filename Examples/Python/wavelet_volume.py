@@ -168,6 +168,8 @@ def render_brume(wavelet, prop, size, particles):
     pipeline.SetCamera(set_camera(vtkRenderer()))
     if not pipeline.Update():
         raise RuntimeError("brume: " + pipeline.GetFailedPhase() + " failed")
+    # One image: what a rebuild would reuse is freed before the GPU's copy.
+    pipeline.ReleaseBuildState()
     radiance = pipeline.RenderImage()
     seconds = time.perf_counter() - start
     return pipeline.ToneMap(radiance), radiance, seconds

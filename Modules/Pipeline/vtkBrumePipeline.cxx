@@ -571,14 +571,9 @@ vtkSmartPointer<vtkImageData> vtkBrumePipeline::RenderImage(int supersample)
   this->MakeImageWindow();
   vtkRenderer* renderer = this->ImageWindow->GetRenderers()->GetFirstRenderer();
   this->ImageWindow->SetSize(this->Size[0], this->Size[1]);
-  if (this->ActorsRenderer != renderer)
-  {
-    if (!this->AddToRenderer(renderer))
-    {
-      return nullptr;
-    }
-  }
-  else if (!this->UpdateView())
+  // The textures toward the camera as it is now (it may have moved since
+  // Update(): view-dependent textures follow it), then the props there.
+  if (!this->UpdateView() || (this->ActorsRenderer != renderer && !this->AddToRenderer(renderer)))
   {
     return nullptr;
   }
@@ -612,6 +607,11 @@ vtkSmartPointer<vtkImageData> vtkBrumePipeline::RenderImage(int supersample)
     this->Fail("rendering");
   }
   return radiance;
+}
+
+vtkTypeInt64 vtkBrumePipeline::ReleaseBuildState()
+{
+  return this->Reconstruction->ReleaseBuildState();
 }
 
 vtkSmartPointer<vtkImageData> vtkBrumePipeline::ToneMap(vtkImageData* radiance)

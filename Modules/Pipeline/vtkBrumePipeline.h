@@ -226,6 +226,18 @@ public:
   vtkSmartPointer<vtkImageData> RenderImage(int supersample = 1);
 
   /**
+   * For a program that draws its image once: frees what the
+   * reconstruction keeps for a rebuild beyond its textures (a large
+   * volume's extinction at its own resolution, the direct light's rays:
+   * vtkBrumeRadianceReconstruction::ReleaseBuildState()), before
+   * RenderImage() has the GPU take its copy of the textures. `brume
+   * render` does so before its last image (a 512^3 volume's peak memory
+   * 2.1 -> 1.6 GB). A later Update() or camera move rebuilds the textures
+   * in full. Returns the bytes given back to the system.
+   */
+  vtkTypeInt64 ReleaseBuildState();
+
+  /**
    * Limits each medium's grids at their own resolution to three quarters
    * of the memory the GPU of `window` had free when first asked
    * (vtkBrumeOpenGLSliceVolumeMapper::GetFreeGPUMemory(),

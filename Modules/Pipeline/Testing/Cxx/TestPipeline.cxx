@@ -154,6 +154,30 @@ void TestSameAsByHand(vtkAlgorithm* scene)
     "a frame drawn to be timed leaves the image as it was");
   pipeline->MeasureFrameOff();
 
+  // One image, its build state freed first (brume render): the same image;
+  // after a camera move the textures are rebuilt in full, bitwise those of
+  // a fresh pipeline toward the new view.
+  auto released = MakePipeline(scene);
+  Check(released->Update(), "a pipeline to release updates");
+  released->ReleaseBuildState();
+  Check(Same(released->RenderImage(), expected),
+    "the image after the build state is released is the same");
+  released->GetCamera()->Azimuth(5.0);
+  auto fresh = MakePipeline(scene);
+  fresh->GetCamera()->Azimuth(5.0);
+  Check(fresh->Update(), "a pipeline toward the turned view updates");
+  const vtkSmartPointer<vtkImageData> turned = fresh->RenderImage();
+  Check(Lit(turned) && !Same(turned, expected) && Same(released->RenderImage(), turned),
+    "released, then turned: the image of a fresh pipeline toward the new view");
+
+  // A camera moved between Update() and the first image: the view-dependent
+  // textures follow it there too.
+  auto moved = MakePipeline(scene);
+  Check(moved->Update(), "a pipeline whose camera moves updates");
+  moved->GetCamera()->Azimuth(5.0);
+  Check(Same(moved->RenderImage(), turned),
+    "a camera moved before the first image: the image toward the new view");
+
   // Batches of one run bin as they come: the same textures, the same image.
   auto batched = MakePipeline(scene);
   batched->SetBatchSize(Particles / 4);
