@@ -159,10 +159,12 @@ struct vtkBrumeRadianceTextures::KeptDirect
     brume::Box Bounds;
     brume::Vec3 SigmaT;
     bool Homogeneous = true;
-    // The grid the rays marched, without keeping its samples: their
-    // memory's owner (the same owner is the same samples, which are never
-    // written after the grid is made), its cells, slots and constants.
+    // The grid the rays marched, without keeping its samples: its identity
+    // (a grid sampled again in its own memory, after an edit of its
+    // function, has another), their memory's owner, its cells, slots and
+    // constants.
     bool HasGrid = false;
+    std::uint64_t Identity = 0;
     std::weak_ptr<float> Samples;
     const float* SampleData = nullptr; // compared, never read
     std::size_t SampleCount = 0;
@@ -232,6 +234,7 @@ std::shared_ptr<vtkBrumeRadianceTextures::KeptDirect> vtkBrumeRadianceTextures::
     {
       const brume::BrickedGrid& grid = this->Objects[surfaces + m]->GetNative().GetDensity();
       key.HasGrid = !grid.Empty();
+      key.Identity = grid.GetIdentity();
       key.Samples = grid.GetSamples().Share();
       key.SampleData = grid.GetSamples().Data();
       key.SampleCount = grid.GetSamples().Size();
@@ -293,10 +296,10 @@ bool vtkBrumeRadianceTextures::DirectKeptHolds() const
       const std::shared_ptr<float>& samples = grid.GetSamples().Share();
       const bool sameOwner =
         !samples.owner_before(key.Samples) && !key.Samples.owner_before(samples);
-      if (grid.Empty() || !key.HasGrid || !sameOwner || samples.get() != key.SampleData ||
-        grid.GetSamples().Size() != key.SampleCount || grid.GetDims() != key.Dims ||
-        !SameBox(grid.GetBox(), key.Box) || grid.GetSlots() != key.Slots ||
-        grid.GetConstants() != key.Constants)
+      if (grid.Empty() || !key.HasGrid || grid.GetIdentity() != key.Identity || !sameOwner ||
+        samples.get() != key.SampleData || grid.GetSamples().Size() != key.SampleCount ||
+        grid.GetDims() != key.Dims || !SameBox(grid.GetBox(), key.Box) ||
+        grid.GetSlots() != key.Slots || grid.GetConstants() != key.Constants)
       {
         return false;
       }

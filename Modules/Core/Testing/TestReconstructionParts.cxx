@@ -694,6 +694,90 @@ TEST(ReconstructionParts, NativeMediumGridKeepsWhatAnEditOfTheFunctionLeft)
   EXPECT_TRUE(SameGrids(before, unrelated));
 }
 
+TEST(ReconstructionParts, NativeMediumGridEditedInItsOwnMemoryIsTheFreshGrid)
+{
+  // Edits one after another, each grid sampled again in the memory of the
+  // one before (the render pass's edits): every cell bitwise the grid
+  // sampled afresh, on one thread or three. The edits make bricks constant
+  // (a flat stretch of the function), vary again, leave some out (zero up
+  // to 0.45) and take more in (zero up to 0.05); a grid whose samples a
+  // copy shares is not written, the copy keeps its values.
+  const Medium waves = ClassifiedWaves(64);
+  const auto& classified = static_cast<const ClassifiedDensity&>(*waves.Density);
+  auto withFunction = [&](std::vector<OpacityTransferFunction::Node> nodes)
+  {
+    Medium edited = waves;
+    edited.SetDensity(std::make_shared<ClassifiedDensity>(
+      classified.GetScalarsPointer(), OpacityTransferFunction(std::move(nodes), 0.1f)));
+    return edited;
+  };
+  const std::vector<Medium> edits = {
+    withFunction({ { 0.2f, 0.f }, { 0.5f, 0.1f }, { 1.f, 0.6f } }),
+    withFunction({ { 0.2f, 0.f }, { 0.3f, 0.4f }, { 0.9f, 0.4f }, { 1.f, 0.6f } }),
+    withFunction({ { 0.2f, 0.f }, { 0.5f, 0.1f }, { 1.f, 0.6f } }),
+    withFunction({ { 0.45f, 0.f }, { 0.5f, 0.1f }, { 1.f, 0.9f } }),
+    withFunction({ { 0.05f, 0.f }, { 0.5f, 0.1f }, { 1.f, 0.9f } }),
+    waves,
+  };
+  const std::size_t memory = std::size_t(16) << 20;
+  for (const ParallelFor& parallelFor : { SerialFor(), ThreadsFor(3) })
+  {
+    NativeMediumGrid grid;
+    grid.Sample(waves, memory, parallelFor);
+    std::size_t inPlace = 0;
+    for (std::size_t e = 0; e < edits.size(); ++e)
+    {
+      const float* before = grid.GetDensity().GetSamples().Data();
+      const std::size_t stored = grid.GetDensity().NumberOfStoredBricks();
+      const std::uint64_t identity = grid.GetDensity().GetIdentity();
+      NativeMediumGrid fresh, edited;
+      fresh.Sample(edits[e], memory, parallelFor);
+      edited.Sample(edits[e], memory, parallelFor, std::move(grid));
+      EXPECT_TRUE(grid.Empty());
+      EXPECT_TRUE(SameGrids(fresh, edited)) << "edit " << e;
+      EXPECT_EQ(fresh.GetSampledBricks(), edited.GetSampledBricks() + edited.GetReusedBricks());
+      EXPECT_NE(edited.GetDensity().GetIdentity(), identity);
+      EXPECT_EQ(
+        edited.GetDensity().NumberOfStoredBricks(), fresh.GetDensity().NumberOfStoredBricks());
+      EXPECT_TRUE(edited.GetDensity().HasSamples());
+      const bool same = edited.GetDensity().GetSamples().Data() == before;
+      if (edited.GetDensity().NumberOfStoredBricks() == stored)
+      {
+        // As many bricks stored: the same memory (fewer: cut where it was
+        // mapped on its own, copied where small).
+        EXPECT_TRUE(same) << "edit " << e;
+        ++inPlace;
+      }
+      std::cout << "edit " << e << ": " << stored << " -> "
+                << edited.GetDensity().NumberOfStoredBricks() << " stored bricks, "
+                << edited.GetReusedBricks() << " left, " << edited.GetSampledBricks()
+                << " sampled, " << (same ? "in place" : "moved") << "\n";
+      grid = std::move(edited);
+    }
+    EXPECT_GE(inPlace, 1u);
+
+    // A copy shares the samples: the edit goes elsewhere, the copy is kept.
+    const BrickedGrid copy = grid.GetDensity();
+    NativeMediumGrid shared;
+    shared.Sample(edits[0], memory, parallelFor, std::move(grid));
+    NativeMediumGrid fresh, again;
+    fresh.Sample(edits[0], memory, parallelFor);
+    EXPECT_TRUE(SameGrids(fresh, shared));
+    EXPECT_NE(shared.GetDensity().GetSamples().Data(), copy.GetSamples().Data());
+    again.Sample(waves, memory, parallelFor);
+    EXPECT_TRUE(again.GetDensity().HasSamples());
+    bool copyKept = true;
+    const auto& dims = copy.GetDims();
+    for (int k = 0; k < dims[2]; ++k)
+      for (int j = 0; j < dims[1]; ++j)
+        for (int i = 0; i < dims[0]; ++i)
+        {
+          copyKept = copyKept && copy.At(i, j, k) == again.GetDensity().At(i, j, k);
+        }
+    EXPECT_TRUE(copyKept);
+  }
+}
+
 TEST(ReconstructionParts, NativeMediumGridOfNearestOrCellValuesIsTheirValuesClassified)
 {
   // Nearest values (and cell values): every sample of a cell reads its own

@@ -87,6 +87,25 @@ public:
     const std::vector<char>& candidate, const ParallelFor& parallelFor, float skipped = 0.f);
 
   /**
+   * SampleBricks() of `previous`'s cells again, written into `previous`'s
+   * own memory where it alone holds its samples (SoleOwner(); otherwise
+   * into new memory, as SampleBricks() does): an edit of a function of the
+   * grid's values, so that a large grid and its successor are never held
+   * at once. A candidate brick b is `previous`'s where `keep[b]` (its
+   * samples, or its constant, are what `brick` would write: nothing is
+   * written), otherwise `brick(lower, out)` writes it. A brick stored
+   * before and written again takes its own slot; one that becomes constant
+   * frees it; one constant before that now varies takes a freed slot, else
+   * one past the last (the memory then grows, by a copy); slots left free
+   * are filled from the last ones. At() and every sample are bitwise those
+   * of SampleBricks() with the same `brick`; the slots may differ.
+   * `previous` is left empty; the grid has a new GetIdentity().
+   */
+  static BrickedGrid ResampleInPlace(BrickedGrid&& previous, const std::vector<char>& keep,
+    const std::function<void(const std::array<int, 3>&, float*)>& brick,
+    const std::vector<char>& candidate, const ParallelFor& parallelFor, float skipped = 0.f);
+
+  /**
    * Per brick of a grid of `dims` cells (in brick order): whether Sample()
    * evaluates it, i.e. `zeroOver` does not leave it out.
    */
@@ -114,6 +133,15 @@ public:
   /// The same cells, slots and constants, and its samples the same memory
   /// (a copy of the grid, sharing them).
   bool SameAs(const BrickedGrid& other) const;
+  /**
+   * The same for a grid and its copies (which share its samples), another
+   * for every grid sampled, and for a grid sampled again in its own memory
+   * (ResampleInPlace()): what tells that a grid is the one something was
+   * computed from, where its memory may be reused.
+   */
+  std::uint64_t GetIdentity() const { return this->Identity; }
+  /// Whether no copy of this grid, and no array, shares its samples.
+  bool SoleOwner() const { return this->Samples.Share().use_count() == 1; }
   /// The bytes of the three arrays above.
   std::size_t GetMemorySize() const;
 
@@ -194,6 +222,7 @@ private:
   std::vector<float> Constants;
   FloatBuffer Samples;
   std::size_t Stored = 0; // bricks with a slot
+  std::uint64_t Identity = 0;
 };
 
 template <class F>

@@ -177,6 +177,19 @@ void NativeMediumGrid::Sample(
 void NativeMediumGrid::Sample(const Medium& medium, std::size_t memory,
   const ParallelFor& parallelFor, const NativeMediumGrid* previous)
 {
+  this->SampleFrom(medium, memory, parallelFor, previous, nullptr);
+}
+
+void NativeMediumGrid::Sample(const Medium& medium, std::size_t memory,
+  const ParallelFor& parallelFor, NativeMediumGrid&& previous)
+{
+  this->SampleFrom(medium, memory, parallelFor, &previous, &previous);
+  previous = NativeMediumGrid();
+}
+
+void NativeMediumGrid::SampleFrom(const Medium& medium, std::size_t memory,
+  const ParallelFor& parallelFor, const NativeMediumGrid* previous, NativeMediumGrid* owned)
+{
   this->ReusedBricks = 0;
   this->SampledBricks = 0;
   this->Source = medium.Density;
@@ -468,6 +481,67 @@ void NativeMediumGrid::Sample(const Medium& medium, std::size_t memory,
   if (previous)
   {
     edit.reset(new OpacityFunctionEdit(*previous->Classification, *function));
+  }
+  auto brickIndex = [&](const std::array<int, 3>& lower)
+  {
+    return (static_cast<std::size_t>(lower[2] / BrickedGrid::Stride) * brickDims[1] +
+             lower[1] / BrickedGrid::Stride) *
+      brickDims[0] +
+      lower[0] / BrickedGrid::Stride;
+  };
+  // A brick whose cells the function classifies as its own values.
+  auto sampleBrick = [&](const std::array<int, 3>& lower, float* out)
+  {
+    sampled.fetch_add(1, std::memory_order_relaxed);
+    if (classified->NativeBrick(
+          lower, BrickedGrid::Size, BendSamples, out, &this->BrickRanges[2 * brickIndex(lower)]))
+    {
+      return;
+    }
+    for (int k = 0; k < BrickedGrid::Size; ++k)
+      for (int j = 0; j < BrickedGrid::Size; ++j)
+        for (int i = 0; i < BrickedGrid::Size; ++i)
+        {
+          *out++ = value(std::min(lower[0] + i, dims[0] - 1), std::min(lower[1] + j, dims[1] - 1),
+            std::min(lower[2] + k, dims[2] - 1));
+        }
+  };
+  if (owned == previous && previous && previous->Density.SoleOwner())
+  {
+    // An edit of the function, this grid alone holding the last one's
+    // samples: sampled again in their memory, the bricks over whose
+    // scalars the two functions agree left where they are.
+    std::vector<char> keep(bricks, 0);
+    parallelFor(0, bricks,
+      [&](std::size_t begin, std::size_t end)
+      {
+        for (std::size_t b = begin; b < end; ++b)
+        {
+          if (!this->Candidates[b])
+          {
+            continue;
+          }
+          const std::array<int, 3> lower{ static_cast<int>(b % brickDims[0]) * BrickedGrid::Stride,
+            static_cast<int>((b / brickDims[0]) % brickDims[1]) * BrickedGrid::Stride,
+            static_cast<int>(b / (static_cast<std::size_t>(brickDims[0]) * brickDims[1])) *
+              BrickedGrid::Stride };
+          float* range = &this->BrickRanges[2 * b];
+          if (!(range[0] <= range[1]))
+          {
+            classified->NativeBrickRange(lower, BrickedGrid::Size, range);
+          }
+          keep[b] = range[0] <= range[1] && edit->SameOver(range[0], range[1]) ? 1 : 0;
+          if (keep[b])
+          {
+            reused.fetch_add(1, std::memory_order_relaxed);
+          }
+        }
+      });
+    this->Density = BrickedGrid::ResampleInPlace(
+      std::move(owned->Density), keep, sampleBrick, this->Candidates, parallelFor);
+    this->ReusedBricks = reused.load();
+    this->SampledBricks = sampled.load();
+    return;
   }
   this->Density = BrickedGrid::SampleBricks(
     dims, box,

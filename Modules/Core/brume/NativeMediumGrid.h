@@ -83,6 +83,16 @@ public:
    */
   void Sample(const Medium& medium, std::size_t memory, const ParallelFor& parallelFor,
     const NativeMediumGrid* previous);
+  /**
+   * Sample() taking from `previous` as above, and, for an edit of the
+   * function that classifies the same field, sampling the extinction again
+   * in `previous`'s own memory where no one else holds it
+   * (BrickedGrid::ResampleInPlace(): the bricks the edit left are not even
+   * copied), so that a 512^3 field's 0.78 GB grid and its successor are
+   * not held at once. The same floats; `previous` is left empty.
+   */
+  void Sample(const Medium& medium, std::size_t memory, const ParallelFor& parallelFor,
+    NativeMediumGrid&& previous);
   /// Whether Sample(medium, ..., this) could take from this grid: both a
   /// classified density of the same scalars, this one at their own resolution.
   bool SameField(const Medium& medium) const;
@@ -153,6 +163,11 @@ public:
     const std::array<int, 3>& resolution, int refinement, const ParallelFor& parallelFor) const;
 
 private:
+  // Sample() from `previous`; `owned` is `previous` where its extinction
+  // may be sampled again in its own memory, else null.
+  void SampleFrom(const Medium& medium, std::size_t memory, const ParallelFor& parallelFor,
+    const NativeMediumGrid* previous, NativeMediumGrid* owned);
+
   BrickedGrid Density;                      // the density's mean per cell
   BrickedGrid Scalars;                      // a classified density's scalars at the same centres
   const GridDensity* ScalarField = nullptr; // whose values they are, when in place

@@ -259,8 +259,17 @@ void ObjectRadiance::SampleMedium(const ParallelFor& parallelFor)
     });
   if (medium->Density && this->Native.Empty())
   {
-    this->Native.Sample(
-      *medium, this->Settings.NativeMemory, parallelFor, this->PreviousNative.get());
+    // The grid replaced is this object's to reuse: an edit's extinction is
+    // sampled again in its memory.
+    if (this->PreviousNative)
+    {
+      this->Native.Sample(
+        *medium, this->Settings.NativeMemory, parallelFor, std::move(*this->PreviousNative));
+    }
+    else
+    {
+      this->Native.Sample(*medium, this->Settings.NativeMemory, parallelFor);
+    }
     this->PreviousNative.reset();
   }
 }
