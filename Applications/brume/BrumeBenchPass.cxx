@@ -206,7 +206,7 @@ void BenchPass(long long particles, int volumePoints, Report& report)
               "at %d^3, 512x512)\n",
     opacityFirst, opacityFull, static_cast<long long>(resampled), static_cast<long long>(kept),
     colourFirst, colourFull, againFirst, againFull, volumePoints);
-  // Issue 51's targets are a 512^3 volume's (--volume-size 512).
+  // The edits' targets are a 512^3 volume's (--volume-size 512).
   const bool large = volumePoints >= 512;
   const std::string size = " (Wavelet " + std::to_string(volumePoints) + "^3)";
   report.Add("pass_opacity_edit_first", opacityFirst, "s", large ? "<= 0.3" : "",
