@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 
@@ -273,4 +274,95 @@ TEST(BrickedGrid, MarchSumsWhatInterpolationGivesAtEachPoint)
     ASSERT_EQ(grid.SumAlong(x, d, t0, h, samples, stop), expected) << "ray " << ray;
   }
   EXPECT_GT(stopped, 50);
+}
+
+TEST(BrickedGrid, ResampledInPlaceIsTheGridSampledAfresh)
+{
+  // Values a function of a field, then of the field edited: sampled again
+  // in the first grid's memory (bricks kept where `keep` says), or, where a
+  // copy shares that memory, elsewhere; every cell is what SampleBricks()
+  // gives with the edited values, and the copy keeps the first values.
+  const std::array<int, 3> n{ 40, 33, 27 };
+  const Box box{ Vec3(0.f), Vec3(1.f) };
+  auto field = [](int i, int j, int k, int edit) -> float
+  {
+    // Bricks constant at first (i < 14) vary after the edit and the reverse
+    // (j >= 20); the rest changes only in the first layer of bricks.
+    if (i < 14)
+    {
+      return edit ? 0.1f * static_cast<float>(j) : 3.f;
+    }
+    if (j >= 20)
+    {
+      return edit ? 5.f : static_cast<float>(i + j);
+    }
+    return static_cast<float>(i * j + k) + (edit && k < 7 && k % 2 == 0 ? 0.5f : 0.f);
+  };
+  auto bricksOf = [&](int edit)
+  {
+    return [&, edit](const std::array<int, 3>& lower, float* out)
+    {
+      for (int k = 0; k < BrickedGrid::Size; ++k)
+        for (int j = 0; j < BrickedGrid::Size; ++j)
+          for (int i = 0; i < BrickedGrid::Size; ++i)
+          {
+            *out++ = field(std::min(lower[0] + i, n[0] - 1), std::min(lower[1] + j, n[1] - 1),
+              std::min(lower[2] + k, n[2] - 1), edit);
+          }
+    };
+  };
+  const std::vector<char> candidate = BrickedGrid::Candidates(n, Never, SerialFor());
+  const BrickedGrid fresh = BrickedGrid::SampleBricks(n, box, bricksOf(1), candidate, SerialFor());
+  // Bricks whose values the edit left as they were are kept, unwritten.
+  std::vector<char> keep(candidate.size(), 0);
+  const BrickedGrid first = BrickedGrid::SampleBricks(n, box, bricksOf(0), candidate, SerialFor());
+  for (std::size_t b = 0; b < keep.size(); ++b)
+  {
+    float a[BrickedGrid::BrickSamples], c[BrickedGrid::BrickSamples];
+    first.CopyBrick(b, a);
+    fresh.CopyBrick(b, c);
+    keep[b] = std::equal(a, a + BrickedGrid::BrickSamples, c) ? 1 : 0;
+  }
+  EXPECT_GT(std::count(keep.begin(), keep.end(), 1), 0);
+  EXPECT_LT(std::count(keep.begin(), keep.end(), 1), static_cast<long>(keep.size()));
+  auto same = [&](const BrickedGrid& g, const BrickedGrid& h)
+  {
+    for (int k = 0; k < n[2]; ++k)
+      for (int j = 0; j < n[1]; ++j)
+        for (int i = 0; i < n[0]; ++i)
+        {
+          if (g.At(i, j, k) != h.At(i, j, k))
+          {
+            return false;
+          }
+        }
+    return true;
+  };
+  for (const bool shared : { false, true })
+  {
+    BrickedGrid grid = BrickedGrid::SampleBricks(n, box, bricksOf(0), candidate, SerialFor());
+    const std::uint64_t identity = grid.GetIdentity();
+    BrickedGrid copy;
+    if (shared)
+    {
+      copy = grid;
+      EXPECT_FALSE(grid.SoleOwner());
+    }
+    else
+    {
+      EXPECT_TRUE(grid.SoleOwner());
+    }
+    const BrickedGrid edited =
+      BrickedGrid::ResampleInPlace(std::move(grid), keep, bricksOf(1), candidate, SerialFor());
+    EXPECT_TRUE(grid.Empty());
+    EXPECT_TRUE(same(edited, fresh)) << (shared ? "shared" : "own");
+    EXPECT_NE(edited.GetIdentity(), identity);
+    EXPECT_EQ(edited.NumberOfStoredBricks(), fresh.NumberOfStoredBricks());
+    EXPECT_TRUE(edited.HasSamples());
+    if (shared)
+    {
+      EXPECT_TRUE(same(copy, first));
+      EXPECT_EQ(copy.GetIdentity(), identity);
+    }
+  }
 }

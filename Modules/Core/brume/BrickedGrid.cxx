@@ -212,8 +212,8 @@ BrickedGrid BrickedGrid::ResampleInPlace(BrickedGrid&& previous, const std::vect
 {
   if (!previous.HasSamples() || (!previous.SoleOwner() && previous.Stored > 0))
   {
-    // Another holds the samples (or there are none): a grid of its own,
-    // previous's bricks copied where kept.
+    // Another holds the samples (or an outline has none): a grid of its
+    // own, previous's bricks copied where kept and held.
     const BrickedGrid before = std::move(previous);
     previous = BrickedGrid();
     return SampleBricks(
@@ -221,7 +221,7 @@ BrickedGrid BrickedGrid::ResampleInPlace(BrickedGrid&& previous, const std::vect
       [&](const std::array<int, 3>& lower, float* out)
       {
         const std::size_t b = before.BrickAt(lower);
-        if (keep[b])
+        if (keep[b] && (before.Slots[b] < 0 || before.HasSamples()))
         {
           before.CopyBrick(b, out);
           return;
