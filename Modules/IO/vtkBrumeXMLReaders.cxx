@@ -252,54 +252,71 @@ int vtkBrumeXMLDataParser::ReadCompressedAppendedArray(
   const size_t groups = static_cast<size_t>((blocks + Group - 1) / Group);
   std::atomic<vtkTypeInt64> badBlock{ -1 };
   auto* out = static_cast<unsigned char*>(buffer);
-  vtkSMPTools::For(0, static_cast<vtkIdType>(groups),
-    [&](vtkIdType first, vtkIdType end)
+  // Read in steps of a few groups a thread, the progress reported (and an
+  // abort heeded) between them, on this thread.
+  const size_t step = std::max<size_t>(
+    2 * static_cast<size_t>(std::max(1, vtkSMPTools::GetEstimatedNumberOfThreads())),
+    (groups + 19) / 20);
+  this->UpdateProgress(0.f);
+  for (size_t done = 0; done < groups && badBlock.load() < 0; done += step)
+  {
+    if (this->GetAbort())
     {
-      std::vector<unsigned char> bytes, text;
-      for (vtkIdType g = first; g < end && badBlock.load() < 0; ++g)
+      return -1;
+    }
+    vtkSMPTools::For(static_cast<vtkIdType>(done),
+      static_cast<vtkIdType>(std::min(groups, done + step)),
+      [&](vtkIdType first, vtkIdType end)
       {
-        const size_t b0 = static_cast<size_t>(g) * Group;
-        const size_t b1 = std::min(static_cast<size_t>(blocks), b0 + Group);
-        const vtkTypeUInt64 from = begins[b0], to = begins[b1];
-        // The group's bytes, from `from` (base64: from the group of four
-        // characters holding it, `skip` bytes before it).
-        size_t skip = 0;
-        bool read = false;
-        if (base64)
+        std::vector<unsigned char> bytes, text;
+        for (vtkIdType g = first; g < end && badBlock.load() < 0; ++g)
         {
-          const vtkTypeUInt64 firstTriplet = from / 3, endTriplet = (to + 2) / 3;
-          skip = static_cast<size_t>(from - 3 * firstTriplet);
-          text.resize(static_cast<size_t>(4 * (endTriplet - firstTriplet)));
-          bytes.resize(static_cast<size_t>(3 * (endTriplet - firstTriplet)));
-          read = file.Read(dataStart + static_cast<vtkTypeInt64>(4 * firstTriplet), text.size(),
-                   text.data()) &&
-            vtkBase64Utilities::DecodeSafely(text.data(), text.size(), bytes.data(),
-              bytes.size()) >= skip + static_cast<size_t>(to - from);
-        }
-        else
-        {
-          bytes.resize(static_cast<size_t>(to - from));
-          read = file.Read(dataStart + static_cast<vtkTypeInt64>(from), bytes.size(), bytes.data());
-        }
-        for (size_t b = b0; b < b1; ++b)
-        {
-          const size_t size = b + 1 == blocks && last != 0 ? static_cast<size_t>(last)
-                                                           : static_cast<size_t>(blockSize);
-          const bool ok = read &&
-            compressor->Uncompress(bytes.data() + skip + (begins[b] - from),
-              static_cast<size_t>(header[3 + b]), out + b * blockSize, size) == size;
-          if (!ok)
+          const size_t b0 = static_cast<size_t>(g) * Group;
+          const size_t b1 = std::min(static_cast<size_t>(blocks), b0 + Group);
+          const vtkTypeUInt64 from = begins[b0], to = begins[b1];
+          // The group's bytes, from `from` (base64: from the group of four
+          // characters holding it, `skip` bytes before it).
+          size_t skip = 0;
+          bool read = false;
+          if (base64)
           {
-            vtkTypeInt64 known = badBlock.load();
-            while ((known < 0 || static_cast<vtkTypeInt64>(b) < known) &&
-              !badBlock.compare_exchange_weak(known, static_cast<vtkTypeInt64>(b)))
+            const vtkTypeUInt64 firstTriplet = from / 3, endTriplet = (to + 2) / 3;
+            skip = static_cast<size_t>(from - 3 * firstTriplet);
+            text.resize(static_cast<size_t>(4 * (endTriplet - firstTriplet)));
+            bytes.resize(static_cast<size_t>(3 * (endTriplet - firstTriplet)));
+            read = file.Read(dataStart + static_cast<vtkTypeInt64>(4 * firstTriplet), text.size(),
+                     text.data()) &&
+              vtkBase64Utilities::DecodeSafely(text.data(), text.size(), bytes.data(),
+                bytes.size()) >= skip + static_cast<size_t>(to - from);
+          }
+          else
+          {
+            bytes.resize(static_cast<size_t>(to - from));
+            read =
+              file.Read(dataStart + static_cast<vtkTypeInt64>(from), bytes.size(), bytes.data());
+          }
+          for (size_t b = b0; b < b1; ++b)
+          {
+            const size_t size = b + 1 == blocks && last != 0 ? static_cast<size_t>(last)
+                                                             : static_cast<size_t>(blockSize);
+            const bool ok = read &&
+              compressor->Uncompress(bytes.data() + skip + (begins[b] - from),
+                static_cast<size_t>(header[3 + b]), out + b * blockSize, size) == size;
+            if (!ok)
             {
+              vtkTypeInt64 known = badBlock.load();
+              while ((known < 0 || static_cast<vtkTypeInt64>(b) < known) &&
+                !badBlock.compare_exchange_weak(known, static_cast<vtkTypeInt64>(b)))
+              {
+              }
+              break;
             }
-            break;
           }
         }
-      }
-    });
+      });
+    this->UpdateProgress(
+      static_cast<float>(std::min(groups, done + step)) / static_cast<float>(groups));
+  }
   if (badBlock.load() >= 0)
   {
     return fail("has a block (" + std::to_string(badBlock.load()) + " of " +

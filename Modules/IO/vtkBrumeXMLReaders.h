@@ -15,6 +15,8 @@
 #ifndef vtkBrumeXMLReaders_h
 #define vtkBrumeXMLReaders_h
 
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkXMLDataElement.h"
 #include "vtkXMLDataParser.h"
@@ -41,7 +43,8 @@ public:
    * array (uncompressed, of the other byte order, or of another size than
    * `numWords`), for VTK's reading; -1: an error, reported (the file holds
    * less than its header announces, or a block does not decompress to its
-   * size).
+   * size; or the reader aborted: it reports its progress, in groups of
+   * blocks, as VTK's reading does).
    */
   int ReadCompressedAppendedArray(
     const char* fileName, vtkTypeInt64 offset, void* buffer, size_t numWords, size_t wordSize);
@@ -84,6 +87,9 @@ protected:
       this->DestroyXMLParser();
     }
     this->XMLParser = vtkBrumeXMLDataParser::New();
+    // What vtkXMLDataReader's own parser reports to: reading an array's
+    // data moves the reader's progress, and aborting the reader stops it.
+    this->XMLParser->AddObserver(vtkCommand::ProgressEvent, this->DataProgressObserver);
   }
   /// A whole array of a file's compressed appended data, of at least
   /// 1 MB, is read on every thread
@@ -104,9 +110,12 @@ protected:
       arrayIndex == 0 && startIndex == 0 && numValues == data->GetNumberOfValues() &&
       static_cast<double>(numValues) * data->GetDataTypeSize() >= 1 << 20)
     {
+      // As vtkXMLDataReader's reading does: the parser's progress counts.
+      this->InReadData = 1;
       const int read =
         parser->ReadCompressedAppendedArray(this->FileName, offset, data->GetVoidPointer(0),
           static_cast<size_t>(numValues), static_cast<size_t>(data->GetDataTypeSize()));
+      this->InReadData = 0;
       if (read != 0)
       {
         return read > 0 ? 1 : 0;

@@ -26,6 +26,8 @@
 #include "vtkBrumeOpenVDBReader.h"
 #include "vtkBrumeSceneReader.h"
 #include "vtkBrumeSceneWriter.h"
+#include "vtkBrumeXMLReaders.h"
+#include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
 #include "vtkDataArray.h"
 #include "vtkExecutive.h"
@@ -563,6 +565,63 @@ int Appended(const std::string& dir)
     Check(same == scalar->GetNumberOfTuples(), stem + ".vti: every value as written");
     if (mode.compressor == vtkXMLWriter::ZLIB && mode.appended)
     {
+      // Read on every thread, the volume moves the reader's progress as it
+      // goes (as VTK's own reading does), and an abort within the read
+      // stops it: the array is not given.
+      struct Watch
+      {
+        std::vector<double> Progress;
+        vtkAlgorithm* AbortAt = nullptr;
+      } watch;
+      vtkNew<vtkCallbackCommand> progress;
+      progress->SetClientData(&watch);
+      progress->SetCallback(
+        [](vtkObject* caller, unsigned long, void* data, void* call)
+        {
+          auto* w = static_cast<Watch*>(data);
+          const double p = *static_cast<double*>(call);
+          w->Progress.push_back(p);
+          if (w->AbortAt && p > 0.0 && p < 1.0)
+          {
+            static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+          }
+        });
+      vtkNew<vtkBrumeXMLImageDataReader> direct;
+      direct->SetFileName((dir + "/" + stem + ".vti").c_str());
+      direct->AddObserver(vtkCommand::ProgressEvent, progress);
+      direct->Update();
+      std::size_t within = 0;
+      bool rising = true;
+      for (std::size_t k = 0; k < watch.Progress.size(); ++k)
+      {
+        within += watch.Progress[k] > 0.0 && watch.Progress[k] < 1.0 ? 1 : 0;
+        rising = rising && (k == 0 || watch.Progress[k] >= watch.Progress[k - 1]);
+      }
+      std::cout << stem << ".vti read directly: " << watch.Progress.size() << " progress events, "
+                << within << " within the read:";
+      for (const double p : watch.Progress)
+      {
+        std::cout << " " << p;
+      }
+      std::cout << "\n";
+      vtkDataArray* whole = direct->GetOutput()->GetPointData()->GetArray("scalar");
+      Check(whole && whole->GetNumberOfTuples() == scalar->GetNumberOfTuples() && within >= 1 &&
+          rising && !watch.Progress.empty() && watch.Progress.back() == 1.0,
+        stem + ".vti read on every thread: the reader's progress moves within the read");
+      Watch aborted;
+      vtkNew<vtkBrumeXMLImageDataReader> stopped;
+      aborted.AbortAt = stopped;
+      progress->SetClientData(&aborted);
+      stopped->SetFileName((dir + "/" + stem + ".vti").c_str());
+      stopped->AddObserver(vtkCommand::ProgressEvent, progress);
+      const bool warnings = vtkObject::GetGlobalWarningDisplay();
+      vtkObject::GlobalWarningDisplayOff();
+      const int rc = stopped->GetExecutive()->Update();
+      vtkObject::SetGlobalWarningDisplay(warnings);
+      vtkDataArray* partial = stopped->GetOutput()->GetPointData()->GetArray("scalar");
+      std::cout << stem << ".vti aborted within the read: " << (rc ? "updated" : "failed")
+                << ", its array " << (partial ? "read" : "left out") << "\n";
+      Check(!partial, stem + ".vti aborted within the read: its array is not given");
       // A byte of the volume's compressed blocks changed (three quarters
       // into the file: its appended data), in a copy: zlib's checksum fails.
       const std::string volumeFile = dir + "/" + stem + ".vti";
