@@ -393,6 +393,17 @@ Medium ClassifiedWaves(int n)
   return waves;
 }
 
+// The scalars of a ClassifiedWaves() medium classified by another function
+// (an edit of its opacity).
+Medium Reclassified(const Medium& waves, std::vector<OpacityTransferFunction::Node> nodes)
+{
+  const auto& classified = static_cast<const ClassifiedDensity&>(*waves.Density);
+  Medium edited = waves;
+  edited.SetDensity(std::make_shared<ClassifiedDensity>(
+    classified.GetScalarsPointer(), OpacityTransferFunction(std::move(nodes), 0.1f)));
+  return edited;
+}
+
 // ClassifiedWaves()'s scalars read as nearest values, or as cell values.
 std::shared_ptr<GridDensity> NearestCopy(const ClassifiedDensity& classified, bool cells)
 {
@@ -584,12 +595,7 @@ TEST(ReconstructionParts, NativeMediumGridKeepsWhatAnEditOfTheFunctionLeft)
   const Medium waves = ClassifiedWaves(48);
   const auto& classified = static_cast<const ClassifiedDensity&>(*waves.Density);
   auto withFunction = [&](std::vector<OpacityTransferFunction::Node> nodes)
-  {
-    Medium edited = waves;
-    edited.SetDensity(std::make_shared<ClassifiedDensity>(
-      classified.GetScalarsPointer(), OpacityTransferFunction(std::move(nodes), 0.1f)));
-    return edited;
-  };
+  { return Reclassified(waves, std::move(nodes)); };
   const std::size_t memory = std::size_t(4) << 20;
   NativeMediumGrid before;
   before.Sample(waves, memory, SerialFor());
@@ -703,14 +709,8 @@ TEST(ReconstructionParts, NativeMediumGridEditedInItsOwnMemoryIsTheFreshGrid)
   // to 0.45) and take more in (zero up to 0.05); a grid whose samples a
   // copy shares is not written, the copy keeps its values.
   const Medium waves = ClassifiedWaves(64);
-  const auto& classified = static_cast<const ClassifiedDensity&>(*waves.Density);
   auto withFunction = [&](std::vector<OpacityTransferFunction::Node> nodes)
-  {
-    Medium edited = waves;
-    edited.SetDensity(std::make_shared<ClassifiedDensity>(
-      classified.GetScalarsPointer(), OpacityTransferFunction(std::move(nodes), 0.1f)));
-    return edited;
-  };
+  { return Reclassified(waves, std::move(nodes)); };
   const std::vector<Medium> edits = {
     withFunction({ { 0.2f, 0.f }, { 0.5f, 0.1f }, { 1.f, 0.6f } }),
     withFunction({ { 0.2f, 0.f }, { 0.3f, 0.4f }, { 0.9f, 0.4f }, { 1.f, 0.6f } }),

@@ -81,6 +81,19 @@ int TestProgressiveDirectional(int, char*[])
     r->SetMediumResolution(10);
     return r;
   };
+  // The first half, [0, 20000), of a run of 40,000 particles, binned by an
+  // accumulating reconstruction.
+  auto firstHalf = [&](vtkSmartPointer<vtkBrumeLightTracer>& tracer)
+  {
+    tracer = vtkSmartPointer<vtkBrumeLightTracer>::New();
+    tracer->SetInputData(scene);
+    tracer->SetNumberOfParticles(40000);
+    tracer->SetEndParticle(20000);
+    auto r = reconstructionOf(tracer);
+    r->AccumulateParticlesOn();
+    r->Update();
+    return r;
+  };
   bool ok = true;
 
   // 1. Progressive: 20,000 particles, then 20,000 more, against 40,000.
@@ -192,13 +205,8 @@ int TestProgressiveDirectional(int, char*[])
   }
   {
     // Before the run is complete, a batch of a larger run cannot follow.
-    vtkNew<vtkBrumeLightTracer> batchTracer;
-    batchTracer->SetInputData(scene);
-    batchTracer->SetNumberOfParticles(40000);
-    batchTracer->SetEndParticle(20000);
-    auto batched = reconstructionOf(batchTracer);
-    batched->AccumulateParticlesOn();
-    batched->Update();
+    vtkSmartPointer<vtkBrumeLightTracer> batchTracer;
+    auto batched = firstHalf(batchTracer);
     batchTracer->SetNumberOfParticles(80000);
     batchTracer->SetFirstParticle(20000);
     batchTracer->SetEndParticle(40000);
@@ -279,13 +287,8 @@ int TestProgressiveDirectional(int, char*[])
                 << released->GetNumberOfTextureBuilds() - builds << "\n";
       ok = false;
     }
-    vtkNew<vtkBrumeLightTracer> batchTracer;
-    batchTracer->SetInputData(scene);
-    batchTracer->SetNumberOfParticles(40000);
-    batchTracer->SetEndParticle(20000);
-    auto batched = reconstructionOf(batchTracer);
-    batched->AccumulateParticlesOn();
-    batched->Update();
+    vtkSmartPointer<vtkBrumeLightTracer> batchTracer;
+    auto batched = firstHalf(batchTracer);
     batched->ReleaseBuildState();
     batchTracer->SetFirstParticle(20000);
     batchTracer->SetEndParticle(40000);
