@@ -285,6 +285,7 @@ bool vtkBrumeSceneActors::AddToRenderer(vtkRenderer* renderer)
       mapper->SetSliceSpacing(this->SliceSpacing);
       mapper->SetSliceSpacingScale(this->SliceSpacingScale);
       mapper->SetSlabSampling(this->SlabSampling);
+      mapper->SetExtinctionDepthTolerance(this->ExtinctionDepthTolerance);
       mapper->SetRadianceScale(this->Exposure);
       mapper->SetWriteDepth(this->MediaWriteDepth);
       mapper->SetImageSampleDistance(this->ImageSampleDistance);
@@ -552,6 +553,18 @@ void vtkBrumeSceneActors::SetSliceSpacingScale(double scale)
   }
 }
 
+void vtkBrumeSceneActors::SetExtinctionDepthTolerance(double tolerance)
+{
+  tolerance = tolerance > 0.0 ? tolerance : 0.0; // NaN too: floats kept exactly
+  if (this->ExtinctionDepthTolerance != tolerance)
+  {
+    this->ExtinctionDepthTolerance = tolerance;
+    this->ApplyToMedia(
+      [=](vtkBrumeSliceVolumeMapper* m) { m->SetExtinctionDepthTolerance(tolerance); });
+    this->Modified();
+  }
+}
+
 void vtkBrumeSceneActors::SetSlabSampling(bool sampling)
 {
   if (this->SlabSampling != sampling)
@@ -690,6 +703,7 @@ void vtkBrumeSceneActors::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SliceSpacing: " << this->SliceSpacing << "\n";
   os << indent << "SliceSpacingScale: " << this->SliceSpacingScale << "\n";
   os << indent << "SlabSampling: " << this->SlabSampling << "\n";
+  os << indent << "ExtinctionDepthTolerance: " << this->ExtinctionDepthTolerance << "\n";
   os << indent << "MediaWriteDepth: " << this->MediaWriteDepth << "\n";
   os << indent << "ImageSampleDistance: " << this->ImageSampleDistance << "\n";
   os << indent << "Interpolate: " << this->Interpolate << "\n";

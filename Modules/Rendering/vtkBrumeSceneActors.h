@@ -222,6 +222,17 @@ public:
 
   ///@{
   /**
+   * The optical depth the GPU's 16-bit copy of a float extinction grid may
+   * be off by (vtkBrumeSliceVolumeMapper::SetExtinctionDepthTolerance;
+   * default 10^-3, 0 keeps floats exactly), those made already included:
+   * a grid on the GPU goes up again where its bound exceeds it.
+   */
+  void SetExtinctionDepthTolerance(double tolerance);
+  vtkGetMacro(ExtinctionDepthTolerance, double);
+  ///@}
+
+  ///@{
+  /**
    * The media's slices write their depth (vtkBrumeSliceVolumeMapper::
    * SetWriteDepth; default off), those made already included.
    */
@@ -247,6 +258,7 @@ protected:
   double SliceSpacing = 0.0;
   double SliceSpacingScale = 1.0;
   bool SlabSampling = true;
+  double ExtinctionDepthTolerance = 1e-3;
   bool Interpolate = true;
   double Exposure = 1.0;
   bool MediaWriteDepth = false;

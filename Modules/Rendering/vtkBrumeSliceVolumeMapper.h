@@ -202,7 +202,12 @@ public:
    */
   void SetExtinctionDepthTolerance(double tolerance)
   {
-    this->ExtinctionDepthTolerance = tolerance > 0.0 ? tolerance : 0.0;
+    tolerance = tolerance > 0.0 ? tolerance : 0.0;
+    if (this->ExtinctionDepthTolerance != tolerance)
+    {
+      this->ExtinctionDepthTolerance = tolerance;
+      this->Modified(); // the next render checks the grid on the GPU against it
+    }
   }
   double GetExtinctionDepthTolerance() const { return this->ExtinctionDepthTolerance; }
   ///@}

@@ -5,6 +5,7 @@
 #include "vtkBrumePass.h"
 #include "vtkBrumePipeline.h"
 #include "vtkBrumeRendererScene.h"
+#include "vtkBrumeSceneActors.h"
 #include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPVSession.h"
@@ -195,6 +196,16 @@ void vtkBrumePVRenderView::SetPreviewSliceSpacingScale(double scale)
 double vtkBrumePVRenderView::GetPreviewSliceSpacingScale()
 {
   return this->Pass->GetPreviewSliceSpacingScale();
+}
+
+void vtkBrumePVRenderView::SetExtinctionDepthTolerance(double tolerance)
+{
+  this->Pass->GetPipeline()->GetActors()->SetExtinctionDepthTolerance(tolerance);
+}
+
+double vtkBrumePVRenderView::GetExtinctionDepthTolerance()
+{
+  return this->Pass->GetPipeline()->GetActors()->GetExtinctionDepthTolerance();
 }
 
 void vtkBrumePVRenderView::SetVolumeAlbedo(double r, double g, double b)

@@ -66,6 +66,11 @@ public:
   /// (vtkBrumePass::SetPreviewSliceSpacingScale; 2 by default).
   void SetPreviewSliceSpacingScale(double scale);
   double GetPreviewSliceSpacingScale();
+  /// The optical depth a volume's 16-bit copy on the GPU may be off by
+  /// (vtkBrumeSceneActors::SetExtinctionDepthTolerance on the pass's props;
+  /// 10^-3 by default, 0 keeps floats exactly).
+  void SetExtinctionDepthTolerance(double tolerance);
+  double GetExtinctionDepthTolerance();
   void SetVolumeAlbedo(double r, double g, double b);
   void SetPhysicalLights(int physical);
   void SetLightIntensityScale(double scale);

@@ -402,6 +402,20 @@ void vtkBrumeRadianceRepresentation::SetSliceSpacing(double spacing)
   }
 }
 
+void vtkBrumeRadianceRepresentation::SetExtinctionDepthTolerance(double tolerance)
+{
+  if (this->Actors->GetExtinctionDepthTolerance() != tolerance)
+  {
+    this->Actors->SetExtinctionDepthTolerance(tolerance);
+    this->Modified();
+  }
+}
+
+double vtkBrumeRadianceRepresentation::GetExtinctionDepthTolerance()
+{
+  return this->Actors->GetExtinctionDepthTolerance();
+}
+
 void vtkBrumeRadianceRepresentation::SetExposure(double exposure)
 {
   if (this->Exposure != exposure)

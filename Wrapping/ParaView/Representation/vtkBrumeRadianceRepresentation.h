@@ -74,6 +74,14 @@ public:
   ///@}
 
   ///@{
+  /// The optical depth a float extinction grid's 16-bit copy on the GPU
+  /// may be off by (vtkBrumeSceneActors::SetExtinctionDepthTolerance;
+  /// default 10^-3, 0 keeps floats exactly).
+  void SetExtinctionDepthTolerance(double tolerance);
+  double GetExtinctionDepthTolerance();
+  ///@}
+
+  ///@{
   /**
    * The media's image sample distance in interactive renders that use
    * ParaView's level of detail (default 2, 1 to 16; see

@@ -93,6 +93,20 @@ check(error <= 0.5 and image_error(nearest, moved) > 0.5,
       "Interpolation off: nearest texels, as vtkBrumeSceneActors draws them (error %g)" % error)
 display.TextureInterpolation = 1
 
+# The 16-bit tolerance of volumes on the GPU reaches the representation's
+# props (its effect on the atlas is Brume.Pass's and Brume.SliceVolumeMapper's
+# to check).
+def tolerance():
+    display.SMProxy.UpdatePropertyInformation()
+    return display.SMProxy.GetProperty("ExtinctionDepthToleranceInfo").GetElement(0)
+
+
+check(abs(tolerance() - 1e-3) < 1e-12, "volumes go up within 10^-3 by default (%g)" % tolerance())
+display.ExtinctionDepthTolerance = 0.0
+Render(view)
+check(tolerance() == 0.0, "ExtinctionDepthTolerance reaches the props (%g)" % tolerance())
+display.ExtinctionDepthTolerance = 1e-3
+
 # Exposure 2.5: surfaces and media brighter, as vtkBrumeSceneActors draws them.
 display.Exposure = 2.5
 Render(view)

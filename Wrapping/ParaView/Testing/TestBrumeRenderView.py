@@ -143,6 +143,18 @@ check(spacing(view) == 2.0, "previews draw slices twice as far apart by default 
       % spacing(view))
 view.BrumePreviewSliceSpacing = 3.0
 check(spacing(view) == 3.0, "BrumePreviewSliceSpacing reaches the pass (%g)" % spacing(view))
+# So does the 16-bit tolerance of volumes on the GPU, to the pass's props.
+def tolerance(view):
+    view.SMProxy.UpdatePropertyInformation()
+    return view.GetProperty("BrumeExtinctionDepthToleranceInfo").GetElement(0)
+
+
+check(abs(tolerance(view) - 1e-3) < 1e-12, "volumes go up within 10^-3 by default (%g)"
+      % tolerance(view))
+view.BrumeExtinctionDepthTolerance = 0.0
+check(tolerance(view) == 0.0, "BrumeExtinctionDepthTolerance reaches the pass's props (%g)"
+      % tolerance(view))
+view.BrumeExtinctionDepthTolerance = 1e-3
 view.BrumePreviewEdits = 0
 opacity.Points = [low, 0.0, 0.5, 0.0, 160.0, 0.3, 0.5, 0.0, high, 1.0, 0.5, 0.0]
 Render(view)

@@ -326,6 +326,19 @@ void TestTransferFunctionEdits()
         std::memcmp(kept->GetVoidPointer(0), sent->GetVoidPointer(0),
           static_cast<std::size_t>(kept->GetNumberOfValues())) == 0,
       "the frame drawn from the kept atlas is the frame of an atlas sent anew");
+    // The 16-bit tolerance through the pass's props: 0 sends the float
+    // Wavelet's atlas again as floats at the next frame, nothing traced.
+    const int bytes = mapper->GetExtinctionAtlasTexelBytes();
+    const vtkIdType traces = pass->GetNumberOfTraces();
+    pass->GetPipeline()->GetActors()->SetExtinctionDepthTolerance(0.0);
+    window->Render();
+    std::cout << "the atlas at the default tolerance: " << bytes
+              << " bytes a texel; at 0: " << mapper->GetExtinctionAtlasTexelBytes() << " ("
+              << mapper->GetNumberOfExtinctionAtlasUploads() << " uploads)\n";
+    Check(bytes == 2 && mapper->GetExtinctionDepthTolerance() == 0.0 &&
+        mapper->GetExtinctionAtlasTexelBytes() == 4 &&
+        mapper->GetNumberOfExtinctionAtlasUploads() == 3 && pass->GetNumberOfTraces() == traces,
+      "a tolerance of 0 on the pass's props sends the atlas again as floats");
   }
 }
 
