@@ -489,6 +489,22 @@ void NativeMediumGrid::SampleFrom(const Medium& medium, std::size_t memory,
       brickDims[0] +
       lower[0] / BrickedGrid::Stride;
   };
+  // Whether brick b, whose first cell is `lower`, is the previous grid's:
+  // its scalars lie where the two functions give the same floats.
+  auto kept = [&](const std::array<int, 3>& lower, std::size_t b)
+  {
+    float* range = &this->BrickRanges[2 * b];
+    if (!(range[0] <= range[1]))
+    {
+      classified->NativeBrickRange(lower, BrickedGrid::Size, range);
+    }
+    const bool same = range[0] <= range[1] && edit->SameOver(range[0], range[1]);
+    if (same)
+    {
+      reused.fetch_add(1, std::memory_order_relaxed);
+    }
+    return same;
+  };
   // A brick whose cells the function classifies as its own values.
   auto sampleBrick = [&](const std::array<int, 3>& lower, float* out)
   {
@@ -517,69 +533,32 @@ void NativeMediumGrid::SampleFrom(const Medium& medium, std::size_t memory,
       {
         for (std::size_t b = begin; b < end; ++b)
         {
-          if (!this->Candidates[b])
-          {
-            continue;
-          }
           const std::array<int, 3> lower{ static_cast<int>(b % brickDims[0]) * BrickedGrid::Stride,
             static_cast<int>((b / brickDims[0]) % brickDims[1]) * BrickedGrid::Stride,
             static_cast<int>(b / (static_cast<std::size_t>(brickDims[0]) * brickDims[1])) *
               BrickedGrid::Stride };
-          float* range = &this->BrickRanges[2 * b];
-          if (!(range[0] <= range[1]))
-          {
-            classified->NativeBrickRange(lower, BrickedGrid::Size, range);
-          }
-          keep[b] = range[0] <= range[1] && edit->SameOver(range[0], range[1]) ? 1 : 0;
-          if (keep[b])
-          {
-            reused.fetch_add(1, std::memory_order_relaxed);
-          }
+          keep[b] = this->Candidates[b] && kept(lower, b) ? 1 : 0;
         }
       });
     this->Density = BrickedGrid::ResampleInPlace(
       std::move(owned->Density), keep, sampleBrick, this->Candidates, parallelFor);
-    this->ReusedBricks = reused.load();
-    this->SampledBricks = sampled.load();
-    return;
   }
-  this->Density = BrickedGrid::SampleBricks(
-    dims, box,
-    [&](const std::array<int, 3>& lower, float* out)
-    {
-      const std::size_t b =
-        (static_cast<std::size_t>(lower[2] / BrickedGrid::Stride) * brickDims[1] +
-          lower[1] / BrickedGrid::Stride) *
-          brickDims[0] +
-        lower[0] / BrickedGrid::Stride;
-      float* range = &this->BrickRanges[2 * b];
-      if (previous)
+  else
+  {
+    this->Density = BrickedGrid::SampleBricks(
+      dims, box,
+      [&](const std::array<int, 3>& lower, float* out)
       {
-        if (!(range[0] <= range[1]))
-        {
-          classified->NativeBrickRange(lower, BrickedGrid::Size, range);
-        }
-        if (range[0] <= range[1] && edit->SameOver(range[0], range[1]))
+        const std::size_t b = brickIndex(lower);
+        if (previous && kept(lower, b))
         {
           previous->Density.CopyBrick(b, out);
-          reused.fetch_add(1, std::memory_order_relaxed);
           return;
         }
-      }
-      sampled.fetch_add(1, std::memory_order_relaxed);
-      if (classified->NativeBrick(lower, BrickedGrid::Size, BendSamples, out, range))
-      {
-        return;
-      }
-      for (int k = 0; k < BrickedGrid::Size; ++k)
-        for (int j = 0; j < BrickedGrid::Size; ++j)
-          for (int i = 0; i < BrickedGrid::Size; ++i)
-          {
-            *out++ = value(std::min(lower[0] + i, dims[0] - 1), std::min(lower[1] + j, dims[1] - 1),
-              std::min(lower[2] + k, dims[2] - 1));
-          }
-    },
-    this->Candidates, parallelFor);
+        sampleBrick(lower, out);
+      },
+      this->Candidates, parallelFor);
+  }
   this->ReusedBricks = reused.load();
   this->SampledBricks = sampled.load();
 }
