@@ -18,6 +18,16 @@ namespace brume
 
 namespace
 {
+// Whether a heterogeneous medium's albedo varies: each hit's scattered
+// light then carries the albedo of its cell (CellAlbedo), and the
+// reconstruction normalizes by the albedo-weighted extinction
+// (ObjectRadiance::ToRadiance()).
+bool VaryingAlbedo(const ObjectLayout& layout)
+{
+  const Medium* medium = layout.MediumRef;
+  return medium && medium->Density && medium->AlbedoFactor && layout.Scattering.HasVaryingAlbedo();
+}
+
 // Barycentric coordinates of p (projected) in the triangle abc.
 void Barycentric(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& p, float& u, float& v)
 {
@@ -219,6 +229,14 @@ void HitBinning::Bin(const ObjectLayout& layout, const HitArrays& hits, const st
   bool everyThread)
 {
   const CellLocator cellOfHit(layout);
+  if (VaryingAlbedo(layout))
+  {
+    this->Albedo.emplace(*layout.MediumRef);
+  }
+  else
+  {
+    this->Albedo.reset();
+  }
   std::vector<std::uint32_t> scattered;
   if (direct)
   {
@@ -307,6 +325,15 @@ inline void HitBinning::AddTerms(
     this->Weights.AddNonNegative<Shared>(cell, half, w);
     this->WeighHit(layout, this->FixedEye, hits.Position + 3 * i, hits.Direction + 3 * i, f,
       triangle, this->FixedNormals, v);
+    if (this->Albedo)
+    {
+      const Vec3 a = this->Albedo->At(
+        Vec3(hits.Position[3 * i], hits.Position[3 * i + 1], hits.Position[3 * i + 2]));
+      for (int c = 0; c < 3; ++c)
+      {
+        v[c] *= a[c];
+      }
+    }
     this->Values.AddNonNegative<Shared>(cell, 3 * half, v);
     return;
   }
@@ -314,9 +341,12 @@ inline void HitBinning::AddTerms(
   this->Weights.AddNonNegative<Shared>(cell, half, w);
   if (layout.MediumRef)
   {
+    const Vec3 a = this->Albedo ? this->Albedo->At(Vec3(hits.Position[3 * i],
+                                    hits.Position[3 * i + 1], hits.Position[3 * i + 2]))
+                                : Vec3(1.f);
     for (int c = 0; c < 3; ++c)
     {
-      v[c] = Inv4Pi * static_cast<double>(f[c]);
+      v[c] = Inv4Pi * static_cast<double>(f[c]) * a[c];
     }
   }
   else
@@ -438,7 +468,8 @@ void HitBinning::KeepHits(const ObjectLayout& layout, const HitArrays& hits,
         cellOf[k] = cellOfHit(hits, index[k]);
       }
     });
-  this->Store.Keep(hits, index, cellOf.data(), count, runShare, parallelFor);
+  this->Store.Keep(hits, index, cellOf.data(), count, runShare, parallelFor,
+    this->Albedo ? &*this->Albedo : nullptr);
 }
 
 void HitBinning::WeighKept(

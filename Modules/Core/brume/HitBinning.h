@@ -18,6 +18,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -153,6 +154,8 @@ private:
   ExactHistogram Values;
   int SumsExponent = 0; // the exact sums' quantum, 2^SumsExponent
   bool Clamped = false; // a term beyond the exact sums' bound since Start()
+  // Bin()'s medium's albedo per cell, where it varies (ToRadiance()).
+  std::optional<CellAlbedo> Albedo;
 };
 
 } // namespace brume

@@ -124,10 +124,12 @@ void KeptHitStore::MergeIntoRanges(
 }
 
 void KeptHitStore::Keep(const HitArrays& hits, const std::uint32_t* index,
-  const std::uint32_t* cellOf, std::size_t count, double runShare, const ParallelFor& parallelFor)
+  const std::uint32_t* cellOf, std::size_t count, double runShare, const ParallelFor& parallelFor,
+  const CellAlbedo* albedo)
 {
-  // Growth scales are kept once a light was aimed (all 1 otherwise).
-  const bool growth = hits.Aim != nullptr;
+  // Growth scales are kept once a light was aimed (all 1 otherwise), or
+  // where they restore the weight of a flux an albedo scaled.
+  const bool growth = hits.Aim != nullptr || albedo;
   auto keep = [&](std::size_t k, KeptHits& out, std::size_t p)
   {
     const std::size_t i = index[k];
@@ -144,9 +146,21 @@ void KeptHitStore::Keep(const HitArrays& hits, const std::uint32_t* index,
     {
       out.Triangle[p] = hits.Triangle ? hits.Triangle[i] : 0;
     }
+    double restore = 1.0; // the incident flux's mean over the scaled flux's
+    if (albedo)
+    {
+      const Vec3 a = albedo->At(Vec3(h.Position[0], h.Position[1], h.Position[2]));
+      const double incident = static_cast<double>(h.Flux[0]) + h.Flux[1] + h.Flux[2];
+      for (int c = 0; c < 3; ++c)
+      {
+        h.Flux[c] *= a[c];
+      }
+      const double scattered = static_cast<double>(h.Flux[0]) + h.Flux[1] + h.Flux[2];
+      restore = scattered > 0.0 ? incident / scattered : 1.0;
+    }
     if (!out.Growth.empty())
     {
-      out.Growth[p] = static_cast<float>(hits.GrowthScale(i));
+      out.Growth[p] = static_cast<float>(hits.GrowthScale(i) * restore);
     }
   };
   if (!this->Deferred && this->Pending.Empty())

@@ -8,6 +8,7 @@
 
 #include "brume/Grouping.h"
 #include "brume/HitArrays.h"
+#include "brume/Medium.h"
 #include "brume/Parallel.h"
 
 #include <cstddef>
@@ -20,8 +21,11 @@ namespace brume
 /**
  * A kept hit: 40 bytes, 4 more for a surface's triangle (its BRDF toward the
  * eye) and 4 more for the growth scale (HitArrays::GrowthScale) once a light
- * was aimed, kept beside them in the same order, so that a fog under an
- * unaimed light keeps 40.
+ * was aimed or where a medium's albedo varies, kept beside them in the same
+ * order, so that a fog under an unaimed light keeps 40. A medium whose
+ * albedo varies keeps each hit's flux times its cell's albedo factor (the
+ * light it scattered, which every view weighs), its growth scale times the
+ * ratio that restores the incident flux's mean (what regions grow by).
  */
 struct KeptHit
 {
@@ -99,9 +103,13 @@ public:
    * ranges after the hits kept there, or pending while deferred or while
    * hits already wait. `runShare` (the share of the run's particles binned
    * once these are) sizes the pending buffer for the whole run at once.
+   * With `albedo`, each hit's flux is multiplied by the albedo's factor of
+   * its cell and its growth scale divided by what that did to the flux's
+   * mean (KeptHit).
    */
   void Keep(const HitArrays& hits, const std::uint32_t* index, const std::uint32_t* cellOf,
-    std::size_t count, double runShare, const ParallelFor& parallelFor);
+    std::size_t count, double runShare, const ParallelFor& parallelFor,
+    const CellAlbedo* albedo = nullptr);
   bool HasPending() const { return !this->Pending.Empty(); }
   void MergePending(const ParallelFor& parallelFor);
   /// Multiplies the flux of every hit, kept or pending, by `scale`.

@@ -19,6 +19,38 @@ Vec3 Medium::Albedo() const
   return a;
 }
 
+CellAlbedo::CellAlbedo(const Medium& medium)
+  : Field(medium.AlbedoFactor.get())
+{
+  const Box box = medium.Density->NativeBox();
+  const std::array<int, 3> dims = medium.Density->NativeResolution();
+  this->Lower = box.lower;
+  for (int a = 0; a < 3; ++a)
+  {
+    this->Dims[a] = std::max(dims[a], 1);
+    this->Cell[a] = (box.upper[a] - box.lower[a]) / static_cast<float>(this->Dims[a]);
+  }
+}
+
+Vec3 CellAlbedo::AtCell(int i, int j, int k) const
+{
+  return this->Field->Evaluate(Vec3(this->Lower.x + (static_cast<float>(i) + 0.5f) * this->Cell.x,
+    this->Lower.y + (static_cast<float>(j) + 0.5f) * this->Cell.y,
+    this->Lower.z + (static_cast<float>(k) + 0.5f) * this->Cell.z));
+}
+
+Vec3 CellAlbedo::At(const Vec3& p) const
+{
+  int c[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    const float x = (p[a] - this->Lower[a]) / this->Cell[a];
+    // NaN and below the grid: cell 0.
+    c[a] = x >= 0.f ? static_cast<int>(std::min(x, static_cast<float>(this->Dims[a] - 1))) : 0;
+  }
+  return this->AtCell(c[0], c[1], c[2]);
+}
+
 std::string Medium::Validate() const
 {
   if (!IsFinite(this->SigmaA) || !IsFinite(this->SigmaS) || MinComponent(this->SigmaA) < 0.f ||

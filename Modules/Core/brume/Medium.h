@@ -75,6 +75,34 @@ struct Medium
 };
 
 /**
+ * A heterogeneous medium's varying albedo taken once per cell of its
+ * density's own grid (DensityField::NativeResolution() cells over
+ * NativeBox()): the albedo's factor at the centre of the cell holding a
+ * point. A region's estimate weighs its hits by it and divides by the
+ * density's integral weighted by the same cells' factors
+ * (NativeMediumGrid::BuildAlbedoTable()): the light X where the albedo is
+ * high counts for more, as the albedo a renderer multiplies X by makes it,
+ * and a region of even light reads that light whatever the albedo does
+ * inside a cell (a sheet one cell thin, whose colour at its peak is not
+ * the colour where most of its extinction lies).
+ */
+class CellAlbedo
+{
+public:
+  /// Requires medium.Density and medium.AlbedoFactor.
+  explicit CellAlbedo(const Medium& medium);
+  /// The factor at the centre of the cell holding p (clamped to the grid).
+  Vec3 At(const Vec3& p) const;
+  /// The factor at the centre of cell (i, j, k).
+  Vec3 AtCell(int i, int j, int k) const;
+
+private:
+  const AlbedoField* Field;
+  Vec3 Lower, Cell;
+  int Dims[3];
+};
+
+/**
  * Delta tracking of one medium along one ray segment: tentative collisions
  * are exponential steps with the local majorant, block by block (a 3D DDA
  * over the density's majorant grid), so empty blocks cost nothing. For a

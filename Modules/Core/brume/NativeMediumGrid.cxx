@@ -345,11 +345,17 @@ void NativeMediumGrid::SampleFrom(const Medium& medium, std::size_t memory,
     this->EmptyIntegral = previous->EmptyIntegral;
     this->TableDims = previous->TableDims;
     this->TableBox = previous->TableBox;
+    this->AlbedoTable = previous->AlbedoTable;
+    this->TableAlbedo = previous->TableAlbedo;
+    this->AlbedoDims = previous->AlbedoDims;
+    this->AlbedoBox = previous->AlbedoBox;
     this->ReusedBricks = previous->ReusedBricks + previous->SampledBricks;
     return;
   }
   this->DensityTable = SummedAreaTable();
   this->DensityMoments = SummedAreaTable();
+  this->AlbedoTable = SummedAreaTable();
+  this->TableAlbedo = nullptr;
   if (classified && factor == 1)
   {
     const OpacityTransferFunction& function = classified->GetOpacity();
@@ -795,6 +801,122 @@ double NativeMediumGrid::RegionIntegral(const Region& region) const
   double integral = 0.0;
   this->DensityTable.RegionSum(region.Lo, region.Hi, &integral);
   return integral;
+}
+
+bool NativeMediumGrid::HasAlbedoTable(
+  const Box& box, const std::array<int, 3>& dims, const AlbedoField* albedo) const
+{
+  return albedo && this->TableAlbedo.get() == albedo && this->AlbedoDims == dims &&
+    SameBox(this->AlbedoBox, box);
+}
+
+void NativeMediumGrid::RegionAlbedoIntegral(const Region& region, double integral[3]) const
+{
+  this->AlbedoTable.RegionSum(region.Lo, region.Hi, integral);
+}
+
+void NativeMediumGrid::BuildAlbedoTable(const Box& box, const std::array<int, 3>& dims,
+  const Medium& medium, const ParallelFor& parallelFor)
+{
+  // As BuildTables(): each native cell's mass, times the albedo's factor at
+  // its centre (CellAlbedo's, which the hits of the cell carry), into the
+  // histogram cells it overlaps; each layer of bricks on its own, the
+  // layers added in order (the same sums whatever the threads). A
+  // coarsened cell takes the factor at its own centre.
+  const BrickedGrid& grid = this->Density;
+  const auto& nd = grid.GetDims();
+  const Box& native = grid.GetBox();
+  std::array<std::vector<std::vector<Overlap>>, 3> overlaps;
+  Vec3 cell;
+  for (int a = 0; a < 3; ++a)
+  {
+    overlaps[a] =
+      Overlaps(nd[a], native.lower[a], native.upper[a], dims[a], box.lower[a], box.upper[a]);
+    cell[a] = (native.upper[a] - native.lower[a]) / static_cast<float>(nd[a]);
+  }
+  const double nativeVolume =
+    static_cast<double>(native.Volume()) / (static_cast<double>(nd[0]) * nd[1] * nd[2]);
+  struct Layer
+  {
+    int First = 0, Last = -1; // the histogram's z cells it overlaps
+    std::vector<double> Values;
+  };
+  const int layers = grid.GetBrickDims()[2];
+  const std::size_t plane = static_cast<std::size_t>(dims[0]) * dims[1];
+  std::vector<Layer> parts(static_cast<std::size_t>(layers));
+  const AlbedoField& field = *medium.AlbedoFactor;
+  const CellAlbedo cells(medium);
+  const bool own = this->Coarsening == 1;
+  parallelFor(0, parts.size(),
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t l = begin; l < end; ++l)
+      {
+        Layer& part = parts[l];
+        const int k0 = BrickedGrid::Stride * static_cast<int>(l);
+        const int k1 = static_cast<int>(l) + 1 == layers ? nd[2] : k0 + BrickedGrid::Stride;
+        part.First = dims[2];
+        for (int k = k0; k < k1; ++k)
+        {
+          for (const Overlap& z : overlaps[2][static_cast<std::size_t>(k)])
+          {
+            part.First = std::min(part.First, z.Coarse);
+            part.Last = std::max(part.Last, z.Coarse);
+          }
+        }
+        if (part.Last < part.First)
+        {
+          continue;
+        }
+        part.Values.assign(3 * plane * static_cast<std::size_t>(part.Last - part.First + 1), 0.0);
+        grid.ForEachNonZeroCellOfLayers(static_cast<int>(l), static_cast<int>(l) + 1,
+          [&](int i, int j, int k, float density)
+          {
+            const double mass = density * nativeVolume;
+            if (mass == 0.0)
+            {
+              return;
+            }
+            const Vec3 f = own
+              ? cells.AtCell(i, j, k)
+              : field.Evaluate(Vec3(native.lower.x + (static_cast<float>(i) + 0.5f) * cell.x,
+                  native.lower.y + (static_cast<float>(j) + 0.5f) * cell.y,
+                  native.lower.z + (static_cast<float>(k) + 0.5f) * cell.z));
+            for (const Overlap& z : overlaps[2][static_cast<std::size_t>(k)])
+            {
+              for (const Overlap& y : overlaps[1][static_cast<std::size_t>(j)])
+              {
+                double* row = &part.Values[3 *
+                  ((static_cast<std::size_t>(z.Coarse - part.First) * dims[1] + y.Coarse) *
+                    dims[0])];
+                const double zy = mass * z.Fraction * y.Fraction;
+                for (const Overlap& x : overlaps[0][static_cast<std::size_t>(i)])
+                {
+                  const double share = zy * x.Fraction;
+                  for (int c = 0; c < 3; ++c)
+                  {
+                    row[3 * x.Coarse + c] += share * f[c];
+                  }
+                }
+              }
+            }
+          });
+      }
+    });
+  Histogram integral(dims, 3);
+  std::vector<double>& values = integral.GetValues();
+  for (const Layer& part : parts)
+  {
+    const std::size_t offset = 3 * plane * static_cast<std::size_t>(std::max(part.First, 0));
+    for (std::size_t c = 0; c < part.Values.size(); ++c)
+    {
+      values[offset + c] += part.Values[c];
+    }
+  }
+  this->AlbedoTable = SummedAreaTable(integral);
+  this->TableAlbedo = medium.AlbedoFactor;
+  this->AlbedoDims = dims;
+  this->AlbedoBox = box;
 }
 
 } // namespace brume

@@ -154,6 +154,25 @@ public:
   bool HasTables(const Box& box, const std::array<int, 3>& dims) const;
   /// The density's integral over a region of histogram cells.
   double RegionIntegral(const Region& region) const;
+  /**
+   * Where `medium`'s albedo varies (Medium::AlbedoFactor, its density this
+   * grid's): the integral over each histogram cell of the density times
+   * each channel of the albedo's factor, taken per cell of the grid
+   * (CellAlbedo). A region's scattered light, binned with each hit's
+   * cell's albedo (HitBinning), is normalized by it: the light where the
+   * albedo is high counts for more, as the renderer's albedo, applied
+   * point by point, makes it. A texel across a step of the albedo so keeps
+   * the covariance of the albedo and the light, which a mean of the light
+   * alone (times the albedo) loses. Kept with the grid for the same albedo
+   * field; a colour edit builds it again.
+   */
+  void BuildAlbedoTable(const Box& box, const std::array<int, 3>& dims, const Medium& medium,
+    const ParallelFor& parallelFor = SerialFor());
+  /// Whether BuildAlbedoTable() was made for these cells and this field.
+  bool HasAlbedoTable(
+    const Box& box, const std::array<int, 3>& dims, const AlbedoField* albedo) const;
+  /// The albedo-weighted density's integral over a region, per channel.
+  void RegionAlbedoIntegral(const Region& region, double integral[3]) const;
   /// Regions whose integral is at most this hold no medium.
   double GetEmptyIntegral() const { return this->EmptyIntegral; }
   /// Where each texel's estimate belongs (the mean of its two regions'
@@ -177,6 +196,10 @@ private:
   double EmptyIntegral = 0.0;
   std::array<int, 3> TableDims{ 0, 0, 0 };
   Box TableBox;
+  SummedAreaTable AlbedoTable; // integral of the density times the albedo's factor, RGB
+  std::shared_ptr<const AlbedoField> TableAlbedo; // the field it was made for
+  std::array<int, 3> AlbedoDims{ 0, 0, 0 };
+  Box AlbedoBox;
   // The density the grid was sampled from (it holds the function
   // Classification points to, and the scalars), and per brick of the
   // extinction the range of the scalars its samples were computed from

@@ -327,6 +327,12 @@ std::string ObjectRadiance::EstimateTexture(const ParallelFor& parallelFor)
   {
     this->BuildAreaTable();
   }
+  if (medium && medium->Density && this->Layout.Scattering.HasVaryingAlbedo() &&
+    !this->Native.HasAlbedoTable(medium->Bounds, this->Layout.Dims, medium->AlbedoFactor.get()))
+  {
+    // Independent of the particles and the view: made once per colour.
+    this->Native.BuildAlbedoTable(medium->Bounds, this->Layout.Dims, *medium, parallelFor);
+  }
   if (medium && medium->Density)
   {
     this->Matching = this->Native.Centroids(this->Regions, resolution, refinement, parallelFor);
@@ -391,11 +397,19 @@ void ObjectRadiance::ToRadiance(
   {
     // Heterogeneous: the sigma_t-weighted mean over the region,
     // S = albedo * sum(p Phi) / integral of sigma_t over the region.
+    // Where the albedo a(x) varies, each hit's term carries its albedo
+    // (HitBinning) and the integral is of sigma_t a: a renderer's a(x) S
+    // then scatters over the region what its hits did.
     const double integral = this->Native.RegionIntegral(r); // of the density
+    double weighted[3] = { integral, integral, integral };
+    if (scattering.HasVaryingAlbedo())
+    {
+      this->Native.RegionAlbedoIntegral(r, weighted);
+    }
     const Vec3 sigmaT = medium.SigmaT();
     for (int c = 0; c < 3; ++c)
     {
-      const double weight = integral * sigmaT[c];
+      const double weight = weighted[c] * sigmaT[c];
       out[c] = integral > this->Native.GetEmptyIntegral() && weight > 0.0
         ? static_cast<float>(albedo[c] * sum[c] / (weight * factor[c]))
         : 0.f;
