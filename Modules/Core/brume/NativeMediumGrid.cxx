@@ -142,6 +142,47 @@ bool ZeroOver(const DensityField& density, const Box& bounds, Vec3 lower, Vec3 u
 
 namespace
 {
+// Overlaps() of a grid's cells with `dims` cells over `box`, axis by axis.
+using GridOverlaps = std::array<std::vector<std::vector<Overlap>>, 3>;
+GridOverlaps CellOverlaps(const BrickedGrid& grid, const Box& box, const std::array<int, 3>& dims)
+{
+  const auto& nd = grid.GetDims();
+  const Box& native = grid.GetBox();
+  GridOverlaps overlaps;
+  for (int a = 0; a < 3; ++a)
+  {
+    overlaps[a] =
+      Overlaps(nd[a], native.lower[a], native.upper[a], dims[a], box.lower[a], box.upper[a]);
+  }
+  return overlaps;
+}
+
+// The cells k0 <= k < k1 of layer l of the grid's bricks along z, and the
+// range [first, last] of the coarse z cells they overlap (last < first: none).
+struct BrickLayer
+{
+  int K0, K1, First, Last;
+};
+BrickLayer LayerOverlap(
+  const BrickedGrid& grid, const GridOverlaps& overlaps, std::size_t l, int coarseCells)
+{
+  const int layers = grid.GetBrickDims()[2];
+  BrickLayer layer;
+  layer.K0 = BrickedGrid::Stride * static_cast<int>(l);
+  layer.K1 = static_cast<int>(l) + 1 == layers ? grid.GetDims()[2] : layer.K0 + BrickedGrid::Stride;
+  layer.First = coarseCells;
+  layer.Last = -1;
+  for (int k = layer.K0; k < layer.K1; ++k)
+  {
+    for (const Overlap& z : overlaps[2][static_cast<std::size_t>(k)])
+    {
+      layer.First = std::min(layer.First, z.Coarse);
+      layer.Last = std::max(layer.Last, z.Coarse);
+    }
+  }
+  return layer;
+}
+
 bool SameBox(const Box& a, const Box& b)
 {
   for (int i = 0; i < 3; ++i)
@@ -589,12 +630,7 @@ void NativeMediumGrid::BuildTables(
   const BrickedGrid& grid = this->Density;
   const auto& nd = grid.GetDims();
   const Box& native = grid.GetBox();
-  std::array<std::vector<std::vector<Overlap>>, 3> overlaps;
-  for (int a = 0; a < 3; ++a)
-  {
-    overlaps[a] =
-      Overlaps(nd[a], native.lower[a], native.upper[a], dims[a], box.lower[a], box.upper[a]);
-  }
+  const GridOverlaps overlaps = CellOverlaps(grid, box, dims);
   const double nativeVolume =
     static_cast<double>(native.Volume()) / (static_cast<double>(nd[0]) * nd[1] * nd[2]);
   // Each layer of bricks along z sums into the histogram cells its cells
@@ -615,17 +651,10 @@ void NativeMediumGrid::BuildTables(
       for (std::size_t l = begin; l < end; ++l)
       {
         Layer& part = parts[l];
-        const int k0 = BrickedGrid::Stride * static_cast<int>(l);
-        const int k1 = static_cast<int>(l) + 1 == layers ? nd[2] : k0 + BrickedGrid::Stride;
-        part.First = dims[2];
-        for (int k = k0; k < k1; ++k)
-        {
-          for (const Overlap& z : overlaps[2][static_cast<std::size_t>(k)])
-          {
-            part.First = std::min(part.First, z.Coarse);
-            part.Last = std::max(part.Last, z.Coarse);
-          }
-        }
+        const BrickLayer layer = LayerOverlap(grid, overlaps, l, dims[2]);
+        const int k0 = layer.K0, k1 = layer.K1;
+        part.First = layer.First;
+        part.Last = layer.Last;
         if (part.Last < part.First)
         {
           continue;
@@ -826,12 +855,10 @@ void NativeMediumGrid::BuildAlbedoTable(const Box& box, const std::array<int, 3>
   const BrickedGrid& grid = this->Density;
   const auto& nd = grid.GetDims();
   const Box& native = grid.GetBox();
-  std::array<std::vector<std::vector<Overlap>>, 3> overlaps;
+  const GridOverlaps overlaps = CellOverlaps(grid, box, dims);
   Vec3 cell;
   for (int a = 0; a < 3; ++a)
   {
-    overlaps[a] =
-      Overlaps(nd[a], native.lower[a], native.upper[a], dims[a], box.lower[a], box.upper[a]);
     cell[a] = (native.upper[a] - native.lower[a]) / static_cast<float>(nd[a]);
   }
   const double nativeVolume =
@@ -853,17 +880,9 @@ void NativeMediumGrid::BuildAlbedoTable(const Box& box, const std::array<int, 3>
       for (std::size_t l = begin; l < end; ++l)
       {
         Layer& part = parts[l];
-        const int k0 = BrickedGrid::Stride * static_cast<int>(l);
-        const int k1 = static_cast<int>(l) + 1 == layers ? nd[2] : k0 + BrickedGrid::Stride;
-        part.First = dims[2];
-        for (int k = k0; k < k1; ++k)
-        {
-          for (const Overlap& z : overlaps[2][static_cast<std::size_t>(k)])
-          {
-            part.First = std::min(part.First, z.Coarse);
-            part.Last = std::max(part.Last, z.Coarse);
-          }
-        }
+        const BrickLayer layer = LayerOverlap(grid, overlaps, l, dims[2]);
+        part.First = layer.First;
+        part.Last = layer.Last;
         if (part.Last < part.First)
         {
           continue;
