@@ -575,6 +575,69 @@ TEST(DirectLight, DirectionalMediaProjectTheDirectLight)
   EXPECT_LT(worst, truncation * 2.0 + 1e-5) << "largest difference " << worst;
 }
 
+TEST(DirectLight, DirectionalMediaProjectTheDirectLightOfACoarserGrid)
+{
+  // The output grid is at most the field's own resolution while the
+  // texture's follows the particles: here 3^3 output voxels under 6^3
+  // texels, so that two texels in three along each axis hold no output
+  // voxel's centre. Each takes the lobe of the output voxel holding its
+  // own centre; none is left without its direct light (they were, and a
+  // plume's SH image went 40 % dark where its texels outnumbered the
+  // field's cells).
+  Medium fog;
+  fog.Name = "fog";
+  fog.Bounds = { Vec3(-1.f), Vec3(1.f) };
+  fog.SigmaS = Vec3(0.3f);
+  fog.SigmaA = Vec3(0.f);
+  fog.G = 0.3f;
+  Scene scene;
+  scene.Media = { fog };
+  Light sun;
+  sun.Type = LightType::Directional;
+  sun.Direction = Normalize(Vec3(0.3f, -1.f, 0.2f));
+  sun.BeamCenter = Vec3(0.f, 3.f, 0.f);
+  sun.BeamRadius = 4.f;
+  sun.Intensity = Vec3(2.f);
+  scene.Lights = { sun };
+  ASSERT_EQ(scene.Validate(), "");
+  const HitStore store(Trace(scene, 20000, 1));
+  const RayCaster caster(scene);
+  DirectLight direct(scene, caster);
+  ObjectRadiance medium(scene.Media[0], { 6, 6, 6 }, 1);
+  medium.EnableDirect(&direct, { 3, 3, 3 });
+  const auto index = IndexOf(store, 0);
+  const Vec3 eye(0.f, 0.f, 6.f);
+  ASSERT_EQ(medium.Build(store.View(), index.data(), index.size(), eye, 1e-3, SerialFor()), "");
+  medium.ComputeDirect(SerialFor());
+  ASSERT_EQ(medium.BuildDirectional(3, SerialFor()), "");
+  std::vector<float> evaluated;
+  medium.GetDirectional().Evaluate(eye, evaluated);
+  const HenyeyGreenstein phase(fog.G);
+  double truncation = 0.0;
+  for (int l = 4; l < 60; ++l)
+  {
+    truncation += std::pow(0.3, l) * (2 * l + 1) / (4.0 * Pi);
+  }
+  double worst = 0.0;
+  for (std::size_t v = 0; v < 216; ++v)
+  {
+    const Vec3 centre = Vec3(-1.f) + Centre(v, { 6, 6, 6 }) * 2.f;
+    // The output voxel holding the texel's centre, and its own centre.
+    Vec3 p;
+    for (int a = 0; a < 3; ++a)
+    {
+      const int i = std::min(static_cast<int>((centre[a] + 1.f) / 2.f * 3.f), 2);
+      p[a] = -1.f + (static_cast<float>(i) + 0.5f) * 2.f / 3.f;
+    }
+    LightArrival a;
+    ASSERT_TRUE(direct.Arrive(0, p, Vec3(0.f), a));
+    const double expected =
+      fog.Albedo().x * phase.Evaluate(Dot(a.Direction, Normalize(eye - centre))) * a.Irradiance.x;
+    worst = std::max(worst, std::abs(evaluated[3 * v] - expected));
+  }
+  EXPECT_LT(worst, truncation * 2.0 + 1e-5) << "largest difference " << worst;
+}
+
 TEST(DirectLight, ViewUpdatesAndAddedParticlesEqualAFullBuild)
 {
   // With the direct light computed, a view update equals a build toward the

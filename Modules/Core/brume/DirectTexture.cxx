@@ -642,9 +642,8 @@ void DirectTexture::AddToDirectional(
   const Vec3 scale = scattering.GetAlbedo() * (1.f - scattering.GetPeak(true).Forward) /
     scattering.GetExtinctionFactor(true);
   float y[ShCoefficients(MaxShOrder)];
-  for (std::size_t t = 0; t < texels; ++t)
+  auto addLobes = [&](std::size_t t, std::size_t v)
   {
-    const std::size_t v = voxelOf(t);
     ++members[v];
     for (std::size_t l = 0; l < lights; ++l)
     {
@@ -662,6 +661,32 @@ void DirectTexture::AddToDirectional(
         }
       }
     }
+  };
+  for (std::size_t t = 0; t < texels; ++t)
+  {
+    addLobes(t, voxelOf(t));
+  }
+  // Where the output grid is coarser than the texture along an axis (it is
+  // at most the field's own resolution; the texture's follows the
+  // particles), a voxel may hold no output texel's centre: it takes the
+  // lobes of the output texel holding its own centre, as a renderer
+  // sampling the output grid there would.
+  const std::array<int, 3>& res = layout.Resolution;
+  for (std::size_t v = 0; v < voxels; ++v)
+  {
+    if (members[v] != 0)
+    {
+      continue;
+    }
+    const Vec3 q = TexelCentre(v, res);
+    std::size_t t = 0;
+    for (int a = 2; a >= 0; --a)
+    {
+      const int i = std::clamp(
+        static_cast<int>(q[a] * static_cast<float>(this->Dims[a])), 0, this->Dims[a] - 1);
+      t = t * static_cast<std::size_t>(this->Dims[a]) + static_cast<std::size_t>(i);
+    }
+    addLobes(t, v);
   }
   for (std::size_t v = 0; v < voxels; ++v)
   {
