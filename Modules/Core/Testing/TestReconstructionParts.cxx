@@ -1016,40 +1016,51 @@ TEST(ReconstructionParts, AnAlbedoStepInsideARegionKeepsTheLightItsHitsScattered
   // 0.875 of lambda p, blue (0.2 | 1) 0.625 against 0.375. Isotropic (the
   // hits binned as they come) and g = 0.3 toward an eye far along +z (the
   // hits kept, each weighted by HG(0.3) at 0 degrees), within four of the
-  // estimate's standard errors (a Poisson sum's: the root of its squared terms).
+  // estimate's standard errors (a Poisson sum's: the root of its squared
+  // terms). Also with the density's grid coarsened to one cell (its memory
+  // too small for more), whose factor is then its field cells' mean
+  // weighted by the density: its hits carry their field cell's (its
+  // centre's factor, 0.2 in red, would read the texel 3 times too bright).
   const Vec3 low(1.f, 0.6f, 0.2f), high(0.2f, 0.6f, 1.f);
   const float lowFlux = 1.f, highFlux = 0.25f;
   const double lambda = 40000.0;
-  for (const float g : { 0.f, 0.3f })
-  {
-    const Medium fog = UnitFog(std::make_shared<SteppedAlbedo>(low, high), g);
-    const HitStore store = UniformHits(lambda, lowFlux, highFlux, 1);
-    std::vector<std::uint32_t> index(store.Object.size());
-    std::iota(index.begin(), index.end(), 0u);
-    ObjectRadiance radiance(fog, { 1, 1, 1 }, 2);
-    radiance.Options().ParticleFlux = 1.0;
-    const Vec3 eye(0.5f, 0.5f, 1e6f);
-    ASSERT_EQ(radiance.Build(store.View(), index.data(), index.size(), eye, 1e9, SerialFor()), "");
-    const TextureView texture = radiance.GetTexture();
-    ASSERT_EQ(texture.Radiance.size(), 3u);
-    const double p = g == 0.f ? Inv4Pi : HenyeyGreenstein(g).Evaluate(1.f);
-    for (int c = 0; c < 3; ++c)
+  for (const bool coarsened : { false, true })
+    for (const float g : { 0.f, 0.3f })
     {
-      const double aL = low[c], aR = high[c];
-      const double expected = lambda * p * (aL * lowFlux + aR * highFlux) / (aL + aR);
-      double squares = 0.0;
-      for (std::size_t i = 0; i < index.size(); ++i)
+      const Medium fog = UnitFog(std::make_shared<SteppedAlbedo>(low, high), g);
+      const HitStore store = UniformHits(lambda, lowFlux, highFlux, 1);
+      std::vector<std::uint32_t> index(store.Object.size());
+      std::iota(index.begin(), index.end(), 0u);
+      ObjectRadiance radiance(fog, { 1, 1, 1 }, 2);
+      radiance.Options().ParticleFlux = 1.0;
+      if (coarsened)
       {
-        const double term =
-          p * store.Flux[3 * i] * (store.Position[3 * i] < SteppedAlbedo::Step ? aL : aR);
-        squares += term * term;
+        radiance.Options().NativeMemory = 1;
       }
-      const double error = std::sqrt(squares) / (0.5 * (aL + aR));
-      EXPECT_NEAR(texture.Radiance[static_cast<std::size_t>(c)], expected, 4.0 * error)
-        << "g " << g << ", channel " << c << ": the mean of the light alone gives "
-        << lambda * p * 0.5 * (lowFlux + highFlux);
+      const Vec3 eye(0.5f, 0.5f, 1e6f);
+      ASSERT_EQ(
+        radiance.Build(store.View(), index.data(), index.size(), eye, 1e9, SerialFor()), "");
+      ASSERT_EQ(radiance.GetNative().GetCoarsening(), coarsened ? 8 : 1);
+      const TextureView texture = radiance.GetTexture();
+      ASSERT_EQ(texture.Radiance.size(), 3u);
+      const double p = g == 0.f ? Inv4Pi : HenyeyGreenstein(g).Evaluate(1.f);
+      for (int c = 0; c < 3; ++c)
+      {
+        const double aL = low[c], aR = high[c];
+        const double expected = lambda * p * (aL * lowFlux + aR * highFlux) / (aL + aR);
+        double squares = 0.0;
+        for (std::size_t i = 0; i < index.size(); ++i)
+        {
+          const double term =
+            p * store.Flux[3 * i] * (store.Position[3 * i] < SteppedAlbedo::Step ? aL : aR);
+          squares += term * term;
+        }
+        const double error = std::sqrt(squares) / (0.5 * (aL + aR));
+        EXPECT_NEAR(texture.Radiance[static_cast<std::size_t>(c)], expected, 4.0 * error)
+          << (coarsened ? "coarsened, " : "") << "g " << g << ", channel " << c
+          << ": the mean of the light alone gives " << lambda * p * 0.5 * (lowFlux + highFlux);
+      }
     }
-  }
 }
 
 TEST(ReconstructionParts, AnAlbedoAlikeEverywhereLeavesTheRegionsAndTheTexture)

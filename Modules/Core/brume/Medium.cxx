@@ -32,11 +32,11 @@ CellAlbedo::CellAlbedo(const Medium& medium)
   }
 }
 
-Vec3 CellAlbedo::AtCell(int i, int j, int k) const
+Vec3 CellAlbedo::Centre(int i, int j, int k) const
 {
-  return this->Field->Evaluate(Vec3(this->Lower.x + (static_cast<float>(i) + 0.5f) * this->Cell.x,
+  return Vec3(this->Lower.x + (static_cast<float>(i) + 0.5f) * this->Cell.x,
     this->Lower.y + (static_cast<float>(j) + 0.5f) * this->Cell.y,
-    this->Lower.z + (static_cast<float>(k) + 0.5f) * this->Cell.z));
+    this->Lower.z + (static_cast<float>(k) + 0.5f) * this->Cell.z);
 }
 
 Vec3 CellAlbedo::At(const Vec3& p) const

@@ -94,7 +94,9 @@ public:
   /// The factor at the centre of the cell holding p (clamped to the grid).
   Vec3 At(const Vec3& p) const;
   /// The factor at the centre of cell (i, j, k).
-  Vec3 AtCell(int i, int j, int k) const;
+  Vec3 AtCell(int i, int j, int k) const { return this->Field->Evaluate(this->Centre(i, j, k)); }
+  /// The centre of cell (i, j, k).
+  Vec3 Centre(int i, int j, int k) const;
 
 private:
   const AlbedoField* Field;

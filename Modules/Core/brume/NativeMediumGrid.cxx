@@ -851,16 +851,12 @@ void NativeMediumGrid::BuildAlbedoTable(const Box& box, const std::array<int, 3>
   // its centre (CellAlbedo's, which the hits of the cell carry), into the
   // histogram cells it overlaps; each layer of bricks on its own, the
   // layers added in order (the same sums whatever the threads). A
-  // coarsened cell takes the factor at its own centre.
+  // coarsened cell takes its field cells' factors weighted by the density
+  // at their centres: its hits carry their own field cell's.
   const BrickedGrid& grid = this->Density;
   const auto& nd = grid.GetDims();
   const Box& native = grid.GetBox();
   const GridOverlaps overlaps = CellOverlaps(grid, box, dims);
-  Vec3 cell;
-  for (int a = 0; a < 3; ++a)
-  {
-    cell[a] = (native.upper[a] - native.lower[a]) / static_cast<float>(nd[a]);
-  }
   const double nativeVolume =
     static_cast<double>(native.Volume()) / (static_cast<double>(nd[0]) * nd[1] * nd[2]);
   struct Layer
@@ -871,9 +867,35 @@ void NativeMediumGrid::BuildAlbedoTable(const Box& box, const std::array<int, 3>
   const int layers = grid.GetBrickDims()[2];
   const std::size_t plane = static_cast<std::size_t>(dims[0]) * dims[1];
   std::vector<Layer> parts(static_cast<std::size_t>(layers));
-  const AlbedoField& field = *medium.AlbedoFactor;
   const CellAlbedo cells(medium);
-  const bool own = this->Coarsening == 1;
+  const int coarsening = this->Coarsening;
+  const std::array<int, 3>& fine = this->FieldResolution;
+  const DensityField& field = *medium.Density;
+  auto factorOf = [&](int i, int j, int k)
+  {
+    if (coarsening == 1)
+    {
+      return cells.AtCell(i, j, k);
+    }
+    double sum[3] = { 0.0, 0.0, 0.0 }, weight = 0.0;
+    for (int kk = k * coarsening; kk < std::min((k + 1) * coarsening, fine[2]); ++kk)
+      for (int jj = j * coarsening; jj < std::min((j + 1) * coarsening, fine[1]); ++jj)
+        for (int ii = i * coarsening; ii < std::min((i + 1) * coarsening, fine[0]); ++ii)
+        {
+          const double w = field.Evaluate(cells.Centre(ii, jj, kk));
+          const Vec3 f = cells.AtCell(ii, jj, kk);
+          for (int c = 0; c < 3; ++c)
+          {
+            sum[c] += w * f[c];
+          }
+          weight += w;
+        }
+    return weight > 0.0
+      ? Vec3(static_cast<float>(sum[0] / weight), static_cast<float>(sum[1] / weight),
+          static_cast<float>(sum[2] / weight))
+      : cells.AtCell(std::min(i * coarsening, fine[0] - 1), std::min(j * coarsening, fine[1] - 1),
+          std::min(k * coarsening, fine[2] - 1));
+  };
   parallelFor(0, parts.size(),
     [&](std::size_t begin, std::size_t end)
     {
@@ -896,11 +918,7 @@ void NativeMediumGrid::BuildAlbedoTable(const Box& box, const std::array<int, 3>
             {
               return;
             }
-            const Vec3 f = own
-              ? cells.AtCell(i, j, k)
-              : field.Evaluate(Vec3(native.lower.x + (static_cast<float>(i) + 0.5f) * cell.x,
-                  native.lower.y + (static_cast<float>(j) + 0.5f) * cell.y,
-                  native.lower.z + (static_cast<float>(k) + 0.5f) * cell.z));
+            const Vec3 f = factorOf(i, j, k);
             for (const Overlap& z : overlaps[2][static_cast<std::size_t>(k)])
             {
               for (const Overlap& y : overlaps[1][static_cast<std::size_t>(j)])
