@@ -544,6 +544,61 @@ TEST(TransferFunction, AlbedoIsTheColourAfterInterpolationTimesTheMediumAlbedo)
   EXPECT_FLOAT_EQ(m.SigmaTAt(Vec3(0.599f, 0.3f, 0.8f)).x, m.SigmaTAt(Vec3(0.601f, 0.3f, 0.8f)).x);
 }
 
+TEST(TransferFunction, CellAlbedosReadABrickAtOnceAsOneCellAtATime)
+{
+  // Point values of all kinds (between points, on a point, beyond both
+  // ends, jumping between pairs of points from one value to the next): a
+  // block of cells' factors read at once (CellAlbedo::AtCells()) are each
+  // cell's own (AtCell()), which is the field at the cell's centre.
+  const std::array<int, 3> dims{ 9, 7, 5 };
+  std::vector<float> values(static_cast<std::size_t>(dims[0]) * dims[1] * dims[2]);
+  for (std::size_t i = 0; i < values.size(); ++i)
+  {
+    values[i] = -0.3f + 1.6f * static_cast<float>((i * 37) % 101) / 100.f;
+  }
+  values[5] = 0.25f; // on a point
+  auto scalars =
+    std::make_shared<const GridDensity>(Box{ Vec3(0.f), Vec3(1.f) }, dims, values, false);
+  Medium m;
+  m.SetDensity(
+    std::make_shared<ClassifiedDensity>(scalars, OpacityTransferFunction({ { 0.f, 0.5f } }, 1.f)));
+  const ColorTransferFunction colours(
+    { { 0.f, Vec3(1.f, 0.f, 0.f) }, { 0.25f, Vec3(0.f, 1.f, 0.5f) },
+      { 0.25f, Vec3(0.2f, 0.3f, 1.f) }, { 0.9f, Vec3(0.6f, 0.1f, 0.f) } });
+  m.AlbedoFactor = std::make_shared<ClassifiedAlbedo>(scalars, colours);
+  ASSERT_TRUE(m.AlbedoFactor->SharesNativeCells(*m.Density));
+  const CellAlbedo cells(m);
+  const std::array<int, 3> lower{ 1, 2, 0 }, count{ 8, 4, 5 };
+  std::vector<Vec3> batch(static_cast<std::size_t>(count[0]) * count[1] * count[2]);
+  std::vector<float> scratch;
+  cells.AtCells(lower, count, scratch, batch.data());
+  std::size_t n = 0;
+  for (int k = lower[2]; k < lower[2] + count[2]; ++k)
+    for (int j = lower[1]; j < lower[1] + count[1]; ++j)
+      for (int i = lower[0]; i < lower[0] + count[0]; ++i, ++n)
+      {
+        const Vec3 one = cells.AtCell(i, j, k);
+        const Vec3 own =
+          colours.Color(values[(static_cast<std::size_t>(k) * dims[1] + j) * dims[0] + i]);
+        const Vec3 centre = m.AlbedoFactor->Evaluate(cells.Centre(i, j, k));
+        for (int c = 0; c < 3; ++c)
+        {
+          EXPECT_EQ(batch[n][c], one[c]) << i << " " << j << " " << k;
+          EXPECT_EQ(one[c], own[c]);
+          EXPECT_NEAR(one[c], centre[c], 1e-5f);
+        }
+      }
+  // Colours of other scalars (another grid's cells) are read at the
+  // centres, one cell at a time.
+  auto coarser = std::make_shared<const GridDensity>(
+    Box{ Vec3(0.f), Vec3(1.f) }, std::array<int, 3>{ 2, 2, 2 }, std::vector<float>(8, 0.5f), false);
+  m.AlbedoFactor = std::make_shared<ClassifiedAlbedo>(coarser, colours);
+  EXPECT_FALSE(m.AlbedoFactor->SharesNativeCells(*m.Density));
+  const CellAlbedo other(m);
+  other.AtCells(lower, count, scratch, batch.data());
+  EXPECT_EQ(batch[3].y, m.AlbedoFactor->Evaluate(other.Centre(4, 2, 0)).y);
+}
+
 TEST(TransferFunction, AnEditKeepsTheOccupancyOfChunksItLeftAsTheyWere)
 {
   // Floats that are not whole numbers, rising with z: each chunk of

@@ -21,6 +21,7 @@ Vec3 Medium::Albedo() const
 
 CellAlbedo::CellAlbedo(const Medium& medium)
   : Field(medium.AlbedoFactor.get())
+  , Native(medium.AlbedoFactor->SharesNativeCells(*medium.Density))
 {
   const Box box = medium.Density->NativeBox();
   const std::array<int, 3> dims = medium.Density->NativeResolution();
@@ -37,6 +38,21 @@ Vec3 CellAlbedo::Centre(int i, int j, int k) const
   return Vec3(this->Lower.x + (static_cast<float>(i) + 0.5f) * this->Cell.x,
     this->Lower.y + (static_cast<float>(j) + 0.5f) * this->Cell.y,
     this->Lower.z + (static_cast<float>(k) + 0.5f) * this->Cell.z);
+}
+
+void CellAlbedo::AtCells(const std::array<int, 3>& lower, const std::array<int, 3>& count,
+  std::vector<float>& scratch, Vec3* out) const
+{
+  if (this->Native && this->Field->NativeValues(lower, count, scratch, out))
+  {
+    return;
+  }
+  for (int k = lower[2]; k < lower[2] + count[2]; ++k)
+    for (int j = lower[1]; j < lower[1] + count[1]; ++j)
+      for (int i = lower[0]; i < lower[0] + count[0]; ++i)
+      {
+        *out++ = this->AtCell(i, j, k);
+      }
 }
 
 Vec3 CellAlbedo::At(const Vec3& p) const

@@ -7,6 +7,7 @@
 #include "brume/Random.h"
 #include "brume/Vec3.h"
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -24,6 +25,44 @@ class AlbedoField
 public:
   virtual ~AlbedoField() = default;
   virtual Vec3 Evaluate(const Vec3& p) const = 0;
+  /**
+   * Whether NativeValue() reads the samples of `density`'s native grid
+   * (DensityField::NativeResolution() cells over NativeBox()): a colour of
+   * the scalars the density classifies, whose samples are those cells'.
+   */
+  virtual bool SharesNativeCells(const DensityField& density) const
+  {
+    (void)density;
+    return false;
+  }
+  /**
+   * The factor at the centre of native cell (i, j, k), which lies at world
+   * point `centre`: Evaluate(centre), or from the cell's own sample where
+   * SharesNativeCells() (at a 512^3 grid's every cell, interpolating
+   * generically took seconds).
+   */
+  virtual Vec3 NativeValue(int i, int j, int k, const Vec3& centre) const
+  {
+    (void)i;
+    (void)j;
+    (void)k;
+    return this->Evaluate(centre);
+  }
+  /**
+   * Where SharesNativeCells(), NativeValue() of the `count` native cells
+   * from `lower` (x fastest) into `out`, through `scratch`, read at once
+   * (a brick of a grid's values); false, with nothing written, where the
+   * field cannot.
+   */
+  virtual bool NativeValues(const std::array<int, 3>& lower, const std::array<int, 3>& count,
+    std::vector<float>& scratch, Vec3* out) const
+  {
+    (void)lower;
+    (void)count;
+    (void)scratch;
+    (void)out;
+    return false;
+  }
 };
 
 struct Medium
@@ -94,12 +133,21 @@ public:
   /// The factor at the centre of the cell holding p (clamped to the grid).
   Vec3 At(const Vec3& p) const;
   /// The factor at the centre of cell (i, j, k).
-  Vec3 AtCell(int i, int j, int k) const { return this->Field->Evaluate(this->Centre(i, j, k)); }
+  Vec3 AtCell(int i, int j, int k) const
+  {
+    return this->Native ? this->Field->NativeValue(i, j, k, this->Centre(i, j, k))
+                        : this->Field->Evaluate(this->Centre(i, j, k));
+  }
+  /// AtCell() of the `count` cells from `lower` (x fastest) into `out`,
+  /// batched where the field can (`scratch` its working memory).
+  void AtCells(const std::array<int, 3>& lower, const std::array<int, 3>& count,
+    std::vector<float>& scratch, Vec3* out) const;
   /// The centre of cell (i, j, k).
   Vec3 Centre(int i, int j, int k) const;
 
 private:
   const AlbedoField* Field;
+  bool Native; // Field->SharesNativeCells(the density)
   Vec3 Lower, Cell;
   int Dims[3];
 };

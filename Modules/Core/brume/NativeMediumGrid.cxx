@@ -873,16 +873,12 @@ void NativeMediumGrid::BuildAlbedoTable(const Box& box, const std::array<int, 3>
   const DensityField& field = *medium.Density;
   auto factorOf = [&](int i, int j, int k)
   {
-    if (coarsening == 1)
-    {
-      return cells.AtCell(i, j, k);
-    }
     double sum[3] = { 0.0, 0.0, 0.0 }, weight = 0.0;
     for (int kk = k * coarsening; kk < std::min((k + 1) * coarsening, fine[2]); ++kk)
       for (int jj = j * coarsening; jj < std::min((j + 1) * coarsening, fine[1]); ++jj)
         for (int ii = i * coarsening; ii < std::min((i + 1) * coarsening, fine[0]); ++ii)
         {
-          const double w = field.Evaluate(cells.Centre(ii, jj, kk));
+          const double w = field.NativeValue(ii, jj, kk, cells.Centre(ii, jj, kk));
           const Vec3 f = cells.AtCell(ii, jj, kk);
           for (int c = 0; c < 3; ++c)
           {
@@ -903,6 +899,7 @@ void NativeMediumGrid::BuildAlbedoTable(const Box& box, const std::array<int, 3>
       {
         Layer& part = parts[l];
         const BrickLayer layer = LayerOverlap(grid, overlaps, l, dims[2]);
+        const int k0 = layer.K0, k1 = layer.K1;
         part.First = layer.First;
         part.Last = layer.Last;
         if (part.Last < part.First)
@@ -910,6 +907,19 @@ void NativeMediumGrid::BuildAlbedoTable(const Box& box, const std::array<int, 3>
           continue;
         }
         part.Values.assign(3 * plane * static_cast<std::size_t>(part.Last - part.First + 1), 0.0);
+        // Separably, as BuildTables(): each row's weighted mass into the
+        // histogram's x cells (summed in registers while the cells add into
+        // one), those rows into its y cells, then into its z cells.
+        const std::size_t nx = static_cast<std::size_t>(dims[0]);
+        const std::size_t rows = static_cast<std::size_t>(k1 - k0) * nd[1];
+        std::vector<double> byX(3 * rows * nx, 0.0);
+        double* at = nullptr;
+        double sum[3] = { 0.0, 0.0, 0.0 };
+        // The cells come brick by brick: a field cell's factors are read a
+        // brick at a time (CellAlbedo::AtCells()).
+        std::array<int, 3> brickLower{ -1, -1, -1 }, brickCount{ 0, 0, 0 };
+        std::vector<Vec3> brickFactors;
+        std::vector<float> scratch;
         grid.ForEachNonZeroCellOfLayers(static_cast<int>(l), static_cast<int>(l) + 1,
           [&](int i, int j, int k, float density)
           {
@@ -918,26 +928,86 @@ void NativeMediumGrid::BuildAlbedoTable(const Box& box, const std::array<int, 3>
             {
               return;
             }
-            const Vec3 f = factorOf(i, j, k);
-            for (const Overlap& z : overlaps[2][static_cast<std::size_t>(k)])
+            Vec3 f;
+            if (coarsening == 1)
             {
-              for (const Overlap& y : overlaps[1][static_cast<std::size_t>(j)])
+              const int cell[3] = { i, j, k };
+              bool inside = true;
+              for (int a = 0; a < 3; ++a)
               {
-                double* row = &part.Values[3 *
-                  ((static_cast<std::size_t>(z.Coarse - part.First) * dims[1] + y.Coarse) *
-                    dims[0])];
-                const double zy = mass * z.Fraction * y.Fraction;
-                for (const Overlap& x : overlaps[0][static_cast<std::size_t>(i)])
+                inside =
+                  inside && cell[a] >= brickLower[a] && cell[a] < brickLower[a] + brickCount[a];
+              }
+              if (!inside)
+              {
+                for (int a = 0; a < 3; ++a)
                 {
-                  const double share = zy * x.Fraction;
-                  for (int c = 0; c < 3; ++c)
-                  {
-                    row[3 * x.Coarse + c] += share * f[c];
-                  }
+                  brickLower[a] = cell[a] - cell[a] % BrickedGrid::Stride;
+                  brickCount[a] = std::min(BrickedGrid::Stride, nd[a] - brickLower[a]);
                 }
+                brickFactors.resize(
+                  static_cast<std::size_t>(brickCount[0]) * brickCount[1] * brickCount[2]);
+                cells.AtCells(brickLower, brickCount, scratch, brickFactors.data());
+              }
+              f = brickFactors[(static_cast<std::size_t>(k - brickLower[2]) * brickCount[1] +
+                                 (j - brickLower[1])) *
+                  brickCount[0] +
+                (i - brickLower[0])];
+            }
+            else
+            {
+              f = factorOf(i, j, k);
+            }
+            double* row = &byX[3 * ((static_cast<std::size_t>(k - k0) * nd[1] + j) * nx)];
+            for (const Overlap& x : overlaps[0][static_cast<std::size_t>(i)])
+            {
+              double* cell = row + 3 * x.Coarse;
+              if (cell != at)
+              {
+                if (at)
+                {
+                  std::copy(sum, sum + 3, at);
+                }
+                at = cell;
+                std::copy(cell, cell + 3, sum);
+              }
+              const double share = mass * x.Fraction;
+              for (int c = 0; c < 3; ++c)
+              {
+                sum[c] += share * f[c];
               }
             }
           });
+        if (at)
+        {
+          std::copy(sum, sum + 3, at);
+        }
+        const std::size_t ny = static_cast<std::size_t>(dims[1]);
+        std::vector<double> byY(3 * nx * ny);
+        for (int k = k0; k < k1; ++k)
+        {
+          std::fill(byY.begin(), byY.end(), 0.0);
+          for (int j = 0; j < nd[1]; ++j)
+          {
+            const double* row = &byX[3 * ((static_cast<std::size_t>(k - k0) * nd[1] + j) * nx)];
+            for (const Overlap& y : overlaps[1][static_cast<std::size_t>(j)])
+            {
+              double* to = &byY[3 * (static_cast<std::size_t>(y.Coarse) * nx)];
+              for (std::size_t x = 0; x < 3 * nx; ++x)
+              {
+                to[x] += row[x] * y.Fraction;
+              }
+            }
+          }
+          for (const Overlap& z : overlaps[2][static_cast<std::size_t>(k)])
+          {
+            double* to = &part.Values[3 * plane * static_cast<std::size_t>(z.Coarse - part.First)];
+            for (std::size_t c = 0; c < 3 * plane; ++c)
+            {
+              to[c] += byY[c] * z.Fraction;
+            }
+          }
+        }
       }
     });
   Histogram integral(dims, 3);

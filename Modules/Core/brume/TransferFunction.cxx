@@ -930,4 +930,51 @@ ClassifiedAlbedo::ClassifiedAlbedo(
 {
 }
 
+bool ClassifiedAlbedo::SharesNativeCells(const DensityField& density) const
+{
+  if (this->Scalars->NativeResolution() != density.NativeResolution())
+  {
+    return false;
+  }
+  const Box a = this->Scalars->NativeBox(), b = density.NativeBox();
+  for (int i = 0; i < 3; ++i)
+  {
+    if (a.lower[i] != b.lower[i] || a.upper[i] != b.upper[i])
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool ClassifiedAlbedo::NativeValues(const std::array<int, 3>& lower,
+  const std::array<int, 3>& count, std::vector<float>& scratch, Vec3* out) const
+{
+  scratch.resize(static_cast<std::size_t>(count[0]) * count[1] * count[2]);
+  if (!this->Scalars->NativePoints(lower, count, scratch.data()))
+  {
+    return false;
+  }
+  // Neighbouring samples mostly fall between the same two points: the
+  // last pair is tried before a search (the same colour as Color()).
+  const std::vector<ColorTransferFunction::Node>& nodes = this->Colors.GetNodes();
+  std::size_t pair = nodes.size(); // none yet
+  for (const float s : scratch)
+  {
+    if (!(pair < nodes.size() && nodes[pair - 1].Scalar <= s && s < nodes[pair].Scalar))
+    {
+      *out++ = this->Colors.Color(s);
+      const auto next = std::upper_bound(nodes.begin(), nodes.end(), s,
+        [](float v, const ColorTransferFunction::Node& n) { return v < n.Scalar; });
+      pair = next == nodes.begin() ? nodes.size() : static_cast<std::size_t>(next - nodes.begin());
+      continue;
+    }
+    const ColorTransferFunction::Node& a = nodes[pair - 1];
+    const ColorTransferFunction::Node& b = nodes[pair];
+    const float t = (s - a.Scalar) / (b.Scalar - a.Scalar);
+    *out++ = a.Color + (b.Color - a.Color) * t;
+  }
+  return true;
+}
+
 } // namespace brume

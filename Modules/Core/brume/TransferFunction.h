@@ -331,6 +331,17 @@ public:
   {
     return this->Colors.Color(this->Scalars->Evaluate(p));
   }
+  /// The scalars' native grid is the density's (the scalars it classifies).
+  bool SharesNativeCells(const DensityField& density) const override;
+  /// The colour of the scalars' own sample at native cell (i, j, k).
+  Vec3 NativeValue(int i, int j, int k, const Vec3& centre) const override
+  {
+    return this->Colors.Color(this->Scalars->NativeValue(i, j, k, centre));
+  }
+  /// The colours of the scalars' own samples, where the scalars give them
+  /// at once (DensityField::NativePoints()).
+  bool NativeValues(const std::array<int, 3>& lower, const std::array<int, 3>& count,
+    std::vector<float>& scratch, Vec3* out) const override;
   const ColorTransferFunction& GetColors() const { return this->Colors; }
   const DensityField& GetScalars() const { return *this->Scalars; }
   /// The scalars' owner (for one that keeps them alive with the function).
