@@ -19,6 +19,16 @@ vtkBrumeProcesses::Session::Session(int* argc, char*** argv)
   {
     if (std::getenv(name))
     {
+      // Every process of Open MPI's run on this machine: its messages go
+      // through shared memory (the ob1 layer) unless the user chose another
+      // layer. Open MPI's default selection probes the fabrics first (UCX,
+      // PSM, OFI), which took 0.25 s of each process's start.
+      const char* size = std::getenv("OMPI_COMM_WORLD_SIZE");
+      const char* local = std::getenv("OMPI_COMM_WORLD_LOCAL_SIZE");
+      if (size && local && std::string(size) == local)
+      {
+        setenv("OMPI_MCA_pml", "ob1", 0);
+      }
       this->Controller = vtkMPIController::New();
       this->Controller->Initialize(argc, argv, 0);
       vtkMultiProcessController::SetGlobalController(this->Controller);
