@@ -160,6 +160,7 @@ int RunSweep(const ChartOptions& options, vtkAlgorithm* scene, const SceneNames&
   sweep->SetRadiosityThreshold(*options.Threshold);
   sweep->SetSeed(static_cast<vtkIdType>(options.Seed));
   sweep->SetDirectionalOrder(options.ShOrder);
+  sweep->SetSupersampling(options.Supersample);
   sweep->SetCacheDirectory(options.CacheDirectory.c_str());
   sweep->SetSceneName(names.Name.c_str());
   sweep->SetCacheKey(names.CacheKey.c_str());
@@ -220,6 +221,7 @@ int RunErrorChart(const ChartOptions& options, vtkAlgorithm* scene, const SceneN
   chart->SetRadiosityThreshold(*options.Threshold);
   chart->SetSeed(static_cast<vtkIdType>(options.Seed));
   chart->SetDirectionalOrder(options.ShOrder);
+  chart->SetSupersampling(options.Supersample);
   chart->SetCacheDirectory(options.CacheDirectory.c_str());
   chart->SetSceneName(names.Name.c_str());
   chart->SetCacheKey(names.CacheKey.c_str());

@@ -486,6 +486,13 @@ void AddChart(CLI::App& app, ChartOptions& o, const Defaults& d)
     ->transform(Integer(1, 1000000, "an integer in [1, 1e6]"))
     ->type_name("N");
   chart
+    ->add_option("--supersample", o.Supersample,
+      "the pipeline's K x K samples of each pixel's area (K^2\n"
+      "frames on a rotated grid, default 4; 8 places an\n"
+      "emitter's edges four times as closely), in the sweep too")
+    ->transform(Integer(1, 16, "an integer in [1, 16]"))
+    ->type_name("K");
+  chart
     ->add_option(
       "--sh-order", o.ShOrder, "order of the spherical-harmonics rows, 1 to 3 (default 3)")
     ->transform(Integer(1, 3, "1, 2 or 3"))

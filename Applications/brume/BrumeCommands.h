@@ -47,6 +47,7 @@ struct ChartOptions
   std::optional<double> Threshold; // unset: the scene file's render.threshold, else the default
   std::uint64_t Seed = 0;
   bool Sweep = false;
+  int Supersample = 4;   // the pipeline's samples per pixel along each axis
   int ShOrder = 3;       // spherical-harmonics order of the SH rows
   std::string Scene;     // a scene file; empty: the built-in default scene
   std::string Medium;    // the medium the stability sweep edits; empty: the scene's first medium

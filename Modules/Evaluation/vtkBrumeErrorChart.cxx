@@ -188,6 +188,7 @@ int vtkBrumeErrorChart::RequestData(
     run->SetSeed(this->Seed);
     run->SetDirectionalRadiance(directional);
     run->SetDirectionalOrder(this->DirectionalOrder);
+    run->SetSupersampling(this->Supersampling);
     return run->GetExecutive()->Update() ? run : nullptr;
   };
   // One untimed run first: OpenGL start-up and shader compilation are not

@@ -8,7 +8,8 @@
  * pixel, seed Seed + 1000003 so that its noise is not correlated with the
  * images', kept in CacheDirectory under CacheKey):
  *
- * - the pipeline (vtkBrumeTimedPipeline, 4x4 supersampled) at
+ * - the pipeline (vtkBrumeTimedPipeline, Supersampling x Supersampling
+ *   frames a pixel) at
  *   MinParticles, 10 x MinParticles, ... up to MaxParticles, with per-view
  *   media (rows `pipeline`, and `pipeline-new-view` for the time of a new
  *   viewpoint) and with spherical-harmonics media of order

@@ -78,6 +78,7 @@ void vtkBrumeEvaluationAlgorithm::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RadiosityThreshold: " << this->RadiosityThreshold << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "DirectionalOrder: " << this->DirectionalOrder << "\n";
+  os << indent << "Supersampling: " << this->Supersampling << "\n";
   os << indent << "Camera: " << this->Camera << "\n";
   os << indent << "CacheDirectory: " << text(this->CacheDirectory) << "\n";
   os << indent << "SceneName: " << text(this->SceneName) << "\n";

@@ -66,6 +66,21 @@ public:
   ///@}
 
   ///@{
+  /**
+   * The pipeline's samples per pixel along each axis: Supersampling^2
+   * frames on a rotated grid (vtkBrumeTimedPipeline; default 4, in
+   * [1, 16]), each pixel's area as the path tracer integrates it. A k x k
+   * grid places a straight edge to 1/k^2 of a pixel, and along an edge
+   * where the image steps by orders of magnitude (an emitter's) that
+   * error adds up and stays whatever the particles: the default scene at
+   * 10^7 particles has 0.60 % block error at 4 x 4 and 0.28 % at 8 x 8,
+   * 64 frames of 3-4 ms at 128 x 128 on llvmpipe.
+   */
+  vtkSetClampMacro(Supersampling, int, 1, 16);
+  vtkGetMacro(Supersampling, int);
+  ///@}
+
+  ///@{
   /// The camera; without one, the scene's camera or Brume's default view.
   void SetCamera(vtkCamera* camera);
   vtkGetObjectMacro(Camera, vtkCamera);
@@ -111,6 +126,7 @@ protected:
   double RadiosityThreshold; // vtkBrumeRadianceReconstruction's default
   vtkIdType Seed = 0;
   int DirectionalOrder = 3;
+  int Supersampling = 4;
   vtkCamera* Camera = nullptr;
   char* CacheDirectory = nullptr;
   char* SceneName = nullptr;

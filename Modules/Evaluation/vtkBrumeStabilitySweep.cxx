@@ -363,6 +363,7 @@ struct Settings
   double Threshold;
   vtkIdType Seed;
   int Order;
+  int Supersampling;
   int ReferenceSamples;
   const char* CacheDirectory;
   std::string Key;
@@ -416,6 +417,7 @@ vtkSmartPointer<vtkBrumeTimedPipeline> Pipeline(
   run->SetSeed(s.Seed);
   run->SetDirectionalRadiance(directional);
   run->SetDirectionalOrder(s.Order);
+  run->SetSupersampling(s.Supersampling);
   return run->GetExecutive()->Update() ? run : nullptr;
 }
 
@@ -691,7 +693,7 @@ int vtkBrumeStabilitySweep::RequestData(
 
   const vtkSmartPointer<vtkCamera> camera = vtkBrumeEvaluationView::Camera(scene, this->Camera);
   const Settings settings{ camera, this->Size, this->RadiosityThreshold, this->Seed,
-    this->DirectionalOrder, this->ReferenceSamples, this->CacheDirectory,
+    this->DirectionalOrder, this->Supersampling, this->ReferenceSamples, this->CacheDirectory,
     this->CacheKey && *this->CacheKey ? this->CacheKey : (this->SceneName ? this->SceneName : "") };
   // One untimed run first: OpenGL start-up and shader compilation.
   if (!Pipeline(settings, scene, 1000, false))

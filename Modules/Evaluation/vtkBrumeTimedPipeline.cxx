@@ -119,6 +119,15 @@ int vtkBrumeTimedPipeline::RequestData(
     return 0;
   }
   renderer->ResetCameraClippingRange();
+  // One frame a pixel reads the frame as drawn: drawn here first.
+  const auto drawn = [this, window = window.Get()]()
+  {
+    if (this->Supersampling == 1)
+    {
+      Draw(window);
+    }
+  };
+  drawn();
   const vtkSmartPointer<vtkImageData> frame = capture->CaptureSupersampled(this->Supersampling);
   this->FullSeconds = Seconds(start);
   if (!frame)
@@ -140,6 +149,7 @@ int vtkBrumeTimedPipeline::RequestData(
   camera->Azimuth(2.0);
   const auto viewStart = std::chrono::steady_clock::now();
   pipeline->UpdateView();
+  drawn();
   if (!capture->CaptureSupersampled(this->Supersampling))
   {
     vtkErrorMacro("Could not read the new view's frame back.");

@@ -195,17 +195,17 @@ void TestValidateBenchChart()
   Check(p.Code == -1 && p.Line.Run == Command::Chart && c.Output == "chart.png" &&
       c.Csv == "chart.csv" && !c.CacheDirectory.empty() && c.Width == 128 && c.Height == 128 &&
       c.MinParticles == 10000 && c.MaxParticles == 10000000 && c.MaxSamples == 1024 &&
-      c.ReferenceSamples == 16384 && !c.Sweep && c.ShOrder == 3 && c.Scene.empty() &&
-      c.Medium.empty() && c.Surface.empty(),
+      c.ReferenceSamples == 16384 && !c.Sweep && c.ShOrder == 3 && c.Supersample == 4 &&
+      c.Scene.empty() && c.Medium.empty() && c.Surface.empty(),
     "chart defaults");
   p = Parse({ "chart", "s.json", "--medium", "fog", "--surface", "floor", "--particles", "100:1000",
     "--size", "16x8", "--sweep", "--sh-order", "2", "--max-spp", "4", "--reference-spp", "16",
-    "--cache", "cache", "-o", "a.png", "--csv", "a.csv" });
+    "--cache", "cache", "-o", "a.png", "--csv", "a.csv", "--supersample", "8" });
   const ChartOptions& d = p.Line.Chart;
   Check(p.Code == -1 && d.Scene == "s.json" && d.Medium == "fog" && d.Surface == "floor" &&
       d.MinParticles == 100 && d.MaxParticles == 1000 && d.Width == 16 && d.Height == 8 &&
       d.Sweep && d.ShOrder == 2 && d.MaxSamples == 4 && d.ReferenceSamples == 16 &&
-      d.CacheDirectory == "cache" && d.Output == "a.png" && d.Csv == "a.csv",
+      d.Supersample == 8 && d.CacheDirectory == "cache" && d.Output == "a.png" && d.Csv == "a.csv",
     "chart: the values given");
   ExpectUsageError({ "chart", "--particles", "100:10" }, "--particles");
   ExpectUsageError({ "chart", "--particles", "0:10" }, "--particles");
@@ -213,6 +213,8 @@ void TestValidateBenchChart()
   ExpectUsageError({ "chart", "--particles", "1:20000000000" }, "--particles");
   ExpectUsageError({ "chart", "--size", "5000x16" }, "--size");
   ExpectUsageError({ "chart", "a.json", "b.json" }, "b.json");
+  ExpectUsageError({ "chart", "--supersample", "0" }, "--supersample");
+  ExpectUsageError({ "chart", "--supersample", "17" }, "--supersample");
 }
 
 void TestHelp()
@@ -224,8 +226,8 @@ void TestHelp()
       "--orbit", "--frames-out", "--csv", "Keys:" },
     { "validate", "--albedo", "--optical-thickness", "--g", "--particles", "--seed" },
     { "bench", "--particles", "--seed" },
-    { "chart", "SCENE", "--output", "--csv", "--size", "--particles", "--max-spp", "--sh-order",
-      "--reference-spp", "--cache", "--sweep", "--medium", "--surface" }
+    { "chart", "SCENE", "--output", "--csv", "--size", "--particles", "--max-spp", "--supersample",
+      "--sh-order", "--reference-spp", "--cache", "--sweep", "--medium", "--surface" }
   };
   for (const auto& command : commands)
   {

@@ -97,6 +97,17 @@ void TestChart(const std::string& directory)
   chart->Update();
   Expect(chart->GetReferenceCache()->GetReadFromCache(), "the reference is read from the cache");
   Expect(Value(chart->GetOutput(), "rel_mae", 4) == first, "the same errors from the cache");
+
+  // The pipeline's rows take Supersampling^2 frames a pixel (the same
+  // particles, other samples of each pixel's area): their images differ,
+  // the path tracer's do not.
+  const double fourByFour = Value(chart->GetOutput(), "rel_mae", 0);
+  Expect(chart->GetSupersampling() == 4, "4 x 4 frames by default");
+  chart->SetSupersampling(1);
+  chart->Update();
+  Expect(Value(chart->GetOutput(), "rel_mae", 0) != fourByFour,
+    "one frame a pixel gives the pipeline's rows other images");
+  Expect(Value(chart->GetOutput(), "rel_mae", 4) == first, "and the path tracer's the same");
 }
 
 void TestSweep(const std::string& directory, bool medium)
