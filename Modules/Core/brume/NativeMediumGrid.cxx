@@ -917,6 +917,7 @@ void NativeMediumGrid::BuildAlbedoTable(const Box& box, const std::array<int, 3>
         double sum[3] = { 0.0, 0.0, 0.0 };
         // The cells come brick by brick: a field cell's factors are read a
         // brick at a time (CellAlbedo::AtCells()).
+        const std::array<int, 3>& bricks = grid.GetBrickDims();
         std::array<int, 3> brickLower{ -1, -1, -1 }, brickCount{ 0, 0, 0 };
         std::vector<Vec3> brickFactors;
         std::vector<float> scratch;
@@ -940,10 +941,14 @@ void NativeMediumGrid::BuildAlbedoTable(const Box& box, const std::array<int, 3>
               }
               if (!inside)
               {
+                // The grid's brick of the cell (its last along an axis
+                // reaches the grid's end).
                 for (int a = 0; a < 3; ++a)
                 {
-                  brickLower[a] = cell[a] - cell[a] % BrickedGrid::Stride;
-                  brickCount[a] = std::min(BrickedGrid::Stride, nd[a] - brickLower[a]);
+                  const int b = std::min(cell[a] / BrickedGrid::Stride, bricks[a] - 1);
+                  brickLower[a] = b * BrickedGrid::Stride;
+                  brickCount[a] =
+                    b == bricks[a] - 1 ? nd[a] - brickLower[a] : BrickedGrid::Stride;
                 }
                 brickFactors.resize(
                   static_cast<std::size_t>(brickCount[0]) * brickCount[1] * brickCount[2]);
