@@ -12,6 +12,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <utility>
 #include <vector>
 
 namespace brume
@@ -190,9 +191,17 @@ public:
    */
   void ForEachNonZeroCell(const std::function<void(int, int, int, float)>& f) const;
   /// The same for the bricks of layers [first, last) along z (their cells
-  /// k from Stride first), with `f` called inline.
+  /// k from Stride first), with `f` called inline; `brick(lower, count)`
+  /// first for each brick visited, with its first cell and its cells along
+  /// each axis (for a caller that reads something per brick).
   template <class F>
-  void ForEachNonZeroCellOfLayers(int first, int last, F&& f) const;
+  void ForEachNonZeroCellOfLayers(int first, int last, F&& f) const
+  {
+    this->ForEachNonZeroCellOfLayers(
+      first, last, std::forward<F>(f), [](const std::array<int, 3>&, const std::array<int, 3>&) {});
+  }
+  template <class F, class B>
+  void ForEachNonZeroCellOfLayers(int first, int last, F&& f, B&& brick) const;
 
 private:
   // A grid of `dims` cells over `box` whose bricks all hold `skipped`.
@@ -225,8 +234,8 @@ private:
   std::uint64_t Identity = 0;
 };
 
-template <class F>
-void BrickedGrid::ForEachNonZeroCellOfLayers(int first, int last, F&& f) const
+template <class F, class B>
+void BrickedGrid::ForEachNonZeroCellOfLayers(int first, int last, F&& f, B&& brick) const
 {
   for (int bk = first; bk < last; ++bk)
   {
@@ -234,8 +243,8 @@ void BrickedGrid::ForEachNonZeroCellOfLayers(int first, int last, F&& f) const
     {
       for (int bi = 0; bi < this->BrickDims[0]; ++bi)
       {
-        const std::size_t brick = this->BrickIndex(bi, bj, bk);
-        if (this->Slots[brick] < 0 && this->Constants[brick] == 0.f)
+        const std::size_t index = this->BrickIndex(bi, bj, bk);
+        if (this->Slots[index] < 0 && this->Constants[index] == 0.f)
         {
           continue;
         }
@@ -246,8 +255,10 @@ void BrickedGrid::ForEachNonZeroCellOfLayers(int first, int last, F&& f) const
           lower[a] = Stride * b[a];
           upper[a] = b[a] == this->BrickDims[a] - 1 ? this->Dims[a] : lower[a] + Stride;
         }
+        brick(std::array<int, 3>{ lower[0], lower[1], lower[2] },
+          std::array<int, 3>{ upper[0] - lower[0], upper[1] - lower[1], upper[2] - lower[2] });
         // The brick's own samples (At()'s values, read in place).
-        const std::int32_t slot = this->Slots[brick];
+        const std::int32_t slot = this->Slots[index];
         const float* samples =
           slot < 0 ? nullptr : this->Samples.Data() + static_cast<std::size_t>(slot) * BrickSamples;
         for (int k = lower[2]; k < upper[2]; ++k)
@@ -256,7 +267,7 @@ void BrickedGrid::ForEachNonZeroCellOfLayers(int first, int last, F&& f) const
             {
               f(i, j, k,
                 samples ? samples[((k - lower[2]) * Size + (j - lower[1])) * Size + (i - lower[0])]
-                        : this->Constants[brick]);
+                        : this->Constants[index]);
             }
       }
     }

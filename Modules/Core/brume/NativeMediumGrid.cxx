@@ -915,13 +915,24 @@ void NativeMediumGrid::BuildAlbedoTable(const Box& box, const std::array<int, 3>
         std::vector<double> byX(3 * rows * nx, 0.0);
         double* at = nullptr;
         double sum[3] = { 0.0, 0.0, 0.0 };
-        // The cells come brick by brick: a field cell's factors are read a
-        // brick at a time (CellAlbedo::AtCells()).
-        const std::array<int, 3>& bricks = grid.GetBrickDims();
-        std::array<int, 3> brickLower{ -1, -1, -1 }, brickCount{ 0, 0, 0 };
+        // The cells come brick by brick: at the field's resolution their
+        // factors are read a brick at a time (CellAlbedo::AtCells()).
+        std::array<int, 3> brickLower{ 0, 0, 0 }, brickCount{ 0, 0, 0 };
         std::vector<Vec3> brickFactors;
         std::vector<float> scratch;
-        grid.ForEachNonZeroCellOfLayers(static_cast<int>(l), static_cast<int>(l) + 1,
+        auto readBrick = [&](const std::array<int, 3>& lower, const std::array<int, 3>& count)
+        {
+          if (coarsening != 1)
+          {
+            return;
+          }
+          brickLower = lower;
+          brickCount = count;
+          brickFactors.resize(static_cast<std::size_t>(count[0]) * count[1] * count[2]);
+          cells.AtCells(lower, count, scratch, brickFactors.data());
+        };
+        grid.ForEachNonZeroCellOfLayers(
+          static_cast<int>(l), static_cast<int>(l) + 1,
           [&](int i, int j, int k, float density)
           {
             const double mass = density * nativeVolume;
@@ -929,40 +940,12 @@ void NativeMediumGrid::BuildAlbedoTable(const Box& box, const std::array<int, 3>
             {
               return;
             }
-            Vec3 f;
-            if (coarsening == 1)
-            {
-              const int cell[3] = { i, j, k };
-              bool inside = true;
-              for (int a = 0; a < 3; ++a)
-              {
-                inside =
-                  inside && cell[a] >= brickLower[a] && cell[a] < brickLower[a] + brickCount[a];
-              }
-              if (!inside)
-              {
-                // The grid's brick of the cell (its last along an axis
-                // reaches the grid's end).
-                for (int a = 0; a < 3; ++a)
-                {
-                  const int b = std::min(cell[a] / BrickedGrid::Stride, bricks[a] - 1);
-                  brickLower[a] = b * BrickedGrid::Stride;
-                  brickCount[a] =
-                    b == bricks[a] - 1 ? nd[a] - brickLower[a] : BrickedGrid::Stride;
-                }
-                brickFactors.resize(
-                  static_cast<std::size_t>(brickCount[0]) * brickCount[1] * brickCount[2]);
-                cells.AtCells(brickLower, brickCount, scratch, brickFactors.data());
-              }
-              f = brickFactors[(static_cast<std::size_t>(k - brickLower[2]) * brickCount[1] +
-                                 (j - brickLower[1])) *
-                  brickCount[0] +
-                (i - brickLower[0])];
-            }
-            else
-            {
-              f = factorOf(i, j, k);
-            }
+            const Vec3 f = coarsening == 1
+              ? brickFactors[(static_cast<std::size_t>(k - brickLower[2]) * brickCount[1] +
+                               (j - brickLower[1])) *
+                    brickCount[0] +
+                  (i - brickLower[0])]
+              : factorOf(i, j, k);
             double* row = &byX[3 * ((static_cast<std::size_t>(k - k0) * nd[1] + j) * nx)];
             for (const Overlap& x : overlaps[0][static_cast<std::size_t>(i)])
             {
@@ -982,7 +965,8 @@ void NativeMediumGrid::BuildAlbedoTable(const Box& box, const std::array<int, 3>
                 sum[c] += share * f[c];
               }
             }
-          });
+          },
+          readBrick);
         if (at)
         {
           std::copy(sum, sum + 3, at);

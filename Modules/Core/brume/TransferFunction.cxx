@@ -907,20 +907,35 @@ ColorTransferFunction::ColorTransferFunction(std::vector<Node> nodes)
 
 Vec3 ColorTransferFunction::Color(float s) const
 {
-  const auto next = std::upper_bound(
-    this->Nodes.begin(), this->Nodes.end(), s, [](float v, const Node& n) { return v < n.Scalar; });
-  if (next == this->Nodes.begin())
+  Vec3 colour;
+  this->Colors(&s, 1, &colour);
+  return colour;
+}
+
+void ColorTransferFunction::Colors(const float* s, std::size_t n, Vec3* out) const
+{
+  const std::vector<Node>& nodes = this->Nodes;
+  std::size_t pair = nodes.size(); // the first point past the last scalar's; none yet
+  for (std::size_t m = 0; m < n; ++m)
   {
-    return this->Nodes.front().Color;
+    const float v = s[m];
+    if (!(pair < nodes.size() && nodes[pair - 1].Scalar <= v && v < nodes[pair].Scalar))
+    {
+      const auto next = std::upper_bound(
+        nodes.begin(), nodes.end(), v, [](float x, const Node& node) { return x < node.Scalar; });
+      if (next == nodes.begin() || next == nodes.end())
+      {
+        out[m] = next == nodes.begin() ? nodes.front().Color : nodes.back().Color;
+        pair = nodes.size();
+        continue;
+      }
+      pair = static_cast<std::size_t>(next - nodes.begin());
+    }
+    const Node& a = nodes[pair - 1];
+    const Node& b = nodes[pair];
+    const float t = (v - a.Scalar) / (b.Scalar - a.Scalar);
+    out[m] = a.Color + (b.Color - a.Color) * t;
   }
-  if (next == this->Nodes.end())
-  {
-    return this->Nodes.back().Color;
-  }
-  const Node& a = *(next - 1);
-  const Node& b = *next;
-  const float t = (s - a.Scalar) / (b.Scalar - a.Scalar);
-  return a.Color + (b.Color - a.Color) * t;
 }
 
 ClassifiedAlbedo::ClassifiedAlbedo(
@@ -955,25 +970,7 @@ bool ClassifiedAlbedo::NativeValues(const std::array<int, 3>& lower,
   {
     return false;
   }
-  // Neighbouring samples mostly fall between the same two points: the
-  // last pair is tried before a search (the same colour as Color()).
-  const std::vector<ColorTransferFunction::Node>& nodes = this->Colors.GetNodes();
-  std::size_t pair = nodes.size(); // none yet
-  for (const float s : scratch)
-  {
-    if (!(pair < nodes.size() && nodes[pair - 1].Scalar <= s && s < nodes[pair].Scalar))
-    {
-      *out++ = this->Colors.Color(s);
-      const auto next = std::upper_bound(nodes.begin(), nodes.end(), s,
-        [](float v, const ColorTransferFunction::Node& n) { return v < n.Scalar; });
-      pair = next == nodes.begin() ? nodes.size() : static_cast<std::size_t>(next - nodes.begin());
-      continue;
-    }
-    const ColorTransferFunction::Node& a = nodes[pair - 1];
-    const ColorTransferFunction::Node& b = nodes[pair];
-    const float t = (s - a.Scalar) / (b.Scalar - a.Scalar);
-    *out++ = a.Color + (b.Color - a.Color) * t;
-  }
+  this->Colors.Colors(scratch.data(), scratch.size(), out);
   return true;
 }
 

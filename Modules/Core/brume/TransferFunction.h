@@ -309,6 +309,10 @@ public:
 
   /// The colour at s, linear between points; a scalar at two points takes the later one.
   Vec3 Color(float s) const;
+  /// Color() of each of `n` scalars into `out`: the same colours, the
+  /// last pair of points tried before a search (neighbouring samples
+  /// mostly fall between the same two).
+  void Colors(const float* s, std::size_t n, Vec3* out) const;
   const std::vector<Node>& GetNodes() const { return this->Nodes; }
 
 private:
