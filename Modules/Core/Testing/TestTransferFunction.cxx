@@ -206,6 +206,151 @@ TEST(TransferFunction, TheTableIsWithinItsToleranceOfTheExactExtinction)
   }
 }
 
+TEST(TransferFunction, TheMeanAlongALinearRunIsItsIntegral)
+{
+  // MeanExtinction(a, b) against a midpoint sum of ExactExtinction() over
+  // 10^5 steps of [a, b] (whose own error is at most the largest jump over
+  // 10^5): runs inside a cell, across many, over steps and points, past
+  // either end, reversed, of one point's width; for a function of one
+  // point (no table) too. Within the table's tolerance, and at most the
+  // largest extinction over the run.
+  const std::vector<std::vector<OpacityTransferFunction::Node>> functions{
+    { { 0.f, 0.f }, { 50.f, 0.f }, { 120.f, 0.004f }, { 140.f, 0.f }, { 155.f, 0.f },
+      { 160.f, 0.06f }, { 180.f, 0.12f }, { 200.f, 0.25f }, { 220.f, 0.5f }, { 240.f, 0.9f },
+      { 255.f, 0.9f } },
+    { { 0.f, 0.f }, { 0.5f, 0.f }, { 0.5f, 0.4f }, { 0.8f, 0.6f }, { 1.f, 0.2f } },
+    { { -3.f, 0.f }, { 2.f, 0.999f }, { 2.5f, 0.9999f }, { 4.f, 0.1f } },
+    { { 7.f, 0.3f } },
+  };
+  for (const auto& nodes : functions)
+  {
+    const OpacityTransferFunction f(nodes, 0.02f);
+    const float lo = nodes.front().Scalar, hi = nodes.back().Scalar;
+    const float span = std::max(hi - lo, 1.f);
+    double jump = 0.0;
+    for (const auto& n : nodes)
+    {
+      jump = std::max(jump, static_cast<double>(f.ExactExtinction(n.Scalar)));
+    }
+    std::vector<std::pair<float, float>> runs;
+    for (const auto& n : nodes)
+    {
+      runs.push_back({ n.Scalar, n.Scalar - 0.37f * span });
+      runs.push_back({ n.Scalar - 1e-3f * span, n.Scalar + 2e-3f * span });
+      runs.push_back({ n.Scalar, n.Scalar + 0.05f * span });
+    }
+    for (int r = 0; r < 60; ++r)
+    {
+      const float a = lo - 0.1f * span + 1.2f * span * static_cast<float>((r * 37) % 61) / 61.f;
+      const float width = span * static_cast<float>(r % 5 == 0 ? 1e-4 : (r % 7) / 6.0);
+      runs.push_back({ a, a + width });
+    }
+    runs.push_back({ lo - span, hi + span });
+    for (const auto& [a, b] : runs)
+    {
+      const float got = f.MeanExtinction(a, b);
+      if (a == b)
+      {
+        EXPECT_EQ(got, f.Extinction(a));
+        continue;
+      }
+      constexpr int Steps = 100000;
+      double sum = 0.0;
+      for (int i = 0; i < Steps; ++i)
+      {
+        sum += f.ExactExtinction(static_cast<float>(a + (b - a) * (i + 0.5) / Steps));
+      }
+      const double expected = sum / Steps;
+      EXPECT_NEAR(got, expected,
+        2.0 * OpacityTransferFunction::TableTolerance * expected + 2.0 * jump / Steps + 1e-6)
+        << a << " to " << b;
+      EXPECT_EQ(got, f.MeanExtinction(b, a)) << a << " to " << b;
+      EXPECT_LE(got, f.MaxExtinction(std::min(a, b), std::max(a, b)) * (1.f + 1e-6f));
+    }
+  }
+}
+
+TEST(TransferFunction, ASheetOneVoxelThinIsIntegratedNotSampled)
+{
+  // Data/scenes/shells.json's sheets: a scalar of 240 on one plane of
+  // points, 60 elsewhere, under the shells' opacity function. The native
+  // cells' means across the sheet, against the same field integrated
+  // densely: within 10^-3, where the mean of 4^3 samples is 20 % off. A
+  // sheet whose plane is tilted across the axes, integrated along one axis
+  // only: within 6 % of a mean of 128^3 samples, where 4^3 samples are
+  // 15 % off (what is left: the 4 x 4 lines across the other two axes).
+  const Nodes shells{ { 0.f, 0.f }, { 50.f, 0.f }, { 120.f, 0.004f }, { 140.f, 0.f },
+    { 155.f, 0.f }, { 160.f, 0.06f }, { 180.f, 0.12f }, { 200.f, 0.25f }, { 220.f, 0.5f },
+    { 240.f, 0.9f }, { 255.f, 0.9f } };
+  const OpacityTransferFunction function(shells, 0.02f);
+  constexpr int N = 12;
+  for (const bool tilted : { false, true })
+  {
+    std::vector<float> values;
+    for (int k = 0; k < N; ++k)
+      for (int j = 0; j < N; ++j)
+        for (int i = 0; i < N; ++i)
+        {
+          const bool sheet = tilted ? (2 * i + j + k) / 2 == 11 : i == 5;
+          values.push_back(sheet ? 240.f : 60.f);
+        }
+    const Box bounds{ Vec3(0.f), Vec3(1.f) };
+    auto scalars = std::make_shared<GridDensity>(
+      bounds, std::array<int, 3>{ N, N, N }, values, false, GridDensity::Interpolation::Linear);
+    const ClassifiedDensity classified(scalars, function);
+    // Native cell (i, j, k) spans half a spacing about point (i, j, k).
+    const float h = 1.f / static_cast<float>(N - 1);
+    auto mean = [&](int i, int j, int k, int s)
+    {
+      double sum = 0.0;
+      for (int z = 0; z < s; ++z)
+        for (int y = 0; y < s; ++y)
+          for (int x = 0; x < s; ++x)
+          {
+            const Vec3 p(h * (static_cast<float>(i) + (x + 0.5f) / static_cast<float>(s) - 0.5f),
+              h * (static_cast<float>(j) + (y + 0.5f) / static_cast<float>(s) - 0.5f),
+              h * (static_cast<float>(k) + (z + 0.5f) / static_cast<float>(s) - 0.5f));
+            sum += classified.Evaluate(p);
+          }
+      return sum / (static_cast<double>(s) * s * s);
+    };
+    double worst = 0.0, worstSampled = 0.0;
+    for (int i = 3; i <= 7; ++i)
+    {
+      const int j = 5, k = 6;
+      const Box cell{ Vec3(h * (i - 0.5f), h * (j - 0.5f), h * (k - 0.5f)),
+        Vec3(h * (i + 0.5f), h * (j + 0.5f), h * (k + 0.5f)) };
+      const double got = classified.NativeMean(i, j, k, cell, bounds, 4);
+      double expected = 0.0;
+      if (tilted)
+      {
+        expected = mean(i, j, k, 128);
+      }
+      else
+      {
+        // The field varies along x only: 10^5 steps along x.
+        constexpr int Steps = 100000;
+        for (int x = 0; x < Steps; ++x)
+        {
+          expected += classified.Evaluate(
+            Vec3(h * (static_cast<float>(i) + (x + 0.5f) / Steps - 0.5f), h * j, h * k));
+        }
+        expected /= Steps;
+      }
+      if (expected < 1.0)
+      {
+        continue; // cells the sheet does not reach
+      }
+      worst = std::max(worst, std::abs(got - expected) / expected);
+      worstSampled = std::max(worstSampled, std::abs(mean(i, j, k, 4) - expected) / expected);
+    }
+    std::cout << (tilted ? "tilted" : "axis-aligned") << " sheet: largest relative error " << worst
+              << " (4^3 samples: " << worstSampled << ")\n";
+    EXPECT_LT(worst, tilted ? 6e-2 : 1e-3);
+    EXPECT_GT(worstSampled, tilted ? 0.1 : 0.15);
+  }
+}
+
 TEST(TransferFunction, ManyScalarsAtOnceAreEachClassifiedAlike)
 {
   // Extinctions() gives each scalar Extinction()'s float: in the table's
@@ -297,6 +442,9 @@ TEST(TransferFunction, AnEditKeepsTheRangesItLeftAsTheyWere)
         const float s = i == 200 ? hi : lo + (hi - lo) * static_cast<float>(i) / 200.f;
         ASSERT_EQ(f.Extinction(s), g.Extinction(s)) << s << " in " << lo << " " << hi;
         ASSERT_EQ(f.ExactExtinction(s), g.ExactExtinction(s)) << s;
+        // A cell's mean along a run within the range reads the range only.
+        ASSERT_EQ(f.MeanExtinction(lo, s), g.MeanExtinction(lo, s)) << s;
+        ASSERT_EQ(f.MeanExtinction(s, hi), g.MeanExtinction(s, hi)) << s;
       }
     }
     // Ranges clear of the edit were found the same.

@@ -49,8 +49,8 @@ public:
   /// held to before their budget came from the machine.
   static constexpr std::size_t DefaultMemory = std::size_t(32) << 20;
   static constexpr int MaxAxis = 2048;
-  /// The samples per axis a classified density's cell averages where its
-  /// function bends inside the cell (see Sample()).
+  /// The lines per axis across which a classified density's cell is
+  /// integrated where its function bends inside the cell (see Sample()).
   static constexpr int BendSamples = 4;
 
   /**
@@ -61,12 +61,15 @@ public:
    * (GetCoarsening()).
    *
    * A classified density's cell whose scalars span one of its function's
-   * points is the mean of BendSamples^3 samples: the cell's mean
-   * extinction, which the tables integrate and the direct light's shadow
-   * rays march (the function at the cell's own scalar would put a sheet
-   * one cell thin, whose scalar peaks at the grid's points, at its peak
-   * extinction across the whole cell: 14 % too dark an image of
-   * Data/scenes/shells.json). Other cells take the field's value there.
+   * points is its mean extinction (ClassifiedDensity::NativeMean(): exact
+   * along the axis the scalars change most along, on BendSamples^2 lines
+   * across the other two), which the tables integrate, the direct light's
+   * shadow rays march and the slice mapper draws (the function at the
+   * cell's own scalar would put a sheet one cell thin, whose scalar peaks
+   * at the grid's points, at its peak extinction across the whole cell:
+   * 14 % too dark an image of Data/scenes/shells.json; a mean of 4^3
+   * samples left its shadows 10 to 15 % too light). Other cells take the
+   * field's value there.
    */
   void Sample(const Medium& medium, std::size_t memory, const ParallelFor& parallelFor);
   /**
