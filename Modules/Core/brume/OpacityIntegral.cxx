@@ -97,9 +97,9 @@ double OpacityTransferFunction::ExactIntegral(double a, double b) const
 void OpacityTransferFunction::MakeIntegrals()
 {
   this->CellIntegrals.clear();
-  this->RunIntegrals.clear();
-  this->RunBefore.clear();
-  this->RunFrom.clear();
+  this->CellPrefix.clear();
+  this->StartToPoint.clear();
+  this->PointToEnd.clear();
   if (this->Table.empty())
   {
     return;
@@ -114,43 +114,53 @@ void OpacityTransferFunction::MakeIntegrals()
       ? this->ExactIntegral(end(c), end(c + 1))
       : 0.5 * (static_cast<double>(this->Table[i]) + this->Table[i + 1]) / scale;
   }
-  constexpr int Runs = TableCells / IntegralRun;
-  static_assert(Runs * IntegralRun == TableCells, "runs tile the table");
-  this->RunIntegrals.assign(Runs, 0.0);
-  this->RunBefore.assign(TableCells, 0.0);
-  this->RunFrom.assign(TableCells, 0.0);
-  for (int r = 0; r < Runs; ++r)
+  this->StartToPoint.assign(TableCells, 0.0);
+  this->PointToEnd.assign(TableCells, 0.0);
+  for (int c = 0; c < TableCells; ++c)
   {
-    const std::size_t first = static_cast<std::size_t>(r) * IntegralRun;
-    double before = 0.0;
-    for (std::size_t c = first; c < first + IntegralRun; ++c)
+    const std::size_t i = static_cast<std::size_t>(c);
+    const double point = this->CellPoint[i];
+    if (point == point) // a point in the cell
     {
-      this->RunBefore[c] = before;
-      before += this->CellIntegrals[c];
+      this->StartToPoint[i] = this->ExactIntegral(end(c), point) * scale;
+      this->PointToEnd[i] = this->ExactIntegral(point, end(c + 1)) * scale;
     }
-    this->RunIntegrals[static_cast<std::size_t>(r)] = before;
-    double from = 0.0;
-    for (std::size_t c = first + IntegralRun; c-- > first;)
-    {
-      from += this->CellIntegrals[c];
-      this->RunFrom[c] = from;
-    }
+  }
+  // Whole quanta, summed as integers: a sum over a range of cells is then
+  // the difference of two prefixes, exactly, whatever the cells outside it
+  // hold. A cell's integral is at most h -ln(1 - MaxOpacity) / unit < 16 h /
+  // unit, 2^44 quanta (4096 of them below 2^56).
+  this->IntegralQuantum = 16.0 / (scale * this->UnitDistance) * std::ldexp(1.0, -44);
+  this->CellPrefix.assign(static_cast<std::size_t>(TableCells) + 1, 0);
+  for (std::size_t c = 0; c < static_cast<std::size_t>(TableCells); ++c)
+  {
+    this->CellPrefix[c + 1] =
+      this->CellPrefix[c] + std::llround(this->CellIntegrals[c] / this->IntegralQuantum);
   }
 }
 
-double OpacityTransferFunction::CellPartial(int c, double a, double b) const
+double OpacityTransferFunction::CellPartial(int c, float x0, float x1, double a, double b) const
 {
   const std::size_t i = static_cast<std::size_t>(c);
+  const double h = 1.0 / static_cast<double>(this->TableScale);
   if (this->TableExact[i])
   {
-    return this->ExactIntegral(a, b);
+    // The function's mean over the run's own scalars in the cell (where
+    // the float ends would reach past them), over the cell's part of the
+    // table units the run covers.
+    const double low = static_cast<double>(this->TableLow) + c * h;
+    const double span = (static_cast<double>(x1) - x0) * h;
+    const double from = std::max(a, low + x0 * h), until = std::min(b, low + x1 * h);
+    if (!(until > from))
+    {
+      return span * this->ExactExtinction(static_cast<float>(std::clamp(from, a, b)));
+    }
+    return this->ExactIntegral(from, until) / (until - from) * span;
   }
-  // The chord between the cell's two values, over [x0, x1] of the cell's [0, 1].
-  const double scale = this->TableScale, low = this->TableLow;
-  const double x0 = std::clamp((a - low) * scale - c, 0.0, 1.0);
-  const double x1 = std::clamp((b - low) * scale - c, 0.0, 1.0);
+  // The chord between the cell's two values, over [x0, x1] of its [0, 1].
   const double ta = this->Table[i], tb = this->Table[i + 1];
-  return (x1 - x0) * (ta + (tb - ta) * 0.5 * (x0 + x1)) / scale;
+  return (static_cast<double>(x1) - x0) * (ta + (tb - ta) * 0.5 * (static_cast<double>(x0) + x1)) *
+    h;
 }
 
 double OpacityTransferFunction::CellsIntegral(int first, int last) const
@@ -159,28 +169,12 @@ double OpacityTransferFunction::CellsIntegral(int first, int last) const
   {
     return 0.0;
   }
-  const int r0 = first / IntegralRun, r1 = (last - 1) / IntegralRun;
-  double sum = 0.0;
-  if (r0 == r1)
-  {
-    for (int c = first; c < last; ++c)
-    {
-      sum += this->CellIntegrals[static_cast<std::size_t>(c)];
-    }
-    return sum;
-  }
-  // Each term holds cells of [first, last) only.
-  sum = this->RunFrom[static_cast<std::size_t>(first)];
-  for (int r = r0 + 1; r < r1; ++r)
-  {
-    sum += this->RunIntegrals[static_cast<std::size_t>(r)];
-  }
-  return sum +
-    (last % IntegralRun == 0 ? this->RunIntegrals[static_cast<std::size_t>(r1)]
-                             : this->RunBefore[static_cast<std::size_t>(last)]);
+  return static_cast<double>(this->CellPrefix[static_cast<std::size_t>(last)] -
+           this->CellPrefix[static_cast<std::size_t>(first)]) *
+    this->IntegralQuantum;
 }
 
-float OpacityTransferFunction::MeanExtinction(float a, float b) const
+float OpacityTransferFunction::MeanExtinctionElsewhere(float a, float b) const
 {
   if (a == b || !std::isfinite(a) || !std::isfinite(b))
   {
@@ -194,41 +188,41 @@ float OpacityTransferFunction::MeanExtinction(float a, float b) const
   {
     return static_cast<float>(this->ExactIntegral(a, b) / (static_cast<double>(b) - a));
   }
+  // The cells as Extinction() finds them (in float, as
+  // OpacityFunctionEdit::SameOver() does), so that the result reads the
+  // cells an edit compares.
+  const float cells = static_cast<float>(TableCells);
+  const float xa = (a - this->TableLow) * this->TableScale;
+  const float xb = (b - this->TableLow) * this->TableScale;
+  // The integral, and the length it covers, in table units inside the
+  // table (where the float cells lie), in scalars below and above it (the
+  // function's end values there).
+  double sum = 0.0, length = 0.0;
   const double low = this->TableLow, scale = this->TableScale;
-  const double top = low + TableCells / scale;
-  double sum = 0.0;
-  // Below and above the table: the function's end values.
-  if (a < low)
+  if (xa < 0.f)
   {
-    sum += this->ExactIntegral(a, std::min<double>(b, low));
+    const double until = std::min<double>(b, low);
+    sum += this->ExactIntegral(a, until);
+    length += until - a;
   }
-  if (b > top)
+  if (xb >= cells)
   {
-    sum += this->ExactIntegral(std::max<double>(a, top), b);
+    const double from = std::max<double>(a, low + TableCells / scale);
+    sum += this->ExactIntegral(from, b);
+    length += b - from;
   }
-  const double u0 = std::max<double>(a, low), u1 = std::min<double>(b, top);
-  if (u0 < u1)
+  const float x0 = std::max(xa, 0.f), x1 = std::min(xb, cells);
+  if (x0 < x1)
   {
-    // The cells as Extinction() finds them (in float, as
-    // OpacityFunctionEdit::SameOver() does), so that the result reads the
-    // cells an edit compares.
-    auto cellOf = [&](double u)
-    {
-      const float x = (static_cast<float>(u) - this->TableLow) * this->TableScale;
-      return std::clamp(static_cast<int>(std::max(x, 0.f)), 0, TableCells - 1);
-    };
-    const int c0 = cellOf(u0), c1 = cellOf(u1);
-    if (c0 == c1)
-    {
-      sum += this->CellPartial(c0, u0, u1);
-    }
-    else
-    {
-      sum += this->CellPartial(c0, u0, low + (c0 + 1) / scale) + this->CellsIntegral(c0 + 1, c1) +
-        this->CellPartial(c1, low + c1 / scale, u1);
-    }
+    const int c0 = std::min(static_cast<int>(x0), TableCells - 1);
+    const int c1 = std::min(static_cast<int>(x1), TableCells - 1);
+    const float f0 = x0 - static_cast<float>(c0), f1 = x1 - static_cast<float>(c1);
+    sum += c0 == c1 ? this->CellPartial(c0, f0, f1, a, b)
+                    : this->CellPartial(c0, f0, 1.f, a, b) + this->CellsIntegral(c0 + 1, c1) +
+        this->CellPartial(c1, 0.f, f1, a, b);
+    length += (static_cast<double>(x1) - x0) / scale;
   }
-  return static_cast<float>(sum / (static_cast<double>(b) - a));
+  return length > 0.0 ? static_cast<float>(sum / length) : this->Extinction(a);
 }
 
 } // namespace brume

@@ -498,20 +498,22 @@ namespace
  * samples made the shells' (Data/scenes/shells.json) shadows 10 to 15 %
  * too light.
  */
-template <typename At>
 double ClassifiedCellMean(const OpacityTransferFunction& function, const int index[3],
-  const std::array<int, 3>& dims, int s, const At& at)
+  const std::array<int, 3>& dims, int s, const float* points, const std::array<int, 3>& first,
+  const std::array<int, 3>& count)
 {
+  // The points as (x, y, z) from `first`, x fastest.
+  const std::ptrdiff_t stride[3] = { 1, count[0],
+    static_cast<std::ptrdiff_t>(count[0]) * count[1] };
+  const float* own = points + (index[0] - first[0]) * stride[0] +
+    (index[1] - first[1]) * stride[1] + (index[2] - first[2]) * stride[2];
   int axis = 0;
   float most = -1.f;
-  const float own = at(index[0], index[1], index[2]);
   for (int a = 0; a < 3; ++a)
   {
-    int lower[3] = { index[0], index[1], index[2] }, upper[3] = { index[0], index[1], index[2] };
-    lower[a] = std::max(index[a] - 1, 0);
-    upper[a] = std::min(index[a] + 1, dims[a] - 1);
-    const float change = std::abs(at(upper[0], upper[1], upper[2]) - own) +
-      std::abs(own - at(lower[0], lower[1], lower[2]));
+    const std::ptrdiff_t down = index[a] > 0 ? stride[a] : 0;
+    const std::ptrdiff_t up = index[a] < dims[a] - 1 ? stride[a] : 0;
+    const float change = std::abs(own[up] - *own) + std::abs(*own - own[-down]);
     if (change > most)
     {
       most = change;
@@ -520,7 +522,7 @@ double ClassifiedCellMean(const OpacityTransferFunction& function, const int ind
   }
   const int lateral[2] = { (axis + 1) % 3, (axis + 2) % 3 };
   constexpr int M = GridDensity::MaxNativeSamples;
-  int first[2][M], second[2][M];
+  std::ptrdiff_t from[2][M], to[2][M]; // offsets of the two points a line lies between
   float weight[2][M];
   for (int l = 0; l < 2; ++l)
   {
@@ -530,42 +532,30 @@ double ClassifiedCellMean(const OpacityTransferFunction& function, const int ind
       const float u = (static_cast<float>(m) + 0.5f) / static_cast<float>(s) - 0.5f;
       const float x = std::clamp(static_cast<float>(index[a]) + u, 0.f, static_cast<float>(n - 1));
       const int i0 = n == 1 ? 0 : std::min(n - 2, static_cast<int>(x));
-      first[l][m] = i0;
-      second[l][m] = std::min(i0 + 1, n - 1);
+      from[l][m] = (i0 - first[a]) * stride[a];
+      to[l][m] = (std::min(i0 + 1, n - 1) - first[a]) * stride[a];
       weight[l][m] = n == 1 ? 0.f : x - static_cast<float>(i0);
     }
   }
   auto lerp = [](float a, float b, float t) { return a + (b - a) * t; };
-  auto point = [&](int along, int p, int q)
-  {
-    int xyz[3];
-    xyz[axis] = along;
-    xyz[lateral[0]] = p;
-    xyz[lateral[1]] = q;
-    return at(xyz[0], xyz[1], xyz[2]);
-  };
-  // The scalars on the s x s lines at the points before, at and after
-  // the cell's own along the axis (clamped at the grid's ends).
+  // The scalars on the s x s lines at the points before, at and after the
+  // cell's own along the axis (clamped at the grid's ends).
   const int n = dims[axis], i = index[axis];
-  const int along[3] = { std::max(i - 1, 0), i, std::min(i + 1, n - 1) };
-  const int q0 = first[1][0], q1 = second[1][s - 1];
+  const std::ptrdiff_t along[3] = { (std::max(i - 1, 0) - first[axis]) * stride[axis],
+    (i - first[axis]) * stride[axis], (std::min(i + 1, n - 1) - first[axis]) * stride[axis] };
   float onLines[3][M][M];
   for (int k = 0; k < 3; ++k)
-  {
-    float rows[3][M];
-    for (int q = q0; q <= q1; ++q)
-      for (int m = 0; m < s; ++m)
-      {
-        rows[q - q0][m] =
-          lerp(point(along[k], first[0][m], q), point(along[k], second[0][m], q), weight[0][m]);
-      }
     for (int mq = 0; mq < s; ++mq)
+    {
+      const float* p0 = points + along[k] + from[1][mq];
+      const float* p1 = points + along[k] + to[1][mq];
       for (int m = 0; m < s; ++m)
       {
-        onLines[k][mq][m] =
-          lerp(rows[first[1][mq] - q0][m], rows[second[1][mq] - q0][m], weight[1][mq]);
+        const float a0 = lerp(p0[from[0][m]], p0[to[0][m]], weight[0][m]);
+        const float a1 = lerp(p1[from[0][m]], p1[to[0][m]], weight[0][m]);
+        onLines[k][mq][m] = lerp(a0, a1, weight[1][mq]);
       }
-  }
+    }
   double sum = 0.0;
   for (int mq = 0; mq < s; ++mq)
     for (int m = 0; m < s; ++m)
@@ -576,11 +566,10 @@ double ClassifiedCellMean(const OpacityTransferFunction& function, const int ind
       // point's own scalar).
       const float before = i > 0 ? 0.5f * (onLines[0][mq][m] + centre) : centre;
       const float after = i < n - 1 ? 0.5f * (centre + onLines[2][mq][m]) : centre;
-      sum += 0.5 *
-        (static_cast<double>(function.MeanExtinction(before, centre)) +
-          function.MeanExtinction(centre, after));
+      sum += static_cast<double>(function.MeanExtinction(before, centre)) +
+        function.MeanExtinction(centre, after);
     }
-  return sum / (static_cast<double>(s) * s);
+  return sum / (2.0 * s * s);
 }
 }
 
@@ -610,9 +599,7 @@ double ClassifiedDensity::NativeMean(
   {
     return DensityField::NativeMean(i, j, k, cell, bounds, s);
   }
-  return ClassifiedCellMean(this->Opacity, index, dims, s,
-    [&](int x, int y, int z)
-    { return points[((z - first[2]) * count[1] + (y - first[1])) * count[0] + (x - first[0])]; });
+  return ClassifiedCellMean(this->Opacity, index, dims, s, points, first, count);
 }
 
 bool ClassifiedDensity::BendsWithinNativeCell(int i, int j, int k, const Box& cell) const
@@ -900,7 +887,8 @@ bool ClassifiedDensity::NativeBrick(
         }
         // NativeMean(), from the brick's points.
         const int index[3] = { cell[0][i], cell[1][j], cell[2][k] };
-        *out++ = static_cast<float>(ClassifiedCellMean(this->Opacity, index, dims, s, at));
+        *out++ = static_cast<float>(
+          ClassifiedCellMean(this->Opacity, index, dims, s, points, first, count));
       }
   return true;
 }

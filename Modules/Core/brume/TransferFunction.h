@@ -12,6 +12,7 @@
 #include "brume/Medium.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -133,7 +134,46 @@ public:
    * edit that leaves the function as it was there (OpacityFunctionEdit::
    * SameOver()) leaves the result the same float.
    */
-  float MeanExtinction(float a, float b) const;
+  float MeanExtinction(float a, float b) const
+  {
+    // Inline, the common run: inside the table, its end cells linear.
+    const float lo = std::min(a, b), hi = std::max(a, b);
+    const float x0 = (lo - this->TableLow) * this->TableScale;
+    const float x1 = (hi - this->TableLow) * this->TableScale;
+    if (lo < hi && x0 >= 0.f && x1 < static_cast<float>(TableCells))
+    {
+      const int c0 = static_cast<int>(x0), c1 = static_cast<int>(x1);
+      const std::size_t i0 = static_cast<std::size_t>(c0), i1 = static_cast<std::size_t>(c1);
+      const bool exact0 = this->TableExact[i0] != 0, exact1 = this->TableExact[i1] != 0;
+      const float f0 = x0 - static_cast<float>(c0), f1 = x1 - static_cast<float>(c1);
+      if (c0 == c1 && !exact0)
+      {
+        // One cell of the chord: its value at the run's middle.
+        const float ta = this->Table[i0], tb = this->Table[i0 + 1];
+        return ta + (tb - ta) * (0.5f * (f0 + f1));
+      }
+      // Ends in cells evaluated exactly: where the run ends at the cell's
+      // point of the function (a scan's whole numbers), integrals made once.
+      if (c0 != c1 && (!exact0 || lo == this->CellPoint[i0]) &&
+        (!exact1 || hi == this->CellPoint[i1]))
+      {
+        // The chord's integral over each end cell's part (in table units)
+        // and the whole cells between; over the run's length in table units.
+        auto chord = [&](std::size_t c, double u0, double u1)
+        {
+          const double ta = this->Table[c], tb = this->Table[c + 1];
+          return (u1 - u0) * (ta + (tb - ta) * 0.5 * (u0 + u1));
+        };
+        const double between =
+          static_cast<double>(this->CellPrefix[i1] - this->CellPrefix[i0 + 1]) *
+          this->IntegralQuantum * static_cast<double>(this->TableScale);
+        const double sum = (exact0 ? this->PointToEnd[i0] : chord(i0, f0, 1.0)) + between +
+          (exact1 ? this->StartToPoint[i1] : chord(i1, 0.0, f1));
+        return static_cast<float>(sum / (static_cast<double>(x1) - x0));
+      }
+    }
+    return this->MeanExtinctionElsewhere(a, b);
+  }
   /// The integral of ExactExtinction() over [a, b] (a <= b), in closed form.
   double ExactIntegral(double a, double b) const;
 
@@ -143,8 +183,11 @@ private:
   void MakeTable();
   void MakeIntegrals();
   float TableRangeMax(int first, int last) const;
-  // The integral of the table's function over [a, b], both within table cell c.
-  double CellPartial(int c, double a, double b) const;
+  // MeanExtinction() where a run is not inside the table with linear end cells.
+  float MeanExtinctionElsewhere(float a, float b) const;
+  // The integral of the table's function over [x0, x1] of table cell c's
+  // [0, 1], part of the run of scalars [a, b].
+  double CellPartial(int c, float x0, float x1, double a, double b) const;
   // The integral of the table's function over cells [first, last).
   double CellsIntegral(int first, int last) const;
 
@@ -163,11 +206,14 @@ private:
   std::vector<std::vector<float>> TableMax; // maxima of 2^l consecutive values
   double TableError = 0.0;
   // Integrals of the table's function (MeanExtinction()): per cell, over
-  // the cell; per run of IntegralRun cells, over the run, and within it
-  // over the cells before and from each cell, so that a sum over a range
-  // of cells reads the cells in that range only.
-  static constexpr int IntegralRun = 64;
-  std::vector<double> CellIntegrals, RunIntegrals, RunBefore, RunFrom;
+  // the cell, and over the cells before each in whole IntegralQuantum, so
+  // that a sum over a range of cells reads the cells in that range only.
+  std::vector<double> CellIntegrals;
+  std::vector<std::int64_t> CellPrefix;
+  // Per cell holding a point of the function, the integrals (in table
+  // units) from the cell's start to the point and from the point to its end.
+  std::vector<double> StartToPoint, PointToEnd;
+  double IntegralQuantum = 0.0;
 };
 
 /**
