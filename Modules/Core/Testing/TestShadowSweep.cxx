@@ -10,6 +10,8 @@
 
 #include <cmath>
 #include <functional>
+#include <iostream>
+#include <limits>
 #include <memory>
 
 using namespace brume;
@@ -158,18 +160,64 @@ TEST(ShadowSweep, NotWhereALampIsAmongThePlanes)
     ShadowSweep::MaxRayFactor * 16 * 16 * ShadowSweep::RaysPerTexel * ShadowSweep::RaysPerTexel);
 }
 
-TEST(ShadowSweep, NotWhereALampsRaysWouldSpreadFarPastTheGrid)
+TEST(ShadowSweep, ALampNearTheGridIsSweptInRunsOfPlanes)
 {
-  // Just beyond the first plane's texels, a lamp's rays through them spread
-  // over 2 x 64 times the grid at the last plane: far more rays than a
-  // march per texel, so none is planned.
+  // A lamp close above the grid: rays through the farthest plane's texels,
+  // h apart there, would lie far closer than needed near the lamp (and a
+  // lamp just beyond the first plane's texels would need 2 x 64 times the
+  // grid's rays). Each run of planes, from one to the farthest at most
+  // twice as far from the lamp, casts its own rays, starting from the
+  // depths of the run before interpolated where they cross its last plane:
+  // within the interpolation bound of the test above once per run, with
+  // at most MaxRayFactor times a plane's rays a run, and marching less
+  // than the texels' own rays would.
+  const float c = 3.f, w = 0.35f;
   Scene scene;
-  scene.Media = { GridMedium([](const Vec3&) { return 1.f; }, 1.f) };
-  scene.Lights = { Lamp(Vec3(0.1f, 1.001f, -0.3f)) };
+  scene.Media = { GridMedium(
+    [&](const Vec3& p) { return c * std::exp(-Dot(p, p) / (2.f * w * w)); }, 1.f) };
+  scene.Lights = { Lamp(Vec3(0.3f, 1.25f, -0.2f)), Lamp(Vec3(0.1f, 1.001f, -0.3f)) };
   ASSERT_EQ(scene.Validate(), "");
+  const int texels = 24;
+  const double h = 2.0 / texels / ShadowSweep::RaysPerTexel, s = 2.0 / (Points - 1) / 2.0;
+  const double interpolation = h * h / 8.0 * 2.0 * c * std::sqrt(2.0 * Pi) / w;
+  const double march = 2.0 * s * s / 24.0 * c / (w * w) * 2.0 * std::sqrt(3.0);
   const RayCaster caster(scene);
   const DirectLight direct(scene, caster);
-  ShadowSweep sweep;
-  EXPECT_FALSE(sweep.Plan(direct, 0, scene.Media[0].Bounds, { 64, 64, 64 }));
-  EXPECT_FALSE(sweep.IsPlanned());
+  const double onePlane =
+    static_cast<double>(texels) * texels * ShadowSweep::RaysPerTexel * ShadowSweep::RaysPerTexel;
+  for (std::size_t k = 0; k < 2; ++k)
+  {
+    ShadowSweep sweep;
+    ASSERT_TRUE(sweep.Plan(direct, k, scene.Media[0].Bounds, { texels, texels, texels }));
+    const std::size_t runs = sweep.NumberOfRuns();
+    EXPECT_GT(runs, k == 0 ? 1u : 4u);
+    EXPECT_LE(
+      static_cast<double>(sweep.NumberOfRays()), ShadowSweep::MaxRayFactor * onePlane * runs);
+    // The texels' own rays: from each texel to where it leaves the box.
+    double perTexel = 0.0;
+    const Box& box = scene.Media[0].Bounds;
+    for (int t = 0; t < texels * texels * texels; ++t)
+    {
+      const Vec3 centre = box.lower +
+        (Vec3(static_cast<float>(t % texels), static_cast<float>((t / texels) % texels),
+           static_cast<float>(t / (texels * texels))) +
+          Vec3(0.5f)) *
+          (box.Extent() / static_cast<float>(texels));
+      float t0 = 0.f, t1 = std::numeric_limits<float>::max();
+      if (box.Intersect(centre, -direct.DirectionAt(k, centre), t0, t1))
+      {
+        perTexel += t1 - t0;
+      }
+    }
+    EXPECT_LT(sweep.MarchLength(), 0.5 * perTexel) << "light " << k;
+    double depth = 0.0;
+    const double worst = LargestDifference(scene, k, texels, &depth);
+    std::cout << "light " << k << ": " << runs << " runs, " << sweep.NumberOfRays()
+              << " rays, march " << sweep.MarchLength() << " against " << perTexel
+              << " per texel; largest difference " << worst << " (bound "
+              << static_cast<double>(runs) * interpolation + march << "), largest depth " << depth
+              << "\n";
+    EXPECT_GT(depth, 1.5) << "light " << k;
+    EXPECT_LT(worst, static_cast<double>(runs) * interpolation + march) << "light " << k;
+  }
 }

@@ -87,93 +87,155 @@ bool ShadowSweep::Plan(
   {
     this->PlaneAt[static_cast<std::size_t>(p)] = plane(axis, p);
   }
-  // Each plane's map from a texel's lateral coordinate to the ray's in the
-  // reference plane: the first plane the light meets for parallel rays, the
-  // last for rays from a point (there they lie farthest apart, at Pitch).
-  const float reference = this->PlaneAt[this->Ascending ? 0 : static_cast<std::size_t>(n - 1)];
-  const float farthest = this->PlaneAt[this->Ascending ? static_cast<std::size_t>(n - 1) : 0];
-  double rays[2] = { 0.0, 0.0 };
-  for (int s = 0; s < 2; ++s)
+  // The runs of planes: one for parallel rays, its rays Pitch apart on the
+  // first plane the light meets; for rays from a point, each run's planes
+  // from one to the farthest at most twice as far from the light, its rays
+  // Pitch apart on the farthest (there they lie farthest apart).
+  this->Runs.clear();
+  auto at = [&](int step)
+  { return this->PlaneAt[static_cast<std::size_t>(this->PlaneOfStep(step))]; };
+  if (this->Directional)
   {
-    const int b = this->Lateral[s];
-    this->A[s].resize(static_cast<std::size_t>(n));
-    this->B[s].resize(static_cast<std::size_t>(n));
-    float lo = 0.f, hi = 0.f;
-    for (int p = 0; p < n; ++p)
-    {
-      const float z = this->PlaneAt[static_cast<std::size_t>(p)];
-      float a = 1.f, shift = 0.f;
-      if (this->Directional)
-      {
-        shift = -l.Direction[b] / l.Direction[axis] * (z - reference);
-      }
-      else
-      {
-        const float t = (z - l.Position[axis]) / (farthest - l.Position[axis]);
-        a = 1.f / t;
-        shift = l.Position[b] * (1.f - a);
-      }
-      this->A[s][static_cast<std::size_t>(p)] = a;
-      this->B[s][static_cast<std::size_t>(p)] = shift;
-      const float first = a * plane(b, 0) + shift, last = a * plane(b, dims[b] - 1) + shift;
-      lo = p == 0 ? first : std::min(lo, first);
-      hi = p == 0 ? last : std::max(hi, last);
-    }
-    this->Pitch[s] = pitch[b] / static_cast<float>(RaysPerTexel);
-    this->Low[s] = lo;
-    rays[s] = std::floor((static_cast<double>(hi) - lo) / this->Pitch[s]) + 2.0;
+    Run r;
+    r.First = 0;
+    r.Last = n - 1;
+    r.Reference = at(0);
+    this->Runs.push_back(r);
   }
-  // Rays from a lamp just beyond the first plane spread over many times
-  // what the far plane needs: past MaxRayFactor times a plane's, none.
+  else
+  {
+    const float source = l.Position[axis];
+    for (int first = 0; first < n;)
+    {
+      int last = first;
+      while (
+        last + 1 < n && std::abs(at(last + 1) - source) <= RunSpread * std::abs(at(first) - source))
+      {
+        ++last;
+      }
+      Run r;
+      r.First = first;
+      r.Last = last;
+      r.Reference = at(last);
+      this->Runs.push_back(r);
+      first = last + 1;
+    }
+  }
+  // Each run's rays cover its planes' texels and, but for the last run,
+  // where the next run's rays cross its last plane (their depths start
+  // there): planned from the farthest run back.
   const double onePlane = static_cast<double>(RaysPerTexel) * RaysPerTexel *
     dims[this->Lateral[0]] * dims[this->Lateral[1]];
-  if (!(rays[0] * rays[1] <= MaxRayFactor * onePlane))
+  for (std::size_t run = this->Runs.size(); run-- > 0;)
   {
-    return false;
-  }
-  for (int s = 0; s < 2; ++s)
-  {
-    this->Rays[s] = static_cast<std::size_t>(rays[s]);
+    Run& r = this->Runs[run];
+    double rays[2] = { 0.0, 0.0 };
+    for (int s = 0; s < 2; ++s)
+    {
+      const int b = this->Lateral[s];
+      float lo = 0.f, hi = 0.f;
+      for (int step = r.First; step <= r.Last; ++step)
+      {
+        float a = 1.f, shift = 0.f;
+        this->Map(r, s, at(step), a, shift);
+        const float first = a * plane(b, 0) + shift, last = a * plane(b, dims[b] - 1) + shift;
+        lo = step == r.First ? first : std::min(lo, first);
+        hi = step == r.First ? last : std::max(hi, last);
+      }
+      if (run + 1 < this->Runs.size())
+      {
+        // The next run's outermost rays on this run's last plane, this
+        // run's reference.
+        const Run& next = this->Runs[run + 1];
+        float a = 1.f, shift = 0.f;
+        this->Map(next, s, at(r.Last), a, shift);
+        const float u0 = next.Low[s];
+        const float u1 = next.Low[s] + static_cast<float>(next.Rays[s] - 1) * next.Pitch[s];
+        lo = std::min(lo, (u0 - shift) / a);
+        hi = std::max(hi, (u1 - shift) / a);
+      }
+      r.Pitch[s] = pitch[b] / static_cast<float>(RaysPerTexel);
+      r.Low[s] = lo;
+      rays[s] = std::floor((static_cast<double>(hi) - lo) / r.Pitch[s]) + 2.0;
+    }
+    // Rays from a lamp just beyond a run's nearest plane would spread over
+    // many times what its farthest needs: past MaxRayFactor times a
+    // plane's, none.
+    if (!(rays[0] * rays[1] <= MaxRayFactor * onePlane))
+    {
+      this->Runs.clear();
+      return false;
+    }
+    for (int s = 0; s < 2; ++s)
+    {
+      r.Rays[s] = static_cast<std::size_t>(rays[s]);
+    }
   }
   this->Direct = &light;
   return true;
 }
 
-void ShadowSweep::RayCoordinates(int plane, float x, float y, float& u, float& v) const
+void ShadowSweep::Map(const Run& r, int s, float z, float& a, float& b) const
 {
-  const std::size_t p = static_cast<std::size_t>(plane);
-  u = (this->A[0][p] * x + this->B[0][p] - this->Low[0]) / this->Pitch[0];
-  v = (this->A[1][p] * y + this->B[1][p] - this->Low[1]) / this->Pitch[1];
+  const int lateral = this->Lateral[s];
+  if (this->Directional)
+  {
+    a = 1.f;
+    b = -this->Travel[lateral] / this->Travel[this->Axis] * (z - r.Reference);
+  }
+  else
+  {
+    const float t = (z - this->Source[this->Axis]) / (r.Reference - this->Source[this->Axis]);
+    a = 1.f / t;
+    b = this->Source[lateral] * (1.f - a);
+  }
 }
 
-Vec3 ShadowSweep::RayPoint(int plane, std::size_t i, std::size_t j) const
+void ShadowSweep::RayCoordinates(const Run& r, int step, float x, float y, float& u, float& v) const
 {
-  const std::size_t p = static_cast<std::size_t>(plane);
+  const float z = this->PlaneAt[static_cast<std::size_t>(this->PlaneOfStep(step))];
+  float a = 1.f, b = 0.f;
+  this->Map(r, 0, z, a, b);
+  u = (a * x + b - r.Low[0]) / r.Pitch[0];
+  this->Map(r, 1, z, a, b);
+  v = (a * y + b - r.Low[1]) / r.Pitch[1];
+}
+
+Vec3 ShadowSweep::RayPoint(const Run& r, int step, std::size_t i, std::size_t j) const
+{
+  const float z = this->PlaneAt[static_cast<std::size_t>(this->PlaneOfStep(step))];
   Vec3 point;
-  point[this->Axis] = this->PlaneAt[p];
-  const float u = this->Low[0] + static_cast<float>(i) * this->Pitch[0];
-  const float v = this->Low[1] + static_cast<float>(j) * this->Pitch[1];
-  point[this->Lateral[0]] = (u - this->B[0][p]) / this->A[0][p];
-  point[this->Lateral[1]] = (v - this->B[1][p]) / this->A[1][p];
+  point[this->Axis] = z;
+  const float u = r.Low[0] + static_cast<float>(i) * r.Pitch[0];
+  const float v = r.Low[1] + static_cast<float>(j) * r.Pitch[1];
+  float a = 1.f, b = 0.f;
+  this->Map(r, 0, z, a, b);
+  point[this->Lateral[0]] = (u - b) / a;
+  this->Map(r, 1, z, a, b);
+  point[this->Lateral[1]] = (v - b) / a;
   return point;
 }
 
 double ShadowSweep::MarchLength() const
 {
-  const int n = this->Dims[this->Axis];
-  const int first = this->Ascending ? 0 : n - 1, last = this->Ascending ? n - 1 : 0;
   double length = 0.0;
-  for (std::size_t j = 0; j < this->Rays[1]; ++j)
-    for (std::size_t i = 0; i < this->Rays[0]; ++i)
-    {
-      const Vec3 a = this->RayPoint(first, i, j), b = this->RayPoint(last, i, j);
-      const float span = Length(b - a);
-      float t0 = 0.f, t1 = span;
-      if (span > 0.f && this->GridBox.Intersect(a, (b - a) / span, t0, t1))
+  for (std::size_t k = 0; k < this->Runs.size(); ++k)
+  {
+    const Run& r = this->Runs[k];
+    // From the plane before the run's first (its rays start there), or the first.
+    const int from = k == 0 ? r.First : r.First - 1;
+    for (std::size_t j = 0; j < r.Rays[1]; ++j)
+      for (std::size_t i = 0; i < r.Rays[0]; ++i)
       {
-        length += t1 - t0;
+        const Vec3 a = this->RayPoint(r, from, i, j), b = this->RayPoint(r, r.Last, i, j);
+        const float span = Length(b - a);
+        float t0 = 0.f, t1 = span;
+        if (span > 0.f && this->GridBox.Intersect(a, (b - a) / span, t0, t1))
+        {
+          length += t1 - t0;
+        }
       }
-    }
+  }
   return length;
 }
 
@@ -188,96 +250,120 @@ std::vector<float> ShadowSweep::Depths(
     return depths;
   }
   const brume::Light& light = this->Direct->GetScene().Lights[this->LightIndex];
-  const std::size_t nu = this->Rays[0], nv = this->Rays[1];
-  std::vector<double> carried(3 * nu * nv, 0.0);
-  const int n = dims[this->Axis];
   const Vec3 extent = this->GridBox.Extent();
   const float pitch[2] = { extent[this->Lateral[0]] / static_cast<float>(dims[this->Lateral[0]]),
     extent[this->Lateral[1]] / static_cast<float>(dims[this->Lateral[1]]) };
   const std::size_t strides[3] = { 1, static_cast<std::size_t>(dims[0]),
     static_cast<std::size_t>(dims[0]) * dims[1] };
-  for (int s = 0; s < n; ++s)
+  // The depths a run's rays carry, interpolated bilinearly at (u, v) of its rays.
+  auto interpolate =
+    [](const std::vector<double>& carried, const Run& r, float u, float v, double* out)
   {
-    const int plane = this->Ascending ? s : n - 1 - s;
-    const int previous = this->Ascending ? s - 1 : n - s;
-    // Every ray on to this plane: from the light to the first, then from
-    // the plane before.
-    parallelFor(0, nv,
-      [&](std::size_t begin, std::size_t end)
-      {
-        for (std::size_t j = begin; j < end; ++j)
-          for (std::size_t i = 0; i < nu; ++i)
-          {
-            double* depth = &carried[3 * (j * nu + i)];
-            if (std::min({ depth[0], depth[1], depth[2] }) > OpaqueDepth)
+    const std::size_t nu = r.Rays[0], nv = r.Rays[1];
+    const float fu = std::clamp(u, 0.f, static_cast<float>(nu - 1));
+    const float fv = std::clamp(v, 0.f, static_cast<float>(nv - 1));
+    const std::size_t i0 = std::min(static_cast<std::size_t>(fu), nu - 2);
+    const std::size_t j0 = std::min(static_cast<std::size_t>(fv), nv - 2);
+    const double wu = fu - static_cast<float>(i0), wv = fv - static_cast<float>(j0);
+    const double* d00 = &carried[3 * (j0 * nu + i0)];
+    const double* d10 = d00 + 3;
+    const double* d01 = d00 + 3 * nu;
+    const double* d11 = d01 + 3;
+    for (int c = 0; c < 3; ++c)
+    {
+      out[c] =
+        (1.0 - wv) * ((1.0 - wu) * d00[c] + wu * d10[c]) + wv * ((1.0 - wu) * d01[c] + wu * d11[c]);
+    }
+  };
+  std::vector<double> carried, before;
+  for (std::size_t k = 0; k < this->Runs.size(); ++k)
+  {
+    const Run& r = this->Runs[k];
+    const std::size_t nu = r.Rays[0], nv = r.Rays[1];
+    before.swap(carried);
+    carried.assign(3 * nu * nv, 0.0);
+    for (int s = r.First; s <= r.Last; ++s)
+    {
+      const int plane = this->PlaneOfStep(s);
+      // Every ray on to this plane: from the light to the first, then from
+      // the plane before (a run after the first starts with the depths of
+      // the run before where its rays cross that plane).
+      parallelFor(0, nv,
+        [&](std::size_t begin, std::size_t end)
+        {
+          for (std::size_t j = begin; j < end; ++j)
+            for (std::size_t i = 0; i < nu; ++i)
             {
-              continue;
-            }
-            const Vec3 p = this->RayPoint(plane, i, j);
-            Vec3 from;
-            if (s > 0)
-            {
-              from = this->RayPoint(previous, i, j);
-            }
-            else if (this->Directional)
-            {
-              const float distance = Dot(p - light.BeamCenter, this->Travel);
-              if (!(distance > 0.f))
+              double* depth = &carried[3 * (j * nu + i)];
+              if (s == r.First && k > 0)
+              {
+                const Vec3 q = this->RayPoint(r, s - 1, i, j);
+                float u, v;
+                this->RayCoordinates(
+                  this->Runs[k - 1], s - 1, q[this->Lateral[0]], q[this->Lateral[1]], u, v);
+                interpolate(before, this->Runs[k - 1], u, v, depth);
+              }
+              if (std::min({ depth[0], depth[1], depth[2] }) > OpaqueDepth)
               {
                 continue;
               }
-              from = p - this->Travel * distance;
+              const Vec3 p = this->RayPoint(r, s, i, j);
+              Vec3 from;
+              if (s > 0)
+              {
+                from = this->RayPoint(r, s - 1, i, j);
+              }
+              else if (this->Directional)
+              {
+                const float distance = Dot(p - light.BeamCenter, this->Travel);
+                if (!(distance > 0.f))
+                {
+                  continue;
+                }
+                from = p - this->Travel * distance;
+              }
+              else
+              {
+                from = this->Source;
+              }
+              const Vec3 d = from - p;
+              const float length = Length(d);
+              if (length > 0.f)
+              {
+                this->Direct->AddOpticalDepth(p, d / length, length, depth);
+              }
             }
-            else
+        });
+      // The plane's texels from the four rays around each.
+      const int ny = dims[this->Lateral[1]], nx = dims[this->Lateral[0]];
+      parallelFor(0, static_cast<std::size_t>(ny),
+        [&](std::size_t begin, std::size_t end)
+        {
+          for (std::size_t y = begin; y < end; ++y)
+            for (int x = 0; x < nx; ++x)
             {
-              from = this->Source;
+              const std::size_t t = static_cast<std::size_t>(plane) * strides[this->Axis] +
+                static_cast<std::size_t>(x) * strides[this->Lateral[0]] +
+                y * strides[this->Lateral[1]];
+              if (!wanted.empty() && !wanted[t])
+              {
+                continue;
+              }
+              const float cx =
+                this->GridBox.lower[this->Lateral[0]] + (static_cast<float>(x) + 0.5f) * pitch[0];
+              const float cy =
+                this->GridBox.lower[this->Lateral[1]] + (static_cast<float>(y) + 0.5f) * pitch[1];
+              float u, v;
+              this->RayCoordinates(r, s, cx, cy, u, v);
+              double depth[3];
+              interpolate(carried, r, u, v, depth);
+              for (int c = 0; c < 3; ++c)
+              {
+                depths[3 * t + static_cast<std::size_t>(c)] = static_cast<float>(depth[c]);
+              }
             }
-            const Vec3 d = from - p;
-            const float length = Length(d);
-            if (length > 0.f)
-            {
-              this->Direct->AddOpticalDepth(p, d / length, length, depth);
-            }
-          }
-      });
-    // The plane's texels from the four rays around each.
-    const int ny = dims[this->Lateral[1]], nx = dims[this->Lateral[0]];
-    parallelFor(0, static_cast<std::size_t>(ny),
-      [&](std::size_t begin, std::size_t end)
-      {
-        for (std::size_t y = begin; y < end; ++y)
-          for (int x = 0; x < nx; ++x)
-          {
-            const std::size_t t = static_cast<std::size_t>(plane) * strides[this->Axis] +
-              static_cast<std::size_t>(x) * strides[this->Lateral[0]] +
-              y * strides[this->Lateral[1]];
-            if (!wanted.empty() && !wanted[t])
-            {
-              continue;
-            }
-            const float cx =
-              this->GridBox.lower[this->Lateral[0]] + (static_cast<float>(x) + 0.5f) * pitch[0];
-            const float cy =
-              this->GridBox.lower[this->Lateral[1]] + (static_cast<float>(y) + 0.5f) * pitch[1];
-            float u, v;
-            this->RayCoordinates(plane, cx, cy, u, v);
-            const float fu = std::clamp(u, 0.f, static_cast<float>(nu - 1));
-            const float fv = std::clamp(v, 0.f, static_cast<float>(nv - 1));
-            const std::size_t i0 = std::min(static_cast<std::size_t>(fu), nu - 2);
-            const std::size_t j0 = std::min(static_cast<std::size_t>(fv), nv - 2);
-            const double wu = fu - static_cast<float>(i0), wv = fv - static_cast<float>(j0);
-            const double* d00 = &carried[3 * (j0 * nu + i0)];
-            const double* d10 = d00 + 3;
-            const double* d01 = d00 + 3 * nu;
-            const double* d11 = d01 + 3;
-            for (int c = 0; c < 3; ++c)
-            {
-              depths[3 * t + static_cast<std::size_t>(c)] =
-                static_cast<float>((1.0 - wv) * ((1.0 - wu) * d00[c] + wu * d10[c]) +
-                  wv * ((1.0 - wu) * d01[c] + wu * d11[c]));
-            }
-          }
-      });
+        });
+    }
   }
   return depths;
 }

@@ -19,7 +19,11 @@
 // grid cast 261,312 texels' rays per light, its sweeps 34,953 rays for the
 // sun and 146,800 for the lamp, and its direct light took 2.6 s instead of
 // 7.0 (Documentation/evaluation.md gives the figures, and the error against
-// the texels' own rays).
+// the texels' own rays). Rays from a lamp near the grid, RaysPerTexel apart
+// on the farthest plane, would crowd on the nearest: the planes are swept
+// in runs, each from one plane to the farthest at most RunSpread times as
+// far from the lamp, whose rays start with the depths of the run before
+// interpolated where they cross its last plane.
 #ifndef brume_ShadowSweep_h
 #define brume_ShadowSweep_h
 
@@ -43,21 +47,33 @@ public:
   static constexpr int RaysPerTexel = 2;
   /// The most rays a sweep casts, in rays of one plane of texels.
   static constexpr double MaxRayFactor = 16.0;
+  /// A run of planes from a point or spot light reaches from one plane to
+  /// the farthest at most RunSpread times as far from the light.
+  static constexpr float RunSpread = 1.25f;
 
   /**
    * Plans the rays of light `k` of `light` over the grid of `dims` texels
    * whose centres are those of `dims` cells over `box`. False where a
    * sweep does not apply: a point or spot light between the grid's first
    * and last planes along every axis, a grid of fewer than two planes, or
-   * rays that would number more than MaxRayFactor times a plane's (a lamp
-   * so close to the grid that its rays spread far past it).
+   * a run whose rays would number more than MaxRayFactor times a plane's.
    */
   bool Plan(
     const DirectLight& light, std::size_t k, const Box& box, const std::array<int, 3>& dims);
   /// Whether Plan() succeeded.
   bool IsPlanned() const { return this->Direct != nullptr; }
-  /// The planned rays, and the texels' planes they cross.
-  std::size_t NumberOfRays() const { return this->Rays[0] * this->Rays[1]; }
+  /// The planned rays (of every run), and the texels' planes they cross.
+  std::size_t NumberOfRays() const
+  {
+    std::size_t n = 0;
+    for (const Run& r : this->Runs)
+    {
+      n += r.Rays[0] * r.Rays[1];
+    }
+    return n;
+  }
+  /// The runs of planes whose rays are cast afresh (1 for a directional light).
+  std::size_t NumberOfRuns() const { return this->Runs.size(); }
   int NumberOfPlanes() const { return this->Dims[this->Axis]; }
   /// The rays' length inside the grid's box, together: what their march
   /// costs, to weigh against the texels' own rays'.
@@ -72,11 +88,34 @@ public:
     const std::vector<std::uint8_t>& wanted, const ParallelFor& parallelFor = SerialFor()) const;
 
 private:
-  // The lateral coordinates of the texel centre at (x, y) of plane p, in
-  // the rays' grid (ray (i, j) at (i, j)).
-  void RayCoordinates(int plane, float x, float y, float& u, float& v) const;
-  // Ray (i, j)'s point on plane p.
-  Vec3 RayPoint(int plane, std::size_t i, std::size_t j) const;
+  // The rays of a run of planes: for a point or spot light, the planes from
+  // one to the farthest at most twice as far from the light, so that the
+  // rays through the farthest plane's texels, RaysPerTexel per texel side,
+  // are at most twice as dense on the nearest (a lamp close to the grid
+  // would otherwise need its rays spread far past it); the next run's rays
+  // start with the depths of these interpolated where they cross the run's
+  // last plane. A directional light's rays are parallel: one run.
+  struct Run
+  {
+    int First = 0, Last = 0; // steps from the light (step 0: the plane it meets first)
+    float Reference = 0.f;   // the plane where the rays lie Pitch apart
+    float Low[2] = { 0.f, 0.f };
+    float Pitch[2] = { 1.f, 1.f };
+    std::size_t Rays[2] = { 0, 0 };
+  };
+  // The plane of step s from the light.
+  int PlaneOfStep(int step) const
+  {
+    return this->Ascending ? step : this->Dims[this->Axis] - 1 - step;
+  }
+  // Lateral coordinate s's map (x to a x + b) from the plane at z to run r's
+  // reference plane.
+  void Map(const Run& r, int s, float z, float& a, float& b) const;
+  // The lateral coordinates of the point (x, y) of the plane of `step`, in
+  // run r's rays (ray (i, j) at (i, j)).
+  void RayCoordinates(const Run& r, int step, float x, float y, float& u, float& v) const;
+  // Ray (i, j) of run r where it crosses the plane of `step`.
+  Vec3 RayPoint(const Run& r, int step, std::size_t i, std::size_t j) const;
 
   const DirectLight* Direct = nullptr;
   std::size_t LightIndex = 0;
@@ -89,13 +128,7 @@ private:
   int Lateral[2] = { 1, 2 };
   bool Ascending = true;      // whether the light meets plane 0 first
   std::vector<float> PlaneAt; // each plane's coordinate along Axis
-  // Lateral position of plane p's texel x: A[p] x + B[p] in the rays'
-  // reference coordinates (the first plane's for a directional light, the
-  // last's for a point light); rays every Pitch from Low.
-  std::vector<float> A[2], B[2];
-  float Low[2] = { 0.f, 0.f };
-  float Pitch[2] = { 1.f, 1.f };
-  std::size_t Rays[2] = { 0, 0 };
+  std::vector<Run> Runs;      // from the light
 };
 
 } // namespace brume
