@@ -120,7 +120,7 @@ void OpacityTransferFunction::MakeIntegrals()
   {
     const std::size_t i = static_cast<std::size_t>(c);
     const double point = this->CellPoint[i];
-    if (point == point) // a point in the cell
+    if (!std::isnan(point)) // a point of the function in the cell
     {
       this->StartToPoint[i] = this->ExactIntegral(end(c), point) * scale;
       this->PointToEnd[i] = this->ExactIntegral(point, end(c + 1)) * scale;

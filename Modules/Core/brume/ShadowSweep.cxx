@@ -89,7 +89,7 @@ bool ShadowSweep::Plan(
   }
   // The runs of planes: one for parallel rays, its rays Pitch apart on the
   // first plane the light meets; for rays from a point, each run's planes
-  // from one to the farthest at most twice as far from the light, its rays
+  // from one to the farthest at most RunSpread times as far from the light, its rays
   // Pitch apart on the farthest (there they lie farthest apart).
   this->Runs.clear();
   auto at = [&](int step)

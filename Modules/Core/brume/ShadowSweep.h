@@ -89,10 +89,11 @@ public:
 
 private:
   // The rays of a run of planes: for a point or spot light, the planes from
-  // one to the farthest at most twice as far from the light, so that the
-  // rays through the farthest plane's texels, RaysPerTexel per texel side,
-  // are at most twice as dense on the nearest (a lamp close to the grid
-  // would otherwise need its rays spread far past it); the next run's rays
+  // one to the farthest at most RunSpread times as far from the light, so
+  // that the rays through the farthest plane's texels, RaysPerTexel per
+  // texel side, are at most RunSpread times as dense on the nearest (a lamp
+  // close to the grid would otherwise need its rays spread far past it,
+  // and march them all); the next run's rays
   // start with the depths of these interpolated where they cross the run's
   // last plane. A directional light's rays are parallel: one run.
   struct Run
