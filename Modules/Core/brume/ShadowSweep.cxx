@@ -191,28 +191,30 @@ void ShadowSweep::Map(const Run& r, int s, float z, float& a, float& b) const
   }
 }
 
-void ShadowSweep::RayCoordinates(const Run& r, int step, float x, float y, float& u, float& v) const
+ShadowSweep::PlaneMap ShadowSweep::MapOf(const Run& r, int step) const
 {
-  const float z = this->PlaneAt[static_cast<std::size_t>(this->PlaneOfStep(step))];
-  float a = 1.f, b = 0.f;
-  this->Map(r, 0, z, a, b);
-  u = (a * x + b - r.Low[0]) / r.Pitch[0];
-  this->Map(r, 1, z, a, b);
-  v = (a * y + b - r.Low[1]) / r.Pitch[1];
+  PlaneMap m;
+  m.Z = this->PlaneAt[static_cast<std::size_t>(this->PlaneOfStep(step))];
+  this->Map(r, 0, m.Z, m.A[0], m.B[0]);
+  this->Map(r, 1, m.Z, m.A[1], m.B[1]);
+  return m;
 }
 
-Vec3 ShadowSweep::RayPoint(const Run& r, int step, std::size_t i, std::size_t j) const
+void ShadowSweep::RayCoordinates(
+  const Run& r, const PlaneMap& m, float x, float y, float& u, float& v) const
 {
-  const float z = this->PlaneAt[static_cast<std::size_t>(this->PlaneOfStep(step))];
+  u = (m.A[0] * x + m.B[0] - r.Low[0]) / r.Pitch[0];
+  v = (m.A[1] * y + m.B[1] - r.Low[1]) / r.Pitch[1];
+}
+
+Vec3 ShadowSweep::RayPoint(const Run& r, const PlaneMap& m, std::size_t i, std::size_t j) const
+{
   Vec3 point;
-  point[this->Axis] = z;
+  point[this->Axis] = m.Z;
   const float u = r.Low[0] + static_cast<float>(i) * r.Pitch[0];
   const float v = r.Low[1] + static_cast<float>(j) * r.Pitch[1];
-  float a = 1.f, b = 0.f;
-  this->Map(r, 0, z, a, b);
-  point[this->Lateral[0]] = (u - b) / a;
-  this->Map(r, 1, z, a, b);
-  point[this->Lateral[1]] = (v - b) / a;
+  point[this->Lateral[0]] = (u - m.B[0]) / m.A[0];
+  point[this->Lateral[1]] = (v - m.B[1]) / m.A[1];
   return point;
 }
 
@@ -223,11 +225,12 @@ double ShadowSweep::MarchLength() const
   {
     const Run& r = this->Runs[k];
     // From the plane before the run's first (its rays start there), or the first.
-    const int from = k == 0 ? r.First : r.First - 1;
+    const PlaneMap first = this->MapOf(r, k == 0 ? r.First : r.First - 1);
+    const PlaneMap last = this->MapOf(r, r.Last);
     for (std::size_t j = 0; j < r.Rays[1]; ++j)
       for (std::size_t i = 0; i < r.Rays[0]; ++i)
       {
-        const Vec3 a = this->RayPoint(r, from, i, j), b = this->RayPoint(r, r.Last, i, j);
+        const Vec3 a = this->RayPoint(r, first, i, j), b = this->RayPoint(r, last, i, j);
         const float span = Length(b - a);
         float t0 = 0.f, t1 = span;
         if (span > 0.f && this->GridBox.Intersect(a, (b - a) / span, t0, t1))
@@ -285,6 +288,10 @@ std::vector<float> ShadowSweep::Depths(
     for (int s = r.First; s <= r.Last; ++s)
     {
       const int plane = this->PlaneOfStep(s);
+      const PlaneMap here = this->MapOf(r, s);
+      const PlaneMap back = s > 0 ? this->MapOf(r, s - 1) : here;
+      const PlaneMap backBefore =
+        s == r.First && k > 0 ? this->MapOf(this->Runs[k - 1], s - 1) : here;
       // Every ray on to this plane: from the light to the first, then from
       // the plane before (a run after the first starts with the depths of
       // the run before where its rays cross that plane).
@@ -297,21 +304,21 @@ std::vector<float> ShadowSweep::Depths(
               double* depth = &carried[3 * (j * nu + i)];
               if (s == r.First && k > 0)
               {
-                const Vec3 q = this->RayPoint(r, s - 1, i, j);
+                const Vec3 q = this->RayPoint(r, back, i, j);
                 float u, v;
                 this->RayCoordinates(
-                  this->Runs[k - 1], s - 1, q[this->Lateral[0]], q[this->Lateral[1]], u, v);
+                  this->Runs[k - 1], backBefore, q[this->Lateral[0]], q[this->Lateral[1]], u, v);
                 interpolate(before, this->Runs[k - 1], u, v, depth);
               }
               if (std::min({ depth[0], depth[1], depth[2] }) > OpaqueDepth)
               {
                 continue;
               }
-              const Vec3 p = this->RayPoint(r, s, i, j);
+              const Vec3 p = this->RayPoint(r, here, i, j);
               Vec3 from;
               if (s > 0)
               {
-                from = this->RayPoint(r, s - 1, i, j);
+                from = this->RayPoint(r, back, i, j);
               }
               else if (this->Directional)
               {
@@ -354,7 +361,7 @@ std::vector<float> ShadowSweep::Depths(
               const float cy =
                 this->GridBox.lower[this->Lateral[1]] + (static_cast<float>(y) + 0.5f) * pitch[1];
               float u, v;
-              this->RayCoordinates(r, s, cx, cy, u, v);
+              this->RayCoordinates(r, here, cx, cy, u, v);
               double depth[3];
               interpolate(carried, r, u, v, depth);
               for (int c = 0; c < 3; ++c)

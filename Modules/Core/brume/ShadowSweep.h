@@ -112,11 +112,19 @@ private:
   // Lateral coordinate s's map (x to a x + b) from the plane at z to run r's
   // reference plane.
   void Map(const Run& r, int s, float z, float& a, float& b) const;
-  // The lateral coordinates of the point (x, y) of the plane of `step`, in
-  // run r's rays (ray (i, j) at (i, j)).
-  void RayCoordinates(const Run& r, int step, float x, float y, float& u, float& v) const;
-  // Ray (i, j) of run r where it crosses the plane of `step`.
-  Vec3 RayPoint(const Run& r, int step, std::size_t i, std::size_t j) const;
+  // Run r's map of the plane of `step` (Map() along both lateral axes), made
+  // once a plane rather than once a ray.
+  struct PlaneMap
+  {
+    float Z = 0.f;
+    float A[2] = { 1.f, 1.f }, B[2] = { 0.f, 0.f };
+  };
+  PlaneMap MapOf(const Run& r, int step) const;
+  // The lateral coordinates of the point (x, y) of a plane, in run r's rays
+  // (ray (i, j) at (i, j)).
+  void RayCoordinates(const Run& r, const PlaneMap& m, float x, float y, float& u, float& v) const;
+  // Ray (i, j) of run r where it crosses a plane.
+  Vec3 RayPoint(const Run& r, const PlaneMap& m, std::size_t i, std::size_t j) const;
 
   const DirectLight* Direct = nullptr;
   std::size_t LightIndex = 0;
