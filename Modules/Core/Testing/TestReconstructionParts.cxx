@@ -368,6 +368,76 @@ TEST(ReconstructionParts, NativeMediumGridIntegratesTheDensityOverRegions)
   EXPECT_FALSE(matching.Empty());
 }
 
+TEST(ReconstructionParts, TheTablesIntegrateTheTrilinearFieldTheHitsSample)
+{
+  // A grid of point values is interpolated trilinearly between its points,
+  // and the tracer's collisions sample that field, so the integral a
+  // region's hits are divided by must be that field's, also over
+  // histogram cells finer than the grid's: a dense ball's edge, where the
+  // field ramps to 0 over a spacing, was held as cells of constant density,
+  // whose mass stops half a spacing past the last point inside where the
+  // field's ramp reaches a whole spacing (a dense dragon's regions, grown
+  // over such cells, read its lit skin 1.7 % too bright).
+  const int n = 12;
+  std::vector<float> values(static_cast<std::size_t>(n) * n * n);
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+      {
+        const double r =
+          std::sqrt((i - 5.2) * (i - 5.2) + (j - 6.1) * (j - 6.1) + (k - 5.7) * (k - 5.7));
+        values[(static_cast<std::size_t>(k) * n + j) * n + i] = r < 4.0 ? 3.f : 0.f;
+      }
+  Medium ball;
+  ball.Name = "ball";
+  ball.SetDensity(std::make_shared<GridDensity>(Box{ Vec3(0.f), Vec3(1.f, 1.2f, 0.9f) },
+    std::array<int, 3>{ n, n, n }, std::move(values), false));
+  NativeMediumGrid grid;
+  grid.Sample(ball, NativeMediumGrid::DefaultMemory, SerialFor());
+  ASSERT_EQ(grid.GetCoarsening(), 1);
+  // Histogram cells about a third of a spacing, not aligned with the points.
+  const std::array<int, 3> dims{ 31, 37, 29 };
+  grid.BuildTables(ball.Bounds, dims);
+  const Vec3 cell = ball.Bounds.Extent() /
+    Vec3(static_cast<float>(dims[0]), static_cast<float>(dims[1]), static_cast<float>(dims[2]));
+  // Each cell's integral of the field evaluated: exact for a trilinear
+  // field by Gauss-Legendre's two points on each piece the points cut it
+  // into, here approximated by 12 midpoints an axis (the pieces are at most
+  // three a cell), against the table's.
+  double worst = 0.0, largest = 0.0, total = 0.0, tableTotal = 0.0;
+  for (int k = 0; k < dims[2]; ++k)
+    for (int j = 0; j < dims[1]; ++j)
+      for (int i = 0; i < dims[0]; ++i)
+      {
+        const Vec3 lower = ball.Bounds.lower +
+          Vec3(static_cast<float>(i), static_cast<float>(j), static_cast<float>(k)) * cell;
+        double sum = 0.0;
+        constexpr int S = 12;
+        for (int z = 0; z < S; ++z)
+          for (int y = 0; y < S; ++y)
+            for (int x = 0; x < S; ++x)
+            {
+              const Vec3 f((x + 0.5f) / S, (y + 0.5f) / S, (z + 0.5f) / S);
+              sum += ball.Density->Evaluate(lower + cell * f);
+            }
+        const double evaluated = sum / (S * S * S) * cell.x * cell.y * cell.z;
+        Region one;
+        one.Lo = { i, j, k };
+        one.Hi = { i + 1, j + 1, k + 1 };
+        const double table = grid.RegionIntegral(one);
+        worst = std::max(worst, std::abs(table - evaluated));
+        largest = std::max(largest, evaluated);
+        total += evaluated;
+        tableTotal += table;
+      }
+  std::cout << "largest difference from the field's integral over a cell: " << worst / largest
+            << " of the largest cell's\n";
+  // The midpoints' own error is below 0.5 % of a full cell here; cells of
+  // constant density were 63 % of a full cell off.
+  EXPECT_LT(worst, 0.01 * largest);
+  EXPECT_NEAR(tableTotal, total, 1e-3 * total);
+}
+
 namespace
 {
 // A classified wavelet-like field of n^3 point values over [-1, 1]^3 whose

@@ -85,6 +85,64 @@ std::vector<std::vector<Overlap>> Overlaps(
   return result;
 }
 
+// Overlaps() of fine cells whose values are points at their centres,
+// interpolated linearly between them (a trilinear field is their tensor
+// product): each point's share of the field is its hat function, 1 at its
+// centre and 0 at its neighbours', so its mass (its value times a fine
+// cell) falls into the coarse cells that hat overlaps, a fraction its
+// integral there over the fine cell, centred at the hat's own centroid
+// over the overlap. The hats of a row add up to 1 between its first and
+// last points; beyond them (half a fine cell at either end) the field is
+// not the medium's, whose bounds stop at those points.
+std::vector<std::vector<Overlap>> HatOverlaps(
+  int n, double lo, double hi, int m, double coarseLo, double coarseHi)
+{
+  if (n < 2)
+  {
+    return Overlaps(n, lo, hi, m, coarseLo, coarseHi); // constant along the axis
+  }
+  std::vector<std::vector<Overlap>> result(static_cast<std::size_t>(n));
+  const double fine = (hi - lo) / n, coarse = (coarseHi - coarseLo) / m;
+  // The integrals of the hat and of t times it over [u, v] inside one of
+  // its sides (t from the point's centre; rising: sign -1, falling: +1).
+  auto side = [&](double u, double v, double sign, double& mass, double& moment)
+  {
+    mass += (v - u) - sign * (v * v - u * u) / (2.0 * fine);
+    moment += (v * v - u * u) / 2.0 - sign * (v * v * v - u * u * u) / (3.0 * fine);
+  };
+  for (int i = 0; i < n; ++i)
+  {
+    const double centre = lo + (i + 0.5) * fine;
+    const double a = centre - fine, b = centre + fine;
+    const int first = std::max(0, static_cast<int>(std::floor((a - coarseLo) / coarse)));
+    const int last = std::min(m - 1, static_cast<int>(std::ceil((b - coarseLo) / coarse)) - 1);
+    for (int c = first; c <= last; ++c)
+    {
+      // In t = x - centre.
+      const double from = std::max(a, coarseLo + c * coarse) - centre;
+      const double to = std::min(b, coarseLo + (c + 1) * coarse) - centre;
+      if (!(to > from))
+      {
+        continue;
+      }
+      double mass = 0.0, moment = 0.0;
+      if (from < 0.0)
+      {
+        side(from, std::min(to, 0.0), -1.0, mass, moment);
+      }
+      if (to > 0.0)
+      {
+        side(std::max(from, 0.0), to, 1.0, mass, moment);
+      }
+      if (mass > 0.0)
+      {
+        result[i].push_back({ c, mass / fine, (centre + moment / mass - coarseLo) / coarse });
+      }
+    }
+  }
+  return result;
+}
+
 // Whether the density's majorants are 0 over the world box [lower, upper]
 // (clamped to the medium's bounds, as the samples are): then the density is
 // 0 there, since it is never negative.
@@ -142,17 +200,19 @@ bool ZeroOver(const DensityField& density, const Box& bounds, Vec3 lower, Vec3 u
 
 namespace
 {
-// Overlaps() of a grid's cells with `dims` cells over `box`, axis by axis.
+// Overlaps() of a grid's cells with `dims` cells over `box`, axis by axis;
+// HatOverlaps() where the grid's values are points of a trilinear field.
 using GridOverlaps = std::array<std::vector<std::vector<Overlap>>, 3>;
-GridOverlaps CellOverlaps(const BrickedGrid& grid, const Box& box, const std::array<int, 3>& dims)
+GridOverlaps CellOverlaps(
+  const BrickedGrid& grid, const Box& box, const std::array<int, 3>& dims, bool trilinear)
 {
   const auto& nd = grid.GetDims();
   const Box& native = grid.GetBox();
   GridOverlaps overlaps;
   for (int a = 0; a < 3; ++a)
   {
-    overlaps[a] =
-      Overlaps(nd[a], native.lower[a], native.upper[a], dims[a], box.lower[a], box.upper[a]);
+    overlaps[a] = (trilinear ? HatOverlaps : Overlaps)(
+      nd[a], native.lower[a], native.upper[a], dims[a], box.lower[a], box.upper[a]);
   }
   return overlaps;
 }
@@ -344,6 +404,10 @@ void NativeMediumGrid::SampleFrom(const Medium& medium, std::size_t memory,
   }
   layout(factor);
   this->Coarsening = factor;
+  // The field the tracer samples, where the grid holds its points.
+  float probe = 0.f;
+  this->Trilinear = factor == 1 && !classified &&
+    density.NativePoints(std::array<int, 3>{ 0, 0, 0 }, std::array<int, 3>{ 1, 1, 1 }, &probe);
   this->FieldResolution = native;
   // A classified density's scalars at the cells' centres (not coarsened;
   // the field's own values):
@@ -625,12 +689,16 @@ void NativeMediumGrid::BuildTables(
   const Box& box, const std::array<int, 3>& dims, const ParallelFor& parallelFor)
 {
   // The density's integral over each histogram cell, summed from the native
-  // cells by their exact overlaps (separable along the axes).
-  // Native cells beyond the medium's bounds count for the part inside.
+  // cells by their exact overlaps (separable along the axes): of each
+  // cell's constant density, or, where the field is the trilinear
+  // interpolation of the cells' values (Trilinear), of each value's hat
+  // (HatOverlaps()), so that a histogram cell finer than a voxel holds the
+  // mass the tracer's collisions sample there. Native cells beyond the
+  // medium's bounds count for the part inside.
   const BrickedGrid& grid = this->Density;
   const auto& nd = grid.GetDims();
   const Box& native = grid.GetBox();
-  const GridOverlaps overlaps = CellOverlaps(grid, box, dims);
+  const GridOverlaps overlaps = CellOverlaps(grid, box, dims, this->Trilinear);
   const double nativeVolume =
     static_cast<double>(native.Volume()) / (static_cast<double>(nd[0]) * nd[1] * nd[2]);
   // Each layer of bricks along z sums into the histogram cells its cells
@@ -856,7 +924,7 @@ void NativeMediumGrid::BuildAlbedoTable(const Box& box, const std::array<int, 3>
   const BrickedGrid& grid = this->Density;
   const auto& nd = grid.GetDims();
   const Box& native = grid.GetBox();
-  const GridOverlaps overlaps = CellOverlaps(grid, box, dims);
+  const GridOverlaps overlaps = CellOverlaps(grid, box, dims, this->Trilinear);
   const double nativeVolume =
     static_cast<double>(native.Volume()) / (static_cast<double>(nd[0]) * nd[1] * nd[2]);
   struct Layer

@@ -216,6 +216,11 @@ private:
   float ScalarSkipped = 0.f;
   std::size_t ReusedBricks = 0, SampledBricks = 0;
   int Coarsening = 1;
+  // Whether the density is the trilinear interpolation of Density's values
+  // (an OpenVDB grid, a grid of point values, not coarsened nor
+  // classified): the tables then integrate that field, which the tracer's
+  // hits sample, not cells of constant density.
+  bool Trilinear = false;
   std::array<int, 3> FieldResolution{ 0, 0, 0 };
 };
 
