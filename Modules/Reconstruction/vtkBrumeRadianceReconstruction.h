@@ -160,8 +160,10 @@ public:
    * left out. Shafts, self-shadowing and shadows are as sharp as the output
    * grid: media and planar surfaces (of one non-mirror material) are output
    * at DirectLightResolution texels along their longest axis (heterogeneous
-   * media: at most their density's own resolution; at most 2^18 texels per
-   * object), holding the particles' texture resampled plus the direct light.
+   * media: at most their density's own resolution, its voxels cut in two
+   * where they hold 1.5 mean free paths and the particles' texture is finer,
+   * brume::MediumVoxelRefinement; at most 2^18 texels per object, 2^21 so
+   * cut), holding the particles' texture resampled plus the direct light.
    * Other surfaces, and scenes lit only by emissive surfaces, are as
    * without it. The hits must carry the tracer's `EmitterId` and `Depth`.
    * ../shared/RADIOMETRY.md, "Two resolutions in one medium", states the

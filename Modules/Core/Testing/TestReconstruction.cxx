@@ -667,6 +667,27 @@ TEST(Reconstruction, HitsOnAndBeyondTheCellBoundariesBinWhereFloorPutsThem)
   }
 }
 
+TEST(Reconstruction, ADenseMediumsVoxelsAreCutToItsMeanFreePath)
+{
+  // Voxels of 1/4 m, the densest 2: voxels per mean free path 0.5 sigma_t.
+  std::vector<float> values(64, 0.f);
+  values[5] = 2.f;
+  values[6] = 1.f;
+  Medium medium;
+  medium.SigmaA = Vec3(0.f);
+  medium.SigmaS = Vec3(1.f);
+  EXPECT_EQ(MediumVoxelRefinement(medium), 1); // homogeneous
+  medium.SetDensity(std::make_shared<GridDensity>(
+    Box{ Vec3(0.f), Vec3(1.f) }, std::array<int, 3>{ 4, 4, 4 }, values, true));
+  EXPECT_EQ(MediumVoxelRefinement(medium), 1); // a voxel is half a mean free path
+  medium.SigmaS = Vec3(2.9f, 1.f, 1.f);        // 1.45 voxels a mean free path: rounded to 1
+  EXPECT_EQ(MediumVoxelRefinement(medium), 1);
+  medium.SigmaS = Vec3(1.f, 3.1f, 1.f); // the densest channel's: 1.55, cut in two
+  EXPECT_EQ(MediumVoxelRefinement(medium), 2);
+  medium.SigmaS = Vec3(100.f);
+  EXPECT_EQ(MediumVoxelRefinement(medium), MaxVoxelRefinement);
+}
+
 TEST(Reconstruction, DenseMediaCountTheirTexelsWhereTheyAre)
 {
   // A unit box, a quarter of whose 4^3 cells hold density 2.

@@ -37,6 +37,38 @@ double MediumHitsPerTexel(const Medium& medium, std::size_t hitCount, double thr
   return threshold * std::clamp(ratio * ratio * ratio, medium.Density->OccupiedFraction(), 1.0);
 }
 
+int MediumVoxelRefinement(const Medium& medium)
+{
+  if (!medium.Density)
+  {
+    return 1;
+  }
+  const std::array<int, 3> native = medium.Density->NativeResolution();
+  const Vec3 extent = medium.Density->NativeBox().Extent();
+  double voxel = 0.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (native[a] > 0 && extent[a] > 0.f)
+    {
+      voxel = std::max(voxel, static_cast<double>(extent[a]) / native[a]);
+    }
+  }
+  // Its largest density: the mean free path where the light enters the
+  // dense part (a dragon's, whose occupied voxels' mean is half its
+  // body's, with the fringe).
+  const std::vector<float>& blocks = medium.Density->GetMajorants().Max;
+  const double densest =
+    blocks.empty() ? 0.0 : static_cast<double>(*std::max_element(blocks.begin(), blocks.end()));
+  const double voxels = voxel * static_cast<double>(MaxComponent(medium.SigmaT())) * densest;
+  if (!std::isfinite(voxels))
+  {
+    return 1;
+  }
+  // Voxels per mean free path, rounded.
+  return static_cast<int>(
+    std::clamp(std::round(voxels), 1.0, static_cast<double>(MaxVoxelRefinement)));
+}
+
 std::array<int, 3> PilotGridResolution(const Box& box)
 {
   return ChooseResolution(box.Extent(), 4096, 1.0, 1, 64);

@@ -36,6 +36,21 @@ std::array<int, 3> ChooseResolution(
 double MediumHitsPerTexel(const Medium& medium, std::size_t hitCount, double threshold);
 
 /**
+ * How many output texels each of a heterogeneous medium's own voxels is cut
+ * into along each axis (1 or MaxVoxelRefinement), so that an output texel
+ * is no larger than about the medium's mean free path 1 / sigma_t at its
+ * largest density (its majorants', the largest channel's): voxels per mean
+ * free path, rounded. The light of a dense medium changes within a mean
+ * free path of its skin, and the direct light's shadow depths and the
+ * particles' texture, resampled at texels of a whole voxel, averaged the
+ * dragon's lit skin (half a voxel) with what lies a voxel deeper. 1 for a
+ * medium without a density or with a mean free path over two thirds of a
+ * voxel (every thin cloud of the shipped and shared scenes).
+ */
+int MediumVoxelRefinement(const Medium& medium);
+constexpr int MaxVoxelRefinement = 2;
+
+/**
  * Where a medium's hits are, before its texture is sized: its hits counted
  * over a coarse pilot grid of its box (`PilotGridResolution`, near-cubic
  * cells, about 4,096 of them), added to `counts` so that processes can sum

@@ -21,6 +21,7 @@
 
 #include "BrumeVdbWriter.h"
 
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <iostream>
@@ -151,6 +152,60 @@ void TestEdits(const std::string& dir)
   }
 }
 
+// A ball whose mean free path is half a voxel at its densest (sigma_t 4
+// at density 0.5, voxels of 1 m) has its voxels cut in two along each axis
+// in the source radiance's grid, its direct light's and the particles'
+// texture's, where the particles' texture is finer than its voxels (many
+// particles, a low threshold): the light changes within its lit skin. With
+// few particles, or a thin ball, the grid is its voxels'.
+void TestDenseVoxelsCut(const std::string& dir)
+{
+  auto sourceDims = [&](const std::string& name, const char* sigmaS, int particles)
+  {
+    std::ofstream(dir + "/" + name) << R"({ "brume_scene": 1, "name": "one ball",
+  "camera": { "position": [0, 0, 80], "focal_point": [0, 0, 0], "view_up": [0, 1, 0], "view_angle": 30 },
+  "render": { "particles": 20000, "size": [64, 64], "threshold": 8 },
+  "media": [ { "name": "ball", "density": { "vdb": ")"
+                                    << dir << R"(/one.vdb" }, "sigma_a": [0, 0, 0], "sigma_s": [)"
+                                    << sigmaS << ", " << sigmaS << ", " << sigmaS << R"(] } ],
+  "lights": [ { "type": "directional", "direction": [0, -1, 0], "irradiance": [1, 1, 1] } ] })";
+    Chain chain;
+    chain.Reader->SetFileName((dir + "/" + name).c_str());
+    chain.Tracer->SetNumberOfParticles(particles);
+    std::array<int, 6> dims{};
+    if (!chain.Reconstruction->GetExecutive()->Update())
+    {
+      Check(false, name + ": reconstruction");
+      return dims;
+    }
+    auto* out =
+      vtkPartitionedDataSetCollection::SafeDownCast(chain.Reconstruction->GetOutputDataObject(0));
+    auto* source = vtkImageData::SafeDownCast(out->GetPartitionedDataSet(0)->GetPartition(0));
+    auto* extinction = vtkImageData::SafeDownCast(out->GetPartitionedDataSet(0)->GetPartition(1));
+    if (source && extinction)
+    {
+      source->GetDimensions(dims.data());
+      extinction->GetDimensions(dims.data() + 3);
+    }
+    std::cout << name << ", " << particles << " particles: source radiance " << dims[0] - 1 << " x "
+              << dims[1] - 1 << " x " << dims[2] - 1 << " cells, extinction " << dims[3] - 1
+              << " x " << dims[4] - 1 << " x " << dims[5] - 1 << "\n";
+    return dims;
+  };
+  brume::vdbwriter::Write(dir + "/one.vdb", { brume::vdbwriter::Balls({ 0 }, 6, 0.5f) });
+  auto cut = [](const std::array<int, 6>& d, int by)
+  {
+    return d[5] > 1 && d[0] - 1 == by * (d[3] - 1) && d[1] - 1 == by * (d[4] - 1) &&
+      d[2] - 1 == by * (d[5] - 1);
+  };
+  const std::array<int, 6> dense = sourceDims("dense.json", "4", 400000);
+  Check(cut(dense, 2), "a dense ball's voxels are cut in two where the particles resolve them");
+  const std::array<int, 6> few = sourceDims("dense.json", "4", 2000);
+  Check(cut(few, 1), "a dense ball's voxels are whole where its particles' texels are larger");
+  const std::array<int, 6> thin = sourceDims("thin.json", "0.3", 400000);
+  Check(cut(thin, 1), "a thin ball's voxels are whole");
+}
+
 int TestSparseTextures(int argc, char* argv[])
 {
   if (argc < 2)
@@ -206,5 +261,6 @@ int TestSparseTextures(int argc, char* argv[])
       "the dense grid costs many times the sparse one");
   }
   TestEdits(dir);
+  TestDenseVoxelsCut(dir);
   return failures == 0 ? 0 : 1;
 }
