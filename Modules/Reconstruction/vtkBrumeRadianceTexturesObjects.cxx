@@ -266,10 +266,9 @@ std::array<int, 3> vtkBrumeRadianceTextures::DirectResolution(std::size_t o, int
   // n texels along the longest axis, at most the density's own resolution,
   // at most MaxDirectTexels in all, and at most MaxDirectArrivals over the
   // scene's lights. A medium drawn at its own resolution whose mean free
-  // path is shorter than its voxels has them cut
-  // (brume::MediumVoxelRefinement) as far as the particles' texture is
-  // finer than them (its texels shrink as the particles grow: the cut
-  // follows the budget), with as many texels a voxel in its limit.
+  // path is shorter than its voxels has them cut as far as its particles'
+  // texture resolves (brume::MediumVoxelRefinement), with as many texels a
+  // voxel in its limit.
   std::array<int, 3> res{ 1, 1, 1 };
   const double lights = static_cast<double>(std::max<std::size_t>(1, this->Scene.Lights.size()));
   double texelLimit = MaxDirectTexels;
@@ -284,13 +283,8 @@ std::array<int, 3> vtkBrumeRadianceTextures::DirectResolution(std::size_t o, int
       {
         res[a] = std::max(1, std::min(res[a], native[a]));
       }
-      int cut = 1;
-      const std::array<int, 3>& particles = this->Objects[o]->GetLayout().Resolution;
-      for (int a = 0; a < 3; ++a)
-      {
-        cut = std::max(cut, (particles[a] + native[a] - 1) / std::max(native[a], 1));
-      }
-      cut = std::min(cut, brume::MediumVoxelRefinement(medium));
+      const int cut =
+        brume::MediumVoxelRefinement(medium, this->Objects[o]->GetLayout().Resolution);
       if (cut > 1 && res == native &&
         static_cast<double>(res[0]) * res[1] * res[2] <= MaxDirectTexels)
       {

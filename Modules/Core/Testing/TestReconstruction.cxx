@@ -676,16 +676,20 @@ TEST(Reconstruction, ADenseMediumsVoxelsAreCutToItsMeanFreePath)
   Medium medium;
   medium.SigmaA = Vec3(0.f);
   medium.SigmaS = Vec3(1.f);
-  EXPECT_EQ(MediumVoxelRefinement(medium), 1); // homogeneous
+  // Particles' texels finer than the voxels (7 for 4 along y).
+  const std::array<int, 3> fine{ 4, 7, 4 }, coarse{ 4, 4, 3 };
+  EXPECT_EQ(MediumVoxelRefinement(medium, fine), 1); // homogeneous
   medium.SetDensity(std::make_shared<GridDensity>(
     Box{ Vec3(0.f), Vec3(1.f) }, std::array<int, 3>{ 4, 4, 4 }, values, true));
-  EXPECT_EQ(MediumVoxelRefinement(medium), 1); // a voxel is half a mean free path
-  medium.SigmaS = Vec3(2.9f, 1.f, 1.f);        // 1.45 voxels a mean free path: rounded to 1
-  EXPECT_EQ(MediumVoxelRefinement(medium), 1);
+  EXPECT_EQ(MediumVoxelRefinement(medium, fine), 1); // a voxel is half a mean free path
+  medium.SigmaS = Vec3(2.9f, 1.f, 1.f);              // 1.45 voxels a mean free path: rounded to 1
+  EXPECT_EQ(MediumVoxelRefinement(medium, fine), 1);
   medium.SigmaS = Vec3(1.f, 3.1f, 1.f); // the densest channel's: 1.55, cut in two
-  EXPECT_EQ(MediumVoxelRefinement(medium), 2);
+  EXPECT_EQ(MediumVoxelRefinement(medium, fine), 2);
   medium.SigmaS = Vec3(100.f);
-  EXPECT_EQ(MediumVoxelRefinement(medium), MaxVoxelRefinement);
+  EXPECT_EQ(MediumVoxelRefinement(medium, fine), MaxVoxelRefinement);
+  // Not finer than the particles resolve: texels of a voxel or more keep it whole.
+  EXPECT_EQ(MediumVoxelRefinement(medium, coarse), 1);
 }
 
 TEST(Reconstruction, DenseMediaCountTheirTexelsWhereTheyAre)

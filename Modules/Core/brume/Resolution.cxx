@@ -37,13 +37,23 @@ double MediumHitsPerTexel(const Medium& medium, std::size_t hitCount, double thr
   return threshold * std::clamp(ratio * ratio * ratio, medium.Density->OccupiedFraction(), 1.0);
 }
 
-int MediumVoxelRefinement(const Medium& medium)
+int MediumVoxelRefinement(const Medium& medium, const std::array<int, 3>& particleTexels)
 {
   if (!medium.Density)
   {
     return 1;
   }
   const std::array<int, 3> native = medium.Density->NativeResolution();
+  // The particles' texels per voxel, rounded up.
+  int resolved = 1;
+  for (int a = 0; a < 3; ++a)
+  {
+    resolved = std::max(resolved, (particleTexels[a] + native[a] - 1) / std::max(native[a], 1));
+  }
+  if (resolved == 1)
+  {
+    return 1;
+  }
   const Vec3 extent = medium.Density->NativeBox().Extent();
   double voxel = 0.0;
   for (int a = 0; a < 3; ++a)
@@ -65,8 +75,8 @@ int MediumVoxelRefinement(const Medium& medium)
     return 1;
   }
   // Voxels per mean free path, rounded.
-  return static_cast<int>(
-    std::clamp(std::round(voxels), 1.0, static_cast<double>(MaxVoxelRefinement)));
+  return std::min(resolved,
+    static_cast<int>(std::clamp(std::round(voxels), 1.0, static_cast<double>(MaxVoxelRefinement))));
 }
 
 std::array<int, 3> PilotGridResolution(const Box& box)

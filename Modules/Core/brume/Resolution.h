@@ -40,14 +40,18 @@ double MediumHitsPerTexel(const Medium& medium, std::size_t hitCount, double thr
  * into along each axis (1 or MaxVoxelRefinement), so that an output texel
  * is no larger than about the medium's mean free path 1 / sigma_t at its
  * largest density (its majorants', the largest channel's): voxels per mean
- * free path, rounded. The light of a dense medium changes within a mean
- * free path of its skin, and the direct light's shadow depths and the
- * particles' texture, resampled at texels of a whole voxel, averaged the
- * dragon's lit skin (half a voxel) with what lies a voxel deeper. 1 for a
- * medium without a density or with a mean free path over two thirds of a
- * voxel (every thin cloud of the shipped and shared scenes).
+ * free path, rounded, and no finer than the particles' own texture of
+ * `particleTexels` resolves (as many per voxel, rounded up: its texels
+ * shrink as the particles grow, so the cut follows the budget). The light
+ * of a dense medium changes within a mean free path of its skin, and the
+ * direct light's shadow depths and the particles' texture, resampled at
+ * texels of a whole voxel, averaged the dragon's lit skin (half a voxel)
+ * with what lies a voxel deeper. 1 for a medium without a density, with a
+ * mean free path over two thirds of a voxel (every thin cloud of the
+ * shipped and shared scenes), or whose particles' texels are a voxel or
+ * larger.
  */
-int MediumVoxelRefinement(const Medium& medium);
+int MediumVoxelRefinement(const Medium& medium, const std::array<int, 3>& particleTexels);
 constexpr int MaxVoxelRefinement = 2;
 
 /**
